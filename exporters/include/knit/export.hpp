@@ -1,0 +1,112 @@
+// knit/export.hpp — write a built scene to a file; the format follows the output extension.
+//
+// Formats (by extension of ExportOptions::path):
+//   .obj   curves as `l` records, or tube meshes (v / vn / vt / f)
+//   .ply   binary little-endian PLY: curves as vertex + edge elements, or tube meshes
+//   .bcc   Cem Yuksel's BCC curves ("C0" uniform Catmull-Rom; closed curves have negative counts)
+//   .pbrt  pbrt-v4 `Shape "curve"` (cylinder, cubic Bezier converted from Catmull-Rom), or
+//          `Shape "trianglemesh"` for tubes
+//   .gltf  glTF 2.0 JSON + external .bin buffers (<name>.bin, <name>_1.bin, ...)
+//   .glb   binary glTF; the first buffer is the GLB BIN chunk, further buffers (only when the data
+//          exceeds maxBufferBytes) are external <name>_1.bin, ... files next to it
+// What is written is chosen by ExportOptions::what: the yarn centrelines, the ply curves, or
+// swept tube meshes (of the plies when the scene has plies, else of the yarns; see tubesOf).
+//
+// Streaming: tube meshes are swept, written and freed chunk by chunk (at most chunkVertices
+// tube vertices per chunk), so the peak memory is the scene plus one chunk's mesh. In glTF each
+// chunk is one node whose translation is the chunk's local origin (double precision) and whose
+// float32 positions are relative to it.
+#pragma once
+#include <cstdint>
+#include <functional>
+#include <ostream>
+#include <string>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "knit/scene.hpp"
+
+namespace CLI { class App; }
+
+namespace knit {
+
+enum class ExportWhat { Yarns, Plies, Tubes };
+enum class TubeSource { Auto, Plies, Yarns };  // Auto: plies when the scene has any, else yarns
+
+struct ExportOptions {
+    std::string path;                    // output file; extension picks the format
+    ExportWhat what = ExportWhat::Plies;
+    TubeSource tubesOf = TubeSource::Auto;
+
+    // Tube meshes (what = Tubes).
+    int sides = 8;                       // ring vertices (>= 3; +1 seam duplicate for texturing)
+    bool caps = true;                    // close open curve ends
+
+    // glTF / GLB.
+    bool draco = false;                  // KHR_draco_mesh_compression (tubes only)
+    int dracoBits = 14;                  // position quantization bits (1..30)
+    int dracoNormalBits = 10;            // normal / tangent quantization bits
+    int dracoTexcoordBits = 12;          // TEXCOORD_0 quantization bits
+    int dracoLevel = 7;                  // Draco compression level 0 (fast) .. 10 (small)
+    bool quantize = false;               // KHR_mesh_quantization (int16 positions, int16 normals)
+    bool yarnColors = false;             // COLOR_0 per yarn (tubes) from a fixed palette
+    bool prettyJson = false;             // indent the glTF JSON
+
+    // Chunking: at most this many tube vertices (tubes) or curve points (curves) per chunk.
+    size_t chunkVertices = size_t(1) << 20;
+    // Largest glTF buffer (and GLB BIN chunk); data beyond it goes to further buffers.
+    uint64_t maxBufferBytes = 0xE0000000ull;  // 3.5 GiB: leaves room for the GLB JSON chunk
+};
+
+struct ExportStats {
+    std::string format;     // "obj", "ply", "bcc", "pbrt", "gltf", "glb"
+    size_t curves = 0;      // curves exported (or swept)
+    size_t vertices = 0;    // curve points, or tube vertices
+    size_t triangles = 0;   // tube triangles (0 for curves)
+    size_t chunks = 0;      // chunks written (glTF nodes; streaming steps for other formats)
+    size_t maxChunkVertices = 0;
+    size_t buffers = 0;     // glTF buffers written
+    size_t bytes = 0;       // total bytes of all files written
+    size_t uncompressedMeshBytes = 0;  // tube attribute + index bytes before Draco/quantization
+    size_t compressedMeshBytes = 0;    // the same data as written (Draco / quantized)
+    size_t peakMemoryBytes = 0;        // process peak resident set (VmHWM) after export
+    double seconds = 0;
+};
+
+// Writes atomically (temporary file in the same folder, then rename): on error no output file
+// exists. Throws knit::Error for unknown extensions, unwritable paths, conflicting options.
+ExportStats exportScene(const Scene& scene, const ExportOptions& options);
+
+// Lower-level entry: exports the given curves (yarn centrelines or plies) with constant `radius`.
+// `yarnOfCurve` (optional, one entry per curve) selects the COLOR_0 palette entry and is stored;
+// `material` extras (optional JSON object) go into the glTF material's extras.
+struct ExportInput {
+    const Polylines* curves = nullptr;
+    double radius = 0;
+    const std::vector<uint32_t>* yarnOfCurve = nullptr;
+    const std::vector<glm::dvec3>* seedNormals = nullptr;  // per point, tube frame seed (optional)
+    const nlohmann::json* materialExtras = nullptr;
+};
+ExportStats exportCurves(const ExportInput& input, const ExportOptions& options);
+
+// Checks the options against each other and the extension; throws knit::Error naming the
+// conflict (e.g. --draco with curves, --draco with --quantize, Draco for a non-glTF format).
+void validateExportOptions(const ExportOptions& options);
+
+// Registers the export flags (--export, --sides, --draco, ...) on a CLI11 (sub)command.
+void addExportFlags(CLI::App& command, ExportOptions& options);
+
+nlohmann::json exportReport(const ExportStats& stats);
+
+// Process peak resident memory (VmHWM from /proc/self/status) in bytes; 0 if unavailable.
+size_t peakResidentBytes();
+
+// OBJ polylines: one `l` record per curve; a closed curve repeats its first index at the end.
+void writeObjPolylines(std::ostream& out, const Polylines& curves, const std::string& header);
+
+// Writes `path` through a temporary sibling file renamed on success; `write` fills the stream.
+// Throws knit::Error naming the path if it cannot be created or written.
+void writeFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write,
+                         bool binary);
+
+}  // namespace knit

@@ -1,0 +1,135 @@
+// atomic_file.cpp — temporary sibling file + rename, so a failed export leaves no partial file.
+#include "atomic_file.hpp"
+
+#include <unistd.h>
+
+#include <atomic>
+#include <cctype>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <system_error>
+
+#include "knit/error.hpp"
+
+namespace knit::detail {
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr size_t kStreamBuffer = size_t(1) << 20;
+
+std::string folderOf(const std::string& path) {
+    const fs::path parent = fs::path(path).parent_path();
+    return parent.empty() ? std::string(".") : parent.string();
+}
+
+// Unique per process and call: <folder>/.<name>.<pid>.<n>.tmp
+std::string tempSibling(const std::string& path) {
+    static std::atomic<unsigned> counter{0};
+    const fs::path p(path);
+    const std::string name = "." + p.filename().string() + "." + std::to_string(::getpid()) + "." +
+                             std::to_string(counter.fetch_add(1)) + ".tmp";
+    return (p.parent_path() / name).string();
+}
+
+}  // namespace
+
+void checkOutputFolder(const std::string& path) {
+    if (path.empty()) throw Error("export: no output path given");
+    const fs::path p(path);
+    if (!p.has_filename() || p.filename() == "." || p.filename() == "..")
+        throw Error("cannot write '" + path + "': the path names a folder, not a file");
+    const std::string folder = folderOf(path);
+    std::error_code ec;
+    const fs::file_status st = fs::status(folder, ec);
+    if (!fs::exists(st))
+        throw Error("cannot write '" + path + "': folder '" + folder + "' does not exist");
+    if (!fs::is_directory(st))
+        throw Error("cannot write '" + path + "': '" + folder + "' is not a folder");
+    if (fs::is_directory(fs::status(path, ec)))
+        throw Error("cannot write '" + path + "': a folder with that name exists");
+}
+
+AtomicFile::AtomicFile(const std::string& path, bool binary) : path_(path) {
+    checkOutputFolder(path);
+    temp_ = tempSibling(path);
+    buffer_.reset(new char[kStreamBuffer]);
+    out_.rdbuf()->pubsetbuf(buffer_.get(), kStreamBuffer);
+    errno = 0;
+    out_.open(temp_, binary ? std::ios::out | std::ios::binary | std::ios::trunc
+                            : std::ios::out | std::ios::trunc);
+    if (!out_) {
+        const int err = errno;
+        throw Error("cannot write '" + path + "': cannot create a file in folder '" + folderOf(path) +
+                    "'" + (err ? std::string(" (") + std::strerror(err) + ")" : std::string()));
+    }
+}
+
+AtomicFile::~AtomicFile() {
+    if (!committed_) {
+        if (out_.is_open()) out_.close();
+        std::error_code ec;
+        fs::remove(temp_, ec);
+    }
+}
+
+void AtomicFile::close() {
+    if (closed_) return;
+    closed_ = true;
+    out_.flush();
+    const bool ok = static_cast<bool>(out_);
+    size_ = ok ? static_cast<uint64_t>(out_.tellp()) : 0;
+    out_.close();
+    if (!ok || out_.fail())
+        throw Error("cannot write '" + path_ + "': writing failed (disk full or I/O error)");
+}
+
+uint64_t AtomicFile::bytesWritten() {
+    if (closed_) return size_;
+    return static_cast<uint64_t>(out_.tellp());
+}
+
+void AtomicFile::commit() {
+    close();
+    if (std::rename(temp_.c_str(), path_.c_str()) != 0) {
+        const int err = errno;
+        throw Error("cannot write '" + path_ + "': renaming the finished file failed (" +
+                    std::strerror(err) + ")");
+    }
+    committed_ = true;
+}
+
+void AtomicFile::undoCommit() {
+    if (!committed_) return;
+    std::error_code ec;
+    fs::remove(path_, ec);
+    committed_ = false;
+}
+
+void appendFile(std::ostream& out, const std::string& from, uint64_t expectedBytes) {
+    std::ifstream in(from, std::ios::binary);
+    if (!in) throw Error("export: cannot reopen temporary file '" + from + "'");
+    std::unique_ptr<char[]> block(new char[kStreamBuffer * 4]);
+    uint64_t copied = 0;
+    while (in) {
+        in.read(block.get(), static_cast<std::streamsize>(kStreamBuffer * 4));
+        const std::streamsize got = in.gcount();
+        if (got <= 0) break;
+        out.write(block.get(), got);
+        copied += static_cast<uint64_t>(got);
+    }
+    if (copied != expectedBytes)
+        throw Error("export: temporary file '" + from + "' holds " + std::to_string(copied) +
+                    " bytes, expected " + std::to_string(expectedBytes));
+}
+
+std::string lowerExtension(const std::string& path) {
+    std::string ext = fs::path(path).extension().string();
+    if (!ext.empty() && ext[0] == '.') ext.erase(0, 1);
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return ext;
+}
+
+}  // namespace knit::detail

@@ -1,0 +1,51 @@
+// atomic_file.hpp (internal) — output files written to a temporary sibling and renamed on commit.
+#pragma once
+#include <cstdint>
+#include <fstream>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace knit::detail {
+
+// A temporary file next to `path` (same folder, so the final rename is atomic). The destructor
+// removes the temporary file unless commit() renamed it onto `path`. Errors name `path`.
+class AtomicFile {
+public:
+    AtomicFile(const std::string& path, bool binary);
+    ~AtomicFile();
+    AtomicFile(const AtomicFile&) = delete;
+    AtomicFile& operator=(const AtomicFile&) = delete;
+
+    std::ostream& stream() { return out_; }
+    const std::string& path() const { return path_; }
+    const std::string& tempPath() const { return temp_; }
+    // Flushes and closes; throws knit::Error if any write failed (disk full, I/O error).
+    void close();
+    // close() (if not done) then renames the temporary file onto the final path.
+    void commit();
+    // Removes the final file again (used when a later file of a multi-file output fails).
+    void undoCommit();
+    bool committed() const { return committed_; }
+    uint64_t bytesWritten();
+
+private:
+    std::string path_;
+    std::string temp_;
+    std::ofstream out_;
+    std::unique_ptr<char[]> buffer_;
+    bool closed_ = false;
+    bool committed_ = false;
+    uint64_t size_ = 0;
+};
+
+// Checks that the folder of `path` exists and is a folder; throws knit::Error naming it.
+void checkOutputFolder(const std::string& path);
+
+// Appends the whole content of file `from` to `out` (used to place a streamed BIN chunk).
+void appendFile(std::ostream& out, const std::string& from, uint64_t expectedBytes);
+
+// Lower-case extension of `path` without the dot ("" if none).
+std::string lowerExtension(const std::string& path);
+
+}  // namespace knit::detail

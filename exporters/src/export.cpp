@@ -1,0 +1,274 @@
+// export.cpp — exportScene(): pick the curves, validate options, dispatch on the extension.
+#include "knit/export.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "atomic_file.hpp"
+#include "formats.hpp"
+#include "knit/error.hpp"
+
+namespace knit {
+
+namespace {
+
+const char* kSupported = ".obj, .ply, .bcc, .pbrt, .gltf, .glb";
+
+bool isCurveFormat(const std::string& ext) { return ext == "bcc"; }
+bool isGltf(const std::string& ext) { return ext == "gltf" || ext == "glb"; }
+bool isKnownFormat(const std::string& ext) {
+    return ext == "obj" || ext == "ply" || ext == "bcc" || ext == "pbrt" || isGltf(ext);
+}
+
+const char* whatName(ExportWhat w) {
+    switch (w) {
+        case ExportWhat::Yarns: return "yarns";
+        case ExportWhat::Plies: return "plies";
+        case ExportWhat::Tubes: return "tubes";
+    }
+    return "?";
+}
+
+// Step: every point finite (user data problems are reported before any numeric loop runs).
+void validateInput(const ExportInput& in, bool tubes) {
+    if (!in.curves) throw Error("export: no curves given");
+    const Polylines& c = *in.curves;
+    if (c.offsets.size() != c.closed.size() + 1 || c.offsets.front() != 0 ||
+        c.offsets.back() != c.points.size())
+        throw Error("export: inconsistent curve offsets (" + std::to_string(c.offsets.size()) + " offsets, " +
+                    std::to_string(c.closed.size()) + " curves, " + std::to_string(c.points.size()) + " points)");
+    for (size_t k = 0; k < c.curveCount(); ++k) {
+        if (c.offsets[k + 1] < c.offsets[k])
+            throw Error("export: curve " + std::to_string(k) + " has decreasing offsets");
+        for (uint32_t i = c.begin(k); i < c.end(k); ++i) {
+            const glm::dvec3& p = c.points[i];
+            if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+                throw Error("export: curve " + std::to_string(k) + " point " + std::to_string(i - c.begin(k)) +
+                            " is not finite");
+        }
+    }
+    (void)tubes;
+    if (!(std::isfinite(in.radius) && in.radius > 0))
+        throw Error("export: radius must be a positive number, got " + std::to_string(in.radius));
+    if (in.yarnOfCurve && in.yarnOfCurve->size() != c.curveCount())
+        throw Error("export: yarnOfCurve has " + std::to_string(in.yarnOfCurve->size()) + " entries for " +
+                    std::to_string(c.curveCount()) + " curves");
+    if (in.seedNormals && in.seedNormals->size() != c.points.size())
+        throw Error("export: seed normals have " + std::to_string(in.seedNormals->size()) + " entries for " +
+                    std::to_string(c.points.size()) + " points");
+}
+
+}  // namespace
+
+void validateExportOptions(const ExportOptions& o) {
+    const std::string ext = detail::lowerExtension(o.path);
+    if (o.path.empty()) throw Error("export: no output path given");
+    if (!isKnownFormat(ext))
+        throw Error("cannot export '" + o.path + "': unknown extension '" + (ext.empty() ? "" : "." + ext) +
+                    "' (supported: " + kSupported + ")");
+    const bool tubes = o.what == ExportWhat::Tubes;
+    if (tubes && isCurveFormat(ext))
+        throw Error("cannot export '" + o.path + "': ." + ext +
+                    " holds curves only; use --export yarns or --export plies (tubes need .glb/.gltf/.obj/.ply/.pbrt)");
+    if (o.sides < 3 || o.sides > 1024)
+        throw Error("export: --sides must be in [3, 1024], got " + std::to_string(o.sides));
+    if (o.draco) {
+        if (!isGltf(ext))
+            throw Error("cannot export '" + o.path + "': --draco needs a .glb or .gltf output, not ." + ext);
+        if (!tubes)
+            throw Error(std::string("cannot export '") + o.path + "': --draco compresses triangle meshes only; " +
+                        "it cannot be used with curves (--export " + whatName(o.what) + "); use --export tubes");
+        if (o.quantize)
+            throw Error("cannot export '" + o.path + "': --draco and --quantize are alternatives; choose one");
+    }
+    if (o.quantize) {
+        if (!isGltf(ext))
+            throw Error("cannot export '" + o.path + "': --quantize (KHR_mesh_quantization) needs a .glb or .gltf output");
+        if (!tubes)
+            throw Error(std::string("cannot export '") + o.path +
+                        "': --quantize applies to tube meshes only (--export tubes)");
+    }
+    if (o.dracoBits < 1 || o.dracoBits > 30)
+        throw Error("export: --draco-bits must be in [1, 30], got " + std::to_string(o.dracoBits));
+    if (o.dracoNormalBits < 1 || o.dracoNormalBits > 30 || o.dracoTexcoordBits < 1 || o.dracoTexcoordBits > 30)
+        throw Error("export: Draco normal/texcoord bits must be in [1, 30]");
+    if (o.dracoLevel < 0 || o.dracoLevel > 10)
+        throw Error("export: --draco-level must be in [0, 10], got " + std::to_string(o.dracoLevel));
+    if (o.chunkVertices < 16)
+        throw Error("export: --chunk-vertices must be at least 16, got " + std::to_string(o.chunkVertices));
+    if (o.maxBufferBytes < 1024 || o.maxBufferBytes > 0xFFFFFFF0ull)
+        throw Error("export: maxBufferBytes must be in [1024, 4294967280]");
+}
+
+ExportStats exportCurves(const ExportInput& input, const ExportOptions& options) {
+    const auto t0 = std::chrono::steady_clock::now();
+    // Step 1: validate options, the output folder and the data before anything is written.
+    validateExportOptions(options);
+    detail::checkOutputFolder(options.path);
+    const bool tubes = options.what == ExportWhat::Tubes;
+    validateInput(input, tubes);
+
+    ExportStats stats;
+    const std::string ext = detail::lowerExtension(options.path);
+    stats.format = ext;
+    detail::FormatJob job{input, options, TubeOptions{}, tubes, std::string(), stats};
+    job.tube.sides = options.sides;
+    job.tube.caps = options.caps;
+    job.tube.seedNormals = input.seedNormals;
+    {
+        std::ostringstream h;
+        h << "libknit export: " << input.curves->curveCount() << " curves, " << whatName(options.what)
+          << ", radius " << input.radius << " m";
+        job.header = h.str();
+    }
+    // Step 2: dispatch on the extension.
+    if (ext == "obj") detail::exportObj(job);
+    else if (ext == "ply") detail::exportPly(job);
+    else if (ext == "bcc") detail::exportBcc(job);
+    else if (ext == "pbrt") detail::exportPbrt(job);
+    else detail::exportGltf(job, ext == "glb");
+
+    stats.peakMemoryBytes = peakResidentBytes();
+    stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return stats;
+}
+
+ExportStats exportScene(const Scene& scene, const ExportOptions& options) {
+    validateExportOptions(options);
+    // Step: choose the curves (yarn centrelines or plies) and their radius.
+    const bool havePlies = scene.plies.curves.curveCount() > 0;
+    bool usePlies = false;
+    switch (options.what) {
+        case ExportWhat::Yarns: usePlies = false; break;
+        case ExportWhat::Plies:
+            if (!havePlies)
+                throw Error("cannot export plies to '" + options.path +
+                            "': the scene has no plies (built without plies); use --export yarns");
+            usePlies = true;
+            break;
+        case ExportWhat::Tubes:
+            if (options.tubesOf == TubeSource::Plies && !havePlies)
+                throw Error("cannot export ply tubes to '" + options.path + "': the scene has no plies");
+            usePlies = options.tubesOf == TubeSource::Plies ||
+                       (options.tubesOf == TubeSource::Auto && havePlies);
+            break;
+    }
+    nlohmann::json extras = {{"generator", "libknit"}, {"yarnRadius", scene.yarnRadius}};
+    std::vector<uint32_t> yarnIds;
+    ExportInput in;
+    if (usePlies) {
+        const Plies& p = scene.plies;
+        int count = 0;
+        for (uint8_t i : p.plyOfCurve) count = std::max(count, int(i) + 1);
+        extras["curves"] = "plies";
+        extras["plyCount"] = count;
+        extras["plyRadius"] = p.plyRadius;
+        extras["plyCenterRadius"] = p.centerRadius;
+        extras["plyPitch"] = p.pitch;
+        in.curves = &p.curves;
+        in.radius = p.plyRadius;
+        if (p.yarnOfCurve.size() == p.curves.curveCount()) in.yarnOfCurve = &p.yarnOfCurve;
+        if (p.radial.size() == p.curves.pointCount()) in.seedNormals = &p.radial;
+    } else {
+        extras["curves"] = "yarns";
+        in.curves = &scene.yarns.curves;
+        in.radius = scene.yarnRadius;
+        yarnIds.resize(scene.yarns.curves.curveCount());
+        for (size_t i = 0; i < yarnIds.size(); ++i) yarnIds[i] = static_cast<uint32_t>(i);
+        in.yarnOfCurve = &yarnIds;
+        if (scene.yarns.normals.size() == scene.yarns.curves.pointCount()) in.seedNormals = &scene.yarns.normals;
+    }
+    in.materialExtras = &extras;
+    return exportCurves(in, options);
+}
+
+void addExportFlags(CLI::App& command, ExportOptions& options) {
+    const std::map<std::string, ExportWhat> what{
+        {"yarns", ExportWhat::Yarns}, {"plies", ExportWhat::Plies}, {"tubes", ExportWhat::Tubes}};
+    const std::map<std::string, TubeSource> source{
+        {"auto", TubeSource::Auto}, {"plies", TubeSource::Plies}, {"yarns", TubeSource::Yarns}};
+    command.add_option("--export", options.what,
+                       "What to write: yarn centrelines, ply curves, or swept tube meshes")
+        ->transform(CLI::CheckedTransformer(what, CLI::ignore_case))
+        ->group("Export");
+    command.add_option("--tubes-of", options.tubesOf,
+                       "Curves swept by --export tubes (auto: plies when built, else yarns)")
+        ->transform(CLI::CheckedTransformer(source, CLI::ignore_case))
+        ->group("Export");
+    command.add_option("--sides", options.sides, "Tube ring vertices (3..1024)")
+        ->check(CLI::Range(3, 1024))
+        ->group("Export");
+    command.add_flag("!--no-caps", options.caps, "Leave open tube ends open")->group("Export");
+    CLI::Option* draco =
+        command.add_flag("--draco", options.draco, "KHR_draco_mesh_compression for tube meshes (.glb/.gltf)")
+            ->group("Export");
+    command.add_option("--draco-bits", options.dracoBits, "Draco position quantization bits (1..30)")
+        ->check(CLI::Range(1, 30))
+        ->needs(draco)
+        ->group("Export");
+    command.add_option("--draco-level", options.dracoLevel, "Draco compression level (0 fast .. 10 small)")
+        ->check(CLI::Range(0, 10))
+        ->needs(draco)
+        ->group("Export");
+    command.add_flag("--quantize", options.quantize,
+                     "KHR_mesh_quantization: int16 positions/normals/tangents for tube meshes (.glb/.gltf)")
+        ->excludes(draco)
+        ->group("Export");
+    command.add_flag("--yarn-colors", options.yarnColors, "COLOR_0 per yarn on tube meshes (glTF)")
+        ->group("Export");
+    command.add_option("--chunk-vertices", options.chunkVertices,
+                       "Streaming chunk size: tube vertices (or curve points) per chunk / glTF node")
+        ->check(CLI::Range(size_t(16), size_t(1) << 31))
+        ->group("Export");
+    command.add_flag("--pretty-json", options.prettyJson, "Indent the glTF JSON")->group("Export");
+}
+
+nlohmann::json exportReport(const ExportStats& s) {
+    nlohmann::json j = {{"format", s.format},
+                        {"curves", s.curves},
+                        {"vertices", s.vertices},
+                        {"triangles", s.triangles},
+                        {"chunks", s.chunks},
+                        {"maxChunkVertices", s.maxChunkVertices},
+                        {"buffers", s.buffers},
+                        {"bytes", s.bytes},
+                        {"peakMemoryBytes", s.peakMemoryBytes},
+                        {"peakMemoryMiB", double(s.peakMemoryBytes) / (1024.0 * 1024.0)},
+                        {"seconds", s.seconds}};
+    if (s.uncompressedMeshBytes > 0) {
+        j["uncompressedMeshBytes"] = s.uncompressedMeshBytes;
+        j["compressedMeshBytes"] = s.compressedMeshBytes;
+        if (s.compressedMeshBytes > 0)
+            j["compressionRatio"] = double(s.uncompressedMeshBytes) / double(s.compressedMeshBytes);
+    }
+    return j;
+}
+
+size_t peakResidentBytes() {
+    std::ifstream status("/proc/self/status");
+    std::string line;
+    while (std::getline(status, line)) {
+        if (line.rfind("VmHWM:", 0) == 0) {
+            std::istringstream in(line.substr(6));
+            size_t kb = 0;
+            in >> kb;
+            return kb * 1024;
+        }
+    }
+    return 0;
+}
+
+void writeFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write,
+                         bool binary) {
+    detail::AtomicFile file(path, binary);  // throws naming the path (missing / unwritable folder)
+    write(file.stream());                   // an exception here removes the temporary file
+    file.commit();
+}
+
+}  // namespace knit

@@ -1,0 +1,77 @@
+// knit/base_mesh.hpp — the triangle mesh the knit is draped on: 3D topology + UV charts.
+//
+// Positions and UVs are indexed separately (like OBJ `v`/`vt`): a position with several UVs is
+// a seam. Loaders weld positions that are exactly equal, so formats that duplicate vertices at
+// seams (PLY/OFF with per-vertex UVs) get the same 3D topology as OBJ, and vertex normals are
+// continuous across seams.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+namespace knit {
+
+struct BaseMesh {
+    std::string name;                   // file or built-in name, for messages
+    std::vector<glm::dvec3> positions;  // 3D vertices (metres)
+    std::vector<glm::dvec2> uvs;        // UV vertices
+    std::vector<glm::uvec3> faces;      // triangle -> position indices
+    std::vector<glm::uvec3> faceUvs;    // triangle -> uv indices (same size as faces)
+
+    size_t faceCount() const { return faces.size(); }
+};
+
+// A point on the surface: a triangle and barycentric coordinates (b0, b1, b2), sum 1.
+struct SurfacePoint {
+    uint32_t face = 0;
+    glm::dvec3 bary{1.0, 0.0, 0.0};
+
+    template <class T>
+    T interpolate(const std::vector<T>& perVertex, const std::vector<glm::uvec3>& faces) const {
+        const glm::uvec3 f = faces[face];
+        return perVertex[f.x] * bary.x + perVertex[f.y] * bary.y + perVertex[f.z] * bary.z;
+    }
+};
+
+struct MeshLoadOptions {
+    // Weld positions that are bit-identical into one topology vertex (see file comment).
+    bool weldEqualPositions = true;
+};
+
+// Reads OBJ (with vt), PLY (with per-vertex u,v / s,t / texcoord) or OFF (with texture coords)
+// through OpenMesh; polygons are fan-triangulated. Throws knit::Error naming the file when it
+// cannot be read, is empty, has no UVs, or has NaN/Inf coordinates.
+BaseMesh loadMesh(const std::string& path, const MeshLoadOptions& options = {});
+
+// Built-in procedural meshes; all have UVs in [0,1]^2.
+struct ProceduralMeshOptions {
+    int resU = 32, resV = 32;   // quads along u and v
+    double size = 0.5;          // plane / drape: side length (m)
+    double radius = 0.1;        // cylinder / sphere radius (m)
+    double height = 0.3;        // cylinder height (m)
+};
+BaseMesh makePlane(const ProceduralMeshOptions& o = {});     // z = 0, uv = (x, y) / size
+BaseMesh makeCylinder(const ProceduralMeshOptions& o = {});  // u around (seam at u = 0/1), v along z
+BaseMesh makeSphere(const ProceduralMeshOptions& o = {});    // latitude-longitude, seam at u = 0/1
+BaseMesh makeDrape(const ProceduralMeshOptions& o = {});     // square sheet draped over a sphere
+std::vector<std::string> builtinMeshNames();
+BaseMesh builtinMesh(const std::string& name, const ProceduralMeshOptions& o = {});
+// A mesh from a file or a built-in name.
+BaseMesh loadMeshFileOrName(const std::string& fileOrName, const ProceduralMeshOptions& o = {});
+
+// Angle-weighted vertex normals on the 3D topology (continuous across UV seams). Vertices
+// without a non-degenerate face get (0, 0, 1).
+std::vector<glm::dvec3> vertexNormals(const std::vector<glm::dvec3>& positions,
+                                      const std::vector<glm::uvec3>& faces);
+
+// Metres per UV unit: area-weighted ratio of 3D to UV edge lengths, per axis direction
+// (x: along u, y: along v), from triangles with non-degenerate UVs.
+glm::dvec2 uvToMetreScale(const BaseMesh& mesh);
+
+// Checks index ranges, finiteness, that faces exist; throws knit::Error naming the element.
+void validateMesh(const BaseMesh& mesh);
+
+}  // namespace knit

@@ -1,0 +1,33 @@
+// knit/generator.hpp — the project's own parametric patterns (what ships in patterns/).
+#pragma once
+#include <string>
+#include <vector>
+
+#include "knit/pattern.hpp"
+
+namespace knit {
+
+// Plain-knit (stockinette) course after K. Crane, "A Simple Parametric Model of Plain-Knit
+// Yarns": in model units gamma(t) = (t + a sin 2t, h cos t, d cos 2t), t in [0, 2pi) per stitch,
+// one stitch per period, rows spaced h + rowGap apart. The model is scaled so that the yarn
+// radius (in model units `modelRadius`) becomes `radius` metres.
+struct StockinetteParams {
+    double a = 1.5;           // loop width (sideways bulge of the loop legs)
+    double h = 4.0;           // loop height
+    double d = 1.0;           // over/under depth (height above/below the mid-surface)
+    double rowGap = 0.5;      // extra row spacing: period y = h + rowGap
+    double modelRadius = 0.8; // yarn radius in model units (0.8 gives a snug fit)
+    double radius = 0.001;    // yarn radius in metres
+    int samplesPerStitch = 24;
+};
+
+Pattern generateStockinette(const StockinetteParams& params = {});
+
+// Names of the built-in patterns ("stockinette", ...).
+std::vector<std::string> builtinPatternNames();
+// Built-in pattern by name; throws knit::Error for an unknown name.
+Pattern builtinPattern(const std::string& name);
+// A pattern from a file (.pyp or .json curves) or a built-in name.
+Pattern loadPatternFileOrName(const std::string& fileOrName);
+
+}  // namespace knit

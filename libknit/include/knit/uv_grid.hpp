@@ -1,0 +1,54 @@
+// knit/uv_grid.hpp — sparse grid over UV space: which triangles touch which pattern cell.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec2.hpp>
+
+#include "knit/base_mesh.hpp"
+
+namespace knit {
+
+struct UvGridOptions {
+    glm::dvec2 cellSize{1.0 / 32.0};  // UV size of one cell (= one pattern period)
+    // Refuse grids whose bounding box holds more cells than this (absurd repeats).
+    uint64_t maxCells = uint64_t(1) << 28;
+};
+
+// Cells are indexed (i, j) with cell (i, j) = [i*cu, (i+1)*cu) x [j*cv, (j+1)*cv).
+// Only cells that some triangle touches are stored (sparse); the triangle-cell overlap is
+// conservative: a triangle touching a cell, even at a corner, is listed in it.
+struct UvGrid {
+    glm::dvec2 cellSize{0.0};
+    glm::ivec2 minCell{0}, dims{0};        // bounding box of touched cells
+    std::vector<int32_t> cellSlot;         // dims.x*dims.y, -1 = empty, else index into cells
+    std::vector<glm::ivec2> cells;         // touched cells, in row-major order
+    std::vector<uint32_t> triOffsets{0};   // per touched cell: range into triangles
+    std::vector<uint32_t> triangles;       // triangle ids, ascending per cell
+    std::vector<uint32_t> edgeOffsets{0};  // per touched cell: range into boundaryEdges
+    std::vector<uint32_t> boundaryEdges;   // UV boundary half-edges (3*face + corner), per cell
+    std::vector<uint32_t> chartOfFace;     // UV connected component of each face
+    std::vector<int8_t> faceOrientation;   // +1 counter-clockwise, -1 mirrored, 0 zero-area UV
+    size_t degenerateUvFaces = 0;          // zero-area UV triangles (never own a point)
+
+    glm::ivec2 cellOf(glm::dvec2 uv) const;
+    // -1 when the cell is empty or outside the bounding box.
+    int32_t slotOf(glm::ivec2 cell) const;
+};
+
+UvGrid buildUvGrid(const BaseMesh& mesh, const UvGridOptions& options);
+
+enum class LocateStatus : uint8_t { Inside, Clamped, Outside };
+struct LocateResult {
+    LocateStatus status = LocateStatus::Outside;
+    SurfacePoint point;
+    double distance = 0;  // UV distance to the triangle for Clamped
+};
+
+// Point location with exact orientation predicates. A point on a shared edge or vertex belongs
+// to the lowest-numbered (non-degenerate) triangle that contains it, so every point has exactly
+// one owner. A point in no triangle but within `tolerance` (UV units) of one goes to the closest
+// triangle with clamped barycentrics; farther out it is Outside. Coordinates are never nudged.
+LocateResult locatePoint(const BaseMesh& mesh, const UvGrid& grid, glm::dvec2 uv, double tolerance);
+
+}  // namespace knit

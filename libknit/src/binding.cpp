@@ -1,0 +1,337 @@
+// Binding: locate yarn vertices on the base mesh, cut yarns where they leave the UV region,
+// weld ends that meet again across seams, and evaluate the binding on any pose.
+#include "knit/binding.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <unordered_map>
+
+#include <glm/geometric.hpp>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "knit/error.hpp"
+
+namespace knit {
+namespace {
+
+struct BoundVertex {
+    uint32_t face;
+    glm::dvec3 bary;
+    double height, twist;
+};
+
+// A maximal run of located vertices of one yarn, with boundary-crossing vertices at cut ends.
+struct Piece {
+    std::vector<BoundVertex> v;
+    bool closed = false;
+    bool boundaryEnd[2] = {false, false};  // [0] first point, [1] last point lies on a UV boundary
+};
+
+glm::dvec3 evaluatePoint(const BaseMesh& mesh, const std::vector<glm::dvec3>& normals, const BoundVertex& b) {
+    const glm::uvec3 f = mesh.faces[b.face];
+    const glm::dvec3 p = b.bary.x * mesh.positions[f.x] + b.bary.y * mesh.positions[f.y] + b.bary.z * mesh.positions[f.z];
+    const glm::dvec3 n = b.bary.x * normals[f.x] + b.bary.y * normals[f.y] + b.bary.z * normals[f.z];
+    const double len = glm::length(n);
+    return len > 0 ? p + (b.height / len) * n : p;
+}
+
+double cross2(glm::dvec2 a, glm::dvec2 b) { return a.x * b.y - a.y * b.x; }
+
+// First crossing of the UV segment p -> q with a boundary edge of `chart`, as a bound vertex
+// with height and twist interpolated along the segment. None when p is already on the boundary
+// (t ~ 0) or no boundary edge is crossed.
+std::optional<BoundVertex> boundaryCrossing(const BaseMesh& mesh, const UvGrid& grid, uint32_t chart,
+                                            glm::dvec2 p, glm::dvec2 q, double hp, double hq, double tp, double tq) {
+    const glm::dvec2 d = q - p;
+    const glm::ivec2 c0 = grid.cellOf(glm::min(p, q)), c1 = grid.cellOf(glm::max(p, q));
+    double bestT = INFINITY;
+    uint32_t bestEdge = UINT32_MAX;
+    double bestS = 0;
+    for (int32_t y = c0.y; y <= c1.y; ++y)
+        for (int32_t x = c0.x; x <= c1.x; ++x) {
+            const int32_t slot = grid.slotOf({x, y});
+            if (slot < 0) continue;
+            for (uint32_t i = grid.edgeOffsets[slot]; i < grid.edgeOffsets[slot + 1]; ++i) {
+                const uint32_t he = grid.boundaryEdges[i], f = he / 3, k = he % 3;
+                if (grid.chartOfFace[f] != chart) continue;
+                const glm::uvec3 t = mesh.faceUvs[f];
+                const uint32_t corner[3] = {t.x, t.y, t.z};
+                const glm::dvec2 a = mesh.uvs[corner[k]], e = mesh.uvs[corner[(k + 1) % 3]] - a;
+                const double den = cross2(d, e);
+                if (den == 0) continue;
+                const double tt = cross2(a - p, e) / den, s = cross2(a - p, d) / den;
+                const double slack = 1e-12;
+                if (tt < -slack || tt > 1 + slack || s < -slack || s > 1 + slack) continue;
+                if (tt < bestT || (tt == bestT && he < bestEdge)) {
+                    bestT = std::clamp(tt, 0.0, 1.0);
+                    bestEdge = he;
+                    bestS = std::clamp(s, 0.0, 1.0);
+                }
+            }
+        }
+    if (bestEdge == UINT32_MAX || bestT < 1e-9) return std::nullopt;
+    BoundVertex b;
+    b.face = bestEdge / 3;
+    b.bary = glm::dvec3(0.0);
+    b.bary[bestEdge % 3] = 1.0 - bestS;
+    b.bary[(bestEdge % 3 + 1) % 3] = bestS;
+    b.height = hp + bestT * (hq - hp);
+    b.twist = tp + bestT * (tq - tp);
+    return b;
+}
+
+}  // namespace
+
+BindResult bindYarns(const BaseMesh& mesh, const std::vector<glm::dvec3>& normals, const UvGrid& grid,
+                     const UvYarns& yarns, const BindOptions& options) {
+    if (!(options.yarnRadius > 0) || !(options.clampTolerance >= 0) || !(options.weldTolerance >= 0) ||
+        !std::isfinite(options.yarnRadius) || !std::isfinite(options.clampTolerance) || !std::isfinite(options.weldTolerance))
+        throw Error("binding: yarn radius must be positive, clamp and weld tolerances non-negative");
+    if (normals.size() != mesh.positions.size()) throw Error("binding: normals do not match the mesh's vertices");
+    BindResult result;
+    BindStats& stats = result.stats;
+    const size_t nv = yarns.vertexCount();
+
+    // 1. Locate every yarn vertex (parallel; each result depends only on its own vertex).
+    const glm::dvec2 metresPerUv = uvToMetreScale(mesh);
+    const double radiusUv = options.yarnRadius / std::max(metresPerUv.x, metresPerUv.y);
+    const double tolUv = options.clampTolerance * radiusUv;
+    std::vector<LocateResult> loc(nv);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, nv, 4096), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t i = r.begin(); i != r.end(); ++i) loc[i] = locatePoint(mesh, grid, yarns.uv[i], tolUv);
+    });
+    auto located = [&](size_t i) { return loc[i].status != LocateStatus::Outside; };
+    auto chart = [&](size_t i) { return grid.chartOfFace[loc[i].point.face]; };
+    auto bound = [&](size_t i) {
+        return BoundVertex{loc[i].point.face, loc[i].point.bary, yarns.height[i], yarns.twist[i]};
+    };
+    for (size_t i = 0; i < nv; ++i) {
+        if (loc[i].status == LocateStatus::Clamped) ++stats.clampedVertices;
+        if (!located(i)) ++stats.cutVertices;
+    }
+
+    // 2. Split each yarn into pieces at unlocated vertices and at chart changes; cut ends get
+    //    a vertex where the yarn crosses the UV boundary.
+    std::vector<Piece> pieces;
+    for (size_t y = 0; y < yarns.yarnCount(); ++y) {
+        const size_t b = yarns.offsets[y], n = yarns.offsets[y + 1] - b;
+        if (n == 0) continue;
+        const bool closed = yarns.closed[y] != 0;
+        // Consecutive vertices i -> i+1 stay joined when both are located in the same chart.
+        auto joined = [&](size_t i, size_t j) { return located(b + i) && located(b + j) && chart(b + i) == chart(b + j); };
+        size_t breakAt = 0;  // a run boundary to start from (closed yarns)
+        bool anyBreak = !closed;
+        if (closed) {
+            for (size_t i = 0; i < n; ++i)
+                if (!joined((i + n - 1) % n, i)) {
+                    breakAt = i;
+                    anyBreak = true;
+                    break;
+                }
+            if (!anyBreak) {
+                Piece piece;
+                piece.closed = true;
+                for (size_t i = 0; i < n; ++i) piece.v.push_back(bound(b + i));
+                pieces.push_back(std::move(piece));
+                continue;
+            }
+        }
+        Piece cur;
+        auto finish = [&](size_t lastIdx, bool hasNext, size_t nextIdx) {
+            if (cur.v.empty()) return;
+            if (hasNext) {
+                const size_t p = b + lastIdx, q = b + nextIdx;
+                if (auto x = boundaryCrossing(mesh, grid, chart(p), yarns.uv[p], yarns.uv[q], yarns.height[p], yarns.height[q],
+                                              yarns.twist[p], yarns.twist[q])) {
+                    cur.v.push_back(*x);
+                    ++stats.boundaryVertices;
+                }
+                cur.boundaryEnd[1] = true;
+            }
+            if (cur.v.size() >= 2) pieces.push_back(std::move(cur));
+            else ++stats.cutVertices;
+            cur = Piece{};
+        };
+        for (size_t s = 0; s < n; ++s) {
+            const size_t i = (breakAt + s) % n;
+            if (!located(b + i)) {
+                if (!cur.v.empty()) finish((i + n - 1) % n, true, i);
+                continue;
+            }
+            const bool hasPrev = closed || s > 0;
+            const size_t prev = (i + n - 1) % n;
+            if (!cur.v.empty() && !joined(prev, i)) finish(prev, true, i);
+            if (cur.v.empty() && hasPrev && (s > 0 || closed)) {
+                // Entering from a cut: start with the boundary crossing towards the previous vertex.
+                const size_t p = b + i, q = b + prev;
+                if (auto x = boundaryCrossing(mesh, grid, chart(p), yarns.uv[p], yarns.uv[q], yarns.height[p], yarns.height[q],
+                                              yarns.twist[p], yarns.twist[q])) {
+                    cur.v.push_back(*x);
+                    ++stats.boundaryVertices;
+                }
+                cur.boundaryEnd[0] = true;
+            }
+            cur.v.push_back(bound(b + i));
+        }
+        // The last run of a closed yarn ends at the break we started from.
+        if (closed) finish((breakAt + n - 1) % n, true, breakAt);
+        else finish(0, false, 0);
+    }
+
+    // 3. Weld boundary ends that meet in object space with continuing tangents.
+    const double weldTol = options.weldTolerance * options.yarnRadius;
+    std::vector<int64_t> partner(2 * pieces.size(), -1);
+    if (options.weld && weldTol > 0) {
+        struct End {
+            glm::dvec3 p, out;  // position, outward unit direction
+        };
+        std::vector<End> ends(2 * pieces.size());
+        std::unordered_map<uint64_t, std::vector<uint32_t>> hash;
+        auto key = [&](glm::ivec3 c) {
+            return (uint64_t(uint32_t(c.x) & 0x1FFFFF) << 42) | (uint64_t(uint32_t(c.y) & 0x1FFFFF) << 21) | uint64_t(uint32_t(c.z) & 0x1FFFFF);
+        };
+        auto cellOf = [&](glm::dvec3 p) { return glm::ivec3(glm::floor(p / weldTol)); };
+        for (size_t pi = 0; pi < pieces.size(); ++pi) {
+            const Piece& pc = pieces[pi];
+            if (pc.closed) continue;
+            for (int e = 0; e < 2; ++e) {
+                if (!pc.boundaryEnd[e]) continue;
+                const BoundVertex& endV = e ? pc.v.back() : pc.v.front();
+                const BoundVertex& inner = e ? pc.v[pc.v.size() - 2] : pc.v[1];
+                End& end = ends[2 * pi + e];
+                end.p = evaluatePoint(mesh, normals, endV);
+                const glm::dvec3 dir = end.p - evaluatePoint(mesh, normals, inner);
+                const double len = glm::length(dir);
+                end.out = len > 0 ? dir / len : glm::dvec3(0.0);
+                hash[key(cellOf(end.p))].push_back(uint32_t(2 * pi + e));
+            }
+        }
+        struct Candidate {
+            double dist;
+            uint32_t a, b;
+        };
+        std::vector<Candidate> candidates;
+        for (const auto& [k, list] : hash)
+            for (uint32_t a : list) {
+                const glm::ivec3 c = cellOf(ends[a].p);
+                for (int dz = -1; dz <= 1; ++dz)
+                    for (int dy = -1; dy <= 1; ++dy)
+                        for (int dx = -1; dx <= 1; ++dx) {
+                            auto it = hash.find(key(c + glm::ivec3(dx, dy, dz)));
+                            if (it == hash.end()) continue;
+                            for (uint32_t bb : it->second) {
+                                if (bb <= a) continue;
+                                const double dist = glm::distance(ends[a].p, ends[bb].p);
+                                if (dist > weldTol) continue;
+                                if (glm::dot(ends[a].out, -ends[bb].out) < options.weldMinCos) continue;
+                                candidates.push_back({dist, a, bb});
+                            }
+                        }
+            }
+        std::sort(candidates.begin(), candidates.end(), [](const Candidate& x, const Candidate& y) {
+            return x.dist != y.dist ? x.dist < y.dist : (x.a != y.a ? x.a < y.a : x.b < y.b);
+        });
+        for (const Candidate& c : candidates) {
+            if (partner[c.a] >= 0 || partner[c.b] >= 0) continue;
+            partner[c.a] = c.b;
+            partner[c.b] = c.a;
+            stats.weldedEnds += 2;
+        }
+    }
+
+    // 4. Chain pieces along welds into yarns; a chain that returns to its start is a loop.
+    Binding& out = result.binding;
+    const double dedupe = 1e-4 * options.yarnRadius;
+    std::vector<uint8_t> used(pieces.size(), 0);
+    auto append = [&](const Piece& pc, bool reversed, bool dropFirst) {
+        const size_t n = pc.v.size();
+        for (size_t s = dropFirst ? 1 : 0; s < n; ++s) {
+            const BoundVertex& v = pc.v[reversed ? n - 1 - s : s];
+            out.face.push_back(v.face);
+            out.bary.emplace_back(v.bary.y, v.bary.z);
+            out.height.push_back(v.height);
+            out.twist.push_back(v.twist);
+        }
+    };
+    auto lastPoint = [&]() {
+        const size_t i = out.face.size() - 1;
+        return evaluatePoint(mesh, normals, {out.face[i], {1 - out.bary[i].x - out.bary[i].y, out.bary[i].x, out.bary[i].y}, out.height[i], 0});
+    };
+    auto walkChain = [&](size_t first, int enterEnd) {
+        size_t pi = first;
+        int enter = enterEnd;
+        bool firstPiece = true;
+        const size_t yarnBegin = out.face.size();
+        for (;;) {
+            used[pi] = 1;
+            const Piece& pc = pieces[pi];
+            const bool reversed = enter == 1;
+            const glm::dvec3 head = evaluatePoint(mesh, normals, reversed ? pc.v.back() : pc.v.front());
+            const bool drop = !firstPiece && glm::distance(lastPoint(), head) < dedupe;
+            append(pc, reversed, drop);
+            firstPiece = false;
+            const int64_t next = partner[2 * pi + (1 - enter)];
+            if (next < 0) return false;
+            pi = size_t(next / 2);
+            enter = int(next % 2);
+            if (used[pi]) {
+                // Back at the start: a closed loop; drop the duplicated closing vertex.
+                if (out.face.size() - yarnBegin > 2 &&
+                    glm::distance(lastPoint(), evaluatePoint(mesh, normals, {out.face[yarnBegin], {1 - out.bary[yarnBegin].x - out.bary[yarnBegin].y, out.bary[yarnBegin].x, out.bary[yarnBegin].y}, out.height[yarnBegin], 0})) < dedupe) {
+                    out.face.pop_back();
+                    out.bary.pop_back();
+                    out.height.pop_back();
+                    out.twist.pop_back();
+                }
+                return true;
+            }
+        }
+    };
+    auto closeYarn = [&](bool closed) {
+        out.offsets.push_back(uint32_t(out.face.size()));
+        out.closed.push_back(closed ? 1 : 0);
+        if (closed) ++stats.closedLoops;
+        else stats.openEnds += 2;
+    };
+    for (size_t pi = 0; pi < pieces.size(); ++pi) {
+        if (used[pi] || !pieces[pi].closed) continue;
+        used[pi] = 1;
+        append(pieces[pi], false, false);
+        closeYarn(true);
+    }
+    for (size_t pi = 0; pi < pieces.size(); ++pi)
+        for (int e = 0; e < 2; ++e)
+            if (!used[pi] && partner[2 * pi + e] < 0) closeYarn(walkChain(pi, e));
+    for (size_t pi = 0; pi < pieces.size(); ++pi)
+        if (!used[pi]) closeYarn(walkChain(pi, 0));
+    return result;
+}
+
+void evaluateBinding(const Binding& binding, const std::vector<glm::uvec3>& faces,
+                     const std::vector<glm::dvec3>& positions, const std::vector<glm::dvec3>& normals,
+                     MappedYarns& out) {
+    const size_t n = binding.vertexCount();
+    out.curves.points.resize(n);
+    out.curves.offsets = binding.offsets;
+    out.curves.closed = binding.closed;
+    out.normals.resize(n);
+    glm::dvec3* P = out.curves.points.data();
+    glm::dvec3* N = out.normals.data();
+    // Flat gather: P = sum b_i x_i + h * normalize(sum b_i n_i).
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 16384), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t i = r.begin(); i != r.end(); ++i) {
+            const glm::uvec3 f = faces[binding.face[i]];
+            const double b1 = binding.bary[i].x, b2 = binding.bary[i].y, b0 = 1.0 - b1 - b2;
+            const glm::dvec3 p = b0 * positions[f.x] + b1 * positions[f.y] + b2 * positions[f.z];
+            glm::dvec3 nn = b0 * normals[f.x] + b1 * normals[f.y] + b2 * normals[f.z];
+            const double len2 = glm::dot(nn, nn);
+            nn = len2 > 0 ? nn * (1.0 / std::sqrt(len2)) : glm::dvec3(0.0, 0.0, 1.0);
+            N[i] = nn;
+            P[i] = p + binding.height[i] * nn;
+        }
+    });
+}
+
+}  // namespace knit

@@ -1,0 +1,647 @@
+// mesh_io.cpp — loadMesh: OBJ / PLY / OFF through OpenMesh's readers into a BaseMesh.
+//
+// How the files are read (facts checked against OpenMesh 9.0, the Debian package):
+//  * Dispatch is by the file's extension, case-insensitive: .obj, .ply, .off. The matching
+//    OpenMesh reader singleton is called directly with a path.
+//  * OpenMesh's readers talk to a BaseImporter. We give them a *recording* importer instead of a
+//    halfedge mesh: it keeps the file's vertices, polygons and texture coordinates exactly as
+//    read. A halfedge mesh would silently split "non-manifold" faces (inconsistently oriented
+//    neighbours, fans) into duplicated vertices, and OpenMesh then attaches an OBJ face's
+//    texcoords starting at the wrong corner. Topology is rebuilt here by welding instead.
+//  * OBJ: per face-corner texcoords (`f v/vt`) arrive through add_face_texcoords (OpenMesh's
+//    "halfedge texcoords", Options::FaceTexCoord), in face order starting at the first corner.
+//    A 3D vertex with several UVs is a seam: the position stays one vertex, UVs differ per
+//    corner. OpenMesh's OBJ reader silently *skips* `v` lines it cannot parse (nan, inf,
+//    1e400) — shifting every later index — and drops faces with out-of-range or repeated
+//    vertices, so an OBJ is first scanned here line by line: every `v`/`vt` must hold finite
+//    numbers and every `f` must reference existing v/vt entries with >= 3 distinct vertices.
+//    The scan also keeps the `v` coordinates in double (OpenMesh's OBJ reader narrows them to
+//    float32); they replace OpenMesh's values one for one (counts are checked to agree).
+//  * PLY (ascii, binary little/big endian): per-vertex u,v or s,t are read by OpenMesh as
+//    Options::VertexTexCoord. texture_u,texture_v / texture_s,texture_t are *not* known to
+//    OpenMesh 9.0; they are read as custom properties (Options::Custom) into a property-only
+//    ArrayKernel owned by the importer. OpenMesh's ASCII PLY reader turns a non-numeric token
+//    (e.g. "nan") into zeros and empty faces without reporting failure, so the ASCII body is
+//    scanned for finite numbers first. Positions come through OpenMesh as float32.
+//  * OFF: texture coordinates need the "ST" header prefix (STOFF: x y z u v per vertex).
+//    OpenMesh reads the header options in can_u_read(), so that is called before read(). Its
+//    ASCII reader knows no '#' comments (it then reads garbage counts and may loop over billions
+//    of empty faces), wants the counts on their own line, turns a non-numeric token into garbage
+//    indices and repeats the last face of a truncated file, all without reporting an error. So
+//    the ASCII text is scanned first (finite numbers, counts covered by the data) and OpenMesh
+//    parses a cleaned copy (comments removed, keyword on its own line); faces are checked below.
+//  * OpenMesh keeps texture coordinates as float32 for every format.
+//  * Faces are fan-triangulated (v0, vi, vi+1). Positions that are exactly equal (-0 == +0) are
+//    welded when MeshLoadOptions::weldEqualPositions is set, so PLY/OFF files that duplicate
+//    vertices along UV seams get the same 3D topology as the OBJ. Vertices no face references
+//    are dropped. A UV vertex is one distinct (position, uv) pair, numbered in first-use order.
+//  * OpenMesh prints its own warnings to std::cerr (omerr); libknit's knit::Error is the
+//    authoritative result. The reader singletons hold state (OFF options), so calls into them
+//    are serialized by a mutex here.
+#include "knit/base_mesh.hpp"
+#include "knit/error.hpp"
+
+#include <OpenMesh/Core/IO/Options.hh>
+#include <OpenMesh/Core/IO/importer/BaseImporter.hh>
+#include <OpenMesh/Core/IO/reader/OBJReader.hh>
+#include <OpenMesh/Core/IO/reader/OFFReader.hh>
+#include <OpenMesh/Core/IO/reader/PLYReader.hh>
+#include <OpenMesh/Core/Mesh/ArrayKernel.hh>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <mutex>
+#include <sstream>
+#include <unordered_map>
+
+namespace knit {
+namespace {
+
+namespace OMIO = OpenMesh::IO;
+
+[[noreturn]] void fail(const std::string& file, const std::string& what) {
+    throw Error(file + ": " + what);
+}
+[[noreturn]] void failLine(const std::string& file, size_t line, const std::string& what) {
+    throw Error(file + ":" + std::to_string(line) + ": " + what);
+}
+
+std::string lowerExtension(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return ext;
+}
+
+// A token that is a whole, finite number ("1.5e-3"; not "nan", "inf", "1e400", "1.0abc").
+bool parseFinite(const std::string& token, double& value) {
+    if (token.empty()) return false;
+    errno = 0;
+    char* end = nullptr;
+    value = std::strtod(token.c_str(), &end);
+    return end == token.c_str() + token.size() && errno != ERANGE && std::isfinite(value);
+}
+
+bool parseIndex(const std::string& token, long& value) {
+    if (token.empty()) return false;
+    errno = 0;
+    char* end = nullptr;
+    value = std::strtol(token.c_str(), &end, 10);
+    return end == token.c_str() + token.size() && errno != ERANGE && value != 0;
+}
+
+std::string trimmed(std::string s) {
+    while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.pop_back();
+    size_t b = 0;
+    while (b < s.size() && std::isspace(static_cast<unsigned char>(s[b]))) ++b;
+    return s.substr(b);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Recording importer: what OpenMesh's reader saw, without building halfedge topology.
+class RecordingImporter final : public OMIO::BaseImporter {
+public:
+    std::vector<OpenMesh::Vec3d> points;
+    std::vector<OpenMesh::Vec2f> vertexUv;
+    std::vector<char> vertexHasUv;
+    std::vector<uint32_t> faceStart{0};   // polygon k = faceVerts[faceStart[k] .. faceStart[k+1])
+    std::vector<int> faceVerts;
+    std::vector<OpenMesh::Vec2f> cornerUv;  // same layout as faceVerts
+    std::vector<char> faceHasCornerUv;
+    std::vector<char> faceCornerUvMismatch;  // texcoord count != corner count
+    OpenMesh::ArrayKernel customProps;       // PLY custom properties (texture_u, ...) land here
+
+    OpenMesh::VertexHandle add_vertex(const OpenMesh::Vec3f& p) override {
+        return add_vertex(OpenMesh::Vec3d(p[0], p[1], p[2]));
+    }
+    OpenMesh::VertexHandle add_vertex(const OpenMesh::Vec3d& p) override {
+        points.push_back(p);
+        vertexUv.emplace_back(0.f, 0.f);
+        vertexHasUv.push_back(0);
+        customProps.new_vertex();
+        return OpenMesh::VertexHandle(int(points.size() - 1));
+    }
+    OpenMesh::VertexHandle add_vertex() override { return add_vertex(OpenMesh::Vec3d(0, 0, 0)); }
+    OpenMesh::FaceHandle add_face(const VHandles& indices) override {
+        for (const auto& vh : indices) faceVerts.push_back(vh.idx());
+        faceStart.push_back(uint32_t(faceVerts.size()));
+        cornerUv.resize(faceVerts.size(), OpenMesh::Vec2f(0.f, 0.f));
+        faceHasCornerUv.push_back(0);
+        faceCornerUvMismatch.push_back(0);
+        customProps.new_face();
+        return OpenMesh::FaceHandle(int(faceStart.size() - 2));
+    }
+    // Texcoords of face `fh`, listed from the corner at vertex `vh` on, in face order.
+    void add_face_texcoords(OpenMesh::FaceHandle fh, OpenMesh::VertexHandle vh,
+                            const std::vector<OpenMesh::Vec2f>& tcs) override {
+        if (!fh.is_valid() || size_t(fh.idx()) + 1 >= faceStart.size()) return;
+        const uint32_t b = faceStart[fh.idx()], n = faceStart[fh.idx() + 1] - b;
+        if (tcs.empty()) return;
+        if (tcs.size() != n) {
+            faceCornerUvMismatch[fh.idx()] = 1;
+            return;
+        }
+        uint32_t first = 0;
+        while (first < n && faceVerts[b + first] != vh.idx()) ++first;
+        if (first == n) first = 0;
+        for (uint32_t i = 0; i < n; ++i) cornerUv[b + (first + i) % n] = tcs[i];
+        faceHasCornerUv[fh.idx()] = 1;
+    }
+    void set_texcoord(OpenMesh::VertexHandle vh, const OpenMesh::Vec2f& t) override {
+        if (vh.is_valid() && size_t(vh.idx()) < vertexUv.size()) {
+            vertexUv[vh.idx()] = t;
+            vertexHasUv[vh.idx()] = 1;
+        }
+    }
+    void set_point(OpenMesh::VertexHandle vh, const OpenMesh::Vec3f& p) override {
+        if (vh.is_valid() && size_t(vh.idx()) < points.size()) points[vh.idx()] = OpenMesh::Vec3d(p[0], p[1], p[2]);
+    }
+    OpenMesh::BaseKernel* kernel() override { return &customProps; }
+    size_t n_vertices() const override { return points.size(); }
+    size_t n_faces() const override { return faceStart.size() - 1; }
+    size_t n_edges() const override { return 0; }
+
+    // Everything below is information libknit does not use.
+    OpenMesh::HalfedgeHandle add_edge(OpenMesh::VertexHandle, OpenMesh::VertexHandle) override { return OpenMesh::HalfedgeHandle(); }
+    OpenMesh::FaceHandle add_face(OpenMesh::HalfedgeHandle) override { return OpenMesh::FaceHandle(); }
+    void add_face_texcoords(OpenMesh::FaceHandle, OpenMesh::VertexHandle, const std::vector<OpenMesh::Vec3f>&) override {}
+    void set_face_texindex(OpenMesh::FaceHandle, int) override {}
+    void set_halfedge(OpenMesh::VertexHandle, OpenMesh::HalfedgeHandle) override {}
+    void set_normal(OpenMesh::VertexHandle, const OpenMesh::Vec3f&) override {}
+    void set_normal(OpenMesh::VertexHandle, const OpenMesh::Vec3d&) override {}
+    void set_color(OpenMesh::VertexHandle, const OpenMesh::Vec3uc&) override {}
+    void set_color(OpenMesh::VertexHandle, const OpenMesh::Vec4uc&) override {}
+    void set_color(OpenMesh::VertexHandle, const OpenMesh::Vec3f&) override {}
+    void set_color(OpenMesh::VertexHandle, const OpenMesh::Vec4f&) override {}
+    void set_status(OpenMesh::VertexHandle, const OpenMesh::Attributes::StatusInfo&) override {}
+    void set_next(OpenMesh::HalfedgeHandle, OpenMesh::HalfedgeHandle) override {}
+    void set_face(OpenMesh::HalfedgeHandle, OpenMesh::FaceHandle) override {}
+    void request_face_texcoords2D() override {}
+    void set_texcoord(OpenMesh::HalfedgeHandle, const OpenMesh::Vec2f&) override {}
+    void set_texcoord(OpenMesh::VertexHandle, const OpenMesh::Vec3f&) override {}
+    void set_texcoord(OpenMesh::HalfedgeHandle, const OpenMesh::Vec3f&) override {}
+    void set_status(OpenMesh::HalfedgeHandle, const OpenMesh::Attributes::StatusInfo&) override {}
+    void set_color(OpenMesh::EdgeHandle, const OpenMesh::Vec3uc&) override {}
+    void set_color(OpenMesh::EdgeHandle, const OpenMesh::Vec4uc&) override {}
+    void set_color(OpenMesh::EdgeHandle, const OpenMesh::Vec3f&) override {}
+    void set_color(OpenMesh::EdgeHandle, const OpenMesh::Vec4f&) override {}
+    void set_status(OpenMesh::EdgeHandle, const OpenMesh::Attributes::StatusInfo&) override {}
+    void set_normal(OpenMesh::FaceHandle, const OpenMesh::Vec3f&) override {}
+    void set_normal(OpenMesh::FaceHandle, const OpenMesh::Vec3d&) override {}
+    void set_color(OpenMesh::FaceHandle, const OpenMesh::Vec3uc&) override {}
+    void set_color(OpenMesh::FaceHandle, const OpenMesh::Vec4uc&) override {}
+    void set_color(OpenMesh::FaceHandle, const OpenMesh::Vec3f&) override {}
+    void set_color(OpenMesh::FaceHandle, const OpenMesh::Vec4f&) override {}
+    void set_status(OpenMesh::FaceHandle, const OpenMesh::Attributes::StatusInfo&) override {}
+    void add_texture_information(int, std::string) override {}
+};
+
+// ---------------------------------------------------------------------------------------------
+// OBJ pre-scan (see file comment): finite v/vt, valid f references; v kept in double.
+struct ObjScan {
+    std::vector<glm::dvec3> positions;
+    size_t uvCount = 0;
+    std::vector<size_t> faceLines;  // line number of each `f`
+};
+
+ObjScan scanObj(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) fail(path, "cannot open for reading");
+    ObjScan scan;
+    struct FaceRef { size_t line; long maxV, maxVt; };
+    std::vector<FaceRef> refs;
+    bool anyVtInFaces = false, anyFaceWithoutVt = false;
+    size_t firstFaceWithoutVt = 0;
+    std::string line, key, tok;
+    for (size_t lineNo = 1; std::getline(in, line); ++lineNo) {
+        line = trimmed(line);
+        if (line.empty() || line[0] == '#') continue;
+        std::istringstream ls(line);
+        ls >> key;
+        if (key == "v" || key == "vt") {
+            const int need = key == "v" ? 3 : 2;
+            double c[3] = {0, 0, 0};
+            for (int i = 0; i < need; ++i) {
+                if (!(ls >> tok) || !parseFinite(tok, c[i]))
+                    failLine(path, lineNo, key == "v" ? "vertex position is not three finite numbers"
+                                                      : "texture coordinate (vt) is not two finite numbers");
+            }
+            if (key == "v") scan.positions.emplace_back(c[0], c[1], c[2]);
+            else ++scan.uvCount;
+        } else if (key == "f") {
+            FaceRef ref{lineNo, 0, 0};
+            std::vector<long> verts;
+            size_t withVt = 0;
+            while (ls >> tok) {
+                const size_t s1 = tok.find('/');
+                long v = 0, vt = 0;
+                if (!parseIndex(tok.substr(0, s1), v))
+                    failLine(path, lineNo, "face corner '" + tok + "' has no valid vertex index");
+                if (v < 0) v = long(scan.positions.size()) + v + 1;  // relative index
+                if (v < 1) failLine(path, lineNo, "face corner '" + tok + "' references a vertex before the first one");
+                if (s1 != std::string::npos) {
+                    const size_t s2 = tok.find('/', s1 + 1);
+                    const std::string t = tok.substr(s1 + 1, s2 == std::string::npos ? std::string::npos : s2 - s1 - 1);
+                    if (!t.empty()) {
+                        if (!parseIndex(t, vt)) failLine(path, lineNo, "face corner '" + tok + "' has an invalid vt index");
+                        if (vt < 0) vt = long(scan.uvCount) + vt + 1;
+                        if (vt < 1) failLine(path, lineNo, "face corner '" + tok + "' references a vt before the first one");
+                        ++withVt;
+                    }
+                }
+                ref.maxV = std::max(ref.maxV, v);
+                ref.maxVt = std::max(ref.maxVt, vt);
+                verts.push_back(v);
+            }
+            if (verts.size() < 3) failLine(path, lineNo, "face has fewer than 3 corners");
+            std::vector<long> sorted = verts;
+            std::sort(sorted.begin(), sorted.end());
+            if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end())
+                failLine(path, lineNo, "face uses vertex " + std::to_string(*std::adjacent_find(sorted.begin(), sorted.end())) +
+                                           " twice");
+            if (withVt != 0 && withVt != verts.size())
+                failLine(path, lineNo, "face mixes corners with and without texture coordinates");
+            if (withVt) anyVtInFaces = true;
+            else if (!anyFaceWithoutVt) {
+                anyFaceWithoutVt = true;
+                firstFaceWithoutVt = lineNo;
+            }
+            refs.push_back(ref);
+            scan.faceLines.push_back(lineNo);
+        }
+    }
+    if (in.bad()) fail(path, "read error");
+    // Positive indices may point forward, so ranges are checked once all v/vt are known.
+    for (const FaceRef& r : refs) {
+        if (size_t(r.maxV) > scan.positions.size())
+            failLine(path, r.line, "face references vertex " + std::to_string(r.maxV) + " but the file has " +
+                                       std::to_string(scan.positions.size()) + " vertices (v)");
+        if (size_t(r.maxVt) > scan.uvCount)
+            failLine(path, r.line, "face references texture coordinate " + std::to_string(r.maxVt) +
+                                       " but the file has " + std::to_string(scan.uvCount) + " (vt)");
+    }
+    if (refs.empty()) fail(path, "the mesh has no faces");
+    if (!anyVtInFaces) fail(path, "no texture coordinates (vt); libknit needs UVs");
+    if (anyFaceWithoutVt) failLine(path, firstFaceWithoutVt, "face has no texture coordinates (v/vt); libknit needs UVs on every face");
+    return scan;
+}
+
+// ASCII PLY body scan: every token must be a finite number; returns the non-empty line count.
+size_t scanNumericTokens(std::istream& in, const std::string& path, size_t firstLineNo) {
+    std::string line, tok;
+    size_t lines = 0;
+    for (size_t lineNo = firstLineNo; std::getline(in, line); ++lineNo) {
+        std::istringstream ls(line);
+        double v;
+        bool any = false;
+        while (ls >> tok) {
+            if (!parseFinite(tok, v)) failLine(path, lineNo, "'" + tok + "' is not a finite number");
+            any = true;
+        }
+        lines += any;
+    }
+    return lines;
+}
+
+struct PlyHeader {
+    bool ascii = false;
+    bool hasTextureUV = false;  // texture_u/texture_v or texture_s/texture_t on the vertex element
+    std::string textureU, textureV;
+};
+
+// The PLY header is checked line by line before OpenMesh sees it: OpenMesh 9.0 crashes on some
+// malformed headers (e.g. a property line before any element line).
+PlyHeader scanPly(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) fail(path, "cannot open for reading");
+    static const char* kTypes[] = {"char",  "uchar",  "short", "ushort", "int",    "uint",    "float",   "double",
+                                   "int8",  "uint8",  "int16", "uint16", "int32",  "uint32",  "float32", "float64"};
+    auto isType = [](const std::string& t) {
+        return std::find_if(std::begin(kTypes), std::end(kTypes), [&](const char* k) { return t == k; }) !=
+               std::end(kTypes);
+    };
+    PlyHeader h;
+    std::string line, word, element;
+    std::vector<std::string> vertexProps;
+    double totalElements = 0;
+    size_t lineNo = 0;
+    bool ended = false, hasFormat = false, hasFace = false;
+    while (!ended && std::getline(in, line)) {
+        ++lineNo;
+        std::istringstream ls(trimmed(line));
+        word.clear();
+        ls >> word;
+        if (lineNo == 1) {
+            if (word != "ply") fail(path, "not a PLY file (the first line is not 'ply')");
+            continue;
+        }
+        if (word == "comment" || word == "obj_info" || word.empty()) continue;
+        if (word == "format") {
+            std::string fmt, version;
+            ls >> fmt >> version;
+            if (fmt != "ascii" && fmt != "binary_little_endian" && fmt != "binary_big_endian")
+                failLine(path, lineNo, "unknown PLY format '" + fmt + "'");
+            h.ascii = fmt == "ascii";
+            hasFormat = true;
+        } else if (word == "element") {
+            std::string count;
+            element.clear();
+            ls >> element >> count;
+            long n = 0;
+            if (element.empty() || !(parseIndex(count, n) || count == "0") || n < 0)
+                failLine(path, lineNo, "element line needs a name and a non-negative count");
+            totalElements += double(n);
+            hasFace |= element == "face";
+        } else if (word == "property") {
+            std::string type, name;
+            ls >> type;
+            if (element.empty()) failLine(path, lineNo, "property line before any element line");
+            if (type == "list") {
+                std::string countType, itemType;
+                ls >> countType >> itemType;
+                if (!isType(countType) || !isType(itemType))
+                    failLine(path, lineNo, "unknown list property types '" + countType + " " + itemType + "'");
+            } else if (!isType(type)) {
+                failLine(path, lineNo, "unknown property type '" + type + "'");
+            }
+            ls >> name;
+            if (name.empty()) failLine(path, lineNo, "property line without a name");
+            if (element == "vertex") vertexProps.push_back(name);
+        } else if (word == "end_header") {
+            ended = true;
+        } else {
+            failLine(path, lineNo, "unexpected PLY header line '" + trimmed(line) + "'");
+        }
+    }
+    if (!ended) fail(path, "PLY header has no end_header line");
+    if (!hasFormat) fail(path, "PLY header has no format line");
+    if (!hasFace) fail(path, "the mesh has no faces (no 'face' element)");
+    auto has = [&](const char* n) { return std::find(vertexProps.begin(), vertexProps.end(), n) != vertexProps.end(); };
+    if (!has("x") || !has("y") || !has("z")) fail(path, "the PLY vertex element needs x, y and z properties");
+    const bool known = (has("u") && has("v")) || (has("s") && has("t"));
+    if (!known) {
+        if (has("texture_u") && has("texture_v")) h.textureU = "texture_u", h.textureV = "texture_v";
+        else if (has("texture_s") && has("texture_t")) h.textureU = "texture_s", h.textureV = "texture_t";
+        h.hasTextureUV = !h.textureU.empty();
+    }
+    // ASCII PLY has one element per line: fewer lines than elements is a truncated file (OpenMesh
+    // would otherwise read past the end, producing empty faces, for every missing element).
+    if (h.ascii) {
+        const size_t lines = scanNumericTokens(in, path, lineNo + 1);
+        if (double(lines) < totalElements)
+            fail(path, "the header declares " + std::to_string(size_t(totalElements)) + " elements but the file has " +
+                           std::to_string(lines) + " data lines (truncated?)");
+    }
+    return h;
+}
+
+// ASCII OFF: OpenMesh's reader knows no '#' comments (it then reads garbage counts and can loop
+// over billions of empty faces) and wants the counts on the line after the header keyword. The
+// scan checks the header, the counts against the data actually present (>= 3 numbers per vertex
+// and >= 4 per face, so no declared count can run past the data), that every token is a finite
+// number, and returns the text with comments removed and the keyword on its own line, which is
+// what OpenMesh then parses. Binary OFF is passed through (returns false).
+bool scanOff(const std::string& path, std::string& cleaned) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) fail(path, "cannot open for reading");
+    std::string line, keyword, tok;
+    std::getline(in, line);
+    std::istringstream header(line.substr(0, line.find('#')));
+    header >> keyword;
+    if (keyword.size() < 3 || keyword.compare(keyword.size() - 3, 3, "OFF") != 0)
+        failLine(path, 1, "not an OFF file (the first line must start with a header such as OFF or STOFF)");
+    std::string rest;
+    std::getline(header, rest);
+    if (trimmed(rest).rfind("BINARY", 0) == 0) return false;
+    std::ostringstream out;
+    out << keyword << "\n";
+    std::vector<double> numbers;  // the counts
+    size_t dataTokens = 0;        // numbers after the counts
+    auto take = [&](const std::string& text, size_t lineNo) {
+        std::istringstream ls(text);
+        bool any = false;
+        double v;
+        while (ls >> tok) {
+            if (!parseFinite(tok, v)) failLine(path, lineNo, "'" + tok + "' is not a finite number");
+            if (numbers.size() < 3) numbers.push_back(v);
+            else ++dataTokens;
+            any = true;
+        }
+        if (any) out << text << "\n";
+    };
+    take(rest, 1);
+    for (size_t lineNo = 2; std::getline(in, line); ++lineNo) take(line.substr(0, line.find('#')), lineNo);
+    if (numbers.size() < 3) fail(path, "OFF header has no 'vertices faces edges' counts");
+    const double nv = numbers[0], nf = numbers[1], tokens = double(dataTokens);
+    if (nv < 0 || nf < 0 || nv != std::floor(nv) || nf != std::floor(nf))
+        fail(path, "OFF counts must be non-negative integers");
+    if (3 * nv + 4 * nf > tokens)
+        fail(path, "declares " + std::to_string(size_t(nv)) + " vertices and " + std::to_string(size_t(nf)) +
+                       " faces but holds only " + std::to_string(size_t(tokens)) + " numbers (truncated?)");
+    cleaned = out.str();
+    return true;
+}
+
+// Reads a float or double custom vertex property written by OpenMesh's PLY reader.
+bool customVertexScalar(OpenMesh::ArrayKernel& k, const std::string& name, size_t n, std::vector<double>& out) {
+    out.assign(n, 0.0);
+    OpenMesh::VPropHandleT<float> pf;
+    if (k.get_property_handle(pf, name)) {
+        for (size_t i = 0; i < n; ++i) out[i] = k.property(pf, OpenMesh::VertexHandle(int(i)));
+        return true;
+    }
+    OpenMesh::VPropHandleT<double> pd;
+    if (k.get_property_handle(pd, name)) {
+        for (size_t i = 0; i < n; ++i) out[i] = k.property(pd, OpenMesh::VertexHandle(int(i)));
+        return true;
+    }
+    return false;
+}
+
+// Exact-key hash for welding (keys hold +0 instead of -0, and no NaN: checked before).
+struct Key3Hash {
+    size_t operator()(const std::array<double, 3>& k) const {
+        size_t h = 1469598103934665603ull;
+        for (double d : k) h = (h ^ std::hash<double>()(d)) * 1099511628211ull;
+        return h;
+    }
+};
+using Key3Map = std::unordered_map<std::array<double, 3>, uint32_t, Key3Hash>;
+
+// Fan-triangulated, welded BaseMesh from what the reader recorded.
+BaseMesh buildMesh(const std::string& path, const RecordingImporter& rec, const std::vector<glm::dvec3>& points,
+                   const std::vector<glm::dvec2>& vertexUv, bool cornerUvs, const std::vector<size_t>* faceLines,
+                   const MeshLoadOptions& options) {
+    const size_t nv = points.size(), nf = rec.n_faces();
+    auto faceName = [&](size_t f) {
+        return faceLines ? "face " + std::to_string(f) + " (line " + std::to_string((*faceLines)[f]) + ")"
+                         : "face " + std::to_string(f);
+    };
+    if (nf == 0) fail(path, "the mesh has no faces");
+    // Check positions and UVs are finite.
+    for (size_t i = 0; i < nv; ++i)
+        if (!std::isfinite(points[i].x) || !std::isfinite(points[i].y) || !std::isfinite(points[i].z))
+            fail(path, "vertex " + std::to_string(i) + " has a non-finite position");
+    // Check the polygons: >= 3 corners, indices in range, no repeated vertex, UVs present.
+    for (size_t f = 0; f < nf; ++f) {
+        const uint32_t b = rec.faceStart[f], e = rec.faceStart[f + 1];
+        if (e - b < 3)
+            fail(path, faceName(f) + " has " + std::to_string(e - b) +
+                           " corners (malformed file, or a non-numeric value such as nan in ASCII data?)");
+        for (uint32_t c = b; c < e; ++c) {
+            const int v = rec.faceVerts[c];
+            if (v < 0 || size_t(v) >= nv)
+                fail(path, faceName(f) + " references vertex " + std::to_string(v) + " but the file has " +
+                               std::to_string(nv) + " vertices");
+            for (uint32_t d = b; d < c; ++d)
+                if (rec.faceVerts[d] == v)
+                    fail(path, faceName(f) + " uses vertex " + std::to_string(v) + " twice (malformed or truncated file?)");
+            const glm::dvec2 uv = cornerUvs ? glm::dvec2(rec.cornerUv[c][0], rec.cornerUv[c][1]) : vertexUv[v];
+            if (!std::isfinite(uv.x) || !std::isfinite(uv.y))
+                fail(path, faceName(f) + " has a non-finite texture coordinate at vertex " + std::to_string(v));
+        }
+        if (cornerUvs && (rec.faceCornerUvMismatch[f] || !rec.faceHasCornerUv[f]))
+            fail(path, faceName(f) + ": texture coordinates missing or not one per corner");
+    }
+    // Weld (or just compact) referenced positions, in file order.
+    std::vector<char> used(nv, 0);
+    for (int v : rec.faceVerts) used[v] = 1;
+    BaseMesh mesh;
+    mesh.name = path;
+    std::vector<uint32_t> remap(nv, 0);
+    Key3Map welded;
+    for (size_t i = 0; i < nv; ++i) {
+        if (!used[i]) continue;
+        const glm::dvec3 p = points[i] + glm::dvec3(0.0);  // -0 + 0 = +0: -0 and +0 weld
+        if (options.weldEqualPositions) {
+            auto [it, inserted] = welded.emplace(std::array<double, 3>{p.x, p.y, p.z}, uint32_t(mesh.positions.size()));
+            if (inserted) mesh.positions.push_back(p);
+            remap[i] = it->second;
+        } else {
+            remap[i] = uint32_t(mesh.positions.size());
+            mesh.positions.push_back(p);
+        }
+    }
+    // UV vertices: one per distinct (welded position, uv), in first-use order; fan-triangulate.
+    Key3Map uvIndex;
+    auto uvOf = [&](uint32_t pos, glm::dvec2 uv) {
+        uv += glm::dvec2(0.0);
+        auto [it, inserted] = uvIndex.emplace(std::array<double, 3>{double(pos), uv.x, uv.y}, uint32_t(mesh.uvs.size()));
+        if (inserted) mesh.uvs.push_back(uv);
+        return it->second;
+    };
+    for (size_t f = 0; f < nf; ++f) {
+        const uint32_t b = rec.faceStart[f], e = rec.faceStart[f + 1];
+        uint32_t pi[64], ui[64];
+        std::vector<uint32_t> pBig, uBig;
+        uint32_t* P = pi;
+        uint32_t* U = ui;
+        if (e - b > 64) {
+            pBig.resize(e - b), uBig.resize(e - b);
+            P = pBig.data(), U = uBig.data();
+        }
+        for (uint32_t c = b; c < e; ++c) {
+            const int v = rec.faceVerts[c];
+            P[c - b] = remap[v];
+            U[c - b] = uvOf(remap[v], cornerUvs ? glm::dvec2(rec.cornerUv[c][0], rec.cornerUv[c][1]) : vertexUv[v]);
+        }
+        for (uint32_t k = 1; k + 1 < e - b; ++k) {
+            mesh.faces.emplace_back(P[0], P[k], P[k + 1]);
+            mesh.faceUvs.emplace_back(U[0], U[k], U[k + 1]);
+        }
+    }
+    return mesh;
+}
+
+std::mutex& openMeshReaderMutex() {
+    static std::mutex m;
+    return m;
+}
+
+}  // namespace
+
+BaseMesh loadMesh(const std::string& path, const MeshLoadOptions& options) {
+    // Check the file exists, is a regular file and has a known extension.
+    std::error_code ec;
+    const auto status = std::filesystem::status(path, ec);
+    if (ec || !std::filesystem::exists(status)) fail(path, "no such file");
+    if (std::filesystem::is_directory(status)) fail(path, "is a directory, not a mesh file");
+    const std::string ext = lowerExtension(path);
+    if (ext != ".obj" && ext != ".ply" && ext != ".off")
+        fail(path, "unknown mesh file extension '" + ext + "' (supported: .obj, .ply, .off)");
+    if (!std::ifstream(path, std::ios::binary)) fail(path, "cannot open for reading");
+
+    // Pre-scan what OpenMesh would accept silently.
+    ObjScan obj;
+    PlyHeader ply;
+    std::string offText;
+    bool offAscii = false;
+    if (ext == ".obj") obj = scanObj(path);
+    else if (ext == ".ply") ply = scanPly(path);
+    else offAscii = scanOff(path, offText);
+
+    // Parse with OpenMesh into the recording importer.
+    RecordingImporter rec;
+    OMIO::Options opt;
+    opt += OMIO::Options::VertexTexCoord;
+    if (ext == ".obj") opt += OMIO::Options::FaceTexCoord;
+    if (ext == ".ply" && ply.hasTextureUV) opt += OMIO::Options::Custom;
+    bool ok = false;
+    {
+        std::lock_guard<std::mutex> lock(openMeshReaderMutex());
+        if (ext == ".obj") ok = OMIO::OBJReader().read(path, rec, opt);
+        else if (ext == ".ply") ok = OMIO::PLYReader().read(path, rec, opt);
+        else if (!OMIO::OFFReader().can_u_read(path)) ok = false;  // parses the header options
+        else if (offAscii) {
+            std::istringstream text(offText);
+            ok = OMIO::OFFReader().read(text, rec, opt);
+        } else {
+            ok = OMIO::OFFReader().read(path, rec, opt);
+        }
+    }
+    if (!ok) fail(path, "OpenMesh could not parse the file (malformed or truncated)");
+    const size_t nv = rec.points.size();
+
+    // Positions: OBJ from the double-precision scan (same count and order as OpenMesh's).
+    std::vector<glm::dvec3> points(nv);
+    if (ext == ".obj") {
+        if (nv != obj.positions.size() || rec.n_faces() != obj.faceLines.size())
+            fail(path, "OpenMesh read " + std::to_string(nv) + " vertices and " + std::to_string(rec.n_faces()) +
+                           " faces, but the file has " + std::to_string(obj.positions.size()) + " and " +
+                           std::to_string(obj.faceLines.size()));
+        points = obj.positions;
+    } else {
+        for (size_t i = 0; i < nv; ++i) points[i] = {rec.points[i][0], rec.points[i][1], rec.points[i][2]};
+    }
+
+    // UVs: per corner (OBJ) or per vertex (PLY/OFF, native or custom property).
+    std::vector<glm::dvec2> vertexUv;
+    bool cornerUvs = false;
+    if (ext == ".obj") {
+        cornerUvs = true;
+    } else if (ply.hasTextureUV) {
+        std::vector<double> u, v;
+        if (!customVertexScalar(rec.customProps, ply.textureU, nv, u) ||
+            !customVertexScalar(rec.customProps, ply.textureV, nv, v))
+            fail(path, "could not read vertex properties " + ply.textureU + "/" + ply.textureV);
+        vertexUv.resize(nv);
+        for (size_t i = 0; i < nv; ++i) vertexUv[i] = {u[i], v[i]};
+    } else if (opt.check(OMIO::Options::VertexTexCoord)) {
+        vertexUv.resize(nv);
+        for (size_t i = 0; i < nv; ++i) vertexUv[i] = {rec.vertexUv[i][0], rec.vertexUv[i][1]};
+    } else if (ext == ".ply") {
+        fail(path, "no per-vertex texture coordinates (u,v / s,t / texture_u,texture_v); libknit needs UVs");
+    } else {
+        fail(path, "no texture coordinates (an STOFF header with x y z u v per vertex); libknit needs UVs");
+    }
+    BaseMesh mesh = buildMesh(path, rec, points, vertexUv, cornerUvs, ext == ".obj" ? &obj.faceLines : nullptr, options);
+    validateMesh(mesh);
+    return mesh;
+}
+
+}  // namespace knit

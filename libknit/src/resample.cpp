@@ -1,0 +1,268 @@
+// resample.cpp — centripetal Catmull-Rom resampling of yarn centrelines.
+//
+// Conventions (documented here, relied on by makePlies and the tests):
+// - Curve i of the output is curve i of the input (1:1, same closed flag), so indices into the
+//   yarn list stay valid. A curve that has 0 or 1 distinct points is kept as it is (0 or 1
+//   point, no segments); callers decide what to do with it (makePlies emits no plies for it).
+// - Consecutive points closer than 1e-12 * spacing are merged (the first one is kept); on a
+//   closed curve a last point repeating the first one is merged too.
+// - Every remaining input vertex appears in the output bit for bit, in order; new points are
+//   inserted between them only.
+// - Open ends use the reflected neighbour (p[-1] = 2 p[0] - p[1]), so a straight end stays
+//   straight; closed curves wrap around.
+#include "knit/resample.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "knit/error.hpp"
+
+namespace knit {
+namespace {
+
+using glm::dvec3;
+
+// One cubic piece p(u) = ((a u + b) u + c) u + d, u in [0, 1], from p1 (u = 0) to p2 (u = 1).
+struct Cubic {
+    dvec3 a, b, c, d;
+    double maxLeg;   // longest leg of the Bezier control polygon
+    double polygon;  // control polygon length (upper bound of the arc length)
+    dvec3 eval(double u) const { return ((a * u + b) * u + c) * u + d; }
+};
+
+// Centripetal knot interval sqrt(|q - p|) = |q - p|^(1/2).
+double knotInterval(const dvec3& p, const dvec3& q) { return std::sqrt(glm::length(q - p)); }
+
+// Centripetal Catmull-Rom piece between p1 and p2 (Barry-Goldman tangents in Hermite form).
+// All four knot intervals are > 0 because consecutive duplicates were merged and the
+// reflected end points differ from their neighbours.
+Cubic makeCubic(const dvec3& p0, const dvec3& p1, const dvec3& p2, const dvec3& p3) {
+    double t01 = knotInterval(p0, p1);
+    double t12 = knotInterval(p1, p2);
+    double t23 = knotInterval(p2, p3);
+    // Guard against an exact zero (can only come from wrap-around on degenerate input).
+    const double tiny = 1e-300;
+    t01 = std::max(t01, tiny);
+    t12 = std::max(t12, tiny);
+    t23 = std::max(t23, tiny);
+    const dvec3 m1 = t12 * ((p1 - p0) / t01 - (p2 - p0) / (t01 + t12) + (p2 - p1) / t12);
+    const dvec3 m2 = t12 * ((p2 - p1) / t12 - (p3 - p1) / (t12 + t23) + (p3 - p2) / t23);
+    Cubic c;
+    c.a = 2.0 * p1 - 2.0 * p2 + m1 + m2;
+    c.b = -3.0 * p1 + 3.0 * p2 - 2.0 * m1 - m2;
+    c.c = m1;
+    c.d = p1;
+    const double l0 = glm::length(m1) / 3.0;
+    const double l1 = glm::length((p2 - m2 / 3.0) - (p1 + m1 / 3.0));
+    const double l2 = glm::length(m2) / 3.0;
+    c.polygon = l0 + l1 + l2;
+    c.maxLeg = std::max(l0, std::max(l1, l2));
+    return c;
+}
+
+// Normal interpolated linearly between n1 and n2 at fraction f, renormalized. Opposite
+// normals (sum ~ 0) fall back to the nearer end's normal.
+dvec3 lerpNormal(const dvec3& n1, const dvec3& n2, double f) {
+    const dvec3 n = (1.0 - f) * n1 + f * n2;
+    const double len = glm::length(n);
+    if (len > 1e-12) return n / len;
+    return f < 0.5 ? n1 : n2;
+}
+
+struct CurveBuffer {
+    std::vector<dvec3> points;
+    std::vector<dvec3> normals;
+    std::vector<uint32_t> sizes;  // points per curve in this chunk
+    std::vector<uint8_t> closed;
+};
+
+// Interior parameters u_j = j / k of one piece, with the smallest k (starting from Gravesen's
+// arc-length estimate) whose chords are all <= spacing. Uniform parameter steps are nearly
+// uniform in arc length on the centripetal spline; a last-resort split with a provably short
+// enough step (|p'(u)| <= 3 * maxLeg) guarantees termination.
+void splitPiece(const Cubic& cubic, const dvec3& p1, const dvec3& p2, double spacing, std::vector<dvec3>& samples) {
+    samples.clear();
+    if (cubic.polygon <= spacing) return;  // arc length <= control polygon: one segment is enough
+    const double chord = glm::length(p2 - p1);
+    const double estimate = 0.5 * (chord + cubic.polygon);  // Gravesen: mean of chord and polygon
+    size_t k = static_cast<size_t>(std::ceil(estimate / spacing));
+    if (k <= 1) {
+        if (chord <= spacing) return;
+        k = 2;
+    }
+    for (int attempt = 0; attempt < 4; ++attempt) {
+        samples.resize(k - 1);
+        const double du = 1.0 / static_cast<double>(k);
+        dvec3 prev = p1;
+        double longest = 0.0;
+        for (size_t j = 1; j < k; ++j) {
+            samples[j - 1] = cubic.eval(static_cast<double>(j) * du);
+            longest = std::max(longest, glm::length(samples[j - 1] - prev));
+            prev = samples[j - 1];
+        }
+        longest = std::max(longest, glm::length(p2 - prev));
+        if (longest <= spacing) return;
+        k = std::max(k + 1, static_cast<size_t>(std::ceil(static_cast<double>(k) * longest / spacing)));
+    }
+    // Guaranteed: chord <= arc <= max speed * du <= 3 maxLeg / k < spacing.
+    k = static_cast<size_t>(std::ceil(3.0 * cubic.maxLeg / spacing)) + 1;
+    samples.resize(k - 1);
+    for (size_t j = 1; j < k; ++j) samples[j - 1] = cubic.eval(static_cast<double>(j) / static_cast<double>(k));
+}
+
+// Resamples one curve and appends it to `out`.
+void resampleCurve(const MappedYarns& yarns, size_t c, double spacing, bool withNormals, CurveBuffer& out,
+                   std::vector<dvec3>& pts, std::vector<dvec3>& nrm, std::vector<dvec3>& samples) {
+    const Polylines& in = yarns.curves;
+    const bool closed = in.isClosed(c);
+    const uint32_t b = in.begin(c), e = in.end(c);
+    const double mergeDistance = 1e-12 * spacing;
+
+    // Step 1: merge consecutive repeated points (and a closed curve's repeated first point).
+    pts.clear();
+    nrm.clear();
+    for (uint32_t i = b; i < e; ++i) {
+        if (!pts.empty() && glm::length(in.points[i] - pts.back()) <= mergeDistance) continue;
+        pts.push_back(in.points[i]);
+        if (withNormals) nrm.push_back(yarns.normals[i]);
+    }
+    if (closed) {
+        while (pts.size() > 1 && glm::length(pts.back() - pts.front()) <= mergeDistance) {
+            pts.pop_back();
+            if (withNormals) nrm.pop_back();
+        }
+    }
+    const size_t n = pts.size();
+    const size_t start = out.points.size();
+    out.closed.push_back(closed ? 1 : 0);
+    if (n < 2) {
+        // Degenerate curve: kept as is (0 or 1 point), no segments.
+        out.points.insert(out.points.end(), pts.begin(), pts.end());
+        if (withNormals) out.normals.insert(out.normals.end(), nrm.begin(), nrm.end());
+        out.sizes.push_back(static_cast<uint32_t>(n));
+        return;
+    }
+
+    // Step 2: one centripetal Catmull-Rom piece per segment, split so no chord exceeds spacing.
+    const size_t segments = closed ? n : n - 1;
+    auto at = [&](long i) -> dvec3 {
+        const long nn = static_cast<long>(n);
+        if (closed) return pts[static_cast<size_t>(((i % nn) + nn) % nn)];
+        if (i < 0) return 2.0 * pts[0] - pts[1];                 // reflected start
+        if (i >= nn) return 2.0 * pts[n - 1] - pts[n - 2];       // reflected end
+        return pts[static_cast<size_t>(i)];
+    };
+    for (size_t s = 0; s < segments; ++s) {
+        const long i = static_cast<long>(s);
+        const dvec3& p1 = pts[s];
+        const dvec3& p2 = pts[(s + 1) % n];
+        out.points.push_back(p1);
+        if (withNormals) out.normals.push_back(nrm[s]);
+        const Cubic cubic = makeCubic(at(i - 1), p1, p2, at(i + 2));
+        splitPiece(cubic, p1, p2, spacing, samples);
+        const size_t k = samples.size() + 1;
+        out.points.insert(out.points.end(), samples.begin(), samples.end());
+        if (withNormals) {
+            // Linear in the sample's parameter along the piece, renormalized.
+            for (size_t j = 1; j < k; ++j)
+                out.normals.push_back(lerpNormal(nrm[s], nrm[(s + 1) % n], static_cast<double>(j) / static_cast<double>(k)));
+        }
+    }
+    if (!closed) {
+        out.points.push_back(pts[n - 1]);
+        if (withNormals) out.normals.push_back(nrm[n - 1]);
+    }
+    out.sizes.push_back(static_cast<uint32_t>(out.points.size() - start));
+}
+
+bool finite(const dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+}  // namespace
+
+MappedYarns resampleYarns(const MappedYarns& yarns, const ResampleOptions& options) {
+    // Validate options and input first: the loops below never throw.
+    if (!(options.spacing > 0.0) || !std::isfinite(options.spacing))
+        throw Error("resampleYarns: ResampleOptions.spacing must be a positive finite length (got " +
+                    std::to_string(options.spacing) + ")");
+    const Polylines& in = yarns.curves;
+    if (in.offsets.size() != in.curveCount() + 1 || in.offsets.back() != in.pointCount())
+        throw Error("resampleYarns: inconsistent Polylines (offsets do not match points/closed)");
+    const bool withNormals = !yarns.normals.empty();
+    if (withNormals && yarns.normals.size() != in.pointCount())
+        throw Error("resampleYarns: MappedYarns.normals has " + std::to_string(yarns.normals.size()) +
+                    " entries but there are " + std::to_string(in.pointCount()) + " points");
+    for (size_t c = 0; c < in.curveCount(); ++c) {
+        for (uint32_t i = in.begin(c); i < in.end(c); ++i) {
+            if (!finite(in.points[i]))
+                throw Error("resampleYarns: curve " + std::to_string(c) + " point " + std::to_string(i - in.begin(c)) +
+                            " is not finite");
+            if (withNormals && !finite(yarns.normals[i]))
+                throw Error("resampleYarns: curve " + std::to_string(c) + " normal " +
+                            std::to_string(i - in.begin(c)) + " is not finite");
+        }
+    }
+
+    // Fixed chunks of consecutive curves (independent of the thread count: deterministic).
+    std::vector<size_t> chunkStart{0};
+    {
+        size_t acc = 0;
+        for (size_t c = 0; c < in.curveCount(); ++c) {
+            acc += in.size(c);
+            if (acc >= 8192 && c + 1 < in.curveCount()) {
+                chunkStart.push_back(c + 1);
+                acc = 0;
+            }
+        }
+        chunkStart.push_back(in.curveCount());
+    }
+    const size_t chunks = chunkStart.size() - 1;
+    std::vector<CurveBuffer> buffers(chunks);
+    const double ratio = 1.5;  // rough output points per input point, for reservation only
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, chunks, 1), [&](const tbb::blocked_range<size_t>& r) {
+        std::vector<dvec3> pts, nrm, samples;
+        for (size_t k = r.begin(); k < r.end(); ++k) {
+            CurveBuffer& buf = buffers[k];
+            const size_t inPoints = in.begin(chunkStart[k + 1]) - in.begin(chunkStart[k]);
+            buf.points.reserve(static_cast<size_t>(ratio * static_cast<double>(inPoints)) + 16);
+            if (withNormals) buf.normals.reserve(buf.points.capacity());
+            for (size_t c = chunkStart[k]; c < chunkStart[k + 1]; ++c)
+                resampleCurve(yarns, c, options.spacing, withNormals, buf, pts, nrm, samples);
+        }
+    });
+
+    // Concatenate the chunks in curve order.
+    MappedYarns out;
+    std::vector<size_t> pointStart(chunks + 1, 0);
+    out.curves.offsets.reserve(in.curveCount() + 1);
+    out.curves.closed.reserve(in.curveCount());
+    for (size_t k = 0; k < chunks; ++k) pointStart[k + 1] = pointStart[k] + buffers[k].points.size();
+    if (pointStart[chunks] > UINT32_MAX)
+        throw Error("resampleYarns: more than 2^32-1 resampled points; use a larger spacing or fewer yarns");
+    for (size_t k = 0; k < chunks; ++k) {
+        for (size_t j = 0; j < buffers[k].sizes.size(); ++j) {
+            out.curves.offsets.push_back(out.curves.offsets.back() + buffers[k].sizes[j]);
+            out.curves.closed.push_back(buffers[k].closed[j]);
+        }
+    }
+    out.curves.points.resize(pointStart[chunks]);
+    if (withNormals) out.normals.resize(pointStart[chunks]);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, chunks, 1), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t k = r.begin(); k < r.end(); ++k) {
+            std::copy(buffers[k].points.begin(), buffers[k].points.end(), out.curves.points.begin() + pointStart[k]);
+            if (withNormals)
+                std::copy(buffers[k].normals.begin(), buffers[k].normals.end(), out.normals.begin() + pointStart[k]);
+            std::vector<dvec3>().swap(buffers[k].points);  // release memory early
+            std::vector<dvec3>().swap(buffers[k].normals);
+        }
+    });
+    return out;
+}
+
+}  // namespace knit

@@ -1,0 +1,161 @@
+// The whole pipeline as a plain composition of the stages, plus its JSON report.
+#include "knit/scene.hpp"
+
+#include <algorithm>
+#include <chrono>
+
+#include <glm/geometric.hpp>
+#include <nlohmann/json.hpp>
+
+#include "knit/error.hpp"
+
+namespace knit {
+namespace {
+
+class StageClock {
+public:
+    StageClock(Scene& scene, const ProgressFn& progress, int total) : scene_(scene), progress_(progress), total_(total) {}
+    // Runs one named stage, recording its wall time.
+    template <class F>
+    void run(const std::string& name, F&& stage) {
+        if (progress_) progress_(name, index_, total_);
+        const auto t0 = std::chrono::steady_clock::now();
+        stage();
+        const std::chrono::duration<double> dt = std::chrono::steady_clock::now() - t0;
+        scene_.timings.push_back({name, dt.count()});
+        ++index_;
+    }
+
+private:
+    Scene& scene_;
+    const ProgressFn& progress_;
+    int total_;
+    int index_ = 0;
+};
+
+nlohmann::json segmentStats(const Polylines& curves) {
+    std::vector<double> lengths;
+    lengths.reserve(curves.pointCount());
+    for (size_t c = 0; c < curves.curveCount(); ++c) {
+        const uint32_t b = curves.begin(c), n = curves.size(c);
+        for (uint32_t s = 0; s < curves.segmentCount(c); ++s)
+            lengths.push_back(glm::distance(curves.points[b + s], curves.points[b + (s + 1) % n]));
+    }
+    nlohmann::json j;
+    j["segments"] = lengths.size();
+    if (lengths.empty()) return j;
+    const auto mid = lengths.begin() + lengths.size() / 2;
+    std::nth_element(lengths.begin(), mid, lengths.end());
+    j["median_segment_length"] = *mid;
+    j["longest_segment_length"] = *std::max_element(lengths.begin(), lengths.end());
+    return j;
+}
+
+}  // namespace
+
+namespace {
+
+void runStages(Scene& scene, const SceneOptions& options, StageClock& clock) {
+    clock.run("normals", [&] { scene.normals = vertexNormals(scene.mesh.positions, scene.mesh.faces); });
+    clock.run("uv_grid", [&] {
+        scene.placement = placePattern(scene.pattern, scene.mesh, options.placement);
+        scene.yarnRadius = scene.pattern.radius * scene.placement.scale;
+        UvGridOptions gridOptions;
+        gridOptions.cellSize = scene.placement.cellSize();
+        scene.grid = buildUvGrid(scene.mesh, gridOptions);
+    });
+    clock.run("tiling", [&] { scene.tiling = tilesForCells(scene.pattern, scene.grid.cells); });
+    clock.run("stitch", [&] {
+        scene.uvYarns = stitchYarns(scene.pattern, buildAdjacency(scene.pattern), scene.tiling, scene.placement);
+    });
+    clock.run("binding", [&] {
+        BindOptions bind = options.bind;
+        bind.yarnRadius = scene.yarnRadius;
+        scene.bound = bindYarns(scene.mesh, scene.normals, scene.grid, scene.uvYarns, bind);
+    });
+    clock.run("evaluate", [&] {
+        evaluateBinding(scene.bound.binding, scene.mesh.faces, scene.mesh.positions, scene.normals, scene.yarns);
+    });
+    if (options.buildPlies)
+        clock.run("plies", [&] {
+            PlyOptions plies = options.plies;
+            plies.yarnRadius = scene.yarnRadius;
+            scene.plies = makePlies(scene.yarns, plies);
+        });
+}
+
+int stageCount(const SceneOptions& options) { return options.buildPlies ? 9 : 8; }
+
+}  // namespace
+
+Scene buildScene(const SceneOptions& options) {
+    Scene scene;
+    StageClock clock(scene, options.progress, stageCount(options));
+    clock.run("load_pattern", [&] { scene.pattern = loadPatternFileOrName(options.pattern); });
+    clock.run("load_mesh", [&] {
+        scene.mesh = loadMeshFileOrName(options.mesh, options.meshOptions);
+        validateMesh(scene.mesh);
+    });
+    runStages(scene, options, clock);
+    return scene;
+}
+
+Scene buildScene(Pattern pattern, BaseMesh mesh, const SceneOptions& options) {
+    validatePattern(pattern, pattern.name);
+    validateMesh(mesh);
+    Scene scene;
+    scene.pattern = std::move(pattern);
+    scene.mesh = std::move(mesh);
+    StageClock clock(scene, options.progress, stageCount(options) - 2);
+    runStages(scene, options, clock);
+    return scene;
+}
+
+nlohmann::json sceneReport(const Scene& s) {
+    nlohmann::json j;
+    j["pattern"] = {{"name", s.pattern.name},
+                    {"period", {s.pattern.px, s.pattern.py}},
+                    {"radius", s.pattern.radius},
+                    {"vertices", s.pattern.points.size()}};
+    j["mesh"] = {{"name", s.mesh.name},
+                 {"vertices", s.mesh.positions.size()},
+                 {"uvs", s.mesh.uvs.size()},
+                 {"faces", s.mesh.faces.size()},
+                 {"degenerate_uv_faces", s.grid.degenerateUvFaces}};
+    j["placement"] = {{"repeats", {s.placement.repeats.x, s.placement.repeats.y}},
+                      {"scale", s.placement.scale},
+                      {"yarn_radius", s.yarnRadius}};
+    const BindStats& b = s.bound.stats;
+    j["counts"] = {{"cells", s.grid.cells.size()},
+                   {"tiles", s.tiling.tiles.size()},
+                   {"yarns", s.yarns.curves.curveCount()},
+                   {"closed_loops", b.closedLoops},
+                   {"open_ends", b.openEnds},
+                   {"cut_vertices", b.cutVertices},
+                   {"clamped_vertices", b.clampedVertices},
+                   {"boundary_vertices", b.boundaryVertices},
+                   {"welded_ends", b.weldedEnds},
+                   {"tiled_yarns", s.uvYarns.yarnCount()}};
+    j["vertices"] = {{"tiled", s.uvYarns.vertexCount()},
+                     {"yarn", s.yarns.curves.pointCount()},
+                     {"ply", s.plies.curves.pointCount()}};
+    j["yarn_segments"] = segmentStats(s.yarns.curves);
+    if (s.plies.curves.curveCount() > 0) {
+        j["ply_segments"] = segmentStats(s.plies.curves);
+        j["plies"] = {{"curves", s.plies.curves.curveCount()},
+                      {"ply_radius", s.plies.plyRadius},
+                      {"center_radius", s.plies.centerRadius},
+                      {"pitch", s.plies.pitch}};
+    }
+    nlohmann::json times = nlohmann::json::object();
+    double total = 0;
+    for (const StageTime& t : s.timings) {
+        times[t.stage] = t.seconds;
+        total += t.seconds;
+    }
+    times["total"] = total;
+    j["seconds"] = times;
+    return j;
+}
+
+}  // namespace knit

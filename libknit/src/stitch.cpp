@@ -1,0 +1,101 @@
+// Stitch: walk the tiled pattern graph (degree <= 2) into maximal yarns, keeping closed loops.
+#include "knit/stitch.hpp"
+
+#include <cassert>
+
+namespace knit {
+namespace {
+
+struct Walker {
+    const Pattern& pattern;
+    const PatternAdjacency& adj;
+    const Tiling& tiling;
+    uint32_t n;  // pattern vertices per tile
+
+    // Neighbour of tiled vertex (tile slot k, local v) through adjacency slot s, or -1.
+    int64_t neighbor(uint32_t k, uint32_t v, int s) const {
+        const PatternNeighbor& nb = adj.slots[v][s];
+        if (nb.v < 0) return -1;
+        const int32_t k2 = tiling.slotOf(tiling.tiles[k] + glm::ivec2(nb.dx, nb.dy));
+        return k2 < 0 ? -1 : int64_t(k2) * n + nb.v;
+    }
+    // The slot of w that leads back along the edge we arrived by (from v via slot s).
+    int backSlot(uint32_t v, int s, uint32_t w) const {
+        const PatternNeighbor& e = adj.slots[v][s];
+        for (int t = 0; t < 2; ++t) {
+            const PatternNeighbor& b = adj.slots[w][t];
+            if (b.v == int32_t(v) && b.dx == -e.dx && b.dy == -e.dy) return t;
+        }
+        assert(false && "adjacency is symmetric");
+        return 0;
+    }
+};
+
+}  // namespace
+
+UvYarns stitchYarns(const Pattern& pattern, const PatternAdjacency& adj, const Tiling& tiling,
+                    const PatternPlacement& placement) {
+    UvYarns out;
+    const uint32_t n = uint32_t(pattern.points.size());
+    const uint64_t total = uint64_t(tiling.tiles.size()) * n;
+    if (total == 0) return out;
+    const Walker walker{pattern, adj, tiling, n};
+    const glm::dvec2 toUv(1.0 / (placement.repeats.x * pattern.px), 1.0 / (placement.repeats.y * pattern.py));
+
+    out.uv.reserve(total);
+    out.height.reserve(total);
+    out.twist.reserve(total);
+    out.source.reserve(total);
+    std::vector<uint8_t> visited(total, 0);
+
+    auto emit = [&](uint64_t id) {
+        const uint32_t k = uint32_t(id / n), v = uint32_t(id % n);
+        const glm::ivec2 tile = tiling.tiles[k];
+        const glm::dvec3& q = pattern.points[v];
+        out.uv.emplace_back((q.x + tile.x * pattern.px) * toUv.x, (q.y + tile.y * pattern.py) * toUv.y);
+        out.height.push_back(q.z * placement.scale);
+        out.twist.push_back(pattern.twist[v]);
+        out.source.push_back(uint32_t(id));
+        visited[id] = 1;
+    };
+
+    // Walks from `start`, leaving through adjacency slot `out` (-1: none); true for a loop.
+    auto walk = [&](uint64_t start, int out) {
+        uint64_t cur = start;
+        for (;;) {
+            emit(cur);
+            if (out < 0) return false;
+            const uint32_t v = uint32_t(cur % n);
+            const int64_t next = walker.neighbor(uint32_t(cur / n), v, out);
+            if (next < 0) return false;
+            if (visited[next]) return uint64_t(next) == start;
+            // Leave the next vertex through the slot we did not arrive by.
+            out = 1 - walker.backSlot(v, out, uint32_t(next % n));
+            cur = uint64_t(next);
+        }
+    };
+
+    auto finishYarn = [&](bool closed) {
+        out.offsets.push_back(uint32_t(out.uv.size()));
+        out.closed.push_back(closed ? 1 : 0);
+    };
+
+    // 1. Open yarns start at vertices with fewer than two present neighbours.
+    for (uint64_t id = 0; id < total; ++id) {
+        if (visited[id]) continue;
+        const uint32_t k = uint32_t(id / n), v = uint32_t(id % n);
+        const bool has0 = walker.neighbor(k, v, 0) >= 0, has1 = walker.neighbor(k, v, 1) >= 0;
+        if (has0 && has1) continue;
+        walk(id, has0 ? 0 : (has1 ? 1 : -1));
+        finishYarn(false);
+    }
+    // 2. What remains lies on closed loops.
+    for (uint64_t id = 0; id < total; ++id) {
+        if (visited[id]) continue;
+        const bool closed = walk(id, 0);
+        finishYarn(closed);
+    }
+    return out;
+}
+
+}  // namespace knit

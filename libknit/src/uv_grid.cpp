@@ -1,0 +1,269 @@
+// Sparse UV grid (cell -> triangles, cell -> UV boundary edges) and robust point location.
+#include "knit/uv_grid.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <sstream>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
+
+#include "knit/error.hpp"
+
+namespace knit {
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point2 = Kernel::Point_2;
+
+int orientationSign(glm::dvec2 a, glm::dvec2 b, glm::dvec2 c) {
+    return int(CGAL::orientation(Point2(a.x, a.y), Point2(b.x, b.y), Point2(c.x, c.y)));
+}
+
+double cross2(glm::dvec2 a, glm::dvec2 b) { return a.x * b.y - a.y * b.x; }
+
+// Separating-axis test of a triangle against an axis-aligned box (closed sets), in double.
+// Callers pass a slightly grown box so rounding can only add cells (conservative).
+bool triangleTouchesBox(const glm::dvec2 t[3], glm::dvec2 lo, glm::dvec2 hi) {
+    const glm::dvec2 tmin = glm::min(t[0], glm::min(t[1], t[2])), tmax = glm::max(t[0], glm::max(t[1], t[2]));
+    if (tmax.x < lo.x || tmin.x > hi.x || tmax.y < lo.y || tmin.y > hi.y) return false;
+    const glm::dvec2 corners[4] = {lo, {hi.x, lo.y}, hi, {lo.x, hi.y}};
+    for (int e = 0; e < 3; ++e) {
+        const glm::dvec2 a = t[e], b = t[(e + 1) % 3], c = t[(e + 2) % 3];
+        const glm::dvec2 axis(-(b - a).y, (b - a).x);
+        const double side = glm::dot(axis, c - a);
+        double bmin = INFINITY, bmax = -INFINITY;
+        for (const glm::dvec2& q : corners) {
+            const double d = glm::dot(axis, q - a);
+            bmin = std::min(bmin, d);
+            bmax = std::max(bmax, d);
+        }
+        // Triangle projects onto [min(0, side), max(0, side)].
+        if (bmax < std::min(0.0, side) || bmin > std::max(0.0, side)) return false;
+    }
+    return true;
+}
+
+struct UnionFind {
+    std::vector<uint32_t> parent;
+    explicit UnionFind(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
+    uint32_t find(uint32_t x) {
+        while (parent[x] != x) x = parent[x] = parent[parent[x]];
+        return x;
+    }
+    void unite(uint32_t a, uint32_t b) {
+        a = find(a);
+        b = find(b);
+        if (a != b) parent[std::max(a, b)] = std::min(a, b);
+    }
+};
+
+}  // namespace
+
+glm::ivec2 UvGrid::cellOf(glm::dvec2 uv) const {
+    auto axis = [](double x, double size) {
+        const double f = std::floor(x / size);
+        if (!(f > -1e9)) return int32_t(-1000000000);  // also NaN
+        if (f > 1e9) return int32_t(1000000000);
+        return int32_t(f);
+    };
+    return {axis(uv.x, cellSize.x), axis(uv.y, cellSize.y)};
+}
+
+int32_t UvGrid::slotOf(glm::ivec2 cell) const {
+    const glm::ivec2 r = cell - minCell;
+    if (r.x < 0 || r.y < 0 || r.x >= dims.x || r.y >= dims.y) return -1;
+    return cellSlot[size_t(r.y) * size_t(dims.x) + size_t(r.x)];
+}
+
+UvGrid buildUvGrid(const BaseMesh& mesh, const UvGridOptions& options) {
+    if (!(options.cellSize.x > 0 && options.cellSize.y > 0 && std::isfinite(options.cellSize.x) && std::isfinite(options.cellSize.y)))
+        throw Error("UV grid: cell size must be positive and finite");
+    UvGrid grid;
+    grid.cellSize = options.cellSize;
+    const size_t nf = mesh.faces.size();
+    if (nf == 0) return grid;
+    const glm::dvec2 eps = 1e-9 * options.cellSize;
+
+    // 1. Per-face UV orientation (exact) and the bounding box of touched cells.
+    grid.faceOrientation.resize(nf);
+    glm::ivec2 lo(INT32_MAX), hi(INT32_MIN);
+    for (size_t f = 0; f < nf; ++f) {
+        const glm::uvec3 t = mesh.faceUvs[f];
+        grid.faceOrientation[f] = int8_t(orientationSign(mesh.uvs[t.x], mesh.uvs[t.y], mesh.uvs[t.z]));
+        if (grid.faceOrientation[f] == 0) {
+            ++grid.degenerateUvFaces;
+            continue;
+        }
+        const glm::dvec2 a = mesh.uvs[t.x], b = mesh.uvs[t.y], c = mesh.uvs[t.z];
+        lo = glm::min(lo, grid.cellOf(glm::min(a, glm::min(b, c)) - eps));
+        hi = glm::max(hi, grid.cellOf(glm::max(a, glm::max(b, c)) + eps));
+    }
+    if (grid.degenerateUvFaces == nf) throw Error(mesh.name + ": every triangle has zero UV area");
+    const uint64_t cellCount = uint64_t(hi.x - lo.x + 1) * uint64_t(hi.y - lo.y + 1);
+    if (cellCount > options.maxCells) {
+        std::ostringstream msg;
+        msg << mesh.name << ": the UV grid would span " << cellCount << " pattern cells (limit " << options.maxCells
+            << "); the repeats are too large for this mesh's UV range";
+        throw Error(msg.str());
+    }
+    grid.minCell = lo;
+    grid.dims = hi - lo + 1;
+
+    // 2. Conservative triangle-cell overlap: candidate cells from the (grown) UV box, then a
+    //    separating-axis test against the grown cell box.
+    std::vector<std::pair<uint64_t, uint32_t>> cellFace;  // (linear cell, face)
+    for (size_t f = 0; f < nf; ++f) {
+        if (grid.faceOrientation[f] == 0) continue;
+        const glm::uvec3 t = mesh.faceUvs[f];
+        const glm::dvec2 tri[3] = {mesh.uvs[t.x], mesh.uvs[t.y], mesh.uvs[t.z]};
+        const glm::ivec2 c0 = grid.cellOf(glm::min(tri[0], glm::min(tri[1], tri[2])) - eps);
+        const glm::ivec2 c1 = grid.cellOf(glm::max(tri[0], glm::max(tri[1], tri[2])) + eps);
+        for (int32_t y = c0.y; y <= c1.y; ++y)
+            for (int32_t x = c0.x; x <= c1.x; ++x) {
+                const glm::dvec2 boxLo = glm::dvec2(x, y) * options.cellSize - eps;
+                const glm::dvec2 boxHi = glm::dvec2(x + 1, y + 1) * options.cellSize + eps;
+                if (c0 == c1 || triangleTouchesBox(tri, boxLo, boxHi))
+                    cellFace.emplace_back(uint64_t(y - lo.y) * uint64_t(grid.dims.x) + uint64_t(x - lo.x), uint32_t(f));
+            }
+    }
+    std::sort(cellFace.begin(), cellFace.end());
+    grid.cellSlot.assign(cellCount, -1);
+    for (size_t i = 0; i < cellFace.size(); ++i) {
+        if (i == 0 || cellFace[i].first != cellFace[i - 1].first) {
+            if (i > 0) grid.triOffsets.push_back(uint32_t(grid.triangles.size()));
+            grid.cellSlot[cellFace[i].first] = int32_t(grid.cells.size());
+            const uint64_t lin = cellFace[i].first;
+            grid.cells.push_back(lo + glm::ivec2(int32_t(lin % uint64_t(grid.dims.x)), int32_t(lin / uint64_t(grid.dims.x))));
+        }
+        grid.triangles.push_back(cellFace[i].second);
+    }
+    grid.triOffsets.push_back(uint32_t(grid.triangles.size()));
+
+    // 3. UV edges shared by two non-degenerate faces are interior; the rest are boundary.
+    //    Faces sharing a UV edge belong to the same chart.
+    std::vector<std::pair<uint64_t, uint32_t>> edges;  // (undirected uv edge key, half-edge)
+    edges.reserve(3 * nf);
+    for (size_t f = 0; f < nf; ++f) {
+        if (grid.faceOrientation[f] == 0) continue;
+        const glm::uvec3 t = mesh.faceUvs[f];
+        const uint32_t v[3] = {t.x, t.y, t.z};
+        for (int k = 0; k < 3; ++k) {
+            const uint64_t a = v[k], b = v[(k + 1) % 3];
+            edges.emplace_back((std::min(a, b) << 32) | std::max(a, b), uint32_t(3 * f + k));
+        }
+    }
+    std::sort(edges.begin(), edges.end());
+    UnionFind charts(nf);
+    std::vector<std::pair<uint64_t, uint32_t>> cellEdge;  // (linear cell, boundary half-edge)
+    for (size_t i = 0; i < edges.size();) {
+        size_t j = i;
+        while (j < edges.size() && edges[j].first == edges[i].first) ++j;
+        for (size_t k = i + 1; k < j; ++k) charts.unite(edges[i].second / 3, edges[k].second / 3);
+        if (j - i == 1) {
+            const uint32_t he = edges[i].second, f = he / 3, k = he % 3;
+            const glm::uvec3 t = mesh.faceUvs[f];
+            const uint32_t v[3] = {t.x, t.y, t.z};
+            const glm::dvec2 a = mesh.uvs[v[k]], b = mesh.uvs[v[(k + 1) % 3]];
+            const glm::ivec2 c0 = grid.cellOf(glm::min(a, b) - eps), c1 = grid.cellOf(glm::max(a, b) + eps);
+            for (int32_t y = c0.y; y <= c1.y; ++y)
+                for (int32_t x = c0.x; x <= c1.x; ++x)
+                    if (grid.slotOf({x, y}) >= 0) cellEdge.emplace_back(uint64_t(grid.slotOf({x, y})), he);
+        }
+        i = j;
+    }
+    std::sort(cellEdge.begin(), cellEdge.end());
+    grid.edgeOffsets.assign(grid.cells.size() + 1, 0);
+    for (const auto& ce : cellEdge) ++grid.edgeOffsets[ce.first + 1];
+    for (size_t c = 0; c < grid.cells.size(); ++c) grid.edgeOffsets[c + 1] += grid.edgeOffsets[c];
+    grid.boundaryEdges.reserve(cellEdge.size());
+    for (const auto& ce : cellEdge) grid.boundaryEdges.push_back(ce.second);
+
+    grid.chartOfFace.resize(nf);
+    for (size_t f = 0; f < nf; ++f) grid.chartOfFace[f] = charts.find(uint32_t(f));
+    return grid;
+}
+
+namespace {
+
+// Barycentrics of p in triangle (a, b, c), clamped to the closed triangle.
+glm::dvec3 clampedBarycentrics(glm::dvec2 a, glm::dvec2 b, glm::dvec2 c, glm::dvec2 p) {
+    const double den = cross2(b - a, c - a);
+    double l1 = cross2(p - a, c - a) / den, l2 = cross2(b - a, p - a) / den;
+    double l0 = 1.0 - l1 - l2;
+    l0 = std::max(l0, 0.0);
+    l1 = std::max(l1, 0.0);
+    l2 = std::max(l2, 0.0);
+    const double s = l0 + l1 + l2;
+    return glm::dvec3(l0, l1, l2) / s;
+}
+
+// Closest point of segment [a, b] to p: parameter in [0, 1].
+double closestOnSegment(glm::dvec2 a, glm::dvec2 b, glm::dvec2 p) {
+    const glm::dvec2 d = b - a;
+    const double len2 = glm::dot(d, d);
+    return len2 > 0 ? std::clamp(glm::dot(p - a, d) / len2, 0.0, 1.0) : 0.0;
+}
+
+}  // namespace
+
+LocateResult locatePoint(const BaseMesh& mesh, const UvGrid& grid, glm::dvec2 uv, double tolerance) {
+    LocateResult result;
+    if (!std::isfinite(uv.x) || !std::isfinite(uv.y) || grid.cells.empty()) return result;
+    const Point2 p(uv.x, uv.y);
+
+    // 1. Exact containment in the closed triangle; the lowest triangle id wins (lists ascend).
+    if (const int32_t slot = grid.slotOf(grid.cellOf(uv)); slot >= 0) {
+        for (uint32_t i = grid.triOffsets[slot]; i < grid.triOffsets[slot + 1]; ++i) {
+            const uint32_t f = grid.triangles[i];
+            const glm::uvec3 t = mesh.faceUvs[f];
+            const glm::dvec2 a = mesh.uvs[t.x], b = mesh.uvs[t.y], c = mesh.uvs[t.z];
+            const int o = grid.faceOrientation[f];
+            if (int(CGAL::orientation(Point2(a.x, a.y), Point2(b.x, b.y), p)) == -o) continue;
+            if (int(CGAL::orientation(Point2(b.x, b.y), Point2(c.x, c.y), p)) == -o) continue;
+            if (int(CGAL::orientation(Point2(c.x, c.y), Point2(a.x, a.y), p)) == -o) continue;
+            result.status = LocateStatus::Inside;
+            result.point = {f, clampedBarycentrics(a, b, c, uv)};
+            return result;
+        }
+    }
+    if (!(tolerance > 0)) return result;
+
+    // 2. Closest triangle within the tolerance (ties: lowest id), with clamped barycentrics.
+    const glm::ivec2 c0 = grid.cellOf(uv - tolerance), c1 = grid.cellOf(uv + tolerance);
+    double best = tolerance;
+    bool found = false;
+    for (int32_t y = c0.y; y <= c1.y; ++y)
+        for (int32_t x = c0.x; x <= c1.x; ++x) {
+            const int32_t slot = grid.slotOf({x, y});
+            if (slot < 0) continue;
+            for (uint32_t i = grid.triOffsets[slot]; i < grid.triOffsets[slot + 1]; ++i) {
+                const uint32_t f = grid.triangles[i];
+                const glm::uvec3 t = mesh.faceUvs[f];
+                const glm::dvec2 v[3] = {mesh.uvs[t.x], mesh.uvs[t.y], mesh.uvs[t.z]};
+                for (int e = 0; e < 3; ++e) {
+                    const double s = closestOnSegment(v[e], v[(e + 1) % 3], uv);
+                    const double d = glm::distance(uv, v[e] + s * (v[(e + 1) % 3] - v[e]));
+                    if (d < best || (d == best && found && f < result.point.face)) {
+                        best = d;
+                        found = true;
+                        glm::dvec3 bary(0.0);
+                        bary[e] = 1.0 - s;
+                        bary[(e + 1) % 3] = s;
+                        result.point = {f, bary};
+                    }
+                }
+            }
+        }
+    if (found) {
+        result.status = LocateStatus::Clamped;
+        result.distance = best;
+    }
+    return result;
+}
+
+}  // namespace knit

@@ -1,0 +1,48 @@
+// knit/ply_geometry.hpp — ply curves as float32 segments relative to a scene origin, shared by the
+// three geometry modes, plus the assignment of segments to UV-grid cells (two-stage mode).
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include "knit/plies.hpp"
+
+namespace knit {
+
+struct Scene;
+
+// Per curve the points are stored "expanded" so that every segment is (points[s], points[s+1]) and
+// its neighbours, when they exist, start at points[s-1] / end at points[s+2] (Embree's linear
+// curve neighbour rule): an open curve stores p0..p(n-1); a closed curve stores
+// p(n-1), p0, ..., p(n-1), p0, p1. Consecutive repeated points are dropped.
+struct PlyGeometry {
+    glm::dvec3 origin{0.0};
+    float radius = 0;
+    std::vector<glm::vec4> points;        // (x, y, z, radius) relative to origin
+    std::vector<glm::vec3> radial;        // unit direction from the yarn centre, per point
+    std::vector<float> arc;               // arc length along the ply (ply radii), per point
+    std::vector<uint32_t> segments;       // first point of each segment
+    std::vector<uint8_t> flags;           // per segment: bit 0 left neighbour, bit 1 right neighbour
+    std::vector<uint32_t> curveOfSegment; // source ply curve
+    std::vector<uint32_t> curveSegments{0};  // per source curve: range into segments
+
+    size_t segmentCount() const { return segments.size(); }
+    bool hasLeft(size_t s) const { return flags[s] & 1u; }
+    bool hasRight(size_t s) const { return flags[s] & 2u; }
+    // Bytes of the intersection data (points) and of the shading attributes (radial, arc).
+    size_t intersectionBytes() const;
+    size_t shadingBytes() const;
+};
+
+// Throws knit::Error when plies are empty, the radius is not positive, or points are not finite.
+PlyGeometry buildPlyGeometry(const Plies& plies, const glm::dvec3& origin);
+
+// Two-stage mode: the UV-grid cell (i, j) of every segment, packed as (int64(i) << 32) | uint32(j).
+// A ply segment takes the cell of the UV position of the nearest vertex of its source yarn
+// (binding: triangle + barycentrics, evaluated with the mesh's UVs; cells of size
+// scene.grid.cellSize). Throws knit::Error when the scene has no binding / grid for its yarns.
+std::vector<int64_t> segmentCells(const Scene& scene, const PlyGeometry& geometry);
+
+}  // namespace knit

@@ -1,0 +1,48 @@
+// knit/ply_material.hpp — parameters of the ply BSDF, their validation and JSON loading.
+//
+// The lobes (see ply_bsdf.hpp): specular reflection R (anisotropic GGX, dielectric Fresnel),
+// specular transmission TT (the GGX lobe mirrored through the surface plane), body reflection and
+// transmission (Lambertian, times the fiber/ply shadow factor S'). Colours are linear RGB.
+#pragma once
+#include <string>
+
+#include <glm/vec3.hpp>
+#include <nlohmann/json_fwd.hpp>
+
+namespace knit {
+
+using Rgb = glm::dvec3;
+
+struct PlyMaterial {
+    double eta = 1.5;           // fiber index of refraction (dielectric Fresnel of R / TT)
+    double alphaAlong = 0.4;    // R roughness along the fiber (local x)
+    double alphaAcross = 0.4;   // R roughness across the fiber (local y)
+    Rgb kR{0.3};                // R weight
+    double alphaTT = 0.9;       // TT roughness (isotropic)
+    Rgb kTT{0.1};               // TT weight
+    Rgb bodyAlbedo{0.55, 0.32, 0.18};  // rho_B: body colour (reflection + transmission)
+    double reflectFraction = 0.5;      // r: share of the body lobe reflected (1 - r transmitted)
+    // Fiber detail (1D tables built at start-up, see fiber_tables.hpp).
+    bool fiberDetail = true;    // perturb the shading frame by the fiber tables
+    int fiberCount = 40;        // fibers on the ring of one ply cross-section
+    double fiberTwist = -1.5;   // tau_f: fiber helix rate, radians per ply radius along the ply
+    double fiberShadowFloor = 0.4;  // thr: S' = S (1 - thr) + thr for the fiber-level shadow
+    double plyShadowFloor = 0.3;    // same for the ply-level shadow (plies around the yarn)
+    int tableSize = 1000;       // texels per 1D table
+    int aoRays = 1000;          // 2D rays per texel for the shadow (AO) tables
+};
+
+// Throws knit::Error naming the field when a value is out of range or not finite, or when the
+// energy bound max(kR, kTT) + bodyAlbedo <= 1 fails in some channel (then albedo may exceed 1).
+// `where` prefixes the message (e.g. a file name).
+void validateMaterial(const PlyMaterial& material, const std::string& where = "material");
+
+// Fields of `json` override `base`; unknown fields and wrong types are errors naming the field.
+// Colours are a number (grey) or [r, g, b]. The result is validated.
+PlyMaterial materialFromJson(const nlohmann::json& json, const PlyMaterial& base = {},
+                             const std::string& where = "material");
+// Reads a JSON material file (see materialFromJson); errors name the file.
+PlyMaterial loadMaterialFile(const std::string& path, const PlyMaterial& base = {});
+nlohmann::json materialToJson(const PlyMaterial& material);
+
+}  // namespace knit

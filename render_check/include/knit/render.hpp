@@ -1,0 +1,84 @@
+// knit/render.hpp — `knit render`: render a Scene's plies with the ply BSDF, front-lit or back-lit,
+// in one of three geometry modes, and report time, rays/s and memory.
+//
+// View: the camera looks at the plies' bounding sphere along the base mesh's mean normal (the
+// cloth's front). `front` puts the rectangular light on the camera side (up and to the right),
+// `back` puts it behind the cloth facing the camera, so the image shows transmitted light.
+// The base mesh is the cloth's mid-surface: it lies inside the yarns and would hide the back
+// plies and block transmission, so it is NOT rendered unless `baseMesh` is set (then as an
+// opaque two-sided diffuse surface).
+#pragma once
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "knit/path_tracer.hpp"
+#include "knit/ply_material.hpp"
+#include "knit/trace_scene.hpp"
+
+namespace CLI {
+class App;
+}
+
+namespace knit {
+
+struct Scene;
+
+struct RenderOptions {
+    std::string light = "front";   // front | back
+    std::string mode = "curves";   // curves | tubes | grid
+    int spp = 16;
+    int width = 512, height = 384;
+    std::string output;            // PNG (sRGB); empty = no file
+    std::string exr;               // linear EXR; empty = none
+    uint64_t seed = 1;
+    PlyMaterial material;          // base material
+    std::string materialFile;      // JSON material (fields override `material`)
+    // Explicit per-field overrides applied after the file (field -> 1 or 3 numbers).
+    std::map<std::string, std::vector<double>> materialOverrides;
+    int maxDepth = 16;
+    double environment = 0.05;     // constant environment radiance
+    double lightIrradiance = 3.0;  // irradiance the light gives at the cloth centre (W/m^2-ish units)
+    double fovDegrees = 30;
+    bool baseMesh = false;
+    double baseAlbedo = 0.5;
+    int tubeSides = 8;
+    bool progress = true;          // progress on stderr for renders of more than ~1e6 samples
+};
+
+struct RenderResult {
+    Image image;
+    std::string mode, light;
+    int spp = 0;
+    PlyMaterial material;          // as resolved and validated
+    double tableSeconds = 0, buildSeconds = 0, renderSeconds = 0;
+    uint64_t rays = 0;
+    double raysPerSecond = 0;
+    TraceMemory memory;
+    size_t tableBytes = 0;
+    int64_t peakMemoryBytes = 0;   // process peak resident set size
+    size_t segments = 0, primitives = 0;
+    std::vector<std::string> written;
+};
+
+// Registers --light --mode --spp --width --height --output --exr --seed --material and the
+// material flags (--eta --alpha-along --alpha-across --kR --alpha-tt --kTT --body-albedo
+// --reflect-fraction --fiber-count --fiber-twist --fiber-shadow-floor --ply-shadow-floor
+// --no-fiber-detail) plus --max-depth --env --light-irradiance --fov --base-mesh --tube-sides.
+void addRenderFlags(CLI::App& app, RenderOptions& options);
+
+// Resolves the material (defaults <- file <- overrides), validates everything before rendering
+// (knit::Error: bad material, spp < 1, bad size, unknown light/mode, empty scene, unwritable
+// output path), builds the tables and the Embree scene, renders and writes the images.
+RenderResult renderScene(const Scene& scene, const RenderOptions& options);
+
+// Time, rays/s, peak memory and scene memory (and the settings) as JSON.
+nlohmann::json renderReport(const RenderResult& result);
+
+// Resolved + validated material of the options (used by renderScene).
+PlyMaterial resolveMaterial(const RenderOptions& options);
+
+}  // namespace knit

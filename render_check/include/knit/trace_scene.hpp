@@ -1,0 +1,110 @@
+// knit/trace_scene.hpp — the Embree scene for one geometry mode, and ray queries on it.
+//
+// Modes:
+//   Curves: RTC_GEOMETRY_TYPE_ROUND_LINEAR_CURVE over the ply segments (float4 x, y, z, r).
+//   Tubes:  triangle meshes from knit::sweepTubes (as exported).
+//   Grid:   the two-stage idea: one RTC_GEOMETRY_TYPE_USER primitive per non-empty UV-grid cell;
+//           its callback intersects only that cell's ply segments, as cylinders trimmed by the
+//           bisector planes at the joints (flat caps at open ends). Segment points are stored
+//           16-bit quantized per cell, with one 16-bit box per chunk of up to 8 segments.
+// Plies are solids seen from the outside: only hits where the ray enters a ply count (a ray that
+// starts inside a ply leaves it without a hit). Spawned rays are offset along the outward normal:
+// by `outsideOffset` ply radii when they leave on the outside, by `insideOffset` ply radii into
+// the ply when they are transmitted through it, so a spawned ray never re-hits the primitive it
+// leaves (a convex ply piece cannot be re-entered from outside, and its exit is not a hit).
+// The optional base mesh is an opaque two-sided triangle mesh.
+#pragma once
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <embree3/rtcore.h>
+#include <glm/vec3.hpp>
+
+#include "knit/base_mesh.hpp"
+#include "knit/ply_geometry.hpp"
+
+namespace knit {
+
+enum class GeometryMode { Curves, Tubes, Grid };
+const char* modeName(GeometryMode mode);
+GeometryMode parseMode(const std::string& name);  // throws knit::Error
+
+// An Embree device with a memory monitor (bytes Embree allocates). Pass it explicitly.
+class EmbreeDevice {
+public:
+    explicit EmbreeDevice(const char* config = nullptr);
+    ~EmbreeDevice();
+    EmbreeDevice(const EmbreeDevice&) = delete;
+    EmbreeDevice& operator=(const EmbreeDevice&) = delete;
+    RTCDevice get() const { return device_; }
+    int64_t allocatedBytes() const { return bytes_.load(); }
+
+private:
+    static bool monitor(void* user, ssize_t bytes, bool post);
+    RTCDevice device_ = nullptr;
+    std::atomic<int64_t> bytes_{0};
+};
+
+struct TraceSceneOptions {
+    GeometryMode mode = GeometryMode::Curves;
+    int tubeSides = 8;              // tubes mode
+    const BaseMesh* baseMesh = nullptr;  // optional opaque base surface (positions in metres)
+    const std::vector<int64_t>* segmentCells = nullptr;  // grid mode: cell per segment (required)
+};
+
+struct TraceHit {
+    enum Kind : uint8_t { None, Ply, Base };
+    Kind kind = None;
+    float t = 0;
+    glm::vec3 ng{0.f};        // unit geometric normal (outward for plies)
+    uint32_t segment = 0;     // ply segment (Ply) or triangle (Base)
+    float u = 0;              // position along the ply segment in [0, 1]
+    uint32_t geomID = RTC_INVALID_GEOMETRY_ID, primID = RTC_INVALID_GEOMETRY_ID;  // Embree primitive
+};
+
+struct TraceMemory {
+    int64_t embreeBytes = 0;    // BVH and primitive data allocated by Embree for this scene
+    int64_t geometryBytes = 0;  // our buffers needed to intersect (vertices, indices, cells)
+    int64_t shadingBytes = 0;   // per-point shading attributes (same for every mode)
+    int64_t sceneBytes() const { return embreeBytes + geometryBytes; }
+};
+
+class TraceScene {
+public:
+    TraceScene(EmbreeDevice& device, const PlyGeometry& plies, const TraceSceneOptions& options);
+    ~TraceScene();
+    TraceScene(const TraceScene&) = delete;
+    TraceScene& operator=(const TraceScene&) = delete;
+
+    // Closest entering hit in (tnear, tfar); positions relative to plies.origin.
+    bool intersect(const glm::vec3& org, const glm::vec3& dir, float tnear, float tfar, TraceHit& hit) const;
+    bool occluded(const glm::vec3& org, const glm::vec3& dir, float tnear, float tfar) const;
+    // Origin for a ray leaving `hit` at point p in direction dir (offset along +-ng).
+    glm::vec3 spawn(const TraceHit& hit, const glm::vec3& p, const glm::vec3& dir) const;
+
+    GeometryMode mode() const { return options_.mode; }
+    const PlyGeometry& plies() const { return plies_; }
+    const TraceMemory& memory() const { return memory_; }
+    size_t primitiveCount() const { return primitives_; }
+    RTCScene embreeScene() const { return scene_; }
+
+    float outsideOffset = 1e-3f;  // ply radii
+    float insideOffset = 0.1f;    // ply radii
+
+    struct Impl;
+
+private:
+    const PlyGeometry& plies_;
+    TraceSceneOptions options_;
+    RTCScene scene_ = nullptr;
+    unsigned plyGeom_ = RTC_INVALID_GEOMETRY_ID, baseGeom_ = RTC_INVALID_GEOMETRY_ID;
+    std::unique_ptr<Impl> impl_;
+    TraceMemory memory_;
+    size_t primitives_ = 0;
+    float baseOffset_ = 0;
+};
+
+}  // namespace knit

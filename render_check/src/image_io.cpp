@@ -1,0 +1,116 @@
+// Image output (PNG / EXR, atomic) and statistical image comparison.
+#include "knit/image_io.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <random>
+#include <vector>
+
+#include <stb/stb_image_write.h>
+#include <tinyexr.h>
+
+#include "knit/error.hpp"
+#include "knit/ply_bsdf.hpp"
+
+namespace knit {
+namespace {
+
+std::string tempPath(const std::string& path) {
+    std::random_device rd;
+    return path + ".tmp" + std::to_string(rd() % 1000000);
+}
+
+void commit(const std::string& tmp, const std::string& path) {
+    std::error_code ec;
+    std::filesystem::rename(tmp, path, ec);
+    if (ec) {
+        std::remove(tmp.c_str());
+        throw Error("cannot write image '" + path + "': " + ec.message());
+    }
+}
+
+float toSrgb(float v) {
+    v = std::clamp(v, 0.f, 1.f);
+    return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.f / 2.4f) - 0.055f;
+}
+
+void checkImage(const Image& im, const std::string& path) {
+    if (im.width < 1 || im.height < 1 || im.rgb.size() != size_t(3) * im.width * im.height)
+        throw Error("cannot write image '" + path + "': the image is empty");
+}
+
+}  // namespace
+
+void checkWritable(const std::string& path) {
+    if (path.empty()) throw Error("image path is empty");
+    if (std::filesystem::is_directory(path)) throw Error("cannot write image '" + path + "': it is a directory");
+    const std::string tmp = tempPath(path);
+    std::FILE* f = std::fopen(tmp.c_str(), "wb");
+    if (!f) throw Error("cannot write image '" + path + "': the folder does not exist or is not writable");
+    std::fclose(f);
+    std::remove(tmp.c_str());
+}
+
+void writePng(const std::string& path, const Image& im) {
+    checkImage(im, path);
+    std::vector<unsigned char> px(im.rgb.size());
+    for (size_t i = 0; i < px.size(); ++i) px[i] = static_cast<unsigned char>(std::lround(toSrgb(im.rgb[i]) * 255.f));
+    const std::string tmp = tempPath(path);
+    if (!stbi_write_png(tmp.c_str(), im.width, im.height, 3, px.data(), im.width * 3)) {
+        std::remove(tmp.c_str());
+        throw Error("cannot write image '" + path + "': PNG encoding or file creation failed");
+    }
+    commit(tmp, path);
+}
+
+void writeExr(const std::string& path, const Image& im) {
+    checkImage(im, path);
+    const std::string tmp = tempPath(path);
+    const char* err = nullptr;
+    if (SaveEXR(im.rgb.data(), im.width, im.height, 3, 0, tmp.c_str(), &err) < 0) {
+        const std::string msg = err ? err : "unknown error";
+        if (err) FreeEXRErrorMessage(err);
+        std::remove(tmp.c_str());
+        throw Error("cannot write image '" + path + "': " + msg);
+    }
+    commit(tmp, path);
+}
+
+ImageComparison compareImages(const Image& a, const Image& b, int block, double zLimit) {
+    if (a.width != b.width || a.height != b.height) throw Error("compareImages: images differ in size");
+    ImageComparison c;
+    double sumAbs = 0, sum2 = 0;
+    const int n = a.width * a.height;
+    for (int i = 0; i < n; ++i) {
+        const double la = luminance(Rgb(a.rgb[3 * i], a.rgb[3 * i + 1], a.rgb[3 * i + 2]));
+        const double lb = luminance(Rgb(b.rgb[3 * i], b.rgb[3 * i + 1], b.rgb[3 * i + 2]));
+        sumAbs += std::abs(la - lb), sum2 += (la - lb) * (la - lb);
+    }
+    c.meanAbsDifference = sumAbs / n;
+    c.rmse = std::sqrt(sum2 / n);
+    for (int by = 0; by < a.height; by += block)
+        for (int bx = 0; bx < a.width; bx += block) {
+            double ma = 0, mb = 0, va = 0, vb = 0;
+            int count = 0;
+            for (int y = by; y < std::min(a.height, by + block); ++y)
+                for (int x = bx; x < std::min(a.width, bx + block); ++x) {
+                    const int i = y * a.width + x;
+                    ma += luminance(Rgb(a.rgb[3 * i], a.rgb[3 * i + 1], a.rgb[3 * i + 2]));
+                    mb += luminance(Rgb(b.rgb[3 * i], b.rgb[3 * i + 1], b.rgb[3 * i + 2]));
+                    va += a.variance.empty() ? 0 : a.variance[i];
+                    vb += b.variance.empty() ? 0 : b.variance[i];
+                    ++count;
+                }
+            ma /= count, mb /= count;
+            const double se = std::sqrt((va + vb) / (double(count) * count));
+            const double z = se > 0 ? std::abs(ma - mb) / se : (ma == mb ? 0.0 : 1e30);
+            ++c.blocks;
+            c.maxZ = std::max(c.maxZ, z);
+            if (z > zLimit) ++c.outliers;
+        }
+    return c;
+}
+
+}  // namespace knit

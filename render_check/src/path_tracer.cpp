@@ -1,0 +1,321 @@
+// Path tracer: camera rays, NEE to the area light and the environment with MIS, BSDF sampling.
+#include "knit/path_tracer.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include <glm/geometric.hpp>
+#include <tbb/blocked_range.h>
+#include <tbb/combinable.h>
+#include <tbb/parallel_for.h>
+
+#include "knit/error.hpp"
+#include "knit/ply_bsdf.hpp"
+
+namespace knit {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+uint64_t splitmix(uint64_t x) {
+    x += 0x9E3779B97F4A7C15ull;
+    x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+    x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+    return x ^ (x >> 31);
+}
+
+// PCG32 (O'Neill): small per-pixel stream.
+struct Rng {
+    uint64_t state, inc;
+    Rng(uint64_t seed, uint64_t stream) : state(0), inc((stream << 1u) | 1u) {
+        next();
+        state += seed;
+        next();
+    }
+    uint32_t next() {
+        const uint64_t old = state;
+        state = old * 6364136223846793005ull + inc;
+        const uint32_t xs = static_cast<uint32_t>(((old >> 18u) ^ old) >> 27u);
+        const uint32_t rot = static_cast<uint32_t>(old >> 59u);
+        return (xs >> rot) | (xs << ((-rot) & 31));
+    }
+    double uniform() { return next() * (1.0 / 4294967296.0); }
+};
+
+double power(double a, double b) { return a * a / (a * a + b * b); }
+
+struct LightGeom {
+    glm::vec3 corner, eu, ev, n;  // relative to the scene origin
+    double area = 0;
+    Rgb radiance{0.0};
+    bool on = false;
+};
+
+// Ray / light parallelogram: t > 0 or infinity; front = ray hits the emitting side.
+float hitLight(const LightGeom& l, const glm::vec3& o, const glm::vec3& d, bool& front) {
+    if (!l.on) return kInf;
+    const float denom = glm::dot(d, l.n);
+    if (std::abs(denom) < 1e-12f) return kInf;
+    const float t = glm::dot(l.corner - o, l.n) / denom;
+    if (!(t > 0)) return kInf;
+    const glm::vec3 q = o + t * d - l.corner;
+    const float a = glm::dot(q, l.eu) / glm::dot(l.eu, l.eu), b = glm::dot(q, l.ev) / glm::dot(l.ev, l.ev);
+    if (a < 0 || a > 1 || b < 0 || b > 1) return kInf;
+    front = denom < 0;
+    return t;
+}
+
+struct Shading {
+    ShadingFrame frame;
+    bool ply = true;
+};
+
+struct Tracer {
+    const TraceScene& scene;
+    const PlyMaterial& material;
+    const FiberTables& tables;
+    const TraceSettings& s;
+    LightGeom light;
+    glm::vec3 eye, fwd, right, up;
+    double tanHalf, aspect;
+    bool env;
+    uint64_t* rays;
+
+    Shading shade(const TraceHit& h, const glm::vec3& p) const {
+        Shading sh;
+        if (h.kind == TraceHit::Base) {
+            sh.ply = false;
+            sh.frame.z = glm::dvec3(h.ng);
+            const glm::dvec3 a = std::abs(sh.frame.z.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+            sh.frame.x = glm::normalize(glm::cross(a, sh.frame.z));
+            sh.frame.y = glm::cross(sh.frame.z, sh.frame.x);
+            return sh;
+        }
+        const PlyGeometry& g = scene.plies();
+        const uint32_t j = g.segments[h.segment];
+        const glm::vec3 a(g.points[j]), b(g.points[j + 1]);
+        const float u = h.u;
+        PlySurfacePoint sp;
+        sp.tangent = glm::dvec3(b - a);
+        const glm::vec3 axis = a + u * (b - a);
+        glm::vec3 n = p - axis;
+        n = glm::length(n) > 0 ? glm::normalize(n) : h.ng;
+        sp.normal = glm::dvec3(n);
+        sp.radial = glm::dvec3((1 - u) * g.radial[j] + u * g.radial[j + 1]);
+        sp.v = (1 - u) * g.arc[j] + u * g.arc[j + 1];
+        sh.frame = plyShadingFrame(sp, material, tables);
+        return sh;
+    }
+
+    // BSDF value (with |cos|) and pdf for world directions; zero when the shading and geometric
+    // sides disagree.
+    Rgb evalBsdf(const Shading& sh, const PlyBsdf& bsdf, const glm::dvec3& woL, const glm::dvec3& wi,
+                 const glm::vec3& ng, double& pdf) const {
+        pdf = 0;
+        const glm::dvec3 wiL = sh.frame.toLocal(wi);
+        if ((glm::dot(glm::vec3(wi), ng) > 0) != (wiL.z > 0)) return Rgb(0.0);
+        if (!sh.ply) {
+            if (wiL.z * woL.z <= 0) return Rgb(0.0);
+            pdf = std::abs(wiL.z) / kPi;
+            return s.baseAlbedo * (std::abs(wiL.z) / kPi);
+        }
+        pdf = bsdf.pdf(woL, wiL);
+        return bsdf.eval(woL, wiL) * std::abs(wiL.z);
+    }
+
+    Rgb radiance(glm::vec3 o, glm::vec3 d, Rng& rng) const {
+        Rgb L(0.0), beta(1.0);
+        double prevPdf = 0;
+        for (int depth = 0;; ++depth) {
+            TraceHit h;
+            ++*rays;
+            const bool hit = scene.intersect(o, d, 0.f, kInf, h);
+            // Step 1: emission from the light or the environment (MIS against the light samples).
+            bool front = false;
+            const float tl = hitLight(light, o, d, front);
+            if (tl < (hit ? h.t : kInf)) {
+                if (front) {
+                    double w = 1;
+                    if (depth > 0) {
+                        const float cosL = -glm::dot(d, light.n);
+                        const double pdfL = double(tl) * tl / (light.area * cosL);
+                        w = power(prevPdf, pdfL);
+                    }
+                    L += beta * light.radiance * w;
+                }
+                break;
+            }
+            if (!hit) {
+                if (env) L += beta * s.environment * (depth == 0 ? 1.0 : power(prevPdf, 1.0 / (4 * kPi)));
+                break;
+            }
+            if (depth >= s.maxDepth) break;
+            // Step 2: local frame and BSDF at the hit.
+            const glm::vec3 p = o + h.t * d;
+            const Shading sh = shade(h, p);
+            const glm::dvec3 wo = -glm::dvec3(d);
+            const glm::dvec3 woL = sh.frame.toLocal(wo);
+            if ((glm::dot(-d, h.ng) > 0) != (woL.z > 0)) break;
+            const PlyBsdf bsdf(material, sh.frame.shadow);
+            // Step 3: next-event estimation to the area light.
+            if (light.on) {
+                const glm::vec3 y = light.corner + float(rng.uniform()) * light.eu + float(rng.uniform()) * light.ev;
+                const glm::vec3 toL = y - p;
+                const float dist = glm::length(toL);
+                const glm::vec3 wi = toL / dist;
+                const float cosL = -glm::dot(wi, light.n);
+                if (cosL > 0) {
+                    double pdfB;
+                    const Rgb f = evalBsdf(sh, bsdf, woL, glm::dvec3(wi), h.ng, pdfB);
+                    if (f != Rgb(0.0)) {
+                        const glm::vec3 org = scene.spawn(h, p, wi);
+                        const glm::vec3 seg = y - org;
+                        const float len = glm::length(seg);
+                        ++*rays;
+                        if (!scene.occluded(org, seg / len, 0.f, len * (1 - 1e-4f))) {
+                            const double pdfL = double(dist) * dist / (light.area * cosL);
+                            L += beta * f * light.radiance * (power(pdfL, pdfB) / pdfL);
+                        }
+                    }
+                }
+            }
+            // Step 4: next-event estimation to the environment (uniform sphere).
+            if (env) {
+                const double z = 1 - 2 * rng.uniform(), r = std::sqrt(std::max(0.0, 1 - z * z)),
+                             phi = 2 * kPi * rng.uniform();
+                const glm::dvec3 wi(r * std::cos(phi), r * std::sin(phi), z);
+                double pdfB;
+                const Rgb f = evalBsdf(sh, bsdf, woL, wi, h.ng, pdfB);
+                if (f != Rgb(0.0)) {
+                    const glm::vec3 wf(wi);
+                    const glm::vec3 org = scene.spawn(h, p, wf);
+                    bool fr;
+                    ++*rays;
+                    if (hitLight(light, org, wf, fr) == kInf && !scene.occluded(org, wf, 0.f, kInf)) {
+                        const double pdfE = 1.0 / (4 * kPi);
+                        L += beta * f * s.environment * (power(pdfE, pdfB) / pdfE);
+                    }
+                }
+            }
+            // Step 5: continue the path by sampling the BSDF.
+            glm::dvec3 wiL;
+            Rgb weight;
+            double pdf;
+            if (sh.ply) {
+                const BsdfSample bs = bsdf.sample(woL, rng.uniform(), glm::dvec2(rng.uniform(), rng.uniform()));
+                if (!bs.valid) break;
+                wiL = bs.wi, weight = bs.weight, pdf = bs.pdf;
+            } else {
+                const double u1 = rng.uniform(), u2 = rng.uniform();
+                const double rr = std::sqrt(u1), ph = 2 * kPi * u2;
+                wiL = glm::dvec3(rr * std::cos(ph), rr * std::sin(ph), std::sqrt(std::max(0.0, 1 - u1)));
+                if (woL.z < 0) wiL.z = -wiL.z;
+                weight = s.baseAlbedo;
+                pdf = std::abs(wiL.z) / kPi;
+                if (!(pdf > 0)) break;
+            }
+            const glm::vec3 wi = glm::normalize(glm::vec3(sh.frame.toWorld(wiL)));
+            if ((glm::dot(wi, h.ng) > 0) != (wiL.z > 0)) break;
+            beta *= weight;
+            prevPdf = pdf;
+            // Step 6: Russian roulette.
+            if (depth >= 3) {
+                const double q = std::min(0.95, std::max({beta.x, beta.y, beta.z}));
+                if (rng.uniform() >= q) break;
+                beta /= q;
+            }
+            o = scene.spawn(h, p, wi);
+            d = wi;
+        }
+        return L;
+    }
+};
+
+}  // namespace
+
+Rgb Image::pixel(int x, int y) const {
+    const size_t i = 3 * (size_t(y) * width + x);
+    return {rgb[i], rgb[i + 1], rgb[i + 2]};
+}
+
+Rgb Image::mean() const {
+    Rgb m(0.0);
+    for (size_t i = 0; i + 2 < rgb.size(); i += 3) m += Rgb(rgb[i], rgb[i + 1], rgb[i + 2]);
+    return rgb.empty() ? m : m / double(rgb.size() / 3);
+}
+
+Image renderImage(const TraceScene& scene, const PlyMaterial& material, const FiberTables& tables,
+                  const TraceSettings& s, TraceStats* stats) {
+    if (s.width < 1 || s.height < 1) throw Error("render: image size must be at least 1 x 1");
+    if (s.spp < 1) throw Error("render: samples per pixel must be at least 1 (got " + std::to_string(s.spp) + ")");
+    const auto start = std::chrono::steady_clock::now();
+    const glm::dvec3 origin = scene.plies().origin;
+    Tracer tr{scene, material, tables, s, {}, {}, {}, {}, {}, 0, 0, false, nullptr};
+    // Step 1: camera basis and light, relative to the scene origin.
+    tr.eye = glm::vec3(s.camera.eye - origin);
+    const glm::dvec3 fwd = glm::normalize(s.camera.target - s.camera.eye);
+    const glm::dvec3 right = glm::normalize(glm::cross(fwd, s.camera.up));
+    tr.fwd = glm::vec3(fwd), tr.right = glm::vec3(right), tr.up = glm::vec3(glm::cross(right, fwd));
+    tr.tanHalf = std::tan(s.camera.fovYDegrees * kPi / 360.0);
+    tr.aspect = double(s.width) / s.height;
+    const glm::dvec3 ln = glm::cross(s.light.edgeU, s.light.edgeV);
+    tr.light.area = glm::length(ln);
+    tr.light.on = tr.light.area > 0 && (s.light.radiance.x > 0 || s.light.radiance.y > 0 || s.light.radiance.z > 0);
+    if (tr.light.on) {
+        tr.light.corner = glm::vec3(s.light.corner - origin);
+        tr.light.eu = glm::vec3(s.light.edgeU), tr.light.ev = glm::vec3(s.light.edgeV);
+        tr.light.n = glm::vec3(ln / tr.light.area);
+        tr.light.radiance = s.light.radiance;
+    }
+    tr.env = s.environment.x > 0 || s.environment.y > 0 || s.environment.z > 0;
+    // Step 2: tiles in parallel, one random stream per pixel.
+    Image img;
+    img.width = s.width, img.height = s.height;
+    img.rgb.assign(size_t(3) * s.width * s.height, 0.f);
+    img.variance.assign(size_t(s.width) * s.height, 0.f);
+    const int tile = 16, tx = (s.width + tile - 1) / tile, ty = (s.height + tile - 1) / tile;
+    tbb::combinable<uint64_t> rays([] { return uint64_t(0); });
+    std::atomic<int> done{0};
+    tbb::parallel_for(tbb::blocked_range<int>(0, tx * ty, 1), [&](const tbb::blocked_range<int>& range) {
+        uint64_t& localRays = rays.local();
+        Tracer t = tr;
+        t.rays = &localRays;
+        for (int ti = range.begin(); ti < range.end(); ++ti) {
+            const int x0 = (ti % tx) * tile, y0 = (ti / tx) * tile;
+            for (int y = y0; y < std::min(s.height, y0 + tile); ++y)
+                for (int x = x0; x < std::min(s.width, x0 + tile); ++x) {
+                    const uint64_t index = uint64_t(y) * s.width + x;
+                    Rng rng(splitmix(s.seed ^ splitmix(index)), splitmix(index + 0x1234567ull));
+                    Rgb sum(0.0);
+                    double lum = 0, lum2 = 0;
+                    for (int k = 0; k < s.spp; ++k) {
+                        const double sx = (2 * (x + rng.uniform()) / s.width - 1) * t.tanHalf * t.aspect;
+                        const double sy = (1 - 2 * (y + rng.uniform()) / s.height) * t.tanHalf;
+                        const glm::vec3 d = glm::normalize(t.fwd + float(sx) * t.right + float(sy) * t.up);
+                        Rgb L = t.radiance(t.eye, d, rng);
+                        if (!std::isfinite(L.x) || !std::isfinite(L.y) || !std::isfinite(L.z)) L = Rgb(0.0);
+                        sum += L;
+                        const double l = luminance(L);
+                        lum += l, lum2 += l * l;
+                    }
+                    const Rgb m = sum / double(s.spp);
+                    img.rgb[3 * index] = float(m.x), img.rgb[3 * index + 1] = float(m.y), img.rgb[3 * index + 2] = float(m.z);
+                    const double ml = lum / s.spp;
+                    img.variance[index] = s.spp > 1 ? float(std::max(0.0, (lum2 - s.spp * ml * ml) / (s.spp - 1)) / s.spp) : 0.f;
+                }
+            const int finished = ++done;
+            if (s.progress) s.progress(double(finished) / (tx * ty));
+        }
+    });
+    if (stats) {
+        stats->rays = rays.combine([](uint64_t a, uint64_t b) { return a + b; });
+        stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    }
+    return img;
+}
+
+}  // namespace knit

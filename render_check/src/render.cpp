@@ -1,0 +1,189 @@
+// renderScene: validate, build tables and the Embree scene, place camera and light, render, write.
+#include "knit/render.hpp"
+
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <mutex>
+
+#include <glm/geometric.hpp>
+#include <nlohmann/json.hpp>
+
+#include "knit/error.hpp"
+#include "knit/fiber_tables.hpp"
+#include "knit/image_io.hpp"
+#include "knit/ply_geometry.hpp"
+#include "knit/scene.hpp"
+
+namespace knit {
+namespace {
+
+double secondsSince(std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+int64_t peakRss() {
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    return int64_t(u.ru_maxrss) * 1024;
+}
+
+}  // namespace
+
+PlyMaterial resolveMaterial(const RenderOptions& o) {
+    PlyMaterial m = o.material;
+    if (!o.materialFile.empty()) m = loadMaterialFile(o.materialFile, m);
+    if (!o.materialOverrides.empty()) {
+        nlohmann::json j = nlohmann::json::object();
+        for (const auto& [key, values] : o.materialOverrides) {
+            if (key == "fiberDetail") j[key] = !values.empty() && values[0] != 0;
+            else if (key == "fiberCount" || key == "tableSize" || key == "aoRays") j[key] = static_cast<long long>(std::lround(values.at(0)));
+            else if (values.size() == 1) j[key] = values[0];
+            else j[key] = values;
+        }
+        m = materialFromJson(j, m, "material flags");
+    }
+    validateMaterial(m, o.materialFile.empty() ? "material" : "material file '" + o.materialFile + "'");
+    return m;
+}
+
+RenderResult renderScene(const Scene& scene, const RenderOptions& o) {
+    // Step 1: validate every option before any work.
+    if (o.light != "front" && o.light != "back")
+        throw Error("render: unknown light placement '" + o.light + "' (expected front or back)");
+    const GeometryMode mode = parseMode(o.mode);
+    if (o.spp < 1) throw Error("render: samples per pixel must be at least 1 (got " + std::to_string(o.spp) + ")");
+    if (o.width < 1 || o.height < 1 || o.width > 16384 || o.height > 16384)
+        throw Error("render: image size " + std::to_string(o.width) + " x " + std::to_string(o.height) +
+                    " is outside 1..16384");
+    if (o.maxDepth < 1 || o.maxDepth > 1000) throw Error("render: max depth must be in 1..1000");
+    if (!(o.environment >= 0) || !(o.lightIrradiance >= 0) || !std::isfinite(o.environment) || !std::isfinite(o.lightIrradiance))
+        throw Error("render: environment and light irradiance must be finite and >= 0");
+    if (!(o.fovDegrees > 1 && o.fovDegrees < 170)) throw Error("render: field of view must be in (1, 170) degrees");
+    if (!(o.baseAlbedo >= 0 && o.baseAlbedo <= 1)) throw Error("render: base albedo must be in [0, 1]");
+    if (mode == GeometryMode::Tubes && o.tubeSides < 3) throw Error("render: tube sides must be >= 3");
+    RenderResult res;
+    res.material = resolveMaterial(o);
+    if (scene.plies.curves.curveCount() == 0 || scene.plies.curves.pointCount() == 0)
+        throw Error("render: the scene has no ply curves (nothing to render; were plies built?)");
+    if (!o.output.empty()) checkWritable(o.output);
+    if (!o.exr.empty()) checkWritable(o.exr);
+    res.mode = modeName(mode);
+    res.light = o.light;
+    res.spp = o.spp;
+    // Step 2: ply segments relative to the centre of their bounds.
+    glm::dvec3 lo(1e300), hi(-1e300);
+    for (const glm::dvec3& p : scene.plies.curves.points) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    const glm::dvec3 centre = 0.5 * (lo + hi);
+    const double radius = std::max(0.5 * glm::length(hi - lo), 1e-6);
+    const PlyGeometry geometry = buildPlyGeometry(scene.plies, centre);
+    res.segments = geometry.segmentCount();
+    // Step 3: fiber tables.
+    auto t0 = std::chrono::steady_clock::now();
+    int plyCount = 1;
+    for (uint8_t p : scene.plies.plyOfCurve) plyCount = std::max(plyCount, int(p) + 1);
+    const FiberTables tables = buildFiberTables(fiberTableOptions(res.material, plyCount));
+    res.tableSeconds = secondsSince(t0);
+    res.tableBytes = tables.bytes();
+    // Step 4: Embree scene of the chosen mode.
+    t0 = std::chrono::steady_clock::now();
+    EmbreeDevice device;
+    std::vector<int64_t> cells;
+    TraceSceneOptions so;
+    so.mode = mode;
+    so.tubeSides = o.tubeSides;
+    so.baseMesh = o.baseMesh ? &scene.mesh : nullptr;
+    if (mode == GeometryMode::Grid) {
+        cells = segmentCells(scene, geometry);
+        so.segmentCells = &cells;
+    }
+    const TraceScene traceScene(device, geometry, so);
+    res.buildSeconds = secondsSince(t0);
+    res.memory = traceScene.memory();
+    res.primitives = traceScene.primitiveCount();
+    // Step 5: view. Cloth front = area-weighted mean normal of the base mesh.
+    glm::dvec3 normal(0.0);
+    for (const glm::uvec3& f : scene.mesh.faces)
+        if (f.x < scene.mesh.positions.size() && f.y < scene.mesh.positions.size() && f.z < scene.mesh.positions.size())
+            normal += glm::cross(scene.mesh.positions[f.y] - scene.mesh.positions[f.x],
+                                 scene.mesh.positions[f.z] - scene.mesh.positions[f.x]);
+    normal = glm::length(normal) > 0 ? glm::normalize(normal) : glm::dvec3(0, 0, 1);
+    const glm::dvec3 helper = std::abs(normal.y) < 0.9 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0);
+    const glm::dvec3 right = glm::normalize(glm::cross(helper, normal)), up = glm::cross(normal, right);
+    TraceSettings ts;
+    ts.width = o.width, ts.height = o.height, ts.spp = o.spp, ts.seed = o.seed, ts.maxDepth = o.maxDepth;
+    const double pi = 3.14159265358979323846;
+    const double dist = radius / std::sin(o.fovDegrees * pi / 360.0);
+    ts.camera.eye = centre + dist * normal;
+    ts.camera.target = centre;
+    ts.camera.up = up;
+    ts.camera.fovYDegrees = o.fovDegrees;
+    ts.environment = Rgb(o.environment);
+    ts.baseAlbedo = Rgb(o.baseAlbedo);
+    const double lightSize = radius, lightDist = 2.5 * radius;
+    const glm::dvec3 dir = o.light == "front" ? glm::normalize(normal + 0.4 * right + 0.4 * up) : -normal;
+    const glm::dvec3 lc = centre + lightDist * dir;
+    // Light facing the centre: edges perpendicular to dir, cross(edgeU, edgeV) = -dir.
+    const glm::dvec3 lh = std::abs(dir.y) < 0.9 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0);
+    const glm::dvec3 eu = glm::normalize(glm::cross(dir, lh)) * lightSize;
+    const glm::dvec3 ev = glm::normalize(glm::cross(dir, eu)) * lightSize;
+    ts.light.corner = lc - 0.5 * eu - 0.5 * ev;
+    ts.light.edgeU = eu;
+    ts.light.edgeV = ev;
+    // Irradiance at the centre ~ L A / d^2 (light facing it): choose L for the requested irradiance.
+    ts.light.radiance = Rgb(o.lightIrradiance * lightDist * lightDist / (lightSize * lightSize));
+    // Step 6: render, with progress on stderr for long renders.
+    std::mutex progressMutex;
+    int lastDecile = 0;
+    if (o.progress && double(o.width) * o.height * o.spp > 1e6) {
+        ts.progress = [&](double f) {
+            std::lock_guard<std::mutex> lock(progressMutex);
+            const int decile = static_cast<int>(f * 10);
+            if (decile > lastDecile) {
+                lastDecile = decile;
+                std::fprintf(stderr, "render: %d%%\n", decile * 10);
+            }
+        };
+    }
+    TraceStats stats;
+    res.image = renderImage(traceScene, res.material, tables, ts, &stats);
+    res.renderSeconds = stats.seconds;
+    res.rays = stats.rays;
+    res.raysPerSecond = stats.seconds > 0 ? stats.rays / stats.seconds : 0;
+    // Step 7: images.
+    if (!o.output.empty()) writePng(o.output, res.image), res.written.push_back(o.output);
+    if (!o.exr.empty()) writeExr(o.exr, res.image), res.written.push_back(o.exr);
+    res.peakMemoryBytes = peakRss();
+    return res;
+}
+
+nlohmann::json renderReport(const RenderResult& r) {
+    const Rgb m = r.image.mean();
+    return {{"mode", r.mode},
+            {"light", r.light},
+            {"width", r.image.width},
+            {"height", r.image.height},
+            {"spp", r.spp},
+            {"segments", r.segments},
+            {"primitives", r.primitives},
+            {"tableSeconds", r.tableSeconds},
+            {"buildSeconds", r.buildSeconds},
+            {"renderSeconds", r.renderSeconds},
+            {"seconds", r.tableSeconds + r.buildSeconds + r.renderSeconds},
+            {"rays", r.rays},
+            {"raysPerSecond", r.raysPerSecond},
+            {"sceneMemoryBytes", r.memory.sceneBytes()},
+            {"embreeMemoryBytes", r.memory.embreeBytes},
+            {"geometryMemoryBytes", r.memory.geometryBytes},
+            {"shadingMemoryBytes", r.memory.shadingBytes},
+            {"tableMemoryBytes", r.tableBytes},
+            {"peakMemoryBytes", r.peakMemoryBytes},
+            {"meanRadiance", {m.x, m.y, m.z}},
+            {"material", materialToJson(r.material)},
+            {"written", r.written}};
+}
+
+}  // namespace knit

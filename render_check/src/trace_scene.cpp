@@ -1,0 +1,609 @@
+// Embree scenes for the three geometry modes (curves, tubes, two-stage grid) and ray queries.
+#include "knit/trace_scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/type_precision.hpp>
+#include <glm/vec2.hpp>
+
+#include "knit/error.hpp"
+#include "knit/sweep.hpp"
+
+namespace knit {
+
+const char* modeName(GeometryMode mode) {
+    switch (mode) {
+        case GeometryMode::Curves: return "curves";
+        case GeometryMode::Tubes: return "tubes";
+        case GeometryMode::Grid: return "grid";
+    }
+    return "?";
+}
+
+GeometryMode parseMode(const std::string& name) {
+    if (name == "curves") return GeometryMode::Curves;
+    if (name == "tubes") return GeometryMode::Tubes;
+    if (name == "grid") return GeometryMode::Grid;
+    throw Error("render: unknown geometry mode '" + name + "' (expected curves, tubes or grid)");
+}
+
+EmbreeDevice::EmbreeDevice(const char* config) {
+    device_ = rtcNewDevice(config);
+    if (!device_) throw Error("render: cannot create an Embree device (error " + std::to_string(rtcGetDeviceError(nullptr)) + ")");
+    rtcSetDeviceMemoryMonitorFunction(device_, &EmbreeDevice::monitor, this);
+}
+
+EmbreeDevice::~EmbreeDevice() { rtcReleaseDevice(device_); }
+
+bool EmbreeDevice::monitor(void* user, ssize_t bytes, bool) {
+    static_cast<EmbreeDevice*>(user)->bytes_ += bytes;
+    return true;
+}
+
+namespace {
+
+// Ray context carrying the segment and position of a user-geometry (grid) hit.
+struct HitContext {
+    RTCIntersectContext base;
+    uint32_t segment;
+    float u;
+};
+
+// ---- two-stage grid cells -------------------------------------------------------------------
+constexpr int kChunk = 8;        // segments per chunk box
+constexpr float kMinMitreCos = 0.2f;  // sharper joints are cut perpendicular instead of mitred
+
+struct GridRun {
+    uint32_t firstSegment;
+    uint32_t pointOffset;  // into qpoints: [prev], p0 .. p(count), [next]
+    uint32_t chunkOffset;  // into chunk boxes (2 per chunk: lo, hi)
+    uint16_t count;
+    uint8_t hasPrev, hasNext;
+};
+
+struct GridCell {
+    float lo[3], hi[3];    // primitive bounds
+    float qo[3], qs[3];    // dequantization: p = qo + q * qs
+    uint32_t firstRun, runCount;
+};
+
+struct GridData {
+    std::vector<GridCell> cells;
+    std::vector<GridRun> runs;
+    std::vector<glm::u16vec3> qpoints;
+    std::vector<glm::u16vec3> boxes;
+    float radius = 0;
+    size_t bytes() const {
+        return cells.size() * sizeof(GridCell) + runs.size() * sizeof(GridRun) +
+               (qpoints.size() + boxes.size()) * sizeof(glm::u16vec3);
+    }
+};
+
+glm::vec3 safeNormalize(const glm::vec3& v) {
+    const float l = glm::length(v);
+    return l > 0 ? v / l : glm::vec3(0.f);
+}
+
+// Joint plane normal between directions a (incoming) and b (outgoing): the bisector, or the
+// plane perpendicular to `self` when the joint is too sharp to mitre.
+glm::vec3 jointNormal(const glm::vec3& a, const glm::vec3& b, const glm::vec3& self) {
+    const glm::vec3 m = a + b;
+    const float l = glm::length(m);
+    if (l < 2.f * kMinMitreCos) return self;
+    return m / l;
+}
+
+struct RayData {
+    glm::vec3 org, dir, inv;
+    float tnear;
+};
+
+bool boxHit(const RayData& r, const glm::vec3& lo, const glm::vec3& hi, float tfar) {
+    const glm::vec3 t0 = (lo - r.org) * r.inv, t1 = (hi - r.org) * r.inv;
+    const glm::vec3 tmin = glm::min(t0, t1), tmax = glm::max(t0, t1);
+    const float a = std::max({tmin.x, tmin.y, tmin.z, r.tnear});
+    const float b = std::min({tmax.x, tmax.y, tmax.z, tfar});
+    return a <= b;
+}
+
+// Entering hit of a ray with the cylinder (p0, p1, radius) trimmed by the joint planes n0 (at p0,
+// oriented along the ply) and n1 (at p1); flat caps at open ends. Returns t or -1.
+float hitTrimmedCylinder(const RayData& r, const glm::vec3& p0, const glm::vec3& p1, float radius,
+                         const glm::vec3& n0, const glm::vec3& n1, bool capStart, bool capEnd, float tfar,
+                         glm::vec3& ng, float& u) {
+    const glm::vec3 d = p1 - p0;
+    const float len = glm::length(d);
+    if (len <= 0) return -1;
+    const glm::vec3 a = d / len;
+    const glm::vec3 oc = r.org - p0;
+    const float so = glm::dot(oc, a), sd = glm::dot(r.dir, a);
+    const glm::vec3 op = oc - so * a, dp = r.dir - sd * a;
+    const float A = glm::dot(dp, dp), B = glm::dot(op, dp), C = glm::dot(op, op) - radius * radius;
+    float best = -1;
+    // Lateral surface: the entering root only (a ray starting inside has no entering root ahead).
+    if (A > 1e-12f) {
+        const float tca = -B / A;
+        const float dist2 = C - B * tca;  // |op + tca dp|^2 - r^2
+        if (dist2 <= 0) {
+            const float t = tca - std::sqrt(-dist2 / A);
+            if (t > r.tnear && t < tfar) {
+                const glm::vec3 h = oc + t * r.dir;
+                if (glm::dot(h, n0) >= 0 && glm::dot(h - d, n1) <= 0) {
+                    const float s = glm::dot(h, a);
+                    ng = (h - s * a) / radius;
+                    u = std::clamp(s / len, 0.f, 1.f);
+                    best = t;
+                    tfar = t;
+                }
+            }
+        }
+    }
+    // Flat caps at open ends (entering from outside the end plane).
+    if (capStart && so < 0 && sd > 0) {
+        const float t = -so / sd;
+        const glm::vec3 q = op + t * dp;
+        if (t > r.tnear && t < tfar && glm::dot(q, q) <= radius * radius) {
+            ng = -a, u = 0, best = t, tfar = t;
+        }
+    }
+    if (capEnd && so > len && sd < 0) {
+        const float t = (len - so) / sd;
+        const glm::vec3 q = op + t * dp;
+        if (t > r.tnear && t < tfar && glm::dot(q, q) <= radius * radius) {
+            ng = a, u = 1, best = t;
+        }
+    }
+    return best;
+}
+
+// Walks one cell; `anyHit` stops at the first hit. Returns true on a hit (closest in tfar).
+bool traverseCell(const GridData& g, const GridCell& cell, const RayData& r, float& tfar, bool anyHit,
+                  glm::vec3& ng, uint32_t& segment, float& u) {
+    const glm::vec3 qo(cell.qo[0], cell.qo[1], cell.qo[2]), qs(cell.qs[0], cell.qs[1], cell.qs[2]);
+    auto point = [&](uint32_t i) { return qo + glm::vec3(g.qpoints[i]) * qs; };
+    bool hit = false;
+    for (uint32_t ri = cell.firstRun; ri < cell.firstRun + cell.runCount; ++ri) {
+        const GridRun& run = g.runs[ri];
+        const uint32_t p0 = run.pointOffset + run.hasPrev;  // first point of the first segment
+        const uint32_t chunks = (run.count + kChunk - 1) / kChunk;
+        for (uint32_t c = 0; c < chunks; ++c) {
+            const glm::vec3 lo = qo + glm::vec3(g.boxes[run.chunkOffset + 2 * c]) * qs;
+            const glm::vec3 hi = qo + glm::vec3(g.boxes[run.chunkOffset + 2 * c + 1]) * qs;
+            if (!boxHit(r, lo, hi, tfar)) continue;
+            const uint32_t first = c * kChunk, last = std::min<uint32_t>(run.count, first + kChunk);
+            for (uint32_t k = first; k < last; ++k) {
+                const glm::vec3 a = point(p0 + k), b = point(p0 + k + 1);
+                const glm::vec3 dir = safeNormalize(b - a);
+                const bool hasPrev = k > 0 || run.hasPrev, hasNext = k + 1 < run.count || run.hasNext;
+                const glm::vec3 n0 = hasPrev ? jointNormal(safeNormalize(a - point(p0 + k - 1)), dir, dir) : dir;
+                const glm::vec3 n1 = hasNext ? jointNormal(dir, safeNormalize(point(p0 + k + 2) - b), dir) : dir;
+                glm::vec3 n(0.f);
+                float uu = 0;
+                const float t = hitTrimmedCylinder(r, a, b, g.radius, n0, n1, !hasPrev, !hasNext, tfar, n, uu);
+                if (t >= 0) {
+                    tfar = t, ng = n, u = uu, segment = run.firstSegment + k, hit = true;
+                    if (anyHit) return true;
+                }
+            }
+        }
+    }
+    return hit;
+}
+
+void gridBounds(const RTCBoundsFunctionArguments* args) {
+    const GridData& g = *static_cast<const GridData*>(args->geometryUserPtr);
+    const GridCell& c = g.cells[args->primID];
+    args->bounds_o->lower_x = c.lo[0], args->bounds_o->lower_y = c.lo[1], args->bounds_o->lower_z = c.lo[2];
+    args->bounds_o->upper_x = c.hi[0], args->bounds_o->upper_y = c.hi[1], args->bounds_o->upper_z = c.hi[2];
+}
+
+RayData rayData(float ox, float oy, float oz, float dx, float dy, float dz, float tnear) {
+    RayData r;
+    r.org = glm::vec3(ox, oy, oz);
+    r.dir = glm::vec3(dx, dy, dz);
+    r.inv = 1.f / r.dir;  // +-inf for zero components is what the slab test wants
+    r.tnear = tnear;
+    return r;
+}
+
+void gridIntersect(const RTCIntersectFunctionNArguments* args) {
+    if (!args->valid[0]) return;
+    const GridData& g = *static_cast<const GridData*>(args->geometryUserPtr);
+    RTCRayHit* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);  // rtcIntersect1: N == 1
+    const RayData r = rayData(rh->ray.org_x, rh->ray.org_y, rh->ray.org_z, rh->ray.dir_x, rh->ray.dir_y,
+                              rh->ray.dir_z, rh->ray.tnear);
+    float tfar = rh->ray.tfar, u = 0;
+    glm::vec3 ng;
+    uint32_t seg = 0;
+    if (!traverseCell(g, g.cells[args->primID], r, tfar, false, ng, seg, u)) return;
+    rh->ray.tfar = tfar;
+    rh->hit.Ng_x = ng.x, rh->hit.Ng_y = ng.y, rh->hit.Ng_z = ng.z;
+    rh->hit.u = u, rh->hit.v = 0;
+    rh->hit.primID = args->primID;
+    rh->hit.geomID = args->geomID;
+    rh->hit.instID[0] = args->context->instID[0];
+    HitContext* ctx = reinterpret_cast<HitContext*>(args->context);
+    ctx->segment = seg;
+    ctx->u = u;
+}
+
+void gridOccluded(const RTCOccludedFunctionNArguments* args) {
+    if (!args->valid[0]) return;
+    const GridData& g = *static_cast<const GridData*>(args->geometryUserPtr);
+    RTCRay* ray = reinterpret_cast<RTCRay*>(args->ray);
+    const RayData r = rayData(ray->org_x, ray->org_y, ray->org_z, ray->dir_x, ray->dir_y, ray->dir_z, ray->tnear);
+    float tfar = ray->tfar, u;
+    glm::vec3 ng;
+    uint32_t seg;
+    if (traverseCell(g, g.cells[args->primID], r, tfar, true, ng, seg, u)) ray->tfar = -std::numeric_limits<float>::infinity();
+}
+
+GridData buildGrid(const PlyGeometry& pg, const std::vector<int64_t>& cellOf) {
+    GridData g;
+    g.radius = pg.radius;
+    const float r = pg.radius;
+    // Step 1: runs of consecutive segments of one curve in one cell, grouped by cell (ordered).
+    struct Run { uint32_t first, count; };
+    std::map<int64_t, std::vector<Run>> byCell;
+    for (uint32_t s = 0; s < pg.segmentCount(); ++s) {
+        std::vector<Run>& runs = byCell[cellOf[s]];
+        if (!runs.empty()) {
+            Run& last = runs.back();
+            if (last.first + last.count == s && pg.curveOfSegment[s] == pg.curveOfSegment[last.first] &&
+                last.count < 65535) {
+                ++last.count;
+                continue;
+            }
+        }
+        runs.push_back({s, 1});
+    }
+    // Step 2: per cell, bounds, quantization frame, quantized points and chunk boxes.
+    auto pt = [&](uint32_t i) { return glm::vec3(pg.points[i]); };
+    auto segExtent = [&](uint32_t s) {
+        // Mitred ends reach r / cos(half bend angle) from the joint.
+        const uint32_t i = pg.segments[s];
+        const glm::vec3 dir = safeNormalize(pt(i + 1) - pt(i));
+        float e = r;
+        if (pg.hasLeft(s)) e = std::max(e, r / std::max(kMinMitreCos, glm::dot(jointNormal(safeNormalize(pt(i) - pt(i - 1)), dir, dir), dir)));
+        if (pg.hasRight(s)) e = std::max(e, r / std::max(kMinMitreCos, glm::dot(jointNormal(dir, safeNormalize(pt(i + 2) - pt(i + 1)), dir), dir)));
+        return e * 1.001f;
+    };
+    for (const auto& [key, runs] : byCell) {
+        GridCell cell;
+        glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+        glm::vec3 qlo = lo, qhi = hi;
+        for (const Run& run : runs)
+            for (uint32_t s = run.first; s < run.first + run.count; ++s) {
+                const uint32_t i = pg.segments[s];
+                const float e = segExtent(s);
+                for (uint32_t j : {i, i + 1}) {
+                    lo = glm::min(lo, pt(j) - e), hi = glm::max(hi, pt(j) + e);
+                }
+                if (pg.hasLeft(s)) qlo = glm::min(qlo, pt(i - 1)), qhi = glm::max(qhi, pt(i - 1));
+                if (pg.hasRight(s)) qlo = glm::min(qlo, pt(i + 2)), qhi = glm::max(qhi, pt(i + 2));
+            }
+        qlo = glm::min(qlo, lo), qhi = glm::max(qhi, hi);
+        const glm::vec3 scale = glm::max(qhi - qlo, glm::vec3(1e-30f)) / 65535.f;
+        for (int k = 0; k < 3; ++k) cell.lo[k] = lo[k], cell.hi[k] = hi[k], cell.qo[k] = qlo[k], cell.qs[k] = scale[k];
+        auto quant = [&](const glm::vec3& p, float mode) {  // mode 0 round, -1 floor, +1 ceil
+            glm::vec3 q = (p - qlo) / scale;
+            q = mode < 0 ? glm::floor(q) : mode > 0 ? glm::ceil(q) : glm::round(q);
+            return glm::u16vec3(glm::clamp(q, glm::vec3(0.f), glm::vec3(65535.f)));
+        };
+        cell.firstRun = static_cast<uint32_t>(g.runs.size());
+        cell.runCount = static_cast<uint32_t>(runs.size());
+        for (const Run& run : runs) {
+            GridRun gr;
+            gr.firstSegment = run.first;
+            gr.count = static_cast<uint16_t>(run.count);
+            gr.hasPrev = pg.hasLeft(run.first);
+            gr.hasNext = pg.hasRight(run.first + run.count - 1);
+            gr.pointOffset = static_cast<uint32_t>(g.qpoints.size());
+            gr.chunkOffset = static_cast<uint32_t>(g.boxes.size());
+            const uint32_t i0 = pg.segments[run.first];
+            if (gr.hasPrev) g.qpoints.push_back(quant(pt(i0 - 1), 0));
+            for (uint32_t k = 0; k <= run.count; ++k) g.qpoints.push_back(quant(pt(i0 + k), 0));
+            if (gr.hasNext) g.qpoints.push_back(quant(pt(i0 + run.count + 1), 0));
+            for (uint32_t c = 0; c < run.count; c += kChunk) {
+                glm::vec3 blo(std::numeric_limits<float>::max()), bhi(-std::numeric_limits<float>::max());
+                for (uint32_t s = run.first + c; s < std::min(run.first + run.count, run.first + c + kChunk); ++s) {
+                    const float e = segExtent(s);
+                    for (uint32_t j : {pg.segments[s], pg.segments[s] + 1})
+                        blo = glm::min(blo, pt(j) - e), bhi = glm::max(bhi, pt(j) + e);
+                }
+                g.boxes.push_back(quant(blo, -1));
+                g.boxes.push_back(quant(bhi, +1));
+            }
+            g.runs.push_back(gr);
+        }
+        g.cells.push_back(cell);
+    }
+    return g;
+}
+
+// ---- tubes -----------------------------------------------------------------------------------
+struct TubeData {
+    std::vector<glm::vec3> positions;  // padded by one element for Embree's 16-byte loads
+    std::vector<glm::uvec3> triangles;
+    std::vector<uint32_t> segmentOfTriangle;
+    size_t bytes() const {
+        return positions.size() * sizeof(glm::vec3) + triangles.size() * sizeof(glm::uvec3) +
+               segmentOfTriangle.size() * sizeof(uint32_t);
+    }
+};
+
+float pointSegmentDistance2(const glm::vec3& p, const glm::vec3& a, const glm::vec3& b) {
+    const glm::vec3 d = b - a;
+    const float dd = glm::dot(d, d);
+    const float t = dd > 0 ? std::clamp(glm::dot(p - a, d) / dd, 0.f, 1.f) : 0.f;
+    const glm::vec3 q = a + t * d - p;
+    return glm::dot(q, q);
+}
+
+TubeData buildTubes(const PlyGeometry& pg, int sides) {
+    // Step 1: the ply curves as polylines (the points the other modes use) -> sweepTubes.
+    Polylines curves;
+    std::vector<uint32_t> sourceCurve;
+    for (size_t k = 0; k + 1 < pg.curveSegments.size(); ++k) {
+        const uint32_t s0 = pg.curveSegments[k], s1 = pg.curveSegments[k + 1];
+        if (s0 == s1) continue;
+        const bool closed = pg.hasLeft(s0);
+        std::vector<glm::dvec3> p;
+        for (uint32_t s = s0; s < s1; ++s) p.push_back(pg.origin + glm::dvec3(glm::vec3(pg.points[pg.segments[s]])));
+        if (!closed) p.push_back(pg.origin + glm::dvec3(glm::vec3(pg.points[pg.segments[s1 - 1] + 1])));
+        curves.addCurve(p.data(), p.size(), closed);
+        sourceCurve.push_back(static_cast<uint32_t>(k));
+    }
+    TubeOptions to;
+    to.sides = sides;
+    to.caps = true;
+    const TubeMesh mesh = sweepTubes(curves, pg.radius, to, 0, curves.curveCount(), pg.origin);
+    TubeData t;
+    t.positions = mesh.positions;
+    t.positions.emplace_back(0.f);
+    t.triangles = mesh.triangles;
+    if (mesh.curveOfVertex.size() != mesh.positions.size())
+        throw Error("render: sweepTubes returned no curve index per vertex");
+    // Step 2: the ply segment of each triangle: nearest segment of its curve to the centroid
+    // (window search along the curve, full scan when the window loses it).
+    t.segmentOfTriangle.resize(t.triangles.size());
+    uint32_t lastCurve = UINT32_MAX, lastSeg = 0;
+    for (size_t i = 0; i < t.triangles.size(); ++i) {
+        const glm::uvec3 tri = t.triangles[i];
+        const uint32_t c = sourceCurve.at(mesh.curveOfVertex[tri.x]);
+        const glm::vec3 cen = (t.positions[tri.x] + t.positions[tri.y] + t.positions[tri.z]) / 3.f;
+        const uint32_t s0 = pg.curveSegments[c], s1 = pg.curveSegments[c + 1];
+        auto search = [&](uint32_t a, uint32_t b, float& bd) {
+            uint32_t bs = a;
+            bd = std::numeric_limits<float>::max();
+            for (uint32_t s = a; s < b; ++s) {
+                const uint32_t j = pg.segments[s];
+                const float d = pointSegmentDistance2(cen, glm::vec3(pg.points[j]), glm::vec3(pg.points[j + 1]));
+                if (d < bd) bd = d, bs = s;
+            }
+            return bs;
+        };
+        float bd;
+        uint32_t bs;
+        if (c == lastCurve) {
+            bs = search(std::max(s0, lastSeg > s0 + 4 ? lastSeg - 4 : s0), std::min(s1, lastSeg + 5), bd);
+            if (bd > 4.f * pg.radius * pg.radius) bs = search(s0, s1, bd);
+        } else {
+            bs = search(s0, s1, bd);
+        }
+        lastCurve = c, lastSeg = bs;
+        t.segmentOfTriangle[i] = bs;
+    }
+    return t;
+}
+
+// Outward normal of ply segment s at point p (from its centreline; along the axis beyond the ends).
+glm::vec3 axisNormal(const PlyGeometry& pg, uint32_t s, const glm::vec3& p, float& u) {
+    const uint32_t j = pg.segments[s];
+    const glm::vec3 a(pg.points[j]), b(pg.points[j + 1]);
+    const glm::vec3 d = b - a;
+    const float dd = glm::dot(d, d);
+    u = dd > 0 ? glm::dot(p - a, d) / dd : 0.f;
+    const float uc = std::clamp(u, 0.f, 1.f);
+    u = uc;
+    return safeNormalize(p - (a + uc * d));
+}
+
+}  // namespace
+
+struct TraceScene::Impl {
+    GridData grid;
+    TubeData tubes;
+    std::vector<glm::vec3> basePositions;
+    std::vector<glm::uvec3> baseFaces;
+    const PlyGeometry* plies = nullptr;
+};
+
+namespace {
+
+// Plies are solids: drop hits where the ray leaves a ply (direction along the outward normal).
+void curveEntryFilter(const RTCFilterFunctionNArguments* a) {
+    for (unsigned i = 0; i < a->N; ++i) {
+        if (a->valid[i] != -1) continue;
+        const float d = RTCRayN_dir_x(a->ray, a->N, i) * RTCHitN_Ng_x(a->hit, a->N, i) +
+                        RTCRayN_dir_y(a->ray, a->N, i) * RTCHitN_Ng_y(a->hit, a->N, i) +
+                        RTCRayN_dir_z(a->ray, a->N, i) * RTCHitN_Ng_z(a->hit, a->N, i);
+        if (d >= 0) a->valid[i] = 0;
+    }
+}
+
+void tubeEntryFilter(const RTCFilterFunctionNArguments* a) {
+    const TraceScene::Impl& impl = *static_cast<const TraceScene::Impl*>(a->geometryUserPtr);
+    for (unsigned i = 0; i < a->N; ++i) {
+        if (a->valid[i] != -1) continue;
+        const glm::vec3 dir(RTCRayN_dir_x(a->ray, a->N, i), RTCRayN_dir_y(a->ray, a->N, i), RTCRayN_dir_z(a->ray, a->N, i));
+        const glm::vec3 org(RTCRayN_org_x(a->ray, a->N, i), RTCRayN_org_y(a->ray, a->N, i), RTCRayN_org_z(a->ray, a->N, i));
+        const glm::vec3 p = org + RTCRayN_tfar(a->ray, a->N, i) * dir;
+        float u;
+        const glm::vec3 n = axisNormal(*impl.plies, impl.tubes.segmentOfTriangle[RTCHitN_primID(a->hit, a->N, i)], p, u);
+        if (glm::dot(dir, n) >= 0) a->valid[i] = 0;
+    }
+}
+
+}  // namespace
+
+TraceScene::TraceScene(EmbreeDevice& device, const PlyGeometry& plies, const TraceSceneOptions& options)
+    : plies_(plies), options_(options), impl_(std::make_unique<Impl>()) {
+    if (plies.segmentCount() == 0) throw Error("render: the scene has no ply segments (nothing to render)");
+    impl_->plies = &plies_;
+    const int64_t before = device.allocatedBytes();
+    RTCDevice dev = device.get();
+    scene_ = rtcNewScene(dev);
+    rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_MEDIUM);
+    RTCGeometry geom = nullptr;
+    // Step 1: the plies in the chosen representation.
+    switch (options.mode) {
+        case GeometryMode::Curves: {
+            geom = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_ROUND_LINEAR_CURVE);
+            rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, plies.points.data(), 0,
+                                       sizeof(glm::vec4), plies.points.size());
+            rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT, plies.segments.data(), 0,
+                                       sizeof(uint32_t), plies.segments.size());
+            rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_FLAGS, 0, RTC_FORMAT_UCHAR, plies.flags.data(), 0,
+                                       sizeof(uint8_t), plies.flags.size());
+            rtcSetGeometryIntersectFilterFunction(geom, curveEntryFilter);
+            rtcSetGeometryOccludedFilterFunction(geom, curveEntryFilter);
+            memory_.geometryBytes = static_cast<int64_t>(plies.intersectionBytes());
+            primitives_ = plies.segmentCount();
+            break;
+        }
+        case GeometryMode::Tubes: {
+            if (options.tubeSides < 3) throw Error("render: tube sides must be >= 3");
+            impl_->tubes = buildTubes(plies, options.tubeSides);
+            geom = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_TRIANGLE);
+            rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, impl_->tubes.positions.data(),
+                                       0, sizeof(glm::vec3), impl_->tubes.positions.size() - 1);
+            rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, impl_->tubes.triangles.data(),
+                                       0, sizeof(glm::uvec3), impl_->tubes.triangles.size());
+            rtcSetGeometryUserData(geom, impl_.get());
+            rtcSetGeometryIntersectFilterFunction(geom, tubeEntryFilter);
+            rtcSetGeometryOccludedFilterFunction(geom, tubeEntryFilter);
+            memory_.geometryBytes = static_cast<int64_t>(impl_->tubes.bytes());
+            primitives_ = impl_->tubes.triangles.size();
+            break;
+        }
+        case GeometryMode::Grid: {
+            if (!options.segmentCells || options.segmentCells->size() != plies.segmentCount())
+                throw Error("render: grid mode needs a UV-grid cell for every ply segment");
+            impl_->grid = buildGrid(plies, *options.segmentCells);
+            geom = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_USER);
+            rtcSetGeometryUserPrimitiveCount(geom, static_cast<unsigned>(impl_->grid.cells.size()));
+            rtcSetGeometryUserData(geom, &impl_->grid);
+            rtcSetGeometryBoundsFunction(geom, gridBounds, nullptr);
+            rtcSetGeometryIntersectFunction(geom, gridIntersect);
+            rtcSetGeometryOccludedFunction(geom, gridOccluded);
+            memory_.geometryBytes = static_cast<int64_t>(impl_->grid.bytes());
+            primitives_ = impl_->grid.cells.size();
+            break;
+        }
+    }
+    rtcCommitGeometry(geom);
+    plyGeom_ = rtcAttachGeometry(scene_, geom);
+    rtcReleaseGeometry(geom);
+    // Step 2: the optional opaque base mesh.
+    if (options.baseMesh && !options.baseMesh->faces.empty()) {
+        const BaseMesh& m = *options.baseMesh;
+        for (const glm::dvec3& p : m.positions) impl_->basePositions.emplace_back(glm::vec3(p - plies.origin));
+        impl_->basePositions.emplace_back(0.f);
+        impl_->baseFaces = m.faces;
+        for (const glm::uvec3& f : m.faces)
+            if (f.x >= m.positions.size() || f.y >= m.positions.size() || f.z >= m.positions.size())
+                throw Error("render: base mesh face refers to a vertex that does not exist");
+        RTCGeometry bg = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_TRIANGLE);
+        rtcSetSharedGeometryBuffer(bg, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, impl_->basePositions.data(), 0,
+                                   sizeof(glm::vec3), impl_->basePositions.size() - 1);
+        rtcSetSharedGeometryBuffer(bg, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, impl_->baseFaces.data(), 0,
+                                   sizeof(glm::uvec3), impl_->baseFaces.size());
+        rtcCommitGeometry(bg);
+        baseGeom_ = rtcAttachGeometry(scene_, bg);
+        rtcReleaseGeometry(bg);
+    }
+    baseOffset_ = 1e-3f * plies.radius;
+    // Step 3: build the BVH and measure what Embree allocated for it.
+    rtcCommitScene(scene_);
+    if (rtcGetDeviceError(dev) != RTC_ERROR_NONE) throw Error("render: Embree failed to build the scene");
+    memory_.embreeBytes = device.allocatedBytes() - before;
+    memory_.shadingBytes = static_cast<int64_t>(plies.shadingBytes());
+}
+
+TraceScene::~TraceScene() {
+    if (scene_) rtcReleaseScene(scene_);
+}
+
+bool TraceScene::intersect(const glm::vec3& org, const glm::vec3& dir, float tnear, float tfar, TraceHit& hit) const {
+    HitContext ctx;
+    rtcInitIntersectContext(&ctx.base);
+    ctx.segment = 0;
+    ctx.u = 0;
+    RTCRayHit rh;
+    rh.ray.org_x = org.x, rh.ray.org_y = org.y, rh.ray.org_z = org.z;
+    rh.ray.dir_x = dir.x, rh.ray.dir_y = dir.y, rh.ray.dir_z = dir.z;
+    rh.ray.tnear = tnear, rh.ray.tfar = tfar;
+    rh.ray.time = 0, rh.ray.mask = 0xFFFFFFFFu, rh.ray.id = 0, rh.ray.flags = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(scene_, &ctx.base, &rh);
+    hit = TraceHit();
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+    hit.t = rh.ray.tfar;
+    hit.geomID = rh.hit.geomID;
+    hit.primID = rh.hit.primID;
+    glm::vec3 ng = safeNormalize(glm::vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z));
+    if (rh.hit.geomID == baseGeom_) {
+        hit.kind = TraceHit::Base;
+        hit.segment = rh.hit.primID;
+        hit.ng = ng;
+        return true;
+    }
+    hit.kind = TraceHit::Ply;
+    switch (options_.mode) {
+        case GeometryMode::Curves:
+            hit.segment = rh.hit.primID;
+            hit.u = std::clamp(rh.hit.u, 0.f, 1.f);
+            break;
+        case GeometryMode::Tubes: {
+            hit.segment = impl_->tubes.segmentOfTriangle[rh.hit.primID];
+            float u;
+            const glm::vec3 axis = axisNormal(plies_, hit.segment, org + hit.t * dir, u);
+            hit.u = u;
+            if (glm::dot(ng, axis) < 0) ng = -ng;  // orient the facet outward whatever the winding
+            break;
+        }
+        case GeometryMode::Grid:
+            hit.segment = ctx.segment;
+            hit.u = ctx.u;
+            break;
+    }
+    hit.ng = ng;
+    return true;
+}
+
+bool TraceScene::occluded(const glm::vec3& org, const glm::vec3& dir, float tnear, float tfar) const {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRay ray;
+    ray.org_x = org.x, ray.org_y = org.y, ray.org_z = org.z;
+    ray.dir_x = dir.x, ray.dir_y = dir.y, ray.dir_z = dir.z;
+    ray.tnear = tnear, ray.tfar = tfar;
+    ray.time = 0, ray.mask = 0xFFFFFFFFu, ray.id = 0, ray.flags = 0;
+    rtcOccluded1(scene_, &ctx, &ray);
+    return ray.tfar < 0;
+}
+
+glm::vec3 TraceScene::spawn(const TraceHit& hit, const glm::vec3& p, const glm::vec3& dir) const {
+    const bool outside = glm::dot(dir, hit.ng) > 0;
+    if (hit.kind == TraceHit::Base) return p + (outside ? baseOffset_ : -baseOffset_) * hit.ng;
+    const float r = plies_.radius;
+    return p + (outside ? outsideOffset * r : -insideOffset * r) * hit.ng;
+}
+
+}  // namespace knit

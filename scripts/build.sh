@@ -1,0 +1,8 @@
+#!/usr/bin/env bash
+# Configures and builds libknit (Release) into ${KNIT_BUILD_DIR:-build}.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+build=${KNIT_BUILD_DIR:-"$root/build"}
+jobs=${KNIT_JOBS:-$(nproc)}
+cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release "$@"
+cmake --build "$build" -j"$jobs"

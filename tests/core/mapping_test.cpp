@@ -1,0 +1,160 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "fixtures.hpp"
+#include "knit/binding.hpp"
+#include "knit/generator.hpp"
+#include "knit/scene.hpp"
+#include "knit/uv_grid.hpp"
+
+namespace knit {
+namespace {
+
+SceneOptions yarnsOnly(glm::dvec2 repeats) {
+    SceneOptions o;
+    o.placement.repeats = repeats;
+    o.buildPlies = false;
+    return o;
+}
+
+TEST(Mapping, planeMapsUvhToXyhUnderAnyTriangulation) {
+    const double size = 0.1;
+    for (auto kind : {test::Triangulation::Regular, test::Triangulation::Random, test::Triangulation::Slivers}) {
+        const BaseMesh mesh = test::planeMesh(kind, 9, size);
+        const Scene s = buildScene(loadPyp(test::sharedPattern("stocktiny.pyp")), mesh, yarnsOnly({7, 11}));
+        ASSERT_GT(s.uvYarns.vertexCount(), 1000u);
+        // Every tiled vertex inside the square maps to (u*size, v*size, h) to 1e-9 relative.
+        Binding single;
+        std::vector<glm::dvec3> expected;
+        for (size_t i = 0; i < s.uvYarns.vertexCount(); ++i) {
+            const LocateResult r = locatePoint(s.mesh, s.grid, s.uvYarns.uv[i], 0.0);
+            if (r.status != LocateStatus::Inside) continue;
+            single.face.push_back(r.point.face);
+            single.bary.emplace_back(r.point.bary.y, r.point.bary.z);
+            single.height.push_back(s.uvYarns.height[i]);
+            single.twist.push_back(0);
+            expected.emplace_back(s.uvYarns.uv[i].x * size, s.uvYarns.uv[i].y * size, s.uvYarns.height[i]);
+        }
+        single.offsets = {0, uint32_t(single.face.size())};
+        single.closed = {0};
+        MappedYarns mapped;
+        evaluateBinding(single, s.mesh.faces, s.mesh.positions, s.normals, mapped);
+        double worst = 0;
+        for (size_t i = 0; i < expected.size(); ++i)
+            worst = std::max(worst, glm::length(mapped.curves.points[i] - expected[i]) / size);
+        EXPECT_LT(worst, 1e-9) << "triangulation " << int(kind);
+        // The bound yarns stay on the square and keep their heights.
+        for (const glm::dvec3& p : s.yarns.curves.points) {
+            ASSERT_GE(p.x, -1e-12);
+            ASSERT_LE(p.x, size + 1e-12);
+            ASSERT_GE(p.y, -1e-12);
+            ASSERT_LE(p.y, size + 1e-12);
+        }
+    }
+}
+
+TEST(Mapping, yarnsOnPlaneEndOnlyAtTheDomainBoundary) {
+    const Scene s = buildScene(generateStockinette(), test::planeMesh(test::Triangulation::Random, 6), yarnsOnly({6, 9}));
+    ASSERT_GT(s.bound.stats.openEnds, 0u);
+    EXPECT_EQ(s.bound.stats.weldedEnds, 0u);
+    const Polylines& c = s.yarns.curves;
+    for (size_t y = 0; y < c.curveCount(); ++y) {
+        ASSERT_FALSE(c.isClosed(y));
+        for (const glm::dvec3 end : {c.points[c.begin(y)], c.points[c.end(y) - 1]}) {
+            const glm::dvec2 uv = glm::dvec2(end) / 0.1;
+            const double toBoundary = std::min(std::min(uv.x, 1 - uv.x), std::min(uv.y, 1 - uv.y));
+            EXPECT_LT(std::abs(toBoundary), 1e-9) << "yarn " << y << " ends inside the square";
+        }
+    }
+}
+
+TEST(Mapping, cylinderPutsHeightAtRadiusPlusH) {
+    ProceduralMeshOptions mo;
+    mo.resU = 64;
+    mo.resV = 8;
+    mo.radius = 0.05;
+    mo.height = 0.1;
+    const Scene s = buildScene(loadPyp(test::sharedPattern("stockinette.pyp")), makeCylinder(mo), yarnsOnly({10, 6}));
+    const double chord = mo.radius * (1 - std::cos(3.14159265358979323846 / mo.resU));
+    const Binding& b = s.bound.binding;
+    ASSERT_GT(b.vertexCount(), 0u);
+    double worst = 0;
+    for (size_t i = 0; i < b.vertexCount(); ++i) {
+        const glm::dvec3 p = s.yarns.curves.points[i];
+        const double r = std::hypot(p.x, p.y);
+        worst = std::max(worst, std::abs(r - (mo.radius + b.height[i])) - chord);
+    }
+    EXPECT_LE(worst, 1e-12) << "radius error beyond the chord error " << chord;
+}
+
+TEST(Mapping, cylinderSeamWithIntegralRepeatsClosesCourses) {
+    ProceduralMeshOptions mo;
+    mo.resU = 48;
+    mo.resV = 12;
+    const Pattern p = generateStockinette();
+    const double V = 8;
+    const Scene s = buildScene(p, makeCylinder(mo), yarnsOnly({20, V}));
+    // Course j spans y in [j*py - h, j*py + h] with h = 4 model units = py * 4/4.5: it lies
+    // inside v in [0,1] for j = 1..7, and only those close.
+    EXPECT_EQ(s.bound.stats.closedLoops, 7u);
+    EXPECT_GT(s.bound.stats.weldedEnds, 0u);
+    // Non-integral repeats around the seam: nothing meets again, nothing closes.
+    const Scene t = buildScene(p, makeCylinder(mo), yarnsOnly({20.5, V}));
+    EXPECT_EQ(t.bound.stats.closedLoops, 0u);
+}
+
+TEST(Mapping, mappedYarnsHaveNoLongStepsAcrossTriangleEdgesAndSeams) {
+    for (const char* mesh : {"cylinder", "drape", "sphere"}) {
+        SceneOptions o = yarnsOnly({16, 8});
+        o.mesh = mesh;
+        const Scene s = buildScene(o);
+        const Polylines& c = s.yarns.curves;
+        // Local sampling: the step of the same pair in pattern space, scaled to the mesh.
+        double longestPattern = 0;
+        const PatternAdjacency adj = buildAdjacency(s.pattern);
+        for (const PeriodicEdge& e : s.pattern.edges) {
+            const glm::dvec2 d = glm::dvec2(s.pattern.points[e.v1]) + glm::dvec2(e.dx * s.pattern.px, e.dy * s.pattern.py) -
+                                 glm::dvec2(s.pattern.points[e.v0]);
+            longestPattern = std::max(longestPattern, glm::length(d));
+        }
+        const glm::dvec2 metresPerUv = uvToMetreScale(s.mesh);
+        const double stretch = std::max(metresPerUv.x / (s.placement.repeats.x * s.pattern.px),
+                                        metresPerUv.y / (s.placement.repeats.y * s.pattern.py));
+        const double local = longestPattern * stretch + 2 * s.yarnRadius;  // + height offsets
+        for (size_t y = 0; y < c.curveCount(); ++y)
+            for (uint32_t k = 0; k < c.segmentCount(y); ++k) {
+                const double step = glm::distance(c.points[c.begin(y) + k], c.points[c.begin(y) + (k + 1) % c.size(y)]);
+                ASSERT_LE(step, 2 * local) << mesh << " yarn " << y << " segment " << k;
+            }
+    }
+}
+
+TEST(Mapping, bindingEvaluatedOnDeformedCopyEqualsFreshMapping) {
+    ProceduralMeshOptions mo;
+    mo.resU = 24;
+    mo.resV = 24;
+    const BaseMesh rest = makeDrape(mo);
+    BaseMesh bent = rest;
+    for (glm::dvec3& x : bent.positions) x = glm::dvec3(x.x * 1.1 + 0.3 * x.z, x.y + 0.2 * x.x * x.x, x.z * 0.9 + 0.05);
+    // Heights keep the rest pose's physical scale under animation, so the fresh mapping binds
+    // the same stitched yarns (same placement) directly on the deformed copy.
+    const Scene a = buildScene(generateStockinette(), rest, yarnsOnly({12, 12}));
+    const std::vector<glm::dvec3> bentNormals = vertexNormals(bent.positions, bent.faces);
+    BindOptions bind;
+    bind.yarnRadius = a.yarnRadius;
+    const BindResult fresh = bindYarns(bent, bentNormals, a.grid, a.uvYarns, bind);
+    Scene b;
+    evaluateBinding(fresh.binding, bent.faces, bent.positions, bentNormals, b.yarns);
+    MappedYarns animated;
+    evaluateBinding(a.bound.binding, bent.faces, bent.positions, bentNormals, animated);
+    ASSERT_EQ(animated.curves.pointCount(), b.yarns.curves.pointCount());
+    ASSERT_EQ(animated.curves.offsets, b.yarns.curves.offsets);
+    double worst = 0;
+    for (size_t i = 0; i < animated.curves.pointCount(); ++i)
+        worst = std::max(worst, glm::distance(animated.curves.points[i], b.yarns.curves.points[i]));
+    EXPECT_LT(worst, 1e-12);
+}
+
+}  // namespace
+}  // namespace knit

@@ -1,0 +1,122 @@
+#include <gtest/gtest.h>
+
+#include "fixtures.hpp"
+#include "knit/error.hpp"
+#include "knit/uv_grid.hpp"
+
+namespace knit {
+namespace {
+
+UvGrid gridFor(const BaseMesh& m, double cell) {
+    UvGridOptions o;
+    o.cellSize = glm::dvec2(cell);
+    return buildUvGrid(m, o);
+}
+
+TEST(UvGrid, pointOnSharedEdgeAssignedOnce) {
+    const BaseMesh m = test::planeMesh(test::Triangulation::Regular, 4);
+    const UvGrid g = gridFor(m, 0.3);
+    // Regular grid: quad (i, j) = faces 2*(4j+i) {a,b,c} and +1 {a,c,d}; its diagonal is shared.
+    const glm::dvec2 onDiagonal(0.25 + 0.125, 0.25 + 0.125);  // quad (1,1) diagonal midpoint
+    const LocateResult r = locatePoint(m, g, onDiagonal, 0);
+    ASSERT_EQ(r.status, LocateStatus::Inside);
+    EXPECT_EQ(r.point.face, 2u * (4 + 1));  // the lower-numbered of the two faces sharing it
+    // A mesh vertex shared by six triangles goes to the lowest-numbered one.
+    const LocateResult v = locatePoint(m, g, {0.5, 0.5}, 0);
+    ASSERT_EQ(v.status, LocateStatus::Inside);
+    EXPECT_EQ(v.point.face, 2u * (4 * 1 + 1));
+    EXPECT_NEAR(glm::distance(v.point.interpolate(m.uvs, m.faceUvs), glm::dvec2(0.5, 0.5)), 0, 1e-15);
+}
+
+TEST(UvGrid, cellBoundaryPointsFindTheirTriangle) {
+    // Cell size that does not divide the UV range evenly; points exactly on cell borders.
+    const BaseMesh m = test::planeMesh(test::Triangulation::Random, 7);
+    const UvGrid g = gridFor(m, 0.1);
+    for (int i = 0; i <= 10; ++i)
+        for (int j = 0; j <= 10; ++j) {
+            const glm::dvec2 uv(i * 0.1, j * 0.1);
+            if (uv.x > 1 || uv.y > 1) continue;
+            const LocateResult r = locatePoint(m, g, uv, 0);
+            ASSERT_EQ(r.status, LocateStatus::Inside) << uv.x << " " << uv.y;
+            EXPECT_NEAR(glm::distance(r.point.interpolate(m.uvs, m.faceUvs), uv), 0, 1e-14);
+        }
+}
+
+TEST(UvGrid, zeroAreaUvTriangleNeverOwnsAPoint) {
+    BaseMesh m = test::planeMesh(test::Triangulation::Regular, 2);
+    // Collapse face 0's uv triangle onto a line by adding a degenerate face with its own uvs.
+    const uint32_t base = uint32_t(m.uvs.size());
+    m.uvs.push_back({0.1, 0.1});
+    m.uvs.push_back({0.2, 0.2});
+    m.uvs.push_back({0.3, 0.3});
+    m.faces.push_back({0, 1, 2});
+    m.faceUvs.push_back({base, base + 1, base + 2});
+    const UvGrid g = gridFor(m, 0.25);
+    EXPECT_EQ(g.degenerateUvFaces, 1u);
+    const LocateResult r = locatePoint(m, g, {0.2, 0.2}, 0);
+    ASSERT_EQ(r.status, LocateStatus::Inside);
+    EXPECT_NE(r.point.face, uint32_t(m.faces.size() - 1));
+}
+
+TEST(UvGrid, mirroredChartLocatesPoints) {
+    BaseMesh m = test::planeMesh(test::Triangulation::Regular, 3);
+    for (glm::dvec2& uv : m.uvs) uv.x = -uv.x;  // mirrored: clockwise triangles
+    const UvGrid g = gridFor(m, 0.2);
+    EXPECT_EQ(g.faceOrientation[0], -1);
+    const LocateResult r = locatePoint(m, g, {-0.4, 0.7}, 0);
+    ASSERT_EQ(r.status, LocateStatus::Inside);
+    EXPECT_NEAR(glm::distance(r.point.interpolate(m.uvs, m.faceUvs), glm::dvec2(-0.4, 0.7)), 0, 1e-14);
+}
+
+TEST(UvGrid, pointJustOutsideIsClampedAndFarPointIsCut) {
+    const BaseMesh m = test::planeMesh(test::Triangulation::Regular, 4);
+    const UvGrid g = gridFor(m, 0.25);
+    const LocateResult near = locatePoint(m, g, {1.0 + 1e-7, 0.3}, 1e-6);
+    ASSERT_EQ(near.status, LocateStatus::Clamped);
+    EXPECT_NEAR(near.distance, 1e-7, 1e-12);
+    EXPECT_NEAR(near.point.interpolate(m.uvs, m.faceUvs).x, 1.0, 1e-15);
+    EXPECT_EQ(locatePoint(m, g, {1.0 + 1e-5, 0.3}, 1e-6).status, LocateStatus::Outside);
+    EXPECT_EQ(locatePoint(m, g, {-3, 7}, 1e-6).status, LocateStatus::Outside);
+    EXPECT_EQ(locatePoint(m, g, {NAN, 0.5}, 1e-6).status, LocateStatus::Outside);
+}
+
+TEST(UvGrid, gridIsSparseAndConservative) {
+    // Two small islands far apart: only the cells they touch exist, and every triangle is
+    // listed in every cell its UV triangle touches (checked by sampling points).
+    BaseMesh m = test::planeMesh(test::Triangulation::Random, 5);
+    const size_t nuv = m.uvs.size();
+    for (size_t i = 0; i < nuv; ++i) m.uvs[i] *= 0.05;
+    BaseMesh far = m;
+    for (glm::dvec2& uv : far.uvs) uv += glm::dvec2(0.9, 0.9);
+    for (const glm::uvec3& f : far.faceUvs) m.faceUvs.push_back(f + glm::uvec3(uint32_t(nuv)));
+    for (const glm::uvec3& f : far.faces) m.faces.push_back(f + glm::uvec3(uint32_t(m.positions.size())));
+    m.uvs.insert(m.uvs.end(), far.uvs.begin(), far.uvs.end());
+    m.positions.insert(m.positions.end(), far.positions.begin(), far.positions.end());
+    const UvGrid g = gridFor(m, 0.01);
+    // 0.05 / 0.01 = 5 cells per side, +1 for touching borders, +1 for the conservative margin.
+    EXPECT_LE(g.cells.size(), 2u * 49u);
+    EXPECT_EQ(g.chartOfFace.front() == g.chartOfFace.back(), false);
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> u(0, 1);
+    for (size_t f = 0; f < m.faces.size(); ++f)
+        for (int k = 0; k < 20; ++k) {
+            double a = u(rng), b = u(rng);
+            if (a + b > 1) a = 1 - a, b = 1 - b;
+            const glm::uvec3 t = m.faceUvs[f];
+            const glm::dvec2 p = m.uvs[t.x] + a * (m.uvs[t.y] - m.uvs[t.x]) + b * (m.uvs[t.z] - m.uvs[t.x]);
+            const int32_t slot = g.slotOf(g.cellOf(p));
+            ASSERT_GE(slot, 0);
+            const auto begin = g.triangles.begin() + g.triOffsets[slot], end = g.triangles.begin() + g.triOffsets[slot + 1];
+            ASSERT_NE(std::find(begin, end, uint32_t(f)), end) << "face " << f << " missing from its cell";
+        }
+}
+
+TEST(UvGrid, absurdRepeatsAreRefused) {
+    const BaseMesh m = test::planeMesh(test::Triangulation::Regular, 2);
+    UvGridOptions o;
+    o.cellSize = glm::dvec2(1e-6);
+    EXPECT_THROW(buildUvGrid(m, o), Error);
+}
+
+}  // namespace
+}  // namespace knit

@@ -1,0 +1,286 @@
+// glTF 2.0 / GLB export: Khronos validator, tinygltf round trip, precision far from the origin,
+// chunking into several buffers, per-yarn colours, KHR_mesh_quantization.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+
+#include "export/gltf_read.hpp"
+#include "export/gltf_validator.hpp"
+#include "export/test_curves.hpp"
+#include "knit/error.hpp"
+#include "knit/export.hpp"
+#include "knit/sweep.hpp"
+
+namespace knit {
+namespace {
+
+ExportStats write(const Polylines& c, double radius, ExportOptions o, const std::vector<uint32_t>* yarns = nullptr) {
+    ExportInput in;
+    in.curves = &c;
+    in.radius = radius;
+    in.yarnOfCurve = yarns;
+    return exportCurves(in, o);
+}
+
+ExportOptions tubes(const std::string& path, int sides = 8) {
+    ExportOptions o;
+    o.path = path;
+    o.what = ExportWhat::Tubes;
+    o.sides = sides;
+    return o;
+}
+
+// Per curve, the ring centres of its tube vertices in sweep order (documented layout: rings of
+// sides + 1 vertices, closed curves one extra ring = first point, then two caps).
+std::vector<glm::dvec3> ringCentres(const Polylines& c, size_t curve, int sides, bool caps) {
+    std::vector<glm::dvec3> out;
+    const uint32_t n = c.size(curve);
+    const bool closed = c.isClosed(curve);
+    const size_t rings = closed ? n + 1 : n;
+    for (size_t i = 0; i < rings; ++i)
+        for (int j = 0; j <= sides; ++j) out.push_back(c.points[c.begin(curve) + i % n]);
+    if (!closed && caps)
+        for (int end = 0; end < 2; ++end)
+            for (int j = 0; j <= sides; ++j) out.push_back(c.points[end == 0 ? c.begin(curve) : c.end(curve) - 1]);
+    return out;
+}
+
+// Reads every tube vertex back (world positions, normals) in file order.
+struct TubeRead {
+    std::vector<glm::dvec3> positions, normals;
+    std::vector<glm::dvec4> tangents;
+    std::vector<glm::dvec2> uvs;
+    std::vector<glm::dvec4> colours;
+    size_t primitives = 0;
+};
+
+TubeRead readTubes(const tinygltf::Model& m) {
+    TubeRead r;
+    for (const auto& inst : test::meshInstances(m)) {
+        for (const auto& p : m.meshes[size_t(inst.mesh)].primitives) {
+            EXPECT_EQ(p.mode, TINYGLTF_MODE_TRIANGLES);
+            ++r.primitives;
+            const auto pos = test::worldPositions(m, p, inst.world);
+            r.positions.insert(r.positions.end(), pos.begin(), pos.end());
+            const auto n = test::readAccessor(m, p.attributes.at("NORMAL"));
+            for (size_t i = 0; i + 2 < n.size(); i += 3) r.normals.emplace_back(n[i], n[i + 1], n[i + 2]);
+            const auto t = test::readAccessor(m, p.attributes.at("TANGENT"));
+            for (size_t i = 0; i + 3 < t.size(); i += 4) r.tangents.emplace_back(t[i], t[i + 1], t[i + 2], t[i + 3]);
+            const auto uv = test::readAccessor(m, p.attributes.at("TEXCOORD_0"));
+            for (size_t i = 0; i + 1 < uv.size(); i += 2) r.uvs.emplace_back(uv[i], uv[i + 1]);
+            if (p.attributes.count("COLOR_0")) {
+                const auto c = test::readAccessor(m, p.attributes.at("COLOR_0"));
+                for (size_t i = 0; i + 3 < c.size(); i += 4) r.colours.emplace_back(c[i], c[i + 1], c[i + 2], c[i + 3]);
+            }
+        }
+    }
+    return r;
+}
+
+// Side vertices satisfy position = centre + radius * normal; returns the worst deviation.
+double worstRingError(const Polylines& c, const TubeRead& r, double radius, int sides, bool caps) {
+    std::vector<glm::dvec3> centres;
+    for (size_t k = 0; k < c.curveCount(); ++k) {
+        const auto rc = ringCentres(c, k, sides, caps);
+        centres.insert(centres.end(), rc.begin(), rc.end());
+    }
+    EXPECT_EQ(centres.size(), r.positions.size());
+    double worst = 0;
+    size_t at = 0;
+    for (size_t k = 0; k < c.curveCount(); ++k) {
+        const uint32_t n = c.size(k);
+        const size_t ringVerts = (c.isClosed(k) ? n + 1 : n) * size_t(sides + 1);
+        const size_t total = ringVerts + ((!c.isClosed(k) && caps) ? 2 * size_t(sides + 1) : 0);
+        for (size_t i = 0; i < ringVerts && at + i < r.positions.size(); ++i) {
+            const glm::dvec3 expect = centres[at + i] + radius * r.normals[at + i];
+            worst = std::max(worst, glm::length(r.positions[at + i] - expect));
+        }
+        at += total;
+    }
+    return worst;
+}
+
+TEST(GltfExport, tubeGlbPassesValidatorAndRoundTrips) {
+    const std::string dir = test::scratchDir("gltf_tubes_glb");
+    const Polylines c = test::mixedCurves();
+    const double radius = 0.0015;
+    const ExportStats s = write(c, radius, tubes(dir + "/tubes.glb"));
+    EXPECT_EQ(s.format, "glb");
+    EXPECT_EQ(s.chunks, 1u);
+    EXPECT_EQ(s.buffers, 1u);
+    EXPECT_EQ(s.vertices, (42 + 33 + 27) * 9u);
+    test::expectGltfValid(dir + "/tubes.glb");
+
+    const tinygltf::Model m = test::loadGltf(dir + "/tubes.glb");
+    ASSERT_EQ(m.extensionsUsed, std::vector<std::string>{"KHR_materials_sheen"});
+    const TubeRead r = readTubes(m);
+    ASSERT_EQ(r.positions.size(), s.vertices);
+    EXPECT_LT(worstRingError(c, r, radius, 8, true), 1e-6 * radius * 10);
+    for (size_t i = 0; i < r.normals.size(); ++i) {
+        ASSERT_NEAR(glm::length(r.normals[i]), 1.0, 1e-6) << i;
+        ASSERT_NEAR(glm::length(glm::dvec3(r.tangents[i])), 1.0, 1e-6) << i;
+        ASSERT_EQ(std::abs(r.tangents[i].w), 1.0) << i;
+        ASSERT_GE(r.uvs[i].x, 0.0);
+        ASSERT_LE(r.uvs[i].x, 1.0);
+    }
+    // The material carries KHR_materials_sheen and the radius in extras.
+    ASSERT_EQ(m.materials.size(), 1u);
+    EXPECT_TRUE(m.materials[0].extensions.count("KHR_materials_sheen"));
+    EXPECT_DOUBLE_EQ(m.materials[0].extras.Get("radius").GetNumberAsDouble(), radius);
+}
+
+TEST(GltfExport, tubeGltfWritesExternalBinAndPassesValidator) {
+    const std::string dir = test::scratchDir("gltf_tubes_text");
+    const Polylines c = test::mixedCurves();
+    write(c, 0.001, tubes(dir + "/my tubes.gltf", 5));
+    auto files = test::listDir(dir);
+    std::sort(files.begin(), files.end());
+    EXPECT_EQ(files, (std::vector<std::string>{"my tubes.bin", "my tubes.gltf"}));
+    test::expectGltfValid(dir + "/my tubes.gltf");
+    const tinygltf::Model m = test::loadGltf(dir + "/my tubes.gltf");
+    ASSERT_EQ(m.buffers.size(), 1u);
+    EXPECT_EQ(m.buffers[0].uri, "my%20tubes.bin");
+    const TubeRead r = readTubes(m);
+    EXPECT_LT(worstRingError(c, r, 0.001, 5, true), 1e-8);
+}
+
+TEST(GltfExport, curvesAreOneLineStripPerCurveWithRadius) {
+    const std::string dir = test::scratchDir("gltf_curves");
+    const Polylines c = test::mixedCurves(glm::dvec3(3, -2, 1));
+    ExportOptions o;
+    o.path = dir + "/curves.glb";
+    o.what = ExportWhat::Plies;
+    const ExportStats s = write(c, 0.0007, o);
+    EXPECT_EQ(s.curves, 3u);
+    EXPECT_EQ(s.vertices, c.pointCount());
+    test::expectGltfValid(dir + "/curves.glb");
+    const tinygltf::Model m = test::loadGltf(dir + "/curves.glb");
+    const auto inst = test::meshInstances(m);
+    ASSERT_EQ(inst.size(), 1u);
+    const auto& prims = m.meshes[size_t(inst[0].mesh)].primitives;
+    ASSERT_EQ(prims.size(), 3u);
+    for (size_t k = 0; k < 3; ++k) {
+        EXPECT_EQ(prims[k].mode, TINYGLTF_MODE_LINE_STRIP);
+        const auto pos = test::worldPositions(m, prims[k], inst[0].world);
+        const auto idx = test::readAccessor(m, prims[k].indices);
+        const auto rad = test::readAccessor(m, prims[k].attributes.at("_RADIUS"));
+        const size_t n = c.size(k);
+        ASSERT_EQ(idx.size(), c.isClosed(k) ? n + 1 : n) << "curve " << k;
+        if (c.isClosed(k)) EXPECT_EQ(idx.front(), idx.back());
+        for (size_t i = 0; i < n; ++i) {
+            const glm::dvec3 p = pos[size_t(idx[i])];
+            EXPECT_LT(glm::length(p - c.points[c.begin(k) + i]), 1e-6) << "curve " << k << " point " << i;
+            EXPECT_FLOAT_EQ(float(rad[size_t(idx[i])]), 0.0007f);
+        }
+    }
+}
+
+TEST(GltfExport, planeHundredKilometresFromOriginKeepsSubMilliRadiusPrecision) {
+    const std::string dir = test::scratchDir("gltf_far");
+    const double radius = 0.001;
+    const glm::dvec3 far(100000.0, 25000.0, -3000.0);
+    const Polylines c = test::planeRows(6, 120, 0.002, far, 0.0015);
+    // Curves: every point back within 1e-3 yarn radii.
+    ExportOptions o;
+    o.path = dir + "/far_curves.glb";
+    o.what = ExportWhat::Yarns;
+    o.chunkVertices = 300;  // several chunks, each with its own origin
+    const ExportStats cs = write(c, radius, o);
+    EXPECT_GE(cs.chunks, 2u);
+    test::expectGltfValid(o.path);
+    const tinygltf::Model m = test::loadGltf(o.path);
+    double worst = 0;
+    size_t curve = 0;
+    for (const auto& inst : test::meshInstances(m)) {
+        for (const auto& p : m.meshes[size_t(inst.mesh)].primitives) {
+            const auto pos = test::worldPositions(m, p, inst.world);
+            const auto idx = test::readAccessor(m, p.indices);
+            for (size_t i = 0; i < c.size(curve); ++i)
+                worst = std::max(worst, glm::length(pos[size_t(idx[i])] - c.points[c.begin(curve) + i]));
+            ++curve;
+        }
+    }
+    EXPECT_EQ(curve, c.curveCount());
+    EXPECT_LT(worst, 1e-3 * radius);
+
+    // Tubes: every side vertex = centre + radius * normal within 1e-3 yarn radii.
+    ExportOptions t = tubes(dir + "/far_tubes.glb", 6);
+    t.chunkVertices = 2000;
+    write(c, radius, t);
+    test::expectGltfValid(t.path);
+    const TubeRead r = readTubes(test::loadGltf(t.path));
+    EXPECT_LT(worstRingError(c, r, radius, 6, true), 1e-3 * radius);
+}
+
+TEST(GltfExport, smallBufferLimitSplitsIntoSeveralBuffers) {
+    const std::string dir = test::scratchDir("gltf_buffers");
+    const Polylines c = test::planeRows(10, 200, 0.002, glm::dvec3(0), 0.001);
+    ExportOptions o = tubes(dir + "/split.glb", 6);
+    o.chunkVertices = 1500;
+    o.maxBufferBytes = 200000;
+    const ExportStats s = write(c, 0.001, o);
+    EXPECT_GE(s.buffers, 3u);
+    EXPECT_TRUE(std::filesystem::exists(dir + "/split_1.bin"));
+    test::expectGltfValid(o.path);
+    const tinygltf::Model m = test::loadGltf(o.path);
+    ASSERT_EQ(m.buffers.size(), s.buffers);
+    for (const auto& b : m.buffers) EXPECT_LE(b.data.size(), 200000u);
+    const TubeRead r = readTubes(m);
+    EXPECT_EQ(r.positions.size(), s.vertices);
+    // float32 offsets over chunks of ~0.4 m: ~2.4e-8 m rounding.
+    EXPECT_LT(worstRingError(c, r, 0.001, 6, true), 6e-8);
+}
+
+TEST(GltfExport, yarnColoursAreConstantPerYarnAndDistinctBetweenYarns) {
+    const std::string dir = test::scratchDir("gltf_colours");
+    const Polylines c = test::mixedCurves();
+    const std::vector<uint32_t> yarnOf{0, 1, 0};  // curves 0 and 2 are plies of yarn 0
+    ExportOptions o = tubes(dir + "/colours.glb", 4);
+    o.yarnColors = true;
+    write(c, 0.001, o, &yarnOf);
+    test::expectGltfValid(o.path);
+    const TubeRead r = readTubes(test::loadGltf(o.path));
+    ASSERT_EQ(r.colours.size(), r.positions.size());
+    const size_t n0 = (40 + 2) * 5, n1 = (32 + 1) * 5;
+    const glm::dvec4 a = r.colours.front(), b = r.colours[n0], last = r.colours.back();
+    for (size_t i = 0; i < n0; ++i) ASSERT_EQ(r.colours[i], a) << i;
+    for (size_t i = n0; i < n0 + n1; ++i) ASSERT_EQ(r.colours[i], b) << i;
+    EXPECT_EQ(last, a);
+    EXPECT_NE(a, b);
+    EXPECT_EQ(a.w, 1.0);
+}
+
+TEST(GltfExport, quantizedMeshIsRequiredExtensionAndRoundTripsWithinStep) {
+    const std::string dir = test::scratchDir("gltf_quantized");
+    const Polylines c = test::mixedCurves(glm::dvec3(-50.0, 10.0, 2.0));
+    const double radius = 0.001;
+    ExportOptions o = tubes(dir + "/q.glb", 8);
+    o.quantize = true;
+    const ExportStats s = write(c, radius, o);
+    EXPECT_LT(s.compressedMeshBytes, s.uncompressedMeshBytes);
+    test::expectGltfValid(o.path);
+    const tinygltf::Model m = test::loadGltf(o.path);
+    EXPECT_NE(std::find(m.extensionsRequired.begin(), m.extensionsRequired.end(), "KHR_mesh_quantization"),
+              m.extensionsRequired.end());
+    const TubeRead r = readTubes(m);
+    ASSERT_EQ(r.positions.size(), s.vertices);
+    // int16 over the chunk's extent (~0.1 m): step ~1.5e-6 m; normals to 1/32767.
+    EXPECT_LT(worstRingError(c, r, radius, 8, true), 5e-6);
+    for (size_t i = 0; i < r.normals.size(); ++i) {
+        ASSERT_NEAR(glm::length(r.normals[i]), 1.0, 1e-4);
+        ASSERT_EQ(r.tangents[i].w, -1.0);
+    }
+}
+
+TEST(GltfExport, emptyCurveSetWritesValidEmptyScene) {
+    const std::string dir = test::scratchDir("gltf_empty");
+    const Polylines c;
+    ExportOptions o = tubes(dir + "/empty.glb");
+    const ExportStats s = write(c, 0.001, o);
+    EXPECT_EQ(s.vertices, 0u);
+    test::expectGltfValid(o.path);
+}
+
+}  // namespace
+}  // namespace knit

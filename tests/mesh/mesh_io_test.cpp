@@ -1,0 +1,358 @@
+// Tests for loadMesh (OBJ / PLY / OFF through OpenMesh): seams, welding, precision, and the
+// malformed inputs OpenMesh would accept silently.
+#include "knit/base_mesh.hpp"
+#include "knit/error.hpp"
+#include "mesh_test_util.hpp"
+
+#include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
+
+#include <cmath>
+#include <cstring>
+#include <functional>
+#include <sstream>
+
+using knit::BaseMesh;
+using knit_test::TempDir;
+
+namespace {
+
+// A ring of 4 side quads (a square prism, radius 1, z in {0, 0.1}) with a UV seam at u = 0/1:
+// 8 positions, 10 UVs (u = i/4, v = j).
+const double kRingZ[2] = {0.0, 0.1};
+const double kRingXY[4][2] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
+
+std::string ringObj() {
+    std::ostringstream s;
+    s.precision(17);
+    s << "# square prism ring with a UV seam\n";
+    for (int j = 0; j < 2; ++j)
+        for (int i = 0; i < 4; ++i) s << "v " << kRingXY[i][0] << " " << kRingXY[i][1] << " " << kRingZ[j] << "\n";
+    for (int j = 0; j < 2; ++j)
+        for (int i = 0; i <= 4; ++i) s << "vt " << i / 4.0 << " " << j << "\n";
+    for (int i = 0; i < 4; ++i) {
+        auto corner = [&](int ci, int cj) {
+            return std::to_string(cj * 4 + ci % 4 + 1) + "/" + std::to_string(cj * 5 + ci + 1);
+        };
+        s << "f " << corner(i, 0) << " " << corner(i + 1, 0) << " " << corner(i + 1, 1) << " " << corner(i, 1) << "\n";
+    }
+    return s.str();
+}
+
+// The same ring as a PLY that duplicates the seam column (10 vertices with per-vertex u,v).
+std::string ringPly(const char* uName = "u", const char* vName = "v") {
+    std::ostringstream s;
+    s.precision(17);
+    s << "ply\nformat ascii 1.0\ncomment ring with duplicated seam vertices\nelement vertex 10\n"
+      << "property float x\nproperty float y\nproperty float z\nproperty float " << uName << "\nproperty float "
+      << vName << "\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n";
+    for (int j = 0; j < 2; ++j)
+        for (int i = 0; i <= 4; ++i)
+            s << kRingXY[i % 4][0] << " " << kRingXY[i % 4][1] << " " << kRingZ[j] << " " << i / 4.0 << " " << j << "\n";
+    for (int i = 0; i < 4; ++i) s << "4 " << i << " " << i + 1 << " " << 5 + i + 1 << " " << 5 + i << "\n";
+    return s.str();
+}
+
+template <class T>
+void putBE(std::string& out, T value) {
+    unsigned char b[sizeof(T)];
+    std::memcpy(b, &value, sizeof(T));
+    for (size_t i = 0; i < sizeof(T); ++i) out.push_back(char(b[sizeof(T) - 1 - i]));
+}
+
+std::string errorOf(const std::function<void()>& f) {
+    try {
+        f();
+    } catch (const knit::Error& e) {
+        return e.what();
+    }
+    return "(no knit::Error thrown)";
+}
+
+}  // namespace
+
+TEST(MeshIo, objWithSeamSharesPositions) {
+    TempDir dir;
+    const BaseMesh m = knit::loadMesh(dir.write("ring.obj", ringObj()));
+    ASSERT_EQ(m.positions.size(), 8u);
+    ASSERT_EQ(m.uvs.size(), 10u);
+    ASSERT_EQ(m.faces.size(), 8u);  // 4 quads, fan-triangulated
+    // Every corner whose position is the seam column (x = 1, y = 0) has u = 0 or u = 1, and both
+    // occur: one position, two UV vertices.
+    bool sawU0 = false, sawU1 = false;
+    for (size_t f = 0; f < m.faces.size(); ++f)
+        for (int k = 0; k < 3; ++k) {
+            const glm::dvec3 p = m.positions[m.faces[f][k]];
+            const glm::dvec2 uv = m.uvs[m.faceUvs[f][k]];
+            if (p.x == 1.0 && p.y == 0.0) {
+                EXPECT_TRUE(uv.x == 0.0 || uv.x == 1.0);
+                sawU0 |= uv.x == 0.0;
+                sawU1 |= uv.x == 1.0;
+            }
+            // The UV corner belongs to the right position: u = i/4 <-> angle i·90°.
+            EXPECT_NEAR(p.x, std::cos(uv.x * 2 * M_PI), 1e-12);
+            EXPECT_NEAR(p.y, std::sin(uv.x * 2 * M_PI), 1e-12);
+        }
+    EXPECT_TRUE(sawU0 && sawU1);
+    // The 3D topology is closed around the seam, so the seam normal is radial.
+    const auto n = knit::vertexNormals(m.positions, m.faces);
+    EXPECT_NEAR(n[0].x, 1.0, 1e-12);
+    EXPECT_NEAR(n[0].y, 0.0, 1e-12);
+}
+
+TEST(MeshIo, objKeepsDoublePrecisionPositions) {
+    // OpenMesh's OBJ reader stores float32; 0.1 must come back as the double 0.1.
+    TempDir dir;
+    const BaseMesh m = knit::loadMesh(dir.write("ring.obj", ringObj()));
+    EXPECT_EQ(m.positions[4].z, 0.1);
+    EXPECT_NE(double(float(0.1)), 0.1);
+}
+
+TEST(MeshIo, plyWithDuplicatedSeamVerticesIsWelded) {
+    TempDir dir;
+    const BaseMesh obj = knit::loadMesh(dir.write("ring.obj", ringObj()));
+    const BaseMesh ply = knit::loadMesh(dir.write("ring.ply", ringPly()));
+    ASSERT_EQ(ply.positions.size(), 8u);  // 10 file vertices, seam column welded
+    EXPECT_EQ(ply.uvs, obj.uvs);
+    EXPECT_EQ(ply.faces, obj.faces);
+    EXPECT_EQ(ply.faceUvs, obj.faceUvs);
+    const auto nObj = knit::vertexNormals(obj.positions, obj.faces);
+    const auto nPly = knit::vertexNormals(ply.positions, ply.faces);
+    for (size_t i = 0; i < nObj.size(); ++i) EXPECT_NEAR(glm::length(nObj[i] - nPly[i]), 0.0, 1e-6) << i;
+    // Without welding the seam stays open: 10 positions.
+    knit::MeshLoadOptions noWeld;
+    noWeld.weldEqualPositions = false;
+    EXPECT_EQ(knit::loadMesh(dir.file("ring.ply"), noWeld).positions.size(), 10u);
+}
+
+TEST(MeshIo, plyStAndTextureUvPropertiesAreRead) {
+    TempDir dir;
+    const BaseMesh ref = knit::loadMesh(dir.write("uv.ply", ringPly("u", "v")));
+    for (auto names : {std::pair<const char*, const char*>{"s", "t"}, {"texture_u", "texture_v"},
+                       {"texture_s", "texture_t"}}) {
+        const BaseMesh m = knit::loadMesh(dir.write(std::string(names.first) + ".ply", ringPly(names.first, names.second)));
+        EXPECT_EQ(m.uvs, ref.uvs) << names.first;
+        EXPECT_EQ(m.faceUvs, ref.faceUvs) << names.first;
+    }
+}
+
+TEST(MeshIo, binaryBigEndianPlyWithDoubleTextureUvLoads) {
+    std::string s = "ply\nformat binary_big_endian 1.0\nelement vertex 4\nproperty double x\nproperty double y\n"
+                    "property double z\nproperty double texture_u\nproperty double texture_v\nelement face 1\n"
+                    "property list uchar uint vertex_indices\nend_header\n";
+    const double v[4][5] = {{0, 0, 0, 0, 0}, {2, 0, 0, 1, 0}, {2, 1, 0, 1, 1}, {0, 1, 0, 0, 1}};
+    for (const auto& row : v)
+        for (double c : row) putBE(s, c);
+    s.push_back(char(4));
+    for (uint32_t i : {0u, 1u, 2u, 3u}) putBE(s, i);
+    TempDir dir;
+    const BaseMesh m = knit::loadMesh(dir.write("quad.ply", s));
+    ASSERT_EQ(m.faces.size(), 2u);
+    ASSERT_EQ(m.uvs.size(), 4u);
+    EXPECT_EQ(m.uvs[m.faceUvs[0][1]], glm::dvec2(1, 0));
+    EXPECT_EQ(m.positions[m.faces[0][1]], glm::dvec3(2, 0, 0));
+    const glm::dvec2 scale = knit::uvToMetreScale(m);
+    EXPECT_NEAR(scale.x, 2.0, 1e-12);
+    EXPECT_NEAR(scale.y, 1.0, 1e-12);
+}
+
+TEST(MeshIo, offLoads) {
+    TempDir dir;
+    // A quad and a triangle, texture coordinates per vertex (STOFF).
+    const BaseMesh m = knit::loadMesh(dir.write("m.off", "STOFF\n# comment\n5 2 0\n"
+                                                          "0 0 0 0 0\n1 0 0 1 0\n1 1 0 1 1\n0 1 0 0 1\n2 0.5 0 1 0.5\n"
+                                                          "4 0 1 2 3\n3 1 4 2\n"));
+    ASSERT_EQ(m.faces.size(), 3u);
+    EXPECT_EQ(m.positions.size(), 5u);
+    EXPECT_EQ(m.faces[0], glm::uvec3(0, 1, 2));
+    EXPECT_EQ(m.faces[1], glm::uvec3(0, 2, 3));
+    EXPECT_EQ(m.uvs[m.faceUvs[2][1]], glm::dvec2(1, 0.5));
+}
+
+TEST(MeshIo, offWithCommentsAndCountsOnHeaderLineLoads) {
+    // OpenMesh's OFF reader knows neither: it read garbage counts and looped over millions of
+    // empty faces. The loader hands it a cleaned copy.
+    TempDir dir;
+    const BaseMesh m = knit::loadMesh(dir.write("c.off", "STOFF 4 2 0 # counts on the header line\n# a comment\n"
+                                                         "0 0 0 0 0\n1 0 0 1 0 # trailing comment\n1 1 0 1 1\n"
+                                                         "\n0 1 0 0 1\n3 0 1 2\n3 0 2 3\n"));
+    ASSERT_EQ(m.faces.size(), 2u);
+    EXPECT_EQ(m.faces[1], glm::uvec3(0, 2, 3));
+    EXPECT_EQ(m.uvs[m.faceUvs[1][1]], glm::dvec2(1, 1));
+}
+
+TEST(MeshIo, declaredCountsBeyondTheDataAreRejected) {
+    TempDir dir;
+    const std::string off = dir.write("huge.off", "STOFF\n3 2000000000 0\n0 0 0 0 0\n1 0 0 1 0\n0 1 0 0 1\n3 0 1 2\n");
+    EXPECT_NE(errorOf([&] { knit::loadMesh(off); }).find("truncated"), std::string::npos);
+    std::string ply = ringPly();
+    ply.replace(ply.find("element face 4"), 14, "element face 4000000000");
+    EXPECT_NE(errorOf([&] { knit::loadMesh(dir.write("huge.ply", ply)); }).find("truncated"), std::string::npos);
+    std::string bin = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                      "property float z\nproperty float u\nproperty float v\nelement face 2000000000\n"
+                      "property list uchar int vertex_indices\nend_header\n";
+    for (int i = 0; i < 15; ++i) bin.append(4, '\0');
+    EXPECT_THROW(knit::loadMesh(dir.write("huge_bin.ply", bin)), knit::Error);
+}
+
+TEST(MeshIo, offWithoutTexcoordsIsRejected) {
+    TempDir dir;
+    const std::string p = dir.write("m.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+    EXPECT_NE(errorOf([&] { knit::loadMesh(p); }).find("no texture coordinates"), std::string::npos);
+}
+
+TEST(MeshIo, truncatedOffIsRejected) {
+    // OpenMesh repeats the last face for missing face lines and reports success.
+    TempDir dir;
+    const std::string p = dir.write("m.off", "STOFF\n4 2 0\n0 0 0 0 0\n1 0 0 1 0\n1 1 0 1 1\n0 1 0 0 1\n4 0 1 2 3\n");
+    EXPECT_THROW(knit::loadMesh(p), knit::Error);
+}
+
+TEST(MeshIo, polygonIsFanTriangulatedWithMatchingUvs) {
+    TempDir dir;
+    const BaseMesh m = knit::loadMesh(dir.write("pent.obj", "v 0 0 0\nv 1 0 0\nv 1.5 1 0\nv 0.5 1.5 0\nv -0.5 1 0\n"
+                                                             "vt 0 0\nvt 1 0\nvt 1 0.6\nvt 0.5 1\nvt 0 0.6\n"
+                                                             "f 1/1 2/2 3/3 4/4 5/5\n"));
+    ASSERT_EQ(m.faces.size(), 3u);
+    for (size_t f = 0; f < 3; ++f) {
+        EXPECT_EQ(m.faces[f], glm::uvec3(0, f + 1, f + 2));
+        EXPECT_EQ(m.faceUvs[f], glm::uvec3(0, f + 1, f + 2));
+    }
+}
+
+TEST(MeshIo, objOppositelyOrientedNeighbourKeepsItsUvs) {
+    // The second face runs the shared edge in the same direction (non-manifold for a halfedge
+    // mesh: OpenMesh's ImporterT would duplicate its vertices and start its texcoords at the wrong
+    // corner). Here every corner keeps its own vt and the positions stay shared.
+    TempDir dir;
+    const BaseMesh m = knit::loadMesh(dir.write("flip.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\n"
+                                                             "vt 0 0\nvt 1 0\nvt 0 1\nvt 1 1\n"
+                                                             "f 1/1 2/2 3/3\nf 2/2 3/3 4/4\n"));
+    ASSERT_EQ(m.positions.size(), 4u);
+    ASSERT_EQ(m.faces.size(), 2u);
+    for (size_t f = 0; f < 2; ++f)
+        for (int k = 0; k < 3; ++k) {
+            const glm::dvec3 p = m.positions[m.faces[f][k]];
+            EXPECT_EQ(m.uvs[m.faceUvs[f][k]], glm::dvec2(p.x, p.y));
+        }
+}
+
+TEST(MeshIo, uppercaseExtensionAndNegativeObjIndicesLoad) {
+    TempDir dir;
+    const BaseMesh m = knit::loadMesh(dir.write("TRI.OBJ", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n"
+                                                           "f -3/-3 -2/-2 -1/-1\n"));
+    ASSERT_EQ(m.faces.size(), 1u);
+    EXPECT_EQ(m.positions[m.faces[0][1]], glm::dvec3(1, 0, 0));
+    EXPECT_EQ(m.uvs[m.faceUvs[0][2]], glm::dvec2(0, 1));
+}
+
+TEST(MeshIo, meshWithoutUvsIsRejected) {
+    TempDir dir;
+    const std::string obj = dir.write("nouv.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    const std::string msg = errorOf([&] { knit::loadMesh(obj); });
+    EXPECT_NE(msg.find("nouv.obj"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("no texture coordinates (vt)"), std::string::npos) << msg;
+    const std::string ply = dir.write("nouv.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                                                  "property float y\nproperty float z\nelement face 1\n"
+                                                  "property list uchar int vertex_indices\nend_header\n"
+                                                  "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+    EXPECT_NE(errorOf([&] { knit::loadMesh(ply); }).find("no per-vertex texture coordinates"), std::string::npos);
+}
+
+TEST(MeshIo, objFaceWithoutVtIsRejected) {
+    TempDir dir;
+    const std::string p = dir.write("mixed.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n"
+                                                 "f 1/1 2/2 3/3\nf 2 4 3\n");
+    const std::string msg = errorOf([&] { knit::loadMesh(p); });
+    EXPECT_NE(msg.find("mixed.obj:9:"), std::string::npos) << msg;
+}
+
+TEST(MeshIo, emptyMeshIsRejected) {
+    TempDir dir;
+    const std::string noFaces = dir.write("pts.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\n");
+    EXPECT_NE(errorOf([&] { knit::loadMesh(noFaces); }).find("no faces"), std::string::npos);
+    const std::string empty = dir.write("empty.obj", "");
+    EXPECT_NE(errorOf([&] { knit::loadMesh(empty); }).find("no faces"), std::string::npos);
+    const std::string emptyPly = dir.write("empty.ply", "");
+    EXPECT_THROW(knit::loadMesh(emptyPly), knit::Error);
+    const std::string noFacePly = dir.write("nf.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n"
+                                                      "property float y\nproperty float z\nproperty float u\n"
+                                                      "property float v\nelement face 0\n"
+                                                      "property list uchar int vertex_indices\nend_header\n0 0 0 0 0\n");
+    EXPECT_NE(errorOf([&] { knit::loadMesh(noFacePly); }).find("no faces"), std::string::npos);
+}
+
+TEST(MeshIo, nanPositionIsRejected) {
+    TempDir dir;
+    // OBJ: OpenMesh would skip the line and shift every later vertex index.
+    const std::string obj = dir.write("nan.obj", "v 0 0 0\nv nan 0 0\nv 1 1 0\nvt 0 0\nf 1/1 2/1 3/1\n");
+    const std::string msg = errorOf([&] { knit::loadMesh(obj); });
+    EXPECT_NE(msg.find("nan.obj:2:"), std::string::npos) << msg;
+    EXPECT_THROW(knit::loadMesh(dir.write("inf.obj", "v 0 0 0\nv 1e400 0 0\nv 1 1 0\nvt 0 0\nf 1/1 2/1 3/1\n")),
+                 knit::Error);
+    EXPECT_THROW(knit::loadMesh(dir.write("nanvt.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nvt nan 0\nf 1/1 2/1 3/1\n")),
+                 knit::Error);
+    // ASCII PLY: OpenMesh would read zeros and empty faces and report success.
+    std::string ply = ringPly();
+    ply.replace(ply.find("\n0 1 0 0.25 0\n"), 14, "\n0 nan 0 0.25 0\n");
+    EXPECT_NE(errorOf([&] { knit::loadMesh(dir.write("nan.ply", ply)); }).find("'nan' is not a finite number"),
+              std::string::npos);
+    // Binary PLY: the value arrives as inf.
+    std::string bin = "ply\nformat binary_big_endian 1.0\nelement vertex 3\nproperty double x\nproperty double y\n"
+          "property double z\nproperty float u\nproperty float v\nelement face 1\n"
+          "property list uchar int vertex_indices\nend_header\n";
+    const double pos[3][3] = {{0, 0, 0}, {1, 0, HUGE_VAL}, {0, 1, 0}};
+    for (int i = 0; i < 3; ++i) {
+        for (double c : pos[i]) putBE(bin, c);
+        putBE(bin, float(pos[i][0]));
+        putBE(bin, float(pos[i][1]));
+    }
+    bin.push_back(char(3));
+    for (int32_t i : {0, 1, 2}) putBE(bin, i);
+    EXPECT_NE(errorOf([&] { knit::loadMesh(dir.write("inf.ply", bin)); }).find("non-finite position"),
+              std::string::npos);
+    // OFF: OpenMesh would produce garbage face indices.
+    EXPECT_THROW(knit::loadMesh(dir.write("nan.off", "STOFF\n3 1 0\n0 0 0 0 0\n1 nan 0 1 0\n0 1 0 0 1\n3 0 1 2\n")),
+                 knit::Error);
+}
+
+TEST(MeshIo, faceIndexOutOfRangeIsRejected) {
+    TempDir dir;
+    const std::string obj = dir.write("oor.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 9/3\n");
+    const std::string msg = errorOf([&] { knit::loadMesh(obj); });
+    EXPECT_NE(msg.find("oor.obj:7: face references vertex 9 but the file has 3 vertices"), std::string::npos) << msg;
+    const std::string vt = dir.write("oorvt.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/7\n");
+    EXPECT_NE(errorOf([&] { knit::loadMesh(vt); }).find("texture coordinate 7"), std::string::npos);
+    std::string ply = ringPly();
+    ply.replace(ply.find("\n4 3 4 9 8\n"), 11, "\n4 3 4 99 8\n");
+    const std::string plyMsg = errorOf([&] { knit::loadMesh(dir.write("oor.ply", ply)); });
+    EXPECT_NE(plyMsg.find("face 3 references vertex 99 but the file has 10 vertices"), std::string::npos) << plyMsg;
+    EXPECT_THROW(knit::loadMesh(dir.write("oor.off", "STOFF\n3 1 0\n0 0 0 0 0\n1 0 0 1 0\n0 1 0 0 1\n3 0 1 7\n")),
+                 knit::Error);
+}
+
+TEST(MeshIo, repeatedFaceVertexIsRejected) {
+    TempDir dir;
+    const std::string obj = dir.write("rep.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 2/1 3/1\n");
+    EXPECT_NE(errorOf([&] { knit::loadMesh(obj); }).find("rep.obj:5: face uses vertex 2 twice"), std::string::npos);
+}
+
+TEST(MeshIo, missingFileIsRejected) {
+    TempDir dir;
+    const std::string p = dir.file("absent.obj");
+    EXPECT_EQ(errorOf([&] { knit::loadMesh(p); }), p + ": no such file");
+}
+
+TEST(MeshIo, directoryIsRejected) {
+    TempDir dir;
+    std::filesystem::create_directories(dir.file("folder.obj"));
+    const std::string msg = errorOf([&] { knit::loadMesh(dir.file("folder.obj")); });
+    EXPECT_NE(msg.find("is a directory"), std::string::npos) << msg;
+}
+
+TEST(MeshIo, unknownExtensionIsRejected) {
+    TempDir dir;
+    const std::string p = dir.write("mesh.stl", "solid x\nendsolid x\n");
+    EXPECT_NE(errorOf([&] { knit::loadMesh(p); }).find("unknown mesh file extension '.stl'"), std::string::npos);
+}

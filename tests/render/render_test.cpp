@@ -1,0 +1,333 @@
+// Tracer tests: self-intersection, furnace, the three geometry modes agree, back-lit transmission,
+// determinism, image files and bad input.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <random>
+
+#include <glm/geometric.hpp>
+#include <nlohmann/json.hpp>
+#include <stb/stb_image.h>
+#include <tbb/global_control.h>
+#include <tinyexr.h>
+
+#include "knit/error.hpp"
+#include "knit/image_io.hpp"
+#include "knit/ply_geometry.hpp"
+#include "knit/render.hpp"
+#include "knit/synthetic_scene.hpp"
+#include "knit/trace_scene.hpp"
+
+namespace knit {
+namespace {
+
+const GeometryMode kModes[] = {GeometryMode::Curves, GeometryMode::Tubes, GeometryMode::Grid};
+
+SyntheticSceneOptions wavyCloth() {
+    SyntheticSceneOptions o;
+    o.courses = 5;
+    o.size = 0.01;
+    o.yarnRadius = 0.0008;
+    o.plyCount = 3;
+    o.waveAmplitude = 0.0004;
+    o.waveLength = 0.006;
+    o.cellSize = 0.25;
+    return o;
+}
+
+std::string tmpFile(const std::string& name) { return std::string(KNIT_BINARY_DIR) + "/render_test_" + name; }
+
+struct Built {
+    Scene scene;
+    PlyGeometry geometry;
+    std::vector<int64_t> cells;
+};
+
+Built build(const SyntheticSceneOptions& o) {
+    Built b;
+    b.scene = makeSyntheticPlyScene(o);
+    glm::dvec3 lo(1e300), hi(-1e300);
+    for (const glm::dvec3& p : b.scene.plies.curves.points) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    b.geometry = buildPlyGeometry(b.scene.plies, 0.5 * (lo + hi));
+    b.cells = segmentCells(b.scene, b.geometry);
+    return b;
+}
+
+TraceSceneOptions modeOptions(GeometryMode m, const Built& b, int sides = 8) {
+    TraceSceneOptions so;
+    so.mode = m;
+    so.tubeSides = sides;
+    so.segmentCells = &b.cells;
+    return so;
+}
+
+glm::vec3 randomHemisphere(std::mt19937& rng, const glm::vec3& n) {
+    std::normal_distribution<float> g;
+    glm::vec3 v(g(rng), g(rng), g(rng));
+    v = glm::normalize(v);
+    return glm::dot(v, n) < 0 ? -v : v;
+}
+
+// Fires rays at the cloth; from every ply hit, spawns reflected and transmitted rays and counts
+// those whose next hit is on the very segment they leave.
+int countSelfHits(const TraceScene& ts, int rays, int* spawned) {
+    std::mt19937 rng(42);
+    std::uniform_real_distribution<float> uni(-0.005f, 0.005f);
+    int self = 0;
+    *spawned = 0;
+    for (int i = 0; i < rays; ++i) {
+        const glm::vec3 org(uni(rng), uni(rng), i % 2 ? 0.02f : -0.02f);
+        const glm::vec3 target(uni(rng), uni(rng), 0.f);
+        const glm::vec3 dir = glm::normalize(target - org);
+        TraceHit h;
+        if (!ts.intersect(org, dir, 0.f, 1.f, h) || h.kind != TraceHit::Ply) continue;
+        const glm::vec3 p = org + h.t * dir;
+        for (int k = 0; k < 4; ++k) {
+            const glm::vec3 w = randomHemisphere(rng, k % 2 ? h.ng : -h.ng);
+            TraceHit next;
+            ++*spawned;
+            if (ts.intersect(ts.spawn(h, p, w), w, 0.f, 1.f, next) && next.kind == TraceHit::Ply &&
+                next.segment == h.segment)
+                ++self;
+        }
+    }
+    return self;
+}
+
+TEST(TraceScene, spawnedRayNeverReHitsItsOriginPrimitive) {
+    const Built b = build(wavyCloth());
+    EmbreeDevice device;
+    for (GeometryMode m : kModes) {
+        const TraceScene ts(device, b.geometry, modeOptions(m, b));
+        int spawned = 0;
+        EXPECT_EQ(countSelfHits(ts, 3000, &spawned), 0) << modeName(m);
+        EXPECT_GT(spawned, 4000) << modeName(m);
+    }
+}
+
+TEST(TraceScene, withoutOffsetsTransmittedRaysReHitTheirOrigin) {
+    // The offsets are what prevents self-hits: with both set to zero, rays leaving into the ply
+    // from a point computed slightly outside re-enter the same segment.
+    const Built b = build(wavyCloth());
+    EmbreeDevice device;
+    int total = 0;
+    for (GeometryMode m : kModes) {
+        TraceScene ts(device, b.geometry, modeOptions(m, b));
+        ts.insideOffset = -0.02f;  // start just outside the surface: the case an offset must fix
+        ts.outsideOffset = 0.f;
+        int spawned = 0;
+        total += countSelfHits(ts, 1000, &spawned);
+    }
+    EXPECT_GT(total, 100);
+}
+
+TEST(TraceScene, gridModeHitsMatchCurvesModeHits) {
+    // Same rays, same segments: the cylinders trimmed at the bisector planes and Embree's round
+    // linear curves agree on hit distance away from joints, up to precision.
+    const Built b = build(wavyCloth());
+    EmbreeDevice device;
+    const TraceScene curves(device, b.geometry, modeOptions(GeometryMode::Curves, b));
+    const TraceScene grid(device, b.geometry, modeOptions(GeometryMode::Grid, b));
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> uni(-0.004f, 0.004f);
+    int both = 0, agree = 0, onlyOne = 0;
+    for (int i = 0; i < 20000; ++i) {
+        const glm::vec3 org(uni(rng), uni(rng), 0.02f), dir = glm::normalize(glm::vec3(uni(rng), uni(rng), -0.02f));
+        TraceHit a, c;
+        const bool ha = curves.intersect(org, dir, 0.f, 1.f, a), hc = grid.intersect(org, dir, 0.f, 1.f, c);
+        if (ha && hc) {
+            ++both;
+            if (std::abs(a.t - c.t) < 0.05f * b.geometry.radius) ++agree;
+        } else if (ha != hc) {
+            ++onlyOne;
+        }
+    }
+    EXPECT_GT(both, 5000);
+    EXPECT_GT(agree, 0.97 * both);
+    EXPECT_LT(onlyOne, 0.01 * both);
+    EXPECT_LT(grid.primitiveCount(), b.geometry.segmentCount() / 20);
+}
+
+RenderOptions smallRender() {
+    RenderOptions o;
+    o.width = 40;
+    o.height = 30;
+    o.spp = 16;
+    o.progress = false;
+    return o;
+}
+
+TEST(Render, furnaceSceneRendersRadianceOne) {
+    // Lossless plies (all energy scattered, no shadowing) under a white environment: every pixel
+    // sees radiance 1 whatever the geometry.
+    const Scene scene = makeSyntheticPlyScene(wavyCloth());
+    RenderOptions o = smallRender();
+    o.environment = 1.0;
+    o.lightIrradiance = 0.0;
+    o.maxDepth = 200;
+    o.material.kR = Rgb(0.0);
+    o.material.kTT = Rgb(0.0);
+    o.material.bodyAlbedo = Rgb(1.0);
+    o.material.fiberDetail = false;
+    o.material.fiberShadowFloor = 1.0;
+    o.material.plyShadowFloor = 1.0;
+    for (const char* mode : {"curves", "grid", "tubes"}) {
+        o.mode = mode;
+        const RenderResult r = renderScene(scene, o);
+        double sum = 0, var = 0;
+        for (size_t i = 0; i < r.image.variance.size(); ++i) {
+            sum += r.image.rgb[3 * i];
+            var += r.image.variance[i];
+        }
+        const double n = double(r.image.variance.size());
+        const double mean = sum / n, se = std::sqrt(var) / n;
+        EXPECT_NEAR(mean, 1.0, 4 * se + 2e-3) << mode;
+    }
+}
+
+TEST(Render, threeModesRenderMatchingImages) {
+    const Scene scene = makeSyntheticPlyScene(wavyCloth());
+    RenderOptions o = smallRender();
+    o.spp = 64;
+    o.tubeSides = 16;
+    std::vector<Image> images;
+    for (const char* mode : {"curves", "grid", "tubes"}) {
+        o.mode = mode;
+        images.push_back(renderScene(scene, o).image);
+    }
+    for (int k = 1; k < 3; ++k) {
+        const ImageComparison c = compareImages(images[0], images[k], 5, 4.0);
+        EXPECT_LE(c.outliers, c.blocks / 12) << "mode " << k << " maxZ " << c.maxZ;
+        EXPECT_LT(c.meanAbsDifference, 0.1 * luminance(images[0].mean())) << "mode " << k;
+    }
+    // And the comparison can tell different images apart: front vs back light.
+    o.mode = "curves";
+    o.light = "back";
+    const ImageComparison diff = compareImages(images[0], renderScene(scene, o).image, 5, 4.0);
+    EXPECT_GT(diff.outliers, diff.blocks / 2);
+}
+
+TEST(Render, backLitImageShowsTransmittedLight) {
+    SyntheticSceneOptions dense = wavyCloth();
+    dense.courses = 7;  // touching yarns: no gaps to see the light through
+    dense.yarnRadius = 0.01 / 14;
+    const Scene scene = makeSyntheticPlyScene(dense);
+    RenderOptions o = smallRender();
+    o.light = "back";
+    o.environment = 0.0;
+    o.fovDegrees = 12;  // only cloth in view
+    o.material.kTT = Rgb(0.3);
+    o.material.kR = Rgb(0.3);
+    o.material.bodyAlbedo = Rgb(0.6);
+    o.material.reflectFraction = 0.3;
+    const RenderResult lit = renderScene(scene, o);
+    int bright = 0;
+    for (size_t i = 0; i < lit.image.variance.size(); ++i) bright += lit.image.rgb[3 * i + 1] > 0;
+    EXPECT_GT(bright, 0.9 * lit.image.variance.size());
+    // Without transmission lobes the back-lit cloth is much darker.
+    o.material.kTT = Rgb(0.0);
+    o.material.reflectFraction = 1.0;
+    const RenderResult opaque = renderScene(scene, o);
+    EXPECT_GT(luminance(lit.image.mean()), 5 * luminance(opaque.image.mean()));
+}
+
+TEST(Render, deterministicForSeedAndThreadCount) {
+    const Scene scene = makeSyntheticPlyScene(wavyCloth());
+    RenderOptions o = smallRender();
+    o.mode = "grid";
+    const Image a = renderScene(scene, o).image;
+    Image b;
+    {
+        tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+        b = renderScene(scene, o).image;
+    }
+    EXPECT_EQ(a.rgb, b.rgb);
+    o.seed = 2;
+    EXPECT_NE(a.rgb, renderScene(scene, o).image.rgb);
+}
+
+TEST(Render, farFromOriginRendersLikeAtOrigin) {
+    SyntheticSceneOptions far = wavyCloth();
+    far.offset = glm::dvec3(1e5, -2e5, 3e4);  // 100 km away: float32 world coordinates would fail
+    RenderOptions o = smallRender();
+    o.mode = "grid";
+    const Image a = renderScene(makeSyntheticPlyScene(wavyCloth()), o).image;
+    const Image b = renderScene(makeSyntheticPlyScene(far), o).image;
+    const ImageComparison c = compareImages(a, b, 5, 4.0);
+    EXPECT_LE(c.outliers, c.blocks / 12);
+}
+
+TEST(Render, pngAndExrAreWrittenAndReadBack) {
+    const Scene scene = makeSyntheticPlyScene(wavyCloth());
+    RenderOptions o = smallRender();
+    o.output = tmpFile("image.png");
+    o.exr = tmpFile("image.exr");
+    const RenderResult r = renderScene(scene, o);
+    int w, h, n;
+    unsigned char* px = stbi_load(o.output.c_str(), &w, &h, &n, 3);
+    ASSERT_NE(px, nullptr);
+    EXPECT_EQ(w, 40);
+    EXPECT_EQ(h, 30);
+    stbi_image_free(px);
+    float* rgba = nullptr;
+    const char* err = nullptr;
+    ASSERT_EQ(LoadEXR(&rgba, &w, &h, o.exr.c_str(), &err), TINYEXR_SUCCESS);
+    EXPECT_FLOAT_EQ(rgba[4 * 17 + 1], r.image.rgb[3 * 17 + 1]);  // linear values kept exactly
+    free(rgba);
+    const nlohmann::json report = renderReport(r);
+    EXPECT_GT(report["raysPerSecond"].get<double>(), 0);
+    EXPECT_GT(report["sceneMemoryBytes"].get<int64_t>(), 0);
+    EXPECT_GT(report["peakMemoryBytes"].get<int64_t>(), 0);
+    std::remove(o.output.c_str());
+    std::remove(o.exr.c_str());
+}
+
+void expectError(const Scene& scene, const RenderOptions& o, const std::string& fragment) {
+    try {
+        renderScene(scene, o);
+        FAIL() << "no error, expected one mentioning " << fragment;
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+    }
+}
+
+TEST(Render, badInputIsAClearError) {
+    const Scene scene = makeSyntheticPlyScene(wavyCloth());
+    RenderOptions o = smallRender();
+    o.spp = 0;
+    expectError(scene, o, "samples per pixel");
+    o = smallRender();
+    o.materialOverrides["kR"] = {0.8};
+    o.materialOverrides["bodyAlbedo"] = {0.5};
+    expectError(scene, o, "energy");
+    o = smallRender();
+    o.materialOverrides["alphaAlong"] = {5.0};
+    expectError(scene, o, "alphaAlong");
+    o = smallRender();
+    o.mode = "voxels";
+    expectError(scene, o, "voxels");
+    o = smallRender();
+    expectError(Scene(), o, "no ply curves");
+    o.output = "/nonexistent-folder/knit/image.png";
+    expectError(scene, o, "/nonexistent-folder/knit/image.png");
+    EXPECT_FALSE(std::filesystem::exists(o.output));
+}
+
+TEST(Render, failedWriteLeavesNoPartialFile) {
+    const std::string dir = tmpFile("dir.png");
+    std::filesystem::create_directories(dir);  // a folder where the image should go
+    Image im;
+    im.width = 2, im.height = 2;
+    im.rgb.assign(12, 0.5f);
+    EXPECT_THROW(checkWritable(dir), Error);
+    size_t files = 0;
+    for (auto& e : std::filesystem::directory_iterator(std::string(KNIT_BINARY_DIR)))
+        files += e.path().filename().string().find("render_test_dir.png.tmp") != std::string::npos;
+    EXPECT_EQ(files, 0u);
+    std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace knit
