@@ -12,6 +12,7 @@
 #include <tbb/parallel_for.h>
 
 #include "knit/error.hpp"
+#include "knit/stitch.hpp"
 
 namespace knit {
 namespace {
@@ -138,46 +139,49 @@ BindResult bindYarns(const BaseMesh& mesh, const std::vector<glm::dvec3>& normal
                 continue;
             }
         }
-        Piece cur;
-        auto finish = [&](size_t lastIdx, bool hasNext, size_t nextIdx) {
-            if (cur.v.empty()) return;
-            if (hasNext) {
-                const size_t p = b + lastIdx, q = b + nextIdx;
-                if (auto x = boundaryCrossing(mesh, grid, chart(p), yarns.uv[p], yarns.uv[q], yarns.height[p], yarns.height[q],
-                                              yarns.twist[p], yarns.twist[q])) {
-                    cur.v.push_back(*x);
-                    ++stats.boundaryVertices;
-                }
-                cur.boundaryEnd[1] = true;
+        // Crossing from located vertex i towards a cut neighbour (a yarn vertex or a ghost).
+        auto crossingTowards = [&](size_t i, const GhostVertex& target, int end, Piece& piece) {
+            const size_t p = b + i;
+            if (auto x = boundaryCrossing(mesh, grid, chart(p), yarns.uv[p], target.uv, yarns.height[p], target.height,
+                                          yarns.twist[p], target.twist)) {
+                if (end == 0) piece.v.insert(piece.v.begin(), *x);
+                else piece.v.push_back(*x);
+                ++stats.boundaryVertices;
             }
+            piece.boundaryEnd[end] = true;
+        };
+        auto vertexAsTarget = [&](size_t i) {
+            return GhostVertex{true, yarns.uv[b + i], yarns.height[b + i], yarns.twist[b + i]};
+        };
+        const GhostVertex noGhost;
+        const GhostVertex& startGhost = closed || yarns.ghosts.empty() ? noGhost : yarns.ghosts[y][0];
+        const GhostVertex& endGhost = closed || yarns.ghosts.empty() ? noGhost : yarns.ghosts[y][1];
+        Piece cur;
+        auto finish = [&](size_t lastIdx, const GhostVertex& beyond) {
+            if (cur.v.empty()) return;
+            if (beyond.present) crossingTowards(lastIdx, beyond, 1, cur);
             if (cur.v.size() >= 2) pieces.push_back(std::move(cur));
             else ++stats.cutVertices;
             cur = Piece{};
         };
         for (size_t s = 0; s < n; ++s) {
             const size_t i = (breakAt + s) % n;
+            const size_t prev = (i + n - 1) % n;
             if (!located(b + i)) {
-                if (!cur.v.empty()) finish((i + n - 1) % n, true, i);
+                if (!cur.v.empty()) finish(prev, vertexAsTarget(i));
                 continue;
             }
-            const bool hasPrev = closed || s > 0;
-            const size_t prev = (i + n - 1) % n;
-            if (!cur.v.empty() && !joined(prev, i)) finish(prev, true, i);
-            if (cur.v.empty() && hasPrev && (s > 0 || closed)) {
-                // Entering from a cut: start with the boundary crossing towards the previous vertex.
-                const size_t p = b + i, q = b + prev;
-                if (auto x = boundaryCrossing(mesh, grid, chart(p), yarns.uv[p], yarns.uv[q], yarns.height[p], yarns.height[q],
-                                              yarns.twist[p], yarns.twist[q])) {
-                    cur.v.push_back(*x);
-                    ++stats.boundaryVertices;
-                }
-                cur.boundaryEnd[0] = true;
-            }
+            if (!cur.v.empty() && !joined(prev, i)) finish(prev, vertexAsTarget(i));
+            const bool piecesStart = cur.v.empty();
             cur.v.push_back(bound(b + i));
+            // Entering from a cut: start with the boundary crossing towards the previous vertex.
+            if (piecesStart && (closed || s > 0)) crossingTowards(i, vertexAsTarget(prev), 0, cur);
+            else if (piecesStart && startGhost.present) crossingTowards(i, startGhost, 0, cur);
         }
-        // The last run of a closed yarn ends at the break we started from.
-        if (closed) finish((breakAt + n - 1) % n, true, breakAt);
-        else finish(0, false, 0);
+        // The last run of a closed yarn ends at the break it started from; an open yarn's last
+        // run may end at a ghost.
+        if (closed) finish((breakAt + n - 1) % n, vertexAsTarget(breakAt));
+        else finish(n - 1, endGhost);
     }
 
     // 3. Weld boundary ends that meet in object space with continuing tangents.

@@ -2,6 +2,7 @@
 #include "knit/stitch.hpp"
 
 #include <cassert>
+#include <optional>
 
 namespace knit {
 namespace {
@@ -18,6 +19,15 @@ struct Walker {
         if (nb.v < 0) return -1;
         const int32_t k2 = tiling.slotOf(tiling.tiles[k] + glm::ivec2(nb.dx, nb.dy));
         return k2 < 0 ? -1 : int64_t(k2) * n + nb.v;
+    }
+    // The neighbour through slot s when its tile is missing from the tiling.
+    std::optional<std::pair<glm::ivec2, uint32_t>> missing(uint32_t k, uint32_t v, int s) const {
+        if (s < 0) return std::nullopt;
+        const PatternNeighbor& nb = adj.slots[v][s];
+        if (nb.v < 0) return std::nullopt;
+        const glm::ivec2 t = tiling.tiles[k] + glm::ivec2(nb.dx, nb.dy);
+        if (tiling.slotOf(t) >= 0) return std::nullopt;
+        return std::make_pair(t, uint32_t(nb.v));
     }
     // The slot of w that leads back along the edge we arrived by (from v via slot s).
     int backSlot(uint32_t v, int s, uint32_t w) const {
@@ -48,26 +58,43 @@ UvYarns stitchYarns(const Pattern& pattern, const PatternAdjacency& adj, const T
     out.source.reserve(total);
     std::vector<uint8_t> visited(total, 0);
 
+    auto uvOf = [&](glm::ivec2 tile, uint32_t v) {
+        const glm::dvec3& q = pattern.points[v];
+        return glm::dvec2((q.x + tile.x * pattern.px) * toUv.x, (q.y + tile.y * pattern.py) * toUv.y);
+    };
+    auto ghostOf = [&](uint64_t id, int slot) {
+        GhostVertex g;
+        if (const auto m = walker.missing(uint32_t(id / n), uint32_t(id % n), slot)) {
+            g.present = true;
+            g.uv = uvOf(m->first, m->second);
+            g.height = pattern.points[m->second].z * placement.scale;
+            g.twist = pattern.twist[m->second];
+        }
+        return g;
+    };
     auto emit = [&](uint64_t id) {
         const uint32_t k = uint32_t(id / n), v = uint32_t(id % n);
-        const glm::ivec2 tile = tiling.tiles[k];
-        const glm::dvec3& q = pattern.points[v];
-        out.uv.emplace_back((q.x + tile.x * pattern.px) * toUv.x, (q.y + tile.y * pattern.py) * toUv.y);
-        out.height.push_back(q.z * placement.scale);
+        out.uv.push_back(uvOf(tiling.tiles[k], v));
+        out.height.push_back(pattern.points[v].z * placement.scale);
         out.twist.push_back(pattern.twist[v]);
         out.source.push_back(uint32_t(id));
         visited[id] = 1;
     };
 
     // Walks from `start`, leaving through adjacency slot `out` (-1: none); true for a loop.
+    GhostVertex endGhost;
     auto walk = [&](uint64_t start, int out) {
         uint64_t cur = start;
+        endGhost = GhostVertex{};
         for (;;) {
             emit(cur);
             if (out < 0) return false;
             const uint32_t v = uint32_t(cur % n);
             const int64_t next = walker.neighbor(uint32_t(cur / n), v, out);
-            if (next < 0) return false;
+            if (next < 0) {
+                endGhost = ghostOf(cur, out);
+                return false;
+            }
             if (visited[next]) return uint64_t(next) == start;
             // Leave the next vertex through the slot we did not arrive by.
             out = 1 - walker.backSlot(v, out, uint32_t(next % n));
@@ -75,9 +102,10 @@ UvYarns stitchYarns(const Pattern& pattern, const PatternAdjacency& adj, const T
         }
     };
 
-    auto finishYarn = [&](bool closed) {
+    auto finishYarn = [&](bool closed, GhostVertex startGhost) {
         out.offsets.push_back(uint32_t(out.uv.size()));
         out.closed.push_back(closed ? 1 : 0);
+        out.ghosts.push_back({closed ? GhostVertex{} : startGhost, closed ? GhostVertex{} : endGhost});
     };
 
     // 1. Open yarns start at vertices with fewer than two present neighbours.
@@ -86,14 +114,17 @@ UvYarns stitchYarns(const Pattern& pattern, const PatternAdjacency& adj, const T
         const uint32_t k = uint32_t(id / n), v = uint32_t(id % n);
         const bool has0 = walker.neighbor(k, v, 0) >= 0, has1 = walker.neighbor(k, v, 1) >= 0;
         if (has0 && has1) continue;
-        walk(id, has0 ? 0 : (has1 ? 1 : -1));
-        finishYarn(false);
+        // The start's other slot may lead into a tile that was not generated.
+        const int outSlot = has0 ? 0 : (has1 ? 1 : -1);
+        const GhostVertex startGhost = ghostOf(id, outSlot == 0 ? 1 : 0);
+        walk(id, outSlot);
+        finishYarn(false, startGhost);
     }
     // 2. What remains lies on closed loops.
     for (uint64_t id = 0; id < total; ++id) {
         if (visited[id]) continue;
         const bool closed = walk(id, 0);
-        finishYarn(closed);
+        finishYarn(closed, GhostVertex{});
     }
     return out;
 }

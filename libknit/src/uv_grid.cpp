@@ -24,6 +24,18 @@ int orientationSign(glm::dvec2 a, glm::dvec2 b, glm::dvec2 c) {
     return int(CGAL::orientation(Point2(a.x, a.y), Point2(b.x, b.y), Point2(c.x, c.y)));
 }
 
+// Orientation of (a, b, c): the double determinant when its sign is certain (Shewchuk's
+// error bound for orient2d), otherwise CGAL's exact predicate. Same result as the exact
+// predicate, without its call overhead in the common case.
+int filteredOrientation(glm::dvec2 a, glm::dvec2 b, glm::dvec2 c) {
+    const double left = (a.x - c.x) * (b.y - c.y), right = (a.y - c.y) * (b.x - c.x);
+    const double det = left - right;
+    const double bound = 3.3306690738754716e-16 * (std::abs(left) + std::abs(right));
+    if (det > bound) return 1;
+    if (-det > bound) return -1;
+    return orientationSign(a, b, c);
+}
+
 double cross2(glm::dvec2 a, glm::dvec2 b) { return a.x * b.y - a.y * b.x; }
 
 // Separating-axis test of a triangle against an axis-aligned box (closed sets), in double.
@@ -100,8 +112,8 @@ UvGrid buildUvGrid(const BaseMesh& mesh, const UvGridOptions& options) {
             continue;
         }
         const glm::dvec2 a = mesh.uvs[t.x], b = mesh.uvs[t.y], c = mesh.uvs[t.z];
-        lo = glm::min(lo, grid.cellOf(glm::min(a, glm::min(b, c)) - eps));
-        hi = glm::max(hi, grid.cellOf(glm::max(a, glm::max(b, c)) + eps));
+        lo = glm::min(lo, grid.cellOf(glm::min(a, glm::min(b, c))));
+        hi = glm::max(hi, grid.cellOf(glm::max(a, glm::max(b, c))));
     }
     if (grid.degenerateUvFaces == nf) throw Error(mesh.name + ": every triangle has zero UV area");
     const uint64_t cellCount = uint64_t(hi.x - lo.x + 1) * uint64_t(hi.y - lo.y + 1);
@@ -114,15 +126,16 @@ UvGrid buildUvGrid(const BaseMesh& mesh, const UvGridOptions& options) {
     grid.minCell = lo;
     grid.dims = hi - lo + 1;
 
-    // 2. Conservative triangle-cell overlap: candidate cells from the (grown) UV box, then a
-    //    separating-axis test against the grown cell box.
+    // 2. Conservative triangle-cell overlap: candidate cells from the UV box (cellOf is monotone,
+    //    so every point of the triangle maps into this range), then a separating-axis test
+    //    against the cell box grown by eps, so rounding can only add cells, never drop one.
     std::vector<std::pair<uint64_t, uint32_t>> cellFace;  // (linear cell, face)
     for (size_t f = 0; f < nf; ++f) {
         if (grid.faceOrientation[f] == 0) continue;
         const glm::uvec3 t = mesh.faceUvs[f];
         const glm::dvec2 tri[3] = {mesh.uvs[t.x], mesh.uvs[t.y], mesh.uvs[t.z]};
-        const glm::ivec2 c0 = grid.cellOf(glm::min(tri[0], glm::min(tri[1], tri[2])) - eps);
-        const glm::ivec2 c1 = grid.cellOf(glm::max(tri[0], glm::max(tri[1], tri[2])) + eps);
+        const glm::ivec2 c0 = grid.cellOf(glm::min(tri[0], glm::min(tri[1], tri[2])));
+        const glm::ivec2 c1 = grid.cellOf(glm::max(tri[0], glm::max(tri[1], tri[2])));
         for (int32_t y = c0.y; y <= c1.y; ++y)
             for (int32_t x = c0.x; x <= c1.x; ++x) {
                 const glm::dvec2 boxLo = glm::dvec2(x, y) * options.cellSize - eps;
@@ -214,7 +227,6 @@ double closestOnSegment(glm::dvec2 a, glm::dvec2 b, glm::dvec2 p) {
 LocateResult locatePoint(const BaseMesh& mesh, const UvGrid& grid, glm::dvec2 uv, double tolerance) {
     LocateResult result;
     if (!std::isfinite(uv.x) || !std::isfinite(uv.y) || grid.cells.empty()) return result;
-    const Point2 p(uv.x, uv.y);
 
     // 1. Exact containment in the closed triangle; the lowest triangle id wins (lists ascend).
     if (const int32_t slot = grid.slotOf(grid.cellOf(uv)); slot >= 0) {
@@ -223,9 +235,9 @@ LocateResult locatePoint(const BaseMesh& mesh, const UvGrid& grid, glm::dvec2 uv
             const glm::uvec3 t = mesh.faceUvs[f];
             const glm::dvec2 a = mesh.uvs[t.x], b = mesh.uvs[t.y], c = mesh.uvs[t.z];
             const int o = grid.faceOrientation[f];
-            if (int(CGAL::orientation(Point2(a.x, a.y), Point2(b.x, b.y), p)) == -o) continue;
-            if (int(CGAL::orientation(Point2(b.x, b.y), Point2(c.x, c.y), p)) == -o) continue;
-            if (int(CGAL::orientation(Point2(c.x, c.y), Point2(a.x, a.y), p)) == -o) continue;
+            if (filteredOrientation(a, b, uv) == -o) continue;
+            if (filteredOrientation(b, c, uv) == -o) continue;
+            if (filteredOrientation(c, a, uv) == -o) continue;
             result.status = LocateStatus::Inside;
             result.point = {f, clampedBarycentrics(a, b, c, uv)};
             return result;

@@ -1,5 +1,6 @@
 // knit/stitch.hpp — walk the tiled segments into maximal yarns (closed loops kept).
 #pragma once
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -10,6 +11,15 @@
 
 namespace knit {
 
+// The pattern neighbour beyond an open yarn's end whose tile was not generated (it lies outside
+// the cells the mesh covers): binding treats it like a cut vertex, so the yarn ends exactly where
+// it crosses the UV boundary and can be welded across seams.
+struct GhostVertex {
+    bool present = false;
+    glm::dvec2 uv{0.0};
+    double height = 0, twist = 0;
+};
+
 // Yarns in UV space. Yarn y owns vertices [offsets[y], offsets[y+1]); closed[y] marks loops.
 struct UvYarns {
     std::vector<glm::dvec2> uv;
@@ -18,6 +28,7 @@ struct UvYarns {
     std::vector<uint32_t> source;    // tiled vertex id = tileSlot * patternVertexCount + local
     std::vector<uint32_t> offsets{0};
     std::vector<uint8_t> closed;
+    std::vector<std::array<GhostVertex, 2>> ghosts;  // per yarn: beyond its first / last vertex
 
     size_t yarnCount() const { return closed.size(); }
     size_t vertexCount() const { return uv.size(); }

@@ -1,0 +1,90 @@
+// core_bench.cpp — throughput of the core stages at garment-like sizes (>= 1M yarn vertices).
+//
+// Scene: the project's stockinette (24 vertices per tile) on a drape mesh of 256 x 256 quads
+// (131k triangles), repeats 210 x 210 -> ~44k tiles, ~1.06M tiled yarn vertices.
+// items_per_second: yarn vertices per second (tiling+stitch, binding, evaluation) or
+// triangles per second (grid build). Wall-clock time over all cores (2 here).
+#include <benchmark/benchmark.h>
+
+#include "knit/binding.hpp"
+#include "knit/generator.hpp"
+#include "knit/scene.hpp"
+#include "knit/stitch.hpp"
+#include "knit/tiling.hpp"
+#include "knit/uv_grid.hpp"
+
+namespace {
+
+struct Fixture {
+    knit::Scene scene;
+    Fixture() {
+        knit::ProceduralMeshOptions mo;
+        mo.resU = mo.resV = 256;
+        knit::SceneOptions o;
+        o.placement.repeats = {210, 210};
+        o.buildPlies = false;
+        scene = knit::buildScene(knit::generateStockinette(), knit::makeDrape(mo), o);
+    }
+};
+
+const Fixture& fixture() {
+    static const Fixture f;
+    return f;
+}
+
+void BM_TilingStitch(benchmark::State& state) {
+    const knit::Scene& s = fixture().scene;
+    const knit::PatternAdjacency adj = knit::buildAdjacency(s.pattern);
+    size_t vertices = 0;
+    for (auto _ : state) {
+        const knit::Tiling tiling = knit::tilesForCells(s.pattern, s.grid.cells);
+        const knit::UvYarns yarns = knit::stitchYarns(s.pattern, adj, tiling, s.placement);
+        vertices = yarns.vertexCount();
+        benchmark::DoNotOptimize(yarns.uv.data());
+    }
+    state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(vertices));
+    state.counters["yarn_vertices"] = double(vertices);
+}
+BENCHMARK(BM_TilingStitch)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_GridBuild(benchmark::State& state) {
+    const knit::Scene& s = fixture().scene;
+    knit::UvGridOptions o;
+    o.cellSize = s.placement.cellSize();
+    for (auto _ : state) {
+        const knit::UvGrid grid = knit::buildUvGrid(s.mesh, o);
+        benchmark::DoNotOptimize(grid.triangles.data());
+    }
+    state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(s.mesh.faceCount()));
+    state.counters["cells"] = double(s.grid.cells.size());
+}
+BENCHMARK(BM_GridBuild)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_Binding(benchmark::State& state) {
+    const knit::Scene& s = fixture().scene;
+    knit::BindOptions o;
+    o.yarnRadius = s.yarnRadius;
+    for (auto _ : state) {
+        const knit::BindResult r = knit::bindYarns(s.mesh, s.normals, s.grid, s.uvYarns, o);
+        benchmark::DoNotOptimize(r.binding.face.data());
+    }
+    state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(s.uvYarns.vertexCount()));
+    state.counters["yarn_vertices"] = double(s.uvYarns.vertexCount());
+}
+BENCHMARK(BM_Binding)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_Evaluate(benchmark::State& state) {
+    const knit::Scene& s = fixture().scene;
+    knit::MappedYarns out;
+    for (auto _ : state) {
+        knit::evaluateBinding(s.bound.binding, s.mesh.faces, s.mesh.positions, s.normals, out);
+        benchmark::DoNotOptimize(out.curves.points.data());
+    }
+    state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(s.bound.binding.vertexCount()));
+    state.counters["yarn_vertices"] = double(s.bound.binding.vertexCount());
+}
+BENCHMARK(BM_Evaluate)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,164 @@
+// End-to-end tests of the `knit` command line: exit codes, messages, files left behind.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <sys/wait.h>
+
+#include <nlohmann/json.hpp>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct CliRun {
+    int exitCode = -1;
+    std::string output;  // stdout + stderr
+};
+
+CliRun knit(const std::string& args, const fs::path& cwd) {
+    const std::string cmd = "cd '" + cwd.string() + "' && '" KNIT_CLI "' " + args + " 2>&1";
+    CliRun r;
+    FILE* pipe = popen(cmd.c_str(), "r");
+    if (!pipe) return r;
+    char buf[4096];
+    while (size_t n = fread(buf, 1, sizeof buf, pipe)) r.output.append(buf, n);
+    const int status = pclose(pipe);
+    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return r;
+}
+
+class Cli : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir = fs::temp_directory_path() / ("knit_cli_" + std::to_string(::getpid()) + "_" +
+                                           ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(dir);
+        fs::create_directories(dir);
+    }
+    void TearDown() override { fs::remove_all(dir); }
+    size_t fileCount() const { return size_t(std::distance(fs::directory_iterator(dir), fs::directory_iterator())); }
+    void write(const std::string& name, const std::string& text) { std::ofstream(dir / name) << text; }
+    fs::path dir;
+};
+
+std::string shared(const std::string& f) { return std::string(KNIT_SHARED_DIR) + "/patterns/hylc/" + f; }
+
+TEST_F(Cli, buildWithNoArgumentsWritesDefaultPlies) {
+    const CliRun r = knit("build -q", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    ASSERT_TRUE(fs::exists(dir / "knit-plies.obj"));
+    std::ifstream in(dir / "knit-plies.obj");
+    size_t v = 0, l = 0;
+    for (std::string line; std::getline(in, line);) {
+        v += line.rfind("v ", 0) == 0;
+        l += line.rfind("l ", 0) == 0;
+    }
+    EXPECT_GT(v, 100000u);
+    EXPECT_GT(l, 100u);
+    EXPECT_NE(r.output.find("yarns"), std::string::npos);
+}
+
+TEST_F(Cli, reportHasCountsTimesAndSegmentLengths) {
+    const CliRun r = knit("build -q --mesh plane --repeats 10 10 --export yarns -o y.obj --report r.json", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    std::ifstream in(dir / "r.json");
+    const nlohmann::json j = nlohmann::json::parse(in);
+    for (const char* k : {"cells", "yarns", "closed_loops", "open_ends", "cut_vertices", "welded_ends"})
+        EXPECT_TRUE(j["counts"].contains(k)) << k;
+    // 10 x 10 cells plus the row and column touched by the square's far edges (u = 1, v = 1).
+    EXPECT_EQ(j["counts"]["cells"].get<int>(), 121);
+    EXPECT_GT(j["yarn_segments"]["longest_segment_length"].get<double>(), 0);
+    EXPECT_GT(j["yarn_segments"]["median_segment_length"].get<double>(), 0);
+    for (const char* k : {"uv_grid", "tiling", "stitch", "binding", "evaluate", "total"}) EXPECT_TRUE(j["seconds"].contains(k)) << k;
+}
+
+TEST_F(Cli, cylinderWithIntegralRepeatsGivesClosedCourses) {
+    const CliRun r = knit("build -q --mesh cylinder --repeats 24 10 --export yarns -o y.obj --report r.json", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    std::ifstream in(dir / "r.json");
+    const nlohmann::json j = nlohmann::json::parse(in);
+    EXPECT_GE(j["counts"]["closed_loops"].get<int>(), 8);
+    // Closed curves repeat their first index at the end of the `l` record.
+    std::ifstream obj(dir / "y.obj");
+    bool sawClosed = false;
+    for (std::string line; std::getline(obj, line);) {
+        if (line.rfind("l ", 0) != 0) continue;
+        std::istringstream ss(line.substr(2));
+        std::vector<long> idx;
+        for (long x; ss >> x;) idx.push_back(x);
+        sawClosed = sawClosed || (idx.size() > 2 && idx.front() == idx.back());
+    }
+    EXPECT_TRUE(sawClosed);
+}
+
+TEST_F(Cli, infoPrintsPatternFacts) {
+    const CliRun r = knit("info " + shared("stockinette.pyp"), dir);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("vertices  100"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("2 closed loops"), std::string::npos) << r.output;
+    const CliRun j = knit("info --json stockinette", dir);
+    ASSERT_EQ(j.exitCode, 0) << j.output;
+    EXPECT_EQ(nlohmann::json::parse(j.output)["loops_1x1"].get<int>(), 1);
+}
+
+TEST_F(Cli, everySharedPatternBuildsOnAPlane) {
+    for (const char* f : {"stockinette.pyp", "stocktiny.pyp", "basket.pyp", "satin.pyp", "slip_stitch_honeycomb.pyp"}) {
+        const CliRun r = knit(std::string("build -q --mesh plane --repeats 4 4 --pattern ") + shared(f) + " -o out.obj", dir);
+        EXPECT_EQ(r.exitCode, 0) << f << ": " << r.output;
+    }
+}
+
+TEST_F(Cli, malformedPatternFailsWithoutOutput) {
+    write("bad.pyp", "*pattern\n1 1 0.1 2\n*Q\n0 0 0 0\n");
+    const CliRun r = knit("build -q --pattern bad.pyp -o out.obj", dir);
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.output.find("bad.pyp"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir / "out.obj"));
+}
+
+TEST_F(Cli, meshWithoutUvsFailsWithoutOutput) {
+    write("nouv.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    const CliRun r = knit("build -q --mesh nouv.obj -o out.obj --report r.json", dir);
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.output.find("nouv.obj"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir / "out.obj"));
+    EXPECT_FALSE(fs::exists(dir / "r.json"));
+}
+
+TEST_F(Cli, unknownNamesAndBadFlagsFail) {
+    EXPECT_NE(knit("build -q --pattern no_such_pattern -o out.obj", dir).exitCode, 0);
+    EXPECT_NE(knit("build -q --mesh no_such_mesh -o out.obj", dir).exitCode, 0);
+    EXPECT_NE(knit("build -q --repeats 0 5 -o out.obj", dir).exitCode, 0);
+    EXPECT_NE(knit("build -q --repeats nan 5 -o out.obj", dir).exitCode, 0);
+    EXPECT_NE(knit("build -q --plies 0 -o out.obj", dir).exitCode, 0);
+    EXPECT_NE(knit("frobnicate", dir).exitCode, 0);
+    EXPECT_EQ(fileCount(), 0u);
+}
+
+TEST_F(Cli, unwritableOutputFails) {
+    const CliRun r = knit("build -q -o /nonexistent-dir/out.obj", dir);
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.output.find("/nonexistent-dir/out.obj"), std::string::npos) << r.output;
+}
+
+TEST_F(Cli, helpExplainsTheAlignment) {
+    const CliRun r = knit("build --help", dir);
+    EXPECT_EQ(r.exitCode, 0);
+    EXPECT_NE(r.output.find("--repeats"), std::string::npos);
+    EXPECT_NE(r.output.find("uv ((x + i px)/(U px)"), std::string::npos) << r.output;
+}
+
+TEST_F(Cli, generateReproducesTheShippedPattern) {
+    const CliRun r = knit("generate stockinette -o s.pyp", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    std::ifstream a(dir / "s.pyp"), b(std::string(KNIT_SOURCE_DIR) + "/patterns/stockinette.pyp");
+    std::stringstream sa, sb;
+    sa << a.rdbuf();
+    sb << b.rdbuf();
+    EXPECT_EQ(sa.str(), sb.str());
+}
+
+}  // namespace
