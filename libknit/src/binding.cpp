@@ -95,13 +95,20 @@ BindResult bindYarns(const BaseMesh& mesh, const std::vector<glm::dvec3>& normal
     BindStats& stats = result.stats;
     const size_t nv = yarns.vertexCount();
 
-    // 1. Locate every yarn vertex (parallel; each result depends only on its own vertex).
+    // 1. Locate every yarn vertex: yarns in parallel, each walked in order with the previous
+    //    vertex's triangle as the hint (deterministic for any thread count).
     const glm::dvec2 metresPerUv = uvToMetreScale(mesh);
     const double radiusUv = options.yarnRadius / std::max(metresPerUv.x, metresPerUv.y);
     const double tolUv = options.clampTolerance * radiusUv;
     std::vector<LocateResult> loc(nv);
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, nv, 4096), [&](const tbb::blocked_range<size_t>& r) {
-        for (size_t i = r.begin(); i != r.end(); ++i) loc[i] = locatePoint(mesh, grid, yarns.uv[i], tolUv);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, yarns.yarnCount(), 1), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t y = r.begin(); y != r.end(); ++y) {
+            uint32_t hint = UINT32_MAX;
+            for (size_t i = yarns.offsets[y]; i < yarns.offsets[y + 1]; ++i) {
+                loc[i] = locatePoint(mesh, grid, yarns.uv[i], tolUv, hint);
+                hint = loc[i].status == LocateStatus::Inside ? loc[i].point.face : UINT32_MAX;
+            }
+        }
     });
     auto located = [&](size_t i) { return loc[i].status != LocateStatus::Outside; };
     auto chart = [&](size_t i) { return grid.chartOfFace[loc[i].point.face]; };
@@ -247,6 +254,11 @@ BindResult bindYarns(const BaseMesh& mesh, const std::vector<glm::dvec3>& normal
 
     // 4. Chain pieces along welds into yarns; a chain that returns to its start is a loop.
     Binding& out = result.binding;
+    const size_t expected = nv + stats.boundaryVertices;
+    out.face.reserve(expected);
+    out.bary.reserve(expected);
+    out.height.reserve(expected);
+    out.twist.reserve(expected);
     const double dedupe = 1e-4 * options.yarnRadius;
     std::vector<uint8_t> used(pieces.size(), 0);
     auto append = [&](const Piece& pc, bool reversed, bool dropFirst) {

@@ -9,8 +9,9 @@
 //      coordinate axis least aligned with the tangent when there is no usable seed;
 //   4. double-reflection transport point to point (skipping the first reflection on
 //      zero-length segments, the second when the tangent is unchanged), re-orthonormalized
-//      every 16 steps and at the end so no drift accumulates; turns of more than 90 degrees between two samples
-//      (unresolved hairpins, tangent reversals) project the normal instead (see transport);
+//      every 16 steps and at the end so no drift accumulates; turns of more than 90 degrees
+//      between two samples (unresolved hairpins, tangent reversals) project the normal
+//      instead (see transport);
 //   5. closed curves: transport once more across the closing segment, measure the signed
 //      mismatch angle about the first tangent with atan2 and rotate every frame by the angle
 //      times its arc-length fraction, so the frame closes with no jump.
@@ -67,8 +68,8 @@ bool zeroSegment(const dvec3& a, const dvec3& b, const dvec3& v) {
 // or an exact tangent reversal) has no meaningful rotation-minimizing transport; there the
 // normal is projected onto the new normal plane instead, which keeps it as close as possible
 // to the previous one (dot > 0, no flip; unchanged at an exact reversal).
-dvec3 transport(const dvec3& x0, const dvec3& t0, const dvec3& r0, const dvec3& x1, const dvec3& t1,
-                bool renormalize = true) {
+inline dvec3 transport(const dvec3& x0, const dvec3& t0, const dvec3& r0, const dvec3& x1, const dvec3& t1,
+                       bool renormalize = true) {
     if (glm::dot(t0, t1) < 0.0) {
         const dvec3 p = r0 - glm::dot(r0, t1) * t1;
         const double len = glm::length(p);
@@ -200,7 +201,8 @@ void curveFrames(const glm::dvec3* x, size_t n, bool closed, const glm::dvec3* s
 Frames rotationMinimizingFrames(const Polylines& curves, const std::vector<glm::dvec3>* seedNormals,
                                 const FrameOptions& options) {
     // Validate first: the per-curve loops do not throw.
-    if (curves.offsets.size() != curves.curveCount() + 1 || curves.offsets.back() != curves.pointCount())
+    if (curves.offsets.size() != curves.curveCount() + 1 || curves.offsets.front() != 0 ||
+        curves.offsets.back() != curves.pointCount() || !std::is_sorted(curves.offsets.begin(), curves.offsets.end()))
         throw Error("rotationMinimizingFrames: inconsistent Polylines (offsets do not match points/closed)");
     if (seedNormals && seedNormals->size() != curves.pointCount())
         throw Error("rotationMinimizingFrames: seedNormals has " + std::to_string(seedNormals->size()) +

@@ -37,6 +37,7 @@
 #include <glm/geometric.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 
 #include "knit/error.hpp"
 #include "knit/resample.hpp"
@@ -116,8 +117,8 @@ Plies makePlies(const MappedYarns& yarns, const PlyOptions& options) {
     out.centerRadius = opt.centerRadius;
     out.pitch = opt.pitch;
     const size_t curveCount = firstCurve[yarnCount];
-    out.curves.points.resize(totalPoints);
-    out.radial.resize(totalPoints);
+    // The two big arrays are allocated (and zero-filled) concurrently.
+    tbb::parallel_invoke([&] { out.curves.points.resize(totalPoints); }, [&] { out.radial.resize(totalPoints); });
     out.curves.offsets.reserve(curveCount + 1);
     out.curves.closed.reserve(curveCount);
     out.yarnOfCurve.reserve(curveCount);

@@ -21,6 +21,7 @@
 #include <glm/geometric.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 
 #include "knit/error.hpp"
 
@@ -37,31 +38,25 @@ struct Cubic {
     dvec3 eval(double u) const { return ((a * u + b) * u + c) * u + d; }
 };
 
-// Centripetal knot interval sqrt(|q - p|) = |q - p|^(1/2).
-double knotInterval(const dvec3& p, const dvec3& q) { return std::sqrt(glm::length(q - p)); }
-
-// Centripetal Catmull-Rom piece between p1 and p2 (Barry-Goldman tangents in Hermite form).
-// All four knot intervals are > 0 because consecutive duplicates were merged and the
-// reflected end points differ from their neighbours.
-Cubic makeCubic(const dvec3& p0, const dvec3& p1, const dvec3& p2, const dvec3& p3) {
-    double t01 = knotInterval(p0, p1);
-    double t12 = knotInterval(p1, p2);
-    double t23 = knotInterval(p2, p3);
-    // Guard against an exact zero (can only come from wrap-around on degenerate input).
-    const double tiny = 1e-300;
-    t01 = std::max(t01, tiny);
-    t12 = std::max(t12, tiny);
-    t23 = std::max(t23, tiny);
-    const dvec3 m1 = t12 * ((p1 - p0) / t01 - (p2 - p0) / (t01 + t12) + (p2 - p1) / t12);
-    const dvec3 m2 = t12 * ((p2 - p1) / t12 - (p3 - p1) / (t12 + t23) + (p3 - p2) / t23);
+// Centripetal Catmull-Rom piece between p1 and p2 (Barry-Goldman tangents in Hermite form),
+// given the centripetal knot intervals t_ij = |p_j - p_i|^(1/2). All are > 0 because
+// consecutive duplicates were merged and reflected end points differ from their neighbours.
+Cubic makeCubic(const dvec3& p0, const dvec3& p1, const dvec3& p2, const dvec3& p3, double t01, double t12,
+                double t23) {
+    const double i01 = 1.0 / t01, i12 = 1.0 / t12, i23 = 1.0 / t23;
+    const double i02 = 1.0 / (t01 + t12), i13 = 1.0 / (t12 + t23);
+    const dvec3 d12 = (p2 - p1) * i12;
+    const dvec3 m1 = t12 * ((p1 - p0) * i01 - (p2 - p0) * i02 + d12);
+    const dvec3 m2 = t12 * (d12 - (p3 - p1) * i13 + (p3 - p2) * i23);
     Cubic c;
-    c.a = 2.0 * p1 - 2.0 * p2 + m1 + m2;
-    c.b = -3.0 * p1 + 3.0 * p2 - 2.0 * m1 - m2;
+    c.a = 2.0 * (p1 - p2) + m1 + m2;
+    c.b = 3.0 * (p2 - p1) - 2.0 * m1 - m2;
     c.c = m1;
     c.d = p1;
-    const double l0 = glm::length(m1) / 3.0;
-    const double l1 = glm::length((p2 - m2 / 3.0) - (p1 + m1 / 3.0));
-    const double l2 = glm::length(m2) / 3.0;
+    constexpr double third = 1.0 / 3.0;
+    const double l0 = glm::length(m1) * third;
+    const double l1 = glm::length((p2 - p1) - (m1 + m2) * third);
+    const double l2 = glm::length(m2) * third;
     c.polygon = l0 + l1 + l2;
     c.maxLeg = std::max(l0, std::max(l1, l2));
     return c;
@@ -87,10 +82,10 @@ struct CurveBuffer {
 // arc-length estimate) whose chords are all <= spacing. Uniform parameter steps are nearly
 // uniform in arc length on the centripetal spline; a last-resort split with a provably short
 // enough step (|p'(u)| <= 3 * maxLeg) guarantees termination.
-void splitPiece(const Cubic& cubic, const dvec3& p1, const dvec3& p2, double spacing, std::vector<dvec3>& samples) {
+void splitPiece(const Cubic& cubic, const dvec3& p1, const dvec3& p2, double chord, double spacing,
+                std::vector<dvec3>& samples) {
     samples.clear();
     if (cubic.polygon <= spacing) return;  // arc length <= control polygon: one segment is enough
-    const double chord = glm::length(p2 - p1);
     const double estimate = 0.5 * (chord + cubic.polygon);  // Gravesen: mean of chord and polygon
     size_t k = static_cast<size_t>(std::ceil(estimate / spacing));
     if (k <= 1) {
@@ -119,23 +114,37 @@ void splitPiece(const Cubic& cubic, const dvec3& p1, const dvec3& p2, double spa
 
 // Resamples one curve and appends it to `out`.
 void resampleCurve(const MappedYarns& yarns, size_t c, double spacing, bool withNormals, CurveBuffer& out,
-                   std::vector<dvec3>& pts, std::vector<dvec3>& nrm, std::vector<dvec3>& samples) {
+                   std::vector<dvec3>& pts, std::vector<dvec3>& nrm, std::vector<double>& knot,
+                   std::vector<dvec3>& samples) {
     const Polylines& in = yarns.curves;
     const bool closed = in.isClosed(c);
     const uint32_t b = in.begin(c), e = in.end(c);
-    const double mergeDistance = 1e-12 * spacing;
+    const double merge2 = (1e-12 * spacing) * (1e-12 * spacing);
 
     // Step 1: merge consecutive repeated points (and a closed curve's repeated first point).
     pts.clear();
     nrm.clear();
+    knot.clear();
     for (uint32_t i = b; i < e; ++i) {
-        if (!pts.empty() && glm::length(in.points[i] - pts.back()) <= mergeDistance) continue;
+        if (!pts.empty()) {
+            const dvec3 d = in.points[i] - pts.back();
+            const double d2 = glm::dot(d, d);
+            if (d2 <= merge2) continue;
+            knot.push_back(std::sqrt(std::sqrt(d2)));  // centripetal knot interval |d|^(1/2)
+        }
         pts.push_back(in.points[i]);
         if (withNormals) nrm.push_back(yarns.normals[i]);
     }
     if (closed) {
-        while (pts.size() > 1 && glm::length(pts.back() - pts.front()) <= mergeDistance) {
+        while (pts.size() > 1) {
+            const dvec3 d = pts.front() - pts.back();
+            const double d2 = glm::dot(d, d);
+            if (d2 > merge2) {
+                knot.push_back(std::sqrt(std::sqrt(d2)));  // the closing segment
+                break;
+            }
             pts.pop_back();
+            knot.pop_back();
             if (withNormals) nrm.pop_back();
         }
     }
@@ -151,28 +160,41 @@ void resampleCurve(const MappedYarns& yarns, size_t c, double spacing, bool with
     }
 
     // Step 2: one centripetal Catmull-Rom piece per segment, split so no chord exceeds spacing.
+    // Open ends use the reflected neighbour (same knot interval as the end segment).
     const size_t segments = closed ? n : n - 1;
-    auto at = [&](long i) -> dvec3 {
-        const long nn = static_cast<long>(n);
-        if (closed) return pts[static_cast<size_t>(((i % nn) + nn) % nn)];
-        if (i < 0) return 2.0 * pts[0] - pts[1];                 // reflected start
-        if (i >= nn) return 2.0 * pts[n - 1] - pts[n - 2];       // reflected end
-        return pts[static_cast<size_t>(i)];
-    };
     for (size_t s = 0; s < segments; ++s) {
-        const long i = static_cast<long>(s);
+        const size_t s1 = s + 1 == n ? 0 : s + 1;
         const dvec3& p1 = pts[s];
-        const dvec3& p2 = pts[(s + 1) % n];
+        const dvec3& p2 = pts[s1];
+        dvec3 p0, p3;
+        double t01, t23;
+        if (s > 0 || closed) {
+            const size_t s0 = s == 0 ? n - 1 : s - 1;
+            p0 = pts[s0];
+            t01 = knot[s == 0 ? segments - 1 : s - 1];
+        } else {
+            p0 = 2.0 * p1 - p2;
+            t01 = knot[0];
+        }
+        if (s + 1 < segments || closed) {
+            p3 = pts[s1 + 1 == n ? 0 : s1 + 1];
+            t23 = knot[s + 1 == segments ? 0 : s + 1];
+        } else {
+            p3 = 2.0 * p2 - p1;
+            t23 = knot[s];
+        }
+        const double t12 = knot[s];
         out.points.push_back(p1);
         if (withNormals) out.normals.push_back(nrm[s]);
-        const Cubic cubic = makeCubic(at(i - 1), p1, p2, at(i + 2));
-        splitPiece(cubic, p1, p2, spacing, samples);
+        const Cubic cubic = makeCubic(p0, p1, p2, p3, t01, t12, t23);
+        splitPiece(cubic, p1, p2, t12 * t12, spacing, samples);
+        if (samples.empty()) continue;
         const size_t k = samples.size() + 1;
         out.points.insert(out.points.end(), samples.begin(), samples.end());
         if (withNormals) {
             // Linear in the sample's parameter along the piece, renormalized.
-            for (size_t j = 1; j < k; ++j)
-                out.normals.push_back(lerpNormal(nrm[s], nrm[(s + 1) % n], static_cast<double>(j) / static_cast<double>(k)));
+            const double dk = 1.0 / static_cast<double>(k);
+            for (size_t j = 1; j < k; ++j) out.normals.push_back(lerpNormal(nrm[s], nrm[s1], static_cast<double>(j) * dk));
         }
     }
     if (!closed) {
@@ -180,6 +202,20 @@ void resampleCurve(const MappedYarns& yarns, size_t c, double spacing, bool with
         if (withNormals) out.normals.push_back(nrm[n - 1]);
     }
     out.sizes.push_back(static_cast<uint32_t>(out.points.size() - start));
+}
+
+// Output size estimate of one input curve (for reservation and the size limit): about
+// ceil(chord / spacing) points per segment, which the resampled curve needs at least.
+size_t estimateSize(const Polylines& in, size_t c, double inverseSpacing) {
+    const uint32_t b = in.begin(c), e = in.end(c);
+    auto pieces = [&](const dvec3& p, const dvec3& q) {
+        const double k = glm::length(q - p) * inverseSpacing;  // clamped: no overflow in the cast
+        return 1 + static_cast<size_t>(std::min(k, 1e12));
+    };
+    size_t count = 1;
+    for (uint32_t i = b; i + 1 < e; ++i) count += pieces(in.points[i], in.points[i + 1]);
+    if (in.isClosed(c) && e > b + 1) count += pieces(in.points[e - 1], in.points[b]);
+    return count;
 }
 
 bool finite(const dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
@@ -192,22 +228,13 @@ MappedYarns resampleYarns(const MappedYarns& yarns, const ResampleOptions& optio
         throw Error("resampleYarns: ResampleOptions.spacing must be a positive finite length (got " +
                     std::to_string(options.spacing) + ")");
     const Polylines& in = yarns.curves;
-    if (in.offsets.size() != in.curveCount() + 1 || in.offsets.back() != in.pointCount())
+    if (in.offsets.size() != in.curveCount() + 1 || in.offsets.front() != 0 || in.offsets.back() != in.pointCount() ||
+        !std::is_sorted(in.offsets.begin(), in.offsets.end()))
         throw Error("resampleYarns: inconsistent Polylines (offsets do not match points/closed)");
     const bool withNormals = !yarns.normals.empty();
     if (withNormals && yarns.normals.size() != in.pointCount())
         throw Error("resampleYarns: MappedYarns.normals has " + std::to_string(yarns.normals.size()) +
                     " entries but there are " + std::to_string(in.pointCount()) + " points");
-    for (size_t c = 0; c < in.curveCount(); ++c) {
-        for (uint32_t i = in.begin(c); i < in.end(c); ++i) {
-            if (!finite(in.points[i]))
-                throw Error("resampleYarns: curve " + std::to_string(c) + " point " + std::to_string(i - in.begin(c)) +
-                            " is not finite");
-            if (withNormals && !finite(yarns.normals[i]))
-                throw Error("resampleYarns: curve " + std::to_string(c) + " normal " +
-                            std::to_string(i - in.begin(c)) + " is not finite");
-        }
-    }
 
     // Fixed chunks of consecutive curves (independent of the thread count: deterministic).
     std::vector<size_t> chunkStart{0};
@@ -223,17 +250,47 @@ MappedYarns resampleYarns(const MappedYarns& yarns, const ResampleOptions& optio
         chunkStart.push_back(in.curveCount());
     }
     const size_t chunks = chunkStart.size() - 1;
+
+    // Per chunk: first non-finite point or normal (validation) and an output size estimate.
+    const double inverseSpacing = 1.0 / options.spacing;
+    std::vector<size_t> firstBad(chunks, SIZE_MAX), estimate(chunks, 0);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, chunks, 1), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t k = r.begin(); k < r.end(); ++k) {
+            const uint32_t b = in.begin(chunkStart[k]), e = in.begin(chunkStart[k + 1]);
+            for (uint32_t i = b; i < e && firstBad[k] == SIZE_MAX; ++i)
+                if (!finite(in.points[i]) || (withNormals && !finite(yarns.normals[i]))) firstBad[k] = i;
+            if (firstBad[k] != SIZE_MAX) continue;
+            for (size_t c = chunkStart[k]; c < chunkStart[k + 1]; ++c) estimate[k] += estimateSize(in, c, inverseSpacing);
+        }
+    });
+    size_t total = 0;
+    for (size_t k = 0; k < chunks; ++k) {
+        if (firstBad[k] != SIZE_MAX) {
+            const size_t i = firstBad[k];
+            const size_t c = static_cast<size_t>(std::upper_bound(in.offsets.begin(), in.offsets.end(), i) -
+                                                 in.offsets.begin()) - 1;
+            const bool point = !finite(in.points[i]);
+            throw Error("resampleYarns: curve " + std::to_string(c) + (point ? " point " : " normal ") +
+                        std::to_string(i - in.begin(c)) + " is not finite");
+        }
+        total += estimate[k];
+    }
+    if (total > UINT32_MAX)
+        throw Error("resampleYarns: about " + std::to_string(total) +
+                    " resampled points (more than 2^32-1); use a larger ResampleOptions.spacing or fewer yarns");
+
+    // Resample chunk by chunk into separate buffers.
     std::vector<CurveBuffer> buffers(chunks);
-    const double ratio = 1.5;  // rough output points per input point, for reservation only
     tbb::parallel_for(tbb::blocked_range<size_t>(0, chunks, 1), [&](const tbb::blocked_range<size_t>& r) {
         std::vector<dvec3> pts, nrm, samples;
+        std::vector<double> knot;
         for (size_t k = r.begin(); k < r.end(); ++k) {
             CurveBuffer& buf = buffers[k];
-            const size_t inPoints = in.begin(chunkStart[k + 1]) - in.begin(chunkStart[k]);
-            buf.points.reserve(static_cast<size_t>(ratio * static_cast<double>(inPoints)) + 16);
-            if (withNormals) buf.normals.reserve(buf.points.capacity());
+            const size_t reserve = 16 + estimate[k] + estimate[k] / 4;  // curved pieces need a few more
+            buf.points.reserve(reserve);
+            if (withNormals) buf.normals.reserve(reserve);
             for (size_t c = chunkStart[k]; c < chunkStart[k + 1]; ++c)
-                resampleCurve(yarns, c, options.spacing, withNormals, buf, pts, nrm, samples);
+                resampleCurve(yarns, c, options.spacing, withNormals, buf, pts, nrm, knot, samples);
         }
     });
 
@@ -251,8 +308,9 @@ MappedYarns resampleYarns(const MappedYarns& yarns, const ResampleOptions& optio
             out.curves.closed.push_back(buffers[k].closed[j]);
         }
     }
-    out.curves.points.resize(pointStart[chunks]);
-    if (withNormals) out.normals.resize(pointStart[chunks]);
+    // The two big arrays are allocated (and zero-filled) concurrently.
+    tbb::parallel_invoke([&] { out.curves.points.resize(pointStart[chunks]); },
+                         [&] { if (withNormals) out.normals.resize(pointStart[chunks]); });
     tbb::parallel_for(tbb::blocked_range<size_t>(0, chunks, 1), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t k = r.begin(); k < r.end(); ++k) {
             std::copy(buffers[k].points.begin(), buffers[k].points.end(), out.curves.points.begin() + pointStart[k]);

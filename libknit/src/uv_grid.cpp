@@ -20,14 +20,14 @@ namespace {
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Point2 = Kernel::Point_2;
 
-int orientationSign(glm::dvec2 a, glm::dvec2 b, glm::dvec2 c) {
+[[gnu::noinline]] int orientationSign(glm::dvec2 a, glm::dvec2 b, glm::dvec2 c) {
     return int(CGAL::orientation(Point2(a.x, a.y), Point2(b.x, b.y), Point2(c.x, c.y)));
 }
 
 // Orientation of (a, b, c): the double determinant when its sign is certain (Shewchuk's
 // error bound for orient2d), otherwise CGAL's exact predicate. Same result as the exact
 // predicate, without its call overhead in the common case.
-int filteredOrientation(glm::dvec2 a, glm::dvec2 b, glm::dvec2 c) {
+inline int filteredOrientation(glm::dvec2 a, glm::dvec2 b, glm::dvec2 c) {
     const double left = (a.x - c.x) * (b.y - c.y), right = (a.y - c.y) * (b.x - c.x);
     const double det = left - right;
     const double bound = 3.3306690738754716e-16 * (std::abs(left) + std::abs(right));
@@ -204,7 +204,7 @@ UvGrid buildUvGrid(const BaseMesh& mesh, const UvGridOptions& options) {
 namespace {
 
 // Barycentrics of p in triangle (a, b, c), clamped to the closed triangle.
-glm::dvec3 clampedBarycentrics(glm::dvec2 a, glm::dvec2 b, glm::dvec2 c, glm::dvec2 p) {
+inline glm::dvec3 clampedBarycentrics(glm::dvec2 a, glm::dvec2 b, glm::dvec2 c, glm::dvec2 p) {
     const double den = cross2(b - a, c - a);
     double l1 = cross2(p - a, c - a) / den, l2 = cross2(b - a, p - a) / den;
     double l0 = 1.0 - l1 - l2;
@@ -224,9 +224,21 @@ double closestOnSegment(glm::dvec2 a, glm::dvec2 b, glm::dvec2 p) {
 
 }  // namespace
 
-LocateResult locatePoint(const BaseMesh& mesh, const UvGrid& grid, glm::dvec2 uv, double tolerance) {
+LocateResult locatePoint(const BaseMesh& mesh, const UvGrid& grid, glm::dvec2 uv, double tolerance, uint32_t hint) {
     LocateResult result;
     if (!std::isfinite(uv.x) || !std::isfinite(uv.y) || grid.cells.empty()) return result;
+
+    // 0. Strictly inside the hint triangle: no other non-overlapping triangle contains it.
+    if (hint < grid.faceOrientation.size() && grid.faceOrientation[hint] != 0) {
+        const glm::uvec3 t = mesh.faceUvs[hint];
+        const glm::dvec2 a = mesh.uvs[t.x], b = mesh.uvs[t.y], c = mesh.uvs[t.z];
+        const int o = grid.faceOrientation[hint];
+        if (filteredOrientation(a, b, uv) == o && filteredOrientation(b, c, uv) == o && filteredOrientation(c, a, uv) == o) {
+            result.status = LocateStatus::Inside;
+            result.point = {hint, clampedBarycentrics(a, b, c, uv)};
+            return result;
+        }
+    }
 
     // 1. Exact containment in the closed triangle; the lowest triangle id wins (lists ascend).
     if (const int32_t slot = grid.slotOf(grid.cellOf(uv)); slot >= 0) {

@@ -221,7 +221,40 @@ TEST(Resample, invalidResampleInputRejected) {
     MappedYarns wrongNormals = y;
     wrongNormals.normals.pop_back();
     EXPECT_THROW(knit::resampleYarns(wrongNormals, o), knit::Error);
+    MappedYarns broken = y;
+    broken.curves.offsets = {0, 5};  // offsets past the points
+    EXPECT_THROW(knit::resampleYarns(broken, o), knit::Error);
+    // An absurd spacing is refused before anything is allocated (would be 1e12 points).
+    ResampleOptions tiny;
+    tiny.spacing = 1e-12;
+    try {
+        knit::resampleYarns(y, tiny);
+        FAIL() << "huge output accepted";
+    } catch (const knit::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("spacing"), std::string::npos) << e.what();
+    }
     MappedYarns noNormals = y;
     noNormals.normals.clear();  // allowed: no normals in, none out
     EXPECT_TRUE(knit::resampleYarns(noNormals, o).normals.empty());
+}
+
+TEST(Resample, nearRepeatedPointsAboveMergeDistanceStayBounded) {
+    // Points 1e-10 * spacing apart are not merged; the centripetal knots (|d|^(1/2)) keep the
+    // spline bounded next to them (no overshoot, no NaN).
+    const double spacing = 0.0004;
+    MappedYarns y;
+    const dvec3 a(0, 0, 0), b(0.002, 0.001, 0), c(0.004, 0, 0.001);
+    addCurve(y, {a, b, b + dvec3(1e-10 * spacing, 0, 0), c, dvec3(0.006, 0.001, 0)}, false);
+    ResampleOptions o;
+    o.spacing = spacing;
+    const MappedYarns r = knit::resampleYarns(y, o);
+    ASSERT_EQ(r.curves.curveCount(), 1u);
+    EXPECT_LE(maxSegment(r.curves, 0), spacing);
+    for (const dvec3& p : r.curves.points) {
+        ASSERT_TRUE(std::isfinite(p.x + p.y + p.z));
+        EXPECT_GE(p.x, -1e-9);
+        EXPECT_LE(p.x, 0.006 + 1e-9);
+        EXPECT_LE(std::abs(p.y), 0.0015);  // stays near the control polygon's extent
+    }
+    for (const dvec3& n : r.normals) EXPECT_NEAR(glm::length(n), 1.0, 1e-12);
 }

@@ -8,6 +8,9 @@
 
 namespace knit {
 
+// Yarn held vertical: S strands slant like the middle of "S" (a left-handed helix,
+// theta = -2 pi s / pitch with B = T x N), Z strands like the middle of "Z" (right-handed,
+// theta = +2 pi s / pitch).
 enum class Twist : uint8_t { S, Z };
 
 struct PlyOptions {

@@ -49,6 +49,10 @@ struct LocateResult {
 // to the lowest-numbered (non-degenerate) triangle that contains it, so every point has exactly
 // one owner. A point in no triangle but within `tolerance` (UV units) of one goes to the closest
 // triangle with clamped barycentrics; farther out it is Outside. Coordinates are never nudged.
-LocateResult locatePoint(const BaseMesh& mesh, const UvGrid& grid, glm::dvec2 uv, double tolerance);
+// `hint`: a triangle to try first (the previous vertex's along a yarn). A point strictly inside
+// the hint is given to it without scanning the cell: the same owner as the scan unless UV charts
+// overlap, where it keeps a yarn on the chart it is already on.
+LocateResult locatePoint(const BaseMesh& mesh, const UvGrid& grid, glm::dvec2 uv, double tolerance,
+                         uint32_t hint = UINT32_MAX);
 
 }  // namespace knit
