@@ -23,11 +23,15 @@ struct BoundVertex {
     double height, twist;
 };
 
-// A maximal run of located vertices of one yarn, with boundary-crossing vertices at cut ends.
+// A maximal run of located vertices of one yarn (yarn-local indices start, start+1, ... modulo
+// the yarn's size), with boundary-crossing vertices before (head) and after (tail) it.
 struct Piece {
-    std::vector<BoundVertex> v;
+    uint32_t yarnBegin = 0, yarnSize = 0, start = 0, count = 0;
+    std::optional<BoundVertex> head, tail;
     bool closed = false;
     bool boundaryEnd[2] = {false, false};  // [0] first point, [1] last point lies on a UV boundary
+
+    size_t size() const { return count + (head ? 1 : 0) + (tail ? 1 : 0); }
 };
 
 glm::dvec3 evaluatePoint(const BaseMesh& mesh, const std::vector<glm::dvec3>& normals, const BoundVertex& b) {
@@ -115,6 +119,15 @@ BindResult bindYarns(const BaseMesh& mesh, const std::vector<glm::dvec3>& normal
     auto bound = [&](size_t i) {
         return BoundVertex{loc[i].point.face, loc[i].point.bary, yarns.height[i], yarns.twist[i]};
     };
+    // Vertex k of a piece, in piece order.
+    auto at = [&](const Piece& pc, size_t k) {
+        if (pc.head) {
+            if (k == 0) return *pc.head;
+            --k;
+        }
+        if (k == pc.count) return *pc.tail;
+        return bound(pc.yarnBegin + (pc.start + k) % pc.yarnSize);
+    };
     for (size_t i = 0; i < nv; ++i) {
         if (loc[i].status == LocateStatus::Clamped) ++stats.clampedVertices;
         if (!located(i)) ++stats.cutVertices;
@@ -130,32 +143,29 @@ BindResult bindYarns(const BaseMesh& mesh, const std::vector<glm::dvec3>& normal
         // Consecutive vertices i -> i+1 stay joined when both are located in the same chart.
         auto joined = [&](size_t i, size_t j) { return located(b + i) && located(b + j) && chart(b + i) == chart(b + j); };
         size_t breakAt = 0;  // a run boundary to start from (closed yarns)
-        bool anyBreak = !closed;
         if (closed) {
-            for (size_t i = 0; i < n; ++i)
+            bool anyBreak = false;
+            for (size_t i = 0; i < n && !anyBreak; ++i)
                 if (!joined((i + n - 1) % n, i)) {
                     breakAt = i;
                     anyBreak = true;
-                    break;
                 }
             if (!anyBreak) {
                 Piece piece;
+                piece.yarnBegin = uint32_t(b);
+                piece.yarnSize = piece.count = uint32_t(n);
                 piece.closed = true;
-                for (size_t i = 0; i < n; ++i) piece.v.push_back(bound(b + i));
-                pieces.push_back(std::move(piece));
+                pieces.push_back(piece);
                 continue;
             }
         }
         // Crossing from located vertex i towards a cut neighbour (a yarn vertex or a ghost).
-        auto crossingTowards = [&](size_t i, const GhostVertex& target, int end, Piece& piece) {
+        auto crossingTowards = [&](size_t i, const GhostVertex& target) {
             const size_t p = b + i;
-            if (auto x = boundaryCrossing(mesh, grid, chart(p), yarns.uv[p], target.uv, yarns.height[p], target.height,
-                                          yarns.twist[p], target.twist)) {
-                if (end == 0) piece.v.insert(piece.v.begin(), *x);
-                else piece.v.push_back(*x);
-                ++stats.boundaryVertices;
-            }
-            piece.boundaryEnd[end] = true;
+            auto x = boundaryCrossing(mesh, grid, chart(p), yarns.uv[p], target.uv, yarns.height[p], target.height,
+                                      yarns.twist[p], target.twist);
+            if (x) ++stats.boundaryVertices;
+            return x;
         };
         auto vertexAsTarget = [&](size_t i) {
             return GhostVertex{true, yarns.uv[b + i], yarns.height[b + i], yarns.twist[b + i]};
@@ -165,9 +175,12 @@ BindResult bindYarns(const BaseMesh& mesh, const std::vector<glm::dvec3>& normal
         const GhostVertex& endGhost = closed || yarns.ghosts.empty() ? noGhost : yarns.ghosts[y][1];
         Piece cur;
         auto finish = [&](size_t lastIdx, const GhostVertex& beyond) {
-            if (cur.v.empty()) return;
-            if (beyond.present) crossingTowards(lastIdx, beyond, 1, cur);
-            if (cur.v.size() >= 2) pieces.push_back(std::move(cur));
+            if (cur.count == 0) return;
+            if (beyond.present) {
+                cur.tail = crossingTowards(lastIdx, beyond);
+                cur.boundaryEnd[1] = true;
+            }
+            if (cur.size() >= 2) pieces.push_back(cur);
             else ++stats.cutVertices;
             cur = Piece{};
         };
@@ -175,15 +188,22 @@ BindResult bindYarns(const BaseMesh& mesh, const std::vector<glm::dvec3>& normal
             const size_t i = (breakAt + s) % n;
             const size_t prev = (i + n - 1) % n;
             if (!located(b + i)) {
-                if (!cur.v.empty()) finish(prev, vertexAsTarget(i));
+                finish(prev, vertexAsTarget(i));
                 continue;
             }
-            if (!cur.v.empty() && !joined(prev, i)) finish(prev, vertexAsTarget(i));
-            const bool piecesStart = cur.v.empty();
-            cur.v.push_back(bound(b + i));
-            // Entering from a cut: start with the boundary crossing towards the previous vertex.
-            if (piecesStart && (closed || s > 0)) crossingTowards(i, vertexAsTarget(prev), 0, cur);
-            else if (piecesStart && startGhost.present) crossingTowards(i, startGhost, 0, cur);
+            if (cur.count > 0 && !joined(prev, i)) finish(prev, vertexAsTarget(i));
+            if (cur.count == 0) {
+                cur.yarnBegin = uint32_t(b);
+                cur.yarnSize = uint32_t(n);
+                cur.start = uint32_t(i);
+                // Entering from a cut: start with the boundary crossing towards the previous vertex.
+                const bool cutBefore = closed || s > 0;
+                if (cutBefore || startGhost.present) {
+                    cur.head = crossingTowards(i, cutBefore ? vertexAsTarget(prev) : startGhost);
+                    cur.boundaryEnd[0] = true;
+                }
+            }
+            ++cur.count;
         }
         // The last run of a closed yarn ends at the break it started from; an open yarn's last
         // run may end at a ghost.
@@ -209,8 +229,8 @@ BindResult bindYarns(const BaseMesh& mesh, const std::vector<glm::dvec3>& normal
             if (pc.closed) continue;
             for (int e = 0; e < 2; ++e) {
                 if (!pc.boundaryEnd[e]) continue;
-                const BoundVertex& endV = e ? pc.v.back() : pc.v.front();
-                const BoundVertex& inner = e ? pc.v[pc.v.size() - 2] : pc.v[1];
+                const BoundVertex endV = at(pc, e ? pc.size() - 1 : 0);
+                const BoundVertex inner = at(pc, e ? pc.size() - 2 : 1);
                 End& end = ends[2 * pi + e];
                 end.p = evaluatePoint(mesh, normals, endV);
                 const glm::dvec3 dir = end.p - evaluatePoint(mesh, normals, inner);
@@ -262,9 +282,9 @@ BindResult bindYarns(const BaseMesh& mesh, const std::vector<glm::dvec3>& normal
     const double dedupe = 1e-4 * options.yarnRadius;
     std::vector<uint8_t> used(pieces.size(), 0);
     auto append = [&](const Piece& pc, bool reversed, bool dropFirst) {
-        const size_t n = pc.v.size();
+        const size_t n = pc.size();
         for (size_t s = dropFirst ? 1 : 0; s < n; ++s) {
-            const BoundVertex& v = pc.v[reversed ? n - 1 - s : s];
+            const BoundVertex v = at(pc, reversed ? n - 1 - s : s);
             out.face.push_back(v.face);
             out.bary.emplace_back(v.bary.y, v.bary.z);
             out.height.push_back(v.height);
@@ -284,7 +304,7 @@ BindResult bindYarns(const BaseMesh& mesh, const std::vector<glm::dvec3>& normal
             used[pi] = 1;
             const Piece& pc = pieces[pi];
             const bool reversed = enter == 1;
-            const glm::dvec3 head = evaluatePoint(mesh, normals, reversed ? pc.v.back() : pc.v.front());
+            const glm::dvec3 head = evaluatePoint(mesh, normals, at(pc, reversed ? pc.size() - 1 : 0));
             const bool drop = !firstPiece && glm::distance(lastPoint(), head) < dedupe;
             append(pc, reversed, drop);
             firstPiece = false;
