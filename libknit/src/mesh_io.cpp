@@ -1,8 +1,11 @@
 // mesh_io.cpp — loadMesh: OBJ / PLY / OFF through OpenMesh's readers into a BaseMesh.
 //
 // How the files are read (facts checked against OpenMesh 9.0, the Debian package):
-//  * Dispatch is by the file's extension, case-insensitive: .obj, .ply, .off. The matching
-//    OpenMesh reader singleton is called directly with a path.
+//  * Dispatch is by the file's extension, case-insensitive: .obj, .ply, .off (anything else is
+//    an error). The matching OpenMesh reader singleton is called directly.
+//  * Every file is pre-scanned here before OpenMesh sees it, because OpenMesh 9.0 accepts
+//    garbage silently and, on some malformed files, crashes, loops or allocates without bound
+//    (found by tests/mesh/mesh_fuzz_test.cpp); what OpenMesh returns is checked again after.
 //  * OpenMesh's readers talk to a BaseImporter. We give them a *recording* importer instead of a
 //    halfedge mesh: it keeps the file's vertices, polygons and texture coordinates exactly as
 //    read. A halfedge mesh would silently split "non-manifold" faces (inconsistently oriented
@@ -20,16 +23,15 @@
 //  * PLY (ascii, binary little/big endian): per-vertex u,v or s,t are read by OpenMesh as
 //    Options::VertexTexCoord. texture_u,texture_v / texture_s,texture_t are *not* known to
 //    OpenMesh 9.0; they are read as custom properties (Options::Custom) into a property-only
-//    ArrayKernel owned by the importer. OpenMesh's ASCII PLY reader turns a non-numeric token
-//    (e.g. "nan") into zeros and empty faces without reporting failure, so the ASCII body is
-//    scanned for finite numbers first. Positions come through OpenMesh as float32.
+//    ArrayKernel owned by the importer. OpenMesh's PLY reader turns a non-numeric ASCII token
+//    (e.g. "nan") into zeros and empty faces without reporting failure, crashes on some
+//    malformed headers and trusts list counts, so the file is walked first (see scanPly).
+//    Positions come through OpenMesh as float32.
 //  * OFF: texture coordinates need the "ST" header prefix (STOFF: x y z u v per vertex).
 //    OpenMesh reads the header options in can_u_read(), so that is called before read(). Its
-//    ASCII reader knows no '#' comments (it then reads garbage counts and may loop over billions
-//    of empty faces), wants the counts on their own line, turns a non-numeric token into garbage
-//    indices and repeats the last face of a truncated file, all without reporting an error. So
-//    the ASCII text is scanned first (finite numbers, counts covered by the data) and OpenMesh
-//    parses a cleaned copy (comments removed, keyword on its own line); faces are checked below.
+//    ASCII reader knows no '#' comments, trusts counts and corner counts, and returns success
+//    on garbage, so the text is checked line by line first (see scanOff) and OpenMesh parses a
+//    cleaned copy from a string stream. Binary OFF is rejected.
 //  * OpenMesh keeps texture coordinates as float32 for every format.
 //  * Faces are fan-triangulated (v0, vi, vi+1). Positions that are exactly equal (-0 == +0) are
 //    welded when MeshLoadOptions::weldEqualPositions is set, so PLY/OFF files that duplicate
@@ -54,6 +56,8 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
+#include <iterator>
 #include <filesystem>
 #include <fstream>
 #include <mutex>
@@ -291,46 +295,138 @@ ObjScan scanObj(const std::string& path) {
     return scan;
 }
 
-// ASCII PLY body scan: every token must be a finite number; returns the non-empty line count.
-size_t scanNumericTokens(std::istream& in, const std::string& path, size_t firstLineNo) {
-    std::string line, tok;
-    size_t lines = 0;
-    for (size_t lineNo = firstLineNo; std::getline(in, line); ++lineNo) {
-        std::istringstream ls(line);
-        double v;
-        bool any = false;
-        while (ls >> tok) {
-            if (!parseFinite(tok, v)) failLine(path, lineNo, "'" + tok + "' is not a finite number");
-            any = true;
-        }
-        lines += any;
-    }
-    return lines;
-}
-
+// ---------------------------------------------------------------------------------------------
+// PLY pre-scan. OpenMesh 9.0 crashes on some malformed headers (a property before any element)
+// and sizes buffers from list counts it has not checked (a count of -4 allocated ~20 GB), so the
+// whole file is walked here first: the header line by line, then every element against the
+// declared properties — ASCII: one element per line, exactly the declared tokens, every token a
+// finite number, list counts non-negative integers; binary: list counts in range and every
+// element inside the file. Only a file that passes is handed to OpenMesh.
+struct PlyProperty {
+    bool list = false;
+    std::string countType, type, name;
+};
+struct PlyElement {
+    std::string name;
+    size_t count = 0;
+    std::vector<PlyProperty> props;
+};
 struct PlyHeader {
-    bool ascii = false;
+    bool ascii = false, bigEndian = false;
+    std::vector<PlyElement> elements;
     bool hasTextureUV = false;  // texture_u/texture_v or texture_s/texture_t on the vertex element
     std::string textureU, textureV;
 };
 
-// The PLY header is checked line by line before OpenMesh sees it: OpenMesh 9.0 crashes on some
-// malformed headers (e.g. a property line before any element line).
+int plyTypeSize(const std::string& t) {
+    if (t == "char" || t == "uchar" || t == "int8" || t == "uint8") return 1;
+    if (t == "short" || t == "ushort" || t == "int16" || t == "uint16") return 2;
+    if (t == "int" || t == "uint" || t == "int32" || t == "uint32" || t == "float" || t == "float32") return 4;
+    if (t == "double" || t == "float64") return 8;
+    return 0;
+}
+bool plyFloatType(const std::string& t) { return t == "float" || t == "float32" || t == "double" || t == "float64"; }
+bool plySignedType(const std::string& t) {
+    return t == "char" || t == "int8" || t == "short" || t == "int16" || t == "int" || t == "int32";
+}
+
+// A binary scalar at `at` as a double (integers exactly up to 2^53).
+double plyBinaryValue(const std::string& body, size_t at, const std::string& type, bool bigEndian) {
+    const int n = plyTypeSize(type);
+    unsigned char b[8];
+    for (int i = 0; i < n; ++i) b[i] = static_cast<unsigned char>(body[at + (bigEndian ? n - 1 - i : i)]);
+    uint64_t u = 0;
+    for (int i = n - 1; i >= 0; --i) u = (u << 8) | b[i];
+    if (type == "float" || type == "float32") {
+        float f;
+        const uint32_t u32 = uint32_t(u);
+        std::memcpy(&f, &u32, 4);
+        return f;
+    }
+    if (n == 8) {
+        double d;
+        std::memcpy(&d, &u, 8);
+        return d;
+    }
+    if (plySignedType(type)) {
+        const uint64_t sign = uint64_t(1) << (8 * n - 1);
+        return double(int64_t(u ^ sign) - int64_t(sign));
+    }
+    return double(u);
+}
+
+void checkPlyBody(std::istream& in, const std::string& path, const PlyHeader& h, size_t firstLineNo) {
+    if (h.ascii) {
+        std::string line, tok;
+        size_t lineNo = firstLineNo - 1;
+        std::vector<double> values;
+        for (const PlyElement& e : h.elements)
+            for (size_t k = 0; k < e.count; ++k) {
+                // One element per line (blank lines skipped), every token a finite number.
+                values.clear();
+                while (values.empty()) {
+                    if (!std::getline(in, line))
+                        fail(path, "file ends inside element '" + e.name + "' " + std::to_string(k) + " of " +
+                                       std::to_string(e.count) + " (truncated?)");
+                    ++lineNo;
+                    std::istringstream ls(line);
+                    double v;
+                    while (ls >> tok) {
+                        if (!parseFinite(tok, v)) failLine(path, lineNo, "'" + tok + "' is not a finite number");
+                        values.push_back(v);
+                    }
+                }
+                // Exactly the declared properties; list counts are non-negative integers.
+                size_t at = 0;
+                for (const PlyProperty& p : e.props) {
+                    if (at >= values.size()) failLine(path, lineNo, "too few values for element '" + e.name + "'");
+                    if (p.list) {
+                        const double n = values[at++];
+                        if (n < 0 || n != std::floor(n) || n > double(values.size() - at))
+                            failLine(path, lineNo, "list '" + p.name + "' has a bad count");
+                        at += size_t(n);
+                    } else {
+                        ++at;
+                    }
+                }
+                if (at != values.size()) failLine(path, lineNo, "too many values for element '" + e.name + "'");
+            }
+        return;
+    }
+    // Binary: walk the elements through the bytes.
+    const std::string body((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    size_t at = 0;
+    for (const PlyElement& e : h.elements)
+        for (size_t k = 0; k < e.count; ++k)
+            for (const PlyProperty& p : e.props) {
+                auto truncated = [&] {
+                    fail(path, "file ends inside element '" + e.name + "' " + std::to_string(k) + " of " +
+                                   std::to_string(e.count) + " (truncated?)");
+                };
+                if (!p.list) {
+                    const size_t n = size_t(plyTypeSize(p.type));
+                    if (body.size() - at < n) truncated();
+                    at += n;
+                    continue;
+                }
+                const size_t cn = size_t(plyTypeSize(p.countType)), n = size_t(plyTypeSize(p.type));
+                if (body.size() - at < cn) truncated();
+                const double count = plyBinaryValue(body, at, p.countType, h.bigEndian);
+                at += cn;
+                if (count < 0 || count > double(body.size() - at) / double(n))
+                    fail(path, "element '" + e.name + "' " + std::to_string(k) + ": list '" + p.name +
+                                   "' has a bad count (" + std::to_string(count) + ")");
+                at += size_t(count) * n;
+            }
+}
+
 PlyHeader scanPly(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) fail(path, "cannot open for reading");
-    static const char* kTypes[] = {"char",  "uchar",  "short", "ushort", "int",    "uint",    "float",   "double",
-                                   "int8",  "uint8",  "int16", "uint16", "int32",  "uint32",  "float32", "float64"};
-    auto isType = [](const std::string& t) {
-        return std::find_if(std::begin(kTypes), std::end(kTypes), [&](const char* k) { return t == k; }) !=
-               std::end(kTypes);
-    };
     PlyHeader h;
-    std::string line, word, element;
-    std::vector<std::string> vertexProps;
-    double totalElements = 0;
+    std::string line, word;
     size_t lineNo = 0;
-    bool ended = false, hasFormat = false, hasFace = false;
+    bool ended = false, hasFormat = false;
     while (!ended && std::getline(in, line)) {
         ++lineNo;
         std::istringstream ls(trimmed(line));
@@ -342,37 +438,42 @@ PlyHeader scanPly(const std::string& path) {
         }
         if (word == "comment" || word == "obj_info" || word.empty()) continue;
         if (word == "format") {
-            std::string fmt, version;
-            ls >> fmt >> version;
+            std::string fmt, version, extra;
+            ls >> fmt >> version >> extra;
+            double v = 0;
             if (fmt != "ascii" && fmt != "binary_little_endian" && fmt != "binary_big_endian")
                 failLine(path, lineNo, "unknown PLY format '" + fmt + "'");
+            if (!parseFinite(version, v) || !extra.empty())  // OpenMesh loops forever on a bad version
+                failLine(path, lineNo, "the format line must be 'format " + fmt + " 1.0'");
             h.ascii = fmt == "ascii";
+            h.bigEndian = fmt == "binary_big_endian";
             hasFormat = true;
         } else if (word == "element") {
-            std::string count;
-            element.clear();
-            ls >> element >> count;
+            PlyElement e;
+            std::string count, extra;
+            ls >> e.name >> count >> extra;
             long n = 0;
-            if (element.empty() || !(parseIndex(count, n) || count == "0") || n < 0)
+            if (e.name.empty() || !(count == "0" || parseIndex(count, n)) || n < 0 || !extra.empty())
                 failLine(path, lineNo, "element line needs a name and a non-negative count");
-            totalElements += double(n);
-            hasFace |= element == "face";
+            e.count = size_t(n);
+            h.elements.push_back(e);
         } else if (word == "property") {
-            std::string type, name;
-            ls >> type;
-            if (element.empty()) failLine(path, lineNo, "property line before any element line");
-            if (type == "list") {
-                std::string countType, itemType;
-                ls >> countType >> itemType;
-                if (!isType(countType) || !isType(itemType))
-                    failLine(path, lineNo, "unknown list property types '" + countType + " " + itemType + "'");
-            } else if (!isType(type)) {
-                failLine(path, lineNo, "unknown property type '" + type + "'");
+            if (h.elements.empty()) failLine(path, lineNo, "property line before any element line");
+            PlyProperty p;
+            ls >> p.type;
+            if (p.type == "list") {
+                p.list = true;
+                ls >> p.countType >> p.type;
+                if (!plyTypeSize(p.countType) || plyFloatType(p.countType) || !plyTypeSize(p.type))
+                    failLine(path, lineNo, "bad list property types '" + p.countType + " " + p.type + "'");
+            } else if (!plyTypeSize(p.type)) {
+                failLine(path, lineNo, "unknown property type '" + p.type + "'");
             }
-            ls >> name;
-            if (name.empty()) failLine(path, lineNo, "property line without a name");
-            if (element == "vertex") vertexProps.push_back(name);
-        } else if (word == "end_header") {
+            std::string extra;
+            ls >> p.name >> extra;
+            if (p.name.empty() || !extra.empty()) failLine(path, lineNo, "a property line must be 'property TYPE NAME'");
+            h.elements.back().props.push_back(p);
+        } else if (word == "end_header" && trimmed(line) == "end_header") {
             ended = true;
         } else {
             failLine(path, lineNo, "unexpected PLY header line '" + trimmed(line) + "'");
@@ -380,33 +481,44 @@ PlyHeader scanPly(const std::string& path) {
     }
     if (!ended) fail(path, "PLY header has no end_header line");
     if (!hasFormat) fail(path, "PLY header has no format line");
-    if (!hasFace) fail(path, "the mesh has no faces (no 'face' element)");
-    auto has = [&](const char* n) { return std::find(vertexProps.begin(), vertexProps.end(), n) != vertexProps.end(); };
+    // The vertex element needs x, y, z; the face element a vertex index list.
+    const PlyElement* vertex = nullptr;
+    const PlyElement* face = nullptr;
+    for (const PlyElement& e : h.elements) {
+        if (e.name == "vertex") vertex = &e;
+        if (e.name == "face") face = &e;
+    }
+    if (!vertex) fail(path, "the PLY file has no vertex element");
+    if (!face || face->count == 0) fail(path, "the mesh has no faces");
+    auto has = [&](const char* n) {
+        return std::any_of(vertex->props.begin(), vertex->props.end(),
+                           [&](const PlyProperty& p) { return !p.list && p.name == n; });
+    };
     if (!has("x") || !has("y") || !has("z")) fail(path, "the PLY vertex element needs x, y and z properties");
+    if (!std::any_of(face->props.begin(), face->props.end(), [](const PlyProperty& p) {
+            return p.list && (p.name == "vertex_indices" || p.name == "vertex_index");
+        }))
+        fail(path, "the PLY face element has no vertex_indices list");
     const bool known = (has("u") && has("v")) || (has("s") && has("t"));
     if (!known) {
         if (has("texture_u") && has("texture_v")) h.textureU = "texture_u", h.textureV = "texture_v";
         else if (has("texture_s") && has("texture_t")) h.textureU = "texture_s", h.textureV = "texture_t";
         h.hasTextureUV = !h.textureU.empty();
     }
-    // ASCII PLY has one element per line: fewer lines than elements is a truncated file (OpenMesh
-    // would otherwise read past the end, producing empty faces, for every missing element).
-    if (h.ascii) {
-        const size_t lines = scanNumericTokens(in, path, lineNo + 1);
-        if (double(lines) < totalElements)
-            fail(path, "the header declares " + std::to_string(size_t(totalElements)) + " elements but the file has " +
-                           std::to_string(lines) + " data lines (truncated?)");
-    }
+    checkPlyBody(in, path, h, lineNo + 1);
     return h;
 }
 
 // ASCII OFF: OpenMesh's reader knows no '#' comments (it then reads garbage counts and can loop
-// over billions of empty faces) and wants the counts on the line after the header keyword. The
-// scan checks the header, the counts against the data actually present (>= 3 numbers per vertex
-// and >= 4 per face, so no declared count can run past the data), that every token is a finite
-// number, and returns the text with comments removed and the keyword on its own line, which is
-// what OpenMesh then parses. Binary OFF is passed through (returns false).
-bool scanOff(const std::string& path, std::string& cleaned) {
+// over billions of empty faces), wants the counts on the line after the header keyword, sizes
+// a face from its unchecked corner count, turns a non-numeric token into garbage indices and
+// repeats the last face of a truncated file, all without reporting an error. So the text is
+// checked first, line-based as OFF writers write it: the counts line holds exactly
+// "vertices faces edges", then one vertex per line (finite numbers, >= 3 of them), then one
+// face per line ("k i1 .. ik [colour]", 0 <= i < vertices). OpenMesh parses a cleaned copy
+// (comments and blank lines removed, keyword on its own line). Binary OFF is rejected: it
+// cannot be checked this way and OpenMesh trusts its counts.
+void scanOff(const std::string& path, std::string& cleaned) {
     std::ifstream in(path, std::ios::binary);
     if (!in) fail(path, "cannot open for reading");
     std::string line, keyword, tok;
@@ -417,34 +529,49 @@ bool scanOff(const std::string& path, std::string& cleaned) {
         failLine(path, 1, "not an OFF file (the first line must start with a header such as OFF or STOFF)");
     std::string rest;
     std::getline(header, rest);
-    if (trimmed(rest).rfind("BINARY", 0) == 0) return false;
+    if (trimmed(rest).rfind("BINARY", 0) == 0)
+        fail(path, "binary OFF is not supported (use ASCII OFF, PLY or OBJ)");
     std::ostringstream out;
     out << keyword << "\n";
-    std::vector<double> numbers;  // the counts
-    size_t dataTokens = 0;        // numbers after the counts
+    size_t dataLine = 0;  // 0: counts, then vertices, then faces
+    double nv = 0, nf = 0;
+    std::vector<double> values;
     auto take = [&](const std::string& text, size_t lineNo) {
+        values.clear();
         std::istringstream ls(text);
-        bool any = false;
         double v;
         while (ls >> tok) {
             if (!parseFinite(tok, v)) failLine(path, lineNo, "'" + tok + "' is not a finite number");
-            if (numbers.size() < 3) numbers.push_back(v);
-            else ++dataTokens;
-            any = true;
+            values.push_back(v);
         }
-        if (any) out << text << "\n";
+        if (values.empty()) return;
+        if (dataLine == 0) {
+            if (values.size() != 3 || values[0] < 0 || values[1] < 0 || values[0] != std::floor(values[0]) ||
+                values[1] != std::floor(values[1]))
+                failLine(path, lineNo, "expected the counts 'vertices faces edges' (3 non-negative integers)");
+            nv = values[0], nf = values[1];
+        } else if (double(dataLine) <= nv) {
+            if (values.size() < 3) failLine(path, lineNo, "a vertex line needs at least 3 numbers");
+        } else if (double(dataLine) <= nv + nf) {
+            const double k = values[0];
+            if (k < 3 || k != std::floor(k) || k > double(values.size() - 1))
+                failLine(path, lineNo, "a face line must be 'k i1 .. ik' with k >= 3 vertex indices");
+            for (size_t i = 1; i <= size_t(k); ++i)
+                if (values[i] < 0 || values[i] >= nv || values[i] != std::floor(values[i]))
+                    failLine(path, lineNo, "face references vertex " + std::to_string(values[i]) +
+                                               " but the file has " + std::to_string(size_t(nv)) + " vertices");
+        }
+        ++dataLine;
+        out << text << "\n";
     };
     take(rest, 1);
     for (size_t lineNo = 2; std::getline(in, line); ++lineNo) take(line.substr(0, line.find('#')), lineNo);
-    if (numbers.size() < 3) fail(path, "OFF header has no 'vertices faces edges' counts");
-    const double nv = numbers[0], nf = numbers[1], tokens = double(dataTokens);
-    if (nv < 0 || nf < 0 || nv != std::floor(nv) || nf != std::floor(nf))
-        fail(path, "OFF counts must be non-negative integers");
-    if (3 * nv + 4 * nf > tokens)
+    if (dataLine == 0) fail(path, "OFF header has no 'vertices faces edges' counts");
+    if (double(dataLine) < 1 + nv + nf)
         fail(path, "declares " + std::to_string(size_t(nv)) + " vertices and " + std::to_string(size_t(nf)) +
-                       " faces but holds only " + std::to_string(size_t(tokens)) + " numbers (truncated?)");
+                       " faces but holds only " + std::to_string(dataLine - 1) + " data lines (truncated?)");
+    if (nf == 0) fail(path, "the mesh has no faces");
     cleaned = out.str();
-    return true;
 }
 
 // Reads a float or double custom vertex property written by OpenMesh's PLY reader.
@@ -580,10 +707,9 @@ BaseMesh loadMesh(const std::string& path, const MeshLoadOptions& options) {
     ObjScan obj;
     PlyHeader ply;
     std::string offText;
-    bool offAscii = false;
     if (ext == ".obj") obj = scanObj(path);
     else if (ext == ".ply") ply = scanPly(path);
-    else offAscii = scanOff(path, offText);
+    else scanOff(path, offText);
 
     // Parse with OpenMesh into the recording importer.
     RecordingImporter rec;
@@ -597,11 +723,9 @@ BaseMesh loadMesh(const std::string& path, const MeshLoadOptions& options) {
         if (ext == ".obj") ok = OMIO::OBJReader().read(path, rec, opt);
         else if (ext == ".ply") ok = OMIO::PLYReader().read(path, rec, opt);
         else if (!OMIO::OFFReader().can_u_read(path)) ok = false;  // parses the header options
-        else if (offAscii) {
+        else {
             std::istringstream text(offText);
             ok = OMIO::OFFReader().read(text, rec, opt);
-        } else {
-            ok = OMIO::OFFReader().read(path, rec, opt);
         }
     }
     if (!ok) fail(path, "OpenMesh could not parse the file (malformed or truncated)");

@@ -196,6 +196,27 @@ TEST(MeshIo, declaredCountsBeyondTheDataAreRejected) {
     EXPECT_THROW(knit::loadMesh(dir.write("huge_bin.ply", bin)), knit::Error);
 }
 
+TEST(MeshIo, binaryOffIsRejected) {
+    TempDir dir;
+    const std::string p = dir.write("b.off", std::string("OFF BINARY\n") + std::string(12, '\0'));
+    EXPECT_NE(errorOf([&] { knit::loadMesh(p); }).find("binary OFF is not supported"), std::string::npos);
+}
+
+TEST(MeshIo, crlfLineEndingsLoad) {
+    TempDir dir;
+    auto crlf = [](std::string s) {
+        for (size_t i = s.find('\n'); i != std::string::npos; i = s.find('\n', i + 2)) s.insert(i, 1, '\r');
+        return s;
+    };
+    const BaseMesh obj = knit::loadMesh(dir.write("ring.obj", crlf(ringObj())));
+    const BaseMesh ply = knit::loadMesh(dir.write("ring.ply", crlf(ringPly())));
+    EXPECT_EQ(obj.faces.size(), 8u);
+    EXPECT_EQ(ply.faces, obj.faces);
+    EXPECT_EQ(ply.faceUvs, obj.faceUvs);
+    const BaseMesh off = knit::loadMesh(dir.write("q.off", crlf("STOFF\n3 1 0\n0 0 0 0 0\n1 0 0 1 0\n0 1 0 0 1\n3 0 1 2\n")));
+    EXPECT_EQ(off.uvs[off.faceUvs[0][2]], glm::dvec2(0, 1));
+}
+
 TEST(MeshIo, offWithoutTexcoordsIsRejected) {
     TempDir dir;
     const std::string p = dir.write("m.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");

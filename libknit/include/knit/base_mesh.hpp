@@ -53,7 +53,7 @@ struct ProceduralMeshOptions {
     double radius = 0.1;        // cylinder / sphere radius (m)
     double height = 0.3;        // cylinder height (m)
 };
-BaseMesh makePlane(const ProceduralMeshOptions& o = {});     // z = 0, uv = (x, y) / size
+BaseMesh makePlane(const ProceduralMeshOptions& o = {});     // z = 0, centred: uv = (x, y) / size + 0.5
 BaseMesh makeCylinder(const ProceduralMeshOptions& o = {});  // u around (seam at u = 0/1), v along z
 BaseMesh makeSphere(const ProceduralMeshOptions& o = {});    // latitude-longitude, seam at u = 0/1
 BaseMesh makeDrape(const ProceduralMeshOptions& o = {});     // square sheet draped over a sphere
