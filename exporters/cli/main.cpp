@@ -191,6 +191,7 @@ int main(int argc, char** argv) {
         }
 #ifdef KNIT_HAVE_RENDER_CHECK
         if (*render) {
+            renderOptions.progress = renderOptions.progress && !renderFlags.quiet;
             const knit::Scene scene = knit::buildScene(resolveScene(renderFlags));
             const knit::RenderResult result = knit::renderScene(scene, renderOptions);
             const nlohmann::json report = knit::renderReport(result);

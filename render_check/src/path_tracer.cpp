@@ -85,7 +85,7 @@ struct Tracer {
     bool env;
     uint64_t* rays;
 
-    Shading shade(const TraceHit& h, const glm::vec3& p) const {
+    Shading shade(const TraceHit& h) const {
         Shading sh;
         if (h.kind == TraceHit::Base) {
             sh.ply = false;
@@ -97,14 +97,10 @@ struct Tracer {
         }
         const PlyGeometry& g = scene.plies();
         const uint32_t j = g.segments[h.segment];
-        const glm::vec3 a(g.points[j]), b(g.points[j + 1]);
         const float u = h.u;
         PlySurfacePoint sp;
-        sp.tangent = glm::dvec3(b - a);
-        const glm::vec3 axis = a + u * (b - a);
-        glm::vec3 n = p - axis;
-        n = glm::length(n) > 0 ? glm::normalize(n) : h.ng;
-        sp.normal = glm::dvec3(n);
+        sp.tangent = glm::dvec3(glm::vec3(g.points[j + 1]) - glm::vec3(g.points[j]));
+        sp.normal = glm::dvec3(h.ng);  // centreline normal of the hit (see TraceScene::intersect)
         sp.radial = glm::dvec3((1 - u) * g.radial[j] + u * g.radial[j + 1]);
         sp.v = (1 - u) * g.arc[j] + u * g.arc[j + 1];
         sh.frame = plyShadingFrame(sp, material, tables);
@@ -130,10 +126,11 @@ struct Tracer {
     Rgb radiance(glm::vec3 o, glm::vec3 d, Rng& rng) const {
         Rgb L(0.0), beta(1.0);
         double prevPdf = 0;
+        TraceHit prev;
         for (int depth = 0;; ++depth) {
             TraceHit h;
             ++*rays;
-            const bool hit = scene.intersect(o, d, 0.f, kInf, h);
+            const bool hit = scene.intersect(o, d, 0.f, kInf, h, depth > 0 ? &prev : nullptr);
             // Step 1: emission from the light or the environment (MIS against the light samples).
             bool front = false;
             const float tl = hitLight(light, o, d, front);
@@ -156,7 +153,7 @@ struct Tracer {
             if (depth >= s.maxDepth) break;
             // Step 2: local frame and BSDF at the hit.
             const glm::vec3 p = o + h.t * d;
-            const Shading sh = shade(h, p);
+            const Shading sh = shade(h);
             const glm::dvec3 wo = -glm::dvec3(d);
             const glm::dvec3 woL = sh.frame.toLocal(wo);
             if ((glm::dot(-d, h.ng) > 0) != (woL.z > 0)) break;
@@ -176,7 +173,7 @@ struct Tracer {
                         const glm::vec3 seg = y - org;
                         const float len = glm::length(seg);
                         ++*rays;
-                        if (!scene.occluded(org, seg / len, 0.f, len * (1 - 1e-4f))) {
+                        if (!scene.occluded(org, seg / len, 0.f, len * (1 - 1e-4f), &h)) {
                             const double pdfL = double(dist) * dist / (light.area * cosL);
                             L += beta * f * light.radiance * (power(pdfL, pdfB) / pdfL);
                         }
@@ -195,7 +192,7 @@ struct Tracer {
                     const glm::vec3 org = scene.spawn(h, p, wf);
                     bool fr;
                     ++*rays;
-                    if (hitLight(light, org, wf, fr) == kInf && !scene.occluded(org, wf, 0.f, kInf)) {
+                    if (hitLight(light, org, wf, fr) == kInf && !scene.occluded(org, wf, 0.f, kInf, &h)) {
                         const double pdfE = 1.0 / (4 * kPi);
                         L += beta * f * s.environment * (power(pdfE, pdfB) / pdfE);
                     }
@@ -230,6 +227,7 @@ struct Tracer {
             }
             o = scene.spawn(h, p, wi);
             d = wi;
+            prev = h;
         }
         return L;
     }
@@ -253,21 +251,22 @@ Image renderImage(const TraceScene& scene, const PlyMaterial& material, const Fi
     if (s.width < 1 || s.height < 1) throw Error("render: image size must be at least 1 x 1");
     if (s.spp < 1) throw Error("render: samples per pixel must be at least 1 (got " + std::to_string(s.spp) + ")");
     const auto start = std::chrono::steady_clock::now();
-    const glm::dvec3 origin = scene.plies().origin;
+    const PlyGeometry& g = scene.plies();
     Tracer tr{scene, material, tables, s, {}, {}, {}, {}, {}, 0, 0, false, nullptr};
-    // Step 1: camera basis and light, relative to the scene origin.
-    tr.eye = glm::vec3(s.camera.eye - origin);
+    // Step 1: camera basis and light in scene units (uniform scaling leaves radiance unchanged).
+    tr.eye = g.toScene(s.camera.eye);
     const glm::dvec3 fwd = glm::normalize(s.camera.target - s.camera.eye);
     const glm::dvec3 right = glm::normalize(glm::cross(fwd, s.camera.up));
     tr.fwd = glm::vec3(fwd), tr.right = glm::vec3(right), tr.up = glm::vec3(glm::cross(right, fwd));
     tr.tanHalf = std::tan(s.camera.fovYDegrees * kPi / 360.0);
     tr.aspect = double(s.width) / s.height;
-    const glm::dvec3 ln = glm::cross(s.light.edgeU, s.light.edgeV);
+    const glm::dvec3 eu = s.light.edgeU / g.unit, ev = s.light.edgeV / g.unit;
+    const glm::dvec3 ln = glm::cross(eu, ev);
     tr.light.area = glm::length(ln);
     tr.light.on = tr.light.area > 0 && (s.light.radiance.x > 0 || s.light.radiance.y > 0 || s.light.radiance.z > 0);
     if (tr.light.on) {
-        tr.light.corner = glm::vec3(s.light.corner - origin);
-        tr.light.eu = glm::vec3(s.light.edgeU), tr.light.ev = glm::vec3(s.light.edgeV);
+        tr.light.corner = g.toScene(s.light.corner);
+        tr.light.eu = glm::vec3(eu), tr.light.ev = glm::vec3(ev);
         tr.light.n = glm::vec3(ln / tr.light.area);
         tr.light.radiance = s.light.radiance;
     }

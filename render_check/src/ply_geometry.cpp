@@ -30,7 +30,8 @@ PlyGeometry buildPlyGeometry(const Plies& plies, const glm::dvec3& origin) {
                     std::to_string(c.pointCount()) + " points");
     PlyGeometry g;
     g.origin = origin;
-    g.radius = static_cast<float>(plies.plyRadius);
+    g.unit = plies.plyRadius;
+    g.radius = 1.0f;
     const double invR = 1.0 / plies.plyRadius;
     for (size_t k = 0; k < c.curveCount(); ++k) {
         // Step 1: distinct consecutive points of the curve (and their radial directions).
@@ -57,8 +58,8 @@ PlyGeometry buildPlyGeometry(const Plies& plies, const glm::dvec3& origin) {
         }
         const double total = closed ? arc[n] : arc[n - 1];
         auto push = [&](size_t i, double a) {
-            const glm::dvec3 q = c.points[idx[i]] - origin;
-            g.points.emplace_back(float(q.x), float(q.y), float(q.z), g.radius);
+            const glm::vec3 q = g.toScene(c.points[idx[i]]);
+            g.points.emplace_back(q.x, q.y, q.z, g.radius);
             g.radial.emplace_back(glm::vec3(plies.radial[idx[i]]));
             g.arc.push_back(static_cast<float>(a));
         };
@@ -114,7 +115,7 @@ std::vector<int64_t> segmentCells(const Scene& scene, const PlyGeometry& g) {
     // Step 2: each ply segment takes the cell of the nearest vertex of its yarn (a window search
     // that follows the ply along the yarn; a full scan when the window loses it).
     std::vector<int64_t> out(g.segmentCount());
-    const double far2 = std::pow(4.0 * std::max(scene.yarnRadius, double(g.radius)) + 1e-12, 2);
+    const double far2 = std::pow(4.0 * std::max(scene.yarnRadius, g.unit * g.radius) + 1e-12, 2);
     for (size_t k = 0; k + 1 < g.curveSegments.size(); ++k) {
         const uint32_t y = scene.plies.yarnOfCurve[k];
         if (y >= yarns.curves.curveCount()) throw Error("render: ply curve " + std::to_string(k) + " names yarn " +
@@ -124,7 +125,7 @@ std::vector<int64_t> segmentCells(const Scene& scene, const PlyGeometry& g) {
         int64_t last = -1;
         for (uint32_t s = g.curveSegments[k]; s < g.curveSegments[k + 1]; ++s) {
             const glm::vec4 a = g.points[g.segments[s]], c = g.points[g.segments[s] + 1];
-            const glm::dvec3 mid = g.origin + 0.5 * (glm::dvec3(a) + glm::dvec3(c));
+            const glm::dvec3 mid = g.toWorld(0.5f * (glm::vec3(a) + glm::vec3(c)));
             auto best = [&](int64_t from, int64_t to) {
                 double bd = std::numeric_limits<double>::max();
                 int64_t bi = 0;

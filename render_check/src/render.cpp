@@ -123,13 +123,15 @@ RenderResult renderScene(const Scene& scene, const RenderOptions& o) {
     ts.camera.fovYDegrees = o.fovDegrees;
     ts.environment = Rgb(o.environment);
     ts.baseAlbedo = Rgb(o.baseAlbedo);
-    const double lightSize = radius, lightDist = 2.5 * radius;
+    // Front: a light of the cloth's radius up and to the right of the camera. Back: a lightbox
+    // larger than the cloth behind it, so transmission shows everywhere.
+    const double lightSize = o.light == "front" ? radius : 3.0 * radius, lightDist = 2.5 * radius;
     const glm::dvec3 dir = o.light == "front" ? glm::normalize(normal + 0.4 * right + 0.4 * up) : -normal;
     const glm::dvec3 lc = centre + lightDist * dir;
     // Light facing the centre: edges perpendicular to dir, cross(edgeU, edgeV) = -dir.
     const glm::dvec3 lh = std::abs(dir.y) < 0.9 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0);
     const glm::dvec3 eu = glm::normalize(glm::cross(dir, lh)) * lightSize;
-    const glm::dvec3 ev = glm::normalize(glm::cross(dir, eu)) * lightSize;
+    const glm::dvec3 ev = glm::normalize(glm::cross(eu, dir)) * lightSize;
     ts.light.corner = lc - 0.5 * eu - 0.5 * ev;
     ts.light.edgeU = eu;
     ts.light.edgeV = ev;

@@ -51,10 +51,11 @@ struct HitContext {
     RTCIntersectContext base;
     uint32_t segment;
     float u;
+    uint32_t ignore;  // tubes mode: the triangle a spawned ray leaves (or RTC_INVALID_GEOMETRY_ID)
 };
 
 // ---- two-stage grid cells -------------------------------------------------------------------
-constexpr int kChunk = 8;        // segments per chunk box
+constexpr int kChunk = 8;        // segments per chunk box (8-bit box per chunk)
 constexpr float kMinMitreCos = 0.2f;  // sharper joints are cut perpendicular instead of mitred
 
 struct GridRun {
@@ -75,11 +76,11 @@ struct GridData {
     std::vector<GridCell> cells;
     std::vector<GridRun> runs;
     std::vector<glm::u16vec3> qpoints;
-    std::vector<glm::u16vec3> boxes;
+    std::vector<glm::u8vec3> boxes;  // chunk boxes on the cell's grid coarsened 257x (8 bit)
     float radius = 0;
     size_t bytes() const {
         return cells.size() * sizeof(GridCell) + runs.size() * sizeof(GridRun) +
-               (qpoints.size() + boxes.size()) * sizeof(glm::u16vec3);
+               qpoints.size() * sizeof(glm::u16vec3) + boxes.size() * sizeof(glm::u8vec3);
     }
 };
 
@@ -111,7 +112,7 @@ bool boxHit(const RayData& r, const glm::vec3& lo, const glm::vec3& hi, float tf
 }
 
 // Entering hit of a ray with the cylinder (p0, p1, radius) trimmed by the joint planes n0 (at p0,
-// oriented along the ply) and n1 (at p1); flat caps at open ends. Returns t or -1.
+// oriented along the ply) and n1 (at p1); round caps at open ends. Returns t or -1.
 float hitTrimmedCylinder(const RayData& r, const glm::vec3& p0, const glm::vec3& p1, float radius,
                          const glm::vec3& n0, const glm::vec3& n1, bool capStart, bool capEnd, float tfar,
                          glm::vec3& ng, float& u) {
@@ -127,7 +128,7 @@ float hitTrimmedCylinder(const RayData& r, const glm::vec3& p0, const glm::vec3&
     // Lateral surface: the entering root only (a ray starting inside has no entering root ahead).
     if (A > 1e-12f) {
         const float tca = -B / A;
-        const float dist2 = C - B * tca;  // |op + tca dp|^2 - r^2
+        const float dist2 = C + B * tca;  // |op + tca dp|^2 - r^2 = C - B^2 / A
         if (dist2 <= 0) {
             const float t = tca - std::sqrt(-dist2 / A);
             if (t > r.tnear && t < tfar) {
@@ -142,21 +143,21 @@ float hitTrimmedCylinder(const RayData& r, const glm::vec3& p0, const glm::vec3&
             }
         }
     }
-    // Flat caps at open ends (entering from outside the end plane).
-    if (capStart && so < 0 && sd > 0) {
-        const float t = -so / sd;
-        const glm::vec3 q = op + t * dp;
-        if (t > r.tnear && t < tfar && glm::dot(q, q) <= radius * radius) {
-            ng = -a, u = 0, best = t, tfar = t;
-        }
-    }
-    if (capEnd && so > len && sd < 0) {
-        const float t = (len - so) / sd;
-        const glm::vec3 q = op + t * dp;
-        if (t > r.tnear && t < tfar && glm::dot(q, q) <= radius * radius) {
-            ng = a, u = 1, best = t;
-        }
-    }
+    // Round caps at open ends (as Embree's round curves): the sphere beyond the end plane.
+    auto cap = [&](const glm::vec3& c, bool start) {
+        const glm::vec3 q = r.org - c;
+        const float b = glm::dot(q, r.dir), cc = glm::dot(q, q) - radius * radius;
+        const float disc = b * b - cc;
+        if (cc <= 0 || disc < 0) return;  // starts inside, or misses
+        const float t = -b - std::sqrt(disc);
+        if (!(t > r.tnear && t < tfar)) return;
+        const glm::vec3 h = oc + t * r.dir;
+        const float s = glm::dot(h, a);
+        if (start ? s > 0 : s < len) return;
+        ng = (r.org + t * r.dir - c) / radius, u = start ? 0.f : 1.f, best = t, tfar = t;
+    };
+    if (capStart) cap(p0, true);
+    if (capEnd) cap(p1, false);
     return best;
 }
 
@@ -165,14 +166,15 @@ bool traverseCell(const GridData& g, const GridCell& cell, const RayData& r, flo
                   glm::vec3& ng, uint32_t& segment, float& u) {
     const glm::vec3 qo(cell.qo[0], cell.qo[1], cell.qo[2]), qs(cell.qs[0], cell.qs[1], cell.qs[2]);
     auto point = [&](uint32_t i) { return qo + glm::vec3(g.qpoints[i]) * qs; };
+    const glm::vec3 bs = qs * 257.f;  // 8-bit box step
     bool hit = false;
     for (uint32_t ri = cell.firstRun; ri < cell.firstRun + cell.runCount; ++ri) {
         const GridRun& run = g.runs[ri];
         const uint32_t p0 = run.pointOffset + run.hasPrev;  // first point of the first segment
         const uint32_t chunks = (run.count + kChunk - 1) / kChunk;
         for (uint32_t c = 0; c < chunks; ++c) {
-            const glm::vec3 lo = qo + glm::vec3(g.boxes[run.chunkOffset + 2 * c]) * qs;
-            const glm::vec3 hi = qo + glm::vec3(g.boxes[run.chunkOffset + 2 * c + 1]) * qs;
+            const glm::vec3 lo = qo + glm::vec3(g.boxes[run.chunkOffset + 2 * c]) * bs;
+            const glm::vec3 hi = qo + glm::vec3(g.boxes[run.chunkOffset + 2 * c + 1]) * bs;
             if (!boxHit(r, lo, hi, tfar)) continue;
             const uint32_t first = c * kChunk, last = std::min<uint32_t>(run.count, first + kChunk);
             for (uint32_t k = first; k < last; ++k) {
@@ -289,10 +291,14 @@ GridData buildGrid(const PlyGeometry& pg, const std::vector<int64_t>& cellOf) {
         qlo = glm::min(qlo, lo), qhi = glm::max(qhi, hi);
         const glm::vec3 scale = glm::max(qhi - qlo, glm::vec3(1e-30f)) / 65535.f;
         for (int k = 0; k < 3; ++k) cell.lo[k] = lo[k], cell.hi[k] = hi[k], cell.qo[k] = qlo[k], cell.qs[k] = scale[k];
-        auto quant = [&](const glm::vec3& p, float mode) {  // mode 0 round, -1 floor, +1 ceil
-            glm::vec3 q = (p - qlo) / scale;
-            q = mode < 0 ? glm::floor(q) : mode > 0 ? glm::ceil(q) : glm::round(q);
+        auto quant = [&](const glm::vec3& p) {
+            const glm::vec3 q = glm::round((p - qlo) / scale);
             return glm::u16vec3(glm::clamp(q, glm::vec3(0.f), glm::vec3(65535.f)));
+        };
+        auto quant8 = [&](const glm::vec3& p, bool up) {  // conservative: floor for lo, ceil for hi
+            glm::vec3 q = (p - qlo) / (scale * 257.f);
+            q = up ? glm::ceil(q) : glm::floor(q);
+            return glm::u8vec3(glm::clamp(q, glm::vec3(0.f), glm::vec3(255.f)));
         };
         cell.firstRun = static_cast<uint32_t>(g.runs.size());
         cell.runCount = static_cast<uint32_t>(runs.size());
@@ -305,9 +311,9 @@ GridData buildGrid(const PlyGeometry& pg, const std::vector<int64_t>& cellOf) {
             gr.pointOffset = static_cast<uint32_t>(g.qpoints.size());
             gr.chunkOffset = static_cast<uint32_t>(g.boxes.size());
             const uint32_t i0 = pg.segments[run.first];
-            if (gr.hasPrev) g.qpoints.push_back(quant(pt(i0 - 1), 0));
-            for (uint32_t k = 0; k <= run.count; ++k) g.qpoints.push_back(quant(pt(i0 + k), 0));
-            if (gr.hasNext) g.qpoints.push_back(quant(pt(i0 + run.count + 1), 0));
+            if (gr.hasPrev) g.qpoints.push_back(quant(pt(i0 - 1)));
+            for (uint32_t k = 0; k <= run.count; ++k) g.qpoints.push_back(quant(pt(i0 + k)));
+            if (gr.hasNext) g.qpoints.push_back(quant(pt(i0 + run.count + 1)));
             for (uint32_t c = 0; c < run.count; c += kChunk) {
                 glm::vec3 blo(std::numeric_limits<float>::max()), bhi(-std::numeric_limits<float>::max());
                 for (uint32_t s = run.first + c; s < std::min(run.first + run.count, run.first + c + kChunk); ++s) {
@@ -315,8 +321,8 @@ GridData buildGrid(const PlyGeometry& pg, const std::vector<int64_t>& cellOf) {
                     for (uint32_t j : {pg.segments[s], pg.segments[s] + 1})
                         blo = glm::min(blo, pt(j) - e), bhi = glm::max(bhi, pt(j) + e);
                 }
-                g.boxes.push_back(quant(blo, -1));
-                g.boxes.push_back(quant(bhi, +1));
+                g.boxes.push_back(quant8(blo, false));
+                g.boxes.push_back(quant8(bhi, true));
             }
             g.runs.push_back(gr);
         }
@@ -353,17 +359,19 @@ TubeData buildTubes(const PlyGeometry& pg, int sides) {
         if (s0 == s1) continue;
         const bool closed = pg.hasLeft(s0);
         std::vector<glm::dvec3> p;
-        for (uint32_t s = s0; s < s1; ++s) p.push_back(pg.origin + glm::dvec3(glm::vec3(pg.points[pg.segments[s]])));
-        if (!closed) p.push_back(pg.origin + glm::dvec3(glm::vec3(pg.points[pg.segments[s1 - 1] + 1])));
+        for (uint32_t s = s0; s < s1; ++s) p.push_back(pg.toWorld(glm::vec3(pg.points[pg.segments[s]])));
+        if (!closed) p.push_back(pg.toWorld(glm::vec3(pg.points[pg.segments[s1 - 1] + 1])));
         curves.addCurve(p.data(), p.size(), closed);
         sourceCurve.push_back(static_cast<uint32_t>(k));
     }
     TubeOptions to;
     to.sides = sides;
     to.caps = true;
-    const TubeMesh mesh = sweepTubes(curves, pg.radius, to, 0, curves.curveCount(), pg.origin);
+    const TubeMesh mesh = sweepTubes(curves, pg.unit * pg.radius, to, 0, curves.curveCount(), pg.origin);
     TubeData t;
-    t.positions = mesh.positions;
+    t.positions.reserve(mesh.positions.size() + 1);
+    const float inv = static_cast<float>(1.0 / pg.unit);  // metres relative to origin -> scene units
+    for (const glm::vec3& q : mesh.positions) t.positions.push_back(q * inv);
     t.positions.emplace_back(0.f);
     t.triangles = mesh.triangles;
     if (mesh.curveOfVertex.size() != mesh.positions.size())
@@ -401,16 +409,17 @@ TubeData buildTubes(const PlyGeometry& pg, int sides) {
     return t;
 }
 
-// Outward normal of ply segment s at point p (from its centreline; along the axis beyond the ends).
+// Outward normal of ply segment s at point p: perpendicular to the axis, except beyond an open
+// end (round cap: from the end point). u = position along the segment, clamped to [0, 1].
 glm::vec3 axisNormal(const PlyGeometry& pg, uint32_t s, const glm::vec3& p, float& u) {
     const uint32_t j = pg.segments[s];
     const glm::vec3 a(pg.points[j]), b(pg.points[j + 1]);
     const glm::vec3 d = b - a;
     const float dd = glm::dot(d, d);
-    u = dd > 0 ? glm::dot(p - a, d) / dd : 0.f;
-    const float uc = std::clamp(u, 0.f, 1.f);
-    u = uc;
-    return safeNormalize(p - (a + uc * d));
+    const float raw = dd > 0 ? glm::dot(p - a, d) / dd : 0.f;
+    u = std::clamp(raw, 0.f, 1.f);
+    const bool capped = (raw < 0 && !pg.hasLeft(s)) || (raw > 1 && !pg.hasRight(s));
+    return safeNormalize(p - (a + (capped ? u : raw) * d));
 }
 
 }  // namespace
@@ -436,10 +445,18 @@ void curveEntryFilter(const RTCFilterFunctionNArguments* a) {
     }
 }
 
+// Tubes: entering hits by the centreline normal; the triangle a spawned ray leaves is also ignored:
+// the facets of rings tilted at joints deviate from the centreline normal by more than the polygon
+// angle, so the offset along that normal alone does not always clear the facet plane.
 void tubeEntryFilter(const RTCFilterFunctionNArguments* a) {
     const TraceScene::Impl& impl = *static_cast<const TraceScene::Impl*>(a->geometryUserPtr);
+    const HitContext* ctx = reinterpret_cast<const HitContext*>(a->context);
     for (unsigned i = 0; i < a->N; ++i) {
         if (a->valid[i] != -1) continue;
+        if (RTCHitN_primID(a->hit, a->N, i) == ctx->ignore) {
+            a->valid[i] = 0;
+            continue;
+        }
         const glm::vec3 dir(RTCRayN_dir_x(a->ray, a->N, i), RTCRayN_dir_y(a->ray, a->N, i), RTCRayN_dir_z(a->ray, a->N, i));
         const glm::vec3 org(RTCRayN_org_x(a->ray, a->N, i), RTCRayN_org_y(a->ray, a->N, i), RTCRayN_org_z(a->ray, a->N, i));
         const glm::vec3 p = org + RTCRayN_tfar(a->ray, a->N, i) * dir;
@@ -512,7 +529,7 @@ TraceScene::TraceScene(EmbreeDevice& device, const PlyGeometry& plies, const Tra
     // Step 2: the optional opaque base mesh.
     if (options.baseMesh && !options.baseMesh->faces.empty()) {
         const BaseMesh& m = *options.baseMesh;
-        for (const glm::dvec3& p : m.positions) impl_->basePositions.emplace_back(glm::vec3(p - plies.origin));
+        for (const glm::dvec3& p : m.positions) impl_->basePositions.push_back(plies.toScene(p));
         impl_->basePositions.emplace_back(0.f);
         impl_->baseFaces = m.faces;
         for (const glm::uvec3& f : m.faces)
@@ -539,11 +556,13 @@ TraceScene::~TraceScene() {
     if (scene_) rtcReleaseScene(scene_);
 }
 
-bool TraceScene::intersect(const glm::vec3& org, const glm::vec3& dir, float tnear, float tfar, TraceHit& hit) const {
+bool TraceScene::intersect(const glm::vec3& org, const glm::vec3& dir, float tnear, float tfar, TraceHit& hit,
+                           const TraceHit* from) const {
     HitContext ctx;
     rtcInitIntersectContext(&ctx.base);
     ctx.segment = 0;
     ctx.u = 0;
+    ctx.ignore = ignoreOf(from);
     RTCRayHit rh;
     rh.ray.org_x = org.x, rh.ray.org_y = org.y, rh.ray.org_z = org.z;
     rh.ray.dir_x = dir.x, rh.ray.dir_y = dir.y, rh.ray.dir_z = dir.z;
@@ -566,30 +585,31 @@ bool TraceScene::intersect(const glm::vec3& org, const glm::vec3& dir, float tne
     }
     hit.kind = TraceHit::Ply;
     switch (options_.mode) {
-        case GeometryMode::Curves:
-            hit.segment = rh.hit.primID;
-            hit.u = std::clamp(rh.hit.u, 0.f, 1.f);
-            break;
-        case GeometryMode::Tubes: {
-            hit.segment = impl_->tubes.segmentOfTriangle[rh.hit.primID];
-            float u;
-            const glm::vec3 axis = axisNormal(plies_, hit.segment, org + hit.t * dir, u);
-            hit.u = u;
-            if (glm::dot(ng, axis) < 0) ng = -ng;  // orient the facet outward whatever the winding
-            break;
-        }
-        case GeometryMode::Grid:
-            hit.segment = ctx.segment;
-            hit.u = ctx.u;
-            break;
+        case GeometryMode::Curves: hit.segment = rh.hit.primID; break;  // primID = segment
+        case GeometryMode::Tubes: hit.segment = impl_->tubes.segmentOfTriangle[rh.hit.primID]; break;
+        case GeometryMode::Grid: hit.segment = ctx.segment; break;
     }
-    hit.ng = ng;
+    // The ply normal is taken from the segment's centreline in every mode (the facet normal of a
+    // tube or Embree's curve normal only decide which side was entered): shading, the side tests
+    // of the integrator and the spawn offsets all use this one normal.
+    float u;
+    const glm::vec3 axis = axisNormal(plies_, hit.segment, org + hit.t * dir, u);
+    hit.u = u;
+    hit.ng = glm::length(axis) > 0 ? axis : ng;
     return true;
 }
 
-bool TraceScene::occluded(const glm::vec3& org, const glm::vec3& dir, float tnear, float tfar) const {
-    RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
+uint32_t TraceScene::ignoreOf(const TraceHit* from) const {
+    return from && from->kind == TraceHit::Ply && options_.mode == GeometryMode::Tubes ? from->primID
+                                                                                       : RTC_INVALID_GEOMETRY_ID;
+}
+
+bool TraceScene::occluded(const glm::vec3& org, const glm::vec3& dir, float tnear, float tfar,
+                          const TraceHit* from) const {
+    HitContext hc;
+    rtcInitIntersectContext(&hc.base);
+    hc.ignore = ignoreOf(from);
+    RTCIntersectContext& ctx = hc.base;
     RTCRay ray;
     ray.org_x = org.x, ray.org_y = org.y, ray.org_z = org.z;
     ray.dir_x = dir.x, ray.dir_y = dir.y, ray.dir_z = dir.z;
@@ -602,8 +622,19 @@ bool TraceScene::occluded(const glm::vec3& org, const glm::vec3& dir, float tnea
 glm::vec3 TraceScene::spawn(const TraceHit& hit, const glm::vec3& p, const glm::vec3& dir) const {
     const bool outside = glm::dot(dir, hit.ng) > 0;
     if (hit.kind == TraceHit::Base) return p + (outside ? baseOffset_ : -baseOffset_) * hit.ng;
+    // Offsets are measured from the centreline, not from the computed hit point, so errors of the
+    // hit point (Embree's round curves can be off by several percent of the radius) cannot put the
+    // origin on the wrong side: outside = beyond max(|p - c|, r), inside = within the inscribed
+    // radius (the polygon of a tube) minus the offset.
+    const uint32_t j = plies_.segments[hit.segment];
+    const glm::vec3 a(plies_.points[j]), b(plies_.points[j + 1]);
+    const glm::vec3 c = a + hit.u * (b - a);
     const float r = plies_.radius;
-    return p + (outside ? outsideOffset * r : -insideOffset * r) * hit.ng;
+    if (outside) return c + hit.ng * (std::max(glm::length(p - c), r) * (1.f + outsideOffset));
+    const float inscribed = options_.mode == GeometryMode::Tubes
+                                ? std::cos(3.14159265f / float(std::max(3, options_.tubeSides)))
+                                : 1.f;
+    return c + hit.ng * (r * std::max(0.f, inscribed - insideOffset));
 }
 
 }  // namespace knit

@@ -5,13 +5,14 @@
 //   Tubes:  triangle meshes from knit::sweepTubes (as exported).
 //   Grid:   the two-stage idea: one RTC_GEOMETRY_TYPE_USER primitive per non-empty UV-grid cell;
 //           its callback intersects only that cell's ply segments, as cylinders trimmed by the
-//           bisector planes at the joints (flat caps at open ends). Segment points are stored
-//           16-bit quantized per cell, with one 16-bit box per chunk of up to 8 segments.
+//           bisector planes at the joints (round caps at open ends). Segment points are stored
+//           16-bit quantized per cell, with one 8-bit box per chunk of up to 8 segments.
 // Plies are solids seen from the outside: only hits where the ray enters a ply count (a ray that
-// starts inside a ply leaves it without a hit). Spawned rays are offset along the outward normal:
-// by `outsideOffset` ply radii when they leave on the outside, by `insideOffset` ply radii into
-// the ply when they are transmitted through it, so a spawned ray never re-hits the primitive it
-// leaves (a convex ply piece cannot be re-entered from outside, and its exit is not a hit).
+// starts inside a ply leaves it without a hit). Spawned rays start on the outward normal through
+// the hit's centreline point: at (1 + outsideOffset) times the hit's distance (at least the radius)
+// when they leave on the outside, at (inscribed radius - insideOffset) when they are transmitted
+// into the ply; so a spawned ray never re-hits the primitive it leaves (a convex ply piece cannot
+// be re-entered from outside, and its exit is not a hit), whatever the error of the hit point.
 // The optional base mesh is an opaque two-sided triangle mesh.
 #pragma once
 #include <atomic>
@@ -59,7 +60,7 @@ struct TraceHit {
     enum Kind : uint8_t { None, Ply, Base };
     Kind kind = None;
     float t = 0;
-    glm::vec3 ng{0.f};        // unit geometric normal (outward for plies)
+    glm::vec3 ng{0.f};        // unit normal: for plies, outward from the segment's centreline
     uint32_t segment = 0;     // ply segment (Ply) or triangle (Base)
     float u = 0;              // position along the ply segment in [0, 1]
     uint32_t geomID = RTC_INVALID_GEOMETRY_ID, primID = RTC_INVALID_GEOMETRY_ID;  // Embree primitive
@@ -79,9 +80,12 @@ public:
     TraceScene(const TraceScene&) = delete;
     TraceScene& operator=(const TraceScene&) = delete;
 
-    // Closest entering hit in (tnear, tfar); positions relative to plies.origin.
-    bool intersect(const glm::vec3& org, const glm::vec3& dir, float tnear, float tfar, TraceHit& hit) const;
-    bool occluded(const glm::vec3& org, const glm::vec3& dir, float tnear, float tfar) const;
+    // Closest entering hit in (tnear, tfar); scene units (PlyGeometry::toScene). `from` is the hit
+    // a spawned ray leaves (tubes mode ignores that triangle: see tubeEntryFilter).
+    bool intersect(const glm::vec3& org, const glm::vec3& dir, float tnear, float tfar, TraceHit& hit,
+                   const TraceHit* from = nullptr) const;
+    bool occluded(const glm::vec3& org, const glm::vec3& dir, float tnear, float tfar,
+                  const TraceHit* from = nullptr) const;
     // Origin for a ray leaving `hit` at point p in direction dir (offset along +-ng).
     glm::vec3 spawn(const TraceHit& hit, const glm::vec3& p, const glm::vec3& dir) const;
 
@@ -97,6 +101,7 @@ public:
     struct Impl;
 
 private:
+    uint32_t ignoreOf(const TraceHit* from) const;
     const PlyGeometry& plies_;
     TraceSceneOptions options_;
     RTCScene scene_ = nullptr;
