@@ -85,6 +85,18 @@ void BM_Evaluate(benchmark::State& state) {
 }
 BENCHMARK(BM_Evaluate)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// Per-frame re-posing for a renderer: float32 positions relative to a local origin.
+void BM_EvaluateFloat(benchmark::State& state) {
+    const knit::Scene& s = fixture().scene;
+    std::vector<glm::vec3> out;
+    for (auto _ : state) {
+        knit::evaluateBindingFloat(s.bound.binding, s.mesh.faces, s.mesh.positions, s.normals, glm::dvec3(0.0), out);
+        benchmark::DoNotOptimize(out.data());
+    }
+    state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(s.bound.binding.vertexCount()));
+}
+BENCHMARK(BM_EvaluateFloat)->Unit(benchmark::kMillisecond)->UseRealTime();
+
 }  // namespace
 
 BENCHMARK_MAIN();

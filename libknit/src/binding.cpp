@@ -87,6 +87,65 @@ std::optional<BoundVertex> boundaryCrossing(const BaseMesh& mesh, const UvGrid& 
     return b;
 }
 
+// True when p lies in a (closed) UV triangle of `chart` listed in p's cell (double precision
+// with a relative tolerance: it decides only the middle of a segment piece, see leavesChart).
+bool insideChart(const BaseMesh& mesh, const UvGrid& grid, uint32_t chart, glm::dvec2 p) {
+    const int32_t slot = grid.slotOf(grid.cellOf(p));
+    if (slot < 0) return false;
+    for (uint32_t i = grid.triOffsets[slot]; i < grid.triOffsets[slot + 1]; ++i) {
+        const uint32_t f = grid.triangles[i];
+        if (grid.chartOfFace[f] != chart) continue;
+        const glm::uvec3 t = mesh.faceUvs[f];
+        const glm::dvec2 a = mesh.uvs[t.x], b = mesh.uvs[t.y], c = mesh.uvs[t.z];
+        const double den = cross2(b - a, c - a);
+        const double l1 = cross2(p - a, c - a) / den, l2 = cross2(b - a, p - a) / den, l0 = 1.0 - l1 - l2;
+        const double eps = -1e-12;
+        if (l0 >= eps && l1 >= eps && l2 >= eps) return true;
+    }
+    return false;
+}
+
+// True when the UV segment p -> q between two vertices located in `chart` passes outside the
+// chart on the way: over a gap, a hole or a notch of the UV layout narrower than the segment,
+// where the surface is not continuous (the segment would be a chord through the air in 3D).
+// The chart's boundary edges crossed by the segment split it into pieces; a piece whose middle
+// lies in no triangle of the chart is outside. Pieces within `tol` of an end are ignored: a
+// clamped end lies up to `tol` outside. Cells without boundary edges cost one lookup each.
+bool leavesChart(const BaseMesh& mesh, const UvGrid& grid, uint32_t chart, glm::dvec2 p, glm::dvec2 q, double tol,
+                 std::vector<double>& ts) {
+    const glm::dvec2 d = q - p;
+    const glm::ivec2 c0 = grid.cellOf(glm::min(p, q)), c1 = grid.cellOf(glm::max(p, q));
+    ts.clear();
+    for (int32_t y = c0.y; y <= c1.y; ++y)
+        for (int32_t x = c0.x; x <= c1.x; ++x) {
+            const int32_t slot = grid.slotOf({x, y});
+            if (slot < 0) continue;
+            for (uint32_t i = grid.edgeOffsets[slot]; i < grid.edgeOffsets[slot + 1]; ++i) {
+                const uint32_t he = grid.boundaryEdges[i], f = he / 3, k = he % 3;
+                if (grid.chartOfFace[f] != chart) continue;
+                const glm::uvec3 t = mesh.faceUvs[f];
+                const uint32_t corner[3] = {t.x, t.y, t.z};
+                const glm::dvec2 a = mesh.uvs[corner[k]], e = mesh.uvs[corner[(k + 1) % 3]] - a;
+                const double den = cross2(d, e);
+                if (den == 0) continue;  // parallel: running along the boundary stays in the chart
+                const double tt = cross2(a - p, e) / den, s = cross2(a - p, d) / den;
+                if (tt > 0 && tt < 1 && s >= 0 && s <= 1) ts.push_back(tt);
+            }
+        }
+    if (ts.empty()) return false;
+    std::sort(ts.begin(), ts.end());
+    ts.push_back(1.0);
+    const double len = glm::length(d);
+    double prev = 0.0;
+    for (const double t : ts) {
+        const double mid = 0.5 * (prev + t);
+        const bool nearEnd = mid * len <= tol || (1.0 - mid) * len <= tol;
+        if (t > prev && !nearEnd && !insideChart(mesh, grid, chart, p + mid * d)) return true;
+        prev = t;
+    }
+    return false;
+}
+
 }  // namespace
 
 BindResult bindYarns(const BaseMesh& mesh, const std::vector<glm::dvec3>& normals, const UvGrid& grid,
@@ -133,15 +192,21 @@ BindResult bindYarns(const BaseMesh& mesh, const std::vector<glm::dvec3>& normal
         if (!located(i)) ++stats.cutVertices;
     }
 
-    // 2. Split each yarn into pieces at unlocated vertices and at chart changes; cut ends get
-    //    a vertex where the yarn crosses the UV boundary.
+    // 2. Split each yarn into pieces at unlocated vertices, at chart changes and where a step
+    //    leaves its chart (leavesChart); cut ends get a vertex where the yarn crosses the UV
+    //    boundary.
     std::vector<Piece> pieces;
+    std::vector<double> crossings;  // scratch for leavesChart
     for (size_t y = 0; y < yarns.yarnCount(); ++y) {
         const size_t b = yarns.offsets[y], n = yarns.offsets[y + 1] - b;
         if (n == 0) continue;
         const bool closed = yarns.closed[y] != 0;
-        // Consecutive vertices i -> i+1 stay joined when both are located in the same chart.
-        auto joined = [&](size_t i, size_t j) { return located(b + i) && located(b + j) && chart(b + i) == chart(b + j); };
+        // Consecutive vertices i -> i+1 stay joined when both are located in the same chart and
+        // the UV segment between them does not leave the chart.
+        auto joined = [&](size_t i, size_t j) {
+            return located(b + i) && located(b + j) && chart(b + i) == chart(b + j) &&
+                   !leavesChart(mesh, grid, chart(b + i), yarns.uv[b + i], yarns.uv[b + j], tolUv, crossings);
+        };
         size_t breakAt = 0;  // a run boundary to start from (closed yarns)
         if (closed) {
             bool anyBreak = false;
@@ -345,6 +410,35 @@ BindResult bindYarns(const BaseMesh& mesh, const std::vector<glm::dvec3>& normal
     return result;
 }
 
+namespace {
+
+// The evaluation kernel shared by the double and the float32 entry points: a flat gather,
+// P = sum b_i x_i + h * normalize(sum b_i n_i), handed to `store(i, P, n)`.
+template <class Store>
+void evaluateKernel(const Binding& binding, const std::vector<glm::uvec3>& faces, const std::vector<glm::dvec3>& positions,
+                    const std::vector<glm::dvec3>& normals, Store store) {
+    const size_t n = binding.vertexCount();
+    const uint32_t* face = binding.face.data();
+    const glm::dvec2* bary = binding.bary.data();
+    const double* height = binding.height.data();
+    const glm::uvec3* tri = faces.data();
+    const glm::dvec3* X = positions.data();
+    const glm::dvec3* Nv = normals.data();
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 16384), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t i = r.begin(); i != r.end(); ++i) {
+            const glm::uvec3 f = tri[face[i]];
+            const double b1 = bary[i].x, b2 = bary[i].y, b0 = 1.0 - b1 - b2;
+            const glm::dvec3 p = b0 * X[f.x] + b1 * X[f.y] + b2 * X[f.z];
+            glm::dvec3 nn = b0 * Nv[f.x] + b1 * Nv[f.y] + b2 * Nv[f.z];
+            const double len2 = glm::dot(nn, nn);
+            nn = len2 > 0 ? nn * (1.0 / std::sqrt(len2)) : glm::dvec3(0.0, 0.0, 1.0);
+            store(i, p + height[i] * nn, nn);
+        }
+    });
+}
+
+}  // namespace
+
 void evaluateBinding(const Binding& binding, const std::vector<glm::uvec3>& faces,
                      const std::vector<glm::dvec3>& positions, const std::vector<glm::dvec3>& normals,
                      MappedYarns& out) {
@@ -355,19 +449,19 @@ void evaluateBinding(const Binding& binding, const std::vector<glm::uvec3>& face
     out.normals.resize(n);
     glm::dvec3* P = out.curves.points.data();
     glm::dvec3* N = out.normals.data();
-    // Flat gather: P = sum b_i x_i + h * normalize(sum b_i n_i).
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 16384), [&](const tbb::blocked_range<size_t>& r) {
-        for (size_t i = r.begin(); i != r.end(); ++i) {
-            const glm::uvec3 f = faces[binding.face[i]];
-            const double b1 = binding.bary[i].x, b2 = binding.bary[i].y, b0 = 1.0 - b1 - b2;
-            const glm::dvec3 p = b0 * positions[f.x] + b1 * positions[f.y] + b2 * positions[f.z];
-            glm::dvec3 nn = b0 * normals[f.x] + b1 * normals[f.y] + b2 * normals[f.z];
-            const double len2 = glm::dot(nn, nn);
-            nn = len2 > 0 ? nn * (1.0 / std::sqrt(len2)) : glm::dvec3(0.0, 0.0, 1.0);
-            N[i] = nn;
-            P[i] = p + binding.height[i] * nn;
-        }
+    evaluateKernel(binding, faces, positions, normals, [P, N](size_t i, const glm::dvec3& p, const glm::dvec3& nn) {
+        P[i] = p;
+        N[i] = nn;
     });
+}
+
+void evaluateBindingFloat(const Binding& binding, const std::vector<glm::uvec3>& faces,
+                          const std::vector<glm::dvec3>& positions, const std::vector<glm::dvec3>& normals,
+                          glm::dvec3 origin, std::vector<glm::vec3>& out) {
+    out.resize(binding.vertexCount());
+    glm::vec3* P = out.data();
+    evaluateKernel(binding, faces, positions, normals,
+                   [P, origin](size_t i, const glm::dvec3& p, const glm::dvec3&) { P[i] = glm::vec3(p - origin); });
 }
 
 }  // namespace knit

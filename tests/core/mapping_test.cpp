@@ -156,5 +156,24 @@ TEST(Mapping, bindingEvaluatedOnDeformedCopyEqualsFreshMapping) {
     EXPECT_LT(worst, 1e-12);
 }
 
+TEST(Mapping, floatEvaluationFarFromOriginKeepsPrecision) {
+    // A drape 100 km from the origin: float32 positions relative to a local origin agree with
+    // the double evaluation to float precision of the garment's own size.
+    ProceduralMeshOptions mo;
+    mo.resU = mo.resV = 16;
+    BaseMesh far = makeDrape(mo);
+    const glm::dvec3 offset(1e5, -2e5, 3e4);
+    for (glm::dvec3& x : far.positions) x += offset;
+    const Scene s = buildScene(generateStockinette(), far, yarnsOnly({20, 20}));
+    std::vector<glm::vec3> local;
+    evaluateBindingFloat(s.bound.binding, s.mesh.faces, s.mesh.positions, s.normals, offset, local);
+    ASSERT_EQ(local.size(), s.yarns.curves.pointCount());
+    double worst = 0;
+    for (size_t i = 0; i < local.size(); ++i)
+        worst = std::max(worst, glm::distance(glm::dvec3(local[i]) + offset, s.yarns.curves.points[i]));
+    EXPECT_LT(worst, 1e-6 * 0.5);  // float32 of ~0.5 m coordinates: ~3e-8 m
+    EXPECT_LT(worst, 1e-3 * s.yarnRadius);
+}
+
 }  // namespace
 }  // namespace knit

@@ -73,4 +73,11 @@ void evaluateBinding(const Binding& binding, const std::vector<glm::uvec3>& face
                      const std::vector<glm::dvec3>& positions, const std::vector<glm::dvec3>& normals,
                      MappedYarns& out);
 
+// The same evaluation for a renderer or GPU upload per animation frame: positions only, as
+// float32 relative to `origin` (a local origin near the garment keeps sub-micron precision),
+// computed in double.
+void evaluateBindingFloat(const Binding& binding, const std::vector<glm::uvec3>& faces,
+                          const std::vector<glm::dvec3>& positions, const std::vector<glm::dvec3>& normals,
+                          glm::dvec3 origin, std::vector<glm::vec3>& out);
+
 }  // namespace knit
