@@ -177,6 +177,7 @@ int main(int argc, char** argv) {
             return 0;
         }
         if (*build) {
+            knit::validateExportOptions(exportOptions);  // fail before the scene is built
             knit::SceneOptions options = resolveScene(buildFlags);
             options.buildPlies = exportOptions.what != knit::ExportWhat::Yarns;
             const knit::Scene scene = knit::buildScene(options);

@@ -3,6 +3,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cctype>
 #include <cerrno>
@@ -79,6 +80,7 @@ void AtomicFile::close() {
     if (closed_) return;
     closed_ = true;
     out_.flush();
+    out_.seekp(0, std::ios::end);  // the size, also after a writer seeked back to patch a header
     const bool ok = static_cast<bool>(out_);
     size_ = ok ? static_cast<uint64_t>(out_.tellp()) : 0;
     out_.close();
@@ -108,21 +110,23 @@ void AtomicFile::undoCommit() {
     committed_ = false;
 }
 
-void appendFile(std::ostream& out, const std::string& from, uint64_t expectedBytes) {
+void appendFile(std::ostream& out, const std::string& from, uint64_t offset, uint64_t bytes) {
     std::ifstream in(from, std::ios::binary);
     if (!in) throw Error("export: cannot reopen temporary file '" + from + "'");
+    in.seekg(std::streamoff(offset));
     std::unique_ptr<char[]> block(new char[kStreamBuffer * 4]);
     uint64_t copied = 0;
-    while (in) {
-        in.read(block.get(), static_cast<std::streamsize>(kStreamBuffer * 4));
+    while (copied < bytes && in) {
+        const uint64_t want = std::min<uint64_t>(bytes - copied, kStreamBuffer * 4);
+        in.read(block.get(), std::streamsize(want));
         const std::streamsize got = in.gcount();
         if (got <= 0) break;
         out.write(block.get(), got);
-        copied += static_cast<uint64_t>(got);
+        copied += uint64_t(got);
     }
-    if (copied != expectedBytes)
-        throw Error("export: temporary file '" + from + "' holds " + std::to_string(copied) +
-                    " bytes, expected " + std::to_string(expectedBytes));
+    if (copied != bytes)
+        throw Error("export: temporary file '" + from + "' ended after " + std::to_string(copied) + " of " +
+                    std::to_string(bytes) + " bytes");
 }
 
 std::string lowerExtension(const std::string& path) {

@@ -42,8 +42,8 @@ private:
 // Checks that the folder of `path` exists and is a folder; throws knit::Error naming it.
 void checkOutputFolder(const std::string& path);
 
-// Appends the whole content of file `from` to `out` (used to place a streamed BIN chunk).
-void appendFile(std::ostream& out, const std::string& from, uint64_t expectedBytes);
+// Appends `bytes` bytes of file `from`, starting at `offset`, to `out`.
+void appendFile(std::ostream& out, const std::string& from, uint64_t offset, uint64_t bytes);
 
 // Lower-case extension of `path` without the dot ("" if none).
 std::string lowerExtension(const std::string& path);

@@ -59,10 +59,12 @@ glm::dvec3 chunkOrigin(const Polylines& curves, const Chunk& chunk) {
 void forEachTubeChunk(const Polylines& curves, double radius, const TubeOptions& tube,
                       const std::vector<Chunk>& chunks,
                       const std::function<void(size_t chunkIndex, const TubeMesh& mesh)>& consume) {
+    // One mesh reused for every chunk: at most one chunk's tube mesh is alive, and its memory
+    // is allocated (and page-faulted) once instead of once per chunk.
+    TubeMesh mesh;
     for (size_t k = 0; k < chunks.size(); ++k) {
-        // Sweep one chunk around its own origin, hand it over, free it before the next one.
-        const TubeMesh mesh = sweepTubes(curves, radius, tube, chunks[k].firstCurve, chunks[k].lastCurve,
-                                         chunkOrigin(curves, chunks[k]));
+        sweepTubes(curves, radius, tube, chunks[k].firstCurve, chunks[k].lastCurve, chunkOrigin(curves, chunks[k]),
+                   mesh);
         consume(k, mesh);
     }
 }

@@ -27,7 +27,8 @@ std::vector<Chunk> planCurveChunks(const Polylines& curves, size_t maxPoints);
 // Centre of the bounding box of the chunk's points (double): the chunk's local origin.
 glm::dvec3 chunkOrigin(const Polylines& curves, const Chunk& chunk);
 
-// Sweeps each chunk, hands it to `consume`, then frees it: at most one chunk mesh in memory.
+// Sweeps each chunk into one reused mesh and hands it to `consume`: at most one chunk mesh in
+// memory, allocated once.
 void forEachTubeChunk(const Polylines& curves, double radius, const TubeOptions& tube,
                       const std::vector<Chunk>& chunks,
                       const std::function<void(size_t chunkIndex, const TubeMesh& mesh)>& consume);

@@ -4,7 +4,6 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
-#include <map>
 #include <sstream>
 
 #include <CLI/CLI.hpp>
@@ -100,16 +99,18 @@ void validateExportOptions(const ExportOptions& o) {
         throw Error("export: Draco normal/texcoord bits must be in [1, 30]");
     if (o.dracoLevel < 0 || o.dracoLevel > 10)
         throw Error("export: --draco-level must be in [0, 10], got " + std::to_string(o.dracoLevel));
-    if (o.chunkVertices < 16)
-        throw Error("export: --chunk-vertices must be at least 16, got " + std::to_string(o.chunkVertices));
+    if (o.chunkVertices != 0 && o.chunkVertices < 16)
+        throw Error("export: --chunk-vertices must be 0 (auto) or at least 16, got " + std::to_string(o.chunkVertices));
     if (o.maxBufferBytes < 1024 || o.maxBufferBytes > 0xFFFFFFF0ull)
         throw Error("export: maxBufferBytes must be in [1024, 4294967280]");
 }
 
-ExportStats exportCurves(const ExportInput& input, const ExportOptions& options) {
+ExportStats exportCurves(const ExportInput& input, const ExportOptions& requested) {
     const auto t0 = std::chrono::steady_clock::now();
     // Step 1: validate options, the output folder and the data before anything is written.
-    validateExportOptions(options);
+    validateExportOptions(requested);
+    ExportOptions options = requested;
+    if (options.chunkVertices == 0) options.chunkVertices = options.draco ? size_t(1) << 18 : size_t(1) << 20;
     detail::checkOutputFolder(options.path);
     const bool tubes = options.what == ExportWhat::Tubes;
     validateInput(input, tubes);
@@ -189,31 +190,45 @@ ExportStats exportScene(const Scene& scene, const ExportOptions& options) {
 }
 
 void addExportFlags(CLI::App& command, ExportOptions& options) {
-    const std::map<std::string, ExportWhat> what{
-        {"yarns", ExportWhat::Yarns}, {"plies", ExportWhat::Plies}, {"tubes", ExportWhat::Tubes}};
-    const std::map<std::string, TubeSource> source{
-        {"auto", TubeSource::Auto}, {"plies", TubeSource::Plies}, {"yarns", TubeSource::Yarns}};
-    command.add_option("--export", options.what,
-                       "What to write: yarn centrelines, ply curves, or swept tube meshes")
-        ->transform(CLI::CheckedTransformer(what, CLI::ignore_case))
+    // Enum options as checked words (shown as TEXT:{...}); ignore_case maps to the listed spelling.
+    command
+        .add_option_function<std::string>(
+            "--export",
+            [&options](const std::string& v) {
+                options.what = v == "yarns" ? ExportWhat::Yarns : v == "tubes" ? ExportWhat::Tubes : ExportWhat::Plies;
+            },
+            "What to write: yarn centrelines, ply curves, or swept tube meshes")
+        ->transform(CLI::IsMember({"yarns", "plies", "tubes"}, CLI::ignore_case))
+        ->default_str(whatName(options.what))
         ->group("Export");
-    command.add_option("--tubes-of", options.tubesOf,
-                       "Curves swept by --export tubes (auto: plies when built, else yarns)")
-        ->transform(CLI::CheckedTransformer(source, CLI::ignore_case))
+    command
+        .add_option_function<std::string>(
+            "--tubes-of",
+            [&options](const std::string& v) {
+                options.tubesOf = v == "plies" ? TubeSource::Plies : v == "yarns" ? TubeSource::Yarns : TubeSource::Auto;
+            },
+            "Curves swept by --export tubes (auto: plies when built, else yarns)")
+        ->transform(CLI::IsMember({"auto", "plies", "yarns"}, CLI::ignore_case))
+        ->default_str("auto")
         ->group("Export");
-    command.add_option("--sides", options.sides, "Tube ring vertices (3..1024)")
+    command.add_option("--sides", options.sides, "Tube ring vertices")
         ->check(CLI::Range(3, 1024))
+        ->capture_default_str()
         ->group("Export");
-    command.add_flag("!--no-caps", options.caps, "Leave open tube ends open")->group("Export");
+    command.add_flag_function(
+               "--no-caps", [&options](int64_t) { options.caps = false; }, "Leave open tube ends open")
+        ->group("Export");
     CLI::Option* draco =
         command.add_flag("--draco", options.draco, "KHR_draco_mesh_compression for tube meshes (.glb/.gltf)")
             ->group("Export");
-    command.add_option("--draco-bits", options.dracoBits, "Draco position quantization bits (1..30)")
+    command.add_option("--draco-bits", options.dracoBits, "Draco position quantization bits")
         ->check(CLI::Range(1, 30))
+        ->capture_default_str()
         ->needs(draco)
         ->group("Export");
     command.add_option("--draco-level", options.dracoLevel, "Draco compression level (0 fast .. 10 small)")
         ->check(CLI::Range(0, 10))
+        ->capture_default_str()
         ->needs(draco)
         ->group("Export");
     command.add_flag("--quantize", options.quantize,
@@ -223,8 +238,10 @@ void addExportFlags(CLI::App& command, ExportOptions& options) {
     command.add_flag("--yarn-colors", options.yarnColors, "COLOR_0 per yarn on tube meshes (glTF)")
         ->group("Export");
     command.add_option("--chunk-vertices", options.chunkVertices,
-                       "Streaming chunk size: tube vertices (or curve points) per chunk / glTF node")
-        ->check(CLI::Range(size_t(16), size_t(1) << 31))
+                       "Streaming chunk size: tube vertices (or curve points) per chunk / glTF node; "
+                       "0 = auto (1048576, or 262144 with --draco)")
+        ->check(CLI::Range(size_t(0), size_t(1) << 31))
+        ->capture_default_str()
         ->group("Export");
     command.add_flag("--pretty-json", options.prettyJson, "Indent the glTF JSON")->group("Export");
 }

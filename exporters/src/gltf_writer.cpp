@@ -106,11 +106,14 @@ glm::u8vec4 yarnColour(uint32_t yarn) {
                        255);
 }
 
-// Binary data for the glTF buffers, streamed into temporary files.
+// Binary data for the glTF buffers, streamed into temporary files. GLB: buffer 0 is written
+// straight into the GLB's own temporary file after a reserved gap of `glbPrefix` bytes, which
+// finish() fills with the 12-byte header, the JSON chunk (space padded) and the BIN chunk header,
+// so the binary data is written once (no copy) whenever the JSON fits the reservation.
 class BufferSink {
 public:
-    BufferSink(const std::string& outputPath, bool glb, uint64_t maxBytes)
-        : output_(outputPath), glb_(glb), maxBytes_(maxBytes) {}
+    BufferSink(const std::string& outputPath, bool glb, uint64_t maxBytes, uint64_t glbPrefix)
+        : output_(outputPath), glb_(glb), maxBytes_(maxBytes), glbPrefix_(glbPrefix) {}
 
     // Makes sure the next `bytes` (one chunk's data) fit in the current buffer; else opens a new one.
     void reserve(uint64_t bytes) {
@@ -132,6 +135,8 @@ public:
     size_t count() const { return files_.size(); }
     uint64_t size(size_t k) const { return sizes_[k]; }
     AtomicFile& file(size_t k) { return *files_[k]; }
+    bool embedsFirst() const { return glb_; }
+    uint64_t glbPrefix() const { return glbPrefix_; }
     // The final file name of buffer k (GLB: buffer 0 is embedded and has none).
     std::string fileName(size_t k) const {
         const fs::path p(output_);
@@ -139,7 +144,9 @@ public:
         return k == 0 ? stem + ".bin" : stem + "_" + std::to_string(k) + ".bin";
     }
     std::string filePath(size_t k) const { return (fs::path(output_).parent_path() / fileName(k)).string(); }
-    void padAll() { pad(); }
+    void padAll() {
+        if (!files_.empty()) pad();
+    }
 
 private:
     void pad() {
@@ -153,22 +160,58 @@ private:
     void openBuffer() {
         if (!files_.empty()) pad();
         const size_t k = files_.size();
-        // GLB buffer 0 is a scratch file copied into the BIN chunk (never renamed).
-        const std::string path = (glb_ && k == 0) ? output_ + ".bin0" : filePath(k);
-        files_.push_back(std::make_unique<AtomicFile>(path, true));
+        const bool inGlb = glb_ && k == 0;
+        files_.push_back(std::make_unique<AtomicFile>(inGlb ? output_ : filePath(k), true));
         sizes_.push_back(0);
+        if (inGlb) {
+            // The gap for header + JSON chunk + BIN chunk header, filled in by finish().
+            const std::vector<char> gap(size_t(glbPrefix_ + 8), ' ');
+            files_.back()->stream().write(gap.data(), std::streamsize(gap.size()));
+        }
     }
     std::string output_;
     bool glb_;
     uint64_t maxBytes_;
+    uint64_t glbPrefix_;
     std::vector<std::unique_ptr<AtomicFile>> files_;
     std::vector<uint64_t> sizes_;
 };
 
+// GLB header + JSON chunk (padded with spaces to `jsonChunk` bytes) + BIN chunk header.
+void writeGlbHead(std::ostream& out, const std::string& json, uint64_t jsonChunk, uint64_t bin, uint64_t total) {
+    auto u32 = [&](uint32_t v) { out.write(reinterpret_cast<const char*>(&v), 4); };
+    out.write("glTF", 4);
+    u32(2);
+    u32(uint32_t(total));
+    u32(uint32_t(jsonChunk));
+    u32(0x4E4F534A);  // "JSON"
+    out.write(json.data(), std::streamsize(json.size()));
+    for (uint64_t i = json.size(); i < jsonChunk; ++i) out.put(' ');
+    if (bin > 0) {
+        u32(uint32_t(bin));
+        u32(0x004E4942);  // "BIN\0"
+    }
+}
+
+// Bytes reserved in front of a GLB's BIN data for the header and JSON chunk: generous per-chunk
+// (and per-curve) estimates of the JSON size; finish() pads the JSON with spaces to fill it.
+uint64_t jsonReservation(const FormatJob& job) {
+    if (job.options.glbJsonReserve > 0) return std::max<uint64_t>(32, (job.options.glbJsonReserve + 3) / 4 * 4);
+    if (!job.input.curves) return 4096;
+    const Polylines& c = *job.input.curves;
+    uint64_t chunks = 0;
+    if (job.tubes) chunks = planTubeChunks(c, job.tube, job.options.chunkVertices).size();
+    else chunks = planCurveChunks(c, job.options.chunkVertices).size();
+    const uint64_t extras = job.input.materialExtras ? job.input.materialExtras->dump().size() : 0;
+    uint64_t bytes = 4096 + 2 * extras + chunks * 2048 + (job.tubes ? 0 : c.curveCount() * 384);
+    if (job.options.prettyJson) bytes *= 3;
+    return (bytes + 3) / 4 * 4;
+}
+
 class GltfBuilder {
 public:
     GltfBuilder(const FormatJob& job, bool glb)
-        : job_(job), glb_(glb), sink_(job.options.path, glb, job.options.maxBufferBytes) {
+        : job_(job), glb_(glb), sink_(job.options.path, glb, job.options.maxBufferBytes, jsonReservation(job)) {
         model_.asset.version = "2.0";
         model_.asset.generator = "libknit";
         model_.defaultScene = 0;
@@ -193,6 +236,9 @@ public:
     void writeTubes() {
         const Polylines& curves = *job_.input.curves;
         const std::vector<Chunk> chunks = planTubeChunks(curves, job_.tube, job_.options.chunkVertices);
+        // Before anything is written: every chunk must fit in one buffer (plain size is the
+        // upper bound; quantized and Draco data are smaller).
+        for (const Chunk& c : chunks) checkChunkFits(c.vertices * 56 + c.triangles * 12 + 64);
         forEachTubeChunk(curves, job_.input.radius, job_.tube, chunks, [&](size_t k, const TubeMesh& mesh) {
             if (mesh.vertexCount() == 0) return;
             std::vector<glm::u8vec4> colours;
@@ -223,6 +269,7 @@ public:
     void writeCurves() {
         const Polylines& curves = *job_.input.curves;
         const std::vector<Chunk> chunks = planCurveChunks(curves, job_.options.chunkVertices);
+        for (const Chunk& c : chunks) checkChunkFits(c.vertices * 20 + (c.lastCurve - c.firstCurve) * 4 + 64);
         std::vector<glm::vec3> pos;
         std::vector<float> radius;
         std::vector<uint32_t> indices;
@@ -284,7 +331,7 @@ public:
             throw Error("cannot export '" + job_.options.path + "': tinygltf failed to serialize the model");
         nlohmann::json doc = nlohmann::json::parse(jsonText.str());
         // The buffers (tinygltf only knows in-memory buffers): sizes and URIs of the streamed files.
-        if (sink_.count() > 0) sink_.padAll();
+        sink_.padAll();
         nlohmann::json buffers = nlohmann::json::array();
         for (size_t k = 0; k < sink_.count(); ++k) {
             nlohmann::json b = {{"byteLength", sink_.size(k)}};
@@ -295,49 +342,70 @@ public:
         else doc["buffers"] = buffers;
         const std::string json = job_.options.prettyJson ? doc.dump(2) : doc.dump();
 
-        for (size_t k = 0; k < sink_.count(); ++k) sink_.file(k).close();
-        AtomicFile main(job_.options.path, true);
-        std::ostream& out = main.stream();
-        if (glb_) {
-            // GLB: 12-byte header, JSON chunk (space padded), BIN chunk (zero padded).
+        std::unique_ptr<AtomicFile> rewritten;  // GLB whose JSON did not fit the reservation
+        AtomicFile* main = nullptr;
+        uint64_t mainBytes = 0;
+        if (glb_ && sink_.count() > 0) {
+            // GLB with data: the BIN chunk already follows the reserved gap in the GLB's file.
+            const uint64_t bin = sink_.size(0), prefix = sink_.glbPrefix();
             const uint64_t jsonPadded = (json.size() + 3) / 4 * 4;
-            const uint64_t bin = sink_.count() > 0 ? sink_.size(0) : 0;
-            const uint64_t total = 12 + 8 + jsonPadded + (bin > 0 ? 8 + bin : 0);
+            const bool fits = 20 + jsonPadded <= prefix;
+            const uint64_t jsonChunk = fits ? prefix - 20 : jsonPadded;
+            const uint64_t total = 20 + jsonChunk + 8 + bin;
             if (total > 0xFFFFFFFFull)
                 throw Error("cannot export '" + job_.options.path + "': the GLB would be " + std::to_string(total) +
                             " bytes, over the 4 GiB GLB limit; lower the buffer size or write .gltf");
-            auto u32 = [&](uint32_t v) { out.write(reinterpret_cast<const char*>(&v), 4); };
-            out.write("glTF", 4);
-            u32(2);
-            u32(uint32_t(total));
-            u32(uint32_t(jsonPadded));
-            u32(0x4E4F534A);  // "JSON"
-            out.write(json.data(), std::streamsize(json.size()));
-            for (uint64_t i = json.size(); i < jsonPadded; ++i) out.put(' ');
-            if (bin > 0) {
-                u32(uint32_t(bin));
-                u32(0x004E4942);  // "BIN\0"
-                appendFile(out, sink_.file(0).tempPath(), bin);
+            AtomicFile& file0 = sink_.file(0);
+            if (fits) {
+                std::ostream& out = file0.stream();
+                out.seekp(0);
+                writeGlbHead(out, json, jsonChunk, bin, total);
+                main = &file0;
+            } else {
+                // Rare: the JSON outgrew the reservation; write a new file and copy the BIN data.
+                file0.close();
+                rewritten = std::make_unique<AtomicFile>(job_.options.path, true);
+                writeGlbHead(rewritten->stream(), json, jsonChunk, bin, total);
+                appendFile(rewritten->stream(), file0.tempPath(), prefix + 8, bin);
+                main = rewritten.get();
             }
+            mainBytes = total;
         } else {
-            out.write(json.data(), std::streamsize(json.size()));
+            rewritten = std::make_unique<AtomicFile>(job_.options.path, true);
+            if (glb_) {
+                const uint64_t jsonPadded = (json.size() + 3) / 4 * 4;
+                writeGlbHead(rewritten->stream(), json, jsonPadded, 0, 20 + jsonPadded);
+                mainBytes = 20 + jsonPadded;
+            } else {
+                rewritten->stream().write(json.data(), std::streamsize(json.size()));
+                mainBytes = json.size();
+            }
+            main = rewritten.get();
         }
-        main.close();
+        for (size_t k = 0; k < sink_.count(); ++k) sink_.file(k).close();
+        main->close();
         // Rename: external buffers first, the main file last; undo on failure.
         try {
             for (size_t k = (glb_ ? 1 : 0); k < sink_.count(); ++k) sink_.file(k).commit();
-            main.commit();
+            main->commit();
         } catch (...) {
             for (size_t k = 0; k < sink_.count(); ++k) sink_.file(k).undoCommit();
             throw;
         }
-        uint64_t bytes = main.bytesWritten();
+        uint64_t bytes = mainBytes;
         for (size_t k = (glb_ ? 1 : 0); k < sink_.count(); ++k) bytes += sink_.size(k);
         job_.stats.bytes = bytes;
         job_.stats.buffers = sink_.count();
     }
 
 private:
+    void checkChunkFits(uint64_t bytes) const {
+        if (bytes + 4 > job_.options.maxBufferBytes)
+            throw Error("cannot export '" + job_.options.path + "': a chunk needs up to " + std::to_string(bytes) +
+                        " bytes, more than the buffer limit " + std::to_string(job_.options.maxBufferBytes) +
+                        "; lower --chunk-vertices (a single curve longer than the limit cannot be split)");
+    }
+
     void addMaterial() {
         tinygltf::Material m;
         m.name = "yarn";

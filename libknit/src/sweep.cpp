@@ -83,9 +83,23 @@ struct CurveSlots {
 TubeMesh sweepTubes(const Polylines& curves, double radius, const TubeOptions& options, size_t firstCurve,
                     size_t lastCurve, glm::dvec3 origin) {
     TubeMesh mesh;
+    sweepTubes(curves, radius, options, firstCurve, lastCurve, origin, mesh);
+    return mesh;
+}
+
+void sweepTubes(const Polylines& curves, double radius, const TubeOptions& options, size_t firstCurve,
+                size_t lastCurve, glm::dvec3 origin, TubeMesh& mesh) {
     mesh.origin = origin;
     if (lastCurve > curves.curveCount()) lastCurve = curves.curveCount();
-    if (firstCurve >= lastCurve || options.sides < 3) return mesh;
+    if (firstCurve >= lastCurve || options.sides < 3) {
+        mesh.positions.clear();
+        mesh.normals.clear();
+        mesh.tangents.clear();
+        mesh.uvs.clear();
+        mesh.triangles.clear();
+        mesh.curveOfVertex.clear();
+        return;
+    }
     const int sides = options.sides;
     const size_t ringSize = size_t(sides) + 1;
 
@@ -106,7 +120,8 @@ TubeMesh sweepTubes(const Polylines& curves, double radius, const TubeOptions& o
     mesh.triangles.resize(nt);
 
     // Step 2: the ring angle table (the seam column reuses angle 0 exactly).
-    std::vector<float> cosA(ringSize), sinA(ringSize);
+    std::vector<float> cosA(ringSize), sinA(ringSize), uA(ringSize);
+    for (size_t j = 0; j < ringSize; ++j) uA[j] = float(j) / float(sides);
     for (int j = 0; j < sides; ++j) {
         const double a = 2.0 * M_PI * double(j) / double(sides);
         cosA[j] = float(std::cos(a));
@@ -168,7 +183,7 @@ TubeMesh sweepTubes(const Polylines& curves, double radius, const TubeOptions& o
                     nor[j] = d;
                     pos[j] = cf + r * d;
                     tan[j] = tf;
-                    uv[j] = glm::vec2(float(j) / float(sides), v);
+                    uv[j] = glm::vec2(uA[j], v);
                     cv[j] = curveId;
                 }
             }
@@ -210,7 +225,6 @@ TubeMesh sweepTubes(const Polylines& curves, double radius, const TubeOptions& o
             }
         }
     });
-    return mesh;
 }
 
 }  // namespace knit

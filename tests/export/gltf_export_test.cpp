@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <map>
 
+#include <tbb/global_control.h>
+
 #include "export/gltf_read.hpp"
 #include "export/gltf_validator.hpp"
 #include "export/test_curves.hpp"
@@ -271,6 +273,41 @@ TEST(GltfExport, quantizedMeshIsRequiredExtensionAndRoundTripsWithinStep) {
         ASSERT_NEAR(glm::length(r.normals[i]), 1.0, 1e-4);
         ASSERT_EQ(r.tangents[i].w, -1.0);
     }
+}
+
+TEST(GltfExport, jsonLargerThanReservationRewritesAValidGlb) {
+    const std::string dir = test::scratchDir("gltf_reserve");
+    const Polylines c = test::mixedCurves();
+    ExportOptions o = tubes(dir + "/small_reserve.glb", 6);
+    o.glbJsonReserve = 64;  // far too small: the writer must fall back to copying the BIN data
+    const ExportStats s = write(c, 0.001, o);
+    ExportOptions p = tubes(dir + "/auto_reserve.glb", 6);
+    write(c, 0.001, p);
+    EXPECT_EQ(test::listDir(dir).size(), 2u) << "no temporary file left";
+    test::expectGltfValid(o.path);
+    const TubeRead a = readTubes(test::loadGltf(o.path)), b = readTubes(test::loadGltf(p.path));
+    EXPECT_EQ(a.positions, b.positions);
+    EXPECT_EQ(a.normals, b.normals);
+    EXPECT_EQ(s.bytes, test::readBytes(o.path).size());
+}
+
+TEST(GltfExport, glbIsByteIdenticalForOneAndManyThreads) {
+    const std::string dir = test::scratchDir("gltf_threads");
+    Polylines c;
+    for (int k = 0; k < 40; ++k) {
+        const auto h = test::helix(80, 0.004, 0.002, 3.0, glm::dvec3(0.01 * k, 0, 0));
+        c.addCurve(h.data(), h.size(), k % 4 == 0);
+    }
+    ExportOptions o = tubes(dir + "/one.glb", 7);
+    o.chunkVertices = 3000;
+    {
+        tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+        write(c, 0.0005, o);
+    }
+    ExportOptions m = o;
+    m.path = dir + "/many.glb";
+    write(c, 0.0005, m);
+    EXPECT_EQ(test::readBytes(o.path), test::readBytes(m.path));
 }
 
 TEST(GltfExport, emptyCurveSetWritesValidEmptyScene) {

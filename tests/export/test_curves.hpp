@@ -79,6 +79,11 @@ inline std::string readText(const std::string& path) {
     return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
+inline void writeText(const std::string& path, const std::string& text) {
+    std::ofstream out(path);
+    out << text;
+}
+
 // Files in a folder (names only), to check that nothing (no temporary file) is left behind.
 inline std::vector<std::string> listDir(const std::string& dir) {
     std::vector<std::string> names;

@@ -44,7 +44,7 @@ struct ExportOptions {
 
     // glTF / GLB.
     bool draco = false;                  // KHR_draco_mesh_compression (tubes only)
-    int dracoBits = 14;                  // position quantization bits (1..30)
+    int dracoBits = 16;                  // position quantization bits (1..30; docs/speed-vs-error.md)
     int dracoNormalBits = 10;            // normal / tangent quantization bits
     int dracoTexcoordBits = 12;          // TEXCOORD_0 quantization bits
     int dracoLevel = 7;                  // Draco compression level 0 (fast) .. 10 (small)
@@ -52,10 +52,15 @@ struct ExportOptions {
     bool yarnColors = false;             // COLOR_0 per yarn (tubes) from a fixed palette
     bool prettyJson = false;             // indent the glTF JSON
 
-    // Chunking: at most this many tube vertices (tubes) or curve points (curves) per chunk.
-    size_t chunkVertices = size_t(1) << 20;
+    // Chunking: at most this many tube vertices (tubes) or curve points (curves) per chunk;
+    // 0 = auto: 1M (2^20), or 256k (2^18) with Draco, whose encoder needs ~0.5 KB per vertex.
+    size_t chunkVertices = 0;
     // Largest glTF buffer (and GLB BIN chunk); data beyond it goes to further buffers.
     uint64_t maxBufferBytes = 0xE0000000ull;  // 3.5 GiB: leaves room for the GLB JSON chunk
+    // GLB: bytes reserved before the BIN data for the JSON chunk (0 = estimate from the chunk
+    // count). The BIN data streams into the GLB after this gap; if the JSON turns out larger,
+    // the file is rewritten once with a copy of the BIN data.
+    uint64_t glbJsonReserve = 0;
 };
 
 struct ExportStats {

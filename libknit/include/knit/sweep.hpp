@@ -39,6 +39,11 @@ struct TubeMesh {
 TubeMesh sweepTubes(const Polylines& curves, double radius, const TubeOptions& options,
                     size_t firstCurve, size_t lastCurve, glm::dvec3 origin);
 
+// Same, writing into `out` and reusing its storage (streaming export sweeps chunk after chunk
+// into one mesh, so the memory is allocated and touched once, not once per chunk).
+void sweepTubes(const Polylines& curves, double radius, const TubeOptions& options, size_t firstCurve,
+                size_t lastCurve, glm::dvec3 origin, TubeMesh& out);
+
 // Layout (see sweep.cpp): every ring stores sides + 1 vertices (the last one duplicates the
 // first position with u = 1, the texture seam); a closed curve of n points gets n + 1 rings (the
 // last duplicates ring 0 with v = length / radius); an open curve with caps adds one cap per end

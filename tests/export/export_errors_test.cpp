@@ -1,0 +1,249 @@
+// Bad input: unknown extension, unwritable paths, conflicting options, bad data — a clear
+// knit::Error and no file (not even a temporary one) left behind. Also the CLI flags and
+// exportScene's choice of curves.
+#include <gtest/gtest.h>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "export/test_curves.hpp"
+#include "knit/error.hpp"
+#include "knit/export.hpp"
+#include "knit/sweep.hpp"
+
+namespace knit {
+namespace {
+
+std::string errorOf(const Polylines& c, const ExportOptions& o, double radius = 0.001) {
+    ExportInput in;
+    in.curves = &c;
+    in.radius = radius;
+    try {
+        exportCurves(in, o);
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+TEST(ExportErrors, unknownExtensionListsSupportedFormats) {
+    const std::string dir = test::scratchDir("err_ext");
+    ExportOptions o;
+    o.path = dir + "/out.stl";
+    const std::string e = errorOf(test::mixedCurves(), o);
+    EXPECT_TRUE(contains(e, "unknown extension '.stl'")) << e;
+    for (const char* ext : {".obj", ".ply", ".bcc", ".pbrt", ".gltf", ".glb"}) EXPECT_TRUE(contains(e, ext)) << e;
+    o.path = dir + "/noextension";
+    EXPECT_TRUE(contains(errorOf(test::mixedCurves(), o), "unknown extension")) << e;
+    EXPECT_TRUE(test::listDir(dir).empty());
+}
+
+TEST(ExportErrors, dracoWithCurvesIsRefused) {
+    const std::string dir = test::scratchDir("err_draco_curves");
+    ExportOptions o;
+    o.path = dir + "/c.glb";
+    o.what = ExportWhat::Plies;
+    o.draco = true;
+    const std::string e = errorOf(test::mixedCurves(), o);
+    EXPECT_TRUE(contains(e, "--draco")) << e;
+    EXPECT_TRUE(contains(e, "curves")) << e;
+    EXPECT_TRUE(test::listDir(dir).empty());
+}
+
+TEST(ExportErrors, dracoOutsideGltfAndDracoWithQuantizeAreRefused) {
+    const std::string dir = test::scratchDir("err_conflicts");
+    ExportOptions o;
+    o.what = ExportWhat::Tubes;
+    o.draco = true;
+    o.path = dir + "/t.obj";
+    EXPECT_TRUE(contains(errorOf(test::mixedCurves(), o), "needs a .glb or .gltf"));
+    o.path = dir + "/t.glb";
+    o.quantize = true;
+    EXPECT_TRUE(contains(errorOf(test::mixedCurves(), o), "--quantize"));
+    o.draco = false;
+    o.what = ExportWhat::Yarns;
+    EXPECT_TRUE(contains(errorOf(test::mixedCurves(), o), "tube meshes only"));
+    o.what = ExportWhat::Tubes;
+    o.quantize = false;
+    o.sides = 2;
+    EXPECT_TRUE(contains(errorOf(test::mixedCurves(), o), "--sides"));
+    EXPECT_TRUE(test::listDir(dir).empty());
+}
+
+TEST(ExportErrors, missingFolderAndFileAsFolderNameThePath) {
+    const std::string dir = test::scratchDir("err_paths");
+    ExportOptions o;
+    o.path = dir + "/missing/out.glb";
+    std::string e = errorOf(test::mixedCurves(), o);
+    EXPECT_TRUE(contains(e, o.path) && contains(e, "does not exist")) << e;
+    // A regular file where a folder is expected.
+    test::writeText(dir + "/file", "x");
+    o.path = dir + "/file/out.obj";
+    e = errorOf(test::mixedCurves(), o);
+    EXPECT_TRUE(contains(e, o.path) && contains(e, "not a folder")) << e;
+    // An existing folder as output.
+    std::filesystem::create_directory(dir + "/folder.glb");
+    o.path = dir + "/folder.glb";
+    e = errorOf(test::mixedCurves(), o);
+    EXPECT_TRUE(contains(e, "folder")) << e;
+    auto files = test::listDir(dir);
+    std::sort(files.begin(), files.end());
+    EXPECT_EQ(files, (std::vector<std::string>{"file", "folder.glb"}));
+}
+
+TEST(ExportErrors, nonFinitePointNamesCurveAndPoint) {
+    const std::string dir = test::scratchDir("err_nan");
+    Polylines c = test::mixedCurves();
+    c.points[c.begin(2) + 4].y = std::nan("");
+    ExportOptions o;
+    o.path = dir + "/x.glb";
+    o.what = ExportWhat::Tubes;
+    const std::string e = errorOf(c, o);
+    EXPECT_TRUE(contains(e, "curve 2 point 4")) << e;
+    EXPECT_TRUE(contains(errorOf(test::mixedCurves(), o, -1.0), "radius")) << "negative radius";
+    EXPECT_TRUE(test::listDir(dir).empty());
+}
+
+TEST(ExportErrors, chunkLargerThanBufferLimitIsRefusedWithoutFiles) {
+    const std::string dir = test::scratchDir("err_late");
+    // Small curves first (chunks stream into buffers), then one curve too big for any buffer.
+    Polylines c = test::planeRows(4, 50, 0.002, glm::dvec3(0), 0.001);
+    const auto big = test::helix(4000, 0.01, 0.002, 40.0);
+    c.addCurve(big.data(), big.size(), false);
+    ExportOptions o;
+    o.path = dir + "/late.gltf";
+    o.what = ExportWhat::Tubes;
+    o.chunkVertices = 500;
+    o.maxBufferBytes = 100000;
+    const std::string e = errorOf(c, o);
+    EXPECT_TRUE(contains(e, "--chunk-vertices")) << e;
+    EXPECT_TRUE(test::listDir(dir).empty()) << "left: " << (test::listDir(dir).empty() ? "" : test::listDir(dir)[0]);
+}
+
+TEST(ExportErrors, existingFileSurvivesFailedExport) {
+    const std::string dir = test::scratchDir("err_keep");
+    const Polylines c = test::mixedCurves();
+    ExportOptions o;
+    o.path = dir + "/keep.glb";
+    o.what = ExportWhat::Tubes;
+    ExportInput in;
+    in.curves = &c;
+    in.radius = 0.001;
+    exportCurves(in, o);
+    const auto before = test::readBytes(o.path);
+    Polylines bad = c;
+    bad.points[3].x = INFINITY;
+    in.curves = &bad;
+    EXPECT_THROW(exportCurves(in, o), Error);
+    EXPECT_EQ(test::readBytes(o.path), before);
+    EXPECT_EQ(test::listDir(dir).size(), 1u);
+}
+
+// ---- exportScene: which curves, which radius ----
+Scene syntheticScene(bool withPlies) {
+    Scene s;
+    s.yarnRadius = 0.002;
+    s.yarns.curves = test::mixedCurves();
+    s.yarns.normals.assign(s.yarns.curves.pointCount(), glm::dvec3(0, 0, 1));
+    if (withPlies) {
+        for (size_t k = 0; k < 3; ++k) {
+            const auto h = test::helix(30, 0.001, 0.002, 2.0, glm::dvec3(0.1 * k, 0, 0));
+            s.plies.curves.addCurve(h.data(), h.size(), false);
+            s.plies.yarnOfCurve.push_back(uint32_t(k / 2));
+            s.plies.plyOfCurve.push_back(uint8_t(k % 2));
+        }
+        s.plies.plyRadius = 0.0008;
+        s.plies.centerRadius = 0.0011;
+        s.plies.pitch = 0.012;
+        s.plies.radial.assign(s.plies.curves.pointCount(), glm::dvec3(1, 0, 0));
+    }
+    return s;
+}
+
+TEST(ExportScene, pliesYarnsAndTubesPickTheRightCurves) {
+    const std::string dir = test::scratchDir("scene");
+    const Scene s = syntheticScene(true);
+    ExportOptions o;
+    o.path = dir + "/p.bcc";
+    o.what = ExportWhat::Plies;
+    EXPECT_EQ(exportScene(s, o).vertices, s.plies.curves.pointCount());
+    o.what = ExportWhat::Yarns;
+    o.path = dir + "/y.bcc";
+    EXPECT_EQ(exportScene(s, o).vertices, s.yarns.curves.pointCount());
+    o.what = ExportWhat::Tubes;
+    o.path = dir + "/t.obj";
+    o.sides = 4;
+    EXPECT_EQ(exportScene(s, o).vertices, 3 * tubeVertexCount(30, false, TubeOptions{4, true, nullptr}));
+    o.tubesOf = TubeSource::Yarns;
+    EXPECT_EQ(exportScene(s, o).curves, 3u);
+    EXPECT_EQ(exportScene(s, o).vertices, (42 + 33 + 27) * 5u);
+}
+
+TEST(ExportScene, pliesRequestedWithoutPliesIsAnError) {
+    const std::string dir = test::scratchDir("scene_noplies");
+    const Scene s = syntheticScene(false);
+    ExportOptions o;
+    o.path = dir + "/p.glb";
+    o.what = ExportWhat::Plies;
+    try {
+        exportScene(s, o);
+        FAIL() << "expected knit::Error";
+    } catch (const Error& e) {
+        EXPECT_TRUE(contains(e.what(), "no plies")) << e.what();
+    }
+    o.what = ExportWhat::Tubes;  // auto: falls back to the yarns
+    EXPECT_EQ(exportScene(s, o).curves, 3u);
+    EXPECT_EQ(test::listDir(dir).size(), 1u);
+}
+
+// ---- CLI flags ----
+ExportOptions parse(const std::vector<std::string>& args) {
+    CLI::App app("test");
+    ExportOptions o;
+    addExportFlags(app, o);
+    std::vector<std::string> reversed(args.rbegin(), args.rend());
+    app.parse(reversed);
+    return o;
+}
+
+TEST(ExportFlags, parsesFormatOptions) {
+    const ExportOptions o = parse({"--export", "tubes", "--sides", "12", "--draco", "--draco-bits", "16",
+                                   "--yarn-colors", "--chunk-vertices", "5000", "--no-caps"});
+    EXPECT_EQ(o.what, ExportWhat::Tubes);
+    EXPECT_EQ(o.sides, 12);
+    EXPECT_TRUE(o.draco);
+    EXPECT_EQ(o.dracoBits, 16);
+    EXPECT_TRUE(o.yarnColors);
+    EXPECT_EQ(o.chunkVertices, 5000u);
+    EXPECT_FALSE(o.caps);
+    EXPECT_EQ(parse({"--export", "YARNS"}).what, ExportWhat::Yarns);
+    EXPECT_TRUE(parse({"--export", "tubes", "--quantize"}).quantize);
+}
+
+TEST(ExportFlags, rejectsBadValuesAndConflicts) {
+    EXPECT_THROW(parse({"--export", "meshes"}), CLI::ValidationError);
+    EXPECT_THROW(parse({"--sides", "2"}), CLI::ValidationError);
+    EXPECT_THROW(parse({"--draco-bits", "12"}), CLI::RequiresError);  // needs --draco
+    EXPECT_THROW(parse({"--draco", "--draco-bits", "31"}), CLI::ValidationError);
+    EXPECT_THROW(parse({"--draco", "--quantize"}), CLI::ExcludesError);
+}
+
+TEST(ExportReport, carriesCountsPeakMemoryAndRatio) {
+    ExportStats s;
+    s.format = "glb";
+    s.vertices = 10;
+    s.uncompressedMeshBytes = 1000;
+    s.compressedMeshBytes = 250;
+    s.peakMemoryBytes = peakResidentBytes();
+    EXPECT_GT(s.peakMemoryBytes, 0u);
+    const nlohmann::json j = exportReport(s);
+    EXPECT_EQ(j["format"], "glb");
+    EXPECT_EQ(j["vertices"], 10);
+    EXPECT_DOUBLE_EQ(j["compressionRatio"].get<double>(), 4.0);
+    EXPECT_EQ(j["peakMemoryBytes"].get<size_t>(), s.peakMemoryBytes);
+}
+
+}  // namespace
+}  // namespace knit
