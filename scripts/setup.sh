@@ -5,8 +5,11 @@ packages=(
   build-essential cmake pkg-config
   libcgal-dev libopenmesh-dev libdraco-dev libtinygltf-dev libglm-dev libembree-dev libtbb-dev
   libgtest-dev libbenchmark-dev libstb-dev nlohmann-json3-dev libcli11-dev libtinyexr-dev
-  nodejs npm
+  clang libclang-rt-14-dev
 )
+# The glTF-Validator runs on Node.js: use the machine's node/npm if present (a NodeSource
+# install would conflict with Debian's npm package), otherwise Debian's.
+command -v npm >/dev/null 2>&1 || packages+=(nodejs npm)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
