@@ -2,7 +2,7 @@
 //
 // Input: 1000 open knit-like yarns (Crane's plain-knit curve) of 1000 vertices each (1M yarn
 // vertices), vertex spacing about twice the resampling spacing (pitch / samplesPerTurn with the
-// default pitch of 6 yarn radii and 16 samples per turn), surface normal +z.
+// default pitch of 6 yarn radii and 12 samples per turn), surface normal +z.
 // items_per_second = output points per second (ply vertices for makePlies), wall-clock time.
 // Arguments: makePlies/<plies>/<threads> (threads 0 = TBB default, all cores).
 #include <cmath>

@@ -22,7 +22,7 @@ struct PlyOptions {
     double plyRadius = 0.0;
     double pitch = 0.0;         // length of one full ply turn (metres); 0 = 6 yarn radii
     Twist twist = Twist::S;
-    int samplesPerTurn = 16;    // resampling density of the yarn centreline
+    int samplesPerTurn = 12;    // resampling density of the yarn centreline (knee: docs/speed-vs-error.md)
 };
 
 struct Plies {

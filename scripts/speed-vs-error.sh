@@ -1,0 +1,80 @@
+#!/usr/bin/env bash
+# speed-vs-error.sh — measures libknit's speed-against-error trade-offs on this machine and writes
+# docs/speed-vs-error.md with its plots in docs/speed-vs-error/ (the one documented command):
+#
+#   bash scripts/speed-vs-error.sh
+#
+# Steps: install what is missing with apt-get (the build dependencies and gnuplot, Debian package
+# gnuplot-nox), configure and build the measurement program in Release, run it (all
+# six items, about 5-10 minutes on 2 cores; the garment item needs ~7 GiB of memory), write the
+# report and draw the plots. Every number in the report comes from this run; the machine (CPU,
+# threads, memory, load average), the git commit (marked dirty when the tree has uncommitted
+# changes) and the date are recorded in it. The docs are replaced only when everything succeeded.
+#
+# Environment: KNIT_BUILD_DIR (default: build), KNIT_JOBS (default: nproc),
+#              KNIT_SVE_ITEMS (default: 6,1,4,2,3,5; e.g. "1,4" for a quick partial run).
+set -euo pipefail
+start=$(date +%s)
+root=$(cd "$(dirname "$0")/.." && pwd)
+build=${KNIT_BUILD_DIR:-"$root/build"}
+case "$build" in /*) ;; *) build="$root/$build" ;; esac
+jobs=${KNIT_JOBS:-$(nproc)}
+items=${KNIT_SVE_ITEMS:-6,1,4,2,3,5}
+
+# Step 1: dependencies (idempotent: apt-get runs only when a package is missing). The list is what
+# the measurement program builds against plus gnuplot (nodejs/npm for the test suite's glTF
+# validator are not needed here).
+packages=(
+  build-essential cmake pkg-config
+  libcgal-dev libopenmesh-dev libdraco-dev libtinygltf-dev libglm-dev libembree-dev libtbb-dev
+  libbenchmark-dev libstb-dev nlohmann-json3-dev libcli11-dev libtinyexr-dev libgtest-dev
+  gnuplot-nox
+)
+missing=()
+for p in "${packages[@]}"; do
+  # Any installed gnuplot will do.
+  if [ "$p" = gnuplot-nox ] && command -v gnuplot >/dev/null 2>&1; then continue; fi
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "speed-vs-error: installing ${missing[*]}"
+  sudo_cmd=""
+  [ "$(id -u)" -ne 0 ] && sudo_cmd="sudo"
+  export DEBIAN_FRONTEND=noninteractive
+  $sudo_cmd apt-get update -q
+  $sudo_cmd apt-get install -y -q --no-install-recommends "${missing[@]}"
+fi
+
+# Step 2: Release build of the measurement program only.
+cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DKNIT_BUILD_BENCH=ON >/dev/null
+cmake --build "$build" --target speed_vs_error_bench -j"$jobs"
+built=$(date +%s)
+
+# Step 3: measure into a staging folder (the docs stay untouched until everything succeeded).
+stage="$build/speed-vs-error"
+rm -rf "$stage"
+mkdir -p "$stage/files" "$stage/speed-vs-error" "$stage/data"
+commit=$(git -C "$root" rev-parse HEAD 2>/dev/null || echo unknown)
+dirty=unknown
+if [ "$commit" != unknown ]; then
+  if [ -n "$(git -C "$root" --no-optional-locks status --porcelain 2>/dev/null)" ]; then dirty=1; else dirty=0; fi
+fi
+"$build/bench/speed_vs_error_bench" measure \
+  --results "$stage/speed-vs-error/results.json" --work "$stage/files" --images "$stage/speed-vs-error" \
+  --items "$items" --commit "$commit" --dirty "$dirty" --date "$(date -u '+%Y-%m-%d %H:%M UTC')" \
+  --command "bash scripts/speed-vs-error.sh" --nproc "$(nproc)"
+
+# Step 4: report, plot data and plots.
+"$build/bench/speed_vs_error_bench" report --results "$stage/speed-vs-error/results.json" \
+  --markdown "$stage/speed-vs-error.md" --images "$stage/speed-vs-error" --data "$stage/data"
+gnuplot "$stage/data/plots.gp"
+
+# Step 5: replace the docs.
+mkdir -p "$root/docs"
+rm -rf "$root/docs/speed-vs-error"
+cp -r "$stage/speed-vs-error" "$root/docs/speed-vs-error"
+cp "$stage/speed-vs-error.md" "$root/docs/speed-vs-error.md.tmp"
+mv "$root/docs/speed-vs-error.md.tmp" "$root/docs/speed-vs-error.md"
+rm -rf "$stage/files"
+end=$(date +%s)
+echo "speed-vs-error: wrote docs/speed-vs-error.md and docs/speed-vs-error/ (build $((built - start)) s, measure + report $((end - built)) s, total $((end - start)) s)"
