@@ -1,6 +1,7 @@
 // knit — command-line front end. It only composes library stages (knit/scene.hpp) with the
 // exporters (knit/export.hpp) and, when built, the render check (knit/render.hpp).
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <unistd.h>
@@ -67,6 +68,17 @@ knit::SceneOptions resolveScene(SceneFlags& f) {
             std::fprintf(stderr, "[%d/%d] %s\n", index + 1, total, stage.c_str());
         };
     return o;
+}
+
+// Fails early, naming the path, when `path`'s folder cannot take a new file.
+void requireWritableFolder(const std::string& path, const char* what) {
+    const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+    const std::string dir = folder.empty() ? "." : folder.string();
+    std::error_code ec;
+    if (!std::filesystem::is_directory(dir, ec))
+        throw knit::Error(std::string("cannot write ") + what + " '" + path + "': folder '" + dir + "' does not exist");
+    if (::access(dir.c_str(), W_OK) != 0)
+        throw knit::Error(std::string("cannot write ") + what + " '" + path + "': folder '" + dir + "' is not writable");
 }
 
 // Writes the JSON report atomically.
@@ -177,7 +189,9 @@ int main(int argc, char** argv) {
             return 0;
         }
         if (*build) {
-            knit::validateExportOptions(exportOptions);  // fail before the scene is built
+            // Fail before the scene is built: bad export options or an unwritable report folder.
+            knit::validateExportOptions(exportOptions);
+            if (!buildReport.empty()) requireWritableFolder(buildReport, "report");
             knit::SceneOptions options = resolveScene(buildFlags);
             options.buildPlies = exportOptions.what != knit::ExportWhat::Yarns;
             const knit::Scene scene = knit::buildScene(options);
@@ -185,7 +199,12 @@ int main(int argc, char** argv) {
             if (!buildReport.empty()) {
                 nlohmann::json report = knit::sceneReport(scene);
                 report["export"] = knit::exportReport(stats);
-                writeReport(buildReport, report);
+                try {
+                    writeReport(buildReport, report);
+                } catch (...) {
+                    std::filesystem::remove(exportOptions.path);  // the report is part of the result
+                    throw;
+                }
             }
             printSummary(scene, stats, exportOptions.path);
             return 0;

@@ -111,10 +111,15 @@ bool insideChart(const BaseMesh& mesh, const UvGrid& grid, uint32_t chart, glm::
 // The chart's boundary edges crossed by the segment split it into pieces; a piece whose middle
 // lies in no triangle of the chart is outside. Pieces within `tol` of an end are ignored: a
 // clamped end lies up to `tol` outside. Cells without boundary edges cost one lookup each.
-bool leavesChart(const BaseMesh& mesh, const UvGrid& grid, uint32_t chart, glm::dvec2 p, glm::dvec2 q, double tol,
-                 std::vector<double>& ts) {
+// cp, cq: the grid cells of p and q.
+bool leavesChart(const BaseMesh& mesh, const UvGrid& grid, uint32_t chart, glm::dvec2 p, glm::dvec2 q, glm::ivec2 cp,
+                 glm::ivec2 cq, double tol, std::vector<double>& ts) {
+    const glm::ivec2 c0 = glm::min(cp, cq), c1 = glm::max(cp, cq);  // cellOf is monotone
+    if (c0 == c1) {  // fast path: a step inside one cell without boundary edges
+        const int32_t slot = grid.slotOf(c0);
+        if (slot < 0 || grid.edgeOffsets[slot] == grid.edgeOffsets[slot + 1]) return false;
+    }
     const glm::dvec2 d = q - p;
-    const glm::ivec2 c0 = grid.cellOf(glm::min(p, q)), c1 = grid.cellOf(glm::max(p, q));
     ts.clear();
     for (int32_t y = c0.y; y <= c1.y; ++y)
         for (int32_t x = c0.x; x <= c1.x; ++x) {
@@ -163,13 +168,32 @@ BindResult bindYarns(const BaseMesh& mesh, const std::vector<glm::dvec3>& normal
     const glm::dvec2 metresPerUv = uvToMetreScale(mesh);
     const double radiusUv = options.yarnRadius / std::max(metresPerUv.x, metresPerUv.y);
     const double tolUv = options.clampTolerance * radiusUv;
+    //    Then, per step i -> i+1 (last -> first on closed yarns) between two vertices of one
+    //    chart: whether the step leaves the chart (leavesChart), for step 2.
     std::vector<LocateResult> loc(nv);
+    std::vector<uint8_t> leaves(nv, 0);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, yarns.yarnCount(), 1), [&](const tbb::blocked_range<size_t>& r) {
+        std::vector<double> crossings;  // scratch for leavesChart
         for (size_t y = r.begin(); y != r.end(); ++y) {
+            const size_t b = yarns.offsets[y], e = yarns.offsets[y + 1];
             uint32_t hint = UINT32_MAX;
-            for (size_t i = yarns.offsets[y]; i < yarns.offsets[y + 1]; ++i) {
+            for (size_t i = b; i < e; ++i) {
                 loc[i] = locatePoint(mesh, grid, yarns.uv[i], tolUv, hint);
                 hint = loc[i].status == LocateStatus::Inside ? loc[i].point.face : UINT32_MAX;
+            }
+            for (size_t i = b; i < e; ++i) {
+                const size_t j = i + 1 < e ? i + 1 : b;
+                if ((j == b && !yarns.closed[y]) || loc[i].status == LocateStatus::Outside ||
+                    loc[j].status == LocateStatus::Outside)
+                    continue;
+                // Both inside one (convex) triangle: the step cannot leave it.
+                if (loc[i].point.face == loc[j].point.face && loc[i].status == LocateStatus::Inside &&
+                    loc[j].status == LocateStatus::Inside)
+                    continue;
+                const uint32_t c = grid.chartOfFace[loc[i].point.face];
+                if (c == grid.chartOfFace[loc[j].point.face])
+                    leaves[i] = leavesChart(mesh, grid, c, yarns.uv[i], yarns.uv[j], grid.cellOf(yarns.uv[i]),
+                                            grid.cellOf(yarns.uv[j]), tolUv, crossings);
             }
         }
     });
@@ -196,16 +220,14 @@ BindResult bindYarns(const BaseMesh& mesh, const std::vector<glm::dvec3>& normal
     //    leaves its chart (leavesChart); cut ends get a vertex where the yarn crosses the UV
     //    boundary.
     std::vector<Piece> pieces;
-    std::vector<double> crossings;  // scratch for leavesChart
     for (size_t y = 0; y < yarns.yarnCount(); ++y) {
         const size_t b = yarns.offsets[y], n = yarns.offsets[y + 1] - b;
         if (n == 0) continue;
         const bool closed = yarns.closed[y] != 0;
-        // Consecutive vertices i -> i+1 stay joined when both are located in the same chart and
-        // the UV segment between them does not leave the chart.
+        // Consecutive vertices i -> j = i+1 stay joined when both are located in the same chart
+        // and the step between them does not leave the chart.
         auto joined = [&](size_t i, size_t j) {
-            return located(b + i) && located(b + j) && chart(b + i) == chart(b + j) &&
-                   !leavesChart(mesh, grid, chart(b + i), yarns.uv[b + i], yarns.uv[b + j], tolUv, crossings);
+            return located(b + i) && located(b + j) && chart(b + i) == chart(b + j) && !leaves[b + i];
         };
         size_t breakAt = 0;  // a run boundary to start from (closed yarns)
         if (closed) {

@@ -25,7 +25,8 @@ CurveCell parseCurvesJson(const std::string& text, const std::string& source) {
     nlohmann::json doc;
     try {
         doc = nlohmann::json::parse(text);
-    } catch (const nlohmann::json::parse_error& e) {
+    } catch (const nlohmann::json::exception& e) {
+        // parse_error, but also out_of_range for numbers beyond double (1e400).
         throw Error(source + ": invalid JSON: " + e.what());
     }
     if (!doc.is_object()) throw Error(source + ": expected a JSON object with \"period\", \"radius\" and \"curves\"");

@@ -57,6 +57,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <iomanip>
 #include <iterator>
 #include <filesystem>
 #include <fstream>
@@ -420,6 +421,33 @@ void checkPlyBody(std::istream& in, const std::string& path, const PlyHeader& h,
             }
 }
 
+// OpenMesh 9.0's binary PLY reader converts only float/double data to its float-valued vertex
+// properties (positions, normals, texture coordinates), only integer or float data to colours,
+// and only integer data to face indices; a property of any other type is skipped without
+// consuming its bytes, which desynchronises the rest of the file (garbage values, or minutes
+// spent reading a misread list count: tests/fuzz_corpus/ply/timeout-*). Refused up front.
+void checkPlyConvertible(const PlyHeader& h, const std::string& path) {
+    static const char* kFloatValued[] = {"x", "y", "z", "nx", "ny", "nz", "u", "v", "s", "t"};
+    static const char* kColours[] = {"red", "green", "blue", "alpha", "diffuse_red", "diffuse_green", "diffuse_blue"};
+    for (const PlyElement& e : h.elements)
+        for (const PlyProperty& p : e.props) {
+            const bool isDouble = p.type == "double" || p.type == "float64";
+            std::string need;
+            if (p.list && (p.name == "vertex_indices" || p.name == "vertex_index") && plyFloatType(p.type))
+                need = "an integer type";
+            else if (!p.list && e.name == "vertex" &&
+                     std::any_of(std::begin(kFloatValued), std::end(kFloatValued), [&](const char* n) { return p.name == n; }) &&
+                     !plyFloatType(p.type))
+                need = "float or double";
+            else if (!p.list && isDouble &&
+                     std::any_of(std::begin(kColours), std::end(kColours), [&](const char* n) { return p.name == n; }))
+                need = "an integer type or float";
+            if (!need.empty())
+                fail(path, "binary PLY property '" + p.type + " " + p.name + "' of element '" + e.name +
+                               "' is not supported (its type must be " + need + ")");
+        }
+}
+
 PlyHeader scanPly(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) fail(path, "cannot open for reading");
@@ -505,8 +533,17 @@ PlyHeader scanPly(const std::string& path) {
         else if (has("texture_s") && has("texture_t")) h.textureU = "texture_s", h.textureV = "texture_t";
         h.hasTextureUV = !h.textureU.empty();
     }
+    if (!h.ascii) checkPlyConvertible(h, path);
     checkPlyBody(in, path, h, lineNo + 1);
     return h;
+}
+
+// A count read as a double (an OFF header may declare 1e38 vertices), as text: casting it to
+// size_t first is undefined beyond 2^64 (UBSan; tests/fuzz_corpus/off/crash-03931b42...).
+std::string countText(double count) {
+    std::ostringstream s;
+    s << std::setprecision(16) << count;  // exact up to 2^53, "1e+38" beyond
+    return s.str();
 }
 
 // ASCII OFF: OpenMesh's reader knows no '#' comments (it then reads garbage counts and can loop
@@ -559,7 +596,7 @@ void scanOff(const std::string& path, std::string& cleaned) {
             for (size_t i = 1; i <= size_t(k); ++i)
                 if (values[i] < 0 || values[i] >= nv || values[i] != std::floor(values[i]))
                     failLine(path, lineNo, "face references vertex " + std::to_string(values[i]) +
-                                               " but the file has " + std::to_string(size_t(nv)) + " vertices");
+                                               " but the file has " + countText(nv) + " vertices");
         }
         ++dataLine;
         out << text << "\n";
@@ -568,7 +605,7 @@ void scanOff(const std::string& path, std::string& cleaned) {
     for (size_t lineNo = 2; std::getline(in, line); ++lineNo) take(line.substr(0, line.find('#')), lineNo);
     if (dataLine == 0) fail(path, "OFF header has no 'vertices faces edges' counts");
     if (double(dataLine) < 1 + nv + nf)
-        fail(path, "declares " + std::to_string(size_t(nv)) + " vertices and " + std::to_string(size_t(nf)) +
+        fail(path, "declares " + countText(nv) + " vertices and " + countText(nf) +
                        " faces but holds only " + std::to_string(dataLine - 1) + " data lines (truncated?)");
     if (nf == 0) fail(path, "the mesh has no faces");
     cleaned = out.str();

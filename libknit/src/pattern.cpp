@@ -1,6 +1,7 @@
 // .pyp pattern reading/writing, validation, periodic adjacency and pattern statistics.
 #include "knit/pattern.hpp"
 
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -47,8 +48,10 @@ double parseNumber(const std::string& token, const std::string& source, int line
 long parseInteger(const std::string& token, const std::string& source, int line) {
     const char* begin = token.c_str();
     char* end = nullptr;
+    errno = 0;
     const long value = std::strtol(begin, &end, 10);
     if (end == begin || *end != '\0') fail(source, line, "'" + token + "' is not an integer");
+    if (errno == ERANGE) fail(source, line, "integer '" + token + "' is out of range");
     return value;
 }
 
@@ -138,7 +141,7 @@ Pattern parsePyp(std::istream& in, const std::string& source) {
         const long dx = parseInteger(r.tokens[2], source, r.line), dy = parseInteger(r.tokens[3], source, r.line);
         if (v0 < 0 || v0 >= n || v1 < 0 || v1 >= n)
             fail(source, r.line, "edge " + std::to_string(v0) + " -> " + std::to_string(v1) + " references a missing vertex (the pattern has " + std::to_string(n) + ")");
-        if (std::labs(dx) + std::labs(dy) > 1)
+        if (dx < -1 || dx > 1 || dy < -1 || dy > 1 || (dx != 0 && dy != 0))  // |dx|+|dy| > 1, overflow-free
             fail(source, r.line, "edge offset (" + std::to_string(dx) + ", " + std::to_string(dy) + ") has |dx|+|dy| > 1");
         p.edges.push_back({uint32_t(v0), uint32_t(v1), int32_t(dx), int32_t(dy)});
         edgeLines.push_back(r.line);
@@ -207,7 +210,8 @@ void validatePattern(const Pattern& p, const std::string& source) {
     for (size_t i = 0; i < p.edges.size(); ++i) {
         const PeriodicEdge& e = p.edges[i];
         if (e.v0 >= p.points.size() || e.v1 >= p.points.size()) bad("edge " + std::to_string(i) + " references a missing vertex");
-        if (std::abs(e.dx) + std::abs(e.dy) > 1) bad("edge " + std::to_string(i) + " has |dx|+|dy| > 1");
+        if (e.dx < -1 || e.dx > 1 || e.dy < -1 || e.dy > 1 || (e.dx != 0 && e.dy != 0))
+            bad("edge " + std::to_string(i) + " has |dx|+|dy| > 1");
         if (e.v0 == e.v1 && e.dx == 0 && e.dy == 0) bad("edge " + std::to_string(i) + " joins vertex " + std::to_string(e.v0) + " to itself");
     }
     const PatternAdjacency adj = buildAdjacency(p);  // throws on degree > 2

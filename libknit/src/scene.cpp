@@ -64,7 +64,14 @@ void runStages(Scene& scene, const SceneOptions& options, StageClock& clock) {
         gridOptions.cellSize = scene.placement.cellSize();
         scene.grid = buildUvGrid(scene.mesh, gridOptions);
     });
-    clock.run("tiling", [&] { scene.tiling = tilesForCells(scene.pattern, scene.grid.cells); });
+    clock.run("tiling", [&] {
+        // Vertices within binding's clamp tolerance of the covered cells are tiled too (they are
+        // clamped onto the UV boundary, not dropped because their own cell is empty).
+        const glm::dvec2 metresPerUv = uvToMetreScale(scene.mesh);
+        const double tolUv = options.bind.clampTolerance * scene.yarnRadius / std::max(metresPerUv.x, metresPerUv.y);
+        const glm::dvec2 margin = tolUv * scene.placement.repeats * glm::dvec2(scene.pattern.px, scene.pattern.py);
+        scene.tiling = tilesForCells(scene.pattern, scene.grid.cells, margin);
+    });
     clock.run("stitch", [&] {
         scene.uvYarns = stitchYarns(scene.pattern, buildAdjacency(scene.pattern), scene.tiling, scene.placement);
     });

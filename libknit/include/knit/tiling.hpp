@@ -55,7 +55,10 @@ struct Tiling {
 // Tiles whose vertices can land in any of the given UV cells (cells of size placement.cellSize(),
 // e.g. UvGrid::cells). The pattern's vertices may lie outside [0, px) x [0, py), so a tile can
 // reach into neighbouring cells; this dilates accordingly. Only cells the mesh covers are tiled.
-Tiling tilesForCells(const Pattern& pattern, const std::vector<glm::ivec2>& cells);
+// `margin` (pattern units, per axis; addition, default 0): a vertex also counts for the cells
+// within this distance of it, so a vertex just outside the covered cells (within binding's clamp
+// tolerance of the UV boundary) is generated and clamped instead of silently missing.
+Tiling tilesForCells(const Pattern& pattern, const std::vector<glm::ivec2>& cells, glm::dvec2 margin = glm::dvec2(0.0));
 // All tiles in [first, last] (inclusive): per-region generation for level of detail.
 // periodic: the region wraps around (a torus of (last - first + 1) tiles).
 Tiling tilesForRegion(glm::ivec2 first, glm::ivec2 last, bool periodic = false);

@@ -1,0 +1,59 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets (clang, AddressSanitizer + UndefinedBehaviorSanitizer) in
+# build-fuzz and runs each one for a bounded time, starting from the regression corpus in
+# tests/fuzz_corpus/<parser>/. A crash, sanitizer report, leak, timeout or out-of-memory stops
+# that target; its input is saved as tests/fuzz_corpus/<parser>/crash-<sha1> (or timeout-/oom-/
+# leak-): fix the parser and commit the file, the corpus replay test (tests/hard) keeps it fixed.
+# New interesting inputs go to build-fuzz/corpus/<parser>/ (not committed).
+#
+# Usage: scripts/fuzz.sh [SECONDS_PER_TARGET] [TARGET ...]
+#   SECONDS_PER_TARGET  default 60 (or $KNIT_FUZZ_SECONDS)
+#   TARGET              pyp curves_json obj ply off material (default: all)
+# Environment: KNIT_FUZZ_BUILD_DIR (default build-fuzz), KNIT_JOBS (build jobs, default 2),
+#   KNIT_FUZZ_RENDER_CHECK=OFF to skip the material parser (and the Embree build it needs).
+# Exits non-zero when any target failed.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+seconds=${1:-${KNIT_FUZZ_SECONDS:-60}}
+[ $# -gt 0 ] && shift
+build=${KNIT_FUZZ_BUILD_DIR:-"$root/build-fuzz"}
+jobs=${KNIT_JOBS:-2}
+render=${KNIT_FUZZ_RENDER_CHECK:-ON}
+targets=("$@")
+if [ ${#targets[@]} -eq 0 ]; then
+  targets=(pyp curves_json obj ply off)
+  [ "$render" = ON ] && targets+=(material)
+fi
+
+# clang + libclang-rt-14-dev (libFuzzer) are in setup.sh's package list; a failure there for an
+# unrelated package does not stop the fuzzing when clang is present (the build says what is missing).
+bash "$root/scripts/setup.sh" || echo "fuzz: warning: scripts/setup.sh failed; continuing with the installed packages"
+cmake -S "$root/fuzz" -B "$build" -DCMAKE_CXX_COMPILER=clang++ -DKNIT_FUZZ_RENDER_CHECK="$render" > "$build.configure.log" 2>&1 ||
+  { cat "$build.configure.log"; exit 1; }
+cmake --build "$build" -j"$jobs" --target "${targets[@]/%/_fuzzer}"
+
+export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:allocator_may_return_null=1}
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+failed=()
+for t in "${targets[@]}"; do
+  corpus="$root/tests/fuzz_corpus/$t"
+  work="$build/corpus/$t"
+  mkdir -p "$work" "$corpus"
+  dict=()
+  [ -f "$root/fuzz/dict/$t.dict" ] && dict=(-dict="$root/fuzz/dict/$t.dict")
+  echo "== fuzz $t for ${seconds}s"
+  if "$build/${t}_fuzzer" "$work" "$corpus" "${dict[@]}" -max_total_time="$seconds" -timeout=10 \
+       -rss_limit_mb=2048 -max_len=65536 -artifact_prefix="$corpus/" -print_final_stats=1 \
+       > "$build/$t.log" 2>&1; then
+    grep -aE "^(stat::number_of_executed_units|stat::average_exec_per_sec|stat::peak_rss_mb)" "$build/$t.log" || true
+  else
+    echo "!! $t failed (log: $build/$t.log); reproducer saved in $corpus/:"
+    grep -aE "^(==[0-9]+==ERROR|SUMMARY|.*runtime error|artifact_prefix|Test unit written)" "$build/$t.log" | head -5 || true
+    failed+=("$t")
+  fi
+done
+if [ ${#failed[@]} -gt 0 ]; then
+  echo "fuzz: FAILED: ${failed[*]}"
+  exit 1
+fi
+echo "fuzz: all ${#targets[@]} targets ran ${seconds}s without a crash"

@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# AddressSanitizer + UndefinedBehaviorSanitizer build of the test suite (-DKNIT_SANITIZE=ON) in
+# build-asan, then ctest over the core, mesh, plies, cli, export and hard tests. Any sanitizer
+# report fails the test that triggered it (UBSan is built with -fno-sanitize-recover).
+#
+# Usage: scripts/sanitize.sh [extra ctest arguments]
+# Environment: KNIT_ASAN_BUILD_DIR (default build-asan), KNIT_JOBS (default 2),
+#   KNIT_SANITIZE_RENDER=ON to also build and run the render tests (slow under ASan: chi-square
+#   tests draw millions of samples), KNIT_BUILD_RENDER_CHECK=OFF to skip render_check entirely
+#   (then the hard tests' ray cases are not built).
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+build=${KNIT_ASAN_BUILD_DIR:-"$root/build-asan"}
+jobs=${KNIT_JOBS:-2}
+render_check=${KNIT_BUILD_RENDER_CHECK:-ON}
+
+bash "$root/scripts/setup.sh" || echo "sanitize: warning: scripts/setup.sh failed; continuing with the installed packages"
+cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DKNIT_SANITIZE=ON -DKNIT_BUILD_BENCH=OFF \
+  -DKNIT_BUILD_RENDER_CHECK="$render_check"
+targets=(knit_core_tests knit_mesh_tests knit_plies_tests knit_cli_tests knit_export_tests knit_hard_tests)
+[ "${KNIT_SANITIZE_RENDER:-OFF}" = ON ] && [ "$render_check" = ON ] && targets+=(knit_render_tests)
+cmake --build "$build" -j"$jobs" --target "${targets[@]}"
+
+# Leaks are errors; the watchdog of the hard cases allows for the slower instrumented code.
+export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1}
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+export KNIT_HARD_TIMEOUT=${KNIT_HARD_TIMEOUT:-1200}
+cd "$build"
+# Test binaries that were not built register as <name>_NOT_BUILT: leave them out; so is the
+# export test that measures the process's peak memory (ASan's shadow memory and quarantine
+# change what it measures).
+ctest --output-on-failure -j"$jobs" -E "_NOT_BUILT|Streaming.peakMemory" "$@"

@@ -1,0 +1,119 @@
+// Bad input and unwritable outputs through the `knit` command line: exit code != 0, a message
+// naming the problem, and no output file (nor a leftover temporary file) in the output folder.
+#ifdef KNIT_CLI
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+    int exitCode = -1;
+    std::string output;
+};
+
+CliRun knit(const std::string& args, const fs::path& cwd) {
+    const std::string cmd = "cd '" + cwd.string() + "' && '" KNIT_CLI "' " + args + " 2>&1";
+    CliRun r;
+    FILE* pipe = popen(cmd.c_str(), "r");
+    if (!pipe) return r;
+    char buf[4096];
+    while (size_t n = fread(buf, 1, sizeof buf, pipe)) r.output.append(buf, n);
+    const int status = pclose(pipe);
+    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return r;
+}
+
+class CliBadInput : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir = fs::temp_directory_path() / ("knit_hard_cli_" + std::to_string(::getpid()) + "_" +
+                                           ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(dir);
+        fs::create_directories(dir);
+    }
+    void TearDown() override { fs::remove_all(dir); }
+    void write(const std::string& name, const std::string& text) { std::ofstream(dir / name, std::ios::binary) << text; }
+    // Names of the files in `d` (recursively), to check nothing was left behind.
+    std::vector<std::string> files(const fs::path& d) const {
+        std::vector<std::string> out;
+        for (const auto& e : fs::recursive_directory_iterator(d)) out.push_back(fs::relative(e.path(), d).string());
+        std::sort(out.begin(), out.end());
+        return out;
+    }
+    // Runs `args`, expecting failure with `mentions` in the message and no new file.
+    void expectFailure(const std::string& args, const std::string& mentions) {
+        const auto before = files(dir);
+        const CliRun r = knit(args, dir);
+        EXPECT_NE(r.exitCode, 0) << args << "\n" << r.output;
+        EXPECT_NE(r.exitCode, -1) << "crashed: " << args << "\n" << r.output;
+        EXPECT_NE(r.output.find(mentions), std::string::npos) << args << "\n" << r.output;
+        EXPECT_EQ(files(dir), before) << "files left behind by: " << args;
+    }
+    fs::path dir;
+};
+
+const char* kSmall = "build -q --mesh plane --mesh-res 4 --repeats 3 3 ";
+
+TEST_F(CliBadInput, unwritableOutputsFailWithoutFiles) {
+    write("afile", "x");
+    fs::create_directories(dir / "adir");
+    for (const char* ext : {".obj", ".ply", ".bcc", ".pbrt", ".gltf", ".glb"}) {
+        const std::string e(ext);
+        expectFailure(kSmall + std::string("-o no/such/dir/out") + e, "no/such/dir/out" + e);
+        expectFailure(kSmall + std::string("-o afile/out") + e, "afile/out" + e);  // parent is a file
+    }
+    expectFailure(kSmall + std::string("-o adir"), "adir");  // a directory
+    expectFailure(kSmall + std::string("--export tubes -o no/such/t.glb"), "no/such/t.glb");
+}
+
+// Found by the hard cases, reported to the CLI's owner (enable when fixed): `knit build` exports
+// first and writes the report afterwards, so an unwritable --report path fails (exit 1, message
+// naming it) but leaves the exported output behind. The report path should be checked before
+// anything is written, like the output path.
+TEST_F(CliBadInput, unwritableReportFailsWithoutOutput) {
+    // The report is part of the result: when it cannot be written, no output is left either.
+    expectFailure(kSmall + std::string("-o out.obj --report no/such/r.json"), "no/such/r.json");
+}
+
+TEST_F(CliBadInput, badInputFilesFailNamingTheFile) {
+    write("trunc.pyp", "*pattern\n0.01 0.01 0.001 4\n*Q\n0 0 0 0\n0.002 0");
+    expectFailure(std::string("build -q --pattern trunc.pyp -o out.obj"), "trunc.pyp");
+    write("nan.pyp", "*pattern\n0.01 nan 0.001 1\n*Q\n0 0 0 0\n*E\n0 0 1 0\n");
+    expectFailure(std::string("build -q --pattern nan.pyp -o out.obj"), "nan.pyp:2");
+    write("absurd.pyp", "*pattern\n0.01 0.01 0.001 999999999999\n*Q\n0 0 0 0\n*E\n");
+    expectFailure(std::string("build -q --pattern absurd.pyp -o out.obj"), "absurd.pyp:2");
+    static const char kElf[] = "\x7f" "ELF\x02\x01\x01\0\0\0garbage";
+    write("garbage.obj", std::string(kElf, sizeof kElf - 1));
+    expectFailure(std::string("build -q --mesh garbage.obj -o out.obj"), "garbage.obj");
+    write("trunc.ply", "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\n");
+    expectFailure(std::string("build -q --mesh trunc.ply -o out.obj"), "trunc.ply");
+    write("bad.json", "{\"period\": [1, 1], \"radius\": 0.1, \"curves\": [[[0, 0");
+    expectFailure(std::string("build -q --pattern bad.json -o out.obj"), "bad.json");
+    write("absurd.off", "STOFF\n4000000000 1 0\n0 0 0 0 0\n");
+    expectFailure(std::string("build -q --mesh absurd.off -o out.obj"), "absurd.off");
+    expectFailure(std::string("build -q --mesh missing.obj -o out.obj"), "missing.obj");
+    expectFailure(std::string("build -q --pattern missing.pyp -o out.obj"), "missing.pyp");
+    fs::create_directories(dir / "dir.pyp");
+    fs::create_directories(dir / "dir.obj");
+    expectFailure(std::string("build -q --pattern dir.pyp -o out.obj"), "dir.pyp");
+    expectFailure(std::string("build -q --mesh dir.obj -o out.obj"), "dir.obj");
+    expectFailure(std::string("info missing.pyp"), "missing.pyp");
+}
+
+TEST_F(CliBadInput, hugeMeshAtPhysicalSizeIsRefusedClearly) {
+    // 1 km plane at the pattern's physical size: ~1e10 cells, refused before any work.
+    write("huge.obj", "v 0 0 0\nv 1000 0 0\nv 1000 1000 0\nv 0 1000 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3 4/4\n");
+    expectFailure(std::string("build -q --mesh huge.obj -o out.obj"), "pattern cells");
+}
+
+}  // namespace
+#endif  // KNIT_CLI
