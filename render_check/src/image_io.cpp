@@ -80,6 +80,7 @@ void writeExr(const std::string& path, const Image& im) {
 
 ImageComparison compareImages(const Image& a, const Image& b, int block, double zLimit) {
     if (a.width != b.width || a.height != b.height) throw Error("compareImages: images differ in size");
+    if (block < 1) throw Error("compareImages: block size must be at least 1");
     ImageComparison c;
     double sumAbs = 0, sum2 = 0;
     const int n = a.width * a.height;
@@ -90,6 +91,7 @@ ImageComparison compareImages(const Image& a, const Image& b, int block, double 
     }
     c.meanAbsDifference = sumAbs / n;
     c.rmse = std::sqrt(sum2 / n);
+    double sumDiff = 0, sumVar = 0;  // whole image: difference of the means and its variance (x n^2)
     for (int by = 0; by < a.height; by += block)
         for (int bx = 0; bx < a.width; bx += block) {
             double ma = 0, mb = 0, va = 0, vb = 0;
@@ -103,13 +105,17 @@ ImageComparison compareImages(const Image& a, const Image& b, int block, double 
                     vb += b.variance.empty() ? 0 : b.variance[i];
                     ++count;
                 }
+            sumDiff += ma - mb, sumVar += va + vb;
             ma /= count, mb /= count;
             const double se = std::sqrt((va + vb) / (double(count) * count));
             const double z = se > 0 ? std::abs(ma - mb) / se : (ma == mb ? 0.0 : 1e30);
             ++c.blocks;
+            c.testedBlocks += se > 0;
             c.maxZ = std::max(c.maxZ, z);
+            c.chiSquare += z * z;
             if (z > zLimit) ++c.outliers;
         }
+    c.meanZ = sumVar > 0 ? sumDiff / std::sqrt(sumVar) : (sumDiff == 0 ? 0.0 : 1e30);
     return c;
 }
 

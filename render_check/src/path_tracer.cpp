@@ -134,16 +134,14 @@ struct Tracer {
             // Step 1: emission from the light or the environment (MIS against the light samples).
             bool front = false;
             const float tl = hitLight(light, o, d, front);
-            if (tl < (hit ? h.t : kInf)) {
-                if (front) {
-                    double w = 1;
-                    if (depth > 0) {
-                        const float cosL = -glm::dot(d, light.n);
-                        const double pdfL = double(tl) * tl / (light.area * cosL);
-                        w = power(prevPdf, pdfL);
-                    }
-                    L += beta * light.radiance * w;
+            if (front && tl < (hit ? h.t : kInf)) {  // the light's back is not there
+                double w = 1;
+                if (depth > 0) {
+                    const float cosL = -glm::dot(d, light.n);
+                    const double pdfL = double(tl) * tl / (light.area * cosL);
+                    w = power(prevPdf, pdfL);
                 }
+                L += beta * light.radiance * w;
                 break;
             }
             if (!hit) {
@@ -190,9 +188,10 @@ struct Tracer {
                 if (f != Rgb(0.0)) {
                     const glm::vec3 wf(wi);
                     const glm::vec3 org = scene.spawn(h, p, wf);
-                    bool fr;
+                    bool fr = false;
                     ++*rays;
-                    if (hitLight(light, org, wf, fr) == kInf && !scene.occluded(org, wf, 0.f, kInf, &h)) {
+                    const bool lightInFront = hitLight(light, org, wf, fr) < kInf && fr;  // emits instead
+                    if (!lightInFront && !scene.occluded(org, wf, 0.f, kInf, &h)) {
                         const double pdfE = 1.0 / (4 * kPi);
                         L += beta * f * s.environment * (power(pdfE, pdfB) / pdfE);
                     }

@@ -1,6 +1,7 @@
 // Ply segments for the tracer and their UV-grid cells.
 #include "knit/ply_geometry.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -10,6 +11,9 @@
 #include "knit/scene.hpp"
 
 namespace knit {
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+}  // namespace
 
 size_t PlyGeometry::intersectionBytes() const {
     return points.size() * sizeof(glm::vec4) + segments.size() * sizeof(uint32_t) + flags.size();
@@ -20,7 +24,7 @@ size_t PlyGeometry::shadingBytes() const {
            curveOfSegment.size() * sizeof(uint32_t);
 }
 
-PlyGeometry buildPlyGeometry(const Plies& plies, const glm::dvec3& origin) {
+PlyGeometry buildPlyGeometry(const Plies& plies, const glm::dvec3& origin, double fiberTwist) {
     const Polylines& c = plies.curves;
     if (c.curveCount() == 0 || c.pointCount() == 0) throw Error("render: the scene has no ply curves (nothing to render)");
     if (!(plies.plyRadius > 0) || !std::isfinite(plies.plyRadius))
@@ -56,7 +60,15 @@ PlyGeometry buildPlyGeometry(const Plies& plies, const glm::dvec3& origin) {
             if (i == n && !closed) break;
             arc[i] = arc[i - 1] + glm::length(c.points[idx[i % n]] - c.points[idx[i - 1]]) * invR;
         }
-        const double total = closed ? arc[n] : arc[n - 1];
+        double total = closed ? arc[n] : arc[n - 1];
+        // Closed: whole fiber turns around the loop (no texture seam where it closes).
+        const double twist = std::abs(fiberTwist);
+        if (closed && twist > 0 && total > 0) {
+            const double turns = std::max(1.0, std::round(twist * total / (2.0 * kPi)));
+            const double scale = turns * 2.0 * kPi / (twist * total);
+            for (double& a : arc) a *= scale;
+            total *= scale;
+        }
         auto push = [&](size_t i, double a) {
             const glm::vec3 q = g.toScene(c.points[idx[i]]);
             g.points.emplace_back(q.x, q.y, q.z, g.radius);

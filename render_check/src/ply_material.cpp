@@ -2,6 +2,7 @@
 #include "knit/ply_material.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -112,13 +113,19 @@ PlyMaterial materialFromJson(const nlohmann::json& j, const PlyMaterial& base, c
 }
 
 PlyMaterial loadMaterialFile(const std::string& path, const PlyMaterial& base) {
+    // Step 1: a readable regular file (a folder opens as a stream on Linux, then fails to read).
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) throw Error("material file '" + path + "': is a directory, not a file");
     std::ifstream in(path);
     if (!in) throw Error("material file '" + path + "': cannot be opened");
+    // Step 2: parse (read errors surface as exceptions of the stream or the parser).
     nlohmann::json j;
     try {
         in >> j;
     } catch (const nlohmann::json::exception& e) {
         throw Error("material file '" + path + "': invalid JSON: " + e.what());
+    } catch (const std::exception& e) {
+        throw Error("material file '" + path + "': cannot be read: " + e.what());
     }
     return materialFromJson(j, base, "material file '" + path + "'");
 }

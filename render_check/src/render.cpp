@@ -79,7 +79,7 @@ RenderResult renderScene(const Scene& scene, const RenderOptions& o) {
     for (const glm::dvec3& p : scene.plies.curves.points) lo = glm::min(lo, p), hi = glm::max(hi, p);
     const glm::dvec3 centre = 0.5 * (lo + hi);
     const double radius = std::max(0.5 * glm::length(hi - lo), 1e-6);
-    const PlyGeometry geometry = buildPlyGeometry(scene.plies, centre);
+    const PlyGeometry geometry = buildPlyGeometry(scene.plies, centre, res.material.fiberTwist);
     res.segments = geometry.segmentCount();
     // Step 3: fiber tables.
     auto t0 = std::chrono::steady_clock::now();
@@ -105,12 +105,24 @@ RenderResult renderScene(const Scene& scene, const RenderOptions& o) {
     res.memory = traceScene.memory();
     res.primitives = traceScene.primitiveCount();
     // Step 5: view. Cloth front = area-weighted mean normal of the base mesh.
+    // A closed mesh has no front (its normals cancel up to rounding): look along the shortest
+    // axis of the plies' bounds instead.
     glm::dvec3 normal(0.0);
+    double normalLengths = 0;
     for (const glm::uvec3& f : scene.mesh.faces)
-        if (f.x < scene.mesh.positions.size() && f.y < scene.mesh.positions.size() && f.z < scene.mesh.positions.size())
-            normal += glm::cross(scene.mesh.positions[f.y] - scene.mesh.positions[f.x],
-                                 scene.mesh.positions[f.z] - scene.mesh.positions[f.x]);
-    normal = glm::length(normal) > 0 ? glm::normalize(normal) : glm::dvec3(0, 0, 1);
+        if (f.x < scene.mesh.positions.size() && f.y < scene.mesh.positions.size() && f.z < scene.mesh.positions.size()) {
+            const glm::dvec3 n = glm::cross(scene.mesh.positions[f.y] - scene.mesh.positions[f.x],
+                                            scene.mesh.positions[f.z] - scene.mesh.positions[f.x]);
+            normal += n, normalLengths += glm::length(n);
+        }
+    if (glm::length(normal) > 1e-3 * normalLengths && normalLengths > 0) {
+        normal = glm::normalize(normal);
+    } else {
+        const glm::dvec3 ext = hi - lo;
+        const int axis = ext.x <= ext.y && ext.x <= ext.z ? 0 : (ext.y <= ext.z ? 1 : 2);
+        normal = glm::dvec3(0.0);
+        normal[axis] = 1.0;
+    }
     const glm::dvec3 helper = std::abs(normal.y) < 0.9 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0);
     const glm::dvec3 right = glm::normalize(glm::cross(helper, normal)), up = glm::cross(normal, right);
     TraceSettings ts;
@@ -150,6 +162,8 @@ RenderResult renderScene(const Scene& scene, const RenderOptions& o) {
             }
         };
     }
+    res.camera = ts.camera;
+    res.areaLight = ts.light;
     TraceStats stats;
     res.image = renderImage(traceScene, res.material, tables, ts, &stats);
     res.renderSeconds = stats.seconds;

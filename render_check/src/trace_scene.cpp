@@ -56,7 +56,11 @@ struct HitContext {
 
 // ---- two-stage grid cells -------------------------------------------------------------------
 constexpr int kChunk = 8;        // segments per chunk box (8-bit box per chunk)
-constexpr float kMinMitreCos = 0.2f;  // sharper joints are cut perpendicular instead of mitred
+// Joints bent by more than 2 acos(kMinMitreCos) = 157 degrees are not mitred (the mitre would reach
+// r / kMinMitreCos = 5 radii out): both segments are cut perpendicular to their own axis there and
+// get the sphere beyond the cut, a round joint as in Embree's round curves (a flat cut alone left
+// the outside of the joint open: rays passed into the ply through the missing wedge).
+constexpr float kMinMitreCos = 0.2f;
 
 struct GridRun {
     uint32_t firstSegment;
@@ -89,14 +93,9 @@ glm::vec3 safeNormalize(const glm::vec3& v) {
     return l > 0 ? v / l : glm::vec3(0.f);
 }
 
-// Joint plane normal between directions a (incoming) and b (outgoing): the bisector, or the
-// plane perpendicular to `self` when the joint is too sharp to mitre.
-glm::vec3 jointNormal(const glm::vec3& a, const glm::vec3& b, const glm::vec3& self) {
-    const glm::vec3 m = a + b;
-    const float l = glm::length(m);
-    if (l < 2.f * kMinMitreCos) return self;
-    return m / l;
-}
+// Directions a (incoming) and b (outgoing) bent too sharply to mitre.
+bool sharpJoint(const glm::vec3& a, const glm::vec3& b) { return glm::length(a + b) < 2.f * kMinMitreCos; }
+
 
 struct RayData {
     glm::vec3 org, dir, inv;
@@ -111,54 +110,82 @@ bool boxHit(const RayData& r, const glm::vec3& lo, const glm::vec3& hi, float tf
     return a <= b;
 }
 
-// Entering hit of a ray with the cylinder (p0, p1, radius) trimmed by the joint planes n0 (at p0,
-// oriented along the ply) and n1 (at p1); round caps at open ends. Returns t or -1.
-float hitTrimmedCylinder(const RayData& r, const glm::vec3& p0, const glm::vec3& p1, float radius,
-                         const glm::vec3& n0, const glm::vec3& n1, bool capStart, bool capEnd, float tfar,
-                         glm::vec3& ng, float& u) {
+// The neighbours of a segment (for its joint planes), when it has them.
+struct SegmentJoints {
+    glm::vec3 prev{0.f}, next{0.f};
+    bool hasPrev = false, hasNext = false;
+};
+
+// Entering hit of a ray with the ply segment p0 -> p1: the cylinder of `radius` trimmed by the
+// joint planes (bisector with the neighbour, oriented along the ply), with round ends (the sphere
+// beyond the end plane) at open ends and at joints too sharp to mitre (cut perpendicular there).
+// On a hit closer than tfar, returns true with t, the outward normal ng and u along the segment.
+bool hitPlySegment(const RayData& r, const glm::vec3& p0, const glm::vec3& p1, const SegmentJoints& joints,
+                   float radius, float tfar, float& tHit, glm::vec3& ng, float& u) {
     const glm::vec3 d = p1 - p0;
     const float len = glm::length(d);
-    if (len <= 0) return -1;
+    if (len <= 0) return false;
     const glm::vec3 a = d / len;
-    const glm::vec3 oc = r.org - p0;
+    // Step 1: work from the ray point nearest the segment's middle (t = ts): from the far origin
+    // itself, |op|^2 - (op.dp)^2 / A cancels catastrophically in float (a camera 3000 ply radii
+    // away put hits up to 0.6 radii off the surface). Local t below are relative to ts.
+    const float dd = glm::dot(r.dir, r.dir);
+    const float ts = glm::dot(p0 + 0.5f * d - r.org, r.dir) / dd;
+    const glm::vec3 oc = r.org + ts * r.dir - p0;
+    const float tnear = r.tnear - ts;
+    tfar -= ts;
+    // Step 2: the infinite cylinder. The trimmed piece and its round ends lie inside it, so a ray
+    // that misses it, enters it beyond tfar or leaves it before tnear misses the segment.
     const float so = glm::dot(oc, a), sd = glm::dot(r.dir, a);
     const glm::vec3 op = oc - so * a, dp = r.dir - sd * a;
     const float A = glm::dot(dp, dp), B = glm::dot(op, dp), C = glm::dot(op, op) - radius * radius;
-    float best = -1;
-    // Lateral surface: the entering root only (a ray starting inside has no entering root ahead).
-    if (A > 1e-12f) {
+    const bool lateral = A > 1e-12f * dd;
+    float tEnter = 0;
+    if (lateral) {
         const float tca = -B / A;
         const float dist2 = C + B * tca;  // |op + tca dp|^2 - r^2 = C - B^2 / A
-        if (dist2 <= 0) {
-            const float t = tca - std::sqrt(-dist2 / A);
-            if (t > r.tnear && t < tfar) {
-                const glm::vec3 h = oc + t * r.dir;
-                if (glm::dot(h, n0) >= 0 && glm::dot(h - d, n1) <= 0) {
-                    const float s = glm::dot(h, a);
-                    ng = (h - s * a) / radius;
-                    u = std::clamp(s / len, 0.f, 1.f);
-                    best = t;
-                    tfar = t;
-                }
-            }
+        if (dist2 > 0) return false;
+        const float half = std::sqrt(-dist2 / A);
+        tEnter = tca - half;
+        if (tEnter >= tfar || tca + half <= tnear) return false;
+    } else if (C > 0) {
+        return false;  // parallel to the axis, outside the cylinder
+    }
+    // Step 3: joint planes; round ends where there is no neighbour or the joint is too sharp.
+    const glm::vec3 prevDir = joints.hasPrev ? safeNormalize(p0 - joints.prev) : a;
+    const glm::vec3 nextDir = joints.hasNext ? safeNormalize(joints.next - p1) : a;
+    const glm::vec3 m0 = prevDir + a, m1 = a + nextDir;
+    const float l0 = glm::length(m0), l1 = glm::length(m1);
+    const bool roundStart = !joints.hasPrev || l0 < 2.f * kMinMitreCos;
+    const bool roundEnd = !joints.hasNext || l1 < 2.f * kMinMitreCos;
+    const glm::vec3 n0 = roundStart ? a : m0 / l0, n1 = roundEnd ? a : m1 / l1;
+    bool hit = false;
+    // Step 4: lateral surface, the entering root only (a ray starting inside has no entering root
+    // ahead), kept between the two joint planes.
+    if (lateral && tEnter > tnear) {
+        const glm::vec3 h = oc + tEnter * r.dir;
+        if (glm::dot(h, n0) >= 0 && glm::dot(h - d, n1) <= 0) {
+            const float s = glm::dot(h, a);
+            ng = (h - s * a) / radius;
+            u = std::clamp(s / len, 0.f, 1.f);
+            tfar = tEnter, hit = true;
         }
     }
-    // Round caps at open ends (as Embree's round curves): the sphere beyond the end plane.
-    auto cap = [&](const glm::vec3& c, bool start) {
-        const glm::vec3 q = r.org - c;
+    // Step 5: round ends (as Embree's round curves): the sphere beyond the end plane.
+    auto cap = [&](const glm::vec3& q, bool start) {  // q = local origin - sphere centre
         const float b = glm::dot(q, r.dir), cc = glm::dot(q, q) - radius * radius;
-        const float disc = b * b - cc;
-        if (cc <= 0 || disc < 0) return;  // starts inside, or misses
-        const float t = -b - std::sqrt(disc);
-        if (!(t > r.tnear && t < tfar)) return;
-        const glm::vec3 h = oc + t * r.dir;
-        const float s = glm::dot(h, a);
+        const float disc = b * b - dd * cc;
+        if (disc < 0) return;
+        const float t = (-b - std::sqrt(disc)) / dd;  // entering root: behind a ray starting inside
+        if (!(t > tnear && t < tfar)) return;
+        const float s = glm::dot(oc + t * r.dir, a);
         if (start ? s > 0 : s < len) return;
-        ng = (r.org + t * r.dir - c) / radius, u = start ? 0.f : 1.f, best = t, tfar = t;
+        ng = (q + t * r.dir) / radius, u = start ? 0.f : 1.f, tfar = t, hit = true;
     };
-    if (capStart) cap(p0, true);
-    if (capEnd) cap(p1, false);
-    return best;
+    if (roundStart) cap(oc, true);
+    if (roundEnd) cap(oc - d, false);
+    if (hit) tHit = tfar + ts;
+    return hit;
 }
 
 // Walks one cell; `anyHit` stops at the first hit. Returns true on a hit (closest in tfar).
@@ -178,15 +205,13 @@ bool traverseCell(const GridData& g, const GridCell& cell, const RayData& r, flo
             if (!boxHit(r, lo, hi, tfar)) continue;
             const uint32_t first = c * kChunk, last = std::min<uint32_t>(run.count, first + kChunk);
             for (uint32_t k = first; k < last; ++k) {
-                const glm::vec3 a = point(p0 + k), b = point(p0 + k + 1);
-                const glm::vec3 dir = safeNormalize(b - a);
-                const bool hasPrev = k > 0 || run.hasPrev, hasNext = k + 1 < run.count || run.hasNext;
-                const glm::vec3 n0 = hasPrev ? jointNormal(safeNormalize(a - point(p0 + k - 1)), dir, dir) : dir;
-                const glm::vec3 n1 = hasNext ? jointNormal(dir, safeNormalize(point(p0 + k + 2) - b), dir) : dir;
+                SegmentJoints joints;
+                joints.hasPrev = k > 0 || run.hasPrev, joints.hasNext = k + 1 < run.count || run.hasNext;
+                if (joints.hasPrev) joints.prev = point(p0 + k - 1);
+                if (joints.hasNext) joints.next = point(p0 + k + 2);
                 glm::vec3 n(0.f);
-                float uu = 0;
-                const float t = hitTrimmedCylinder(r, a, b, g.radius, n0, n1, !hasPrev, !hasNext, tfar, n, uu);
-                if (t >= 0) {
+                float uu = 0, t = 0;
+                if (hitPlySegment(r, point(p0 + k), point(p0 + k + 1), joints, g.radius, tfar, t, n, uu)) {
                     tfar = t, ng = n, u = uu, segment = run.firstSegment + k, hit = true;
                     if (anyHit) return true;
                 }
@@ -270,8 +295,10 @@ GridData buildGrid(const PlyGeometry& pg, const std::vector<int64_t>& cellOf) {
         const uint32_t i = pg.segments[s];
         const glm::vec3 dir = safeNormalize(pt(i + 1) - pt(i));
         float e = r;
-        if (pg.hasLeft(s)) e = std::max(e, r / std::max(kMinMitreCos, glm::dot(jointNormal(safeNormalize(pt(i) - pt(i - 1)), dir, dir), dir)));
-        if (pg.hasRight(s)) e = std::max(e, r / std::max(kMinMitreCos, glm::dot(jointNormal(dir, safeNormalize(pt(i + 2) - pt(i + 1)), dir), dir)));
+        // (From the half bend angle directly, so a joint near the mitre limit is covered whichever
+        // way the quantized points of the cell decide it.)
+        if (pg.hasLeft(s)) e = std::max(e, r / std::max(kMinMitreCos, 0.5f * glm::length(safeNormalize(pt(i) - pt(i - 1)) + dir)));
+        if (pg.hasRight(s)) e = std::max(e, r / std::max(kMinMitreCos, 0.5f * glm::length(dir + safeNormalize(pt(i + 2) - pt(i + 1)))));
         return e * 1.001f;
     };
     for (const auto& [key, runs] : byCell) {
@@ -364,18 +391,25 @@ TubeData buildTubes(const PlyGeometry& pg, int sides) {
         curves.addCurve(p.data(), p.size(), closed);
         sourceCurve.push_back(static_cast<uint32_t>(k));
     }
+    // The exporter's flat end caps are replaced by hemispheres (step 3): round ends like Embree's
+    // round curves and the grid cells, so the three modes model the same solid.
     TubeOptions to;
     to.sides = sides;
-    to.caps = true;
+    to.caps = false;
     const TubeMesh mesh = sweepTubes(curves, pg.unit * pg.radius, to, 0, curves.curveCount(), pg.origin);
     TubeData t;
     t.positions.reserve(mesh.positions.size() + 1);
     const float inv = static_cast<float>(1.0 / pg.unit);  // metres relative to origin -> scene units
     for (const glm::vec3& q : mesh.positions) t.positions.push_back(q * inv);
-    t.positions.emplace_back(0.f);
     t.triangles = mesh.triangles;
-    if (mesh.curveOfVertex.size() != mesh.positions.size())
-        throw Error("render: sweepTubes returned no curve index per vertex");
+    if (mesh.curveOfVertex.size() != mesh.positions.size() || mesh.normals.size() != mesh.positions.size())
+        throw Error("render: sweepTubes returned no curve index or normal per vertex");
+    // Outward winding for every triangle (facet normal on the side of its vertex normals), so
+    // the entry filter can trust the facet normal.
+    for (glm::uvec3& tri : t.triangles) {
+        const glm::vec3 f = glm::cross(t.positions[tri.y] - t.positions[tri.x], t.positions[tri.z] - t.positions[tri.x]);
+        if (glm::dot(f, mesh.normals[tri.x] + mesh.normals[tri.y] + mesh.normals[tri.z]) < 0) std::swap(tri.y, tri.z);
+    }
     // Step 2: the ply segment of each triangle: nearest segment of its curve to the centroid
     // (window search along the curve, full scan when the window loses it).
     t.segmentOfTriangle.resize(t.triangles.size());
@@ -406,11 +440,63 @@ TubeData buildTubes(const PlyGeometry& pg, int sides) {
         lastCurve = c, lastSeg = bs;
         t.segmentOfTriangle[i] = bs;
     }
+    // Step 3: hemispherical caps on open ends, built on the end rings (sweep.hpp layout: an open
+    // curve of n points has n rings of sides + 1 vertices, the last repeating the first).
+    const uint32_t ringSize = static_cast<uint32_t>(sides) + 1, latitudes = static_cast<uint32_t>(std::max(2, sides / 4));
+    size_t firstVertex = 0;
+    for (size_t c = 0; c < curves.curveCount(); ++c) {
+        const uint32_t n = static_cast<uint32_t>(curves.size(c));
+        const bool closed = curves.isClosed(c);
+        const size_t count = tubeVertexCount(n, closed, to);
+        if (firstVertex + count > mesh.positions.size() || mesh.curveOfVertex[firstVertex] != c)
+            throw Error("render: sweepTubes vertex layout differs from knit/sweep.hpp");
+        const uint32_t k = sourceCurve[c];
+        const uint32_t s0 = pg.curveSegments[k], s1 = pg.curveSegments[k + 1];
+        for (int end = 0; end < 2 && !closed; ++end) {
+            const uint32_t ring = static_cast<uint32_t>(firstVertex) + (end ? (n - 1) * ringSize : 0);
+            const uint32_t seg = end ? s1 - 1 : s0;
+            const uint32_t j = pg.segments[seg];
+            const glm::vec3 centre(pg.points[end ? j + 1 : j]);
+            const glm::vec3 axis = safeNormalize(end ? glm::vec3(pg.points[j + 1]) - glm::vec3(pg.points[j])
+                                                     : glm::vec3(pg.points[j]) - glm::vec3(pg.points[j + 1]));
+            uint32_t prev = ring;  // latitude 0 = the end ring itself
+            for (uint32_t l = 1; l <= latitudes; ++l) {
+                const float phi = 1.5707963f * float(l) / float(latitudes);
+                const uint32_t cur = static_cast<uint32_t>(t.positions.size());
+                if (l < latitudes) {
+                    for (uint32_t q = 0; q < ringSize; ++q)
+                        t.positions.push_back(centre + std::cos(phi) * (t.positions[ring + q] - centre) +
+                                              std::sin(phi) * pg.radius * axis);
+                } else {
+                    t.positions.push_back(centre + pg.radius * axis);  // pole
+                }
+                auto addTriangle = [&](glm::uvec3 tri) {  // wound outward (away from the centre)
+                    const glm::vec3 f = glm::cross(t.positions[tri.y] - t.positions[tri.x], t.positions[tri.z] - t.positions[tri.x]);
+                    const glm::vec3 mid = (t.positions[tri.x] + t.positions[tri.y] + t.positions[tri.z]) / 3.f;
+                    if (glm::dot(f, mid - centre) < 0) std::swap(tri.y, tri.z);
+                    t.triangles.push_back(tri);
+                    t.segmentOfTriangle.push_back(seg);
+                };
+                for (uint32_t q = 0; q + 1 < ringSize; ++q) {
+                    if (l < latitudes) {
+                        addTriangle({prev + q, prev + q + 1, cur + q});
+                        addTriangle({prev + q + 1, cur + q + 1, cur + q});
+                    } else {
+                        addTriangle({prev + q, prev + q + 1, cur});
+                    }
+                }
+                prev = cur;
+            }
+        }
+        firstVertex += count;
+    }
+    t.positions.emplace_back(0.f);  // padding
     return t;
 }
 
-// Outward normal of ply segment s at point p: perpendicular to the axis, except beyond an open
-// end (round cap: from the end point). u = position along the segment, clamped to [0, 1].
+// Outward normal of ply segment s at point p: perpendicular to the axis, except beyond a round
+// end (open end or joint too sharp to mitre: from the end point). u = position along the segment,
+// clamped to [0, 1].
 glm::vec3 axisNormal(const PlyGeometry& pg, uint32_t s, const glm::vec3& p, float& u) {
     const uint32_t j = pg.segments[s];
     const glm::vec3 a(pg.points[j]), b(pg.points[j + 1]);
@@ -418,7 +504,10 @@ glm::vec3 axisNormal(const PlyGeometry& pg, uint32_t s, const glm::vec3& p, floa
     const float dd = glm::dot(d, d);
     const float raw = dd > 0 ? glm::dot(p - a, d) / dd : 0.f;
     u = std::clamp(raw, 0.f, 1.f);
-    const bool capped = (raw < 0 && !pg.hasLeft(s)) || (raw > 1 && !pg.hasRight(s));
+    const glm::vec3 dir = safeNormalize(d);
+    const bool capped =
+        (raw < 0 && (!pg.hasLeft(s) || sharpJoint(safeNormalize(a - glm::vec3(pg.points[j - 1])), dir))) ||
+        (raw > 1 && (!pg.hasRight(s) || sharpJoint(dir, safeNormalize(glm::vec3(pg.points[j + 2]) - b))));
     return safeNormalize(p - (a + (capped ? u : raw) * d));
 }
 
@@ -445,24 +534,35 @@ void curveEntryFilter(const RTCFilterFunctionNArguments* a) {
     }
 }
 
-// Tubes: entering hits by the centreline normal; the triangle a spawned ray leaves is also ignored:
+// Tubes: entering hits by the facet normal (triangles are wound outward, see buildTubes), at
+// least kTubeMinHitDistance from the origin: the tube is a closed polyhedron, so its first
+// entering facet is where a ray enters it. (Deciding by the centreline normal instead let grazing
+// rays pass through the tube wherever the facet and centreline normals disagree: up to half the
+// polygon angle plus the ring tilt at joints.) The triangle a spawned ray leaves is also ignored:
 // the facets of rings tilted at joints deviate from the centreline normal by more than the polygon
 // angle, so the offset along that normal alone does not always clear the facet plane.
+constexpr float kTubeMinHitDistance = 1e-4f;  // ply radii (spawned rays start >= 1e-3 away)
+
 void tubeEntryFilter(const RTCFilterFunctionNArguments* a) {
     const TraceScene::Impl& impl = *static_cast<const TraceScene::Impl*>(a->geometryUserPtr);
     const HitContext* ctx = reinterpret_cast<const HitContext*>(a->context);
     for (unsigned i = 0; i < a->N; ++i) {
         if (a->valid[i] != -1) continue;
-        if (RTCHitN_primID(a->hit, a->N, i) == ctx->ignore) {
+        const uint32_t prim = RTCHitN_primID(a->hit, a->N, i);
+        if (prim == ctx->ignore) {
+            a->valid[i] = 0;
+            continue;
+        }
+        // A watertight test also reports the facet a ray starts exactly on (t = 0): not an entry.
+        if (RTCRayN_tfar(a->ray, a->N, i) <= kTubeMinHitDistance) {
             a->valid[i] = 0;
             continue;
         }
         const glm::vec3 dir(RTCRayN_dir_x(a->ray, a->N, i), RTCRayN_dir_y(a->ray, a->N, i), RTCRayN_dir_z(a->ray, a->N, i));
-        const glm::vec3 org(RTCRayN_org_x(a->ray, a->N, i), RTCRayN_org_y(a->ray, a->N, i), RTCRayN_org_z(a->ray, a->N, i));
-        const glm::vec3 p = org + RTCRayN_tfar(a->ray, a->N, i) * dir;
-        float u;
-        const glm::vec3 n = axisNormal(*impl.plies, impl.tubes.segmentOfTriangle[RTCHitN_primID(a->hit, a->N, i)], p, u);
-        if (glm::dot(dir, n) >= 0) a->valid[i] = 0;
+        const glm::uvec3 tri = impl.tubes.triangles[prim];
+        const glm::vec3& v0 = impl.tubes.positions[tri.x];
+        const glm::vec3 f = glm::cross(impl.tubes.positions[tri.y] - v0, impl.tubes.positions[tri.z] - v0);
+        if (glm::dot(dir, f) >= 0) a->valid[i] = 0;
     }
 }
 
@@ -476,6 +576,9 @@ TraceScene::TraceScene(EmbreeDevice& device, const PlyGeometry& plies, const Tra
     RTCDevice dev = device.get();
     scene_ = rtcNewScene(dev);
     rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_MEDIUM);
+    // Tubes: watertight triangle tests, or a ray through an edge shared by two facets can slip
+    // between them (seen from 1e4 ply radii away).
+    if (options.mode == GeometryMode::Tubes) rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
     RTCGeometry geom = nullptr;
     // Step 1: the plies in the chosen representation.
     switch (options.mode) {

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <random>
 #include <vector>
@@ -439,6 +440,21 @@ TEST(PlyMaterial, fileErrorsNameTheFile) {
     EXPECT_THROW(loadMaterialFile(path), Error);
     std::remove(path.c_str());
     EXPECT_THROW(loadMaterialFile(path + ".missing"), Error);
+}
+
+TEST(PlyMaterial, folderGivenAsMaterialFileIsAnError) {
+    // A folder opens as a stream on Linux and fails only when read (it escaped as a
+    // std::ios_base::failure, i.e. an internal error of the CLI).
+    const std::string dir = std::string(KNIT_BINARY_DIR) + "/render_test_material_folder.json";
+    std::filesystem::create_directories(dir);
+    try {
+        loadMaterialFile(dir);
+        FAIL() << "no error for a folder";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find(dir), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("directory"), std::string::npos) << e.what();
+    }
+    std::filesystem::remove_all(dir);
 }
 
 }  // namespace

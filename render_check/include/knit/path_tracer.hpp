@@ -25,6 +25,8 @@ struct Camera {
 };
 
 // One-sided emitter: the parallelogram corner + a edgeU + b edgeV, emitting towards cross(edgeU, edgeV).
+// It has no body: seen from behind it is not there (rays pass), so a front light placed between
+// the camera and the cloth never hides part of the view (it did with narrow fields of view).
 struct RectLight {
     glm::dvec3 corner{0.0}, edgeU{1, 0, 0}, edgeV{0, 1, 0};
     Rgb radiance{0.0};

@@ -27,7 +27,8 @@ struct PlyGeometry {
     float radius = 0;                     // in scene units (1)
     std::vector<glm::vec4> points;        // (x, y, z, radius), scene units relative to origin
     std::vector<glm::vec3> radial;        // unit direction from the yarn centre, per point
-    std::vector<float> arc;               // arc length along the ply (ply radii), per point
+    std::vector<float> arc;               // fiber parameter v: arc length along the ply (ply radii), per
+                                          // point; rescaled on closed curves (see buildPlyGeometry)
     std::vector<uint32_t> segments;       // first point of each segment
     std::vector<uint8_t> flags;           // per segment: bit 0 left neighbour, bit 1 right neighbour
     std::vector<uint32_t> curveOfSegment; // source ply curve
@@ -44,7 +45,11 @@ struct PlyGeometry {
 };
 
 // Throws knit::Error when plies are empty, the radius is not positive, or points are not finite.
-PlyGeometry buildPlyGeometry(const Plies& plies, const glm::dvec3& origin);
+// fiberTwist (tau_f, radians per ply radius; PlyMaterial::fiberTwist): on a closed curve of length
+// L the fiber texture phase tau_f v must close on whole turns or the fiber tables show a seam where
+// the loop closes; so v = arc * K 2 pi / (|tau_f| L) with K = max(1, round(|tau_f| L / 2 pi)), a
+// change of the effective twist by at most pi / (|tau_f| L) relative. 0 = plain arc length.
+PlyGeometry buildPlyGeometry(const Plies& plies, const glm::dvec3& origin, double fiberTwist = 0.0);
 
 // Two-stage mode: the UV-grid cell (i, j) of every segment, packed as (int64(i) << 32) | uint32(j).
 // A ply segment takes the cell of the UV position of the nearest vertex of its source yarn

@@ -2,7 +2,8 @@
 // in one of three geometry modes, and report time, rays/s and memory.
 //
 // View: the camera looks at the plies' bounding sphere along the base mesh's mean normal (the
-// cloth's front). `front` puts the rectangular light on the camera side (up and to the right),
+// cloth's front); for a closed or nearly closed mesh (mean normal below 1e-3 of the mean normal
+// length, e.g. a cylinder or sphere) along the shortest axis of the plies' bounding box instead. `front` puts the rectangular light on the camera side (up and to the right),
 // `back` puts it behind the cloth facing the camera, so the image shows transmitted light.
 // The base mesh is the cloth's mid-surface: it lies inside the yarns and would hide the back
 // plies and block transmission, so it is NOT rendered unless `baseMesh` is set (then as an
@@ -61,6 +62,8 @@ struct RenderResult {
     size_t tableBytes = 0;
     int64_t peakMemoryBytes = 0;   // process peak resident set size
     size_t segments = 0, primitives = 0;
+    Camera camera;                 // the view used (world space)
+    RectLight areaLight;           // the area light used (world space)
     std::vector<std::string> written;
 };
 

@@ -2,11 +2,18 @@
 //
 // Modes:
 //   Curves: RTC_GEOMETRY_TYPE_ROUND_LINEAR_CURVE over the ply segments (float4 x, y, z, r).
-//   Tubes:  triangle meshes from knit::sweepTubes (as exported).
+//   Tubes:  triangle meshes from knit::sweepTubes (the exporter's sweep; caps: see below).
 //   Grid:   the two-stage idea: one RTC_GEOMETRY_TYPE_USER primitive per non-empty UV-grid cell;
 //           its callback intersects only that cell's ply segments, as cylinders trimmed by the
-//           bisector planes at the joints (round caps at open ends). Segment points are stored
-//           16-bit quantized per cell, with one 8-bit box per chunk of up to 8 segments.
+//           bisector planes at the joints (round caps at open ends; joints bent by more than 157
+//           degrees, where a mitre would reach 5 radii out, are round: cut perpendicular plus the
+//           sphere beyond the cut). Segment points are stored 16-bit quantized per cell, with one
+//           8-bit box per chunk of up to 8 segments; ray-cylinder tests run from the ray point
+//           nearest each segment (float cancellation from far ray origins).
+//   Tubes mode replaces the exporter's flat end caps by hemispheres, so all three modes model the
+//   same solid (round ends); its triangles are wound outward and traced watertight
+//   (RTC_SCENE_FLAG_ROBUST), entering hits decided by the facet normal, none closer than 1e-4
+//   ply radii to the ray origin.
 // Plies are solids seen from the outside: only hits where the ray enters a ply count (a ray that
 // starts inside a ply leaves it without a hit). Spawned rays start on the outward normal through
 // the hit's centreline point: at (1 + outsideOffset) times the hit's distance (at least the radius)
