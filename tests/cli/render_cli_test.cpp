@@ -9,26 +9,14 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "common/run_knit.hpp"
+
 namespace fs = std::filesystem;
 
 namespace {
 
-struct RenderRun {
-    int exitCode = -1;
-    std::string output;  // stdout + stderr
-};
-
-RenderRun knitIn(const fs::path& cwd, const std::string& args) {
-    const std::string cmd = "cd '" + cwd.string() + "' && '" KNIT_CLI "' " + args + " 2>&1";
-    RenderRun r;
-    FILE* pipe = popen(cmd.c_str(), "r");
-    if (!pipe) return r;
-    char buf[4096];
-    while (size_t n = fread(buf, 1, sizeof buf, pipe)) r.output.append(buf, n);
-    const int status = pclose(pipe);
-    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return r;
-}
+using RenderRun = knit::test::CliRun;
+RenderRun knitIn(const fs::path& cwd, const std::string& args) { return knit::test::runKnit(args, cwd); }
 
 // A scene that builds and renders in a fraction of a second.
 const std::string kSmall = "render -q --mesh plane --repeats 2 2 --mesh-res 4 --width 16 --height 12 ";

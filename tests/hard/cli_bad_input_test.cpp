@@ -11,26 +11,14 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "common/run_knit.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-struct CliRun {
-    int exitCode = -1;
-    std::string output;
-};
-
-CliRun knit(const std::string& args, const fs::path& cwd) {
-    const std::string cmd = "cd '" + cwd.string() + "' && '" KNIT_CLI "' " + args + " 2>&1";
-    CliRun r;
-    FILE* pipe = popen(cmd.c_str(), "r");
-    if (!pipe) return r;
-    char buf[4096];
-    while (size_t n = fread(buf, 1, sizeof buf, pipe)) r.output.append(buf, n);
-    const int status = pclose(pipe);
-    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return r;
-}
+using knit::test::CliRun;
+CliRun knit(const std::string& args, const fs::path& cwd) { return knit::test::runKnit(args, cwd); }
 
 class CliBadInput : public ::testing::Test {
 protected:
