@@ -44,16 +44,14 @@ glm::dvec3 evaluatePoint(const BaseMesh& mesh, const std::vector<glm::dvec3>& no
 
 double cross2(glm::dvec2 a, glm::dvec2 b) { return a.x * b.y - a.y * b.x; }
 
-// First crossing of the UV segment p -> q with a boundary edge of `chart`, as a bound vertex
-// with height and twist interpolated along the segment. None when p is already on the boundary
-// (t ~ 0) or no boundary edge is crossed.
-std::optional<BoundVertex> boundaryCrossing(const BaseMesh& mesh, const UvGrid& grid, uint32_t chart,
-                                            glm::dvec2 p, glm::dvec2 q, double hp, double hq, double tp, double tq) {
+// Calls visit(halfEdge, t, s) for every boundary edge of `chart` that the UV segment p -> q
+// crosses or touches (t along p -> q, s along the edge; both within [-slack, 1 + slack]),
+// looking only at the cells in [c0, c1]. Parallel edges are skipped: running along the
+// boundary stays in the chart.
+template <class Visit>
+void forEachBoundaryCrossing(const BaseMesh& mesh, const UvGrid& grid, uint32_t chart, glm::dvec2 p, glm::dvec2 q,
+                             glm::ivec2 c0, glm::ivec2 c1, double slack, Visit visit) {
     const glm::dvec2 d = q - p;
-    const glm::ivec2 c0 = grid.cellOf(glm::min(p, q)), c1 = grid.cellOf(glm::max(p, q));
-    double bestT = INFINITY;
-    uint32_t bestEdge = UINT32_MAX;
-    double bestS = 0;
     for (int32_t y = c0.y; y <= c1.y; ++y)
         for (int32_t x = c0.x; x <= c1.x; ++x) {
             const int32_t slot = grid.slotOf({x, y});
@@ -67,15 +65,28 @@ std::optional<BoundVertex> boundaryCrossing(const BaseMesh& mesh, const UvGrid& 
                 const double den = cross2(d, e);
                 if (den == 0) continue;
                 const double tt = cross2(a - p, e) / den, s = cross2(a - p, d) / den;
-                const double slack = 1e-12;
                 if (tt < -slack || tt > 1 + slack || s < -slack || s > 1 + slack) continue;
-                if (tt < bestT || (tt == bestT && he < bestEdge)) {
-                    bestT = std::clamp(tt, 0.0, 1.0);
-                    bestEdge = he;
-                    bestS = std::clamp(s, 0.0, 1.0);
-                }
+                visit(he, tt, s);
             }
         }
+}
+
+// First crossing of the UV segment p -> q with a boundary edge of `chart`, as a bound vertex
+// with height and twist interpolated along the segment. None when p is already on the boundary
+// (t ~ 0) or no boundary edge is crossed.
+std::optional<BoundVertex> boundaryCrossing(const BaseMesh& mesh, const UvGrid& grid, uint32_t chart,
+                                            glm::dvec2 p, glm::dvec2 q, double hp, double hq, double tp, double tq) {
+    double bestT = INFINITY;
+    uint32_t bestEdge = UINT32_MAX;
+    double bestS = 0;
+    forEachBoundaryCrossing(mesh, grid, chart, p, q, grid.cellOf(glm::min(p, q)), grid.cellOf(glm::max(p, q)), 1e-12,
+                            [&](uint32_t he, double tt, double s) {
+                                if (tt < bestT || (tt == bestT && he < bestEdge)) {
+                                    bestT = std::clamp(tt, 0.0, 1.0);
+                                    bestEdge = he;
+                                    bestS = std::clamp(s, 0.0, 1.0);
+                                }
+                            });
     if (bestEdge == UINT32_MAX || bestT < 1e-9) return std::nullopt;
     BoundVertex b;
     b.face = bestEdge / 3;
@@ -121,22 +132,9 @@ bool leavesChart(const BaseMesh& mesh, const UvGrid& grid, uint32_t chart, glm::
     }
     const glm::dvec2 d = q - p;
     ts.clear();
-    for (int32_t y = c0.y; y <= c1.y; ++y)
-        for (int32_t x = c0.x; x <= c1.x; ++x) {
-            const int32_t slot = grid.slotOf({x, y});
-            if (slot < 0) continue;
-            for (uint32_t i = grid.edgeOffsets[slot]; i < grid.edgeOffsets[slot + 1]; ++i) {
-                const uint32_t he = grid.boundaryEdges[i], f = he / 3, k = he % 3;
-                if (grid.chartOfFace[f] != chart) continue;
-                const glm::uvec3 t = mesh.faceUvs[f];
-                const uint32_t corner[3] = {t.x, t.y, t.z};
-                const glm::dvec2 a = mesh.uvs[corner[k]], e = mesh.uvs[corner[(k + 1) % 3]] - a;
-                const double den = cross2(d, e);
-                if (den == 0) continue;  // parallel: running along the boundary stays in the chart
-                const double tt = cross2(a - p, e) / den, s = cross2(a - p, d) / den;
-                if (tt > 0 && tt < 1 && s >= 0 && s <= 1) ts.push_back(tt);
-            }
-        }
+    forEachBoundaryCrossing(mesh, grid, chart, p, q, c0, c1, 0.0, [&](uint32_t, double tt, double) {
+        if (tt > 0 && tt < 1) ts.push_back(tt);
+    });
     if (ts.empty()) return false;
     std::sort(ts.begin(), ts.end());
     ts.push_back(1.0);
