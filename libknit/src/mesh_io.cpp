@@ -471,7 +471,8 @@ PlyHeader scanPly(const std::string& path) {
             double v = 0;
             if (fmt != "ascii" && fmt != "binary_little_endian" && fmt != "binary_big_endian")
                 failLine(path, lineNo, "unknown PLY format '" + fmt + "'");
-            if (!parseFinite(version, v) || !extra.empty())  // OpenMesh loops forever on a bad version
+            // PLY has only version 1.0; OpenMesh loops forever on other versions.
+            if (!parseFinite(version, v) || v != 1.0 || !extra.empty())
                 failLine(path, lineNo, "the format line must be 'format " + fmt + " 1.0'");
             h.ascii = fmt == "ascii";
             h.bigEndian = fmt == "binary_big_endian";
