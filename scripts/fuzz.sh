@@ -10,6 +10,7 @@
 #   SECONDS_PER_TARGET  default 60 (or $KNIT_FUZZ_SECONDS)
 #   TARGET              pyp curves_json obj ply off material (default: all)
 # Environment: KNIT_FUZZ_BUILD_DIR (default build-fuzz), KNIT_JOBS (build jobs, default 2),
+#   KNIT_FUZZ_SEED (libFuzzer -seed, default 1),
 #   KNIT_FUZZ_RENDER_CHECK=OFF to skip the material parser (and the Embree build it needs).
 # Exits non-zero when any target failed.
 set -euo pipefail
@@ -19,6 +20,8 @@ seconds=${1:-${KNIT_FUZZ_SECONDS:-60}}
 build=${KNIT_FUZZ_BUILD_DIR:-"$root/build-fuzz"}
 jobs=${KNIT_JOBS:-2}
 render=${KNIT_FUZZ_RENDER_CHECK:-ON}
+# A fixed seed makes a run repeatable: the same corpus and seed explore the same inputs first.
+seed=${KNIT_FUZZ_SEED:-1}
 targets=("$@")
 if [ ${#targets[@]} -eq 0 ]; then
   targets=(pyp curves_json obj ply off)
@@ -42,7 +45,7 @@ for t in "${targets[@]}"; do
   dict=()
   [ -f "$root/fuzz/dict/$t.dict" ] && dict=(-dict="$root/fuzz/dict/$t.dict")
   echo "== fuzz $t for ${seconds}s"
-  if "$build/${t}_fuzzer" "$work" "$corpus" "${dict[@]}" -max_total_time="$seconds" -timeout=10 \
+  if "$build/${t}_fuzzer" "$work" "$corpus" "${dict[@]}" -seed="$seed" -max_total_time="$seconds" -timeout=10 \
        -rss_limit_mb=2048 -max_len=65536 -artifact_prefix="$corpus/" -print_final_stats=1 \
        > "$build/$t.log" 2>&1; then
     grep -aE "^(stat::number_of_executed_units|stat::average_exec_per_sec|stat::peak_rss_mb)" "$build/$t.log" || true
