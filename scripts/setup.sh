@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
 # Installs the Debian packages libknit needs (idempotent; runs apt-get only when something is missing).
+# Usage: scripts/setup.sh [EXTRA_PACKAGE ...]   (extra packages a script needs, e.g. gnuplot-nox)
 set -euo pipefail
 packages=(
   build-essential cmake pkg-config
   libcgal-dev libopenmesh-dev libdraco-dev libtinygltf-dev libglm-dev libembree-dev libtbb-dev
   libgtest-dev libbenchmark-dev libstb-dev nlohmann-json3-dev libcli11-dev libtinyexr-dev
   clang libclang-rt-14-dev
+  "$@"
 )
 # The glTF-Validator runs on Node.js: use the machine's node/npm if present (a NodeSource
 # install would conflict with Debian's npm package), otherwise Debian's.

@@ -21,29 +21,10 @@ case "$build" in /*) ;; *) build="$root/$build" ;; esac
 jobs=${KNIT_JOBS:-$(nproc)}
 items=${KNIT_SVE_ITEMS:-6,1,4,2,3,5}
 
-# Step 1: dependencies (idempotent: apt-get runs only when a package is missing). The list is what
-# the measurement program builds against plus gnuplot (nodejs/npm for the test suite's glTF
-# validator are not needed here).
-packages=(
-  build-essential cmake pkg-config
-  libcgal-dev libopenmesh-dev libdraco-dev libtinygltf-dev libglm-dev libembree-dev libtbb-dev
-  libbenchmark-dev libstb-dev nlohmann-json3-dev libcli11-dev libtinyexr-dev libgtest-dev
-  gnuplot-nox
-)
-missing=()
-for p in "${packages[@]}"; do
-  # Any installed gnuplot will do.
-  if [ "$p" = gnuplot-nox ] && command -v gnuplot >/dev/null 2>&1; then continue; fi
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if [ ${#missing[@]} -gt 0 ]; then
-  echo "speed-vs-error: installing ${missing[*]}"
-  sudo_cmd=""
-  [ "$(id -u)" -ne 0 ] && sudo_cmd="sudo"
-  export DEBIAN_FRONTEND=noninteractive
-  $sudo_cmd apt-get update -q
-  $sudo_cmd apt-get install -y -q --no-install-recommends "${missing[@]}"
-fi
+# Step 1: dependencies: the project's packages (scripts/setup.sh, idempotent) plus gnuplot.
+extra=()
+command -v gnuplot >/dev/null 2>&1 || extra+=(gnuplot-nox)  # any installed gnuplot will do
+bash "$root/scripts/setup.sh" "${extra[@]}"
 
 # Step 2: Release build of the measurement program only.
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DKNIT_BUILD_BENCH=ON >/dev/null
