@@ -1,5 +1,6 @@
 // knit — command-line front end. It only composes library stages (knit/scene.hpp) with the
 // exporters (knit/export.hpp) and, when built, the render check (knit/render.hpp).
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -86,13 +87,36 @@ void writeReport(const std::string& path, const nlohmann::json& report) {
     knit::writeFileAtomically(path, [&](std::ostream& out) { out << report.dump(2) << '\n'; }, false);
 }
 
-void printSummary(const knit::Scene& s, const knit::ExportStats& e, const std::string& output) {
+// glTF / GLB ply curves are generated while writing (streamed): the scene is built without them.
+bool streamsPlies(const knit::ExportOptions& o) {
+    std::string ext = std::filesystem::path(o.path).extension().string();
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return o.what == knit::ExportWhat::Plies && (ext == ".glb" || ext == ".gltf");
+}
+
+// The scene report plus the export; streamed plies are counted by the export.
+nlohmann::json buildReportJson(const knit::Scene& scene, const knit::ExportStats& stats, bool streamed) {
+    nlohmann::json report = knit::sceneReport(scene);
+    if (streamed) {
+        const knit::PlyOptions o = knit::resolvePlyOptions(scene.plyOptions);
+        report["vertices"]["ply"] = stats.vertices;
+        report["plies"] = {{"curves", stats.curves},
+                           {"ply_radius", o.plyRadius},
+                           {"center_radius", o.centerRadius},
+                           {"pitch", o.pitch},
+                           {"streamed", true}};
+    }
+    report["export"] = knit::exportReport(stats);
+    return report;
+}
+
+void printSummary(const knit::Scene& s, const knit::ExportStats& e, const std::string& output, bool streamed) {
     const nlohmann::json r = knit::sceneReport(s);
     std::printf("pattern %s on mesh %s: repeats %.4g x %.4g, yarn radius %.4g m\n", s.pattern.name.c_str(), s.mesh.name.c_str(),
                 s.placement.repeats.x, s.placement.repeats.y, s.yarnRadius);
     std::printf("%zu cells, %zu yarns (%zu closed loops, %zu open ends, %zu welded ends), %zu yarn vertices, %zu ply vertices\n",
                 s.grid.cells.size(), s.yarns.curves.curveCount(), s.bound.stats.closedLoops, s.bound.stats.openEnds,
-                s.bound.stats.weldedEnds, s.yarns.curves.pointCount(), s.plies.curves.pointCount());
+                s.bound.stats.weldedEnds, s.yarns.curves.pointCount(), streamed ? e.vertices : s.plies.curves.pointCount());
     std::printf("wrote %s (%s, %zu curves, %zu vertices) in %.3f s total\n", output.c_str(), e.format.c_str(), e.curves, e.vertices,
                 r["seconds"]["total"].get<double>() + e.seconds);
 }
@@ -193,12 +217,12 @@ int main(int argc, char** argv) {
             knit::validateExportOptions(exportOptions);
             if (!buildReport.empty()) requireWritableFolder(buildReport, "report");
             knit::SceneOptions options = resolveScene(buildFlags);
-            options.buildPlies = exportOptions.what != knit::ExportWhat::Yarns;
+            const bool streamed = streamsPlies(exportOptions);
+            options.buildPlies = exportOptions.what != knit::ExportWhat::Yarns && !streamed;
             const knit::Scene scene = knit::buildScene(options);
             const knit::ExportStats stats = knit::exportScene(scene, exportOptions);
             if (!buildReport.empty()) {
-                nlohmann::json report = knit::sceneReport(scene);
-                report["export"] = knit::exportReport(stats);
+                const nlohmann::json report = buildReportJson(scene, stats, streamed);
                 try {
                     writeReport(buildReport, report);
                 } catch (...) {
@@ -206,7 +230,7 @@ int main(int argc, char** argv) {
                     throw;
                 }
             }
-            printSummary(scene, stats, exportOptions.path);
+            printSummary(scene, stats, exportOptions.path, streamed);
             return 0;
         }
 #ifdef KNIT_HAVE_RENDER_CHECK

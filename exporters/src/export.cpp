@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <memory>
 #include <sstream>
 
 #include <CLI/CLI.hpp>
@@ -35,8 +36,15 @@ const char* whatName(ExportWhat w) {
 }
 
 // Step: every point finite (user data problems are reported before any numeric loop runs).
+// Generated plies were validated by their PlyGenerator.
 void validateInput(const ExportInput& in, bool tubes) {
-    if (!in.curves) throw Error("export: no curves given");
+    if (!in.curves && !in.plies) throw Error("export: no curves given");
+    if (in.curves && in.plies) throw Error("export: both curves and a ply generator given; pass one");
+    if (in.plies) {
+        if (!(std::isfinite(in.radius) && in.radius > 0))
+            throw Error("export: radius must be a positive number, got " + std::to_string(in.radius));
+        return;
+    }
     const Polylines& c = *in.curves;
     if (c.offsets.size() != c.closed.size() + 1 || c.offsets.front() != 0 ||
         c.offsets.back() != c.points.size())
@@ -114,9 +122,21 @@ ExportStats exportCurves(const ExportInput& input, const ExportOptions& requeste
     detail::checkOutputFolder(options.path);
     const bool tubes = options.what == ExportWhat::Tubes;
     validateInput(input, tubes);
+    const std::string ext = detail::lowerExtension(options.path);
+    if (input.plies && (tubes || !isGltf(ext))) {
+        // Only glTF curves stream generated plies; the other writers take all curves at once.
+        const Plies plies = makePlies(*input.plies);
+        ExportInput all = input;
+        all.plies = nullptr;
+        all.curves = &plies.curves;
+        all.yarnOfCurve = &plies.yarnOfCurve;
+        all.seedNormals = &plies.radial;
+        ExportStats stats = exportCurves(all, requested);
+        stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        return stats;
+    }
 
     ExportStats stats;
-    const std::string ext = detail::lowerExtension(options.path);
     stats.format = ext;
     detail::FormatJob job{input, options, TubeOptions{}, tubes, std::string(), stats};
     job.tube.sides = options.sides;
@@ -124,7 +144,9 @@ ExportStats exportCurves(const ExportInput& input, const ExportOptions& requeste
     job.tube.seedNormals = input.seedNormals;
     {
         std::ostringstream h;
-        h << "libknit export: " << input.curves->curveCount() << " curves, " << whatName(options.what)
+        const size_t curves = input.curves ? input.curves->curveCount()
+                                           : input.plies->yarnCount() * size_t(input.plies->options().count);
+        h << "libknit export: " << curves << " curves, " << whatName(options.what)
           << ", radius " << input.radius << " m";
         job.header = h.str();
     }
@@ -142,20 +164,14 @@ ExportStats exportCurves(const ExportInput& input, const ExportOptions& requeste
 
 ExportStats exportScene(const Scene& scene, const ExportOptions& options) {
     validateExportOptions(options);
-    // Step: choose the curves (yarn centrelines or plies) and their radius.
+    // Step: choose the curves (yarn centrelines, built plies, or plies generated while writing)
+    // and their radius.
     const bool havePlies = scene.plies.curves.curveCount() > 0;
     bool usePlies = false;
     switch (options.what) {
         case ExportWhat::Yarns: usePlies = false; break;
-        case ExportWhat::Plies:
-            if (!havePlies)
-                throw Error("cannot export plies to '" + options.path +
-                            "': the scene has no plies (built without plies); use --export yarns");
-            usePlies = true;
-            break;
+        case ExportWhat::Plies: usePlies = true; break;
         case ExportWhat::Tubes:
-            if (options.tubesOf == TubeSource::Plies && !havePlies)
-                throw Error("cannot export ply tubes to '" + options.path + "': the scene has no plies");
             usePlies = options.tubesOf == TubeSource::Plies ||
                        (options.tubesOf == TubeSource::Auto && havePlies);
             break;
@@ -163,7 +179,19 @@ ExportStats exportScene(const Scene& scene, const ExportOptions& options) {
     nlohmann::json extras = {{"generator", "libknit"}, {"yarnRadius", scene.yarnRadius}};
     std::vector<uint32_t> yarnIds;
     ExportInput in;
-    if (usePlies) {
+    std::unique_ptr<PlyGenerator> generator;
+    if (usePlies && !havePlies) {
+        // Generated from the yarns while writing (validates scene.plyOptions).
+        generator = std::make_unique<PlyGenerator>(scene.yarns, scene.plyOptions);
+        const PlyOptions& o = generator->options();
+        extras["curves"] = "plies";
+        extras["plyCount"] = o.count;
+        extras["plyRadius"] = o.plyRadius;
+        extras["plyCenterRadius"] = o.centerRadius;
+        extras["plyPitch"] = o.pitch;
+        in.plies = generator.get();
+        in.radius = o.plyRadius;
+    } else if (usePlies) {
         const Plies& p = scene.plies;
         int count = 0;
         for (uint8_t i : p.plyOfCurve) count = std::max(count, int(i) + 1);

@@ -27,7 +27,11 @@
 #include <memory>
 #include <sstream>
 
+#include <glm/common.hpp>
 #include <nlohmann/json.hpp>
+#include <tbb/concurrent_queue.h>
+#include <tbb/parallel_pipeline.h>
+#include <tbb/task_arena.h>
 #include <tiny_gltf.h>
 
 #include "atomic_file.hpp"
@@ -35,6 +39,7 @@
 #include "draco_codec.hpp"
 #include "formats.hpp"
 #include "knit/error.hpp"
+#include "knit/plies.hpp"
 
 namespace knit::detail {
 
@@ -193,17 +198,113 @@ void writeGlbHead(std::ostream& out, const std::string& json, uint64_t jsonChunk
     }
 }
 
+// One chunk of curves on its way to the file: float32 points relative to the chunk's origin,
+// each curve a run of them (a closed curve repeats its first point at the end of its run).
+struct CurveChunk {
+    struct Run {
+        uint32_t first = 0, count = 0;  // in `pos`
+        glm::vec3 lo{0.0f}, hi{0.0f};   // exact float bounds of the run
+    };
+    size_t index = 0;
+    glm::dvec3 origin{0.0};
+    std::vector<glm::vec3> pos;
+    std::vector<Run> runs;
+    size_t points = 0;  // curve points (without the repeated first points)
+    Plies generated;    // storage of generated plies
+    PlyScratch scratch;
+};
+
+// The chunks of a curve export: consecutive curves of the input Polylines (planCurveChunks), or
+// plies generated for consecutive yarns (yarns grouped until their estimated ply points reach
+// maxPoints; a longer yarn gets a chunk of its own).
+class CurveChunkSource {
+public:
+    CurveChunkSource(const ExportInput& input, size_t maxPoints) : input_(input) {
+        if (input.curves) {
+            chunks_ = planCurveChunks(*input.curves, maxPoints);
+            return;
+        }
+        const PlyGenerator& g = *input.plies;
+        size_t acc = 0;
+        yarnStart_.push_back(0);
+        for (size_t y = 0; y < g.yarnCount(); ++y) {
+            const size_t e = g.estimatePoints(y);
+            if (acc > 0 && acc + e > maxPoints) {
+                yarnStart_.push_back(y);
+                acc = 0;
+            }
+            acc += e;
+        }
+        if (g.yarnCount() > 0) yarnStart_.push_back(g.yarnCount());
+    }
+    size_t count() const { return input_.curves ? chunks_.size() : yarnStart_.size() - 1; }
+    size_t curveCountBound() const {
+        return input_.curves ? input_.curves->curveCount()
+                             : input_.plies->yarnCount() * size_t(input_.plies->options().count);
+    }
+    const std::vector<Chunk>& chunks() const { return chunks_; }
+
+    // Produces chunk `chunk.index` and converts it: origin = centre of its points' bounding box.
+    void fill(CurveChunk& chunk) const {
+        const Polylines* curves = input_.curves;
+        size_t first = 0, last = 0;
+        if (curves) {
+            first = chunks_[chunk.index].firstCurve;
+            last = chunks_[chunk.index].lastCurve;
+        } else {
+            input_.plies->generate(yarnStart_[chunk.index], yarnStart_[chunk.index + 1], chunk.generated, chunk.scratch);
+            curves = &chunk.generated.curves;
+            last = curves->curveCount();
+        }
+        const Chunk range{first, last, 0, 0};
+        chunk.origin = last > first ? chunkOrigin(*curves, range) : glm::dvec3(0.0);
+        chunk.pos.clear();
+        chunk.runs.clear();
+        chunk.points = 0;
+        for (size_t c = first; c < last; ++c) {
+            const uint32_t n = curves->size(c);
+            if (n < 2) continue;
+            CurveChunk::Run run;
+            run.first = uint32_t(chunk.pos.size());
+            const glm::dvec3* p = curves->points.data() + curves->begin(c);
+            glm::vec3 lo(std::numeric_limits<float>::infinity()), hi(-std::numeric_limits<float>::infinity());
+            for (uint32_t i = 0; i < n; ++i) {
+                const glm::vec3 q(p[i] - chunk.origin);
+                lo = glm::min(lo, q);
+                hi = glm::max(hi, q);
+                chunk.pos.push_back(q);
+            }
+            if (curves->isClosed(c)) chunk.pos.push_back(chunk.pos[run.first]);
+            run.count = uint32_t(chunk.pos.size() - run.first);
+            run.lo = lo;
+            run.hi = hi;
+            chunk.runs.push_back(run);
+            chunk.points += n;
+        }
+    }
+
+private:
+    const ExportInput& input_;
+    std::vector<Chunk> chunks_;       // materialized curves
+    std::vector<size_t> yarnStart_;   // generated plies: chunk k = yarns [yarnStart_[k], yarnStart_[k + 1])
+};
+
 // Bytes reserved in front of a GLB's BIN data for the header and JSON chunk: generous per-chunk
 // (and per-curve) estimates of the JSON size; finish() pads the JSON with spaces to fill it.
-uint64_t jsonReservation(const FormatJob& job) {
+uint64_t jsonReservation(const FormatJob& job, const CurveChunkSource* curves) {
     if (job.options.glbJsonReserve > 0) return std::max<uint64_t>(32, (job.options.glbJsonReserve + 3) / 4 * 4);
-    if (!job.input.curves) return 4096;
-    const Polylines& c = *job.input.curves;
-    uint64_t chunks = 0;
-    if (job.tubes) chunks = planTubeChunks(c, job.tube, job.options.chunkVertices).size();
-    else chunks = planCurveChunks(c, job.options.chunkVertices).size();
+    uint64_t chunks = 0, curveCount = 0;
+    if (curves) {
+        chunks = curves->count();
+        curveCount = curves->curveCountBound();
+    } else if (job.input.curves) {
+        chunks = planTubeChunks(*job.input.curves, job.tube, job.options.chunkVertices).size();
+    } else {
+        return 4096;
+    }
     const uint64_t extras = job.input.materialExtras ? job.input.materialExtras->dump().size() : 0;
-    uint64_t bytes = 4096 + 2 * extras + chunks * 2048 + (job.tubes ? 0 : c.curveCount() * 384);
+    // A curve: a primitive and two accessors (POSITION with min / max, _RADIUS), ~400 bytes.
+    uint64_t bytes = 4096 + 2 * extras + chunks * 2048 + curveCount * 512;
     if (job.options.prettyJson) bytes *= 3;
     return (bytes + 3) / 4 * 4;
 }
@@ -211,7 +312,10 @@ uint64_t jsonReservation(const FormatJob& job) {
 class GltfBuilder {
 public:
     GltfBuilder(const FormatJob& job, bool glb)
-        : job_(job), glb_(glb), sink_(job.options.path, glb, job.options.maxBufferBytes, jsonReservation(job)) {
+        : job_(job),
+          glb_(glb),
+          curves_(job.tubes ? nullptr : std::make_unique<CurveChunkSource>(job.input, job.options.chunkVertices)),
+          sink_(job.options.path, glb, job.options.maxBufferBytes, jsonReservation(job, curves_.get())) {
         model_.asset.version = "2.0";
         model_.asset.generator = "libknit";
         model_.defaultScene = 0;
@@ -266,61 +370,43 @@ public:
         job_.stats.curves = curves.curveCount();
     }
 
+    // Curves: chunks are produced (sliced from the input, or generated plies) and converted to
+    // float32 in parallel, and appended to the buffers in chunk order (a TBB pipeline), so the
+    // writing overlaps the work of the next chunks and at most `tokens` chunks are in memory.
     void writeCurves() {
-        const Polylines& curves = *job_.input.curves;
-        const std::vector<Chunk> chunks = planCurveChunks(curves, job_.options.chunkVertices);
-        for (const Chunk& c : chunks) checkChunkFits(c.vertices * 20 + (c.lastCurve - c.firstCurve) * 4 + 64);
-        std::vector<glm::vec3> pos;
-        std::vector<float> radius;
-        std::vector<uint32_t> indices;
-        for (size_t k = 0; k < chunks.size(); ++k) {
-            const Chunk& chunk = chunks[k];
-            if (chunk.vertices == 0) continue;
-            // Step: float32 positions relative to the chunk origin, a radius per point, and
-            // per-curve index runs (closed curves repeat their first point).
-            const glm::dvec3 origin = chunkOrigin(curves, chunk);
-            pos.clear();
-            radius.clear();
-            indices.clear();
-            struct Run { size_t first, count; };
-            std::vector<Run> runs;
-            for (size_t c = chunk.firstCurve; c < chunk.lastCurve; ++c) {
-                const uint32_t n = curves.size(c);
-                if (n < 2) continue;
-                const uint32_t base = uint32_t(pos.size());
-                const size_t start = indices.size();
-                for (uint32_t i = 0; i < n; ++i) {
-                    pos.emplace_back(curves.points[curves.begin(c) + i] - origin);
-                    indices.push_back(base + i);
-                }
-                if (curves.isClosed(c)) indices.push_back(base);
-                runs.push_back({start, indices.size() - start});
-                ++job_.stats.curves;
-            }
-            radius.assign(pos.size(), float(job_.input.radius));
-            sink_.reserve(pos.size() * 16 + indices.size() * 4 + 16);
-            const int posAcc = addAccessor(addView(pos.data(), pos.size() * 12, 0, kArrayBuffer), 0,
-                                           TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, pos.size(), false);
-            setBounds(model_.accessors[posAcc], pos);
-            const int radAcc = addAccessor(addView(radius.data(), radius.size() * 4, 0, kArrayBuffer), 0,
-                                           TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR, radius.size(), false);
-            const int idxView = addView(indices.data(), indices.size() * 4, 0, kElementArrayBuffer);
-            tinygltf::Mesh mesh;
-            mesh.name = "curves " + std::to_string(k);
-            for (const Run& r : runs) {
-                tinygltf::Primitive prim;
-                prim.mode = TINYGLTF_MODE_LINE_STRIP;
-                prim.material = 0;
-                prim.attributes["POSITION"] = posAcc;
-                prim.attributes["_RADIUS"] = radAcc;
-                prim.indices = addAccessor(idxView, r.first * 4, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT,
-                                           TINYGLTF_TYPE_SCALAR, r.count, false);
-                mesh.primitives.push_back(std::move(prim));
-            }
-            addChunkMesh(k, origin, std::move(mesh), {});
-            job_.stats.vertices += pos.size();
-            job_.stats.maxChunkVertices = std::max(job_.stats.maxChunkVertices, pos.size());
+        const CurveChunkSource& source = *curves_;
+        if (job_.input.curves)  // known sizes: fail before anything is written
+            for (const Chunk& c : source.chunks())
+                checkChunkFits((c.vertices + (c.lastCurve - c.firstCurve)) * 16 + 64);
+        const size_t tokens = size_t(2 * std::max(1, tbb::this_task_arena::max_concurrency()));
+        std::vector<std::unique_ptr<CurveChunk>> pool;
+        tbb::concurrent_queue<CurveChunk*> free;
+        for (size_t t = 0; t < tokens; ++t) {
+            pool.push_back(std::make_unique<CurveChunk>());
+            free.push(pool.back().get());
         }
+        size_t next = 0;
+        tbb::parallel_pipeline(
+            tokens,
+            tbb::make_filter<void, CurveChunk*>(tbb::filter_mode::serial_in_order,
+                                                [&](tbb::flow_control& fc) -> CurveChunk* {
+                                                    CurveChunk* chunk = nullptr;
+                                                    if (next == source.count() || !free.try_pop(chunk)) {
+                                                        fc.stop();
+                                                        return nullptr;
+                                                    }
+                                                    chunk->index = next++;
+                                                    return chunk;
+                                                }) &
+                tbb::make_filter<CurveChunk*, CurveChunk*>(tbb::filter_mode::parallel,
+                                                           [&](CurveChunk* chunk) {
+                                                               source.fill(*chunk);
+                                                               return chunk;
+                                                           }) &
+                tbb::make_filter<CurveChunk*, void>(tbb::filter_mode::serial_in_order, [&](CurveChunk* chunk) {
+                    writeCurveChunk(*chunk);
+                    free.push(chunk);
+                }));
     }
 
     // Serializes the JSON with tinygltf, fixes up the buffers, writes all files, renames them.
@@ -404,6 +490,38 @@ private:
             throw Error("cannot export '" + job_.options.path + "': a chunk needs up to " + std::to_string(bytes) +
                         " bytes, more than the buffer limit " + std::to_string(job_.options.maxBufferBytes) +
                         "; lower --chunk-vertices (a single curve longer than the limit cannot be split)");
+    }
+
+    // One chunk's node: a POSITION view (stride 12) holding every curve's points and a _RADIUS
+    // view (stride 4) as long as the longest curve, shared by the curves' accessors; one
+    // non-indexed LINE_STRIP primitive per curve.
+    void writeCurveChunk(const CurveChunk& chunk) {
+        if (chunk.runs.empty()) return;
+        uint32_t longest = 0;
+        for (const CurveChunk::Run& r : chunk.runs) longest = std::max(longest, r.count);
+        if (radius_.size() < longest) radius_.resize(longest, float(job_.input.radius));
+        sink_.reserve(chunk.pos.size() * 12 + uint64_t(longest) * 4 + 16);
+        const int posView = addView(chunk.pos.data(), chunk.pos.size() * 12, 12, kArrayBuffer);
+        const int radView = addView(radius_.data(), uint64_t(longest) * 4, 4, kArrayBuffer);
+        tinygltf::Mesh mesh;
+        mesh.name = "curves " + std::to_string(chunk.index);
+        for (const CurveChunk::Run& r : chunk.runs) {
+            tinygltf::Primitive prim;
+            prim.mode = TINYGLTF_MODE_LINE_STRIP;
+            prim.material = 0;
+            const int pos = addAccessor(posView, size_t(r.first) * 12, TINYGLTF_COMPONENT_TYPE_FLOAT,
+                                        TINYGLTF_TYPE_VEC3, r.count, false);
+            model_.accessors[size_t(pos)].minValues = {double(r.lo.x), double(r.lo.y), double(r.lo.z)};
+            model_.accessors[size_t(pos)].maxValues = {double(r.hi.x), double(r.hi.y), double(r.hi.z)};
+            prim.attributes["POSITION"] = pos;
+            prim.attributes["_RADIUS"] =
+                addAccessor(radView, 0, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR, r.count, false);
+            mesh.primitives.push_back(std::move(prim));
+        }
+        addChunkMesh(chunk.index, chunk.origin, std::move(mesh), {});
+        job_.stats.curves += chunk.runs.size();
+        job_.stats.vertices += chunk.points;
+        job_.stats.maxChunkVertices = std::max(job_.stats.maxChunkVertices, chunk.points);
     }
 
     void addMaterial() {
@@ -597,8 +715,10 @@ private:
 
     const FormatJob& job_;
     bool glb_;
+    std::unique_ptr<CurveChunkSource> curves_;  // curve exports: where the chunks come from
     BufferSink sink_;
     tinygltf::Model model_;
+    std::vector<float> radius_;  // the constant _RADIUS values, as long as the longest curve so far
 };
 
 }  // namespace

@@ -1,8 +1,9 @@
 // plies.cpp — plies twisted around the mapped yarn centrelines.
 //
-// Steps: resolve/validate options; resample each yarn (spacing = pitch / samplesPerTurn);
-// rotation-minimizing frames seeded with the surface normal (curveFrames per yarn, same
-// result as rotationMinimizingFrames); sweep the helices
+// Steps (PlyGenerator::generate, per yarn; makePlies runs it over fixed yarn batches in
+// parallel and concatenates): resample the yarn (spacing = pitch / samplesPerTurn);
+// rotation-minimizing frames seeded with the surface normal (curveFrames, same result as
+// rotationMinimizingFrames); sweep the helices
 //   c_i(s) = C(s) + R_ply (cos(theta(s) + 2 pi i / n) N(s) + sin(theta(s) + 2 pi i / n) B(s)),
 // with B = T x N and s the arc length of the resampled polyline from the yarn's first point.
 //
@@ -40,7 +41,6 @@
 #include <tbb/parallel_invoke.h>
 
 #include "knit/error.hpp"
-#include "knit/resample.hpp"
 
 namespace knit {
 namespace {
@@ -90,101 +90,164 @@ PlyOptions resolvePlyOptions(const PlyOptions& options) {
     return o;
 }
 
-Plies makePlies(const MappedYarns& yarns, const PlyOptions& options) {
-    const PlyOptions opt = resolvePlyOptions(options);
-
-    // Step 1: resample (validates the yarns).
+PlyGenerator::PlyGenerator(const MappedYarns& yarns, const PlyOptions& options)
+    : yarns_(yarns), options_(resolvePlyOptions(options)) {
+    spacing_ = options_.pitch / static_cast<double>(options_.samplesPerTurn);
     ResampleOptions ro;
-    ro.spacing = opt.pitch / static_cast<double>(opt.samplesPerTurn);
-    const MappedYarns rs = resampleYarns(yarns, ro);
-    const Polylines& C = rs.curves;
-    const bool haveSeeds = !rs.normals.empty();
+    ro.spacing = spacing_;
+    validateResampleInput(yarns_, ro);
+}
 
-    // Step 2: output layout, yarn-major and ply-minor.
-    const size_t yarnCount = C.curveCount();
+size_t PlyGenerator::estimatePoints(size_t y) const {
+    const size_t samples = estimateResampledSize(yarns_.curves, y, spacing_);
+    return samples < 2 ? 0 : static_cast<size_t>(options_.count) * samples;  // < 2 points: no plies
+}
+
+void PlyGenerator::generate(size_t first, size_t last, Plies& out, PlyScratch& scratch) const {
+    const PlyOptions& opt = options_;
+    const Polylines& yarnCurves = yarns_.curves;
+    const bool haveSeeds = !yarns_.normals.empty();
     const uint32_t n = static_cast<uint32_t>(opt.count);
-    std::vector<size_t> firstCurve(yarnCount + 1, 0);
-    size_t totalPoints = 0;
-    for (size_t y = 0; y < yarnCount; ++y) {
-        const size_t plies = C.size(y) >= 2 ? n : 0;
-        firstCurve[y + 1] = firstCurve[y] + plies;
-        totalPoints += plies * C.size(y);
-    }
-    if (totalPoints > UINT32_MAX)
-        throw Error("makePlies: more than 2^32-1 ply points; increase PlyOptions.pitch or reduce samplesPerTurn");
-    Plies out;
-    out.plyRadius = opt.plyRadius;
-    out.centerRadius = opt.centerRadius;
-    out.pitch = opt.pitch;
-    const size_t curveCount = firstCurve[yarnCount];
-    // The two big arrays are allocated (and zero-filled) concurrently.
-    tbb::parallel_invoke([&] { out.curves.points.resize(totalPoints); }, [&] { out.radial.resize(totalPoints); });
-    out.curves.offsets.reserve(curveCount + 1);
-    out.curves.closed.reserve(curveCount);
-    out.yarnOfCurve.reserve(curveCount);
-    out.plyOfCurve.reserve(curveCount);
-    for (size_t y = 0; y < yarnCount; ++y) {
-        for (size_t i = firstCurve[y]; i < firstCurve[y + 1]; ++i) {
-            out.curves.offsets.push_back(out.curves.offsets.back() + C.size(y));
-            out.curves.closed.push_back(C.closed[y]);
-            out.yarnOfCurve.push_back(static_cast<uint32_t>(y));
-            out.plyOfCurve.push_back(static_cast<uint8_t>(i - firstCurve[y]));
-        }
-    }
-
+    const double handed = opt.twist == Twist::Z ? 1.0 : -1.0;
+    const double R = opt.centerRadius;
     // Phase offsets 2 pi i / n of the plies.
-    std::vector<double> cosPly(n), sinPly(n);
+    double cosPly[16], sinPly[16];
     for (uint32_t i = 0; i < n; ++i) {
         cosPly[i] = std::cos(2.0 * kPi * i / n);
         sinPly[i] = std::sin(2.0 * kPi * i / n);
     }
-    const double handed = opt.twist == Twist::Z ? 1.0 : -1.0;
-    const double R = opt.centerRadius;
 
-    // Step 3: per yarn (independent: deterministic), RMF frames into per-task buffers, then
-    // sweep the helices.
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, yarnCount), [&](const tbb::blocked_range<size_t>& range) {
-        std::vector<double> arc;
-        std::vector<dvec3> tangent, normal;
-        for (size_t y = range.begin(); y < range.end(); ++y) {
-            if (firstCurve[y + 1] == firstCurve[y]) continue;
-            const uint32_t b = C.begin(y);
-            const size_t m = C.size(y);
-            const dvec3* X = C.points.data() + b;
-            tangent.resize(m);
-            normal.resize(m);
-            curveFrames(X, m, C.isClosed(y), haveSeeds ? rs.normals.data() + b : nullptr, tangent.data(), normal.data());
-            const dvec3* T = tangent.data();
-            const dvec3* N = normal.data();
-            // Arc length of each resampled point.
-            arc.resize(m);
-            arc[0] = 0.0;
-            for (size_t j = 1; j < m; ++j) arc[j] = arc[j - 1] + glm::length(X[j] - X[j - 1]);
-            double pitch = opt.pitch;
-            if (C.isClosed(y)) {
-                // Integer number of turns so the helix closes.
-                const double length = arc[m - 1] + glm::length(X[0] - X[m - 1]);
-                const double turns = std::max(1.0, std::round(length / opt.pitch));
-                pitch = length / turns;
+    // Step 1: empty the batch (capacity is kept for the next one).
+    out.curves.points.clear();
+    out.curves.offsets.assign(1, 0);
+    out.curves.closed.clear();
+    out.yarnOfCurve.clear();
+    out.plyOfCurve.clear();
+    out.radial.clear();
+    out.plyRadius = opt.plyRadius;
+    out.centerRadius = opt.centerRadius;
+    out.pitch = opt.pitch;
+
+    for (size_t y = first; y < last; ++y) {
+        // Step 2: resample the centreline. The frame seed is the surface normal at the first
+        // point, which resampling keeps unchanged (no normals need interpolating).
+        scratch.centre.clear();
+        const size_t m = resampleCurve(yarns_, y, spacing_, scratch.centre, nullptr, scratch.resample);
+        if (m < 2) continue;  // degenerate yarn: no plies
+        const bool closed = yarnCurves.isClosed(y);
+        const dvec3* X = scratch.centre.data();
+        const dvec3* seed = haveSeeds ? yarns_.normals.data() + yarnCurves.begin(y) : nullptr;
+
+        // Step 3: rotation-minimizing frames.
+        scratch.tangent.resize(m);
+        scratch.normal.resize(m);
+        curveFrames(X, m, closed, seed, scratch.tangent.data(), scratch.normal.data());
+        const dvec3* T = scratch.tangent.data();
+        const dvec3* N = scratch.normal.data();
+
+        // Step 4: arc length; closed yarns get an integer number of turns so the helix closes.
+        std::vector<double>& arc = scratch.arc;
+        arc.resize(m);
+        arc[0] = 0.0;
+        for (size_t j = 1; j < m; ++j) arc[j] = arc[j - 1] + glm::length(X[j] - X[j - 1]);
+        double pitch = opt.pitch;
+        if (closed) {
+            const double length = arc[m - 1] + glm::length(X[0] - X[m - 1]);
+            const double turns = std::max(1.0, std::round(length / opt.pitch));
+            pitch = length / turns;
+        }
+        const double rate = handed * 2.0 * kPi / pitch;  // dtheta/ds
+
+        // Step 5: n curves of m points (yarn-major, ply-minor) swept around the centreline.
+        const size_t base = out.curves.points.size();
+        out.curves.points.resize(base + n * m);
+        out.radial.resize(base + n * m);
+        for (uint32_t i = 0; i < n; ++i) {
+            out.curves.offsets.push_back(static_cast<uint32_t>(base + (i + 1) * m));
+            out.curves.closed.push_back(closed ? 1 : 0);
+            out.yarnOfCurve.push_back(static_cast<uint32_t>(y));
+            out.plyOfCurve.push_back(static_cast<uint8_t>(i));
+        }
+        dvec3* P = out.curves.points.data() + base;
+        dvec3* D = out.radial.data() + base;
+        for (size_t j = 0; j < m; ++j) {
+            const double theta = rate * arc[j];
+            const double ct = std::cos(theta), st = std::sin(theta);
+            const dvec3 nj = N[j];
+            const dvec3 bj = glm::cross(T[j], nj);
+            const dvec3 xj = X[j];
+            for (uint32_t i = 0; i < n; ++i) {
+                const double c = ct * cosPly[i] - st * sinPly[i];  // cos(theta + 2 pi i / n)
+                const double s = st * cosPly[i] + ct * sinPly[i];  // sin(theta + 2 pi i / n)
+                const dvec3 radial = c * nj + s * bj;
+                P[i * m + j] = xj + R * radial;
+                D[i * m + j] = radial;
             }
-            const double rate = handed * 2.0 * kPi / pitch;  // dtheta/ds
-            const size_t base = out.curves.offsets[firstCurve[y]];
-            dvec3* P = out.curves.points.data() + base;
-            dvec3* D = out.radial.data() + base;
-            for (size_t j = 0; j < m; ++j) {
-                const double theta = rate * arc[j];
-                const double ct = std::cos(theta), st = std::sin(theta);
-                const dvec3 nj = N[j];
-                const dvec3 bj = glm::cross(T[j], nj);
-                const dvec3 xj = X[j];
-                for (uint32_t i = 0; i < n; ++i) {
-                    const double c = ct * cosPly[i] - st * sinPly[i];  // cos(theta + 2 pi i / n)
-                    const double s = st * cosPly[i] + ct * sinPly[i];  // sin(theta + 2 pi i / n)
-                    const dvec3 radial = c * nj + s * bj;
-                    P[i * m + j] = xj + R * radial;
-                    D[i * m + j] = radial;
-                }
-            }
+        }
+    }
+}
+
+Plies makePlies(const MappedYarns& yarns, const PlyOptions& options) {
+    // Resolve and validate (options and yarns); nothing after this throws a knit::Error except
+    // the size limit.
+    return makePlies(PlyGenerator(yarns, options));
+}
+
+Plies makePlies(const PlyGenerator& generator) {
+    const Polylines& C = generator.yarns().curves;
+
+    // Step 1: fixed batches of consecutive yarns (about 8192 input points each: independent of
+    // the thread count, so the result is deterministic) and the size limit on their estimate.
+    std::vector<size_t> batchStart{0};
+    size_t estimate = 0, acc = 0;
+    for (size_t y = 0; y < C.curveCount(); ++y) {
+        estimate += generator.estimatePoints(y);
+        acc += C.size(y);
+        if (acc >= 8192 && y + 1 < C.curveCount()) {
+            batchStart.push_back(y + 1);
+            acc = 0;
+        }
+    }
+    batchStart.push_back(C.curveCount());
+    const auto tooMany = [] {
+        return Error("makePlies: more than 2^32-1 ply points; increase PlyOptions.pitch or reduce samplesPerTurn");
+    };
+    if (estimate > UINT32_MAX) throw tooMany();
+
+    // Step 2: generate the batches in parallel.
+    const size_t batches = batchStart.size() - 1;
+    std::vector<Plies> parts(batches);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, batches, 1), [&](const tbb::blocked_range<size_t>& r) {
+        PlyScratch scratch;
+        for (size_t k = r.begin(); k < r.end(); ++k) generator.generate(batchStart[k], batchStart[k + 1], parts[k], scratch);
+    });
+
+    // Step 3: concatenate in yarn order.
+    Plies out;
+    out.plyRadius = generator.options().plyRadius;
+    out.centerRadius = generator.options().centerRadius;
+    out.pitch = generator.options().pitch;
+    std::vector<size_t> pointStart(batches + 1, 0);
+    for (size_t k = 0; k < batches; ++k) pointStart[k + 1] = pointStart[k] + parts[k].curves.pointCount();
+    if (pointStart[batches] > UINT32_MAX) throw tooMany();
+    for (size_t k = 0; k < batches; ++k) {
+        const Plies& p = parts[k];
+        for (size_t c = 0; c < p.curves.curveCount(); ++c)
+            out.curves.offsets.push_back(static_cast<uint32_t>(pointStart[k] + p.curves.end(c)));
+        out.curves.closed.insert(out.curves.closed.end(), p.curves.closed.begin(), p.curves.closed.end());
+        out.yarnOfCurve.insert(out.yarnOfCurve.end(), p.yarnOfCurve.begin(), p.yarnOfCurve.end());
+        out.plyOfCurve.insert(out.plyOfCurve.end(), p.plyOfCurve.begin(), p.plyOfCurve.end());
+    }
+    // The two big arrays are allocated (and zero-filled) concurrently, then filled in parallel.
+    tbb::parallel_invoke([&] { out.curves.points.resize(pointStart[batches]); },
+                         [&] { out.radial.resize(pointStart[batches]); });
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, batches, 1), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t k = r.begin(); k < r.end(); ++k) {
+            std::copy(parts[k].curves.points.begin(), parts[k].curves.points.end(),
+                      out.curves.points.begin() + static_cast<std::ptrdiff_t>(pointStart[k]));
+            std::copy(parts[k].radial.begin(), parts[k].radial.end(),
+                      out.radial.begin() + static_cast<std::ptrdiff_t>(pointStart[k]));
+            parts[k] = Plies();  // release memory early
         }
     });
     return out;

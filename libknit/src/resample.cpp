@@ -71,13 +71,6 @@ dvec3 lerpNormal(const dvec3& n1, const dvec3& n2, double f) {
     return f < 0.5 ? n1 : n2;
 }
 
-struct CurveBuffer {
-    std::vector<dvec3> points;
-    std::vector<dvec3> normals;
-    std::vector<uint32_t> sizes;  // points per curve in this chunk
-    std::vector<uint8_t> closed;
-};
-
 // Interior parameters u_j = j / k of one piece, with the smallest k (starting from Gravesen's
 // arc-length estimate) whose chords are all <= spacing. Uniform parameter steps are nearly
 // uniform in arc length on the centripetal spline; a last-resort split with a provably short
@@ -112,10 +105,17 @@ void splitPiece(const Cubic& cubic, const dvec3& p1, const dvec3& p2, double cho
     for (size_t j = 1; j < k; ++j) samples[j - 1] = cubic.eval(static_cast<double>(j) / static_cast<double>(k));
 }
 
-// Resamples one curve and appends it to `out`.
-void resampleCurve(const MappedYarns& yarns, size_t c, double spacing, bool withNormals, CurveBuffer& out,
-                   std::vector<dvec3>& pts, std::vector<dvec3>& nrm, std::vector<double>& knot,
-                   std::vector<dvec3>& samples) {
+bool finite(const dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+}  // namespace
+
+size_t resampleCurve(const MappedYarns& yarns, size_t c, double spacing, std::vector<dvec3>& outPoints,
+                     std::vector<dvec3>* outNormals, ResampleScratch& scratch) {
+    const bool withNormals = outNormals && !yarns.normals.empty();
+    std::vector<dvec3>& pts = scratch.points;
+    std::vector<dvec3>& nrm = scratch.normals;
+    std::vector<double>& knot = scratch.knots;
+    std::vector<dvec3>& samples = scratch.samples;
     const Polylines& in = yarns.curves;
     const bool closed = in.isClosed(c);
     const uint32_t b = in.begin(c), e = in.end(c);
@@ -149,14 +149,12 @@ void resampleCurve(const MappedYarns& yarns, size_t c, double spacing, bool with
         }
     }
     const size_t n = pts.size();
-    const size_t start = out.points.size();
-    out.closed.push_back(closed ? 1 : 0);
+    const size_t start = outPoints.size();
     if (n < 2) {
         // Degenerate curve: kept as is (0 or 1 point), no segments.
-        out.points.insert(out.points.end(), pts.begin(), pts.end());
-        if (withNormals) out.normals.insert(out.normals.end(), nrm.begin(), nrm.end());
-        out.sizes.push_back(static_cast<uint32_t>(n));
-        return;
+        outPoints.insert(outPoints.end(), pts.begin(), pts.end());
+        if (withNormals) outNormals->insert(outNormals->end(), nrm.begin(), nrm.end());
+        return n;
     }
 
     // Step 2: one centripetal Catmull-Rom piece per segment, split so no chord exceeds spacing.
@@ -184,46 +182,71 @@ void resampleCurve(const MappedYarns& yarns, size_t c, double spacing, bool with
             t23 = knot[s];
         }
         const double t12 = knot[s];
-        out.points.push_back(p1);
-        if (withNormals) out.normals.push_back(nrm[s]);
+        outPoints.push_back(p1);
+        if (withNormals) outNormals->push_back(nrm[s]);
         const Cubic cubic = makeCubic(p0, p1, p2, p3, t01, t12, t23);
         splitPiece(cubic, p1, p2, t12 * t12, spacing, samples);
         if (samples.empty()) continue;
         const size_t k = samples.size() + 1;
-        out.points.insert(out.points.end(), samples.begin(), samples.end());
+        outPoints.insert(outPoints.end(), samples.begin(), samples.end());
         if (withNormals) {
             // Linear in the sample's parameter along the piece, renormalized.
             const double dk = 1.0 / static_cast<double>(k);
-            for (size_t j = 1; j < k; ++j) out.normals.push_back(lerpNormal(nrm[s], nrm[s1], static_cast<double>(j) * dk));
+            for (size_t j = 1; j < k; ++j)
+                outNormals->push_back(lerpNormal(nrm[s], nrm[s1], static_cast<double>(j) * dk));
         }
     }
     if (!closed) {
-        out.points.push_back(pts[n - 1]);
-        if (withNormals) out.normals.push_back(nrm[n - 1]);
+        outPoints.push_back(pts[n - 1]);
+        if (withNormals) outNormals->push_back(nrm[n - 1]);
     }
-    out.sizes.push_back(static_cast<uint32_t>(out.points.size() - start));
+    return outPoints.size() - start;
 }
 
-// Output size estimate of one input curve (for reservation and the size limit): about
-// ceil(chord / spacing) points per segment, which the resampled curve needs at least.
-size_t estimateSize(const Polylines& in, size_t c, double inverseSpacing) {
+size_t estimateResampledSize(const Polylines& in, size_t c, double spacing) {
+    // Each segment becomes ceil(chord / spacing) >= 1 pieces (merged repeated points, chord <=
+    // 1e-12 spacing, none); an open curve adds its last point.
+    const double inverseSpacing = 1.0 / spacing;
     const uint32_t b = in.begin(c), e = in.end(c);
     auto pieces = [&](const dvec3& p, const dvec3& q) {
-        const double k = glm::length(q - p) * inverseSpacing;  // clamped: no overflow in the cast
-        return 1 + static_cast<size_t>(std::min(k, 1e12));
+        const double k = glm::length(q - p) * inverseSpacing - 1e-9;
+        return static_cast<size_t>(std::ceil(std::clamp(k, 0.0, 1e12)));  // clamped: no overflow in the cast
     };
-    size_t count = 1;
+    if (e == b) return 0;
+    size_t count = in.isClosed(c) ? 0 : 1;
     for (uint32_t i = b; i + 1 < e; ++i) count += pieces(in.points[i], in.points[i + 1]);
     if (in.isClosed(c) && e > b + 1) count += pieces(in.points[e - 1], in.points[b]);
-    return count;
+    return std::max<size_t>(count, 1);
 }
 
-bool finite(const dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+namespace {
+
+// Fixed chunks of consecutive curves of about 8192 input points (independent of the thread
+// count, so results are deterministic): chunk k is curves [start[k], start[k + 1]).
+std::vector<size_t> curveChunks(const Polylines& in) {
+    std::vector<size_t> start{0};
+    size_t acc = 0;
+    for (size_t c = 0; c < in.curveCount(); ++c) {
+        acc += in.size(c);
+        if (acc >= 8192 && c + 1 < in.curveCount()) {
+            start.push_back(c + 1);
+            acc = 0;
+        }
+    }
+    start.push_back(in.curveCount());
+    return start;
+}
+
+// Resampled curves of one chunk, concatenated.
+struct CurveBuffer {
+    std::vector<dvec3> points;
+    std::vector<dvec3> normals;
+    std::vector<uint32_t> sizes;  // points per curve in this chunk
+};
 
 }  // namespace
 
-MappedYarns resampleYarns(const MappedYarns& yarns, const ResampleOptions& options) {
-    // Validate options and input first: the loops below never throw.
+void validateResampleInput(const MappedYarns& yarns, const ResampleOptions& options) {
     if (!(options.spacing > 0.0) || !std::isfinite(options.spacing))
         throw Error("resampleYarns: ResampleOptions.spacing must be a positive finite length (got " +
                     std::to_string(options.spacing) + ")");
@@ -236,78 +259,74 @@ MappedYarns resampleYarns(const MappedYarns& yarns, const ResampleOptions& optio
         throw Error("resampleYarns: MappedYarns.normals has " + std::to_string(yarns.normals.size()) +
                     " entries but there are " + std::to_string(in.pointCount()) + " points");
 
-    // Fixed chunks of consecutive curves (independent of the thread count: deterministic).
-    std::vector<size_t> chunkStart{0};
-    {
-        size_t acc = 0;
-        for (size_t c = 0; c < in.curveCount(); ++c) {
-            acc += in.size(c);
-            if (acc >= 8192 && c + 1 < in.curveCount()) {
-                chunkStart.push_back(c + 1);
-                acc = 0;
-            }
-        }
-        chunkStart.push_back(in.curveCount());
-    }
+    // First non-finite point or normal of each chunk (in parallel), then the first overall.
+    const std::vector<size_t> chunkStart = curveChunks(in);
     const size_t chunks = chunkStart.size() - 1;
-
-    // Per chunk: first non-finite point or normal (validation) and an output size estimate.
-    const double inverseSpacing = 1.0 / options.spacing;
-    std::vector<size_t> firstBad(chunks, SIZE_MAX), estimate(chunks, 0);
+    std::vector<size_t> firstBad(chunks, SIZE_MAX);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, chunks, 1), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t k = r.begin(); k < r.end(); ++k) {
             const uint32_t b = in.begin(chunkStart[k]), e = in.begin(chunkStart[k + 1]);
             for (uint32_t i = b; i < e && firstBad[k] == SIZE_MAX; ++i)
                 if (!finite(in.points[i]) || (withNormals && !finite(yarns.normals[i]))) firstBad[k] = i;
-            if (firstBad[k] != SIZE_MAX) continue;
-            for (size_t c = chunkStart[k]; c < chunkStart[k + 1]; ++c) estimate[k] += estimateSize(in, c, inverseSpacing);
         }
     });
-    size_t total = 0;
     for (size_t k = 0; k < chunks; ++k) {
-        if (firstBad[k] != SIZE_MAX) {
-            const size_t i = firstBad[k];
-            const size_t c = static_cast<size_t>(std::upper_bound(in.offsets.begin(), in.offsets.end(), i) -
-                                                 in.offsets.begin()) - 1;
-            const bool point = !finite(in.points[i]);
-            throw Error("resampleYarns: curve " + std::to_string(c) + (point ? " point " : " normal ") +
-                        std::to_string(i - in.begin(c)) + " is not finite");
-        }
-        total += estimate[k];
+        if (firstBad[k] == SIZE_MAX) continue;
+        const size_t i = firstBad[k];
+        const size_t c =
+            static_cast<size_t>(std::upper_bound(in.offsets.begin(), in.offsets.end(), i) - in.offsets.begin()) - 1;
+        const bool point = !finite(in.points[i]);
+        throw Error("resampleYarns: curve " + std::to_string(c) + (point ? " point " : " normal ") +
+                    std::to_string(i - in.begin(c)) + " is not finite");
     }
+}
+
+MappedYarns resampleYarns(const MappedYarns& yarns, const ResampleOptions& options) {
+    // Step 1: validate options and input first: the loops below never throw.
+    validateResampleInput(yarns, options);
+    const Polylines& in = yarns.curves;
+    const bool withNormals = !yarns.normals.empty();
+
+    // Step 2: fixed chunks of consecutive curves and a lower bound of their output size.
+    const std::vector<size_t> chunkStart = curveChunks(in);
+    const size_t chunks = chunkStart.size() - 1;
+    std::vector<size_t> estimate(chunks, 0);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, chunks, 1), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t k = r.begin(); k < r.end(); ++k)
+            for (size_t c = chunkStart[k]; c < chunkStart[k + 1]; ++c)
+                estimate[k] += estimateResampledSize(in, c, options.spacing);
+    });
+    size_t total = 0;
+    for (size_t k = 0; k < chunks; ++k) total += estimate[k];
     if (total > UINT32_MAX)
         throw Error("resampleYarns: about " + std::to_string(total) +
                     " resampled points (more than 2^32-1); use a larger ResampleOptions.spacing or fewer yarns");
 
-    // Resample chunk by chunk into separate buffers.
+    // Step 3: resample chunk by chunk into separate buffers.
     std::vector<CurveBuffer> buffers(chunks);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, chunks, 1), [&](const tbb::blocked_range<size_t>& r) {
-        std::vector<dvec3> pts, nrm, samples;
-        std::vector<double> knot;
+        ResampleScratch scratch;
         for (size_t k = r.begin(); k < r.end(); ++k) {
             CurveBuffer& buf = buffers[k];
             const size_t reserve = 16 + estimate[k] + estimate[k] / 4;  // curved pieces need a few more
             buf.points.reserve(reserve);
             if (withNormals) buf.normals.reserve(reserve);
             for (size_t c = chunkStart[k]; c < chunkStart[k + 1]; ++c)
-                resampleCurve(yarns, c, options.spacing, withNormals, buf, pts, nrm, knot, samples);
+                buf.sizes.push_back(static_cast<uint32_t>(
+                    resampleCurve(yarns, c, options.spacing, buf.points, withNormals ? &buf.normals : nullptr, scratch)));
         }
     });
 
-    // Concatenate the chunks in curve order.
+    // Step 4: concatenate the chunks in curve order.
     MappedYarns out;
     std::vector<size_t> pointStart(chunks + 1, 0);
     out.curves.offsets.reserve(in.curveCount() + 1);
-    out.curves.closed.reserve(in.curveCount());
+    out.curves.closed.assign(in.closed.begin(), in.closed.end());
     for (size_t k = 0; k < chunks; ++k) pointStart[k + 1] = pointStart[k] + buffers[k].points.size();
     if (pointStart[chunks] > UINT32_MAX)
         throw Error("resampleYarns: more than 2^32-1 resampled points; use a larger spacing or fewer yarns");
-    for (size_t k = 0; k < chunks; ++k) {
-        for (size_t j = 0; j < buffers[k].sizes.size(); ++j) {
-            out.curves.offsets.push_back(out.curves.offsets.back() + buffers[k].sizes[j]);
-            out.curves.closed.push_back(buffers[k].closed[j]);
-        }
-    }
+    for (size_t k = 0; k < chunks; ++k)
+        for (const uint32_t size : buffers[k].sizes) out.curves.offsets.push_back(out.curves.offsets.back() + size);
     // The two big arrays are allocated (and zero-filled) concurrently.
     tbb::parallel_invoke([&] { out.curves.points.resize(pointStart[chunks]); },
                          [&] { if (withNormals) out.normals.resize(pointStart[chunks]); });

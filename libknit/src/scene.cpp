@@ -83,11 +83,13 @@ void runStages(Scene& scene, const SceneOptions& options, StageClock& clock) {
     clock.run("evaluate", [&] {
         evaluateBinding(scene.bound.binding, scene.mesh.faces, scene.mesh.positions, scene.normals, scene.yarns);
     });
+    PlyOptions plies = options.plies;
+    plies.yarnRadius = scene.yarnRadius;
+    scene.plyOptions = plies;  // resolved below when the plies are built; else by their consumer
     if (options.buildPlies)
         clock.run("plies", [&] {
-            PlyOptions plies = options.plies;
-            plies.yarnRadius = scene.yarnRadius;
-            scene.plies = makePlies(scene.yarns, plies);
+            scene.plyOptions = resolvePlyOptions(plies);
+            scene.plies = makePlies(scene.yarns, scene.plyOptions);
         });
 }
 

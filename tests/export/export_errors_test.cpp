@@ -6,8 +6,11 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "export/gltf_read.hpp"
+#include "export/gltf_validator.hpp"
 #include "export/test_curves.hpp"
 #include "knit/error.hpp"
+#include "knit/scene.hpp"
 #include "knit/export.hpp"
 #include "knit/sweep.hpp"
 
@@ -181,21 +184,69 @@ TEST(ExportScene, pliesYarnsAndTubesPickTheRightCurves) {
     EXPECT_EQ(exportScene(s, o).vertices, (42 + 33 + 27) * 5u);
 }
 
-TEST(ExportScene, pliesRequestedWithoutPliesIsAnError) {
-    const std::string dir = test::scratchDir("scene_noplies");
-    const Scene s = syntheticScene(false);
+// A scene built without plies still exports plies: generated while writing (streamed into
+// glTF/GLB, generated in full for other formats), the same curves a scene with plies holds.
+TEST(ExportScene, pliesOfASceneBuiltWithoutPliesAreGeneratedWhileWriting) {
+    const std::string dir = test::scratchDir("scene_streamed");
+    SceneOptions so;
+    so.mesh = "cylinder";
+    so.placement.repeats = {9, 5};
+    const Scene built = buildScene(so);
+    so.buildPlies = false;
+    const Scene bare = buildScene(so);
+    ASSERT_GT(built.plies.curves.curveCount(), 4u);
+    ASSERT_EQ(bare.plies.curves.curveCount(), 0u);
+
     ExportOptions o;
-    o.path = dir + "/p.glb";
     o.what = ExportWhat::Plies;
+    o.chunkVertices = 3000;  // several chunks, split differently in the two paths
+    o.path = dir + "/built.glb";
+    const ExportStats a = exportScene(built, o);
+    o.path = dir + "/streamed.glb";
+    const ExportStats b = exportScene(bare, o);
+    EXPECT_EQ(a.curves, built.plies.curves.curveCount());
+    EXPECT_EQ(b.curves, a.curves);
+    EXPECT_EQ(b.vertices, built.plies.curves.pointCount());
+    EXPECT_GE(b.chunks, 3u);
+    test::expectGltfValid(o.path);
+    const tinygltf::Model m = test::loadGltf(o.path);
+    size_t curve = 0;
+    double worst = 0;
+    for (const auto& inst : test::meshInstances(m)) {
+        for (const auto& p : m.meshes[size_t(inst.mesh)].primitives) {
+            ASSERT_LT(curve, built.plies.curves.curveCount());
+            const auto pos = test::worldPositions(m, p, inst.world);
+            const Polylines& c = built.plies.curves;
+            ASSERT_EQ(pos.size(), c.size(curve) + (c.isClosed(curve) ? 1 : 0)) << "curve " << curve;
+            for (size_t i = 0; i < c.size(curve); ++i)
+                worst = std::max(worst, glm::length(pos[i] - c.points[c.begin(curve) + i]));
+            ++curve;
+        }
+    }
+    EXPECT_EQ(curve, built.plies.curves.curveCount());
+    EXPECT_LT(worst, 1e-3 * built.plies.plyRadius);  // float32 relative to each chunk's origin
+
+    // Non-glTF formats generate the plies in full first: the same file as from the built plies.
+    o.path = dir + "/built.bcc";
+    exportScene(built, o);
+    o.path = dir + "/streamed.bcc";
+    exportScene(bare, o);
+    EXPECT_EQ(test::readBytes(dir + "/built.bcc"), test::readBytes(dir + "/streamed.bcc"));
+
+    // Bad ply settings are reported before any file is written.
+    Scene broken = buildScene(so);
+    broken.plyOptions.samplesPerTurn = 2;
+    o.path = dir + "/broken.glb";
     try {
-        exportScene(s, o);
+        exportScene(broken, o);
         FAIL() << "expected knit::Error";
     } catch (const Error& e) {
-        EXPECT_TRUE(contains(e.what(), "no plies")) << e.what();
+        EXPECT_TRUE(contains(e.what(), "samplesPerTurn")) << e.what();
     }
-    o.what = ExportWhat::Tubes;  // auto: falls back to the yarns
-    EXPECT_EQ(exportScene(s, o).curves, 3u);
-    EXPECT_EQ(test::listDir(dir).size(), 1u);
+    EXPECT_FALSE(std::filesystem::exists(o.path));
+    o.what = ExportWhat::Tubes;  // auto: the yarns of a scene without plies
+    o.path = dir + "/tubes.obj";
+    EXPECT_EQ(exportScene(broken, o).curves, broken.yarns.curves.curveCount());
 }
 
 // ---- CLI flags ----

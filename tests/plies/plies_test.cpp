@@ -452,3 +452,61 @@ TEST(Plies, pliesIndependentOfThreadCount) {
     EXPECT_TRUE(one.radial == two.radial);
     EXPECT_EQ(one.curves.offsets, two.curves.offsets);
 }
+
+// The streaming export generates plies in batches of its own choosing: every split of the yarn
+// list must give the curves of makePlies bit for bit (same points, radial directions, order).
+TEST(Plies, generatorBatchesConcatenateToMakePlies) {
+    MappedYarns y;
+    for (int k = 0; k < 25; ++k) addYarn(y, knitCurve(0.0005 + 0.00002 * k, 2 + k % 3, 16), k % 4 == 0);
+    addYarn(y, {dvec3(1, 1, 1)}, false);  // no plies, in the middle of a batch
+    for (int k = 0; k < 5; ++k) addYarn(y, circle(0.002 + 0.0001 * k, 9), true);
+    PlyOptions o;
+    o.count = 3;
+    o.yarnRadius = 0.0003;
+    const Plies all = knit::makePlies(y, o);
+    const knit::PlyGenerator gen(y, o);
+    ASSERT_EQ(gen.yarnCount(), y.curves.curveCount());
+    for (const size_t step : {size_t(1), size_t(4), size_t(7), size_t(31)}) {
+        knit::PlyScratch scratch;
+        Plies batch;
+        std::vector<dvec3> points, radial;
+        std::vector<uint32_t> yarnOfCurve, sizes;
+        for (size_t first = 0; first < gen.yarnCount(); first += step) {
+            gen.generate(first, std::min(first + step, gen.yarnCount()), batch, scratch);  // reused: cleared
+            ASSERT_EQ(batch.radial.size(), batch.curves.pointCount());
+            points.insert(points.end(), batch.curves.points.begin(), batch.curves.points.end());
+            radial.insert(radial.end(), batch.radial.begin(), batch.radial.end());
+            yarnOfCurve.insert(yarnOfCurve.end(), batch.yarnOfCurve.begin(), batch.yarnOfCurve.end());
+            for (size_t c = 0; c < batch.curves.curveCount(); ++c) sizes.push_back(batch.curves.size(c));
+        }
+        EXPECT_TRUE(points == all.curves.points) << "batches of " << step;
+        EXPECT_TRUE(radial == all.radial) << "batches of " << step;
+        EXPECT_EQ(yarnOfCurve, all.yarnOfCurve) << "batches of " << step;
+        ASSERT_EQ(sizes.size(), all.curves.curveCount());
+        for (size_t c = 0; c < sizes.size(); ++c) EXPECT_EQ(sizes[c], all.curves.size(c)) << "curve " << c;
+    }
+    // The planning estimate is a lower bound of what each yarn really gets.
+    for (size_t yarn = 0; yarn + 1 < gen.yarnCount(); ++yarn) {
+        if (y.curves.size(yarn) < 2) continue;
+        knit::PlyScratch scratch;
+        Plies one;
+        gen.generate(yarn, yarn + 1, one, scratch);
+        EXPECT_LE(gen.estimatePoints(yarn), one.curves.pointCount()) << "yarn " << yarn;
+    }
+}
+
+TEST(Plies, generatorRejectsBadYarnsBeforeGenerating) {
+    MappedYarns y;
+    addYarn(y, knitCurve(0.0005, 2, 16), false);
+    y.curves.points[5].y = std::numeric_limits<double>::quiet_NaN();
+    PlyOptions o;
+    o.yarnRadius = 0.0003;
+    try {
+        knit::PlyGenerator gen(y, o);
+        FAIL() << "expected knit::Error";
+    } catch (const knit::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("curve 0 point 5"), std::string::npos) << e.what();
+    }
+    o.samplesPerTurn = 2;
+    EXPECT_THROW(knit::PlyGenerator(MappedYarns{}, o), knit::Error);
+}

@@ -9,6 +9,8 @@
 //   .gltf  glTF 2.0 JSON + external .bin buffers (<name>.bin, <name>_1.bin, ...)
 //   .glb   binary glTF; the first buffer is the GLB BIN chunk, further buffers (only when the data
 //          exceeds maxBufferBytes) are external <name>_1.bin, ... files next to it
+//          Curves (glTF): one non-indexed LINE_STRIP per curve with POSITION and _RADIUS; a
+//          closed curve repeats its first point at the end
 // What is written is chosen by ExportOptions::what: the yarn centrelines, the ply curves, or
 // swept tube meshes (of the plies when the scene has plies, else of the yarns; see tubesOf).
 //
@@ -80,6 +82,13 @@ struct ExportStats {
 
 // Writes atomically (temporary file in the same folder, then rename): on error no output file
 // exists. Throws knit::Error for unknown extensions, unwritable paths, conflicting options.
+//
+// Plies of a scene built without them (SceneOptions::buildPlies = false): `what = Plies` (and
+// tubes of plies) generates them from scene.yarns with scene.plyOptions during the export, the
+// same curves, bit for bit, that buildPlies would have made. For .glb / .gltf the plies are
+// streamed: generated, converted and written chunk by chunk on all cores, never held all at
+// once (the fast path for garments; docs/speed-vs-error.md). Other formats and tubes generate
+// all plies first (makePlies) and then write them.
 ExportStats exportScene(const Scene& scene, const ExportOptions& options);
 
 // Lower-level entry: exports the given curves (yarn centrelines or plies) with constant `radius`.
@@ -87,6 +96,9 @@ ExportStats exportScene(const Scene& scene, const ExportOptions& options);
 // `material` extras (optional JSON object) go into the glTF material's extras.
 struct ExportInput {
     const Polylines* curves = nullptr;
+    // Instead of `curves`: plies generated while writing (streamed for .glb / .gltf curves;
+    // generated in full first for other formats and tubes). Exactly one of the two is set.
+    const PlyGenerator* plies = nullptr;
     double radius = 0;
     const std::vector<uint32_t>* yarnOfCurve = nullptr;
     const std::vector<glm::dvec3>* seedNormals = nullptr;  // per point, tube frame seed (optional)

@@ -5,6 +5,7 @@
 
 #include "knit/binding.hpp"
 #include "knit/frames.hpp"
+#include "knit/resample.hpp"
 
 namespace knit {
 
@@ -46,5 +47,41 @@ PlyOptions resolvePlyOptions(const PlyOptions& options);
 //   theta = +-2 pi s / pitch.
 // On closed yarns the number of turns is rounded so the helix closes with no twist jump.
 Plies makePlies(const MappedYarns& yarns, const PlyOptions& options);
+
+// Reusable buffers of PlyGenerator::generate (one per thread).
+struct PlyScratch {
+    ResampleScratch resample;
+    std::vector<glm::dvec3> centre, seed, tangent, normal;
+    std::vector<double> arc;
+};
+
+// The plies of a yarn set, batch by batch: what makePlies computes, for consumers that never
+// need all plies at once (the streaming glTF export writes each batch and drops it). Every yarn
+// is independent, so any batching gives the same curves as makePlies, bit for bit.
+class PlyGenerator {
+public:
+    // Resolves and validates the options and validates the yarns (finite points and normals,
+    // consistent offsets); throws knit::Error. Keeps a reference to `yarns`.
+    PlyGenerator(const MappedYarns& yarns, const PlyOptions& options);
+
+    const PlyOptions& options() const { return options_; }  // resolved
+    size_t yarnCount() const { return yarns_.curves.curveCount(); }
+    // A lower bound of the ply points of yarn `y` (count * resampled points); for planning.
+    size_t estimatePoints(size_t y) const;
+    // Replaces `out` with the plies of yarns [first, last): curves yarn-major and ply-minor,
+    // yarnOfCurve holds the yarns' global indices. Const and thread-safe (one scratch per
+    // thread); never throws except std::bad_alloc.
+    void generate(size_t first, size_t last, Plies& out, PlyScratch& scratch) const;
+
+    const MappedYarns& yarns() const { return yarns_; }
+
+private:
+    const MappedYarns& yarns_;
+    PlyOptions options_;
+    double spacing_ = 0;
+};
+
+// All plies of the generator's yarns (what makePlies(yarns, options) returns).
+Plies makePlies(const PlyGenerator& generator);
 
 }  // namespace knit

@@ -27,6 +27,8 @@ struct SceneOptions {
     ProceduralMeshOptions meshOptions;    // for built-in meshes
     PlacementOptions placement;
     BindOptions bind;                     // yarnRadius is set from the pattern and placement
+    // false: no plies in the Scene; an exporter can still generate them from yarns and
+    // plyOptions while writing (knit/export.hpp), which needs far less memory.
     bool buildPlies = true;
     PlyOptions plies;                     // yarnRadius is set from the pattern and placement
     ProgressFn progress;                  // optional
@@ -49,6 +51,7 @@ struct Scene {
     BindResult bound;
     MappedYarns yarns;
     Plies plies;                      // empty unless SceneOptions::buildPlies
+    PlyOptions plyOptions;            // ply settings, yarnRadius set (resolved when plies were built)
     std::vector<StageTime> timings;
 };
 
