@@ -252,7 +252,8 @@ public:
             first = chunks_[chunk.index].firstCurve;
             last = chunks_[chunk.index].lastCurve;
         } else {
-            input_.plies->generate(yarnStart_[chunk.index], yarnStart_[chunk.index + 1], chunk.generated, chunk.scratch);
+            input_.plies->generate(yarnStart_[chunk.index], yarnStart_[chunk.index + 1], chunk.generated, chunk.scratch,
+                                   false);  // curves only: no radial directions
             curves = &chunk.generated.curves;
             last = curves->curveCount();
         }

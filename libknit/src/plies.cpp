@@ -103,7 +103,7 @@ size_t PlyGenerator::estimatePoints(size_t y) const {
     return samples < 2 ? 0 : static_cast<size_t>(options_.count) * samples;  // < 2 points: no plies
 }
 
-void PlyGenerator::generate(size_t first, size_t last, Plies& out, PlyScratch& scratch) const {
+void PlyGenerator::generate(size_t first, size_t last, Plies& out, PlyScratch& scratch, bool withRadial) const {
     const PlyOptions& opt = options_;
     const Polylines& yarnCurves = yarns_.curves;
     const bool haveSeeds = !yarns_.normals.empty();
@@ -161,7 +161,7 @@ void PlyGenerator::generate(size_t first, size_t last, Plies& out, PlyScratch& s
         // Step 5: n curves of m points (yarn-major, ply-minor) swept around the centreline.
         const size_t base = out.curves.points.size();
         out.curves.points.resize(base + n * m);
-        out.radial.resize(base + n * m);
+        if (withRadial) out.radial.resize(base + n * m);
         for (uint32_t i = 0; i < n; ++i) {
             out.curves.offsets.push_back(static_cast<uint32_t>(base + (i + 1) * m));
             out.curves.closed.push_back(closed ? 1 : 0);
@@ -169,7 +169,7 @@ void PlyGenerator::generate(size_t first, size_t last, Plies& out, PlyScratch& s
             out.plyOfCurve.push_back(static_cast<uint8_t>(i));
         }
         dvec3* P = out.curves.points.data() + base;
-        dvec3* D = out.radial.data() + base;
+        dvec3* D = withRadial ? out.radial.data() + base : nullptr;
         for (size_t j = 0; j < m; ++j) {
             const double theta = rate * arc[j];
             const double ct = std::cos(theta), st = std::sin(theta);
@@ -181,7 +181,7 @@ void PlyGenerator::generate(size_t first, size_t last, Plies& out, PlyScratch& s
                 const double s = st * cosPly[i] + ct * sinPly[i];  // sin(theta + 2 pi i / n)
                 const dvec3 radial = c * nj + s * bj;
                 P[i * m + j] = xj + R * radial;
-                D[i * m + j] = radial;
+                if (D) D[i * m + j] = radial;
             }
         }
     }

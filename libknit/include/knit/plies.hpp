@@ -70,8 +70,9 @@ public:
     size_t estimatePoints(size_t y) const;
     // Replaces `out` with the plies of yarns [first, last): curves yarn-major and ply-minor,
     // yarnOfCurve holds the yarns' global indices. Const and thread-safe (one scratch per
-    // thread); never throws except std::bad_alloc.
-    void generate(size_t first, size_t last, Plies& out, PlyScratch& scratch) const;
+    // thread); never throws except std::bad_alloc. `withRadial = false` leaves out.radial
+    // empty (for consumers of the curves alone: less memory traffic).
+    void generate(size_t first, size_t last, Plies& out, PlyScratch& scratch, bool withRadial = true) const;
 
     const MappedYarns& yarns() const { return yarns_; }
 
