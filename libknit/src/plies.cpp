@@ -103,20 +103,64 @@ size_t PlyGenerator::estimatePoints(size_t y) const {
     return samples < 2 ? 0 : static_cast<size_t>(options_.count) * samples;  // < 2 points: no plies
 }
 
-void PlyGenerator::generate(size_t first, size_t last, Plies& out, PlyScratch& scratch, bool withRadial) const {
+size_t PlyGenerator::centreline(size_t y, std::vector<dvec3>& centre, PlyScratch& scratch) const {
+    return resampleCurve(yarns_, y, spacing_, centre, nullptr, scratch.resample);
+}
+
+void PlyGenerator::sweep(size_t y, const dvec3* X, size_t m, dvec3* P, dvec3* D, PlyScratch& scratch) const {
     const PlyOptions& opt = options_;
     const Polylines& yarnCurves = yarns_.curves;
-    const bool haveSeeds = !yarns_.normals.empty();
     const uint32_t n = static_cast<uint32_t>(opt.count);
-    const double handed = opt.twist == Twist::Z ? 1.0 : -1.0;
-    const double R = opt.centerRadius;
-    // Phase offsets 2 pi i / n of the plies.
+    const bool closed = yarnCurves.isClosed(y);
+    // The frame seed is the surface normal at the first point, which resampling keeps unchanged
+    // (no normals need interpolating).
+    const dvec3* seed = yarns_.normals.empty() ? nullptr : yarns_.normals.data() + yarnCurves.begin(y);
+
+    // Step 1: rotation-minimizing frames.
+    scratch.tangent.resize(m);
+    scratch.normal.resize(m);
+    curveFrames(X, m, closed, seed, scratch.tangent.data(), scratch.normal.data());
+    const dvec3* T = scratch.tangent.data();
+    const dvec3* N = scratch.normal.data();
+
+    // Step 2: arc length; closed yarns get an integer number of turns so the helix closes.
+    std::vector<double>& arc = scratch.arc;
+    arc.resize(m);
+    arc[0] = 0.0;
+    for (size_t j = 1; j < m; ++j) arc[j] = arc[j - 1] + glm::length(X[j] - X[j - 1]);
+    double pitch = opt.pitch;
+    if (closed) {
+        const double length = arc[m - 1] + glm::length(X[0] - X[m - 1]);
+        const double turns = std::max(1.0, std::round(length / opt.pitch));
+        pitch = length / turns;
+    }
+    const double rate = (opt.twist == Twist::Z ? 1.0 : -1.0) * 2.0 * kPi / pitch;  // dtheta/ds
+
+    // Step 3: the helices, with phase offsets 2 pi i / n.
     double cosPly[16], sinPly[16];
     for (uint32_t i = 0; i < n; ++i) {
         cosPly[i] = std::cos(2.0 * kPi * i / n);
         sinPly[i] = std::sin(2.0 * kPi * i / n);
     }
+    const double R = opt.centerRadius;
+    for (size_t j = 0; j < m; ++j) {
+        const double theta = rate * arc[j];
+        const double ct = std::cos(theta), st = std::sin(theta);
+        const dvec3 nj = N[j];
+        const dvec3 bj = glm::cross(T[j], nj);
+        const dvec3 xj = X[j];
+        for (uint32_t i = 0; i < n; ++i) {
+            const double c = ct * cosPly[i] - st * sinPly[i];  // cos(theta + 2 pi i / n)
+            const double s = st * cosPly[i] + ct * sinPly[i];  // sin(theta + 2 pi i / n)
+            const dvec3 radial = c * nj + s * bj;
+            P[i * m + j] = xj + R * radial;
+            if (D) D[i * m + j] = radial;
+        }
+    }
+}
 
+void PlyGenerator::generate(size_t first, size_t last, Plies& out, PlyScratch& scratch, bool withRadial) const {
+    const uint32_t n = static_cast<uint32_t>(options_.count);
     // Step 1: empty the batch (capacity is kept for the next one).
     out.curves.points.clear();
     out.curves.offsets.assign(1, 0);
@@ -124,66 +168,27 @@ void PlyGenerator::generate(size_t first, size_t last, Plies& out, PlyScratch& s
     out.yarnOfCurve.clear();
     out.plyOfCurve.clear();
     out.radial.clear();
-    out.plyRadius = opt.plyRadius;
-    out.centerRadius = opt.centerRadius;
-    out.pitch = opt.pitch;
+    out.plyRadius = options_.plyRadius;
+    out.centerRadius = options_.centerRadius;
+    out.pitch = options_.pitch;
 
     for (size_t y = first; y < last; ++y) {
-        // Step 2: resample the centreline. The frame seed is the surface normal at the first
-        // point, which resampling keeps unchanged (no normals need interpolating).
+        // Step 2: resample the centreline.
         scratch.centre.clear();
-        const size_t m = resampleCurve(yarns_, y, spacing_, scratch.centre, nullptr, scratch.resample);
+        const size_t m = centreline(y, scratch.centre, scratch);
         if (m < 2) continue;  // degenerate yarn: no plies
-        const bool closed = yarnCurves.isClosed(y);
-        const dvec3* X = scratch.centre.data();
-        const dvec3* seed = haveSeeds ? yarns_.normals.data() + yarnCurves.begin(y) : nullptr;
-
-        // Step 3: rotation-minimizing frames.
-        scratch.tangent.resize(m);
-        scratch.normal.resize(m);
-        curveFrames(X, m, closed, seed, scratch.tangent.data(), scratch.normal.data());
-        const dvec3* T = scratch.tangent.data();
-        const dvec3* N = scratch.normal.data();
-
-        // Step 4: arc length; closed yarns get an integer number of turns so the helix closes.
-        std::vector<double>& arc = scratch.arc;
-        arc.resize(m);
-        arc[0] = 0.0;
-        for (size_t j = 1; j < m; ++j) arc[j] = arc[j - 1] + glm::length(X[j] - X[j - 1]);
-        double pitch = opt.pitch;
-        if (closed) {
-            const double length = arc[m - 1] + glm::length(X[0] - X[m - 1]);
-            const double turns = std::max(1.0, std::round(length / opt.pitch));
-            pitch = length / turns;
-        }
-        const double rate = handed * 2.0 * kPi / pitch;  // dtheta/ds
-
-        // Step 5: n curves of m points (yarn-major, ply-minor) swept around the centreline.
+        // Step 3: n curves of m points (yarn-major, ply-minor) swept around it.
         const size_t base = out.curves.points.size();
         out.curves.points.resize(base + n * m);
         if (withRadial) out.radial.resize(base + n * m);
         for (uint32_t i = 0; i < n; ++i) {
             out.curves.offsets.push_back(static_cast<uint32_t>(base + (i + 1) * m));
-            out.curves.closed.push_back(closed ? 1 : 0);
+            out.curves.closed.push_back(yarns_.curves.closed[y]);
             out.yarnOfCurve.push_back(static_cast<uint32_t>(y));
             out.plyOfCurve.push_back(static_cast<uint8_t>(i));
         }
-        dvec3* P = out.curves.points.data() + base;
-        dvec3* D = withRadial ? out.radial.data() + base : nullptr;
-        for (size_t j = 0; j < m; ++j) {
-            const double theta = rate * arc[j];
-            const double ct = std::cos(theta), st = std::sin(theta);
-            const dvec3 nj = N[j];
-            const dvec3 bj = glm::cross(T[j], nj);
-            const dvec3 xj = X[j];
-            for (uint32_t i = 0; i < n; ++i) {
-                const double c = ct * cosPly[i] - st * sinPly[i];  // cos(theta + 2 pi i / n)
-                const double s = st * cosPly[i] + ct * sinPly[i];  // sin(theta + 2 pi i / n)
-                const dvec3 radial = c * nj + s * bj;
-                P[i * m + j] = xj + R * radial;
-                if (D) D[i * m + j] = radial;
-            }
-        }
+        sweep(y, scratch.centre.data(), m, out.curves.points.data() + base,
+              withRadial ? out.radial.data() + base : nullptr, scratch);
     }
 }
 
@@ -214,40 +219,52 @@ Plies makePlies(const PlyGenerator& generator) {
     };
     if (estimate > UINT32_MAX) throw tooMany();
 
-    // Step 2: generate the batches in parallel.
+    // Step 2: resample the centrelines batch by batch, in parallel (their sizes fix the layout).
     const size_t batches = batchStart.size() - 1;
-    std::vector<Plies> parts(batches);
+    std::vector<std::vector<dvec3>> centres(batches);
+    std::vector<size_t> samples(C.curveCount(), 0);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, batches, 1), [&](const tbb::blocked_range<size_t>& r) {
         PlyScratch scratch;
-        for (size_t k = r.begin(); k < r.end(); ++k) generator.generate(batchStart[k], batchStart[k + 1], parts[k], scratch);
+        for (size_t k = r.begin(); k < r.end(); ++k)
+            for (size_t y = batchStart[k]; y < batchStart[k + 1]; ++y)
+                samples[y] = generator.centreline(y, centres[k], scratch);
     });
 
-    // Step 3: concatenate in yarn order.
+    // Step 3: layout, yarn-major and ply-minor (yarns with < 2 samples get no plies).
+    const uint32_t n = static_cast<uint32_t>(generator.options().count);
     Plies out;
     out.plyRadius = generator.options().plyRadius;
     out.centerRadius = generator.options().centerRadius;
     out.pitch = generator.options().pitch;
-    std::vector<size_t> pointStart(batches + 1, 0);
-    for (size_t k = 0; k < batches; ++k) pointStart[k + 1] = pointStart[k] + parts[k].curves.pointCount();
-    if (pointStart[batches] > UINT32_MAX) throw tooMany();
-    for (size_t k = 0; k < batches; ++k) {
-        const Plies& p = parts[k];
-        for (size_t c = 0; c < p.curves.curveCount(); ++c)
-            out.curves.offsets.push_back(static_cast<uint32_t>(pointStart[k] + p.curves.end(c)));
-        out.curves.closed.insert(out.curves.closed.end(), p.curves.closed.begin(), p.curves.closed.end());
-        out.yarnOfCurve.insert(out.yarnOfCurve.end(), p.yarnOfCurve.begin(), p.yarnOfCurve.end());
-        out.plyOfCurve.insert(out.plyOfCurve.end(), p.plyOfCurve.begin(), p.plyOfCurve.end());
+    std::vector<size_t> firstPoint(C.curveCount(), 0);
+    size_t total = 0;
+    for (size_t y = 0; y < C.curveCount(); ++y) {
+        firstPoint[y] = total;
+        if (samples[y] < 2) continue;
+        for (uint32_t i = 0; i < n; ++i) {
+            total += samples[y];
+            if (total > UINT32_MAX) throw tooMany();
+            out.curves.offsets.push_back(static_cast<uint32_t>(total));
+            out.curves.closed.push_back(C.closed[y]);
+            out.yarnOfCurve.push_back(static_cast<uint32_t>(y));
+            out.plyOfCurve.push_back(static_cast<uint8_t>(i));
+        }
     }
-    // The two big arrays are allocated (and zero-filled) concurrently, then filled in parallel.
-    tbb::parallel_invoke([&] { out.curves.points.resize(pointStart[batches]); },
-                         [&] { out.radial.resize(pointStart[batches]); });
+
+    // Step 4: sweep every yarn's plies straight into place, in parallel.
+    tbb::parallel_invoke([&] { out.curves.points.resize(total); }, [&] { out.radial.resize(total); });
     tbb::parallel_for(tbb::blocked_range<size_t>(0, batches, 1), [&](const tbb::blocked_range<size_t>& r) {
+        PlyScratch scratch;
         for (size_t k = r.begin(); k < r.end(); ++k) {
-            std::copy(parts[k].curves.points.begin(), parts[k].curves.points.end(),
-                      out.curves.points.begin() + static_cast<std::ptrdiff_t>(pointStart[k]));
-            std::copy(parts[k].radial.begin(), parts[k].radial.end(),
-                      out.radial.begin() + static_cast<std::ptrdiff_t>(pointStart[k]));
-            parts[k] = Plies();  // release memory early
+            const dvec3* X = centres[k].data();
+            for (size_t y = batchStart[k]; y < batchStart[k + 1]; ++y) {
+                const size_t m = samples[y];
+                if (m >= 2)
+                    generator.sweep(y, X, m, out.curves.points.data() + firstPoint[y], out.radial.data() + firstPoint[y],
+                                    scratch);
+                X += m;
+            }
+            std::vector<dvec3>().swap(centres[k]);  // release memory early
         }
     });
     return out;

@@ -51,7 +51,7 @@ Plies makePlies(const MappedYarns& yarns, const PlyOptions& options);
 // Reusable buffers of PlyGenerator::generate (one per thread).
 struct PlyScratch {
     ResampleScratch resample;
-    std::vector<glm::dvec3> centre, seed, tangent, normal;
+    std::vector<glm::dvec3> centre, tangent, normal;
     std::vector<double> arc;
 };
 
@@ -73,6 +73,16 @@ public:
     // thread); never throws except std::bad_alloc. `withRadial = false` leaves out.radial
     // empty (for consumers of the curves alone: less memory traffic).
     void generate(size_t first, size_t last, Plies& out, PlyScratch& scratch, bool withRadial = true) const;
+
+    // The two halves of generate, for callers that place the plies themselves (makePlies): the
+    // resampled centreline of yarn `y`, appended to `centre` (returns its point count; < 2
+    // means no plies) ...
+    size_t centreline(size_t y, std::vector<glm::dvec3>& centre, PlyScratch& scratch) const;
+    // ... and the `count` plies of yarn `y` swept around its m-point centreline: ply i's point j
+    // goes to points[i * m + j] (and its unit radial direction to radial[i * m + j] unless
+    // radial is null).
+    void sweep(size_t y, const glm::dvec3* centre, size_t m, glm::dvec3* points, glm::dvec3* radial,
+               PlyScratch& scratch) const;
 
     const MappedYarns& yarns() const { return yarns_; }
 
