@@ -4,12 +4,17 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <memory>
+#include <new>
+#include <type_traits>
 #include <optional>
 #include <unordered_map>
 
 #include <glm/geometric.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 
 #include "knit/error.hpp"
 #include "knit/stitch.hpp"
@@ -157,6 +162,11 @@ BindResult bindYarns(const BaseMesh& mesh, const std::vector<glm::dvec3>& normal
         !std::isfinite(options.yarnRadius) || !std::isfinite(options.clampTolerance) || !std::isfinite(options.weldTolerance))
         throw Error("binding: yarn radius must be positive, clamp and weld tolerances non-negative");
     if (normals.size() != mesh.positions.size()) throw Error("binding: normals do not match the mesh's vertices");
+    if (yarns.offsets.size() != yarns.yarnCount() + 1 || yarns.offsets.front() != 0 ||
+        yarns.offsets.back() != yarns.vertexCount() || !std::is_sorted(yarns.offsets.begin(), yarns.offsets.end()) ||
+        yarns.height.size() != yarns.vertexCount() || yarns.twist.size() != yarns.vertexCount() ||
+        (!yarns.ghosts.empty() && yarns.ghosts.size() != yarns.yarnCount()))
+        throw Error("binding: inconsistent UvYarns (offsets, heights, twists or ghosts do not match the vertices)");
     BindResult result;
     BindStats& stats = result.stats;
     const size_t nv = yarns.vertexCount();
@@ -168,7 +178,16 @@ BindResult bindYarns(const BaseMesh& mesh, const std::vector<glm::dvec3>& normal
     const double tolUv = options.clampTolerance * radiusUv;
     //    Then, per step i -> i+1 (last -> first on closed yarns) between two vertices of one
     //    chart: whether the step leaves the chart (leavesChart), for step 2.
-    std::vector<LocateResult> loc(nv);
+    // `loc` is left uninitialized (every entry is constructed below, in parallel): a serial
+    // value-initialization of ~48 bytes per vertex would cost as much as half the locating.
+    static_assert(std::is_trivially_destructible_v<LocateResult>, "loc is freed without destructors");
+    struct Free {
+        void operator()(LocateResult* p) const { std::free(p); }
+    };
+    const std::unique_ptr<LocateResult[], Free> locStorage(
+        static_cast<LocateResult*>(std::malloc(std::max<size_t>(nv, 1) * sizeof(LocateResult))));
+    if (!locStorage) throw std::bad_alloc();
+    LocateResult* const loc = locStorage.get();
     std::vector<uint8_t> leaves(nv, 0);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, yarns.yarnCount(), 1), [&](const tbb::blocked_range<size_t>& r) {
         std::vector<double> crossings;  // scratch for leavesChart
@@ -176,7 +195,7 @@ BindResult bindYarns(const BaseMesh& mesh, const std::vector<glm::dvec3>& normal
             const size_t b = yarns.offsets[y], e = yarns.offsets[y + 1];
             uint32_t hint = UINT32_MAX;
             for (size_t i = b; i < e; ++i) {
-                loc[i] = locatePoint(mesh, grid, yarns.uv[i], tolUv, hint);
+                new (loc + i) LocateResult(locatePoint(mesh, grid, yarns.uv[i], tolUv, hint));
                 hint = loc[i].status == LocateStatus::Inside ? loc[i].point.face : UINT32_MAX;
             }
             for (size_t i = b; i < e; ++i) {
@@ -358,40 +377,45 @@ BindResult bindYarns(const BaseMesh& mesh, const std::vector<glm::dvec3>& normal
     }
 
     // 4. Chain pieces along welds into yarns; a chain that returns to its start is a loop.
+    //    First the plan, piece by piece (serial, cheap): which pieces in which direction, and
+    //    whether a junction vertex repeats the previous one (dropped); then every vertex is
+    //    copied to its place in parallel.
+    struct Segment {
+        uint32_t piece;
+        bool reversed, dropFirst, dropLast;
+        size_t outStart;
+    };
+    std::vector<Segment> segments;
+    segments.reserve(pieces.size());
     Binding& out = result.binding;
-    const size_t expected = nv + stats.boundaryVertices;
-    out.face.reserve(expected);
-    out.bary.reserve(expected);
-    out.height.reserve(expected);
-    out.twist.reserve(expected);
     const double dedupe = 1e-4 * options.yarnRadius;
     std::vector<uint8_t> used(pieces.size(), 0);
-    auto append = [&](const Piece& pc, bool reversed, bool dropFirst) {
-        const size_t n = pc.size();
-        for (size_t s = dropFirst ? 1 : 0; s < n; ++s) {
-            const BoundVertex v = at(pc, reversed ? n - 1 - s : s);
-            out.face.push_back(v.face);
-            out.bary.emplace_back(v.bary.y, v.bary.z);
-            out.height.push_back(v.height);
-            out.twist.push_back(v.twist);
-        }
+    size_t outCount = 0;       // vertices planned so far
+    size_t yarnFirstSeg = 0;   // first segment of the yarn being planned
+    auto emitted = [](const Segment& g, const Piece& pc) {
+        return pc.size() - (g.dropFirst ? 1 : 0) - (g.dropLast ? 1 : 0);
     };
-    auto lastPoint = [&]() {
-        const size_t i = out.face.size() - 1;
-        return evaluatePoint(mesh, normals, {out.face[i], {1 - out.bary[i].x - out.bary[i].y, out.bary[i].x, out.bary[i].y}, out.height[i], 0});
+    auto endVertex = [&](const Segment& g, bool last) {  // first / last vertex of a segment, piece order applied
+        const Piece& pc = pieces[g.piece];
+        return at(pc, last != g.reversed ? pc.size() - 1 : 0);
+    };
+    auto addSegment = [&](size_t pi, bool reversed, bool dropFirst) {
+        Segment g{uint32_t(pi), reversed, dropFirst, false, outCount};
+        outCount += emitted(g, pieces[pi]);
+        segments.push_back(g);
     };
     auto walkChain = [&](size_t first, int enterEnd) {
         size_t pi = first;
         int enter = enterEnd;
         bool firstPiece = true;
-        const size_t yarnBegin = out.face.size();
         for (;;) {
             used[pi] = 1;
             const Piece& pc = pieces[pi];
             const bool reversed = enter == 1;
             const glm::dvec3 head = evaluatePoint(mesh, normals, at(pc, reversed ? pc.size() - 1 : 0));
-            const bool drop = !firstPiece && glm::distance(lastPoint(), head) < dedupe;
-            append(pc, reversed, drop);
+            const bool drop =
+                !firstPiece && glm::distance(evaluatePoint(mesh, normals, endVertex(segments.back(), true)), head) < dedupe;
+            addSegment(pi, reversed, drop);
             firstPiece = false;
             const int64_t next = partner[2 * pi + (1 - enter)];
             if (next < 0) return false;
@@ -399,27 +423,29 @@ BindResult bindYarns(const BaseMesh& mesh, const std::vector<glm::dvec3>& normal
             enter = int(next % 2);
             if (used[pi]) {
                 // Back at the start: a closed loop; drop the duplicated closing vertex.
-                if (out.face.size() - yarnBegin > 2 &&
-                    glm::distance(lastPoint(), evaluatePoint(mesh, normals, {out.face[yarnBegin], {1 - out.bary[yarnBegin].x - out.bary[yarnBegin].y, out.bary[yarnBegin].x, out.bary[yarnBegin].y}, out.height[yarnBegin], 0})) < dedupe) {
-                    out.face.pop_back();
-                    out.bary.pop_back();
-                    out.height.pop_back();
-                    out.twist.pop_back();
+                Segment& lastSeg = segments.back();
+                const size_t yarnSize = outCount - segments[yarnFirstSeg].outStart;
+                if (yarnSize > 2 && glm::distance(evaluatePoint(mesh, normals, endVertex(lastSeg, true)),
+                                                  evaluatePoint(mesh, normals, endVertex(segments[yarnFirstSeg], false))) <
+                                        dedupe) {
+                    lastSeg.dropLast = true;
+                    --outCount;
                 }
                 return true;
             }
         }
     };
     auto closeYarn = [&](bool closed) {
-        out.offsets.push_back(uint32_t(out.face.size()));
+        out.offsets.push_back(uint32_t(outCount));
         out.closed.push_back(closed ? 1 : 0);
         if (closed) ++stats.closedLoops;
         else stats.openEnds += 2;
+        yarnFirstSeg = segments.size();
     };
     for (size_t pi = 0; pi < pieces.size(); ++pi) {
         if (used[pi] || !pieces[pi].closed) continue;
         used[pi] = 1;
-        append(pieces[pi], false, false);
+        addSegment(pi, false, false);
         closeYarn(true);
     }
     for (size_t pi = 0; pi < pieces.size(); ++pi)
@@ -427,6 +453,25 @@ BindResult bindYarns(const BaseMesh& mesh, const std::vector<glm::dvec3>& normal
             if (!used[pi] && partner[2 * pi + e] < 0) closeYarn(walkChain(pi, e));
     for (size_t pi = 0; pi < pieces.size(); ++pi)
         if (!used[pi]) closeYarn(walkChain(pi, 0));
+
+    // Fill: every segment's vertices in parallel.
+    tbb::parallel_invoke([&] { out.face.resize(outCount); }, [&] { out.bary.resize(outCount); },
+                         [&] { out.height.resize(outCount); }, [&] { out.twist.resize(outCount); });
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, segments.size(), 16), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t k = r.begin(); k != r.end(); ++k) {
+            const Segment& g = segments[k];
+            const Piece& pc = pieces[g.piece];
+            const size_t n = pc.size();
+            size_t o = g.outStart;
+            for (size_t s = g.dropFirst ? 1 : 0; s < n - (g.dropLast ? 1 : 0); ++s, ++o) {
+                const BoundVertex v = at(pc, g.reversed ? n - 1 - s : s);
+                out.face[o] = v.face;
+                out.bary[o] = glm::dvec2(v.bary.y, v.bary.z);
+                out.height[o] = v.height;
+                out.twist[o] = v.twist;
+            }
+        }
+    });
     return result;
 }
 

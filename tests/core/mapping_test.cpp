@@ -4,6 +4,7 @@
 
 #include "fixtures.hpp"
 #include "knit/binding.hpp"
+#include "knit/error.hpp"
 #include "knit/generator.hpp"
 #include "knit/scene.hpp"
 #include "knit/uv_grid.hpp"
@@ -154,6 +155,31 @@ TEST(Mapping, bindingEvaluatedOnDeformedCopyEqualsFreshMapping) {
     for (size_t i = 0; i < animated.curves.pointCount(); ++i)
         worst = std::max(worst, glm::distance(animated.curves.points[i], b.yarns.curves.points[i]));
     EXPECT_LT(worst, 1e-12);
+}
+
+// bindYarns fills its per-vertex tables from the yarn offsets: UvYarns whose offsets, heights,
+// twists or ghosts disagree with the vertices are refused before anything is read.
+TEST(Mapping, inconsistentUvYarnsAreRejected) {
+    ProceduralMeshOptions mo;
+    mo.resU = mo.resV = 6;
+    const Scene a = buildScene(generateStockinette(), makeDrape(mo), yarnsOnly({3, 3}));
+    BindOptions bind;
+    bind.yarnRadius = a.yarnRadius;
+    ASSERT_NO_THROW(bindYarns(a.mesh, a.normals, a.grid, a.uvYarns, bind));
+    std::vector<UvYarns> broken(5, a.uvYarns);
+    broken[0].offsets.back() -= 1;          // last vertex owned by no yarn
+    broken[1].offsets.push_back(broken[1].offsets.back() + 3);  // a yarn past the end
+    std::swap(broken[2].offsets[1], broken[2].offsets[2]);       // decreasing
+    broken[3].height.pop_back();
+    broken[4].ghosts.pop_back();
+    for (size_t k = 0; k < broken.size(); ++k) {
+        try {
+            bindYarns(a.mesh, a.normals, a.grid, broken[k], bind);
+            ADD_FAILURE() << "case " << k << ": expected knit::Error";
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find("inconsistent UvYarns"), std::string::npos) << e.what();
+        }
+    }
 }
 
 TEST(Mapping, floatEvaluationFarFromOriginKeepsPrecision) {
