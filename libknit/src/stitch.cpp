@@ -4,6 +4,10 @@
 #include <cassert>
 #include <optional>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
+
 namespace knit {
 namespace {
 
@@ -52,9 +56,8 @@ UvYarns stitchYarns(const Pattern& pattern, const PatternAdjacency& adj, const T
     const Walker walker{pattern, adj, tiling, n};
     const glm::dvec2 toUv(1.0 / (placement.repeats.x * pattern.px), 1.0 / (placement.repeats.y * pattern.py));
 
-    out.uv.reserve(total);
-    out.height.reserve(total);
-    out.twist.reserve(total);
+    // The walk (serial) records only the order of the tiled vertex ids (`source`); their uv,
+    // height and twist are filled in afterwards, in parallel.
     out.source.reserve(total);
     std::vector<uint8_t> visited(total, 0);
 
@@ -73,10 +76,6 @@ UvYarns stitchYarns(const Pattern& pattern, const PatternAdjacency& adj, const T
         return g;
     };
     auto emit = [&](uint64_t id) {
-        const uint32_t k = uint32_t(id / n), v = uint32_t(id % n);
-        out.uv.push_back(uvOf(tiling.tiles[k], v));
-        out.height.push_back(pattern.points[v].z * placement.scale);
-        out.twist.push_back(pattern.twist[v]);
         out.source.push_back(uint32_t(id));
         visited[id] = 1;
     };
@@ -103,7 +102,7 @@ UvYarns stitchYarns(const Pattern& pattern, const PatternAdjacency& adj, const T
     };
 
     auto finishYarn = [&](bool closed, GhostVertex startGhost) {
-        out.offsets.push_back(uint32_t(out.uv.size()));
+        out.offsets.push_back(uint32_t(out.source.size()));
         out.closed.push_back(closed ? 1 : 0);
         out.ghosts.push_back({closed ? GhostVertex{} : startGhost, closed ? GhostVertex{} : endGhost});
     };
@@ -126,6 +125,18 @@ UvYarns stitchYarns(const Pattern& pattern, const PatternAdjacency& adj, const T
         const bool closed = walk(id, 0);
         finishYarn(closed, GhostVertex{});
     }
+    // 3. Per-vertex data of every walked id, in parallel.
+    const size_t count = out.source.size();
+    tbb::parallel_invoke([&] { out.uv.resize(count); }, [&] { out.height.resize(count); },
+                         [&] { out.twist.resize(count); });
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 16384), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t i = r.begin(); i != r.end(); ++i) {
+            const uint32_t id = out.source[i], k = id / n, v = id % n;
+            out.uv[i] = uvOf(tiling.tiles[k], v);
+            out.height[i] = pattern.points[v].z * placement.scale;
+            out.twist[i] = pattern.twist[v];
+        }
+    });
     return out;
 }
 
