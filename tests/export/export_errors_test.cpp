@@ -209,21 +209,7 @@ TEST(ExportScene, pliesOfASceneBuiltWithoutPliesAreGeneratedWhileWriting) {
     EXPECT_EQ(b.vertices, built.plies.curves.pointCount());
     EXPECT_GE(b.chunks, 3u);
     test::expectGltfValid(o.path);
-    const tinygltf::Model m = test::loadGltf(o.path);
-    size_t curve = 0;
-    double worst = 0;
-    for (const auto& inst : test::meshInstances(m)) {
-        for (const auto& p : m.meshes[size_t(inst.mesh)].primitives) {
-            ASSERT_LT(curve, built.plies.curves.curveCount());
-            const auto pos = test::worldPositions(m, p, inst.world);
-            const Polylines& c = built.plies.curves;
-            ASSERT_EQ(pos.size(), c.size(curve) + (c.isClosed(curve) ? 1 : 0)) << "curve " << curve;
-            for (size_t i = 0; i < c.size(curve); ++i)
-                worst = std::max(worst, glm::length(pos[i] - c.points[c.begin(curve) + i]));
-            ++curve;
-        }
-    }
-    EXPECT_EQ(curve, built.plies.curves.curveCount());
+    const double worst = test::worstCurveDeviation(test::loadGltf(o.path), built.plies.curves);
     EXPECT_LT(worst, 1e-3 * built.plies.plyRadius);  // float32 relative to each chunk's origin
 
     // Non-glTF formats generate the plies in full first: the same file as from the built plies.

@@ -192,19 +192,7 @@ TEST(GltfExport, planeHundredKilometresFromOriginKeepsSubMilliRadiusPrecision) {
     const ExportStats cs = write(c, radius, o);
     EXPECT_GE(cs.chunks, 2u);
     test::expectGltfValid(o.path);
-    const tinygltf::Model m = test::loadGltf(o.path);
-    double worst = 0;
-    size_t curve = 0;
-    for (const auto& inst : test::meshInstances(m)) {
-        for (const auto& p : m.meshes[size_t(inst.mesh)].primitives) {
-            const auto pos = test::worldPositions(m, p, inst.world);
-            EXPECT_EQ(pos.size(), c.size(curve));
-            for (size_t i = 0; i < c.size(curve) && i < pos.size(); ++i)
-                worst = std::max(worst, glm::length(pos[i] - c.points[c.begin(curve) + i]));
-            ++curve;
-        }
-    }
-    EXPECT_EQ(curve, c.curveCount());
+    const double worst = test::worstCurveDeviation(test::loadGltf(o.path), c);
     EXPECT_LT(worst, 1e-3 * radius);
 
     // Tubes: every side vertex = centre + radius * normal within 1e-3 yarn radii.

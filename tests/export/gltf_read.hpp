@@ -15,6 +15,8 @@
 #include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
+#include "knit/polylines.hpp"
+
 #include "export/test_curves.hpp"
 
 namespace knit::test {
@@ -135,6 +137,31 @@ inline std::vector<glm::dvec3> worldPositions(const tinygltf::Model& m, const ti
     for (size_t i = 0; i < out.size(); ++i)
         out[i] = glm::dvec3(world * glm::dvec4(v[3 * i], v[3 * i + 1], v[3 * i + 2], 1.0));
     return out;
+}
+
+// Largest distance between the curves of a curve export (one LINE_STRIP primitive per curve, in
+// file order; a closed curve repeats its first point) and the exported curves `c`. Adds a test
+// failure when the curve or point counts differ.
+inline double worstCurveDeviation(const tinygltf::Model& m, const Polylines& c) {
+    double worst = 0;
+    size_t curve = 0;
+    for (const MeshInstance& inst : meshInstances(m)) {
+        for (const tinygltf::Primitive& p : m.meshes[size_t(inst.mesh)].primitives) {
+            if (curve >= c.curveCount()) {
+                ADD_FAILURE() << "more curves in the file than exported (" << c.curveCount() << ")";
+                return worst;
+            }
+            const std::vector<glm::dvec3> pos = worldPositions(m, p, inst.world);
+            const size_t n = c.size(curve);
+            EXPECT_EQ(pos.size(), n + (c.isClosed(curve) ? 1 : 0)) << "curve " << curve;
+            for (size_t i = 0; i < n && i < pos.size(); ++i)
+                worst = std::max(worst, glm::length(pos[i] - c.points[c.begin(curve) + i]));
+            if (c.isClosed(curve) && pos.size() == n + 1) EXPECT_EQ(pos.front(), pos.back()) << "curve " << curve;
+            ++curve;
+        }
+    }
+    EXPECT_EQ(curve, c.curveCount());
+    return worst;
 }
 
 // A container-level reader independent of tinygltf (tinygltf 2.7 without Draco support rejects
