@@ -12,6 +12,7 @@
 #include "export/test_curves.hpp"
 #include "knit/error.hpp"
 #include "knit/export.hpp"
+#include "knit/plies.hpp"
 #include "knit/sweep.hpp"
 
 namespace knit {
@@ -306,6 +307,67 @@ TEST(GltfExport, emptyCurveSetWritesValidEmptyScene) {
     const ExportStats s = write(c, 0.001, o);
     EXPECT_EQ(s.vertices, 0u);
     test::expectGltfValid(o.path);
+}
+
+// Plies streamed from a PlyGenerator: the file depends on neither the thread count nor the
+// pipeline's timing (chunks are written in order), and yarns without plies are skipped.
+TEST(GltfExport, streamedPliesAreTheSameFileForAnyThreadCount) {
+    const std::string dir = test::scratchDir("gltf_streamed_threads");
+    MappedYarns yarns;
+    yarns.curves = test::planeRows(12, 90, 0.0015, glm::dvec3(2, 1, -1), 0.001);
+    const auto loop = test::circle(40, 0.01, glm::dvec3(2, 1.1, -1));
+    yarns.curves.addCurve(loop.data(), loop.size(), true);
+    const glm::dvec3 lone(5, 5, 5);
+    yarns.curves.addCurve(&lone, 1, false);  // one point: no plies
+    yarns.normals.assign(yarns.curves.pointCount(), glm::dvec3(0, 0, 1));
+    PlyOptions po;
+    po.count = 3;
+    po.yarnRadius = 0.0004;
+    const PlyGenerator gen(yarns, po);
+    ExportInput in;
+    in.plies = &gen;
+    in.radius = gen.options().plyRadius;
+    ExportOptions o;
+    o.what = ExportWhat::Plies;
+    o.chunkVertices = 700;  // many chunks in flight
+    o.path = dir + "/one.glb";
+    {
+        tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+        exportCurves(in, o);
+    }
+    o.path = dir + "/all.glb";
+    const ExportStats s = exportCurves(in, o);
+    EXPECT_EQ(s.curves, 13u * 3u);
+    EXPECT_GE(s.chunks, 5u);
+    EXPECT_EQ(test::readBytes(dir + "/one.glb"), test::readBytes(dir + "/all.glb"));
+    test::expectGltfValid(o.path);
+    const Plies all = makePlies(gen);
+    EXPECT_EQ(s.vertices, all.curves.pointCount());
+    EXPECT_LT(test::worstCurveDeviation(test::loadGltf(o.path), all.curves), 1e-3 * all.plyRadius);
+}
+
+TEST(GltfExport, streamedPliesOfNoYarnsWriteAValidEmptyScene) {
+    const std::string dir = test::scratchDir("gltf_streamed_empty");
+    MappedYarns none, degenerate;
+    const glm::dvec3 p(1, 2, 3);
+    degenerate.curves.addCurve(&p, 1, false);
+    for (const MappedYarns* yarns : {&none, &degenerate}) {
+        PlyOptions po;
+        po.yarnRadius = 0.001;
+        const PlyGenerator gen(*yarns, po);
+        ExportInput in;
+        in.plies = &gen;
+        in.radius = gen.options().plyRadius;
+        for (const char* name : {"/empty.glb", "/empty.gltf"}) {
+            ExportOptions o;
+            o.what = ExportWhat::Plies;
+            o.path = dir + name;
+            const ExportStats s = exportCurves(in, o);
+            EXPECT_EQ(s.curves, 0u);
+            EXPECT_EQ(s.vertices, 0u);
+            test::expectGltfValid(o.path);
+        }
+    }
 }
 
 }  // namespace
