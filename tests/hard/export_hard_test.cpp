@@ -39,51 +39,76 @@ const char* kExtensions[] = {".obj", ".ply", ".bcc", ".pbrt", ".gltf", ".glb"};
 Scene smallScene() { return buildScene(generateStockinette(), flatSquare(4, 0.02), withRepeats(3, 3)); }
 
 TEST_F(ExportHard, unwritablePathsThrowNamingThePathAndLeaveNothing) {
-    const Scene scene = smallScene();
     std::ofstream(dir / "afile") << "x";
     fs::create_directories(dir / "adir");
-    for (const char* ext : kExtensions)
-        for (const ExportWhat what : {ExportWhat::Yarns, ExportWhat::Plies, ExportWhat::Tubes}) {
-            for (const fs::path& target : {dir / "no" / "such" / (std::string("out") + ext), dir / "afile" / (std::string("out") + ext),
-                                           dir / "adir"}) {
-                ExportOptions o;
-                o.path = target.string();
-                o.what = what;
-                const size_t before = fileCount();
-                try {
-                    exportScene(scene, o);
-                    ADD_FAILURE() << "exported to " << o.path;
-                } catch (const Error& e) {
-                    EXPECT_NE(std::string(e.what()).find(o.path), std::string::npos) << e.what();
-                } catch (const std::exception& e) {
-                    ADD_FAILURE() << o.path << ": non-knit exception " << e.what();
+    // With plies built, and without (plies generated while writing: streamed into glTF).
+    for (const Scene& scene : {smallScene(), buildScene(generateStockinette(), flatSquare(4, 0.02), withRepeats(3, 3, false))}) {
+        for (const char* ext : kExtensions)
+            for (const ExportWhat what : {ExportWhat::Yarns, ExportWhat::Plies, ExportWhat::Tubes}) {
+                for (const fs::path& target : {dir / "no" / "such" / (std::string("out") + ext), dir / "afile" / (std::string("out") + ext),
+                                               dir / "adir"}) {
+                    ExportOptions o;
+                    o.path = target.string();
+                    o.what = what;
+                    const size_t before = fileCount();
+                    try {
+                        exportScene(scene, o);
+                        ADD_FAILURE() << "exported to " << o.path;
+                    } catch (const Error& e) {
+                        EXPECT_NE(std::string(e.what()).find(o.path), std::string::npos) << e.what();
+                    } catch (const std::exception& e) {
+                        ADD_FAILURE() << o.path << ": non-knit exception " << e.what();
+                    }
+                    EXPECT_EQ(fileCount(), before) << o.path;
+                    EXPECT_TRUE(fs::is_directory(dir / "adir"));
                 }
-                EXPECT_EQ(fileCount(), before) << o.path;
-                EXPECT_TRUE(fs::is_directory(dir / "adir"));
             }
-        }
+    }
 }
 
 TEST_F(ExportHard, sceneWithNothingToExportGivesAnEmptyFileOrAnError) {
-    // A UV island smaller than a stitch: no yarn survives.
-    const Scene scene = buildScene(generateStockinette(), flatSquare(2, 1e-4), withRepeats(0.01, 0.01));
-    ASSERT_EQ(scene.yarns.curves.pointCount(), 0u);
-    for (const char* ext : kExtensions)
-        for (const ExportWhat what : {ExportWhat::Yarns, ExportWhat::Plies, ExportWhat::Tubes}) {
-            ExportOptions o;
-            o.path = (dir / (std::string("empty") + ext)).string();
-            o.what = what;
-            try {
-                const ExportStats st = exportScene(scene, o);
-                EXPECT_EQ(st.curves, 0u) << o.path;
-                EXPECT_TRUE(fs::exists(o.path)) << o.path;
-            } catch (const Error& e) {
-                EXPECT_FALSE(fs::exists(o.path)) << e.what();
-            } catch (const std::exception& e) {
-                ADD_FAILURE() << o.path << ": non-knit exception " << e.what();
+    // A UV island smaller than a stitch: no yarn survives (with plies built, and without).
+    for (const bool plies : {true, false}) {
+        const Scene scene = buildScene(generateStockinette(), flatSquare(2, 1e-4), withRepeats(0.01, 0.01, plies));
+        ASSERT_EQ(scene.yarns.curves.pointCount(), 0u);
+        for (const char* ext : kExtensions)
+            for (const ExportWhat what : {ExportWhat::Yarns, ExportWhat::Plies, ExportWhat::Tubes}) {
+                ExportOptions o;
+                o.path = (dir / (std::string("empty") + ext)).string();
+                o.what = what;
+                try {
+                    const ExportStats st = exportScene(scene, o);
+                    EXPECT_EQ(st.curves, 0u) << o.path;
+                    EXPECT_TRUE(fs::exists(o.path)) << o.path;
+                } catch (const Error& e) {
+                    EXPECT_FALSE(fs::exists(o.path)) << e.what();
+                } catch (const std::exception& e) {
+                    ADD_FAILURE() << o.path << ": non-knit exception " << e.what();
+                }
+                fs::remove(o.path);
             }
-            fs::remove(o.path);
+    }
+}
+
+// A failure in the middle of a streamed export (here: a generated chunk larger than the buffer
+// limit, known only once it is generated) stops the pipeline with knit::Error and leaves no file.
+TEST_F(ExportHard, failureInsideTheStreamedPipelineLeavesNoFile) {
+    const Scene scene = buildScene(generateStockinette(), flatSquare(4, 0.02), withRepeats(6, 6, false));
+    for (const char* ext : {".glb", ".gltf"}) {
+        ExportOptions o;
+        o.path = (dir / (std::string("big") + ext)).string();
+        o.what = ExportWhat::Plies;
+        o.maxBufferBytes = 4096;  // smaller than one chunk
+        try {
+            exportScene(scene, o);
+            ADD_FAILURE() << "exported " << o.path;
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find("--chunk-vertices"), std::string::npos) << e.what();
+        } catch (const std::exception& e) {
+            ADD_FAILURE() << o.path << ": non-knit exception " << e.what();
         }
+        EXPECT_EQ(fileCount(), 0u) << o.path;
+    }
 }
 
 TEST_F(ExportHard, farFromOriginObjCurvesKeepDoublePrecision) {
