@@ -56,6 +56,9 @@ struct ExportOptions {
 
     // Chunking: at most this many tube vertices (tubes) or curve points (curves) per chunk;
     // 0 = auto: 1M (2^20), or 256k (2^18) with Draco, whose encoder needs ~0.5 KB per vertex.
+    // Streamed plies are planned per yarn from a lower bound of their point count (resampling
+    // adds a few percent on curved yarns), so their chunks may exceed it slightly; a curve or
+    // yarn longer than the limit gets a chunk of its own.
     size_t chunkVertices = 0;
     // Largest glTF buffer (and GLB BIN chunk); data beyond it goes to further buffers.
     uint64_t maxBufferBytes = 0xE0000000ull;  // 3.5 GiB: leaves room for the GLB JSON chunk
