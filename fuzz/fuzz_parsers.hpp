@@ -84,28 +84,44 @@ private:
     std::string path_;
 };
 
-// Mesh bytes written to a temp file with the format's extension (.obj, .ply, .off) -> loadMesh; on
-// success the mesh is validated, its normals and UV scale computed and a UV grid built (capped
-// at 2^16 cells, larger grids are rejected with knit::Error).
+// A loaded mesh through the cheap downstream steps: validation, normals, UV scale, a UV grid
+// (capped at 2^16 cells, larger grids are rejected with knit::Error) and one point location.
+inline void checkMesh(const BaseMesh& m) {
+    validateMesh(m);
+    vertexNormals(m.positions, m.faces);
+    const glm::dvec2 scale = uvToMetreScale(m);
+    (void)scale;
+    UvGridOptions o;
+    o.cellSize = glm::dvec2(1.0 / 8);
+    o.maxCells = 1 << 16;
+    const UvGrid grid = buildUvGrid(m, o);
+    locatePoint(m, grid, glm::dvec2(0.5), 1e-3);
+}
+
+// Mesh bytes written to a temp file with the format's extension (.obj, .ply, .off) -> loadMesh,
+// then checkMesh.
 inline Outcome runMesh(const uint8_t* data, size_t size, TempFile& file) {
     if (size > kMaxInput) return Outcome::Rejected;
     const std::string& path = file.write(data, size);
     try {
-        const BaseMesh m = loadMesh(path);
-        validateMesh(m);
-        vertexNormals(m.positions, m.faces);
-        const glm::dvec2 scale = uvToMetreScale(m);
-        (void)scale;
-        UvGridOptions o;
-        o.cellSize = glm::dvec2(1.0 / 8);
-        o.maxCells = 1 << 16;
-        const UvGrid grid = buildUvGrid(m, o);
-        locatePoint(m, grid, glm::dvec2(0.5), 1e-3);
+        checkMesh(loadMesh(path));
         return Outcome::Parsed;
     } catch (const Error&) {
         return Outcome::Rejected;
     }
 }
+
+// glTF (JSON or GLB) from memory, external files refused -> parseGltfMesh, then checkMesh.
+inline Outcome runGltf(const uint8_t* data, size_t size) {
+    if (size > kMaxInput) return Outcome::Rejected;
+    try {
+        checkMesh(parseGltfMesh(std::string(reinterpret_cast<const char*>(data), size), "fuzz.gltf", ""));
+        return Outcome::Parsed;
+    } catch (const Error&) {
+        return Outcome::Rejected;
+    }
+}
+
 inline Outcome runObj(const uint8_t* data, size_t size) {
     static TempFile file(".obj");
     return runMesh(data, size, file);

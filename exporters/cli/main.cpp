@@ -31,7 +31,7 @@ struct SceneFlags {
 };
 
 const char* kSceneHelp = R"(Scene: a pattern (.pyp file, .json curves file, or built-in name) tiled over a
-base mesh (.obj/.ply/.off with UVs, or built-in name). Alignment: with --repeats U V, pattern
+base mesh (.obj/.ply/.off/.gltf/.glb with UVs, or built-in name). Alignment: with --repeats U V, pattern
 point (x, y) of tile (i, j) lands at uv ((x + i px)/(U px), (y + j py)/(V py)); the pattern's
 origin is uv (0,0). Heights and radii scale with the period. Without --repeats the pattern keeps
 its physical size (the mesh's area-weighted metres per UV unit).)";
@@ -41,7 +41,7 @@ void addSceneFlags(CLI::App* cmd, SceneFlags& f) {
     for (const auto& n : knit::builtinPatternNames()) patterns += (patterns.empty() ? "" : ", ") + n;
     for (const auto& n : knit::builtinMeshNames()) meshes += (meshes.empty() ? "" : ", ") + n;
     cmd->add_option("--pattern", f.scene.pattern, "Pattern file (.pyp, .json curves) or built-in: " + patterns)->capture_default_str();
-    cmd->add_option("--mesh", f.scene.mesh, "Base mesh file (.obj, .ply, .off; needs UVs) or built-in: " + meshes)->capture_default_str();
+    cmd->add_option("--mesh", f.scene.mesh, "Base mesh file (.obj, .ply, .off, .gltf, .glb; needs UVs; glTF v is flipped to OBJ convention) or built-in: " + meshes)->capture_default_str();
     cmd->add_option("--repeats", f.repeats, "Pattern periods across u in [0,1] and v in [0,1] (default: physical size)")->expected(2);
     cmd->add_option("--mesh-res", f.meshRes, "Quads per side of built-in meshes (default 32)")->check(CLI::Range(1, 4096));
     cmd->add_option("--plies", f.scene.plies.count, "Plies per yarn")->capture_default_str()->check(CLI::Range(1, 16));

@@ -1,4 +1,5 @@
-// mesh_io.cpp — loadMesh: OBJ / PLY / OFF through OpenMesh's readers into a BaseMesh.
+// mesh_io.cpp — loadMesh: OBJ / PLY / OFF through OpenMesh's readers into a BaseMesh (glTF is
+// read by mesh_gltf.cpp).
 //
 // How the files are read (facts checked against OpenMesh 9.0, the Debian package):
 //  * Dispatch is by the file's extension, case-insensitive: .obj, .ply, .off (anything else is
@@ -42,6 +43,7 @@
 //    are serialized by a mutex here.
 #include "knit/base_mesh.hpp"
 #include "knit/error.hpp"
+#include "mesh_weld.hpp"
 
 #include <OpenMesh/Core/IO/Options.hh>
 #include <OpenMesh/Core/IO/importer/BaseImporter.hh>
@@ -628,16 +630,6 @@ bool customVertexScalar(OpenMesh::ArrayKernel& k, const std::string& name, size_
     return false;
 }
 
-// Exact-key hash for welding (keys hold +0 instead of -0, and no NaN: checked before).
-struct Key3Hash {
-    size_t operator()(const std::array<double, 3>& k) const {
-        size_t h = 1469598103934665603ull;
-        for (double d : k) h = (h ^ std::hash<double>()(d)) * 1099511628211ull;
-        return h;
-    }
-};
-using Key3Map = std::unordered_map<std::array<double, 3>, uint32_t, Key3Hash>;
-
 // Fan-triangulated, welded BaseMesh from what the reader recorded.
 BaseMesh buildMesh(const std::string& path, const RecordingImporter& rec, const std::vector<glm::dvec3>& points,
                    const std::vector<glm::dvec2>& vertexUv, bool cornerUvs, const std::vector<size_t>* faceLines,
@@ -673,54 +665,10 @@ BaseMesh buildMesh(const std::string& path, const RecordingImporter& rec, const 
         if (cornerUvs && (rec.faceCornerUvMismatch[f] || !rec.faceHasCornerUv[f]))
             fail(path, faceName(f) + ": texture coordinates missing or not one per corner");
     }
-    // Weld (or just compact) referenced positions, in file order.
-    std::vector<char> used(nv, 0);
-    for (int v : rec.faceVerts) used[v] = 1;
-    BaseMesh mesh;
-    mesh.name = path;
-    std::vector<uint32_t> remap(nv, 0);
-    Key3Map welded;
-    for (size_t i = 0; i < nv; ++i) {
-        if (!used[i]) continue;
-        const glm::dvec3 p = points[i] + glm::dvec3(0.0);  // -0 + 0 = +0: -0 and +0 weld
-        if (options.weldEqualPositions) {
-            auto [it, inserted] = welded.emplace(std::array<double, 3>{p.x, p.y, p.z}, uint32_t(mesh.positions.size()));
-            if (inserted) mesh.positions.push_back(p);
-            remap[i] = it->second;
-        } else {
-            remap[i] = uint32_t(mesh.positions.size());
-            mesh.positions.push_back(p);
-        }
-    }
-    // UV vertices: one per distinct (welded position, uv), in first-use order; fan-triangulate.
-    Key3Map uvIndex;
-    auto uvOf = [&](uint32_t pos, glm::dvec2 uv) {
-        uv += glm::dvec2(0.0);
-        auto [it, inserted] = uvIndex.emplace(std::array<double, 3>{double(pos), uv.x, uv.y}, uint32_t(mesh.uvs.size()));
-        if (inserted) mesh.uvs.push_back(uv);
-        return it->second;
-    };
-    for (size_t f = 0; f < nf; ++f) {
-        const uint32_t b = rec.faceStart[f], e = rec.faceStart[f + 1];
-        uint32_t pi[64], ui[64];
-        std::vector<uint32_t> pBig, uBig;
-        uint32_t* P = pi;
-        uint32_t* U = ui;
-        if (e - b > 64) {
-            pBig.resize(e - b), uBig.resize(e - b);
-            P = pBig.data(), U = uBig.data();
-        }
-        for (uint32_t c = b; c < e; ++c) {
-            const int v = rec.faceVerts[c];
-            P[c - b] = remap[v];
-            U[c - b] = uvOf(remap[v], cornerUvs ? glm::dvec2(rec.cornerUv[c][0], rec.cornerUv[c][1]) : vertexUv[v]);
-        }
-        for (uint32_t k = 1; k + 1 < e - b; ++k) {
-            mesh.faces.emplace_back(P[0], P[k], P[k + 1]);
-            mesh.faceUvs.emplace_back(U[0], U[k], U[k + 1]);
-        }
-    }
-    return mesh;
+    // Weld and fan-triangulate.
+    return detail::weldPolygons(path, points, rec.faceStart, rec.faceVerts, [&](uint32_t c) {
+        return cornerUvs ? glm::dvec2(rec.cornerUv[c][0], rec.cornerUv[c][1]) : vertexUv[size_t(rec.faceVerts[c])];
+    }, options);
 }
 
 std::mutex& openMeshReaderMutex() {
@@ -737,8 +685,9 @@ BaseMesh loadMesh(const std::string& path, const MeshLoadOptions& options) {
     if (ec || !std::filesystem::exists(status)) fail(path, "no such file");
     if (std::filesystem::is_directory(status)) fail(path, "is a directory, not a mesh file");
     const std::string ext = lowerExtension(path);
+    if (ext == ".gltf" || ext == ".glb") return loadGltfMesh(path, options);
     if (ext != ".obj" && ext != ".ply" && ext != ".off")
-        fail(path, "unknown mesh file extension '" + ext + "' (supported: .obj, .ply, .off)");
+        fail(path, "unknown mesh file extension '" + ext + "' (supported: .obj, .ply, .off, .gltf, .glb)");
     if (!std::ifstream(path, std::ios::binary)) fail(path, "cannot open for reading");
 
     // Pre-scan what OpenMesh would accept silently.

@@ -4,8 +4,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <sys/wait.h>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -80,6 +82,70 @@ TEST_F(Cli, cylinderWithIntegralRepeatsGivesClosedCourses) {
         sawClosed = sawClosed || (idx.size() > 2 && idx.front() == idx.back());
     }
     EXPECT_TRUE(sawClosed);
+}
+
+// The same asset as OBJ and as glTF (v flipped, as glTF stores it) gives the same knit, byte for
+// byte: the glTF reader is used by the CLI, which also loads Draco (whose library carries its
+// own copy of tinygltf's symbols).
+TEST_F(Cli, gltfBaseMeshGivesTheSameKnitAsItsObj) {
+    const int n = 8;  // an n x n grid of quads, 0.5 m, gently curved; coordinates exact in float
+    std::ostringstream obj;
+    std::vector<float> pos, uv;
+    std::vector<uint32_t> idx;
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) {
+            const float x = 0.0625f * float(i), y = 0.0625f * float(j), z = 0.015625f * float((i * j) % 3);
+            obj << "v " << x << ' ' << y << ' ' << z << "\nvt " << float(i) / n << ' ' << float(j) / n << '\n';
+            pos.insert(pos.end(), {x, y, z});
+            uv.insert(uv.end(), {float(i) / n, 1.0f - float(j) / n});
+        }
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            const uint32_t a = uint32_t(j * (n + 1) + i), b = a + 1, c = a + uint32_t(n) + 2, d = a + uint32_t(n) + 1;
+            obj << "f " << a + 1 << '/' << a + 1 << ' ' << b + 1 << '/' << b + 1 << ' ' << c + 1 << '/' << c + 1 << "\n";
+            obj << "f " << a + 1 << '/' << a + 1 << ' ' << c + 1 << '/' << c + 1 << ' ' << d + 1 << '/' << d + 1 << "\n";
+            idx.insert(idx.end(), {a, b, c, a, c, d});
+        }
+    write("grid.obj", obj.str());
+    // glTF: positions, texcoords and indices in one external buffer.
+    std::string bin(reinterpret_cast<const char*>(pos.data()), pos.size() * 4);
+    const size_t uvAt = bin.size();
+    bin.append(reinterpret_cast<const char*>(uv.data()), uv.size() * 4);
+    const size_t idxAt = bin.size();
+    bin.append(reinterpret_cast<const char*>(idx.data()), idx.size() * 4);
+    std::ofstream(dir / "grid.bin", std::ios::binary) << bin;
+    const size_t nv = pos.size() / 3;
+    const nlohmann::json gltf = {
+        {"asset", {{"version", "2.0"}}},
+        {"scene", 0},
+        {"scenes", {{{"nodes", {0}}}}},
+        {"nodes", {{{"mesh", 0}}}},
+        {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 1}}}, {"indices", 2}}}}}}},
+        {"buffers", {{{"byteLength", bin.size()}, {"uri", "grid.bin"}}}},
+        {"bufferViews", {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", uvAt}},
+                         {{"buffer", 0}, {"byteOffset", uvAt}, {"byteLength", idxAt - uvAt}},
+                         {{"buffer", 0}, {"byteOffset", idxAt}, {"byteLength", bin.size() - idxAt}}}},
+        {"accessors", {{{"bufferView", 0}, {"componentType", 5126}, {"type", "VEC3"}, {"count", nv},
+                        {"min", {0, 0, 0}}, {"max", {0.5, 0.5, 0.03125}}},
+                       {{"bufferView", 1}, {"componentType", 5126}, {"type", "VEC2"}, {"count", nv}},
+                       {{"bufferView", 2}, {"componentType", 5125}, {"type", "SCALAR"}, {"count", idx.size()}}}}};
+    write("grid.gltf", gltf.dump());
+    const CliRun a = knit("build -q --mesh grid.obj --repeats 6 6 --export yarns -o from_obj.obj", dir);
+    ASSERT_EQ(a.exitCode, 0) << a.output;
+    const CliRun b = knit("build -q --mesh grid.gltf --repeats 6 6 --export yarns -o from_gltf.obj", dir);
+    ASSERT_EQ(b.exitCode, 0) << b.output;
+    auto text = [&](const char* f) {
+        std::ifstream in(dir / f);
+        return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    };
+    EXPECT_GT(text("from_gltf.obj").size(), 1000u);
+    EXPECT_EQ(text("from_obj.obj"), text("from_gltf.obj"));
+    // A glTF without texture coordinates: a clear error, no output.
+    write("bare.gltf", R"({"asset":{"version":"2.0"},"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}]})");
+    const CliRun c = knit("build -q --mesh bare.gltf -o never.obj", dir);
+    EXPECT_EQ(c.exitCode, 1);
+    EXPECT_NE(c.output.find("bare.gltf: mesh 0 primitive 0 has no TEXCOORD_0"), std::string::npos) << c.output;
+    EXPECT_FALSE(fs::exists(dir / "never.obj"));
 }
 
 TEST_F(Cli, infoPrintsPatternFacts) {

@@ -62,6 +62,7 @@ TEST(FuzzCorpus, curvesJsonCorpusParsesOrThrowsKnitError) { replay("curves_json"
 TEST(FuzzCorpus, objCorpusParsesOrThrowsKnitError) { replay("obj", runObj); }
 TEST(FuzzCorpus, plyCorpusParsesOrThrowsKnitError) { replay("ply", runPly); }
 TEST(FuzzCorpus, offCorpusParsesOrThrowsKnitError) { replay("off", runOff); }
+TEST(FuzzCorpus, gltfCorpusParsesOrThrowsKnitError) { replay("gltf", runGltf); }
 #ifdef KNIT_FUZZ_HAVE_RENDER_CHECK
 TEST(FuzzCorpus, materialCorpusParsesOrThrowsKnitError) { replay("material", runMaterial); }
 #endif

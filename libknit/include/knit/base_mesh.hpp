@@ -42,9 +42,19 @@ struct MeshLoadOptions {
 };
 
 // Reads OBJ (with vt), PLY (with per-vertex u,v / s,t / texcoord) or OFF (with texture coords)
-// through OpenMesh; polygons are fan-triangulated. Throws knit::Error naming the file when it
-// cannot be read, is empty, has no UVs, or has NaN/Inf coordinates.
+// through OpenMesh, or glTF 2.0 (.gltf / .glb, TEXCOORD_0; src/mesh_gltf.cpp); polygons are
+// fan-triangulated. Throws knit::Error naming the file when it cannot be read, is empty, has no
+// UVs, or has NaN/Inf coordinates.
 BaseMesh loadMesh(const std::string& path, const MeshLoadOptions& options = {});
+
+// glTF 2.0 base meshes (src/mesh_gltf.cpp has the details): the triangle primitives of the
+// default scene with their node transforms; uv = (u, 1 - v) of TEXCOORD_0, because glTF's
+// texture origin is the top-left corner and libknit's (like OBJ's) the bottom-left.
+BaseMesh loadGltfMesh(const std::string& path, const MeshLoadOptions& options = {});
+// The same from memory (GLB when `bytes` starts with "glTF", else JSON); external buffers are
+// read relative to `baseDir` (empty: external files are refused). `name` is used in messages.
+BaseMesh parseGltfMesh(const std::string& bytes, const std::string& name, const std::string& baseDir,
+                       const MeshLoadOptions& options = {});
 
 // Built-in procedural meshes; all have UVs in [0,1]^2.
 struct ProceduralMeshOptions {

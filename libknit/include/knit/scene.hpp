@@ -23,7 +23,7 @@ using ProgressFn = std::function<void(const std::string& stage, int index, int t
 
 struct SceneOptions {
     std::string pattern = "stockinette";  // file (.pyp / .json) or built-in name
-    std::string mesh = "drape";           // file (.obj / .ply / .off) or built-in name
+    std::string mesh = "drape";           // file (.obj / .ply / .off / .gltf / .glb) or built-in name
     ProceduralMeshOptions meshOptions;    // for built-in meshes
     PlacementOptions placement;
     BindOptions bind;                     // yarnRadius is set from the pattern and placement
