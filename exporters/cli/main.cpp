@@ -87,6 +87,18 @@ void writeReport(const std::string& path, const nlohmann::json& report) {
     knit::writeFileAtomically(path, [&](std::ostream& out) { out << report.dump(2) << '\n'; }, false);
 }
 
+// What the user should know about a built scene that is not an error.
+void printWarnings(const knit::Scene& s) {
+    if (s.grid.overlappingCharts.empty()) return;
+    std::string pairs;
+    for (const glm::uvec2& p : s.grid.overlappingCharts)
+        pairs += (pairs.empty() ? "" : ", ") + std::to_string(p.x) + "/" + std::to_string(p.y);
+    std::fprintf(stderr,
+                 "knit: warning: %s: UV charts overlap (%s); where they do, the knit lies on the lower-numbered "
+                 "chart only (docs/hard-cases.md)\n",
+                 s.mesh.name.c_str(), pairs.c_str());
+}
+
 // glTF / GLB ply curves are generated while writing (streamed): the scene is built without them.
 bool streamsPlies(const knit::ExportOptions& o) {
     std::string ext = std::filesystem::path(o.path).extension().string();
@@ -220,6 +232,7 @@ int main(int argc, char** argv) {
             const bool streamed = streamsPlies(exportOptions);
             options.buildPlies = exportOptions.what != knit::ExportWhat::Yarns && !streamed;
             const knit::Scene scene = knit::buildScene(options);
+            printWarnings(scene);
             const knit::ExportStats stats = knit::exportScene(scene, exportOptions);
             if (!buildReport.empty()) {
                 const nlohmann::json report = buildReportJson(scene, stats, streamed);
@@ -237,6 +250,7 @@ int main(int argc, char** argv) {
         if (*render) {
             renderOptions.progress = renderOptions.progress && !renderFlags.quiet;
             const knit::Scene scene = knit::buildScene(resolveScene(renderFlags));
+            printWarnings(scene);
             const knit::RenderResult result = knit::renderScene(scene, renderOptions);
             const nlohmann::json report = knit::renderReport(result);
             if (!renderReportPath.empty()) writeReport(renderReportPath, report);

@@ -130,7 +130,10 @@ nlohmann::json sceneReport(const Scene& s) {
                  {"vertices", s.mesh.positions.size()},
                  {"uvs", s.mesh.uvs.size()},
                  {"faces", s.mesh.faces.size()},
-                 {"degenerate_uv_faces", s.grid.degenerateUvFaces}};
+                 {"degenerate_uv_faces", s.grid.degenerateUvFaces},
+                 {"uv_charts", s.grid.chartCount},
+                 {"overlapping_uv_charts", nlohmann::json::array()}};
+    for (const glm::uvec2& pair : s.grid.overlappingCharts) j["mesh"]["overlapping_uv_charts"].push_back({pair.x, pair.y});
     j["placement"] = {{"repeats", {s.placement.repeats.x, s.placement.repeats.y}},
                       {"scale", s.placement.scale},
                       {"yarn_radius", s.yarnRadius}};

@@ -74,6 +74,59 @@ struct UnionFind {
     }
 };
 
+// Whether the interiors of two non-degenerate UV triangles overlap, exactly: they do not iff some
+// edge line of one has the other triangle entirely on its far side (closed: touching along an
+// edge or at a vertex is not an overlap). For two triangles the edge lines are the only
+// separating lines that need testing.
+bool interiorsOverlap(const glm::dvec2 s[3], int so, const glm::dvec2 t[3], int to) {
+    auto separates = [](const glm::dvec2 a[3], int o, const glm::dvec2 b[3]) {
+        for (int e = 0; e < 3; ++e) {
+            const glm::dvec2 p = a[e], q = a[(e + 1) % 3];
+            if (filteredOrientation(p, q, b[0]) * o <= 0 && filteredOrientation(p, q, b[1]) * o <= 0 &&
+                filteredOrientation(p, q, b[2]) * o <= 0)
+                return true;
+        }
+        return false;
+    };
+    return !separates(s, so, t) && !separates(t, to, s);
+}
+
+// Pairs (a < b) of UV charts whose triangles overlap in UV (tested only where two charts share a
+// grid cell, each chart pair until its first overlap), sorted.
+std::vector<glm::uvec2> overlappingChartPairs(const BaseMesh& mesh, const UvGrid& grid) {
+    std::vector<glm::uvec2> pairs;
+    if (grid.chartCount < 2) return pairs;
+    auto known = [&](uint32_t a, uint32_t b) {
+        return std::find(pairs.begin(), pairs.end(), glm::uvec2(std::min(a, b), std::max(a, b))) != pairs.end();
+    };
+    auto corners = [&](uint32_t f, glm::dvec2 out[3]) {
+        const glm::uvec3 t = mesh.faceUvs[f];
+        out[0] = mesh.uvs[t.x];
+        out[1] = mesh.uvs[t.y];
+        out[2] = mesh.uvs[t.z];
+    };
+    for (size_t c = 0; c < grid.cells.size(); ++c) {
+        const uint32_t b = grid.triOffsets[c], e = grid.triOffsets[c + 1];
+        bool mixed = false;
+        for (uint32_t i = b + 1; i < e && !mixed; ++i)
+            mixed = grid.chartOfFace[grid.triangles[i]] != grid.chartOfFace[grid.triangles[b]];
+        if (!mixed) continue;
+        for (uint32_t i = b; i < e; ++i)
+            for (uint32_t j = i + 1; j < e; ++j) {
+                const uint32_t f = grid.triangles[i], g = grid.triangles[j];
+                const uint32_t cf = grid.chartOfFace[f], cg = grid.chartOfFace[g];
+                if (cf == cg || grid.faceOrientation[f] == 0 || grid.faceOrientation[g] == 0 || known(cf, cg)) continue;
+                glm::dvec2 s[3], t[3];
+                corners(f, s);
+                corners(g, t);
+                if (interiorsOverlap(s, grid.faceOrientation[f], t, grid.faceOrientation[g]))
+                    pairs.emplace_back(std::min(cf, cg), std::max(cf, cg));
+            }
+    }
+    std::sort(pairs.begin(), pairs.end(), [](glm::uvec2 x, glm::uvec2 y) { return x.x != y.x ? x.x < y.x : x.y < y.y; });
+    return pairs;
+}
+
 }  // namespace
 
 glm::ivec2 UvGrid::cellOf(glm::dvec2 uv) const {
@@ -196,8 +249,15 @@ UvGrid buildUvGrid(const BaseMesh& mesh, const UvGridOptions& options) {
     grid.boundaryEdges.reserve(cellEdge.size());
     for (const auto& ce : cellEdge) grid.boundaryEdges.push_back(ce.second);
 
+    // Charts numbered 0, 1, ... in the order of their lowest face.
     grid.chartOfFace.resize(nf);
-    for (size_t f = 0; f < nf; ++f) grid.chartOfFace[f] = charts.find(uint32_t(f));
+    std::vector<uint32_t> chartOfRoot(nf, UINT32_MAX);
+    for (size_t f = 0; f < nf; ++f) {
+        uint32_t& id = chartOfRoot[charts.find(uint32_t(f))];
+        if (id == UINT32_MAX) id = grid.chartCount++;
+        grid.chartOfFace[f] = id;
+    }
+    grid.overlappingCharts = overlappingChartPairs(mesh, grid);
     return grid;
 }
 

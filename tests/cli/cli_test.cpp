@@ -148,6 +148,28 @@ TEST_F(Cli, gltfBaseMeshGivesTheSameKnitAsItsObj) {
     EXPECT_FALSE(fs::exists(dir / "never.obj"));
 }
 
+// Overlapping UV charts are not an error, but the user is told (stderr and report).
+TEST_F(Cli, overlappingUvChartsAreReported) {
+    // Two 0.1 m squares, one above the other, with the same UVs (two charts).
+    write("stacked.obj",
+          "v 0 0 0\nv 0.1 0 0\nv 0.1 0.1 0\nv 0 0.1 0\nv 0 0 0.05\nv 0.1 0 0.05\nv 0.1 0.1 0.05\nv 0 0.1 0.05\n"
+          "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+          "f 1/1 2/2 3/3 4/4\nf 5/5 6/6 7/7 8/8\n");
+    const CliRun r = knit("build -q --mesh stacked.obj --repeats 4 4 --export yarns -o y.obj --report r.json", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("warning: stacked.obj: UV charts overlap (0/1)"), std::string::npos) << r.output;
+    std::ifstream in(dir / "r.json");
+    const nlohmann::json j = nlohmann::json::parse(in);
+    EXPECT_EQ(j["mesh"]["uv_charts"].get<int>(), 2);
+    EXPECT_EQ(j["mesh"]["overlapping_uv_charts"], nlohmann::json::parse("[[0, 1]]"));
+    // A single chart: no warning, an empty list.
+    const CliRun p = knit("build -q --mesh plane --repeats 4 4 --export yarns -o p.obj --report p.json", dir);
+    ASSERT_EQ(p.exitCode, 0) << p.output;
+    EXPECT_EQ(p.output.find("warning"), std::string::npos) << p.output;
+    std::ifstream pin(dir / "p.json");
+    EXPECT_TRUE(nlohmann::json::parse(pin)["mesh"]["overlapping_uv_charts"].empty());
+}
+
 TEST_F(Cli, infoPrintsPatternFacts) {
     const CliRun r = knit("info " + shared("stockinette.pyp"), dir);
     ASSERT_EQ(r.exitCode, 0) << r.output;

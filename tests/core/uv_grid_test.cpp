@@ -111,6 +111,54 @@ TEST(UvGrid, gridIsSparseAndConservative) {
         }
 }
 
+// Charts are numbered in the order of their lowest face, and pairs whose UV triangles overlap are
+// reported exactly: sharing an edge or a corner is not an overlap, a sliver of overlap is.
+TEST(UvGrid, overlappingChartsAreReportedTouchingOnesAreNot) {
+    // Unit square a (two triangles) and a copy b of it moved by `shift` in UV (own UV vertices,
+    // so a separate chart); positions far apart so only UV relations matter.
+    auto twoSquares = [](glm::dvec2 shift, double scaleB = 1.0) {
+        BaseMesh m;
+        m.name = "two-squares";
+        for (int k = 0; k < 2; ++k) {
+            const uint32_t p0 = uint32_t(m.positions.size()), t0 = uint32_t(m.uvs.size());
+            for (const glm::dvec2 c : {glm::dvec2(0, 0), glm::dvec2(1, 0), glm::dvec2(1, 1), glm::dvec2(0, 1)}) {
+                m.positions.emplace_back(c.x, c.y, 5.0 * k);
+                m.uvs.push_back(k == 0 ? c : shift + scaleB * c);
+            }
+            m.faces.emplace_back(p0, p0 + 1, p0 + 2);
+            m.faces.emplace_back(p0, p0 + 2, p0 + 3);
+            m.faceUvs.emplace_back(t0, t0 + 1, t0 + 2);
+            m.faceUvs.emplace_back(t0, t0 + 2, t0 + 3);
+        }
+        return m;
+    };
+    struct Case { glm::dvec2 shift; double scale; bool overlap; const char* what; };
+    const Case cases[] = {
+        {{1, 0}, 1, false, "sharing an edge"},
+        {{1, 1}, 1, false, "sharing a corner"},
+        {{3, 0}, 1, false, "apart"},
+        {{1 - 1e-12, 0}, 1, true, "a 1e-12 sliver"},
+        {{0, 0}, 1, true, "stacked"},
+        {{0.25, 0.25}, 0.5, true, "one inside the other"},
+        {{1, 0.5}, 1, false, "edge contact, shifted"},
+    };
+    for (const Case& c : cases) {
+        const UvGrid g = gridFor(twoSquares(c.shift, c.scale), 0.25);
+        EXPECT_EQ(g.chartCount, 2u) << c.what;
+        EXPECT_EQ(g.chartOfFace, (std::vector<uint32_t>{0, 0, 1, 1})) << c.what;
+        if (c.overlap) {
+            ASSERT_EQ(g.overlappingCharts.size(), 1u) << c.what;
+            EXPECT_EQ(g.overlappingCharts[0], glm::uvec2(0, 1)) << c.what;
+        } else {
+            EXPECT_TRUE(g.overlappingCharts.empty()) << c.what;
+        }
+    }
+    // One chart only (a plane): nothing to compare.
+    const UvGrid one = gridFor(test::planeMesh(test::Triangulation::Random, 6), 0.1);
+    EXPECT_EQ(one.chartCount, 1u);
+    EXPECT_TRUE(one.overlappingCharts.empty());
+}
+
 TEST(UvGrid, absurdRepeatsAreRefused) {
     const BaseMesh m = test::planeMesh(test::Triangulation::Regular, 2);
     UvGridOptions o;

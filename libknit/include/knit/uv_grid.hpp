@@ -27,7 +27,12 @@ struct UvGrid {
     std::vector<uint32_t> triangles;       // triangle ids, ascending per cell
     std::vector<uint32_t> edgeOffsets{0};  // per touched cell: range into boundaryEdges
     std::vector<uint32_t> boundaryEdges;   // UV boundary half-edges (3*face + corner), per cell
-    std::vector<uint32_t> chartOfFace;     // UV connected component of each face
+    std::vector<uint32_t> chartOfFace;     // UV chart (connected component) of each face, 0-based
+    uint32_t chartCount = 0;               // charts, numbered in the order of their lowest face
+    // Pairs (a < b) of charts whose UV triangles overlap (exact test; touching is no overlap).
+    // Where charts overlap, a point goes to the lowest-numbered triangle: the knit covers the
+    // lower-numbered chart only there (docs/hard-cases.md).
+    std::vector<glm::uvec2> overlappingCharts;
     std::vector<int8_t> faceOrientation;   // +1 counter-clockwise, -1 mirrored, 0 zero-area UV
     size_t degenerateUvFaces = 0;          // zero-area UV triangles (never own a point)
 
