@@ -87,15 +87,13 @@ void writeReport(const std::string& path, const nlohmann::json& report) {
     knit::writeFileAtomically(path, [&](std::ostream& out) { out << report.dump(2) << '\n'; }, false);
 }
 
-// What the user should know about a built scene that is not an error.
+// What the user should know about a built scene that is not an error (stderr).
 void printWarnings(const knit::Scene& s) {
     if (s.grid.overlappingCharts.empty()) return;
     std::string pairs;
     for (const glm::uvec2& p : s.grid.overlappingCharts)
         pairs += (pairs.empty() ? "" : ", ") + std::to_string(p.x) + "/" + std::to_string(p.y);
-    std::fprintf(stderr,
-                 "knit: warning: %s: UV charts overlap (%s); where they do, the knit lies on the lower-numbered "
-                 "chart only (docs/hard-cases.md)\n",
+    std::fprintf(stderr, "knit: note: %s: UV charts overlap (%s); each chart is tiled and knitted on its own\n",
                  s.mesh.name.c_str(), pairs.c_str());
 }
 

@@ -165,8 +165,9 @@ BindResult bindYarns(const BaseMesh& mesh, const std::vector<glm::dvec3>& normal
     if (yarns.offsets.size() != yarns.yarnCount() + 1 || yarns.offsets.front() != 0 ||
         yarns.offsets.back() != yarns.vertexCount() || !std::is_sorted(yarns.offsets.begin(), yarns.offsets.end()) ||
         yarns.height.size() != yarns.vertexCount() || yarns.twist.size() != yarns.vertexCount() ||
-        (!yarns.ghosts.empty() && yarns.ghosts.size() != yarns.yarnCount()))
-        throw Error("binding: inconsistent UvYarns (offsets, heights, twists or ghosts do not match the vertices)");
+        (!yarns.ghosts.empty() && yarns.ghosts.size() != yarns.yarnCount()) ||
+        (!yarns.chart.empty() && yarns.chart.size() != yarns.yarnCount()))
+        throw Error("binding: inconsistent UvYarns (offsets, heights, twists, ghosts or charts do not match the vertices)");
     BindResult result;
     BindStats& stats = result.stats;
     const size_t nv = yarns.vertexCount();
@@ -193,9 +194,17 @@ BindResult bindYarns(const BaseMesh& mesh, const std::vector<glm::dvec3>& normal
         std::vector<double> crossings;  // scratch for leavesChart
         for (size_t y = r.begin(); y != r.end(); ++y) {
             const size_t b = yarns.offsets[y], e = yarns.offsets[y + 1];
+            const uint32_t only = yarns.chart.empty() ? kAnyChart : yarns.chart[y];
             uint32_t hint = UINT32_MAX;
             for (size_t i = b; i < e; ++i) {
-                new (loc + i) LocateResult(locatePoint(mesh, grid, yarns.uv[i], tolUv, hint));
+                LocateResult r = locatePoint(mesh, grid, yarns.uv[i], tolUv, hint, only);
+                // A yarn tiled for one chart is not clamped onto it from inside another chart:
+                // that point belongs to the other chart's own yarns.
+                if (r.status == LocateStatus::Clamped && only != kAnyChart) {
+                    const LocateResult any = locatePoint(mesh, grid, yarns.uv[i], 0.0);
+                    if (any.status == LocateStatus::Inside && grid.chartOfFace[any.point.face] != only) r = LocateResult{};
+                }
+                new (loc + i) LocateResult(r);
                 hint = loc[i].status == LocateStatus::Inside ? loc[i].point.face : UINT32_MAX;
             }
             for (size_t i = b; i < e; ++i) {

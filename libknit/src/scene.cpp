@@ -55,7 +55,24 @@ nlohmann::json segmentStats(const Polylines& curves) {
 
 namespace {
 
+// The grid cells each UV chart touches (a cell shared by several charts is listed for each).
+std::vector<std::vector<glm::ivec2>> cellsPerChart(const UvGrid& grid) {
+    std::vector<std::vector<glm::ivec2>> cells(grid.chartCount);
+    std::vector<uint32_t> seen;
+    for (size_t k = 0; k < grid.cells.size(); ++k) {
+        seen.clear();
+        for (uint32_t i = grid.triOffsets[k]; i < grid.triOffsets[k + 1]; ++i) {
+            const uint32_t c = grid.chartOfFace[grid.triangles[i]];
+            if (std::find(seen.begin(), seen.end(), c) != seen.end()) continue;
+            seen.push_back(c);
+            cells[c].push_back(grid.cells[k]);
+        }
+    }
+    return cells;
+}
+
 void runStages(Scene& scene, const SceneOptions& options, StageClock& clock) {
+    std::vector<Tiling> chartTilings;  // one per UV chart when charts overlap
     clock.run("normals", [&] { scene.normals = vertexNormals(scene.mesh.positions, scene.mesh.faces); });
     clock.run("uv_grid", [&] {
         scene.placement = placePattern(scene.pattern, scene.mesh, options.placement);
@@ -71,9 +88,23 @@ void runStages(Scene& scene, const SceneOptions& options, StageClock& clock) {
         const double tolUv = options.bind.clampTolerance * scene.yarnRadius / std::max(metresPerUv.x, metresPerUv.y);
         const glm::dvec2 margin = tolUv * scene.placement.repeats * glm::dvec2(scene.pattern.px, scene.pattern.py);
         scene.tiling = tilesForCells(scene.pattern, scene.grid.cells, margin);
+        // Overlapping UV charts: each chart is also tiled over its own cells, so that each gets
+        // its own yarns (bound to that chart only).
+        if (!scene.grid.overlappingCharts.empty()) {
+            const std::vector<std::vector<glm::ivec2>> cells = cellsPerChart(scene.grid);
+            for (const std::vector<glm::ivec2>& c : cells) chartTilings.push_back(tilesForCells(scene.pattern, c, margin));
+        }
     });
     clock.run("stitch", [&] {
-        scene.uvYarns = stitchYarns(scene.pattern, buildAdjacency(scene.pattern), scene.tiling, scene.placement);
+        const PatternAdjacency adjacency = buildAdjacency(scene.pattern);
+        if (chartTilings.empty()) {
+            scene.uvYarns = stitchYarns(scene.pattern, adjacency, scene.tiling, scene.placement);
+        } else {
+            scene.uvYarns = UvYarns{};
+            for (size_t c = 0; c < chartTilings.size(); ++c)
+                appendChartYarns(scene.uvYarns, stitchYarns(scene.pattern, adjacency, chartTilings[c], scene.placement),
+                                 uint32_t(c));
+        }
     });
     clock.run("binding", [&] {
         BindOptions bind = options.bind;

@@ -1,6 +1,8 @@
 // Stitch: walk the tiled pattern graph (degree <= 2) into maximal yarns, keeping closed loops.
 #include "knit/stitch.hpp"
 
+#include "knit/error.hpp"
+
 #include <cassert>
 #include <optional>
 
@@ -138,6 +140,23 @@ UvYarns stitchYarns(const Pattern& pattern, const PatternAdjacency& adj, const T
         }
     });
     return out;
+}
+
+void appendChartYarns(UvYarns& yarns, const UvYarns& more, uint32_t chart) {
+    const size_t base = yarns.vertexCount();
+    if (base + more.vertexCount() > UINT32_MAX) throw Error("stitch: more than 2^32-1 tiled vertices over all UV charts");
+    yarns.chart.resize(yarns.yarnCount(), UINT32_MAX);  // earlier yarns without a chart: any
+    yarns.ghosts.resize(yarns.yarnCount());
+    yarns.uv.insert(yarns.uv.end(), more.uv.begin(), more.uv.end());
+    yarns.height.insert(yarns.height.end(), more.height.begin(), more.height.end());
+    yarns.twist.insert(yarns.twist.end(), more.twist.begin(), more.twist.end());
+    yarns.source.insert(yarns.source.end(), more.source.begin(), more.source.end());
+    for (size_t y = 0; y < more.yarnCount(); ++y) {
+        yarns.offsets.push_back(uint32_t(base + more.offsets[y + 1]));
+        yarns.closed.push_back(more.closed[y]);
+        yarns.ghosts.push_back(y < more.ghosts.size() ? more.ghosts[y] : std::array<GhostVertex, 2>{});
+        yarns.chart.push_back(chart);
+    }
 }
 
 }  // namespace knit

@@ -284,12 +284,15 @@ double closestOnSegment(glm::dvec2 a, glm::dvec2 b, glm::dvec2 p) {
 
 }  // namespace
 
-LocateResult locatePoint(const BaseMesh& mesh, const UvGrid& grid, glm::dvec2 uv, double tolerance, uint32_t hint) {
+LocateResult locatePoint(const BaseMesh& mesh, const UvGrid& grid, glm::dvec2 uv, double tolerance, uint32_t hint,
+                         uint32_t chart) {
     LocateResult result;
     if (!std::isfinite(uv.x) || !std::isfinite(uv.y) || grid.cells.empty()) return result;
+    const bool anyChart = chart == kAnyChart;
+    auto skip = [&](uint32_t f) { return !anyChart && grid.chartOfFace[f] != chart; };
 
     // 0. Strictly inside the hint triangle: no other non-overlapping triangle contains it.
-    if (hint < grid.faceOrientation.size() && grid.faceOrientation[hint] != 0) {
+    if (hint < grid.faceOrientation.size() && grid.faceOrientation[hint] != 0 && !skip(hint)) {
         const glm::uvec3 t = mesh.faceUvs[hint];
         const glm::dvec2 a = mesh.uvs[t.x], b = mesh.uvs[t.y], c = mesh.uvs[t.z];
         const int o = grid.faceOrientation[hint];
@@ -304,6 +307,7 @@ LocateResult locatePoint(const BaseMesh& mesh, const UvGrid& grid, glm::dvec2 uv
     if (const int32_t slot = grid.slotOf(grid.cellOf(uv)); slot >= 0) {
         for (uint32_t i = grid.triOffsets[slot]; i < grid.triOffsets[slot + 1]; ++i) {
             const uint32_t f = grid.triangles[i];
+            if (skip(f)) continue;
             const glm::uvec3 t = mesh.faceUvs[f];
             const glm::dvec2 a = mesh.uvs[t.x], b = mesh.uvs[t.y], c = mesh.uvs[t.z];
             const int o = grid.faceOrientation[f];
@@ -327,6 +331,7 @@ LocateResult locatePoint(const BaseMesh& mesh, const UvGrid& grid, glm::dvec2 uv
             if (slot < 0) continue;
             for (uint32_t i = grid.triOffsets[slot]; i < grid.triOffsets[slot + 1]; ++i) {
                 const uint32_t f = grid.triangles[i];
+                if (skip(f)) continue;
                 const glm::uvec3 t = mesh.faceUvs[f];
                 const glm::dvec2 v[3] = {mesh.uvs[t.x], mesh.uvs[t.y], mesh.uvs[t.z]};
                 for (int e = 0; e < 3; ++e) {

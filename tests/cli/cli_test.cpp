@@ -148,7 +148,8 @@ TEST_F(Cli, gltfBaseMeshGivesTheSameKnitAsItsObj) {
     EXPECT_FALSE(fs::exists(dir / "never.obj"));
 }
 
-// Overlapping UV charts are not an error, but the user is told (stderr and report).
+// Overlapping UV charts are knitted each on its own; the user is told (stderr and report), and
+// both layers get the same yarns.
 TEST_F(Cli, overlappingUvChartsAreReported) {
     // Two 0.1 m squares, one above the other, with the same UVs (two charts).
     write("stacked.obj",
@@ -157,15 +158,17 @@ TEST_F(Cli, overlappingUvChartsAreReported) {
           "f 1/1 2/2 3/3 4/4\nf 5/5 6/6 7/7 8/8\n");
     const CliRun r = knit("build -q --mesh stacked.obj --repeats 4 4 --export yarns -o y.obj --report r.json", dir);
     ASSERT_EQ(r.exitCode, 0) << r.output;
-    EXPECT_NE(r.output.find("warning: stacked.obj: UV charts overlap (0/1)"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("note: stacked.obj: UV charts overlap (0/1)"), std::string::npos) << r.output;
     std::ifstream in(dir / "r.json");
     const nlohmann::json j = nlohmann::json::parse(in);
     EXPECT_EQ(j["mesh"]["uv_charts"].get<int>(), 2);
     EXPECT_EQ(j["mesh"]["overlapping_uv_charts"], nlohmann::json::parse("[[0, 1]]"));
-    // A single chart: no warning, an empty list.
+    EXPECT_EQ(j["counts"]["yarns"].get<int>() % 2, 0);
+    EXPECT_GT(j["counts"]["yarns"].get<int>(), 0);
+    // A single chart: no note, an empty list.
     const CliRun p = knit("build -q --mesh plane --repeats 4 4 --export yarns -o p.obj --report p.json", dir);
     ASSERT_EQ(p.exitCode, 0) << p.output;
-    EXPECT_EQ(p.output.find("warning"), std::string::npos) << p.output;
+    EXPECT_EQ(p.output.find("note:"), std::string::npos) << p.output;
     std::ifstream pin(dir / "p.json");
     EXPECT_TRUE(nlohmann::json::parse(pin)["mesh"]["overlapping_uv_charts"].empty());
 }

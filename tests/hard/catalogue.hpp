@@ -134,22 +134,58 @@ inline std::vector<HardCase> catalogue() {
             });
     }
 
-    // Overlapping charts: two sheets (z = 0 and z = 0.05) over the same UV square. Known
-    // limitation, pinned here: a point belongs to the lowest-numbered triangle containing it, so
-    // the yarns land on the first sheet only.
+    // Overlapping charts: two sheets (z = 0 and z = 0.05) over the same UV square. Detected
+    // exactly; each chart is tiled and bound on its own, so both sheets get the same knit.
     {
         BaseMesh m = flatSquare(8, 0.1);
         m.name = "overlapping-charts";
         append(m, sheet("upper", 8, 8, [](double s, double t) { return glm::dvec3(s * 0.1, t * 0.1, 0.05); },
                         [](double s, double t) { return glm::dvec2(s, t); }));
         add("uvOverlappingCharts", stockinette, m, withRepeats(7, 7), {}, [](const Scene& s) {
-            // Detected and reported (sceneReport, and a warning from the CLI).
             EXPECT_EQ(s.grid.overlappingCharts, (std::vector<glm::uvec2>{{0, 1}}));
             const size_t half = s.mesh.faceCount() / 2;
             size_t lower = 0, upper = 0;
             for (uint32_t f : s.bound.binding.face) (f < half ? lower : upper)++;
             EXPECT_GT(lower, 0u);
-            EXPECT_EQ(upper, 0u) << "behaviour changed: document it in docs/hard-cases.md";
+            EXPECT_EQ(upper, lower);
+            // Chart 0's yarns first, then chart 1's: the same curves, 0.05 higher.
+            const Polylines& c = s.yarns.curves;
+            ASSERT_EQ(c.curveCount() % 2, 0u);
+            const size_t n = c.curveCount() / 2;
+            double worst = 0;
+            for (size_t k = 0; k < n; ++k) {
+                ASSERT_EQ(c.size(k), c.size(k + n)) << "yarn " << k;
+                for (uint32_t i = 0; i < c.size(k); ++i)
+                    worst = std::max(worst, glm::distance(c.points[c.begin(k) + i] + glm::dvec3(0, 0, 0.05),
+                                                          c.points[c.begin(k + n) + i]));
+            }
+            EXPECT_LT(worst, 1e-12);
+        });
+    }
+
+    // Partly overlapping charts next to a touching one: sheet A over uv [0,1]^2 (z = 0), sheet B
+    // over [0.5,1.5] x [0,1] (z = 0.05, overlapping A's right half), sheet C over [1.5,2.5] x
+    // [0,1] touching B along u = 1.5 (z = 0.05, continuing B in 3D). Every chart gets its own
+    // knit; the generic invariants check each yarn ends on its chart's boundary and steps stay
+    // short (no yarn leaks into another chart).
+    {
+        BaseMesh m = flatSquare(8, 0.1);
+        m.name = "partly-overlapping-charts";
+        for (const double u0 : {0.5, 1.5})
+            append(m, sheet("sheet", 8, 8, [u0](double s, double t) { return glm::dvec3((u0 + s) * 0.1, t * 0.1, 0.05); },
+                            [u0](double s, double t) { return glm::dvec2(u0 + s, t); }));
+        weldPositions(m);  // B and C share their edge in 3D
+        add("uvPartlyOverlappingCharts", stockinette, m, withRepeats(14, 7), {}, [](const Scene& s) {
+            EXPECT_EQ(s.grid.chartCount, 3u);
+            EXPECT_EQ(s.grid.overlappingCharts, (std::vector<glm::uvec2>{{0, 1}}));
+            std::vector<size_t> perChart(3, 0);
+            for (uint32_t f : s.bound.binding.face) ++perChart[s.grid.chartOfFace[f]];
+            for (int c = 0; c < 3; ++c) EXPECT_GT(perChart[size_t(c)], 0u) << "chart " << c;
+            // Courses run on from B into C across their shared 3D edge: welded there.
+            EXPECT_GT(s.bound.stats.weldedEnds, 0u);
+            // Equal UV areas and the same pattern: similar amounts of yarn on each (the two
+            // layouts differ only in phase at the borders).
+            EXPECT_LT(double(std::max(perChart[0], perChart[1])) / double(std::min(perChart[0], perChart[1])), 1.1);
         });
     }
 

@@ -30,8 +30,8 @@ struct UvGrid {
     std::vector<uint32_t> chartOfFace;     // UV chart (connected component) of each face, 0-based
     uint32_t chartCount = 0;               // charts, numbered in the order of their lowest face
     // Pairs (a < b) of charts whose UV triangles overlap (exact test; touching is no overlap).
-    // Where charts overlap, a point goes to the lowest-numbered triangle: the knit covers the
-    // lower-numbered chart only there (docs/hard-cases.md).
+    // With any, the pipeline tiles and binds each chart on its own (knit/scene.hpp), so every
+    // chart gets its knit.
     std::vector<glm::uvec2> overlappingCharts;
     std::vector<int8_t> faceOrientation;   // +1 counter-clockwise, -1 mirrored, 0 zero-area UV
     size_t degenerateUvFaces = 0;          // zero-area UV triangles (never own a point)
@@ -57,7 +57,9 @@ struct LocateResult {
 // `hint`: a triangle to try first (the previous vertex's along a yarn). A point strictly inside
 // the hint is given to it without scanning the cell: the same owner as the scan unless UV charts
 // overlap, where it keeps a yarn on the chart it is already on.
+// `chart`: only triangles of this chart are considered (kAnyChart: all).
+constexpr uint32_t kAnyChart = UINT32_MAX;
 LocateResult locatePoint(const BaseMesh& mesh, const UvGrid& grid, glm::dvec2 uv, double tolerance,
-                         uint32_t hint = UINT32_MAX);
+                         uint32_t hint = UINT32_MAX, uint32_t chart = kAnyChart);
 
 }  // namespace knit
