@@ -1,8 +1,14 @@
 // chunks.hpp (internal) — split curves into chunks for streaming export.
 #pragma once
+#include <algorithm>
 #include <cstddef>
 #include <functional>
+#include <memory>
 #include <vector>
+
+#include <tbb/concurrent_queue.h>
+#include <tbb/parallel_pipeline.h>
+#include <tbb/task_arena.h>
 
 #include <glm/vec3.hpp>
 
@@ -32,5 +38,46 @@ glm::dvec3 chunkOrigin(const Polylines& curves, const Chunk& chunk);
 void forEachTubeChunk(const Polylines& curves, double radius, const TubeOptions& tube,
                       const std::vector<Chunk>& chunks,
                       const std::function<void(size_t chunkIndex, const TubeMesh& mesh)>& consume);
+
+// Produces chunks 0 .. count-1 in parallel and consumes them in chunk order (a TBB pipeline):
+// produce(index, token) fills a reusable Token, consume(index, token) writes it. At most
+// 2 x (threads) tokens exist, so memory stays bounded, and what is consumed does not depend on
+// the thread count. An exception in either stops the pipeline and propagates.
+template <class Token, class Produce, class Consume>
+void orderedChunks(size_t count, Produce produce, Consume consume) {
+    struct Slot {
+        size_t index = 0;
+        Token token;
+    };
+    const size_t tokens = size_t(2 * std::max(1, tbb::this_task_arena::max_concurrency()));
+    std::vector<std::unique_ptr<Slot>> pool;
+    tbb::concurrent_queue<Slot*> free;
+    for (size_t t = 0; t < tokens; ++t) {
+        pool.push_back(std::make_unique<Slot>());
+        free.push(pool.back().get());
+    }
+    size_t next = 0;
+    tbb::parallel_pipeline(
+        tokens,
+        tbb::make_filter<void, Slot*>(tbb::filter_mode::serial_in_order,
+                                      [&](tbb::flow_control& fc) -> Slot* {
+                                          Slot* slot = nullptr;
+                                          if (next == count || !free.try_pop(slot)) {  // a free slot always exists
+                                              fc.stop();
+                                              return nullptr;
+                                          }
+                                          slot->index = next++;
+                                          return slot;
+                                      }) &
+            tbb::make_filter<Slot*, Slot*>(tbb::filter_mode::parallel,
+                                           [&](Slot* slot) {
+                                               produce(slot->index, slot->token);
+                                               return slot;
+                                           }) &
+            tbb::make_filter<Slot*, void>(tbb::filter_mode::serial_in_order, [&](Slot* slot) {
+                consume(slot->index, slot->token);
+                free.push(slot);
+            }));
+}
 
 }  // namespace knit::detail

@@ -32,9 +32,6 @@
 
 #include <glm/common.hpp>
 #include <nlohmann/json.hpp>
-#include <tbb/concurrent_queue.h>
-#include <tbb/parallel_pipeline.h>
-#include <tbb/task_arena.h>
 #include <tiny_gltf.h>
 
 #include "atomic_file.hpp"
@@ -208,7 +205,6 @@ struct CurveChunk {
         uint32_t first = 0, count = 0;  // in `pos`
         glm::vec3 lo{0.0f}, hi{0.0f};   // exact float bounds of the run
     };
-    size_t index = 0;
     glm::dvec3 origin{0.0};
     std::vector<glm::vec3> pos;
     std::vector<Run> runs;
@@ -247,15 +243,15 @@ public:
     }
     const std::vector<Chunk>& chunks() const { return chunks_; }
 
-    // Produces chunk `chunk.index` and converts it: origin = centre of its points' bounding box.
-    void fill(CurveChunk& chunk) const {
+    // Produces chunk k and converts it: origin = centre of its points' bounding box.
+    void fill(size_t k, CurveChunk& chunk) const {
         const Polylines* curves = input_.curves;
         size_t first = 0, last = 0;
         if (curves) {
-            first = chunks_[chunk.index].firstCurve;
-            last = chunks_[chunk.index].lastCurve;
+            first = chunks_[k].firstCurve;
+            last = chunks_[k].lastCurve;
         } else {
-            input_.plies->generate(yarnStart_[chunk.index], yarnStart_[chunk.index + 1], chunk.generated, chunk.scratch,
+            input_.plies->generate(yarnStart_[k], yarnStart_[k + 1], chunk.generated, chunk.scratch,
                                    false);  // curves only: no radial directions
             curves = &chunk.generated.curves;
             last = curves->curveCount();
@@ -291,6 +287,49 @@ private:
     const ExportInput& input_;
     std::vector<Chunk> chunks_;       // materialized curves
     std::vector<size_t> yarnStart_;   // generated plies: chunk k = yarns [yarnStart_[k], yarnStart_[k + 1])
+};
+
+// KHR_mesh_quantization data of one tube chunk: one uniform step per chunk (the node scale),
+// q = round(p / step) with |q| <= 32767; normals and tangents as normalized shorts (stride 8).
+struct QuantizedTubes {
+    struct S4 {
+        int16_t v[4];
+    };
+    std::vector<S4> position, normal, tangent;
+    glm::ivec3 lo{32767}, hi{-32767};  // bounds of the quantized positions
+    double step = 1.0;
+};
+
+void quantizeTubes(const TubeMesh& m, QuantizedTubes& q) {
+    const size_t n = m.vertexCount();
+    float maxAbs = 0.0f;
+    for (const glm::vec3& p : m.positions) maxAbs = std::max({maxAbs, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+    q.step = maxAbs > 0 ? double(maxAbs) / 32767.0 : 1.0;
+    q.position.resize(n);
+    q.normal.resize(n);
+    q.tangent.resize(n);
+    q.lo = glm::ivec3(32767);
+    q.hi = glm::ivec3(-32767);
+    auto qs = [](double x) { return int16_t(std::lround(std::clamp(x, -32767.0, 32767.0))); };
+    for (size_t i = 0; i < n; ++i) {
+        for (int k = 0; k < 3; ++k) {
+            q.position[i].v[k] = qs(double(m.positions[i][k]) / q.step);
+            q.lo[k] = std::min<int>(q.lo[k], q.position[i].v[k]);
+            q.hi[k] = std::max<int>(q.hi[k], q.position[i].v[k]);
+            q.normal[i].v[k] = qs(double(m.normals[i][k]) * 32767.0);
+            q.tangent[i].v[k] = qs(double(m.tangents[i][k]) * 32767.0);
+        }
+        q.position[i].v[3] = q.normal[i].v[3] = 0;
+        q.tangent[i].v[3] = m.tangents[i].w < 0 ? int16_t(-32767) : int16_t(32767);
+    }
+}
+
+// One chunk of tubes on its way to the file (see GltfBuilder::writeTubes).
+struct TubeChunk {
+    TubeMesh mesh;
+    std::vector<glm::u8vec4> colours;  // --yarn-colors
+    QuantizedTubes quantized;          // --quantize
+    DracoChunk draco;                  // --draco
 };
 
 // Bytes reserved in front of a GLB's BIN data for the header and JSON chunk: generous per-chunk
@@ -341,37 +380,63 @@ public:
         }
     }
 
+    // Tubes: chunks are swept (and quantized or Draco-encoded) in parallel and written in chunk
+    // order (orderedChunks), so the file does not depend on the thread count.
     void writeTubes() {
         const Polylines& curves = *job_.input.curves;
         const std::vector<Chunk> chunks = planTubeChunks(curves, job_.tube, job_.options.chunkVertices);
         // Before anything is written: every chunk must fit in one buffer (plain size is the
         // upper bound; quantized and Draco data are smaller).
         for (const Chunk& c : chunks) checkChunkFits(c.vertices * 56 + c.triangles * 12 + 64);
-        forEachTubeChunk(curves, job_.input.radius, job_.tube, chunks, [&](size_t k, const TubeMesh& mesh) {
-            if (mesh.vertexCount() == 0) return;
-            std::vector<glm::u8vec4> colours;
-            if (job_.options.yarnColors) colours = vertexColours(mesh);
-            const std::vector<glm::u8vec4>* col = job_.options.yarnColors ? &colours : nullptr;
-            tinygltf::Primitive prim;
-            prim.mode = TINYGLTF_MODE_TRIANGLES;
-            prim.material = 0;
-            std::vector<double> scale;
-            const size_t plain = mesh.vertexCount() * (12 + 12 + 16 + 8 + (col ? 4 : 0)) + mesh.triangles.size() * 12;
-            job_.stats.uncompressedMeshBytes += plain;
-            if (job_.options.draco) {
-                tubeDraco(mesh, col, prim);
-            } else if (job_.options.quantize) {
-                tubeQuantized(mesh, col, prim, scale);
-            } else {
-                tubePlain(mesh, col, prim);
-                job_.stats.compressedMeshBytes += plain;
-            }
-            addChunkNode(k, mesh.origin, prim, scale);
-            job_.stats.vertices += mesh.vertexCount();
-            job_.stats.triangles += mesh.triangles.size();
-            job_.stats.maxChunkVertices = std::max(job_.stats.maxChunkVertices, mesh.vertexCount());
-        });
+        orderedChunks<TubeChunk>(
+            chunks.size(), [&](size_t k, TubeChunk& t) { prepareTubeChunk(curves, chunks[k], t); },
+            [&](size_t k, const TubeChunk& t) { writeTubeChunk(k, t); });
         job_.stats.curves = curves.curveCount();
+    }
+
+    // The parallel half: sweep the chunk's tubes, and colour / quantize / Draco-encode them.
+    void prepareTubeChunk(const Polylines& curves, const Chunk& chunk, TubeChunk& t) const {
+        sweepTubes(curves, job_.input.radius, job_.tube, chunk.firstCurve, chunk.lastCurve, chunkOrigin(curves, chunk),
+                   t.mesh);
+        t.colours.clear();
+        if (t.mesh.vertexCount() == 0) return;
+        if (job_.options.yarnColors) t.colours = vertexColours(t.mesh);
+        const std::vector<glm::u8vec4>* col = job_.options.yarnColors ? &t.colours : nullptr;
+        if (job_.options.draco) {
+            DracoSettings settings;
+            settings.positionBits = job_.options.dracoBits;
+            settings.normalBits = job_.options.dracoNormalBits;
+            settings.texcoordBits = job_.options.dracoTexcoordBits;
+            settings.level = job_.options.dracoLevel;
+            t.draco = encodeDracoTubes(t.mesh, col, settings);
+        } else if (job_.options.quantize) {
+            quantizeTubes(t.mesh, t.quantized);
+        }
+    }
+
+    // The serial half: views, accessors and the chunk's node.
+    void writeTubeChunk(size_t k, const TubeChunk& t) {
+        const TubeMesh& mesh = t.mesh;
+        if (mesh.vertexCount() == 0) return;
+        const std::vector<glm::u8vec4>* col = job_.options.yarnColors ? &t.colours : nullptr;
+        tinygltf::Primitive prim;
+        prim.mode = TINYGLTF_MODE_TRIANGLES;
+        prim.material = 0;
+        std::vector<double> scale;
+        const size_t plain = mesh.vertexCount() * (12 + 12 + 16 + 8 + (col ? 4 : 0)) + mesh.triangles.size() * 12;
+        job_.stats.uncompressedMeshBytes += plain;
+        if (job_.options.draco) {
+            tubeDraco(t.draco, col != nullptr, prim);
+        } else if (job_.options.quantize) {
+            tubeQuantized(mesh, t.quantized, col, prim, scale);
+        } else {
+            tubePlain(mesh, col, prim);
+            job_.stats.compressedMeshBytes += plain;
+        }
+        addChunkNode(k, mesh.origin, prim, scale);
+        job_.stats.vertices += mesh.vertexCount();
+        job_.stats.triangles += mesh.triangles.size();
+        job_.stats.maxChunkVertices = std::max(job_.stats.maxChunkVertices, mesh.vertexCount());
     }
 
     // Curves: chunks are produced (sliced from the input, or generated plies) and converted to
@@ -382,35 +447,9 @@ public:
         if (job_.input.curves)  // known sizes: fail before anything is written
             for (const Chunk& c : source.chunks())
                 checkChunkFits((c.vertices + (c.lastCurve - c.firstCurve)) * 16 + 64);
-        const size_t tokens = size_t(2 * std::max(1, tbb::this_task_arena::max_concurrency()));
-        std::vector<std::unique_ptr<CurveChunk>> pool;
-        tbb::concurrent_queue<CurveChunk*> free;
-        for (size_t t = 0; t < tokens; ++t) {
-            pool.push_back(std::make_unique<CurveChunk>());
-            free.push(pool.back().get());
-        }
-        size_t next = 0;
-        tbb::parallel_pipeline(
-            tokens,
-            tbb::make_filter<void, CurveChunk*>(tbb::filter_mode::serial_in_order,
-                                                [&](tbb::flow_control& fc) -> CurveChunk* {
-                                                    CurveChunk* chunk = nullptr;
-                                                    if (next == source.count() || !free.try_pop(chunk)) {
-                                                        fc.stop();
-                                                        return nullptr;
-                                                    }
-                                                    chunk->index = next++;
-                                                    return chunk;
-                                                }) &
-                tbb::make_filter<CurveChunk*, CurveChunk*>(tbb::filter_mode::parallel,
-                                                           [&](CurveChunk* chunk) {
-                                                               source.fill(*chunk);
-                                                               return chunk;
-                                                           }) &
-                tbb::make_filter<CurveChunk*, void>(tbb::filter_mode::serial_in_order, [&](CurveChunk* chunk) {
-                    writeCurveChunk(*chunk);
-                    free.push(chunk);
-                }));
+        orderedChunks<CurveChunk>(
+            source.count(), [&](size_t k, CurveChunk& chunk) { source.fill(k, chunk); },
+            [&](size_t k, const CurveChunk& chunk) { writeCurveChunk(k, chunk); });
     }
 
     // Serializes the JSON with tinygltf, fixes up the buffers, writes all files, renames them.
@@ -499,7 +538,7 @@ private:
     // One chunk's node: a POSITION view (stride 12) holding every curve's points and a _RADIUS
     // view (stride 4) as long as the longest curve, shared by the curves' accessors; one
     // non-indexed LINE_STRIP primitive per curve.
-    void writeCurveChunk(const CurveChunk& chunk) {
+    void writeCurveChunk(size_t k, const CurveChunk& chunk) {
         if (chunk.runs.empty()) return;
         uint32_t longest = 0;
         for (const CurveChunk::Run& r : chunk.runs) longest = std::max(longest, r.count);
@@ -508,7 +547,7 @@ private:
         const int posView = addView(chunk.pos.data(), chunk.pos.size() * 12, 12, kArrayBuffer);
         const int radView = addView(radius_.data(), uint64_t(longest) * 4, 4, kArrayBuffer);
         tinygltf::Mesh mesh;
-        mesh.name = "curves " + std::to_string(chunk.index);
+        mesh.name = "curves " + std::to_string(k);
         for (const CurveChunk::Run& r : chunk.runs) {
             tinygltf::Primitive prim;
             prim.mode = TINYGLTF_MODE_LINE_STRIP;
@@ -522,7 +561,7 @@ private:
                 addAccessor(radView, 0, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR, r.count, false);
             mesh.primitives.push_back(std::move(prim));
         }
-        addChunkMesh(chunk.index, chunk.origin, std::move(mesh), {});
+        addChunkMesh(k, chunk.origin, std::move(mesh), {});
         job_.stats.curves += chunk.runs.size();
         job_.stats.vertices += chunk.points;
         job_.stats.maxChunkVertices = std::max(job_.stats.maxChunkVertices, chunk.points);
@@ -619,40 +658,21 @@ private:
                                    m.triangles.size() * 3, false);
     }
 
-    void tubeQuantized(const TubeMesh& m, const std::vector<glm::u8vec4>* col, tinygltf::Primitive& prim,
-                       std::vector<double>& scale) {
+    void tubeQuantized(const TubeMesh& m, const QuantizedTubes& q, const std::vector<glm::u8vec4>* col,
+                       tinygltf::Primitive& prim, std::vector<double>& scale) {
         const size_t n = m.vertexCount();
-        // Step: one uniform step per chunk (the node scale): q = round(p / step), |q| <= 32767.
-        float maxAbs = 0.0f;
-        for (const glm::vec3& p : m.positions) maxAbs = std::max({maxAbs, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
-        const double step = maxAbs > 0 ? double(maxAbs) / 32767.0 : 1.0;
-        scale = {step, step, step};
-        struct S4 { int16_t v[4]; };
-        std::vector<S4> qp(n), qn(n), qt(n);
-        auto qs = [](double x) { return int16_t(std::lround(std::clamp(x, -32767.0, 32767.0))); };
-        glm::ivec3 lo(32767), hi(-32767);
-        for (size_t i = 0; i < n; ++i) {
-            for (int k = 0; k < 3; ++k) {
-                qp[i].v[k] = qs(double(m.positions[i][k]) / step);
-                lo[k] = std::min<int>(lo[k], qp[i].v[k]);
-                hi[k] = std::max<int>(hi[k], qp[i].v[k]);
-                qn[i].v[k] = qs(double(m.normals[i][k]) * 32767.0);
-                qt[i].v[k] = qs(double(m.tangents[i][k]) * 32767.0);
-            }
-            qp[i].v[3] = qn[i].v[3] = 0;
-            qt[i].v[3] = m.tangents[i].w < 0 ? int16_t(-32767) : int16_t(32767);
-        }
+        scale = {q.step, q.step, q.step};
         sink_.reserve(n * (8 * 3 + 8 + 4) + m.triangles.size() * 12 + 32);
         const int s = TINYGLTF_COMPONENT_TYPE_SHORT;
         prim.attributes["POSITION"] =
-            addAccessor(addView(qp.data(), n * 8, 8, kArrayBuffer), 0, s, TINYGLTF_TYPE_VEC3, n, false);
+            addAccessor(addView(q.position.data(), n * 8, 8, kArrayBuffer), 0, s, TINYGLTF_TYPE_VEC3, n, false);
         tinygltf::Accessor& pa = model_.accessors[prim.attributes["POSITION"]];
-        pa.minValues = {double(lo.x), double(lo.y), double(lo.z)};
-        pa.maxValues = {double(hi.x), double(hi.y), double(hi.z)};
+        pa.minValues = {double(q.lo.x), double(q.lo.y), double(q.lo.z)};
+        pa.maxValues = {double(q.hi.x), double(q.hi.y), double(q.hi.z)};
         prim.attributes["NORMAL"] =
-            addAccessor(addView(qn.data(), n * 8, 8, kArrayBuffer), 0, s, TINYGLTF_TYPE_VEC3, n, true);
+            addAccessor(addView(q.normal.data(), n * 8, 8, kArrayBuffer), 0, s, TINYGLTF_TYPE_VEC3, n, true);
         prim.attributes["TANGENT"] =
-            addAccessor(addView(qt.data(), n * 8, 0, kArrayBuffer), 0, s, TINYGLTF_TYPE_VEC4, n, true);
+            addAccessor(addView(q.tangent.data(), n * 8, 0, kArrayBuffer), 0, s, TINYGLTF_TYPE_VEC4, n, true);
         prim.attributes["TEXCOORD_0"] = addAccessor(addView(m.uvs.data(), n * 8, 0, kArrayBuffer), 0,
                                                     TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2, n, false);
         size_t bytes = n * (8 * 3 + 8) + m.triangles.size() * 12;
@@ -667,13 +687,7 @@ private:
         job_.stats.compressedMeshBytes += bytes;
     }
 
-    void tubeDraco(const TubeMesh& m, const std::vector<glm::u8vec4>* col, tinygltf::Primitive& prim) {
-        DracoSettings settings;
-        settings.positionBits = job_.options.dracoBits;
-        settings.normalBits = job_.options.dracoNormalBits;
-        settings.texcoordBits = job_.options.dracoTexcoordBits;
-        settings.level = job_.options.dracoLevel;
-        const DracoChunk d = encodeDracoTubes(m, col, settings);
+    void tubeDraco(const DracoChunk& d, bool colours, tinygltf::Primitive& prim) {
         sink_.reserve(d.bytes.size() + 8);
         const int view = addView(d.bytes.data(), d.bytes.size(), 0, 0);
         job_.stats.compressedMeshBytes += d.bytes.size();
@@ -686,7 +700,7 @@ private:
         prim.attributes["NORMAL"] = addAccessor(-1, 0, f, TINYGLTF_TYPE_VEC3, d.points, false);
         prim.attributes["TANGENT"] = addAccessor(-1, 0, f, TINYGLTF_TYPE_VEC4, d.points, false);
         prim.attributes["TEXCOORD_0"] = addAccessor(-1, 0, f, TINYGLTF_TYPE_VEC2, d.points, false);
-        if (col)
+        if (colours)
             prim.attributes["COLOR_0"] =
                 addAccessor(-1, 0, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_TYPE_VEC4, d.points, true);
         prim.indices = addAccessor(-1, 0, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, d.faces * 3, false);

@@ -15,9 +15,11 @@
 // swept tube meshes (of the plies when the scene has plies, else of the yarns; see tubesOf).
 //
 // Streaming: tube meshes are swept, written and freed chunk by chunk (at most chunkVertices
-// tube vertices per chunk), so the peak memory is the scene plus one chunk's mesh. In glTF each
-// chunk is one node whose translation is the chunk's local origin (double precision) and whose
-// float32 positions are relative to it.
+// tube vertices per chunk), so the peak memory is the scene plus a few chunks' meshes (glTF:
+// chunks are swept and encoded in parallel, at most two per thread at a time, and written in
+// order, so the file does not depend on the thread count). In glTF each chunk is one node whose
+// translation is the chunk's local origin (double precision) and whose float32 positions are
+// relative to it.
 #pragma once
 #include <cstdint>
 #include <functional>
