@@ -1,5 +1,6 @@
 // knit — command-line front end. It only composes library stages (knit/scene.hpp) with the
 // exporters (knit/export.hpp) and, when built, the render check (knit/render.hpp).
+#include <algorithm>
 #include <cctype>
 #include <cstdio>
 #include <filesystem>
@@ -91,8 +92,12 @@ void writeReport(const std::string& path, const nlohmann::json& report) {
 void printWarnings(const knit::Scene& s) {
     if (s.grid.overlappingCharts.empty()) return;
     std::string pairs;
-    for (const glm::uvec2& p : s.grid.overlappingCharts)
-        pairs += (pairs.empty() ? "" : ", ") + std::to_string(p.x) + "/" + std::to_string(p.y);
+    const size_t shown = std::min<size_t>(s.grid.overlappingCharts.size(), 8);
+    for (size_t k = 0; k < shown; ++k)
+        pairs += (pairs.empty() ? "" : ", ") + std::to_string(s.grid.overlappingCharts[k].x) + "/" +
+                 std::to_string(s.grid.overlappingCharts[k].y);
+    if (shown < s.grid.overlappingCharts.size())
+        pairs += " and " + std::to_string(s.grid.overlappingCharts.size() - shown) + " more pairs";
     std::fprintf(stderr, "knit: note: %s: UV charts overlap (%s); each chart is tiled and knitted on its own\n",
                  s.mesh.name.c_str(), pairs.c_str());
 }

@@ -218,7 +218,7 @@ struct CurveChunk {
 // maxPoints; a longer yarn gets a chunk of its own).
 class CurveChunkSource {
 public:
-    CurveChunkSource(const ExportInput& input, size_t maxPoints) : input_(input) {
+    CurveChunkSource(const ExportInput& input, size_t maxPoints, const std::string& path) : input_(input) {
         if (input.curves) {
             chunks_ = planCurveChunks(*input.curves, maxPoints);
             return;
@@ -228,6 +228,11 @@ public:
         yarnStart_.push_back(0);
         for (size_t y = 0; y < g.yarnCount(); ++y) {
             const size_t e = g.estimatePoints(y);
+            // One yarn's plies are one batch with 32-bit offsets: refuse absurd ones up front.
+            if (e > size_t(1) << 31)
+                throw Error("cannot export '" + path + "': yarn " + std::to_string(y) + " would have at least " +
+                            std::to_string(e) + " ply points (more than 2^31); increase the ply pitch or lower the "
+                            "samples per turn");
             if (acc > 0 && acc + e > maxPoints) {
                 yarnStart_.push_back(y);
                 acc = 0;
@@ -357,7 +362,8 @@ public:
     GltfBuilder(const FormatJob& job, bool glb)
         : job_(job),
           glb_(glb),
-          curves_(job.tubes ? nullptr : std::make_unique<CurveChunkSource>(job.input, job.options.chunkVertices)),
+          curves_(job.tubes ? nullptr
+                            : std::make_unique<CurveChunkSource>(job.input, job.options.chunkVertices, job.options.path)),
           sink_(job.options.path, glb, job.options.maxBufferBytes, jsonReservation(job, curves_.get())) {
         model_.asset.version = "2.0";
         model_.asset.generator = "libknit";

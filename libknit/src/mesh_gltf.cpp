@@ -10,9 +10,11 @@
 // What is read:
 //  * The mesh instances of the default scene (scene 0 when none is set; every mesh once,
 //    untransformed, when the file has no scenes), each with its node's world transform (matrix
-//    or translation * rotation * scale, composed in double) applied to POSITION. Nodes form a
-//    tree: a node reached twice (a cycle, or two parents) is an error, which also bounds the
-//    work on hostile files.
+//    or translation * rotation * scale, composed in double) applied to POSITION; a mirroring
+//    transform (negative determinant) reverses the triangles' winding, as glTF specifies. Nodes
+//    form a tree, walked without recursion: a node reached twice (a cycle, or two parents) is an
+//    error. Instancing can multiply a small file: more than MeshLoadOptions::maxElements
+//    vertices or triangles in total are refused.
 //  * TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN primitives (strips and fans are unrolled;
 //    triangles with a repeated index, e.g. strip restarts, are skipped). POINTS and LINES
 //    primitives are not surfaces and are ignored; a file without any triangle is an error.
@@ -24,8 +26,9 @@
 //  * Vertices are welded by exact position like the other formats (glTF duplicates vertices at
 //    UV seams), so normals and yarn welding see one 3D topology.
 //  * Buffers: the GLB BIN chunk, base64 `data:` URIs, or files given by relative URIs
-//    (percent-decoded), read as regular files from the glTF's folder; only buffers the mesh
-//    needs are read (never images). Absolute paths and other schemes are refused.
+//    (percent-decoded), read as regular files relative to the glTF's folder (their first
+//    byteLength bytes); only buffers the mesh needs are read (never images). Absolute paths and
+//    other schemes are refused.
 //  * Refused with knit::Error naming the element: KHR_draco_mesh_compression primitives, sparse
 //    accessors, accessors without data, out-of-range indices, accessor or buffer-view ranges
 //    outside their buffer, non-finite values, malformed JSON or GLB.
@@ -45,7 +48,9 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
+#include <glm/mat3x3.hpp>
 #include <glm/mat4x4.hpp>
+#include <glm/matrix.hpp>
 #include <nlohmann/json.hpp>
 
 namespace knit {
@@ -153,8 +158,8 @@ std::string percentDecode(const std::string& s) {
 
 class GltfMeshReader {
 public:
-    GltfMeshReader(const std::string& bytes, const std::string& name, const std::string& baseDir)
-        : name_(name), baseDir_(baseDir) {
+    GltfMeshReader(const std::string& bytes, const std::string& name, const std::string& baseDir, uint64_t maxElements)
+        : name_(name), baseDir_(baseDir), maxElements_(maxElements) {
         parseContainer(bytes);
     }
 
@@ -166,7 +171,7 @@ public:
             if (s >= scenes.size()) fail(name_, "scene " + std::to_string(s) + " does not exist");
             const json& roots = member(scenes[s], "nodes", json::value_t::array, "scenes[" + std::to_string(s) + "]");
             std::vector<char> reached(member(doc_, "nodes", json::value_t::array, "the document").size(), 0);
-            for (const json& root : roots) visit(asIndex(root, "scenes[" + std::to_string(s) + "].nodes"), glm::dmat4(1.0), reached);
+            for (const json& root : roots) visit(asIndex(root, "scenes[" + std::to_string(s) + "].nodes"), reached);
         } else {
             const size_t meshes = member(doc_, "meshes", json::value_t::array, "the document").size();
             for (size_t k = 0; k < meshes; ++k) addMesh(k, glm::dmat4(1.0));
@@ -276,7 +281,7 @@ private:
                 if (!decoded) fail(name_, where + ": malformed base64 data URI");
                 data = std::move(*decoded);
             } else {
-                data = externalFile(percentDecode(uri), where);
+                data = externalFile(percentDecode(uri), where, length);
             }
         }
         if (data.size() < length)
@@ -285,16 +290,22 @@ private:
         return buffers_.emplace(i, std::move(data)).first->second;
     }
 
-    std::vector<unsigned char> externalFile(const std::string& uri, const std::string& where) const {
+    // The first `length` bytes of an external file (its size is checked first).
+    std::vector<unsigned char> externalFile(const std::string& uri, const std::string& where, size_t length) const {
         if (baseDir_.empty()) fail(name_, where + ": external file '" + uri + "' not allowed here (parsed from memory)");
         if (uri.empty() || uri.find(':') != std::string::npos || fs::path(uri).is_absolute())
             fail(name_, where + ": uri '" + uri + "' is not a relative file path");
         const fs::path path = fs::path(baseDir_) / uri;
         std::error_code ec;
         if (!fs::is_regular_file(path, ec)) fail(name_, where + ": '" + path.string() + "' is not a readable file");
+        const uintmax_t size = fs::file_size(path, ec);
+        if (ec || size < length)
+            fail(name_, where + ": '" + path.string() + "' has " + std::to_string(ec ? 0 : size) +
+                            " bytes, less than the buffer's byteLength " + std::to_string(length));
+        std::vector<unsigned char> data(length);
         std::ifstream in(path, std::ios::binary);
-        std::vector<unsigned char> data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-        if (in.bad()) fail(name_, where + ": cannot read '" + path.string() + "'");
+        if (!in.read(reinterpret_cast<char*>(data.data()), std::streamsize(length)))
+            fail(name_, where + ": cannot read '" + path.string() + "'");
         return data;
     }
 
@@ -335,14 +346,22 @@ private:
     }
 
     // ---- scene graph and primitives -------------------------------------------------------------------
-    void visit(size_t i, const glm::dmat4& parent, std::vector<char>& reached) {
-        const json& n = element("nodes", i, "the scene");
-        if (reached[i]) fail(name_, "node " + std::to_string(i) + " is reached twice (glTF nodes must form a tree)");
-        reached[i] = 1;
-        const glm::dmat4 world = parent * localTransform(n, i);
-        if (const auto mesh = index(n, "mesh", "nodes[" + std::to_string(i) + "]")) addMesh(*mesh, world);
-        for (const json& child : member(n, "children", json::value_t::array, "nodes[" + std::to_string(i) + "]"))
-            visit(asIndex(child, "nodes[" + std::to_string(i) + "].children"), world, reached);
+    // Depth-first over the node tree from `root`, with an explicit stack (deep chains are fine).
+    void visit(size_t root, std::vector<char>& reached) {
+        std::vector<std::pair<size_t, glm::dmat4>> stack{{root, glm::dmat4(1.0)}};
+        while (!stack.empty()) {
+            const auto [i, parent] = stack.back();
+            stack.pop_back();
+            const json& n = element("nodes", i, "the scene");
+            if (reached[i]) fail(name_, "node " + std::to_string(i) + " is reached twice (glTF nodes must form a tree)");
+            reached[i] = 1;
+            const std::string where = "nodes[" + std::to_string(i) + "]";
+            const glm::dmat4 world = parent * localTransform(n, i);
+            if (const auto mesh = index(n, "mesh", where)) addMesh(*mesh, world);
+            const json& children = member(n, "children", json::value_t::array, where);
+            for (auto it = children.rbegin(); it != children.rend(); ++it)
+                stack.emplace_back(asIndex(*it, where + ".children"), world);  // reversed: visited in order
+        }
     }
 
     glm::dmat4 localTransform(const json& n, size_t i) const {
@@ -392,7 +411,8 @@ private:
             if (T.components != 2) fail(name_, what + ": TEXCOORD_0 is not VEC2");
             if (T.count != P.count)
                 fail(name_, what + ": TEXCOORD_0 has " + std::to_string(T.count) + " elements, POSITION " + std::to_string(P.count));
-            if (points_.size() + P.count > size_t(std::numeric_limits<int>::max())) fail(name_, "more than 2^31-1 vertices");
+            if (points_.size() + P.count > std::min<uint64_t>(maxElements_, uint64_t(std::numeric_limits<int>::max())))
+                fail(name_, "more than " + std::to_string(maxElements_) + " vertices in the scene (MeshLoadOptions::maxElements)");
             // Vertices: world positions in double, v flipped (glTF's texture origin is top-left).
             const size_t first = points_.size();
             for (size_t i = 0; i < P.count; ++i) {
@@ -425,11 +445,17 @@ private:
                 idx.resize(P.count);
                 for (size_t i = 0; i < P.count; ++i) idx[i] = uint32_t(i);
             }
+            // A mirroring world transform turns the winding around (glTF: det < 0 reverses it).
+            const bool mirrored = glm::determinant(glm::dmat3(world)) < 0;
             auto triangle = [&](uint32_t a, uint32_t b, uint32_t c) {
                 if (a == b || b == c || a == c) return;  // degenerate (strip restart)
+                if (mirrored) std::swap(b, c);
                 for (uint32_t v : {a, b, c}) faceVerts_.push_back(int(first + v));
                 faceStart_.push_back(uint32_t(faceVerts_.size()));
             };
+            const size_t triangles = mode == kTriangles ? idx.size() / 3 : (idx.size() >= 3 ? idx.size() - 2 : 0);
+            if (faceStart_.size() - 1 + triangles > maxElements_)
+                fail(name_, "more than " + std::to_string(maxElements_) + " triangles in the scene (MeshLoadOptions::maxElements)");
             if (mode == kTriangles) {
                 if (idx.size() % 3 != 0)
                     fail(name_, what + ": " + std::to_string(idx.size()) + (indices ? " indices" : " vertices") +
@@ -441,11 +467,11 @@ private:
             } else {
                 for (size_t i = 1; i + 1 < idx.size(); ++i) triangle(idx[0], idx[i], idx[i + 1]);
             }
-            if (faceVerts_.size() > size_t(std::numeric_limits<int>::max())) fail(name_, "too many triangles");
         }
     }
 
     std::string name_, baseDir_;
+    uint64_t maxElements_;
     json doc_;
     std::optional<std::vector<unsigned char>> glbBin_;
     std::map<size_t, std::vector<unsigned char>> buffers_;  // read on first use
@@ -459,7 +485,7 @@ private:
 
 BaseMesh parseGltfMesh(const std::string& bytes, const std::string& name, const std::string& baseDir,
                        const MeshLoadOptions& options) {
-    return GltfMeshReader(bytes, name, baseDir).read(options);
+    return GltfMeshReader(bytes, name, baseDir, options.maxElements).read(options);
 }
 
 BaseMesh loadGltfMesh(const std::string& path, const MeshLoadOptions& options) {

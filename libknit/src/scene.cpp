@@ -55,13 +55,15 @@ nlohmann::json segmentStats(const Polylines& curves) {
 
 namespace {
 
-// The grid cells each UV chart touches (a cell shared by several charts is listed for each).
+// The grid cells each UV chart's triangles of non-zero UV area touch (a cell shared by several
+// charts is listed for each; a chart of zero-area triangles only gets none: nothing to tile).
 std::vector<std::vector<glm::ivec2>> cellsPerChart(const UvGrid& grid) {
     std::vector<std::vector<glm::ivec2>> cells(grid.chartCount);
     std::vector<uint32_t> seen;
     for (size_t k = 0; k < grid.cells.size(); ++k) {
         seen.clear();
         for (uint32_t i = grid.triOffsets[k]; i < grid.triOffsets[k + 1]; ++i) {
+            if (grid.faceOrientation[grid.triangles[i]] == 0) continue;
             const uint32_t c = grid.chartOfFace[grid.triangles[i]];
             if (std::find(seen.begin(), seen.end(), c) != seen.end()) continue;
             seen.push_back(c);
@@ -92,7 +94,8 @@ void runStages(Scene& scene, const SceneOptions& options, StageClock& clock) {
         // its own yarns (bound to that chart only).
         if (!scene.grid.overlappingCharts.empty()) {
             const std::vector<std::vector<glm::ivec2>> cells = cellsPerChart(scene.grid);
-            for (const std::vector<glm::ivec2>& c : cells) chartTilings.push_back(tilesForCells(scene.pattern, c, margin));
+            for (const std::vector<glm::ivec2>& c : cells)
+                chartTilings.push_back(c.empty() ? Tiling{} : tilesForCells(scene.pattern, c, margin));
         }
     });
     clock.run("stitch", [&] {
@@ -102,8 +105,9 @@ void runStages(Scene& scene, const SceneOptions& options, StageClock& clock) {
         } else {
             scene.uvYarns = UvYarns{};
             for (size_t c = 0; c < chartTilings.size(); ++c)
-                appendChartYarns(scene.uvYarns, stitchYarns(scene.pattern, adjacency, chartTilings[c], scene.placement),
-                                 uint32_t(c));
+                if (!chartTilings[c].tiles.empty())
+                    appendChartYarns(scene.uvYarns,
+                                     stitchYarns(scene.pattern, adjacency, chartTilings[c], scene.placement), uint32_t(c));
         }
     });
     clock.run("binding", [&] {

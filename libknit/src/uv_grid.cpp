@@ -91,39 +91,53 @@ bool interiorsOverlap(const glm::dvec2 s[3], int so, const glm::dvec2 t[3], int 
     return !separates(s, so, t) && !separates(t, to, s);
 }
 
-// Pairs (a < b) of UV charts whose triangles overlap in UV (tested only where two charts share a
-// grid cell, each chart pair until its first overlap), sorted.
+// Pairs (a < b) of UV charts whose triangles overlap in UV, sorted. Tested only where two charts
+// share a grid cell; a pair is tested only while one of its charts is not yet known to overlap
+// anything, so every overlapping chart appears in some pair, there are at most chartCount pairs,
+// and a cell crowded with tiny overlapping charts costs a flag lookup per pair once they are known.
 std::vector<glm::uvec2> overlappingChartPairs(const BaseMesh& mesh, const UvGrid& grid) {
     std::vector<glm::uvec2> pairs;
     if (grid.chartCount < 2) return pairs;
-    auto known = [&](uint32_t a, uint32_t b) {
-        return std::find(pairs.begin(), pairs.end(), glm::uvec2(std::min(a, b), std::max(a, b))) != pairs.end();
+    std::vector<char> overlaps(grid.chartCount, 0);
+    struct Tri {
+        glm::dvec2 v[3];
+        glm::dvec2 lo, hi;
     };
-    auto corners = [&](uint32_t f, glm::dvec2 out[3]) {
-        const glm::uvec3 t = mesh.faceUvs[f];
-        out[0] = mesh.uvs[t.x];
-        out[1] = mesh.uvs[t.y];
-        out[2] = mesh.uvs[t.z];
-    };
+    std::vector<Tri> tris;
     for (size_t c = 0; c < grid.cells.size(); ++c) {
         const uint32_t b = grid.triOffsets[c], e = grid.triOffsets[c + 1];
         bool mixed = false;
         for (uint32_t i = b + 1; i < e && !mixed; ++i)
             mixed = grid.chartOfFace[grid.triangles[i]] != grid.chartOfFace[grid.triangles[b]];
         if (!mixed) continue;
+        // The cell's UV triangles with their bounding boxes (a cheap, exact pre-test).
+        tris.resize(e - b);
+        for (uint32_t i = b; i < e; ++i) {
+            const glm::uvec3 t = mesh.faceUvs[grid.triangles[i]];
+            Tri& r = tris[i - b];
+            r.v[0] = mesh.uvs[t.x];
+            r.v[1] = mesh.uvs[t.y];
+            r.v[2] = mesh.uvs[t.z];
+            r.lo = glm::min(r.v[0], glm::min(r.v[1], r.v[2]));
+            r.hi = glm::max(r.v[0], glm::max(r.v[1], r.v[2]));
+        }
         for (uint32_t i = b; i < e; ++i)
             for (uint32_t j = i + 1; j < e; ++j) {
                 const uint32_t f = grid.triangles[i], g = grid.triangles[j];
                 const uint32_t cf = grid.chartOfFace[f], cg = grid.chartOfFace[g];
-                if (cf == cg || grid.faceOrientation[f] == 0 || grid.faceOrientation[g] == 0 || known(cf, cg)) continue;
-                glm::dvec2 s[3], t[3];
-                corners(f, s);
-                corners(g, t);
-                if (interiorsOverlap(s, grid.faceOrientation[f], t, grid.faceOrientation[g]))
+                if (cf == cg || (overlaps[cf] && overlaps[cg]) || grid.faceOrientation[f] == 0 ||
+                    grid.faceOrientation[g] == 0)
+                    continue;
+                const Tri &s = tris[i - b], &t = tris[j - b];
+                if (s.hi.x <= t.lo.x || t.hi.x <= s.lo.x || s.hi.y <= t.lo.y || t.hi.y <= s.lo.y) continue;  // no interior overlap
+                if (interiorsOverlap(s.v, grid.faceOrientation[f], t.v, grid.faceOrientation[g])) {
                     pairs.emplace_back(std::min(cf, cg), std::max(cf, cg));
+                    overlaps[cf] = overlaps[cg] = 1;
+                }
             }
     }
     std::sort(pairs.begin(), pairs.end(), [](glm::uvec2 x, glm::uvec2 y) { return x.x != y.x ? x.x < y.x : x.y < y.y; });
+    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
     return pairs;
 }
 

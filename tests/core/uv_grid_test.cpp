@@ -159,6 +159,28 @@ TEST(UvGrid, overlappingChartsAreReportedTouchingOnesAreNot) {
     EXPECT_TRUE(one.overlappingCharts.empty());
 }
 
+// Thousands of tiny charts stacked on one spot: every one is reported as overlapping (in some
+// pair), with at most one pair per chart.
+TEST(UvGrid, crowdedOverlappingChartsAreAllFound) {
+    BaseMesh m;
+    m.name = "crowd";
+    const int n = 2000;
+    for (int k = 0; k < n; ++k) {
+        const uint32_t p = uint32_t(m.positions.size()), t = uint32_t(m.uvs.size());
+        m.positions.insert(m.positions.end(), {{0.0, 0.0, 0.01 * k}, {1.0, 0.0, 0.01 * k}, {0.0, 1.0, 0.01 * k}});
+        const double s = 1e-3 * (k % 7);  // slightly different, all overlapping near (0.1, 0.1)
+        m.uvs.insert(m.uvs.end(), {{0.1 + s, 0.1}, {0.3, 0.1 + s}, {0.1, 0.3}});
+        m.faces.emplace_back(p, p + 1, p + 2);
+        m.faceUvs.emplace_back(t, t + 1, t + 2);
+    }
+    const UvGrid g = gridFor(m, 0.5);
+    EXPECT_EQ(g.chartCount, uint32_t(n));
+    EXPECT_LE(g.overlappingCharts.size(), size_t(n));
+    std::vector<char> seen(n, 0);
+    for (const glm::uvec2& pr : g.overlappingCharts) seen[pr.x] = seen[pr.y] = 1;
+    for (int k = 0; k < n; ++k) EXPECT_TRUE(seen[size_t(k)]) << "chart " << k;
+}
+
 TEST(UvGrid, absurdRepeatsAreRefused) {
     const BaseMesh m = test::planeMesh(test::Triangulation::Regular, 2);
     UvGridOptions o;

@@ -370,5 +370,32 @@ TEST(GltfExport, streamedPliesOfNoYarnsWriteAValidEmptyScene) {
     }
 }
 
+// A streamed yarn whose plies could not fit one batch (32-bit offsets) is refused before anything
+// is written, naming the output, instead of failing deep in the pipeline.
+TEST(GltfExport, streamedPliesOfAnAbsurdPitchAreRefusedUpFront) {
+    const std::string dir = test::scratchDir("gltf_streamed_absurd");
+    MappedYarns yarns;
+    const glm::dvec3 line[2] = {glm::dvec3(0), glm::dvec3(1, 0, 0)};
+    yarns.curves.addCurve(line, 2, false);
+    PlyOptions po;
+    po.yarnRadius = 0.001;
+    po.pitch = 1e-8;  // 1 m of yarn at 12 samples per 10 nm: ~2.4e9 ply points
+    const PlyGenerator gen(yarns, po);
+    ExportInput in;
+    in.plies = &gen;
+    in.radius = gen.options().plyRadius;
+    ExportOptions o;
+    o.what = ExportWhat::Plies;
+    o.path = dir + "/absurd.glb";
+    try {
+        exportCurves(in, o);
+        FAIL() << "expected knit::Error";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find(o.path), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("ply pitch"), std::string::npos) << e.what();
+    }
+    EXPECT_TRUE(test::listDir(dir).empty());
+}
+
 }  // namespace
 }  // namespace knit

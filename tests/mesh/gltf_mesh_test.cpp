@@ -264,9 +264,59 @@ TEST(GltfMesh, externalBufferIsReadNextToTheFile) {
     // From memory without a folder, external files are refused.
     EXPECT_NE(errorOf([&] { knit::parseGltfMesh(g.gltfExternal("quad.bin"), "mem.gltf", ""); }).find("not allowed"),
               std::string::npos);
-    // A missing .bin names the file.
+    // A .bin shorter than its byteLength is refused; a missing one names the file.
+    dir.write("quad.bin", g.bin.substr(0, 10));
+    EXPECT_NE(errorOf([&] { knit::loadMesh(path); }).find("less than the buffer's byteLength"), std::string::npos);
     std::filesystem::remove(dir.file("quad.bin"));
     EXPECT_NE(errorOf([&] { knit::loadMesh(path); }).find(path), std::string::npos);
+}
+
+// glTF: a transform with negative determinant reverses the winding, so a mirrored instance is not
+// turned inside out (its geometric normals point the way the mirror image of the original's do).
+TEST(GltfMesh, mirroredNodesKeepTheirTrianglesOutwardFacing) {
+    for (const double sx : {1.0, -1.0}) {
+        const std::string bytes = quadFile([&](GltfBuilder& g) { g.doc["nodes"][0]["scale"] = {sx, 1, 1}; });
+        const knit::BaseMesh m = knit::parseGltfMesh(bytes, "m.gltf", "");
+        ASSERT_EQ(m.faceCount(), 2u);
+        for (const glm::uvec3& f : m.faces) {
+            const glm::dvec3 n = glm::cross(m.positions[f.y] - m.positions[f.x], m.positions[f.z] - m.positions[f.x]);
+            EXPECT_GT(n.z, 0) << "scale x " << sx;  // the quad faces +z before and after mirroring x
+        }
+    }
+}
+
+// A 20000-deep chain of nodes is walked without recursion; the translations add up.
+TEST(GltfMesh, deepNodeChainsDoNotOverflowTheStack) {
+    const int depth = 20000;
+    const std::string bytes = quadFile([&](GltfBuilder& g) {
+        json nodes = json::array();
+        for (int k = 0; k < depth; ++k) {
+            json n = {{"translation", {0.001, 0, 0}}};
+            if (k + 1 < depth) n["children"] = {k + 1};
+            else n["mesh"] = 0;
+            nodes.push_back(n);
+        }
+        g.doc["nodes"] = nodes;
+    });
+    const knit::BaseMesh m = knit::parseGltfMesh(bytes, "deep.gltf", "");
+    double minX = 1e9;
+    for (const glm::dvec3& p : m.positions) minX = std::min(minX, p.x);
+    EXPECT_NEAR(minX, 0.001 * depth, 1e-9);
+}
+
+// Instancing multiplies a small file; the total is capped by MeshLoadOptions::maxElements.
+TEST(GltfMesh, instancingBeyondTheElementBudgetIsRefused) {
+    const std::string bytes = quadFile([](GltfBuilder& g) {
+        g.doc["nodes"] = json::array();
+        for (int k = 0; k < 100; ++k) g.doc["nodes"].push_back({{"mesh", 0}, {"translation", {2.0 * k, 0, 0}}});
+        json roots = json::array();
+        for (int k = 0; k < 100; ++k) roots.push_back(k);
+        g.doc["scenes"][0]["nodes"] = roots;
+    });
+    EXPECT_EQ(knit::parseGltfMesh(bytes, "many.gltf", "").faceCount(), 200u);
+    knit::MeshLoadOptions o;
+    o.maxElements = 150;
+    EXPECT_NE(errorOf([&] { knit::parseGltfMesh(bytes, "many.gltf", "", o); }).find("maxElements"), std::string::npos);
 }
 
 // Bad files: knit::Error naming what is wrong, never a crash.

@@ -39,6 +39,9 @@ struct SurfacePoint {
 struct MeshLoadOptions {
     // Weld positions that are bit-identical into one topology vertex (see file comment).
     bool weldEqualPositions = true;
+    // glTF: refuse files whose primitives, instanced by the node tree, expand to more vertices
+    // or triangles than this (instancing can multiply a small file).
+    uint64_t maxElements = uint64_t(1) << 28;
 };
 
 // Reads OBJ (with vt), PLY (with per-vertex u,v / s,t / texcoord) or OFF (with texture coords)

@@ -28,10 +28,13 @@ struct UvGrid {
     std::vector<uint32_t> edgeOffsets{0};  // per touched cell: range into boundaryEdges
     std::vector<uint32_t> boundaryEdges;   // UV boundary half-edges (3*face + corner), per cell
     std::vector<uint32_t> chartOfFace;     // UV chart (connected component) of each face, 0-based
-    uint32_t chartCount = 0;               // charts, numbered in the order of their lowest face
+    // Charts, numbered in the order of their lowest face (a zero-UV-area triangle that shares no
+    // UV edge with another triangle is a chart of its own).
+    uint32_t chartCount = 0;
     // Pairs (a < b) of charts whose UV triangles overlap (exact test; touching is no overlap).
-    // With any, the pipeline tiles and binds each chart on its own (knit/scene.hpp), so every
-    // chart gets its knit.
+    // Every chart that overlaps another is in some pair (not every overlapping pair is listed:
+    // at most chartCount pairs). With any, the pipeline tiles and binds each chart on its own
+    // (knit/scene.hpp), so every chart gets its knit.
     std::vector<glm::uvec2> overlappingCharts;
     std::vector<int8_t> faceOrientation;   // +1 counter-clockwise, -1 mirrored, 0 zero-area UV
     size_t degenerateUvFaces = 0;          // zero-area UV triangles (never own a point)
