@@ -309,6 +309,14 @@ TEST(GltfExport, emptyCurveSetWritesValidEmptyScene) {
     test::expectGltfValid(o.path);
 }
 
+// Export input for plies generated (and streamed) by `gen`.
+ExportInput streamed(const PlyGenerator& gen) {
+    ExportInput in;
+    in.plies = &gen;
+    in.radius = gen.options().plyRadius;
+    return in;
+}
+
 // Plies streamed from a PlyGenerator: the file depends on neither the thread count nor the
 // pipeline's timing (chunks are written in order), and yarns without plies are skipped.
 TEST(GltfExport, streamedPliesAreTheSameFileForAnyThreadCount) {
@@ -324,9 +332,7 @@ TEST(GltfExport, streamedPliesAreTheSameFileForAnyThreadCount) {
     po.count = 3;
     po.yarnRadius = 0.0004;
     const PlyGenerator gen(yarns, po);
-    ExportInput in;
-    in.plies = &gen;
-    in.radius = gen.options().plyRadius;
+    const ExportInput in = streamed(gen);
     ExportOptions o;
     o.what = ExportWhat::Plies;
     o.chunkVertices = 700;  // many chunks in flight
@@ -355,9 +361,7 @@ TEST(GltfExport, streamedPliesOfNoYarnsWriteAValidEmptyScene) {
         PlyOptions po;
         po.yarnRadius = 0.001;
         const PlyGenerator gen(*yarns, po);
-        ExportInput in;
-        in.plies = &gen;
-        in.radius = gen.options().plyRadius;
+        const ExportInput in = streamed(gen);
         for (const char* name : {"/empty.glb", "/empty.gltf"}) {
             ExportOptions o;
             o.what = ExportWhat::Plies;
@@ -381,9 +385,7 @@ TEST(GltfExport, streamedPliesOfAnAbsurdPitchAreRefusedUpFront) {
     po.yarnRadius = 0.001;
     po.pitch = 1e-8;  // 1 m of yarn at 12 samples per 10 nm: ~2.4e9 ply points
     const PlyGenerator gen(yarns, po);
-    ExportInput in;
-    in.plies = &gen;
-    in.radius = gen.options().plyRadius;
+    const ExportInput in = streamed(gen);
     ExportOptions o;
     o.what = ExportWhat::Plies;
     o.path = dir + "/absurd.glb";

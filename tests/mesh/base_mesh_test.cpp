@@ -14,6 +14,8 @@ using knit::BaseMesh;
 
 namespace {
 
+using knit_test::errorOf;
+
 BaseMesh quad(double sx, double sy) {  // [0,sx] x [0,sy] with uv in [0,1]^2
     BaseMesh m;
     m.name = "quad";
@@ -22,15 +24,6 @@ BaseMesh quad(double sx, double sy) {  // [0,sx] x [0,sy] with uv in [0,1]^2
     m.faces = {{0, 1, 2}, {0, 2, 3}};
     m.faceUvs = m.faces;
     return m;
-}
-
-std::string errorOf(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const knit::Error& e) {
-        return e.what();
-    }
-    return "(no knit::Error thrown)";
 }
 
 }  // namespace

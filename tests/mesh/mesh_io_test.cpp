@@ -18,6 +18,8 @@ using knit_test::TempDir;
 
 namespace {
 
+using knit_test::errorOf;
+
 // A ring of 4 side quads (a square prism, radius 1, z in {0, 0.1}) with a UV seam at u = 0/1:
 // 8 positions, 10 UVs (u = i/4, v = j).
 const double kRingZ[2] = {0.0, 0.1};
@@ -59,15 +61,6 @@ void putBE(std::string& out, T value) {
     unsigned char b[sizeof(T)];
     std::memcpy(b, &value, sizeof(T));
     for (size_t i = 0; i < sizeof(T); ++i) out.push_back(char(b[sizeof(T) - 1 - i]));
-}
-
-std::string errorOf(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const knit::Error& e) {
-        return e.what();
-    }
-    return "(no knit::Error thrown)";
 }
 
 }  // namespace

@@ -4,9 +4,12 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <string>
 #include <unistd.h>
+
+#include "knit/error.hpp"
 
 namespace knit_test {
 
@@ -36,5 +39,15 @@ public:
 private:
     std::filesystem::path path_;
 };
+
+// The message of the knit::Error that `f` throws, or "(no knit::Error thrown)".
+inline std::string errorOf(const std::function<void()>& f) {
+    try {
+        f();
+    } catch (const knit::Error& e) {
+        return e.what();
+    }
+    return "(no knit::Error thrown)";
+}
 
 }  // namespace knit_test
