@@ -74,7 +74,7 @@ std::vector<std::vector<glm::ivec2>> cellsPerChart(const UvGrid& grid) {
 }
 
 void runStages(Scene& scene, const SceneOptions& options, StageClock& clock) {
-    std::vector<Tiling> chartTilings;  // one per UV chart when charts overlap
+    std::vector<Tiling>& chartTilings = scene.chartTilings;
     clock.run("normals", [&] { scene.normals = vertexNormals(scene.mesh.positions, scene.mesh.faces); });
     clock.run("uv_grid", [&] {
         scene.placement = placePattern(scene.pattern, scene.mesh, options.placement);
@@ -173,8 +173,13 @@ nlohmann::json sceneReport(const Scene& s) {
                       {"scale", s.placement.scale},
                       {"yarn_radius", s.yarnRadius}};
     const BindStats& b = s.bound.stats;
+    size_t tileCount = s.tiling.tiles.size();  // the tiles the yarns come from
+    if (!s.chartTilings.empty()) {
+        tileCount = 0;
+        for (const Tiling& t : s.chartTilings) tileCount += t.tiles.size();
+    }
     j["counts"] = {{"cells", s.grid.cells.size()},
-                   {"tiles", s.tiling.tiles.size()},
+                   {"tiles", tileCount},
                    {"yarns", s.yarns.curves.curveCount()},
                    {"closed_loops", b.closedLoops},
                    {"open_ends", b.openEnds},

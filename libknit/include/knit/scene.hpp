@@ -46,7 +46,9 @@ struct Scene {
     PatternPlacement placement;
     double yarnRadius = 0;            // object space (metres)
     UvGrid grid;
-    Tiling tiling;
+    Tiling tiling;                    // tiles over every covered cell
+    std::vector<Tiling> chartTilings; // when UV charts overlap: one tiling per chart, which the
+                                      // yarns come from (empty otherwise)
     UvYarns uvYarns;
     BindResult bound;
     MappedYarns yarns;
