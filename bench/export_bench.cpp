@@ -99,16 +99,11 @@ void BM_SweepTubesChunked(benchmark::State& state) {
 }
 BENCHMARK(BM_SweepTubesChunked)->Arg(1 << 20)->Unit(benchmark::kMillisecond)->UseRealTime();
 
-// GLB export end to end (sweep + write), tube meshes: bytes written per second.
-void BM_ExportGlbTubes(benchmark::State& state) {
-    const Polylines c = plyCurves(400, 2500);
+// Exports `c` to a fresh file (outside the timing) in every iteration; reports MB and MB/s.
+ExportStats timeExports(benchmark::State& state, const Polylines& c, const ExportOptions& o) {
     ExportInput in;
     in.curves = &c;
     in.radius = 0.0004;
-    ExportOptions o;
-    o.path = tempPath("tubes.glb");
-    o.what = ExportWhat::Tubes;
-    o.quantize = state.range(0) == 1;
     ExportStats s;
     for (auto _ : state) {
         state.PauseTiming();
@@ -120,31 +115,29 @@ void BM_ExportGlbTubes(benchmark::State& state) {
     state.counters["MB"] = double(s.bytes) / 1e6;
     state.counters["MB/s"] = benchmark::Counter(double(s.bytes) * double(state.iterations()) / 1e6,
                                                 benchmark::Counter::kIsRate);
+    return s;
+}
+
+// GLB export end to end (sweep + write), tube meshes: bytes written per second.
+void BM_ExportGlbTubes(benchmark::State& state) {
+    const Polylines c = plyCurves(400, 2500);
+    ExportOptions o;
+    o.path = tempPath("tubes.glb");
+    o.what = ExportWhat::Tubes;
+    o.quantize = state.range(0) == 1;
+    const ExportStats s = timeExports(state, c, o);
     state.counters["vertices"] = double(s.vertices);
     state.SetLabel(o.quantize ? "KHR_mesh_quantization" : "float32");
 }
 BENCHMARK(BM_ExportGlbTubes)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
 
-// GLB curves (one LINE_STRIP per curve): bytes written per second.
+// GLB curves (one non-indexed LINE_STRIP per curve): bytes written per second.
 void BM_ExportGlbCurves(benchmark::State& state) {
     const Polylines c = plyCurves(4000, 2500);
-    ExportInput in;
-    in.curves = &c;
-    in.radius = 0.0004;
     ExportOptions o;
     o.path = tempPath("curves.glb");
     o.what = ExportWhat::Plies;
-    ExportStats s;
-    for (auto _ : state) {
-        state.PauseTiming();
-        removeOutputs(o.path);
-        state.ResumeTiming();
-        s = exportCurves(in, o);
-    }
-    removeOutputs(o.path);
-    state.counters["MB"] = double(s.bytes) / 1e6;
-    state.counters["MB/s"] = benchmark::Counter(double(s.bytes) * double(state.iterations()) / 1e6,
-                                                benchmark::Counter::kIsRate);
+    timeExports(state, c, o);
 }
 BENCHMARK(BM_ExportGlbCurves)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
 

@@ -1,7 +1,6 @@
 // knit — command-line front end. It only composes library stages (knit/scene.hpp) with the
 // exporters (knit/export.hpp) and, when built, the render check (knit/render.hpp).
 #include <algorithm>
-#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -100,13 +99,6 @@ void printWarnings(const knit::Scene& s) {
         pairs += " and " + std::to_string(s.grid.overlappingCharts.size() - shown) + " more pairs";
     std::fprintf(stderr, "knit: note: %s: UV charts overlap (%s); each chart is tiled and knitted on its own\n",
                  s.mesh.name.c_str(), pairs.c_str());
-}
-
-// glTF / GLB ply curves are generated while writing (streamed): the scene is built without them.
-bool streamsPlies(const knit::ExportOptions& o) {
-    std::string ext = std::filesystem::path(o.path).extension().string();
-    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-    return o.what == knit::ExportWhat::Plies && (ext == ".glb" || ext == ".gltf");
 }
 
 // The scene report plus the export; streamed plies are counted by the export.
@@ -232,7 +224,8 @@ int main(int argc, char** argv) {
             knit::validateExportOptions(exportOptions);
             if (!buildReport.empty()) requireWritableFolder(buildReport, "report");
             knit::SceneOptions options = resolveScene(buildFlags);
-            const bool streamed = streamsPlies(exportOptions);
+            // glTF / GLB ply curves are generated while writing: the scene is built without them.
+            const bool streamed = knit::streamsPlies(exportOptions);
             options.buildPlies = exportOptions.what != knit::ExportWhat::Yarns && !streamed;
             const knit::Scene scene = knit::buildScene(options);
             printWarnings(scene);

@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <functional>
 #include <memory>
+#include <stdexcept>
 #include <vector>
 
 #include <tbb/concurrent_queue.h>
@@ -62,11 +63,14 @@ void orderedChunks(size_t count, Produce produce, Consume consume) {
         tokens,
         tbb::make_filter<void, Slot*>(tbb::filter_mode::serial_in_order,
                                       [&](tbb::flow_control& fc) -> Slot* {
-                                          Slot* slot = nullptr;
-                                          if (next == count || !free.try_pop(slot)) {  // a free slot always exists
+                                          if (next == count) {
                                               fc.stop();
                                               return nullptr;
                                           }
+                                          // A slot is back in `free` before its token retires, and
+                                          // at most `tokens` are live: one is always free here.
+                                          Slot* slot = nullptr;
+                                          if (!free.try_pop(slot)) throw std::logic_error("orderedChunks: no free slot");
                                           slot->index = next++;
                                           return slot;
                                       }) &

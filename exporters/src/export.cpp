@@ -73,6 +73,10 @@ void validateInput(const ExportInput& in, bool tubes) {
 
 }  // namespace
 
+bool streamsPlies(const ExportOptions& o) {
+    return o.what == ExportWhat::Plies && isGltf(detail::lowerExtension(o.path));
+}
+
 void validateExportOptions(const ExportOptions& o) {
     const std::string ext = detail::lowerExtension(o.path);
     if (o.path.empty()) throw Error("export: no output path given");
@@ -123,7 +127,7 @@ ExportStats exportCurves(const ExportInput& input, const ExportOptions& requeste
     const bool tubes = options.what == ExportWhat::Tubes;
     validateInput(input, tubes);
     const std::string ext = detail::lowerExtension(options.path);
-    if (input.plies && (tubes || !isGltf(ext))) {
+    if (input.plies && !streamsPlies(options)) {
         // Only glTF curves stream generated plies; the other writers take all curves at once.
         const Plies plies = makePlies(*input.plies);
         ExportInput all = input;

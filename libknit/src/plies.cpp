@@ -93,6 +93,10 @@ PlyOptions resolvePlyOptions(const PlyOptions& options) {
 PlyGenerator::PlyGenerator(const MappedYarns& yarns, const PlyOptions& options)
     : yarns_(yarns), options_(resolvePlyOptions(options)) {
     spacing_ = options_.pitch / static_cast<double>(options_.samplesPerTurn);
+    for (int i = 0; i < options_.count; ++i) {
+        cosPly_[i] = std::cos(2.0 * kPi * i / options_.count);
+        sinPly_[i] = std::sin(2.0 * kPi * i / options_.count);
+    }
     ResampleOptions ro;
     ro.spacing = spacing_;
     validateResampleInput(yarns_, ro);
@@ -137,11 +141,8 @@ void PlyGenerator::sweep(size_t y, const dvec3* X, size_t m, dvec3* P, dvec3* D,
     const double rate = (opt.twist == Twist::Z ? 1.0 : -1.0) * 2.0 * kPi / pitch;  // dtheta/ds
 
     // Step 3: the helices, with phase offsets 2 pi i / n.
-    double cosPly[16], sinPly[16];
-    for (uint32_t i = 0; i < n; ++i) {
-        cosPly[i] = std::cos(2.0 * kPi * i / n);
-        sinPly[i] = std::sin(2.0 * kPi * i / n);
-    }
+    const double* cosPly = cosPly_;
+    const double* sinPly = sinPly_;
     const double R = opt.centerRadius;
     for (size_t j = 0; j < m; ++j) {
         const double theta = rate * arc[j];

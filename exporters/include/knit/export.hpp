@@ -111,6 +111,10 @@ struct ExportInput {
 };
 ExportStats exportCurves(const ExportInput& input, const ExportOptions& options);
 
+// True when these options stream generated plies (ply curves into .glb / .gltf): the scene can
+// then be built with SceneOptions::buildPlies = false, which costs far less time and memory.
+bool streamsPlies(const ExportOptions& options);
+
 // Checks the options against each other and the extension; throws knit::Error naming the
 // conflict (e.g. --draco with curves, --draco with --quantize, Draco for a non-glTF format).
 void validateExportOptions(const ExportOptions& options);

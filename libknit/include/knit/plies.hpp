@@ -90,6 +90,7 @@ private:
     const MappedYarns& yarns_;
     PlyOptions options_;
     double spacing_ = 0;
+    double cosPly_[16] = {}, sinPly_[16] = {};  // phase offsets 2 pi i / count of the plies
 };
 
 // All plies of the generator's yarns (what makePlies(yarns, options) returns).
