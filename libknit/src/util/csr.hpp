@@ -1,0 +1,18 @@
+// util/csr.hpp — compressed-row (offsets) arrays: element e owns items [offsets[e], offsets[e+1]).
+// Used for Polylines, yarns, cell -> triangle lists and vertex -> face lists (internal).
+#pragma once
+#include <algorithm>
+#include <cstddef>
+#include <vector>
+
+namespace knit::util {
+
+// True when `offsets` describes `rows` rows over `items` items: rows + 1 entries, starting at 0,
+// never decreasing, ending at `items`.
+template <class Offset>
+bool validOffsets(const std::vector<Offset>& offsets, size_t rows, size_t items) {
+    return offsets.size() == rows + 1 && offsets.front() == 0 && size_t(offsets.back()) == items &&
+           std::is_sorted(offsets.begin(), offsets.end());
+}
+
+}  // namespace knit::util

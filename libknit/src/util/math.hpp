@@ -1,0 +1,30 @@
+// util/math.hpp — constants and small vector helpers shared by every library of the project
+// (internal: not installed; include as "util/math.hpp").
+#pragma once
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+namespace knit::util {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kTwoPi = 2.0 * kPi;
+constexpr double kInvPi = 1.0 / kPi;
+
+// A unit vector perpendicular to unit `t`: the coordinate axis least aligned with t (ties go to
+// x, then y), with its component along t removed.
+inline glm::dvec3 anyPerpendicular(const glm::dvec3& t) {
+    const glm::dvec3 a = glm::abs(t);
+    glm::dvec3 axis(0.0);
+    if (a.x <= a.y && a.x <= a.z)
+        axis.x = 1.0;
+    else if (a.y <= a.z)
+        axis.y = 1.0;
+    else
+        axis.z = 1.0;
+    return glm::normalize(axis - glm::dot(axis, t) * t);
+}
+
+}  // namespace knit::util
