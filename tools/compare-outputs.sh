@@ -59,9 +59,9 @@ run_all() {  # $1 = knit binary, $2 = folder
 ( run_all "$old" "$work/old" )
 ( run_all "$new" "$work/new" )
 
-python3 - "$work" <<'PY'
+python3 - "$work" "$old" "$new" <<'PY'
 import json, os, re, sys
-work = sys.argv[1]
+work, old_bin, new_bin = sys.argv[1:4]
 volatile = re.compile(r'(second|time|peak|memory|rays_per|per_second|Seconds|Memory|PerSecond)', re.I)
 def clean(j):
     if isinstance(j, dict): return {k: clean(v) for k, v in j.items() if not volatile.search(k)}
@@ -79,7 +79,13 @@ for n in names:
         try: x, y = clean(json.loads(x)), clean(json.loads(y))
         except Exception: pass
     elif n.endswith(('.stdout', '.stderr')):
-        x, y = mask.sub('#', x.decode(errors='replace')), mask.sub('#', y.decode(errors='replace'))
+        def text(raw, binary):
+            lines = []
+            for line in raw.decode(errors='replace').replace(binary, 'knit').splitlines():
+                try: lines.append(clean(json.loads(line)))   # the render summary is one JSON line
+                except Exception: lines.append(mask.sub('#', line))
+            return lines
+        x, y = text(x, old_bin), text(y, new_bin)
     if x != y: diff.append(f"{n}: differs")
 print(f"compare-outputs: {len(names)} files, {len(diff)} differ ({work})")
 for d in diff: print("  " + d)
