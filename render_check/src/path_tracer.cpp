@@ -14,6 +14,7 @@
 
 #include "knit/error.hpp"
 #include "knit/ply_bsdf.hpp"
+#include "trace_scene.hpp"
 
 namespace knit {
 namespace {

@@ -1,5 +1,5 @@
 // Embree scenes for the three geometry modes (curves, tubes, two-stage grid) and ray queries.
-#include "knit/trace_scene.hpp"
+#include "trace_scene.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -14,22 +14,6 @@
 #include "knit/sweep.hpp"
 
 namespace knit {
-
-const char* modeName(GeometryMode mode) {
-    switch (mode) {
-        case GeometryMode::Curves: return "curves";
-        case GeometryMode::Tubes: return "tubes";
-        case GeometryMode::Grid: return "grid";
-    }
-    return "?";
-}
-
-GeometryMode parseMode(const std::string& name) {
-    if (name == "curves") return GeometryMode::Curves;
-    if (name == "tubes") return GeometryMode::Tubes;
-    if (name == "grid") return GeometryMode::Grid;
-    throw Error("render: unknown geometry mode '" + name + "' (expected curves, tubes or grid)");
-}
 
 EmbreeDevice::EmbreeDevice(const char* config) {
     device_ = rtcNewDevice(config);

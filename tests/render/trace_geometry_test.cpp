@@ -11,7 +11,7 @@
 #include "knit/plies.hpp"
 #include "knit/ply_geometry.hpp"
 #include "knit/synthetic_scene.hpp"
-#include "knit/trace_scene.hpp"
+#include "trace_scene.hpp"
 
 namespace knit {
 namespace {

@@ -1,4 +1,5 @@
-// knit/trace_scene.hpp — the Embree scene for one geometry mode, and ray queries on it.
+// trace_scene.hpp — internal: the Embree scene for one geometry mode, and ray queries on it.
+// (Internal to render_check, its tests and benchmarks: the public side is knit/trace_mode.hpp.)
 //
 // Modes:
 //   Curves: RTC_GEOMETRY_TYPE_ROUND_LINEAR_CURVE over the ply segments (float4 x, y, z, r).
@@ -33,12 +34,9 @@
 
 #include "knit/base_mesh.hpp"
 #include "knit/ply_geometry.hpp"
+#include "knit/trace_mode.hpp"
 
 namespace knit {
-
-enum class GeometryMode { Curves, Tubes, Grid };
-const char* modeName(GeometryMode mode);
-GeometryMode parseMode(const std::string& name);  // throws knit::Error
 
 // An Embree device with a memory monitor (bytes Embree allocates). Pass it explicitly.
 class EmbreeDevice {
@@ -71,13 +69,6 @@ struct TraceHit {
     uint32_t segment = 0;     // ply segment (Ply) or triangle (Base)
     float u = 0;              // position along the ply segment in [0, 1]
     uint32_t geomID = RTC_INVALID_GEOMETRY_ID, primID = RTC_INVALID_GEOMETRY_ID;  // Embree primitive
-};
-
-struct TraceMemory {
-    int64_t embreeBytes = 0;    // BVH and primitive data allocated by Embree for this scene
-    int64_t geometryBytes = 0;  // our buffers needed to intersect (vertices, indices, cells)
-    int64_t shadingBytes = 0;   // per-point shading attributes (same for every mode)
-    int64_t sceneBytes() const { return embreeBytes + geometryBytes; }
 };
 
 class TraceScene {
