@@ -24,7 +24,7 @@
 #include "knit/ply_geometry.hpp"
 #include "knit/scene.hpp"
 #include "knit/synthetic_scene.hpp"
-#include "knit/trace_scene.hpp"
+#include "trace_scene.hpp"
 
 namespace {
 

@@ -9,10 +9,12 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "util/math.hpp"
+
 namespace knit {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using util::kPi;
 
 struct Ring {
     std::vector<glm::dvec2> centres;
@@ -78,6 +80,9 @@ double wrapAngle(double a) { return std::remainder(a, 2.0 * kPi); }
 
 double frac(double x) { return x - std::floor(x); }
 
+// A unit vector perpendicular to unit t, for degenerate shading frames. Not util::anyPerpendicular:
+// that one picks another axis (least aligned with t, then projects), and the frames rendered so far
+// were built with this rule (the x axis, or y when |t.x| >= 0.9; crossed with t).
 glm::dvec3 anyPerpendicular(const glm::dvec3& t) {
     const glm::dvec3 a = std::abs(t.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
     return glm::normalize(glm::cross(t, a));

@@ -14,11 +14,13 @@
 
 #include "knit/error.hpp"
 #include "knit/ply_bsdf.hpp"
+#include "trace_scene.hpp"
+#include "util/math.hpp"
 
 namespace knit {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using util::kPi;
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
 uint64_t splitmix(uint64_t x) {

@@ -6,11 +6,13 @@
 
 #include <glm/geometric.hpp>
 
+#include "util/math.hpp"
+
 namespace knit {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kInvPi = 1.0 / kPi;
+using util::kInvPi;
+using util::kPi;
 
 // Mirror a direction into the upper hemisphere (z >= 0).
 glm::dvec3 upper(const glm::dvec3& w) { return {w.x, w.y, std::abs(w.z)}; }

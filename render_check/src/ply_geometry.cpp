@@ -9,10 +9,11 @@
 
 #include "knit/error.hpp"
 #include "knit/scene.hpp"
+#include "util/math.hpp"
 
 namespace knit {
 namespace {
-constexpr double kPi = 3.14159265358979323846;
+using util::kPi;
 }  // namespace
 
 size_t PlyGeometry::intersectionBytes() const {

@@ -17,6 +17,7 @@
 #include "knit/image_io.hpp"
 #include "knit/ply_geometry.hpp"
 #include "knit/scene.hpp"
+#include "trace_scene.hpp"
 
 namespace knit {
 namespace {

@@ -6,13 +6,14 @@
 #include <glm/geometric.hpp>
 
 #include "knit/error.hpp"
+#include "util/math.hpp"
 
 namespace knit {
 
 Scene makeSyntheticPlyScene(const SyntheticSceneOptions& o) {
     if (o.courses < 1 || !(o.size > 0) || !(o.yarnRadius > 0) || o.plyCount < 1 || o.samplesPerTurn < 3)
         throw Error("synthetic scene: invalid options");
-    constexpr double kPi = 3.14159265358979323846;
+    using util::kPi;
     Scene s;
     // Step 1: base plane [0, size]^2 with uv = (x, y) / size, two triangles.
     s.mesh.name = "synthetic-plane";

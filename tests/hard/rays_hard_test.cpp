@@ -14,7 +14,7 @@
 #include "knit/ply_geometry.hpp"
 #include "knit/render.hpp"
 #include "knit/synthetic_scene.hpp"
-#include "knit/trace_scene.hpp"
+#include "trace_scene.hpp"
 
 namespace knit {
 namespace {

@@ -1,5 +1,6 @@
 // Geometry of the three tracing modes on hand-made plies: far ray origins, sharp joints, open
-// ends, grazing rays on tubes, and the fiber texture phase of closed loops.
+// ends, grazing rays on tubes, what each mode gives TraceScene (trace_geometry.hpp), and the
+// fiber texture phase of closed loops.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -7,11 +8,13 @@
 
 #include <glm/geometric.hpp>
 
+#include "knit/error.hpp"
 #include "knit/fiber_tables.hpp"
 #include "knit/plies.hpp"
 #include "knit/ply_geometry.hpp"
 #include "knit/synthetic_scene.hpp"
-#include "knit/trace_scene.hpp"
+#include "trace_geometry.hpp"
+#include "trace_scene.hpp"
 
 namespace knit {
 namespace {
@@ -189,6 +192,71 @@ TEST(TraceScene, tubeIsEnteredFromBothSidesOfEveryChord) {
     }
     EXPECT_GT(chords, 1000);
     EXPECT_EQ(oneWay, 0) << "of " << lines << " lines";
+}
+
+TEST(TraceGeometry, factoryRejectsTooFewTubeSidesAndMissingGridCells) {
+    // Each mode checks its own options when it is built, with the messages `knit render` shows.
+    const Plies plies = handMadePlies({{{0, 0, 0}, {4, 0, 0}, {8, 0.5, 0}, {12, 0, 0}}});
+    const PlyGeometry g = buildPlyGeometry(plies, glm::dvec3(0.0));
+    const std::vector<int64_t> cells(g.segmentCount(), 0), tooFew(g.segmentCount() - 1, 0);
+    auto errorOf = [&](const TraceSceneOptions& o) -> std::string {
+        try {
+            makeTraceGeometry(g, o);
+        } catch (const Error& e) {
+            return e.what();
+        }
+        return "";
+    };
+    EXPECT_EQ(errorOf(modeOptions(GeometryMode::Tubes, cells, 2)), "render: tube sides must be >= 3");
+    EXPECT_EQ(errorOf(modeOptions(GeometryMode::Tubes, cells, 3)), "");
+    const std::string noCells = "render: grid mode needs a UV-grid cell for every ply segment";
+    EXPECT_EQ(errorOf(modeOptions(GeometryMode::Grid, tooFew)), noCells);
+    TraceSceneOptions none = modeOptions(GeometryMode::Grid, cells);
+    none.segmentCells = nullptr;
+    EXPECT_EQ(errorOf(none), noCells);
+    EXPECT_EQ(errorOf(modeOptions(GeometryMode::Curves, tooFew)), "");  // curves use no cells
+    // TraceScene passes them on unchanged.
+    EmbreeDevice device;
+    try {
+        const TraceScene scene(device, g, modeOptions(GeometryMode::Tubes, cells, 2));
+        ADD_FAILURE() << "tube sides 2 accepted";
+    } catch (const Error& e) {
+        EXPECT_STREQ(e.what(), "render: tube sides must be >= 3");
+    }
+}
+
+TEST(TraceGeometry, eachModeReportsItsPrimitivesAndSpawnRules) {
+    // What TraceScene takes from a mode: primitive count and bytes for the report, the primitive a
+    // spawned ray ignores (only tubes: the facet it leaves) and the inscribed radius transmitted
+    // rays start within (the tube polygon's; 1 for the round solids).
+    const Plies plies = handMadePlies({{{0, 0, 0}, {4, 0, 0}, {8, 0.5, 0}, {12, 0, 0}, {16, 0, 0}},
+                                       {{0, 5, 0}, {4, 5, 0}, {8, 5, 0}}});
+    const PlyGeometry g = buildPlyGeometry(plies, glm::dvec3(0.0));
+    std::vector<int64_t> cells(g.segmentCount());
+    for (size_t s = 0; s < cells.size(); ++s) cells[s] = static_cast<int64_t>(s / 2);  // two per cell
+    const size_t cellCount = (g.segmentCount() + 1) / 2;
+    TraceHit from;
+    from.kind = TraceHit::Ply;
+    from.primID = 7;
+    const int sides = 6;
+    EmbreeDevice device;
+    for (GeometryMode mode : {GeometryMode::Curves, GeometryMode::Tubes, GeometryMode::Grid}) {
+        SCOPED_TRACE(modeName(mode));
+        const std::unique_ptr<TraceGeometry> geometry = makeTraceGeometry(g, modeOptions(mode, cells, sides));
+        const TraceScene scene(device, g, modeOptions(mode, cells, sides));
+        EXPECT_EQ(scene.primitiveCount(), geometry->primitiveCount());
+        EXPECT_EQ(scene.memory().geometryBytes, geometry->bytes());
+        EXPECT_GT(geometry->bytes(), 0);
+        const bool tubes = mode == GeometryMode::Tubes;
+        EXPECT_EQ(geometry->sceneFlags(), tubes ? RTC_SCENE_FLAG_ROBUST : RTC_SCENE_FLAG_NONE);
+        EXPECT_EQ(geometry->ignoredPrimitive(from), tubes ? 7u : RTC_INVALID_GEOMETRY_ID);
+        EXPECT_EQ(geometry->inscribedRadius(), tubes ? std::cos(float(kPi) / sides) : 1.f);
+    }
+    EXPECT_EQ(makeCurveGeometry(g)->primitiveCount(), g.segmentCount());  // one curve per segment
+    EXPECT_EQ(makeCurveGeometry(g)->bytes(), static_cast<int64_t>(g.intersectionBytes()));
+    EXPECT_EQ(makeGridGeometry(g, &cells)->primitiveCount(), cellCount);  // one user primitive per cell
+    // Tubes: sides * 2 triangles per ring gap, plus the two hemispheres of each open end.
+    EXPECT_GT(makeTubeGeometry(g, sides)->primitiveCount(), 2u * sides * g.segmentCount());
 }
 
 TEST(PlyGeometry, closedLoopFiberPhaseHasNoSeam) {

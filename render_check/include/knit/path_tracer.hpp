@@ -15,9 +15,10 @@
 
 #include "knit/fiber_tables.hpp"
 #include "knit/ply_material.hpp"
-#include "knit/trace_scene.hpp"
 
 namespace knit {
+
+class TraceScene;  // render_check internal (src/trace_scene.hpp): the Embree scene to trace
 
 struct Camera {
     glm::dvec3 eye{0, 0, 1}, target{0.0}, up{0, 1, 0};  // world space (metres)

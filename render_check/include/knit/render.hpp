@@ -18,7 +18,7 @@
 
 #include "knit/path_tracer.hpp"
 #include "knit/ply_material.hpp"
-#include "knit/trace_scene.hpp"
+#include "knit/trace_mode.hpp"
 
 namespace CLI {
 class App;

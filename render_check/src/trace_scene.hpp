@@ -1,6 +1,7 @@
-// knit/trace_scene.hpp — the Embree scene for one geometry mode, and ray queries on it.
+// trace_scene.hpp — internal: the Embree scene for one geometry mode, and ray queries on it.
+// (Internal to render_check, its tests and benchmarks: the public side is knit/trace_mode.hpp.)
 //
-// Modes:
+// Modes (knit/trace_mode.hpp; one file each behind trace_geometry.hpp):
 //   Curves: RTC_GEOMETRY_TYPE_ROUND_LINEAR_CURVE over the ply segments (float4 x, y, z, r).
 //   Tubes:  triangle meshes from knit::sweepTubes (the exporter's sweep; caps: see below).
 //   Grid:   the two-stage idea: one RTC_GEOMETRY_TYPE_USER primitive per non-empty UV-grid cell;
@@ -33,12 +34,9 @@
 
 #include "knit/base_mesh.hpp"
 #include "knit/ply_geometry.hpp"
+#include "knit/trace_mode.hpp"
 
 namespace knit {
-
-enum class GeometryMode { Curves, Tubes, Grid };
-const char* modeName(GeometryMode mode);
-GeometryMode parseMode(const std::string& name);  // throws knit::Error
 
 // An Embree device with a memory monitor (bytes Embree allocates). Pass it explicitly.
 class EmbreeDevice {
@@ -73,12 +71,7 @@ struct TraceHit {
     uint32_t geomID = RTC_INVALID_GEOMETRY_ID, primID = RTC_INVALID_GEOMETRY_ID;  // Embree primitive
 };
 
-struct TraceMemory {
-    int64_t embreeBytes = 0;    // BVH and primitive data allocated by Embree for this scene
-    int64_t geometryBytes = 0;  // our buffers needed to intersect (vertices, indices, cells)
-    int64_t shadingBytes = 0;   // per-point shading attributes (same for every mode)
-    int64_t sceneBytes() const { return embreeBytes + geometryBytes; }
-};
+class TraceGeometry;  // one geometry mode (trace_geometry.hpp)
 
 class TraceScene {
 public:
@@ -100,20 +93,20 @@ public:
     const PlyGeometry& plies() const { return plies_; }
     const TraceMemory& memory() const { return memory_; }
     size_t primitiveCount() const { return primitives_; }
-    RTCScene embreeScene() const { return scene_; }
 
     float outsideOffset = 1e-3f;  // ply radii
     float insideOffset = 0.1f;    // ply radii
 
-    struct Impl;
-
 private:
+    void attachBaseMesh(RTCDevice device, const BaseMesh& mesh);
     uint32_t ignoreOf(const TraceHit* from) const;
     const PlyGeometry& plies_;
     TraceSceneOptions options_;
+    std::unique_ptr<TraceGeometry> geometry_;
     RTCScene scene_ = nullptr;
     unsigned plyGeom_ = RTC_INVALID_GEOMETRY_ID, baseGeom_ = RTC_INVALID_GEOMETRY_ID;
-    std::unique_ptr<Impl> impl_;
+    std::vector<glm::vec3> basePositions_;  // scene units, padded by one element
+    std::vector<glm::uvec3> baseFaces_;
     TraceMemory memory_;
     size_t primitives_ = 0;
     float baseOffset_ = 0;
