@@ -7,7 +7,6 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 #include <chrono>
 #include <unordered_map>
@@ -22,6 +21,8 @@
 
 #include "knit/export.hpp"
 #include "knit/sweep.hpp"
+#include "util/math.hpp"
+#include "util/platform.hpp"
 
 namespace {
 
@@ -32,10 +33,10 @@ Polylines plyCurves(int curves, int points, double plyRadius = 0.0004) {
     Polylines c;
     std::vector<glm::dvec3> p(static_cast<size_t>(points));
     for (int k = 0; k < curves; ++k) {
-        const double row = 0.004 * (k / 2), phase = M_PI * (k % 2);
+        const double row = 0.004 * (k / 2), phase = util::kPi * (k % 2);
         for (int i = 0; i < points; ++i) {
             const double s = 0.0005 * i;  // 0.5 mm spacing
-            const double th = 2 * M_PI * s / 0.006 + phase;
+            const double th = util::kTwoPi * s / 0.006 + phase;
             p[size_t(i)] = glm::dvec3(s, row + 0.001 * std::sin(s / 0.003) + 2.5 * plyRadius * std::cos(th),
                                       0.0008 * std::cos(s / 0.002) + 2.5 * plyRadius * std::sin(th));
         }
@@ -250,8 +251,8 @@ void BM_StreamingPeakMemory(benchmark::State& state) {
     ExportStats s;
     size_t base = 0;
     for (auto _ : state) {
-        { std::ofstream("/proc/self/clear_refs") << "5"; }  // reset VmHWM to the current RSS
-        base = peakResidentBytes();
+        util::resetPeakResident();  // VmHWM back to the current RSS
+        base = util::peakResidentBytes();
         s = exportCurves(in, o);
     }
     removeOutputs(o.path);

@@ -15,10 +15,10 @@
 #include "knit/frames.hpp"
 #include "knit/plies.hpp"
 #include "knit/resample.hpp"
+#include "util/math.hpp"
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kScale = 0.0005;           // curve scale (metres)
 constexpr double kYarnRadius = 0.8 * kScale;
 
@@ -30,7 +30,7 @@ const knit::MappedYarns& benchYarns() {
         for (int k = 0; k < yarnCount; ++k) {
             const double row = 4.5 * kScale * k;
             for (int i = 0; i < vertices; ++i) {
-                const double t = 2.0 * kPi * i / perLoop;
+                const double t = knit::util::kTwoPi * i / perLoop;
                 p[i] = glm::dvec3(kScale * (t + 1.5 * std::sin(2 * t)), row + kScale * 4.0 * std::cos(t),
                                   kScale * std::cos(2 * t));
             }

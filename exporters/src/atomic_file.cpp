@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -127,13 +126,6 @@ void appendFile(std::ostream& out, const std::string& from, uint64_t offset, uin
     if (copied != bytes)
         throw Error("export: temporary file '" + from + "' ended after " + std::to_string(copied) + " of " +
                     std::to_string(bytes) + " bytes");
-}
-
-std::string lowerExtension(const std::string& path) {
-    std::string ext = fs::path(path).extension().string();
-    if (!ext.empty() && ext[0] == '.') ext.erase(0, 1);
-    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return ext;
 }
 
 }  // namespace knit::detail

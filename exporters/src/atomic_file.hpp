@@ -45,7 +45,4 @@ void checkOutputFolder(const std::string& path);
 // Appends `bytes` bytes of file `from`, starting at `offset`, to `out`.
 void appendFile(std::ostream& out, const std::string& from, uint64_t offset, uint64_t bytes);
 
-// Lower-case extension of `path` without the dot ("" if none).
-std::string lowerExtension(const std::string& path);
-
 }  // namespace knit::detail

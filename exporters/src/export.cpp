@@ -2,8 +2,6 @@
 #include "knit/export.hpp"
 
 #include <chrono>
-#include <cmath>
-#include <fstream>
 #include <memory>
 #include <sstream>
 
@@ -13,6 +11,9 @@
 #include "atomic_file.hpp"
 #include "formats.hpp"
 #include "knit/error.hpp"
+#include "util/checks.hpp"
+#include "util/csr.hpp"
+#include "util/platform.hpp"
 
 namespace knit {
 
@@ -41,27 +42,25 @@ void validateInput(const ExportInput& in, bool tubes) {
     if (!in.curves && !in.plies) throw Error("export: no curves given");
     if (in.curves && in.plies) throw Error("export: both curves and a ply generator given; pass one");
     if (in.plies) {
-        if (!(std::isfinite(in.radius) && in.radius > 0))
+        if (!util::positiveFinite(in.radius))
             throw Error("export: radius must be a positive number, got " + std::to_string(in.radius));
         return;
     }
     const Polylines& c = *in.curves;
-    if (c.offsets.size() != c.closed.size() + 1 || c.offsets.front() != 0 ||
-        c.offsets.back() != c.points.size())
+    if (!util::offsetEnds(c.offsets, c.curveCount(), c.pointCount()))
         throw Error("export: inconsistent curve offsets (" + std::to_string(c.offsets.size()) + " offsets, " +
                     std::to_string(c.closed.size()) + " curves, " + std::to_string(c.points.size()) + " points)");
     for (size_t k = 0; k < c.curveCount(); ++k) {
         if (c.offsets[k + 1] < c.offsets[k])
             throw Error("export: curve " + std::to_string(k) + " has decreasing offsets");
         for (uint32_t i = c.begin(k); i < c.end(k); ++i) {
-            const glm::dvec3& p = c.points[i];
-            if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+            if (!util::finite(c.points[i]))
                 throw Error("export: curve " + std::to_string(k) + " point " + std::to_string(i - c.begin(k)) +
                             " is not finite");
         }
     }
     (void)tubes;
-    if (!(std::isfinite(in.radius) && in.radius > 0))
+    if (!util::positiveFinite(in.radius))
         throw Error("export: radius must be a positive number, got " + std::to_string(in.radius));
     if (in.yarnOfCurve && in.yarnOfCurve->size() != c.curveCount())
         throw Error("export: yarnOfCurve has " + std::to_string(in.yarnOfCurve->size()) + " entries for " +
@@ -74,11 +73,11 @@ void validateInput(const ExportInput& in, bool tubes) {
 }  // namespace
 
 bool streamsPlies(const ExportOptions& o) {
-    return o.what == ExportWhat::Plies && isGltf(detail::lowerExtension(o.path));
+    return o.what == ExportWhat::Plies && isGltf(util::lowerExtension(o.path));
 }
 
 void validateExportOptions(const ExportOptions& o) {
-    const std::string ext = detail::lowerExtension(o.path);
+    const std::string ext = util::lowerExtension(o.path);
     if (o.path.empty()) throw Error("export: no output path given");
     if (!isKnownFormat(ext))
         throw Error("cannot export '" + o.path + "': unknown extension '" + (ext.empty() ? "" : "." + ext) +
@@ -126,7 +125,7 @@ ExportStats exportCurves(const ExportInput& input, const ExportOptions& requeste
     detail::checkOutputFolder(options.path);
     const bool tubes = options.what == ExportWhat::Tubes;
     validateInput(input, tubes);
-    const std::string ext = detail::lowerExtension(options.path);
+    const std::string ext = util::lowerExtension(options.path);
     if (input.plies && !streamsPlies(options)) {
         // Only glTF curves stream generated plies; the other writers take all curves at once.
         const Plies plies = makePlies(*input.plies);
@@ -161,7 +160,7 @@ ExportStats exportCurves(const ExportInput& input, const ExportOptions& requeste
     else if (ext == "pbrt") detail::exportPbrt(job);
     else detail::exportGltf(job, ext == "glb");
 
-    stats.peakMemoryBytes = peakResidentBytes();
+    stats.peakMemoryBytes = util::peakResidentBytes();
     stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return stats;
 }
@@ -297,20 +296,6 @@ nlohmann::json exportReport(const ExportStats& s) {
             j["compressionRatio"] = double(s.uncompressedMeshBytes) / double(s.compressedMeshBytes);
     }
     return j;
-}
-
-size_t peakResidentBytes() {
-    std::ifstream status("/proc/self/status");
-    std::string line;
-    while (std::getline(status, line)) {
-        if (line.rfind("VmHWM:", 0) == 0) {
-            std::istringstream in(line.substr(6));
-            size_t kb = 0;
-            in >> kb;
-            return kb * 1024;
-        }
-    }
-    return 0;
 }
 
 void writeFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write,

@@ -2,6 +2,8 @@
 // validation, and the file-or-built-in-name front door.
 #include "knit/base_mesh.hpp"
 #include "knit/error.hpp"
+#include "util/checks.hpp"
+#include "util/platform.hpp"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -10,7 +12,6 @@
 
 #include <algorithm>
 #include <cassert>
-#include <cctype>
 #include <cmath>
 #include <filesystem>
 
@@ -18,9 +19,6 @@ namespace knit {
 namespace {
 
 std::string prefix(const BaseMesh& m) { return m.name.empty() ? std::string("mesh: ") : m.name + ": "; }
-
-bool finite(const glm::dvec3& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
-bool finite(const glm::dvec2& p) { return std::isfinite(p.x) && std::isfinite(p.y); }
 
 std::string str(const glm::dvec3& p) {
     return "(" + std::to_string(p.x) + ", " + std::to_string(p.y) + ", " + std::to_string(p.z) + ")";
@@ -171,7 +169,7 @@ std::vector<glm::dvec3> vertexNormals(const std::vector<glm::dvec3>& positions, 
         for (int k = 0; k < 3; ++k) normals[faces[f][k]] += corner[3 * f + k];
     for (glm::dvec3& n : normals) {
         const double len = glm::length(n);
-        n = len > 0.0 && std::isfinite(len) ? n / len : glm::dvec3(0.0, 0.0, 1.0);
+        n = util::positiveFinite(len) ? n / len : glm::dvec3(0.0, 0.0, 1.0);
     }
     return normals;
 }
@@ -198,7 +196,7 @@ glm::dvec2 uvToMetreScale(const BaseMesh& mesh) {
         const double det = du1.x * du2.y - du2.x * du1.y;
         if (!(std::abs(det) > 1e-12 * glm::length(du1) * glm::length(du2))) continue;
         const double area = 0.5 * glm::length(glm::cross(dp1, dp2));
-        if (!(area > 0.0) || !std::isfinite(area)) continue;
+        if (!util::positiveFinite(area)) continue;
         const double uvArea = 0.5 * std::abs(det);
         // [dX/du dX/dv] = [dp1 dp2] · inverse([du1 du2]).
         const glm::dvec3 dXdu = (dp1 * du2.y - dp2 * du1.y) / det;
@@ -221,10 +219,10 @@ void validateMesh(const BaseMesh& mesh) {
         throw Error(p + "the mesh has " + std::to_string(mesh.faces.size()) + " faces but " +
                     std::to_string(mesh.faceUvs.size()) + " UV faces (must be equal)");
     for (size_t i = 0; i < mesh.positions.size(); ++i)
-        if (!finite(mesh.positions[i]))
+        if (!util::finite(mesh.positions[i]))
             throw Error(p + "position " + std::to_string(i) + " is not finite " + str(mesh.positions[i]));
     for (size_t i = 0; i < mesh.uvs.size(); ++i)
-        if (!finite(mesh.uvs[i])) throw Error(p + "uv " + std::to_string(i) + " is not finite " + str(mesh.uvs[i]));
+        if (!util::finite(mesh.uvs[i])) throw Error(p + "uv " + std::to_string(i) + " is not finite " + str(mesh.uvs[i]));
     for (size_t f = 0; f < mesh.faces.size(); ++f)
         for (int k = 0; k < 3; ++k) {
             if (mesh.faces[f][k] >= mesh.positions.size())
@@ -253,9 +251,8 @@ BaseMesh builtinMesh(const std::string& name, const ProceduralMeshOptions& o) {
 // reported as missing); anything else is a built-in name.
 BaseMesh loadMeshFileOrName(const std::string& fileOrName, const ProceduralMeshOptions& o) {
     std::error_code ec;
-    std::string ext = std::filesystem::path(fileOrName).extension().string();
-    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-    const bool meshExt = ext == ".obj" || ext == ".ply" || ext == ".off";
+    const std::string ext = util::lowerExtension(fileOrName);
+    const bool meshExt = ext == "obj" || ext == "ply" || ext == "off";
     if (meshExt || std::filesystem::exists(fileOrName, ec)) return loadMesh(fileOrName);
     const auto names = builtinMeshNames();
     if (std::find(names.begin(), names.end(), fileOrName) == names.end()) {

@@ -30,26 +30,14 @@
 #include <tbb/parallel_for.h>
 
 #include "knit/error.hpp"
+#include "util/checks.hpp"
+#include "util/csr.hpp"
+#include "util/math.hpp"
 
 namespace knit {
 namespace {
 
 using glm::dvec3;
-
-bool finite(const dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
-
-// Unit vector perpendicular to unit `t`: the coordinate axis least aligned with t, projected.
-dvec3 leastAlignedPerpendicular(const dvec3& t) {
-    const dvec3 a = glm::abs(t);
-    dvec3 axis(0.0);
-    if (a.x <= a.y && a.x <= a.z)
-        axis.x = 1.0;
-    else if (a.y <= a.z)
-        axis.y = 1.0;
-    else
-        axis.z = 1.0;
-    return glm::normalize(axis - glm::dot(axis, t) * t);
-}
 
 // Rotates r (perpendicular to unit t) about t by the angle with cosine c and sine s.
 dvec3 rotateAbout(const dvec3& r, const dvec3& t, double c, double s) { return c * r + s * glm::cross(t, r); }
@@ -88,7 +76,7 @@ inline dvec3 transport(const dvec3& x0, const dvec3& t0, const dvec3& r0, const 
     if (!renormalize) return r1;
     r1 -= glm::dot(r1, t1) * t1;
     const double len = glm::length(r1);
-    return len > 1e-6 ? r1 / len : leastAlignedPerpendicular(t1);
+    return len > 1e-6 ? r1 / len : util::anyPerpendicular(t1);
 }
 
 }  // namespace
@@ -103,7 +91,7 @@ void curveFrames(const glm::dvec3* x, size_t n, bool closed, const glm::dvec3* s
     if (seedNormal) {
         seed = *seedNormal;
         const double len = glm::length(seed);
-        haveSeed = finite(seed) && len > 0.0;
+        haveSeed = util::finite(seed) && len > 0.0;
         if (haveSeed) seed /= len;
     }
 
@@ -127,8 +115,8 @@ void curveFrames(const glm::dvec3* x, size_t n, bool closed, const glm::dvec3* s
     }
     if (firstValid == segs) {
         // No direction at all (one point, or all points equal): any frame is a valid one.
-        const dvec3 t = haveSeed ? leastAlignedPerpendicular(seed) : dvec3(1.0, 0.0, 0.0);
-        const dvec3 r = haveSeed ? seed : leastAlignedPerpendicular(t);
+        const dvec3 t = haveSeed ? util::anyPerpendicular(seed) : dvec3(1.0, 0.0, 0.0);
+        const dvec3 r = haveSeed ? seed : util::anyPerpendicular(t);
         for (size_t i = 0; i < n; ++i) {
             T[i] = t;
             N[i] = r;
@@ -171,7 +159,7 @@ void curveFrames(const glm::dvec3* x, size_t n, bool closed, const glm::dvec3* s
             r = seed - glm::dot(seed, T[0]) * T[0];
             len = glm::length(r);
         }
-        N[0] = len > 1e-6 ? r / len : leastAlignedPerpendicular(T[0]);
+        N[0] = len > 1e-6 ? r / len : util::anyPerpendicular(T[0]);
     }
 
     // Step 4: double-reflection transport.
@@ -201,15 +189,14 @@ void curveFrames(const glm::dvec3* x, size_t n, bool closed, const glm::dvec3* s
 Frames rotationMinimizingFrames(const Polylines& curves, const std::vector<glm::dvec3>* seedNormals,
                                 const FrameOptions& options) {
     // Validate first: the per-curve loops do not throw.
-    if (curves.offsets.size() != curves.curveCount() + 1 || curves.offsets.front() != 0 ||
-        curves.offsets.back() != curves.pointCount() || !std::is_sorted(curves.offsets.begin(), curves.offsets.end()))
+    if (!util::validOffsets(curves.offsets, curves.curveCount(), curves.pointCount()))
         throw Error("rotationMinimizingFrames: inconsistent Polylines (offsets do not match points/closed)");
     if (seedNormals && seedNormals->size() != curves.pointCount())
         throw Error("rotationMinimizingFrames: seedNormals has " + std::to_string(seedNormals->size()) +
                     " entries but there are " + std::to_string(curves.pointCount()) + " points");
     for (size_t c = 0; c < curves.curveCount(); ++c)
         for (uint32_t i = curves.begin(c); i < curves.end(c); ++i)
-            if (!finite(curves.points[i]))
+            if (!util::finite(curves.points[i]))
                 throw Error("rotationMinimizingFrames: curve " + std::to_string(c) + " point " +
                             std::to_string(i - curves.begin(c)) + " is not finite");
 

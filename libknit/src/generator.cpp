@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 
 #include "knit/error.hpp"
+#include "util/math.hpp"
 
 namespace knit {
 
@@ -12,16 +13,15 @@ Pattern generateStockinette(const StockinetteParams& prm) {
     if (!(prm.radius > 0) || !(prm.modelRadius > 0) || !(prm.h > 0) || !(prm.rowGap > -prm.h) || prm.samplesPerStitch < 4)
         throw Error("stockinette generator: radius, modelRadius, h must be positive, h + rowGap > 0 and samplesPerStitch >= 4");
     const double s = prm.radius / prm.modelRadius;  // metres per model unit
-    const double pi = 3.14159265358979323846;
     Pattern p;
     p.name = "stockinette";
-    p.px = 2.0 * pi * s;
+    p.px = util::kTwoPi * s;
     p.py = (prm.h + prm.rowGap) * s;
     p.radius = prm.radius;
     const int n = prm.samplesPerStitch;
     // One course per cell: gamma(t) = (t + a sin 2t, h cos t, d cos 2t), t = 2 pi i / n.
     for (int i = 0; i < n; ++i) {
-        const double t = 2.0 * pi * i / n;
+        const double t = util::kTwoPi * i / n;
         p.points.emplace_back((t + prm.a * std::sin(2 * t)) * s, prm.h * std::cos(t) * s, prm.d * std::cos(2 * t) * s);
         p.twist.push_back(0.0);
     }

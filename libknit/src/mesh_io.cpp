@@ -44,6 +44,7 @@
 #include "knit/base_mesh.hpp"
 #include "knit/error.hpp"
 #include "mesh_weld.hpp"
+#include "util/platform.hpp"
 
 #include <OpenMesh/Core/IO/Options.hh>
 #include <OpenMesh/Core/IO/importer/BaseImporter.hh>
@@ -77,12 +78,6 @@ namespace OMIO = OpenMesh::IO;
 }
 [[noreturn]] void failLine(const std::string& file, size_t line, const std::string& what) {
     throw Error(file + ":" + std::to_string(line) + ": " + what);
-}
-
-std::string lowerExtension(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-    return ext;
 }
 
 // A token that is a whole, finite number ("1.5e-3"; not "nan", "inf", "1e400", "1.0abc").
@@ -684,31 +679,33 @@ BaseMesh loadMesh(const std::string& path, const MeshLoadOptions& options) {
     const auto status = std::filesystem::status(path, ec);
     if (ec || !std::filesystem::exists(status)) fail(path, "no such file");
     if (std::filesystem::is_directory(status)) fail(path, "is a directory, not a mesh file");
-    const std::string ext = lowerExtension(path);
-    if (ext == ".gltf" || ext == ".glb") return loadGltfMesh(path, options);
-    if (ext != ".obj" && ext != ".ply" && ext != ".off")
-        fail(path, "unknown mesh file extension '" + ext + "' (supported: .obj, .ply, .off, .gltf, .glb)");
+    const std::string ext = util::lowerExtension(path);  // without the dot
+    if (ext == "gltf" || ext == "glb") return loadGltfMesh(path, options);
+    if (ext != "obj" && ext != "ply" && ext != "off") {
+        const std::string dot = std::filesystem::path(path).has_extension() ? "." : "";  // "name." shows '.'
+        fail(path, "unknown mesh file extension '" + dot + ext + "' (supported: .obj, .ply, .off, .gltf, .glb)");
+    }
     if (!std::ifstream(path, std::ios::binary)) fail(path, "cannot open for reading");
 
     // Pre-scan what OpenMesh would accept silently.
     ObjScan obj;
     PlyHeader ply;
     std::string offText;
-    if (ext == ".obj") obj = scanObj(path);
-    else if (ext == ".ply") ply = scanPly(path);
+    if (ext == "obj") obj = scanObj(path);
+    else if (ext == "ply") ply = scanPly(path);
     else scanOff(path, offText);
 
     // Parse with OpenMesh into the recording importer.
     RecordingImporter rec;
     OMIO::Options opt;
     opt += OMIO::Options::VertexTexCoord;
-    if (ext == ".obj") opt += OMIO::Options::FaceTexCoord;
-    if (ext == ".ply" && ply.hasTextureUV) opt += OMIO::Options::Custom;
+    if (ext == "obj") opt += OMIO::Options::FaceTexCoord;
+    if (ext == "ply" && ply.hasTextureUV) opt += OMIO::Options::Custom;
     bool ok = false;
     {
         std::lock_guard<std::mutex> lock(openMeshReaderMutex());
-        if (ext == ".obj") ok = OMIO::OBJReader().read(path, rec, opt);
-        else if (ext == ".ply") ok = OMIO::PLYReader().read(path, rec, opt);
+        if (ext == "obj") ok = OMIO::OBJReader().read(path, rec, opt);
+        else if (ext == "ply") ok = OMIO::PLYReader().read(path, rec, opt);
         else if (!OMIO::OFFReader().can_u_read(path)) ok = false;  // parses the header options
         else {
             std::istringstream text(offText);
@@ -720,7 +717,7 @@ BaseMesh loadMesh(const std::string& path, const MeshLoadOptions& options) {
 
     // Positions: OBJ from the double-precision scan (same count and order as OpenMesh's).
     std::vector<glm::dvec3> points(nv);
-    if (ext == ".obj") {
+    if (ext == "obj") {
         if (nv != obj.positions.size() || rec.n_faces() != obj.faceLines.size())
             fail(path, "OpenMesh read " + std::to_string(nv) + " vertices and " + std::to_string(rec.n_faces()) +
                            " faces, but the file has " + std::to_string(obj.positions.size()) + " and " +
@@ -733,7 +730,7 @@ BaseMesh loadMesh(const std::string& path, const MeshLoadOptions& options) {
     // UVs: per corner (OBJ) or per vertex (PLY/OFF, native or custom property).
     std::vector<glm::dvec2> vertexUv;
     bool cornerUvs = false;
-    if (ext == ".obj") {
+    if (ext == "obj") {
         cornerUvs = true;
     } else if (ply.hasTextureUV) {
         std::vector<double> u, v;
@@ -745,12 +742,12 @@ BaseMesh loadMesh(const std::string& path, const MeshLoadOptions& options) {
     } else if (opt.check(OMIO::Options::VertexTexCoord)) {
         vertexUv.resize(nv);
         for (size_t i = 0; i < nv; ++i) vertexUv[i] = {rec.vertexUv[i][0], rec.vertexUv[i][1]};
-    } else if (ext == ".ply") {
+    } else if (ext == "ply") {
         fail(path, "no per-vertex texture coordinates (u,v / s,t / texture_u,texture_v); libknit needs UVs");
     } else {
         fail(path, "no texture coordinates (an STOFF header with x y z u v per vertex); libknit needs UVs");
     }
-    BaseMesh mesh = buildMesh(path, rec, points, vertexUv, cornerUvs, ext == ".obj" ? &obj.faceLines : nullptr, options);
+    BaseMesh mesh = buildMesh(path, rec, points, vertexUv, cornerUvs, ext == "obj" ? &obj.faceLines : nullptr, options);
     validateMesh(mesh);
     return mesh;
 }

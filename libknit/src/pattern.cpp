@@ -14,6 +14,7 @@
 #include <glm/vec2.hpp>
 
 #include "knit/error.hpp"
+#include "util/checks.hpp"
 
 namespace knit {
 namespace {
@@ -200,12 +201,12 @@ void writePyp(std::ostream& out, const Pattern& p) {
 
 void validatePattern(const Pattern& p, const std::string& source) {
     auto bad = [&](const std::string& what) { throw Error(source + ": " + what); };
-    if (!(std::isfinite(p.px) && p.px > 0 && std::isfinite(p.py) && p.py > 0)) bad("period must be positive and finite");
-    if (!(std::isfinite(p.radius) && p.radius > 0)) bad("yarn radius must be positive and finite");
+    if (!(util::positiveFinite(p.px) && util::positiveFinite(p.py))) bad("period must be positive and finite");
+    if (!util::positiveFinite(p.radius)) bad("yarn radius must be positive and finite");
     if (p.points.empty()) bad("pattern has no vertices");
     if (p.twist.size() != p.points.size()) bad("twist count differs from vertex count");
     for (size_t i = 0; i < p.points.size(); ++i)
-        if (!std::isfinite(p.points[i].x) || !std::isfinite(p.points[i].y) || !std::isfinite(p.points[i].z) || !std::isfinite(p.twist[i]))
+        if (!util::finite(p.points[i]) || !util::finite(p.twist[i]))
             bad("vertex " + std::to_string(i) + " has a non-finite coordinate");
     for (size_t i = 0; i < p.edges.size(); ++i) {
         const PeriodicEdge& e = p.edges[i];

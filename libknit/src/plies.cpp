@@ -41,12 +41,13 @@
 #include <tbb/parallel_invoke.h>
 
 #include "knit/error.hpp"
+#include "util/checks.hpp"
+#include "util/math.hpp"
 
 namespace knit {
 namespace {
 
 using glm::dvec3;
-constexpr double kPi = 3.14159265358979323846;
 
 std::string num(double v) {
     char buf[64];
@@ -66,7 +67,7 @@ PlyOptions resolvePlyOptions(const PlyOptions& options) {
     // Validate.
     if (o.count < 1 || o.count > 16)
         throw Error("PlyOptions.count must be in 1..16, got " + std::to_string(o.count));
-    if (!std::isfinite(o.yarnRadius) || !(o.yarnRadius > 0.0))
+    if (!util::positiveFinite(o.yarnRadius))
         throw Error("PlyOptions.yarnRadius must be a positive finite length, got " + num(o.yarnRadius));
     requireNonNegativeFinite(o.centerRadius, "centerRadius", "0 = touching plies filling the yarn");
     requireNonNegativeFinite(o.plyRadius, "plyRadius", "0 = touching plies filling the yarn");
@@ -78,7 +79,7 @@ PlyOptions resolvePlyOptions(const PlyOptions& options) {
                     std::to_string(static_cast<int>(o.twist)));
     // Fill defaults: touching plies that fill the yarn.
     const double n = static_cast<double>(o.count);
-    const double sinPiN = o.count == 1 ? 0.0 : std::sin(kPi / n);
+    const double sinPiN = o.count == 1 ? 0.0 : std::sin(util::kPi / n);
     if (o.centerRadius == 0.0 && o.count > 1) o.centerRadius = o.yarnRadius / (1.0 + sinPiN);
     if (o.plyRadius == 0.0) {
         o.plyRadius = o.count == 1 ? o.yarnRadius - o.centerRadius : o.centerRadius * sinPiN;
@@ -94,8 +95,8 @@ PlyGenerator::PlyGenerator(const MappedYarns& yarns, const PlyOptions& options)
     : yarns_(yarns), options_(resolvePlyOptions(options)) {
     spacing_ = options_.pitch / static_cast<double>(options_.samplesPerTurn);
     for (int i = 0; i < options_.count; ++i) {
-        cosPly_[i] = std::cos(2.0 * kPi * i / options_.count);
-        sinPly_[i] = std::sin(2.0 * kPi * i / options_.count);
+        cosPly_[i] = std::cos(util::kTwoPi * i / options_.count);
+        sinPly_[i] = std::sin(util::kTwoPi * i / options_.count);
     }
     ResampleOptions ro;
     ro.spacing = spacing_;
@@ -138,7 +139,7 @@ void PlyGenerator::sweep(size_t y, const dvec3* X, size_t m, dvec3* P, dvec3* D,
         const double turns = std::max(1.0, std::round(length / opt.pitch));
         pitch = length / turns;
     }
-    const double rate = (opt.twist == Twist::Z ? 1.0 : -1.0) * 2.0 * kPi / pitch;  // dtheta/ds
+    const double rate = (opt.twist == Twist::Z ? 1.0 : -1.0) * util::kTwoPi / pitch;  // dtheta/ds
 
     // Step 3: the helices, with phase offsets 2 pi i / n.
     const double* cosPly = cosPly_;

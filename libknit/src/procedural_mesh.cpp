@@ -12,13 +12,13 @@
 //    sphere: resV >= 2), at most 1e8 quads, and size/radius/height finite and > 0.
 #include "knit/base_mesh.hpp"
 #include "knit/error.hpp"
+#include "util/checks.hpp"
+#include "util/math.hpp"
 
 #include <cmath>
 
 namespace knit {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 void checkOptions(const char* what, const ProceduralMeshOptions& o, int minU, int minV, bool size, bool radius,
                   bool height) {
@@ -30,7 +30,7 @@ void checkOptions(const char* what, const ProceduralMeshOptions& o, int minU, in
         throw Error(w + ": resolution " + std::to_string(o.resU) + " x " + std::to_string(o.resV) +
                     " is too large (at most 1e8 quads)");
     auto positive = [&](bool used, double v, const char* name) {
-        if (used && !(std::isfinite(v) && v > 0.0))
+        if (used && !util::positiveFinite(v))
             throw Error(w + ": " + name + " must be a finite number > 0 (got " + std::to_string(v) + ")");
     };
     positive(size, o.size, "size");
@@ -71,7 +71,7 @@ BaseMesh flatSheet(const ProceduralMeshOptions& o, const char* name, double (*he
 // The drape's height field (see makeDrape).
 double drapeHeight(double x, double y, double size) {
     const double R = size / 3.0;               // sphere radius, centre at the origin
-    const double a = R * std::sin(kPi / 4.0);  // the sheet leaves the sphere at polar angle 45°
+    const double a = R * std::sin(util::kPi / 4.0);  // the sheet leaves the sphere at polar angle 45°
     const double ha = std::sqrt(R * R - a * a);
     const double slope = -a / ha;              // dh/dr of the sphere at r = a
     const double L = R / 2.0;                  // fall-off length
@@ -97,7 +97,7 @@ BaseMesh makeCylinder(const ProceduralMeshOptions& o) {
     for (int j = 0; j <= o.resV; ++j) {
         const double v = double(j) / o.resV;
         for (int i = 0; i < o.resU; ++i) {
-            const double t = 2.0 * kPi * i / o.resU;
+            const double t = util::kTwoPi * i / o.resU;
             m.positions.emplace_back(o.radius * std::cos(t), o.radius * std::sin(t), v * o.height);
         }
         for (int i = 0; i <= o.resU; ++i) m.uvs.emplace_back(double(i) / o.resU, v);
@@ -119,9 +119,9 @@ BaseMesh makeSphere(const ProceduralMeshOptions& o) {
     // Positions: south pole, rings, north pole.
     m.positions.emplace_back(0.0, 0.0, -o.radius);
     for (int j = 1; j < nv; ++j) {
-        const double phi = kPi * j / nv;
+        const double phi = util::kPi * j / nv;
         for (int i = 0; i < nu; ++i) {
-            const double t = 2.0 * kPi * i / nu;
+            const double t = util::kTwoPi * i / nu;
             m.positions.emplace_back(o.radius * std::sin(phi) * std::cos(t), o.radius * std::sin(phi) * std::sin(t),
                                      -o.radius * std::cos(phi));
         }

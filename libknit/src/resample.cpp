@@ -24,6 +24,8 @@
 #include <tbb/parallel_invoke.h>
 
 #include "knit/error.hpp"
+#include "util/checks.hpp"
+#include "util/csr.hpp"
 
 namespace knit {
 namespace {
@@ -104,8 +106,6 @@ void splitPiece(const Cubic& cubic, const dvec3& p1, const dvec3& p2, double cho
     samples.resize(k - 1);
     for (size_t j = 1; j < k; ++j) samples[j - 1] = cubic.eval(static_cast<double>(j) / static_cast<double>(k));
 }
-
-bool finite(const dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 }  // namespace
 
@@ -247,12 +247,11 @@ struct CurveBuffer {
 }  // namespace
 
 void validateResampleInput(const MappedYarns& yarns, const ResampleOptions& options) {
-    if (!(options.spacing > 0.0) || !std::isfinite(options.spacing))
+    if (!util::positiveFinite(options.spacing))
         throw Error("resampleYarns: ResampleOptions.spacing must be a positive finite length (got " +
                     std::to_string(options.spacing) + ")");
     const Polylines& in = yarns.curves;
-    if (in.offsets.size() != in.curveCount() + 1 || in.offsets.front() != 0 || in.offsets.back() != in.pointCount() ||
-        !std::is_sorted(in.offsets.begin(), in.offsets.end()))
+    if (!util::validOffsets(in.offsets, in.curveCount(), in.pointCount()))
         throw Error("resampleYarns: inconsistent Polylines (offsets do not match points/closed)");
     const bool withNormals = !yarns.normals.empty();
     if (withNormals && yarns.normals.size() != in.pointCount())
@@ -267,7 +266,7 @@ void validateResampleInput(const MappedYarns& yarns, const ResampleOptions& opti
         for (size_t k = r.begin(); k < r.end(); ++k) {
             const uint32_t b = in.begin(chunkStart[k]), e = in.begin(chunkStart[k + 1]);
             for (uint32_t i = b; i < e && firstBad[k] == SIZE_MAX; ++i)
-                if (!finite(in.points[i]) || (withNormals && !finite(yarns.normals[i]))) firstBad[k] = i;
+                if (!util::finite(in.points[i]) || (withNormals && !util::finite(yarns.normals[i]))) firstBad[k] = i;
         }
     });
     for (size_t k = 0; k < chunks; ++k) {
@@ -275,7 +274,7 @@ void validateResampleInput(const MappedYarns& yarns, const ResampleOptions& opti
         const size_t i = firstBad[k];
         const size_t c =
             static_cast<size_t>(std::upper_bound(in.offsets.begin(), in.offsets.end(), i) - in.offsets.begin()) - 1;
-        const bool point = !finite(in.points[i]);
+        const bool point = !util::finite(in.points[i]);
         throw Error("resampleYarns: curve " + std::to_string(c) + (point ? " point " : " normal ") +
                     std::to_string(i - in.begin(c)) + " is not finite");
     }

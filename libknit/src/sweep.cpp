@@ -27,6 +27,8 @@
 #include <tbb/parallel_for.h>
 
 #include "knit/frames.hpp"
+#include "util/checks.hpp"
+#include "util/math.hpp"
 
 namespace knit {
 
@@ -47,29 +49,16 @@ size_t tubeTriangleCount(uint32_t points, bool closed, const TubeOptions& option
 
 namespace {
 
-// A unit vector perpendicular to unit t (the axis least aligned with t, projected).
-glm::dvec3 anyPerpendicular(const glm::dvec3& t) {
-    const glm::dvec3 a = std::abs(t.x) <= std::abs(t.y) && std::abs(t.x) <= std::abs(t.z) ? glm::dvec3(1, 0, 0)
-                         : std::abs(t.y) <= std::abs(t.z)                                 ? glm::dvec3(0, 1, 0)
-                                                                                           : glm::dvec3(0, 0, 1);
-    return glm::normalize(a - glm::dot(a, t) * t);
-}
-
-bool finiteUnit(const glm::dvec3& v) {
-    const double l = glm::dot(v, v);
-    return std::isfinite(l) && std::abs(l - 1.0) < 1e-6;
-}
-
 // Orthonormal (T, N) for one ring: the RMF frame, repaired if it is degenerate (a curve of
 // coincident points has no tangent; keep the output finite and unit regardless).
 void ringFrame(glm::dvec3 t, glm::dvec3 n, glm::dvec3& T, glm::dvec3& N) {
-    if (!finiteUnit(t)) {
+    if (!util::finiteUnit(t)) {
         const double l = glm::length(t);
         t = (std::isfinite(l) && l > 1e-300) ? t / l : glm::dvec3(0, 0, 1);
     }
     n = n - glm::dot(n, t) * t;
     const double ln = glm::length(n);
-    N = (std::isfinite(ln) && ln > 1e-12) ? n / ln : anyPerpendicular(t);
+    N = (std::isfinite(ln) && ln > 1e-12) ? n / ln : util::anyPerpendicular(t);
     T = t;
 }
 
@@ -123,7 +112,7 @@ void sweepTubes(const Polylines& curves, double radius, const TubeOptions& optio
     std::vector<float> cosA(ringSize), sinA(ringSize), uA(ringSize);
     for (size_t j = 0; j < ringSize; ++j) uA[j] = float(j) / float(sides);
     for (int j = 0; j < sides; ++j) {
-        const double a = 2.0 * M_PI * double(j) / double(sides);
+        const double a = util::kTwoPi * double(j) / double(sides);
         cosA[j] = float(std::cos(a));
         sinA[j] = float(std::sin(a));
     }

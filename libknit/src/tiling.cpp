@@ -10,13 +10,14 @@
 #include <glm/vec2.hpp>
 
 #include "knit/error.hpp"
+#include "util/checks.hpp"
 
 namespace knit {
 
 PatternPlacement placePattern(const Pattern& pattern, const BaseMesh& mesh, const PlacementOptions& options) {
     const glm::dvec2 r = options.repeats;
     const bool physical = r.x == 0.0 && r.y == 0.0;
-    if (!physical && !(std::isfinite(r.x) && std::isfinite(r.y) && r.x > 0 && r.y > 0)) {
+    if (!physical && !util::positiveFinite(r)) {
         std::ostringstream msg;
         msg << "repeats (" << r.x << ", " << r.y << ") must both be positive (or both 0 for the pattern's physical size)";
         throw Error(msg.str());

@@ -13,6 +13,7 @@
 #include <glm/vec2.hpp>
 
 #include "knit/error.hpp"
+#include "util/checks.hpp"
 
 namespace knit {
 namespace {
@@ -160,7 +161,7 @@ int32_t UvGrid::slotOf(glm::ivec2 cell) const {
 }
 
 UvGrid buildUvGrid(const BaseMesh& mesh, const UvGridOptions& options) {
-    if (!(options.cellSize.x > 0 && options.cellSize.y > 0 && std::isfinite(options.cellSize.x) && std::isfinite(options.cellSize.y)))
+    if (!util::positiveFinite(options.cellSize))
         throw Error("UV grid: cell size must be positive and finite");
     UvGrid grid;
     grid.cellSize = options.cellSize;
@@ -301,7 +302,7 @@ double closestOnSegment(glm::dvec2 a, glm::dvec2 b, glm::dvec2 p) {
 LocateResult locatePoint(const BaseMesh& mesh, const UvGrid& grid, glm::dvec2 uv, double tolerance, uint32_t hint,
                          uint32_t chart) {
     LocateResult result;
-    if (!std::isfinite(uv.x) || !std::isfinite(uv.y) || grid.cells.empty()) return result;
+    if (!util::finite(uv) || grid.cells.empty()) return result;
     const bool anyChart = chart == kAnyChart;
     auto skip = [&](uint32_t f) { return !anyChart && grid.chartOfFace[f] != chart; };
 

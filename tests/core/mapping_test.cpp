@@ -8,6 +8,7 @@
 #include "knit/generator.hpp"
 #include "knit/scene.hpp"
 #include "knit/uv_grid.hpp"
+#include "util/math.hpp"
 
 namespace knit {
 namespace {
@@ -77,7 +78,7 @@ TEST(Mapping, cylinderPutsHeightAtRadiusPlusH) {
     mo.radius = 0.05;
     mo.height = 0.1;
     const Scene s = buildScene(loadPyp(test::sharedPattern("stockinette.pyp")), makeCylinder(mo), yarnsOnly({10, 6}));
-    const double chord = mo.radius * (1 - std::cos(3.14159265358979323846 / mo.resU));
+    const double chord = mo.radius * (1 - std::cos(util::kPi / mo.resU));
     const Binding& b = s.bound.binding;
     ASSERT_GT(b.vertexCount(), 0u);
     double worst = 0;

@@ -13,6 +13,7 @@
 #include "knit/scene.hpp"
 #include "knit/export.hpp"
 #include "knit/sweep.hpp"
+#include "util/platform.hpp"
 
 namespace knit {
 namespace {
@@ -273,7 +274,7 @@ TEST(ExportReport, carriesCountsPeakMemoryAndRatio) {
     s.vertices = 10;
     s.uncompressedMeshBytes = 1000;
     s.compressedMeshBytes = 250;
-    s.peakMemoryBytes = peakResidentBytes();
+    s.peakMemoryBytes = util::peakResidentBytes();
     EXPECT_GT(s.peakMemoryBytes, 0u);
     const nlohmann::json j = exportReport(s);
     EXPECT_EQ(j["format"], "glb");

@@ -6,6 +6,7 @@
 #include "export/test_curves.hpp"
 #include "knit/error.hpp"
 #include "knit/export.hpp"
+#include "util/math.hpp"
 
 namespace knit {
 namespace {
@@ -62,7 +63,7 @@ TEST(ObjExport, polylinesUseOneBasedIndicesAndCloseLoops) {
 
 TEST(ObjExport, polylineCoordinatesRoundTripExactly) {
     Polylines c;
-    const glm::dvec3 p[2] = {{0.1, 1.0 / 3.0, -123456.789012345678}, {1e-17, 6.02214076e23, M_PI}};
+    const glm::dvec3 p[2] = {{0.1, 1.0 / 3.0, -123456.789012345678}, {1e-17, 6.02214076e23, util::kPi}};
     c.addCurve(p, 2, false);
     std::ostringstream out;
     writeObjPolylines(out, c, "");

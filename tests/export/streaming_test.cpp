@@ -2,7 +2,6 @@
 // stays near one chunk, far below the whole mesh), and chunking does not change the geometry.
 #include <gtest/gtest.h>
 
-#include <fstream>
 #include <map>
 #include <sstream>
 
@@ -10,25 +9,13 @@
 #include "export/test_curves.hpp"
 #include "knit/export.hpp"
 #include "knit/sweep.hpp"
+#include "util/platform.hpp"
 
 namespace knit {
 namespace {
 
-size_t residentBytes() {
-    std::ifstream status("/proc/self/status");
-    std::string line;
-    while (std::getline(status, line))
-        if (line.rfind("VmRSS:", 0) == 0) return size_t(std::stoull(line.substr(6))) * 1024;
-    return 0;
-}
-
 // Resets VmHWM to the current resident size (Linux >= 4.0); false if unsupported.
-bool resetPeak() {
-    std::ofstream clear("/proc/self/clear_refs");
-    clear << "5";
-    clear.close();
-    return static_cast<bool>(clear) && peakResidentBytes() <= residentBytes() + (1u << 20);
-}
+bool resetPeak() { return util::resetPeakResident() && util::peakResidentBytes() <= util::residentBytes() + (1u << 20); }
 
 TEST(Streaming, peakMemoryGrowsByAboutOneChunkNotTheWholeMesh) {
     const std::string dir = test::scratchDir("streaming");
@@ -42,13 +29,13 @@ TEST(Streaming, peakMemoryGrowsByAboutOneChunkNotTheWholeMesh) {
     o.what = ExportWhat::Tubes;
     o.chunkVertices = 32768;
     if (!resetPeak()) GTEST_SKIP() << "kernel cannot reset VmHWM";
-    const size_t before = residentBytes();
+    const size_t before = util::residentBytes();
     const ExportStats s = exportCurves(in, o);
     const double whole = double(s.vertices) * 52.0 + double(s.triangles) * 12.0;
     ASSERT_GT(whole, 80e6);
     EXPECT_LE(s.maxChunkVertices, o.chunkVertices);
     EXPECT_GE(s.chunks, 40u);
-    EXPECT_LE(s.peakMemoryBytes, peakResidentBytes());
+    EXPECT_LE(s.peakMemoryBytes, util::peakResidentBytes());
     const double growth = double(s.peakMemoryBytes) - double(before);
     // Non-streaming would need >= 1.0 x whole; one chunk plus writer buffers is ~0.05 x here
     // (0.3 leaves room for sanitizer builds' allocator overhead).

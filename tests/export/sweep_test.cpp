@@ -8,6 +8,8 @@
 
 #include "export/test_curves.hpp"
 #include "knit/sweep.hpp"
+#include "util/checks.hpp"
+#include "util/math.hpp"
 
 namespace knit {
 namespace {
@@ -113,7 +115,7 @@ TEST(Sweep, closedLoopLastRingCoincidesWithFirstAndVKeepsGrowing) {
             << "closing ring differs at " << j;
         EXPECT_LT(glm::length(glm::dvec3(m.normals[size_t(j)] - m.normals[40 * 9 + size_t(j)])), 1e-5);
     }
-    const double length = 40 * 2 * 0.02 * std::sin(M_PI / 40);
+    const double length = 40 * 2 * 0.02 * std::sin(util::kPi / 40);
     EXPECT_NEAR(m.uvs[40 * 9].y, length / r, 1e-3);
     for (size_t i = 1; i <= 40; ++i) EXPECT_GT(m.uvs[i * 9].y, m.uvs[(i - 1) * 9].y);
 }
@@ -212,7 +214,7 @@ TEST(Sweep, coincidentPointsGiveFiniteUnitNormals) {
     const TubeMesh m = sweepTubes(single(p, false), 0.01, o, 0, 1, glm::dvec3(0.5, 0.5, 0.5));
     ASSERT_GT(m.vertexCount(), 0u);
     for (size_t i = 0; i < m.vertexCount(); ++i) {
-        ASSERT_TRUE(std::isfinite(m.positions[i].x) && std::isfinite(m.positions[i].y) && std::isfinite(m.positions[i].z));
+        ASSERT_TRUE(util::finite(m.positions[i]));
         ASSERT_NEAR(glm::length(m.normals[i]), 1.0f, 1e-6f);
         ASSERT_NEAR(glm::length(glm::vec3(m.tangents[i])), 1.0f, 1e-6f);
     }

@@ -1,16 +1,15 @@
 // test_curves.hpp — tiny synthetic curves for the export tests (made in code).
 #pragma once
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <string>
 #include <vector>
 
 #include <glm/geometric.hpp>
 
 #include "knit/polylines.hpp"
+#include "test_util.hpp"
+#include "util/math.hpp"
 
 namespace knit::test {
 
@@ -18,8 +17,8 @@ namespace knit::test {
 inline std::vector<glm::dvec3> helix(int n, double a, double h, double turns, glm::dvec3 offset = glm::dvec3(0)) {
     std::vector<glm::dvec3> p;
     for (int i = 0; i < n; ++i) {
-        const double t = turns * 2.0 * M_PI * i / (n - 1);
-        p.push_back(offset + glm::dvec3(a * std::cos(t), a * std::sin(t), h * t / (2.0 * M_PI)));
+        const double t = turns * util::kTwoPi * i / (n - 1);
+        p.push_back(offset + glm::dvec3(a * std::cos(t), a * std::sin(t), h * t / util::kTwoPi));
     }
     return p;
 }
@@ -28,7 +27,7 @@ inline std::vector<glm::dvec3> helix(int n, double a, double h, double turns, gl
 inline std::vector<glm::dvec3> circle(int n, double a, glm::dvec3 offset = glm::dvec3(0)) {
     std::vector<glm::dvec3> p;
     for (int i = 0; i < n; ++i) {
-        const double t = 2.0 * M_PI * i / n;
+        const double t = util::kTwoPi * i / n;
         p.push_back(offset + glm::dvec3(a * std::cos(t), a * std::sin(t), 0.0));
     }
     return p;
@@ -67,21 +66,6 @@ inline std::string scratchDir(const std::string& name) {
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
     return dir.string();
-}
-
-inline std::vector<unsigned char> readBytes(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    return std::vector<unsigned char>(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-
-inline std::string readText(const std::string& path) {
-    std::ifstream in(path);
-    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-
-inline void writeText(const std::string& path, const std::string& text) {
-    std::ofstream out(path);
-    out << text;
 }
 
 // Files in a folder (names only), to check that nothing (no temporary file) is left behind.

@@ -5,17 +5,15 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <random>
 #include <string>
-#include <unistd.h>
 
 #include "hard_cases.hpp"
 #include "knit/base_mesh.hpp"
 #include "knit/error.hpp"
 #include "knit/generator.hpp"
 #include "knit/pattern.hpp"
+#include "test_util.hpp"
 
 namespace knit::hard {
 namespace {
@@ -24,20 +22,9 @@ namespace fs = std::filesystem;
 
 class BadFiles : public ::testing::Test {
 protected:
-    void SetUp() override {
-        dir = fs::temp_directory_path() / ("knit_hard_files_" + std::to_string(::getpid()) + "_" +
-                                           ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir);
-        fs::create_directories(dir);
-    }
-    void TearDown() override { fs::remove_all(dir); }
-    std::string write(const std::string& name, const std::string& content) const {
-        const std::string p = (dir / name).string();
-        fs::remove(p);  // a fresh file: rewriting through truncation makes ext4 flush (slow)
-        std::ofstream(p, std::ios::binary) << content;
-        return p;
-    }
-    fs::path dir;
+    std::string write(const std::string& name, const std::string& content) const { return tmp.write(name, content); }
+    test::TempDir tmp;
+    const fs::path dir = tmp.path();
 };
 
 enum class Kind { Pattern, Mesh };
@@ -193,8 +180,7 @@ TEST_F(BadFiles, binaryPlyPropertyTypesOpenMeshCannotConvertAreRefused) {
     }
     // The fuzzer's original input.
     const std::string found = std::string(KNIT_SOURCE_DIR) + "/tests/fuzz_corpus/ply/timeout-59d571a8a34814063d48c0bfebbefaf90db350f1";
-    std::ifstream in(found, std::ios::binary);
-    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string bytes = test::readText(found);
     ASSERT_FALSE(bytes.empty());
     EXPECT_FALSE(loadsOrNamesFile(Kind::Mesh, write("found.ply", bytes)));
 }

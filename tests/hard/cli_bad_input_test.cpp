@@ -6,12 +6,11 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <string>
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include "common/run_knit.hpp"
+#include "test_util.hpp"
 
 namespace {
 
@@ -22,14 +21,7 @@ CliRun knit(const std::string& args, const fs::path& cwd) { return knit::test::r
 
 class CliBadInput : public ::testing::Test {
 protected:
-    void SetUp() override {
-        dir = fs::temp_directory_path() / ("knit_hard_cli_" + std::to_string(::getpid()) + "_" +
-                                           ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir);
-        fs::create_directories(dir);
-    }
-    void TearDown() override { fs::remove_all(dir); }
-    void write(const std::string& name, const std::string& text) { std::ofstream(dir / name, std::ios::binary) << text; }
+    void write(const std::string& name, const std::string& text) { tmp.write(name, text); }
     // Names of the files in `d` (recursively), to check nothing was left behind.
     std::vector<std::string> files(const fs::path& d) const {
         std::vector<std::string> out;
@@ -46,7 +38,8 @@ protected:
         EXPECT_NE(r.output.find(mentions), std::string::npos) << args << "\n" << r.output;
         EXPECT_EQ(files(dir), before) << "files left behind by: " << args;
     }
-    fs::path dir;
+    knit::test::TempDir tmp;
+    const fs::path dir = tmp.path();
 };
 
 const char* kSmall = "build -q --mesh plane --mesh-res 4 --repeats 3 3 ";

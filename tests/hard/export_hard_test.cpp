@@ -7,10 +7,10 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-#include <unistd.h>
 
 #include "catalogue.hpp"
 #include "knit/export.hpp"
+#include "test_util.hpp"
 
 namespace knit::hard {
 namespace {
@@ -19,19 +19,13 @@ namespace fs = std::filesystem;
 
 class ExportHard : public ::testing::Test {
 protected:
-    void SetUp() override {
-        dir = fs::temp_directory_path() / ("knit_hard_export_" + std::to_string(::getpid()) + "_" +
-                                           ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir);
-        fs::create_directories(dir);
-    }
-    void TearDown() override { fs::remove_all(dir); }
     size_t fileCount() const {
         size_t n = 0;
         for (const auto& e : fs::recursive_directory_iterator(dir)) n += e.is_regular_file();
         return n;
     }
-    fs::path dir;
+    test::TempDir tmp;
+    const fs::path dir = tmp.path();
 };
 
 const char* kExtensions[] = {".obj", ".ply", ".bcc", ".pbrt", ".gltf", ".glb"};

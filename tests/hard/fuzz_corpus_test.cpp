@@ -6,14 +6,13 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <vector>
 
 #ifdef KNIT_HARD_HAVE_RENDER_CHECK
 #define KNIT_FUZZ_HAVE_RENDER_CHECK 1
 #endif
 #include "../../fuzz/fuzz_parsers.hpp"
+#include "test_util.hpp"
 
 namespace knit::fuzz {
 namespace {
@@ -30,11 +29,6 @@ std::vector<fs::path> corpus(const std::string& parser) {
     return files;
 }
 
-std::vector<uint8_t> bytes(const fs::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 // Every corpus file parses or is rejected with knit::Error; files named valid_* parse.
 void replay(const std::string& parser, Harness run) {
     const std::vector<fs::path> files = corpus(parser);
@@ -42,7 +36,7 @@ void replay(const std::string& parser, Harness run) {
     size_t parsed = 0, rejected = 0;
     for (const fs::path& f : files) {
         SCOPED_TRACE(f.string());
-        const std::vector<uint8_t> data = bytes(f);
+        const std::vector<uint8_t> data = test::readBytes(f.string());
         Outcome outcome = Outcome::Rejected;
         try {
             outcome = run(data.data(), data.size());

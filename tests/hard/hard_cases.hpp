@@ -36,10 +36,12 @@
 #include "knit/generator.hpp"
 #include "knit/pattern.hpp"
 #include "knit/scene.hpp"
+#include "util/checks.hpp"
+#include "util/math.hpp"
 
 namespace knit::hard {
 
-constexpr double kPi = 3.14159265358979323846;
+using util::kPi;
 
 // ---- watchdog --------------------------------------------------------------------------------
 // Aborts the process with the case name when a case runs longer than the limit: a hang shows up
@@ -262,8 +264,7 @@ inline SceneOptions withRepeats(double u, double v, bool plies = true) {
 }
 
 // ---- invariant checks ------------------------------------------------------------------------
-inline bool finite(const glm::dvec3& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
-inline bool finite(const glm::dvec2& p) { return std::isfinite(p.x) && std::isfinite(p.y); }
+using util::finite;
 
 // UV position of a bound vertex.
 inline glm::dvec2 boundUv(const Scene& s, size_t i) {

@@ -6,10 +6,10 @@
 
 #include <filesystem>
 #include <fstream>
-#include <unistd.h>
 
 #include "knit/error.hpp"
 #include "knit/ply_material.hpp"
+#include "test_util.hpp"
 
 namespace knit {
 namespace {
@@ -30,8 +30,8 @@ std::string materialError(const std::string& path) {
 }
 
 TEST(MaterialBadInput, missingDirectoryEmptyAndGarbageFilesNameTheFile) {
-    const fs::path dir = fs::temp_directory_path() / ("knit_hard_material_" + std::to_string(::getpid()));
-    fs::remove_all(dir);
+    const test::TempDir tmp;
+    const fs::path& dir = tmp.path();
     fs::create_directories(dir / "a_directory.json");
     std::ofstream(dir / "empty.json");
     std::ofstream(dir / "garbage.json") << "\x01\x02{{{";
@@ -42,7 +42,6 @@ TEST(MaterialBadInput, missingDirectoryEmptyAndGarbageFilesNameTheFile) {
         EXPECT_NE(msg.find(path), std::string::npos) << msg;
     }
     EXPECT_NE(materialError((dir / "wrong_type.json").string()).find("eta"), std::string::npos);
-    fs::remove_all(dir);
 }
 
 }  // namespace

@@ -15,6 +15,8 @@
 #include "knit/render.hpp"
 #include "knit/synthetic_scene.hpp"
 #include "trace_scene.hpp"
+#include "util/checks.hpp"
+#include "util/math.hpp"
 
 namespace knit {
 namespace {
@@ -56,7 +58,7 @@ TraceSceneOptions options(GeometryMode m, const Built& b) {
     return so;
 }
 
-bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+using util::finite;
 
 // Distance (scene units) from p to the closest centreline segment of the ply geometry.
 float distanceToCentreline(const PlyGeometry& g, const glm::vec3& p) {
@@ -138,7 +140,7 @@ TEST(HardRays, grazingRaysAtThePlyRadius) {
     const glm::vec3 mid = g.toScene(b.scene.plies.curves.points[b.scene.plies.curves.pointCount() / 2]);
     for (GeometryMode m : kModes) {
         const TraceScene ts(device, g, options(m, b));
-        const float inner = m == GeometryMode::Tubes ? std::cos(3.14159265f / 16) : 1.f;
+        const float inner = m == GeometryMode::Tubes ? std::cos(float(util::kPi) / 16) : 1.f;
         for (const float d : {0.5f, 0.9f, 0.99f, 0.9999f, 0.999999f, 1.f, 1.000001f, 1.0001f, 1.01f, 1.1f})
             for (const float sign : {1.f, -1.f}) {
                 const glm::vec3 org = mid + glm::vec3(0.37f, sign * d, 10.f), dir(0, 0, -1);

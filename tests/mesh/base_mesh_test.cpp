@@ -1,7 +1,8 @@
 // Tests for vertexNormals, uvToMetreScale, validateMesh and the built-in/file front door.
 #include "knit/base_mesh.hpp"
 #include "knit/error.hpp"
-#include "mesh_test_util.hpp"
+#include "test_util.hpp"
+#include "util/math.hpp"
 
 #include <gtest/gtest.h>
 
@@ -14,7 +15,7 @@ using knit::BaseMesh;
 
 namespace {
 
-using knit_test::errorOf;
+using knit::test::errorOf;
 
 BaseMesh quad(double sx, double sy) {  // [0,sx] x [0,sy] with uv in [0,1]^2
     BaseMesh m;
@@ -34,7 +35,7 @@ TEST(BaseMesh, vertexNormalsAreAngleWeighted) {
     const std::vector<glm::dvec3> p = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 1, 1}};
     const std::vector<glm::uvec3> f = {{0, 1, 2}, {0, 2, 3}};
     const auto n = knit::vertexNormals(p, f);
-    const glm::dvec3 expected = glm::normalize(glm::dvec3(M_PI / 4, 0, M_PI / 2));
+    const glm::dvec3 expected = glm::normalize(glm::dvec3(knit::util::kPi / 4, 0, knit::util::kPi / 2));
     EXPECT_NEAR(glm::length(n[0] - expected), 0.0, 1e-14);
     EXPECT_NEAR(glm::length(n[1] - glm::dvec3(0, 0, 1)), 0.0, 1e-14);
 }
@@ -77,7 +78,7 @@ TEST(BaseMesh, cylinderUvScaleIsChordPerimeterAndHeight) {
     o.resU = 12;
     o.resV = 4;
     const glm::dvec2 k = knit::uvToMetreScale(knit::makeCylinder(o));
-    EXPECT_NEAR(k.x, o.resU * 2 * o.radius * std::sin(M_PI / o.resU), 1e-12);  // polygon perimeter
+    EXPECT_NEAR(k.x, o.resU * 2 * o.radius * std::sin(knit::util::kPi / o.resU), 1e-12);  // polygon perimeter
     EXPECT_NEAR(k.y, o.height, 1e-12);
 }
 
@@ -129,7 +130,7 @@ TEST(BaseMesh, loadMeshFileOrNameTellsFilesFromBuiltins) {
     o.resU = 3;
     o.resV = 2;
     EXPECT_EQ(knit::loadMeshFileOrName("cylinder", o).faces.size(), 12u);
-    knit_test::TempDir dir;
+    knit::test::TempDir dir;
     const std::string tri = dir.write("t.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\n");
     EXPECT_EQ(knit::loadMeshFileOrName(tri).name, tri);
     // A mesh extension means a file, even when missing; anything else unknown lists both options.

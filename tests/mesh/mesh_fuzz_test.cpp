@@ -2,7 +2,7 @@
 // load into a valid mesh or raise knit::Error — never crash, hang or return garbage.
 #include "knit/base_mesh.hpp"
 #include "knit/error.hpp"
-#include "mesh_test_util.hpp"
+#include "test_util.hpp"
 
 #include <gtest/gtest.h>
 
@@ -50,7 +50,7 @@ std::string mutate(std::string s, std::mt19937& rng) {
 }  // namespace
 
 TEST(MeshFuzz, mutatedFilesLoadValidOrThrowKnitError) {
-    knit_test::TempDir dir;
+    knit::test::TempDir dir;
     const std::pair<std::string, std::string> seeds[] = {
         {"m.obj", kObj}, {"m.ply", kPly}, {"m.off", kOff}, {"b.ply", binaryPly()}};
     std::mt19937 rng(12345);

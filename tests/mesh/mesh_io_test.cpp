@@ -2,7 +2,8 @@
 // malformed inputs OpenMesh would accept silently.
 #include "knit/base_mesh.hpp"
 #include "knit/error.hpp"
-#include "mesh_test_util.hpp"
+#include "test_util.hpp"
+#include "util/math.hpp"
 
 #include <gtest/gtest.h>
 
@@ -14,11 +15,11 @@
 #include <sstream>
 
 using knit::BaseMesh;
-using knit_test::TempDir;
+using knit::test::TempDir;
 
 namespace {
 
-using knit_test::errorOf;
+using knit::test::errorOf;
 
 // A ring of 4 side quads (a square prism, radius 1, z in {0, 0.1}) with a UV seam at u = 0/1:
 // 8 positions, 10 UVs (u = i/4, v = j).
@@ -84,8 +85,8 @@ TEST(MeshIo, objWithSeamSharesPositions) {
                 sawU1 |= uv.x == 1.0;
             }
             // The UV corner belongs to the right position: u = i/4 <-> angle i·90°.
-            EXPECT_NEAR(p.x, std::cos(uv.x * 2 * M_PI), 1e-12);
-            EXPECT_NEAR(p.y, std::sin(uv.x * 2 * M_PI), 1e-12);
+            EXPECT_NEAR(p.x, std::cos(uv.x * 2 * knit::util::kPi), 1e-12);
+            EXPECT_NEAR(p.y, std::sin(uv.x * 2 * knit::util::kPi), 1e-12);
         }
     EXPECT_TRUE(sawU0 && sawU1);
     // The 3D topology is closed around the seam, so the seam normal is radial.

@@ -1,6 +1,7 @@
 // Tests for the built-in meshes: UV range and orientation, seams, poles, the drape's shape.
 #include "knit/base_mesh.hpp"
 #include "knit/error.hpp"
+#include "util/math.hpp"
 
 #include <gtest/gtest.h>
 
@@ -127,7 +128,7 @@ TEST(ProceduralMesh, sphereNormalsPointOutward) {
     for (size_t i = 0; i < m.positions.size(); ++i) {
         EXPECT_NEAR(glm::length(m.positions[i]), 0.1, 1e-15);
         // Within half a ring spacing of the radial direction.
-        EXPECT_GT(glm::dot(n[i], glm::normalize(m.positions[i])), std::cos(0.5 * M_PI / nv)) << i;
+        EXPECT_GT(glm::dot(n[i], glm::normalize(m.positions[i])), std::cos(0.5 * knit::util::kPi / nv)) << i;
     }
     // The poles' normals are the axis (symmetric fan).
     EXPECT_NEAR(n.front().z, -1.0, 1e-12);
@@ -164,7 +165,7 @@ TEST(ProceduralMesh, drapeLiesOnSphereCapAndFallsOff) {
     knit::ProceduralMeshOptions o = opts(30, 30);
     o.size = 0.6;
     const BaseMesh m = knit::makeDrape(o);
-    const double R = o.size / 3, a = R * std::sin(M_PI / 4);
+    const double R = o.size / 3, a = R * std::sin(knit::util::kPi / 4);
     size_t onCap = 0;
     for (const glm::dvec3& p : m.positions) {
         const double r = std::hypot(p.x, p.y);

@@ -10,6 +10,8 @@
 #include "knit/error.hpp"
 #include "knit/frames.hpp"
 #include "knit/resample.hpp"
+#include "plies/plies_curves.hpp"
+#include "util/checks.hpp"
 
 using glm::dvec3;
 using knit::Frames;
@@ -17,15 +19,16 @@ using knit::Polylines;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using knit::test::torusKnot;
+using knit::util::finite;
+using knit::util::kPi;
+using knit::util::kTwoPi;
 
 Polylines one(const std::vector<dvec3>& p, bool closed) {
     Polylines c;
     c.addCurve(p.data(), p.size(), closed);
     return c;
 }
-
-bool finite(const dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 void expectOrthonormal(const Frames& f, double tol = 1e-12) {
     ASSERT_EQ(f.tangent.size(), f.normal.size());
@@ -50,17 +53,6 @@ dvec3 reflectTransport(dvec3 x0, dvec3 t0, dvec3 r0, dvec3 x1, dvec3 t1) {
 
 double signedAngle(dvec3 from, dvec3 to, dvec3 axis) {
     return std::atan2(glm::dot(axis, glm::cross(from, to)), glm::dot(from, to));
-}
-
-// (2,3) torus knot: a closed space curve whose RMF does not close by itself.
-std::vector<dvec3> torusKnot(int count, double scale) {
-    std::vector<dvec3> p;
-    for (int i = 0; i < count; ++i) {
-        const double t = 2.0 * kPi * i / count;
-        p.push_back(scale * dvec3((2.0 + std::cos(3 * t)) * std::cos(2 * t), (2.0 + std::cos(3 * t)) * std::sin(2 * t),
-                                  std::sin(3 * t)));
-    }
-    return p;
 }
 
 std::vector<dvec3> wigglyWithHairpin() {
@@ -125,7 +117,7 @@ TEST(Frames, rmfOnHelixMatchesAnalyticTwistFreeFrame) {
         const dvec3 T(-a * std::sin(t) / w, a * std::cos(t) / w, b / w);
         const dvec3 Nf(-std::cos(t), -std::sin(t), 0.0);
         const double angle = signedAngle(Nf, f.normal[i], T);
-        EXPECT_NEAR(angle, std::remainder(-tau * w * t, 2.0 * kPi), 1e-4) << "t = " << t;
+        EXPECT_NEAR(angle, std::remainder(-tau * w * t, kTwoPi), 1e-4) << "t = " << t;
     }
 }
 

@@ -15,6 +15,8 @@
 #include "knit/frames.hpp"
 #include "knit/plies.hpp"
 #include "knit/resample.hpp"
+#include "plies/plies_curves.hpp"
+#include "util/checks.hpp"
 
 using glm::dvec3;
 using knit::MappedYarns;
@@ -24,38 +26,18 @@ using knit::Twist;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
-void addYarn(MappedYarns& y, const std::vector<dvec3>& pts, bool closed, dvec3 normal = dvec3(0, 0, 1)) {
-    y.curves.addCurve(pts.data(), pts.size(), closed);
-    y.normals.insert(y.normals.end(), pts.size(), normal);
-}
+using knit::test::addYarn;
+using knit::test::circle;
+using knit::test::torusKnot;
+using knit::util::kPi;
+using knit::util::kTwoPi;
 
 // Crane's plain-knit yarn curve (t + a sin 2t, h cos t, d cos 2t), a = 3/2, h = 4, d = 1, scaled.
 std::vector<dvec3> knitCurve(double scale, int loops, int perLoop) {
     std::vector<dvec3> p;
     for (int i = 0; i <= loops * perLoop; ++i) {
-        const double t = 2.0 * kPi * i / perLoop;
+        const double t = kTwoPi * i / perLoop;
         p.push_back(scale * dvec3(t + 1.5 * std::sin(2 * t), 4.0 * std::cos(t), std::cos(2 * t)));
-    }
-    return p;
-}
-
-std::vector<dvec3> circle(double radius, int count) {
-    std::vector<dvec3> p;
-    for (int i = 0; i < count; ++i) {
-        const double a = 2.0 * kPi * i / count;
-        p.emplace_back(radius * std::cos(a), radius * std::sin(a), 0.0);
-    }
-    return p;
-}
-
-std::vector<dvec3> torusKnot(int count, double scale) {
-    std::vector<dvec3> p;
-    for (int i = 0; i < count; ++i) {
-        const double t = 2.0 * kPi * i / count;
-        p.push_back(scale * dvec3((2.0 + std::cos(3 * t)) * std::cos(2 * t), (2.0 + std::cos(3 * t)) * std::sin(2 * t),
-                                  std::sin(3 * t)));
     }
     return p;
 }
@@ -66,8 +48,6 @@ MappedYarns resampledFor(const MappedYarns& y, const PlyOptions& o) {
     ro.spacing = r.pitch / r.samplesPerTurn;
     return knit::resampleYarns(y, ro);
 }
-
-bool finite(const dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 }  // namespace
 
@@ -100,7 +80,7 @@ TEST(Plies, helixOnStraightYarnMatchesAnalytic) {
                 if (j > 0) {
                     ASSERT_GT(x.x, c.curves.points[j - 1].x);  // monotone: arc length = x
                 }
-                const double a = sign * 2.0 * kPi * x.x / 0.006 + 2.0 * kPi * i / 3.0;
+                const double a = sign * kTwoPi * x.x / 0.006 + kTwoPi * i / 3.0;
                 const dvec3 expected(x.x, -R * std::sin(a), R * std::cos(a));
                 const dvec3 got = p.curves.points[p.curves.begin(i) + j];
                 EXPECT_NEAR(glm::length(got - expected), 0.0, 1e-9) << "ply " << i << " point " << j;
@@ -135,7 +115,7 @@ TEST(Plies, plyCentresStayAtRadius) {
             EXPECT_NEAR(glm::length(d - R * r), 0.0, 1e-12 * R);
             // Plies keep their 120 degree spacing around the yarn.
             const dvec3 r0 = p.radial[p.curves.begin(0) + j];
-            EXPECT_NEAR(glm::dot(r0, r), std::cos(2.0 * kPi * i / 3.0), 1e-12);
+            EXPECT_NEAR(glm::dot(r0, r), std::cos(kTwoPi * i / 3.0), 1e-12);
         }
     }
 }
@@ -184,7 +164,7 @@ TEST(Plies, twistClosureWithNonIntegerTurns) {
         o.yarnRadius = 0.0005;
         o.samplesPerTurn = 32;
         o.twist = Twist::S;
-        o.pitch = 2.0 * kPi * 0.01 / 3.4;
+        o.pitch = kTwoPi * 0.01 / 3.4;
         const Plies p = knit::makePlies(y, o);
         const MappedYarns c = resampledFor(y, o);
         const knit::Frames f = knit::rotationMinimizingFrames(c.curves, &c.normals);
@@ -206,18 +186,18 @@ TEST(Plies, twistClosureWithNonIntegerTurns) {
         }
         double total = 0.0;
         for (uint32_t j = 0; j < steps; ++j) {
-            const double step = std::remainder(phase[(j + 1) % n] - phase[j], 2.0 * kPi);
+            const double step = std::remainder(phase[(j + 1) % n] - phase[j], kTwoPi);
             EXPECT_LT(step, 0.0) << "S twist turns clockwise about T";
             total += step;
         }
         if (closed) {
-            EXPECT_NEAR(total, -2.0 * kPi * 3.0, 1e-9);  // an integer number of turns
-            const double closingStep = std::abs(std::remainder(phase[0] - phase[n - 1], 2.0 * kPi));
+            EXPECT_NEAR(total, -kTwoPi * 3.0, 1e-9);  // an integer number of turns
+            const double closingStep = std::abs(std::remainder(phase[0] - phase[n - 1], kTwoPi));
             const double closingLength = glm::length(c.curves.points[0] - c.curves.points[n - 1]);
-            EXPECT_NEAR(closingStep, 2.0 * kPi * 3.0 * closingLength / length, 1e-9);  // no twist jump
+            EXPECT_NEAR(closingStep, kTwoPi * 3.0 * closingLength / length, 1e-9);  // no twist jump
         } else {
-            EXPECT_NEAR(total, -2.0 * kPi * length / o.pitch, 1e-9);  // not rounded
-            EXPECT_GT(std::abs(total), 2.0 * kPi * 3.2);
+            EXPECT_NEAR(total, -kTwoPi * length / o.pitch, 1e-9);  // not rounded
+            EXPECT_GT(std::abs(total), kTwoPi * 3.2);
         }
     }
 }
@@ -431,7 +411,7 @@ TEST(Plies, degenerateYarnsGiveFinitePliesInYarnMajorOrder) {
     }
     ASSERT_EQ(p.radial.size(), p.curves.pointCount());
     for (size_t i = 0; i < p.curves.pointCount(); ++i) {
-        ASSERT_TRUE(finite(p.curves.points[i])) << i;
+        ASSERT_TRUE(knit::util::finite(p.curves.points[i])) << i;
         EXPECT_NEAR(glm::length(p.radial[i]), 1.0, 1e-12) << i;
     }
 }

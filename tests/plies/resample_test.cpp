@@ -9,6 +9,8 @@
 
 #include "knit/error.hpp"
 #include "knit/resample.hpp"
+#include "plies/plies_curves.hpp"
+#include "util/checks.hpp"
 
 using glm::dvec3;
 using knit::MappedYarns;
@@ -16,21 +18,8 @@ using knit::ResampleOptions;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
-void addCurve(MappedYarns& y, const std::vector<dvec3>& pts, bool closed, dvec3 normal = dvec3(0, 0, 1)) {
-    y.curves.addCurve(pts.data(), pts.size(), closed);
-    y.normals.insert(y.normals.end(), pts.size(), normal);
-}
-
-std::vector<dvec3> circle(double radius, int count) {
-    std::vector<dvec3> p;
-    for (int i = 0; i < count; ++i) {
-        const double a = 2.0 * kPi * i / count;
-        p.emplace_back(radius * std::cos(a), radius * std::sin(a), 0.0);
-    }
-    return p;
-}
+using knit::test::addYarn;
+using knit::test::circle;
 
 // A wiggly 3D curve with a hairpin (exact reversal) and a tight turn in it.
 std::vector<dvec3> wigglyWithHairpin() {
@@ -63,8 +52,8 @@ double maxSegment(const knit::Polylines& c, size_t k) {
 
 TEST(Resample, resamplingKeepsOriginalVertices) {
     MappedYarns y;
-    addCurve(y, wigglyWithHairpin(), false);
-    addCurve(y, circle(0.004, 7), true);
+    addYarn(y, wigglyWithHairpin(), false);
+    addYarn(y, circle(0.004, 7), true);
     ResampleOptions o;
     o.spacing = 0.0002;
     const MappedYarns r = knit::resampleYarns(y, o);
@@ -92,10 +81,10 @@ TEST(Resample, resampleMaxSegmentBelowSpacing) {
         std::vector<dvec3> p;
         const int n = 2 + c;  // includes 2-point curves and random hairpins/kinks
         for (int i = 0; i < n; ++i) p.emplace_back(u(rng), u(rng), u(rng));
-        addCurve(y, p, c % 2 == 1);
+        addYarn(y, p, c % 2 == 1);
     }
-    addCurve(y, wigglyWithHairpin(), false);
-    addCurve(y, wigglyWithHairpin(), true);
+    addYarn(y, wigglyWithHairpin(), false);
+    addYarn(y, wigglyWithHairpin(), true);
     for (double spacing : {0.0001, 0.00037, 0.002}) {
         ResampleOptions o;
         o.spacing = spacing;
@@ -112,7 +101,7 @@ TEST(Resample, resampledCircleStaysOnCircle) {
     // A coarse 12-gon: linear interpolation would sag by 1 - cos(15 deg) = 3.4% at the segment
     // middles; the centripetal Catmull-Rom spline stays within 0.5% of the radius.
     MappedYarns y;
-    addCurve(y, circle(0.01, 12), true);
+    addYarn(y, circle(0.01, 12), true);
     ResampleOptions o;
     o.spacing = 0.0005;
     const MappedYarns r = knit::resampleYarns(y, o);
@@ -122,7 +111,7 @@ TEST(Resample, resampledCircleStaysOnCircle) {
 
 TEST(Resample, twoPointCurveStaysStraightAndEven) {
     MappedYarns y;
-    addCurve(y, {dvec3(0, 0, 0), dvec3(0.0095, 0.0, 0.0)}, false);
+    addYarn(y, {dvec3(0, 0, 0), dvec3(0.0095, 0.0, 0.0)}, false);
     ResampleOptions o;
     o.spacing = 0.001;
     const MappedYarns r = knit::resampleYarns(y, o);
@@ -138,8 +127,8 @@ TEST(Resample, repeatedPointsAreDropped) {
     MappedYarns y;
     const dvec3 a(0, 0, 0), b(0.001, 0, 0), c(0.001, 0.001, 0);
     // Exact and near-exact repeats (1e-18 m << 1e-12 * spacing); closed curve repeats its start.
-    addCurve(y, {a, a, b, b + dvec3(1e-18, 0, 0), b, c, c, a}, true);
-    addCurve(y, {a, a, a}, false);  // collapses to one point
+    addYarn(y, {a, a, b, b + dvec3(1e-18, 0, 0), b, c, c, a}, true);
+    addYarn(y, {a, a, a}, false);  // collapses to one point
     ResampleOptions o;
     o.spacing = 0.01;  // no insertion: only the merging is visible
     const MappedYarns r = knit::resampleYarns(y, o);
@@ -150,14 +139,14 @@ TEST(Resample, repeatedPointsAreDropped) {
     EXPECT_EQ(r.curves.points[2], c);
     EXPECT_TRUE(r.curves.isClosed(0));
     EXPECT_EQ(r.curves.size(1), 1u);  // single-point curves are kept (curve indices stay 1:1)
-    for (const dvec3& p : r.curves.points) EXPECT_TRUE(std::isfinite(p.x + p.y + p.z));
+    for (const dvec3& p : r.curves.points) EXPECT_TRUE(knit::util::finite(p));
 }
 
 TEST(Resample, singlePointAndEmptyCurvesKeepCurveIndices) {
     MappedYarns y;
-    addCurve(y, {}, false);
-    addCurve(y, {dvec3(1, 2, 3)}, false);
-    addCurve(y, {dvec3(0, 0, 0), dvec3(0.003, 0, 0)}, false);
+    addYarn(y, {}, false);
+    addYarn(y, {dvec3(1, 2, 3)}, false);
+    addYarn(y, {dvec3(0, 0, 0), dvec3(0.003, 0, 0)}, false);
     ResampleOptions o;
     o.spacing = 0.001;
     const MappedYarns r = knit::resampleYarns(y, o);
@@ -171,7 +160,7 @@ TEST(Resample, singlePointAndEmptyCurvesKeepCurveIndices) {
 
 TEST(Resample, closedTwoPointCurveIsFinite) {
     MappedYarns y;
-    addCurve(y, {dvec3(0, 0, 0), dvec3(0.004, 0, 0)}, true);
+    addYarn(y, {dvec3(0, 0, 0), dvec3(0.004, 0, 0)}, true);
     ResampleOptions o;
     o.spacing = 0.001;
     const MappedYarns r = knit::resampleYarns(y, o);
@@ -179,7 +168,7 @@ TEST(Resample, closedTwoPointCurveIsFinite) {
     EXPECT_LE(maxSegment(r.curves, 0), 0.001);
     EXPECT_GE(r.curves.size(0), 8u);  // both directions of the back-and-forth loop get points
     for (const dvec3& p : r.curves.points) {
-        EXPECT_TRUE(std::isfinite(p.x + p.y + p.z));
+        EXPECT_TRUE(knit::util::finite(p));
         EXPECT_NEAR(p.y, 0.0, 1e-15);  // the degenerate loop stays on its segment
         EXPECT_GE(p.x, -1e-15);
         EXPECT_LE(p.x, 0.004 + 1e-15);
@@ -203,7 +192,7 @@ TEST(Resample, normalsInterpolateLinearlyAndRenormalize) {
 
 TEST(Resample, invalidResampleInputRejected) {
     MappedYarns y;
-    addCurve(y, {dvec3(0, 0, 0), dvec3(1, 0, 0)}, false);
+    addYarn(y, {dvec3(0, 0, 0), dvec3(1, 0, 0)}, false);
     ResampleOptions o;
     o.spacing = 0.0;
     EXPECT_THROW(knit::resampleYarns(y, o), knit::Error);
@@ -244,14 +233,14 @@ TEST(Resample, nearRepeatedPointsAboveMergeDistanceStayBounded) {
     const double spacing = 0.0004;
     MappedYarns y;
     const dvec3 a(0, 0, 0), b(0.002, 0.001, 0), c(0.004, 0, 0.001);
-    addCurve(y, {a, b, b + dvec3(1e-10 * spacing, 0, 0), c, dvec3(0.006, 0.001, 0)}, false);
+    addYarn(y, {a, b, b + dvec3(1e-10 * spacing, 0, 0), c, dvec3(0.006, 0.001, 0)}, false);
     ResampleOptions o;
     o.spacing = spacing;
     const MappedYarns r = knit::resampleYarns(y, o);
     ASSERT_EQ(r.curves.curveCount(), 1u);
     EXPECT_LE(maxSegment(r.curves, 0), spacing);
     for (const dvec3& p : r.curves.points) {
-        ASSERT_TRUE(std::isfinite(p.x + p.y + p.z));
+        ASSERT_TRUE(knit::util::finite(p));
         EXPECT_GE(p.x, -1e-9);
         EXPECT_LE(p.x, 0.006 + 1e-9);
         EXPECT_LE(std::abs(p.y), 0.0015);  // stays near the control polygon's extent

@@ -124,9 +124,6 @@ void addExportFlags(CLI::App& command, ExportOptions& options);
 
 nlohmann::json exportReport(const ExportStats& stats);
 
-// Process peak resident memory (VmHWM from /proc/self/status) in bytes; 0 if unavailable.
-size_t peakResidentBytes();
-
 // OBJ polylines: one `l` record per curve; a closed curve repeats its first index at the end.
 void writeObjPolylines(std::ostream& out, const Polylines& curves, const std::string& header);
 

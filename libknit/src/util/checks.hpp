@@ -21,5 +21,7 @@ inline bool finiteUnit(const glm::dvec3& v, double tolerance = 1e-6) {
 
 // A positive, finite number (NaN fails).
 inline bool positiveFinite(double v) { return v > 0 && std::isfinite(v); }
+// Both components positive and finite (a size or a repeat count in UV).
+inline bool positiveFinite(const glm::dvec2& v) { return positiveFinite(v.x) && positiveFinite(v.y); }
 
 }  // namespace knit::util

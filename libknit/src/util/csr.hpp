@@ -7,12 +7,18 @@
 
 namespace knit::util {
 
+// True when `offsets` spans `items` items in `rows` rows: rows + 1 entries, starting at 0 and
+// ending at `items` (their order is not checked: for callers that name the first decreasing row).
+template <class Offset>
+bool offsetEnds(const std::vector<Offset>& offsets, size_t rows, size_t items) {
+    return offsets.size() == rows + 1 && offsets.front() == 0 && size_t(offsets.back()) == items;
+}
+
 // True when `offsets` describes `rows` rows over `items` items: rows + 1 entries, starting at 0,
 // never decreasing, ending at `items`.
 template <class Offset>
 bool validOffsets(const std::vector<Offset>& offsets, size_t rows, size_t items) {
-    return offsets.size() == rows + 1 && offsets.front() == 0 && size_t(offsets.back()) == items &&
-           std::is_sorted(offsets.begin(), offsets.end());
+    return offsetEnds(offsets, rows, items) && std::is_sorted(offsets.begin(), offsets.end());
 }
 
 }  // namespace knit::util
