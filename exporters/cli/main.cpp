@@ -5,7 +5,6 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <unistd.h>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -69,17 +68,6 @@ knit::SceneOptions resolveScene(SceneFlags& f) {
             std::fprintf(stderr, "[%d/%d] %s\n", index + 1, total, stage.c_str());
         };
     return o;
-}
-
-// Fails early, naming the path, when `path`'s folder cannot take a new file.
-void requireWritableFolder(const std::string& path, const char* what) {
-    const std::filesystem::path folder = std::filesystem::path(path).parent_path();
-    const std::string dir = folder.empty() ? "." : folder.string();
-    std::error_code ec;
-    if (!std::filesystem::is_directory(dir, ec))
-        throw knit::Error(std::string("cannot write ") + what + " '" + path + "': folder '" + dir + "' does not exist");
-    if (::access(dir.c_str(), W_OK) != 0)
-        throw knit::Error(std::string("cannot write ") + what + " '" + path + "': folder '" + dir + "' is not writable");
 }
 
 // Writes the JSON report atomically.
@@ -222,7 +210,7 @@ int main(int argc, char** argv) {
         if (*build) {
             // Fail before the scene is built: bad export options or an unwritable report folder.
             knit::validateExportOptions(exportOptions);
-            if (!buildReport.empty()) requireWritableFolder(buildReport, "report");
+            if (!buildReport.empty()) knit::requireWritableFolder(buildReport, "report");
             knit::SceneOptions options = resolveScene(buildFlags);
             // glTF / GLB ply curves are generated while writing: the scene is built without them.
             const bool streamed = knit::streamsPlies(exportOptions);

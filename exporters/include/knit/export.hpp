@@ -135,4 +135,10 @@ void writeObjPolylines(std::ostream& out, const Polylines& curves, const std::st
 void writeFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write,
                          bool binary);
 
+// Throws knit::Error unless the folder of `path` (".": no folder part) exists, is a folder and
+// is writable: "cannot write <what> '<path>': folder '<folder>' does not exist" (or "'<folder>' is
+// not a folder", "folder '<folder>' is not writable"); with an empty `what`, "cannot write '<path>': ...".
+// The exporters check every output with it; callers use it to fail before long work.
+void requireWritableFolder(const std::string& path, const std::string& what = "");
+
 }  // namespace knit
