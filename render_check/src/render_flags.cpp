@@ -6,9 +6,13 @@
 namespace knit {
 
 void addRenderFlags(CLI::App& app, RenderOptions& o) {
-    app.add_option("--light", o.light, "Light placement: front (camera side) or back (behind the cloth)")
+    app.add_option_function<std::string>(
+           "--light", [&o](const std::string& v) { o.light = v == "back" ? LightPlacement::Back : LightPlacement::Front; },
+           "Light placement: front (camera side) or back (behind the cloth)")
         ->check(CLI::IsMember({"front", "back"}));
-    app.add_option("--mode", o.mode, "Geometry: curves (Embree round curves), tubes (swept meshes), grid (two-stage cells)")
+    app.add_option_function<std::string>(
+           "--mode", [&o](const std::string& v) { o.mode = parseMode(v); },
+           "Geometry: curves (Embree round curves), tubes (swept meshes), grid (two-stage cells)")
         ->check(CLI::IsMember({"curves", "tubes", "grid"}));
     app.add_option("--spp", o.spp, "Samples per pixel (>= 1)");
     app.add_option("--width", o.width, "Image width in pixels");

@@ -28,9 +28,13 @@ namespace knit {
 
 struct Scene;
 
+// Where the area light is: on the camera side (reflection) or behind the cloth (transmission).
+enum class LightPlacement { Front, Back };
+const char* lightPlacementName(LightPlacement light);  // "front" | "back" (as in the report)
+
 struct RenderOptions {
-    std::string light = "front";   // front | back
-    std::string mode = "curves";   // curves | tubes | grid
+    LightPlacement light = LightPlacement::Front;
+    GeometryMode mode = GeometryMode::Curves;
     int spp = 16;
     int width = 512, height = 384;
     std::string output;            // PNG (sRGB); empty = no file
@@ -52,7 +56,8 @@ struct RenderOptions {
 
 struct RenderResult {
     Image image;
-    std::string mode, light;
+    GeometryMode mode = GeometryMode::Curves;
+    LightPlacement light = LightPlacement::Front;
     int spp = 0;
     PlyMaterial material;          // as resolved and validated
     double tableSeconds = 0, buildSeconds = 0, renderSeconds = 0;
