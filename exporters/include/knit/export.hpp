@@ -30,8 +30,6 @@
 
 #include "knit/scene.hpp"
 
-namespace CLI { class App; }
-
 namespace knit {
 
 enum class ExportWhat { Yarns, Plies, Tubes };
@@ -118,9 +116,6 @@ bool streamsPlies(const ExportOptions& options);
 // Checks the options against each other and the extension; throws knit::Error naming the
 // conflict (e.g. --draco with curves, --draco with --quantize, Draco for a non-glTF format).
 void validateExportOptions(const ExportOptions& options);
-
-// Registers the export flags (--export, --sides, --draco, ...) on a CLI11 (sub)command.
-void addExportFlags(CLI::App& command, ExportOptions& options);
 
 nlohmann::json exportReport(const ExportStats& stats);
 

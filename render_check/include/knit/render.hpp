@@ -20,10 +20,6 @@
 #include "knit/ply_material.hpp"
 #include "knit/trace_scene.hpp"
 
-namespace CLI {
-class App;
-}
-
 namespace knit {
 
 struct Scene;
@@ -71,12 +67,6 @@ struct RenderResult {
     RectLight areaLight;           // the area light used (world space)
     std::vector<std::string> written;
 };
-
-// Registers --light --mode --spp --width --height --output --exr --seed --material and the
-// material flags (--eta --alpha-along --alpha-across --kR --alpha-tt --kTT --body-albedo
-// --reflect-fraction --fiber-count --fiber-twist --fiber-shadow-floor --ply-shadow-floor
-// --no-fiber-detail) plus --max-depth --env --light-irradiance --fov --base-mesh --tube-sides.
-void addRenderFlags(CLI::App& app, RenderOptions& options);
 
 // Resolves the material (defaults <- file <- overrides), validates everything before rendering
 // (knit::Error: bad material, spp < 1, bad size, unknown light/mode, empty scene, unwritable
