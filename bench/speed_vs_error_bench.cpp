@@ -901,12 +901,12 @@ json measureRender(const std::string& imageDir) {
     ro.width = 80;
     ro.height = 60;
     ro.progress = false;
-    ro.light = "front";
+    ro.light = knit::LightPlacement::Front;
     const int refSpp = 1024;
     out["width"] = ro.width;
     out["height"] = ro.height;
     out["reference_spp"] = refSpp;
-    out["light"] = ro.light;
+    out["light"] = knit::lightPlacementName(ro.light);
     out["tube_sides"] = ro.tubeSides;
     out["scene"] = {{"ply_vertices", scene.plies.curves.pointCount()},
                     {"ply_curves", scene.plies.curves.curveCount()},
@@ -914,7 +914,7 @@ json measureRender(const std::string& imageDir) {
                     {"plane_m", mo.size}};
     std::map<std::string, knit::Image> refs;
     for (const char* mode : {"curves", "tubes", "grid"}) {
-        ro.mode = mode;
+        ro.mode = knit::parseMode(mode);
         ro.spp = refSpp;
         ro.seed = 1000003;
         if (!imageDir.empty()) {

@@ -5,4 +5,4 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 bash "$root/scripts/setup.sh"
 bash "$root/scripts/build.sh"
-"$root/build/exporters/knit" build --report knit-report.json "$@"
+"$root/build/apps/knit/knit" build --report knit-report.json "$@"

@@ -12,6 +12,7 @@
 #include <system_error>
 
 #include "knit/error.hpp"
+#include "knit/export.hpp"
 
 namespace knit::detail {
 namespace fs = std::filesystem;
@@ -41,13 +42,8 @@ void checkOutputFolder(const std::string& path) {
     const fs::path p(path);
     if (!p.has_filename() || p.filename() == "." || p.filename() == "..")
         throw Error("cannot write '" + path + "': the path names a folder, not a file");
-    const std::string folder = folderOf(path);
+    requireWritableFolder(path);
     std::error_code ec;
-    const fs::file_status st = fs::status(folder, ec);
-    if (!fs::exists(st))
-        throw Error("cannot write '" + path + "': folder '" + folder + "' does not exist");
-    if (!fs::is_directory(st))
-        throw Error("cannot write '" + path + "': '" + folder + "' is not a folder");
     if (fs::is_directory(fs::status(path, ec)))
         throw Error("cannot write '" + path + "': a folder with that name exists");
 }
@@ -129,3 +125,18 @@ void appendFile(std::ostream& out, const std::string& from, uint64_t offset, uin
 }
 
 }  // namespace knit::detail
+
+namespace knit {
+namespace fs = std::filesystem;
+
+void requireWritableFolder(const std::string& path, const std::string& what) {
+    const std::string folder = detail::folderOf(path);
+    const std::string cannot = "cannot write " + (what.empty() ? std::string() : what + " ") + "'" + path + "': ";
+    std::error_code ec;
+    const fs::file_status st = fs::status(folder, ec);
+    if (!fs::exists(st)) throw Error(cannot + "folder '" + folder + "' does not exist");
+    if (!fs::is_directory(st)) throw Error(cannot + "'" + folder + "' is not a folder");
+    if (::access(folder.c_str(), W_OK) != 0) throw Error(cannot + "folder '" + folder + "' is not writable");
+}
+
+}  // namespace knit

@@ -39,7 +39,8 @@ private:
     uint64_t size_ = 0;
 };
 
-// Checks that the folder of `path` exists and is a folder; throws knit::Error naming it.
+// Checks that `path` names a file whose folder exists and is writable (knit::requireWritableFolder)
+// and is not itself a folder; throws knit::Error naming it.
 void checkOutputFolder(const std::string& path);
 
 // Appends `bytes` bytes of file `from`, starting at `offset`, to `out`.

@@ -5,7 +5,6 @@
 #include <memory>
 #include <sstream>
 
-#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include "atomic_file.hpp"
@@ -218,63 +217,6 @@ ExportStats exportScene(const Scene& scene, const ExportOptions& options) {
     }
     in.materialExtras = &extras;
     return exportCurves(in, options);
-}
-
-void addExportFlags(CLI::App& command, ExportOptions& options) {
-    // Enum options as checked words (shown as TEXT:{...}); ignore_case maps to the listed spelling.
-    command
-        .add_option_function<std::string>(
-            "--export",
-            [&options](const std::string& v) {
-                options.what = v == "yarns" ? ExportWhat::Yarns : v == "tubes" ? ExportWhat::Tubes : ExportWhat::Plies;
-            },
-            "What to write: yarn centrelines, ply curves, or swept tube meshes")
-        ->transform(CLI::IsMember({"yarns", "plies", "tubes"}, CLI::ignore_case))
-        ->default_str(whatName(options.what))
-        ->group("Export");
-    command
-        .add_option_function<std::string>(
-            "--tubes-of",
-            [&options](const std::string& v) {
-                options.tubesOf = v == "plies" ? TubeSource::Plies : v == "yarns" ? TubeSource::Yarns : TubeSource::Auto;
-            },
-            "Curves swept by --export tubes (auto: plies when built, else yarns)")
-        ->transform(CLI::IsMember({"auto", "plies", "yarns"}, CLI::ignore_case))
-        ->default_str("auto")
-        ->group("Export");
-    command.add_option("--sides", options.sides, "Tube ring vertices")
-        ->check(CLI::Range(3, 1024))
-        ->capture_default_str()
-        ->group("Export");
-    command.add_flag_function(
-               "--no-caps", [&options](int64_t) { options.caps = false; }, "Leave open tube ends open")
-        ->group("Export");
-    CLI::Option* draco =
-        command.add_flag("--draco", options.draco, "KHR_draco_mesh_compression for tube meshes (.glb/.gltf)")
-            ->group("Export");
-    command.add_option("--draco-bits", options.dracoBits, "Draco position quantization bits")
-        ->check(CLI::Range(1, 30))
-        ->capture_default_str()
-        ->needs(draco)
-        ->group("Export");
-    command.add_option("--draco-level", options.dracoLevel, "Draco compression level (0 fast .. 10 small)")
-        ->check(CLI::Range(0, 10))
-        ->capture_default_str()
-        ->needs(draco)
-        ->group("Export");
-    command.add_flag("--quantize", options.quantize,
-                     "KHR_mesh_quantization: int16 positions/normals/tangents for tube meshes (.glb/.gltf)")
-        ->excludes(draco)
-        ->group("Export");
-    command.add_flag("--yarn-colors", options.yarnColors, "COLOR_0 per yarn on tube meshes (glTF)")
-        ->group("Export");
-    command.add_option("--chunk-vertices", options.chunkVertices,
-                       "Streaming chunk size: tube vertices (or curve points) per chunk / glTF node; "
-                       "0 = auto (1048576, or 262144 with --draco)")
-        ->check(CLI::Range(size_t(0), size_t(1) << 31))
-        ->capture_default_str()
-        ->group("Export");
-    command.add_flag("--pretty-json", options.prettyJson, "Indent the glTF JSON")->group("Export");
 }
 
 nlohmann::json exportReport(const ExportStats& s) {

@@ -258,7 +258,7 @@ BaseMesh loadMeshFileOrName(const std::string& fileOrName, const ProceduralMeshO
     if (std::find(names.begin(), names.end(), fileOrName) == names.end()) {
         std::string known;
         for (const std::string& n : names) known += (known.empty() ? "" : ", ") + n;
-        throw Error("'" + fileOrName + "' is neither a mesh file (.obj, .ply, .off) nor a built-in mesh (" + known + ")");
+        throw Error("'" + fileOrName + "' is neither a mesh file (.obj, .ply, .off, .gltf, .glb) nor a built-in mesh (" + known + ")");
     }
     return builtinMesh(fileOrName, o);
 }

@@ -1,8 +1,6 @@
 // renderScene: validate, build tables and the Embree scene, place camera and light, render, write.
 #include "knit/render.hpp"
 
-#include <sys/resource.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -18,6 +16,8 @@
 #include "knit/ply_geometry.hpp"
 #include "knit/scene.hpp"
 #include "trace_scene.hpp"
+#include "util/math.hpp"
+#include "util/platform.hpp"
 
 namespace knit {
 namespace {
@@ -26,13 +26,15 @@ double secondsSince(std::chrono::steady_clock::time_point t) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
-int64_t peakRss() {
-    rusage u{};
-    getrusage(RUSAGE_SELF, &u);
-    return int64_t(u.ru_maxrss) * 1024;
-}
-
 }  // namespace
+
+const char* lightPlacementName(LightPlacement light) {
+    switch (light) {
+        case LightPlacement::Front: return "front";
+        case LightPlacement::Back: return "back";
+    }
+    return "?";
+}
 
 PlyMaterial resolveMaterial(const RenderOptions& o) {
     PlyMaterial m = o.material;
@@ -53,9 +55,11 @@ PlyMaterial resolveMaterial(const RenderOptions& o) {
 
 RenderResult renderScene(const Scene& scene, const RenderOptions& o) {
     // Step 1: validate every option before any work.
-    if (o.light != "front" && o.light != "back")
-        throw Error("render: unknown light placement '" + o.light + "' (expected front or back)");
-    const GeometryMode mode = parseMode(o.mode);
+    if (o.light != LightPlacement::Front && o.light != LightPlacement::Back)
+        throw Error("render: unknown light placement " + std::to_string(int(o.light)) + " (expected front or back)");
+    const GeometryMode mode = o.mode;
+    if (mode != GeometryMode::Curves && mode != GeometryMode::Tubes && mode != GeometryMode::Grid)
+        throw Error("render: unknown geometry mode " + std::to_string(int(mode)) + " (expected curves, tubes or grid)");
     if (o.spp < 1) throw Error("render: samples per pixel must be at least 1 (got " + std::to_string(o.spp) + ")");
     if (o.width < 1 || o.height < 1 || o.width > 16384 || o.height > 16384)
         throw Error("render: image size " + std::to_string(o.width) + " x " + std::to_string(o.height) +
@@ -72,7 +76,7 @@ RenderResult renderScene(const Scene& scene, const RenderOptions& o) {
         throw Error("render: the scene has no ply curves (nothing to render; were plies built?)");
     if (!o.output.empty()) checkWritable(o.output);
     if (!o.exr.empty()) checkWritable(o.exr);
-    res.mode = modeName(mode);
+    res.mode = mode;
     res.light = o.light;
     res.spp = o.spp;
     // Step 2: ply segments relative to the centre of their bounds.
@@ -128,8 +132,7 @@ RenderResult renderScene(const Scene& scene, const RenderOptions& o) {
     const glm::dvec3 right = glm::normalize(glm::cross(helper, normal)), up = glm::cross(normal, right);
     TraceSettings ts;
     ts.width = o.width, ts.height = o.height, ts.spp = o.spp, ts.seed = o.seed, ts.maxDepth = o.maxDepth;
-    const double pi = 3.14159265358979323846;
-    const double dist = radius / std::sin(o.fovDegrees * pi / 360.0);
+    const double dist = radius / std::sin(o.fovDegrees * util::kPi / 360.0);
     ts.camera.eye = centre + dist * normal;
     ts.camera.target = centre;
     ts.camera.up = up;
@@ -138,8 +141,9 @@ RenderResult renderScene(const Scene& scene, const RenderOptions& o) {
     ts.baseAlbedo = Rgb(o.baseAlbedo);
     // Front: a light of the cloth's radius up and to the right of the camera. Back: a lightbox
     // larger than the cloth behind it, so transmission shows everywhere.
-    const double lightSize = o.light == "front" ? radius : 3.0 * radius, lightDist = 2.5 * radius;
-    const glm::dvec3 dir = o.light == "front" ? glm::normalize(normal + 0.4 * right + 0.4 * up) : -normal;
+    const bool front = o.light == LightPlacement::Front;
+    const double lightSize = front ? radius : 3.0 * radius, lightDist = 2.5 * radius;
+    const glm::dvec3 dir = front ? glm::normalize(normal + 0.4 * right + 0.4 * up) : -normal;
     const glm::dvec3 lc = centre + lightDist * dir;
     // Light facing the centre: edges perpendicular to dir, cross(edgeU, edgeV) = -dir.
     const glm::dvec3 lh = std::abs(dir.y) < 0.9 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0);
@@ -173,14 +177,14 @@ RenderResult renderScene(const Scene& scene, const RenderOptions& o) {
     // Step 7: images.
     if (!o.output.empty()) writePng(o.output, res.image), res.written.push_back(o.output);
     if (!o.exr.empty()) writeExr(o.exr, res.image), res.written.push_back(o.exr);
-    res.peakMemoryBytes = peakRss();
+    res.peakMemoryBytes = int64_t(util::peakResidentBytes());
     return res;
 }
 
 nlohmann::json renderReport(const RenderResult& r) {
     const Rgb m = r.image.mean();
-    return {{"mode", r.mode},
-            {"light", r.light},
+    return {{"mode", modeName(r.mode)},
+            {"light", lightPlacementName(r.light)},
             {"width", r.image.width},
             {"height", r.image.height},
             {"spp", r.spp},

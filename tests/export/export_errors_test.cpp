@@ -1,9 +1,8 @@
 // Bad input: unknown extension, unwritable paths, conflicting options, bad data — a clear
-// knit::Error and no file (not even a temporary one) left behind. Also the CLI flags and
-// exportScene's choice of curves.
+// knit::Error and no file (not even a temporary one) left behind. Also exportScene's choice of
+// curves.
 #include <gtest/gtest.h>
 
-#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include "export/gltf_read.hpp"
@@ -234,38 +233,6 @@ TEST(ExportScene, pliesOfASceneBuiltWithoutPliesAreGeneratedWhileWriting) {
     o.what = ExportWhat::Tubes;  // auto: the yarns of a scene without plies
     o.path = dir + "/tubes.obj";
     EXPECT_EQ(exportScene(broken, o).curves, broken.yarns.curves.curveCount());
-}
-
-// ---- CLI flags ----
-ExportOptions parse(const std::vector<std::string>& args) {
-    CLI::App app("test");
-    ExportOptions o;
-    addExportFlags(app, o);
-    std::vector<std::string> reversed(args.rbegin(), args.rend());
-    app.parse(reversed);
-    return o;
-}
-
-TEST(ExportFlags, parsesFormatOptions) {
-    const ExportOptions o = parse({"--export", "tubes", "--sides", "12", "--draco", "--draco-bits", "16",
-                                   "--yarn-colors", "--chunk-vertices", "5000", "--no-caps"});
-    EXPECT_EQ(o.what, ExportWhat::Tubes);
-    EXPECT_EQ(o.sides, 12);
-    EXPECT_TRUE(o.draco);
-    EXPECT_EQ(o.dracoBits, 16);
-    EXPECT_TRUE(o.yarnColors);
-    EXPECT_EQ(o.chunkVertices, 5000u);
-    EXPECT_FALSE(o.caps);
-    EXPECT_EQ(parse({"--export", "YARNS"}).what, ExportWhat::Yarns);
-    EXPECT_TRUE(parse({"--export", "tubes", "--quantize"}).quantize);
-}
-
-TEST(ExportFlags, rejectsBadValuesAndConflicts) {
-    EXPECT_THROW(parse({"--export", "meshes"}), CLI::ValidationError);
-    EXPECT_THROW(parse({"--sides", "2"}), CLI::ValidationError);
-    EXPECT_THROW(parse({"--draco-bits", "12"}), CLI::RequiresError);  // needs --draco
-    EXPECT_THROW(parse({"--draco", "--draco-bits", "31"}), CLI::ValidationError);
-    EXPECT_THROW(parse({"--draco", "--quantize"}), CLI::ExcludesError);
 }
 
 TEST(ExportReport, carriesCountsPeakMemoryAndRatio) {

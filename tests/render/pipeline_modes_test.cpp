@@ -45,7 +45,7 @@ void expectModesMatch(const Scene& scene) {
     std::vector<Image> images;
     uint64_t seed = 11;
     for (const char* mode : {"curves", "grid", "tubes"}) {
-        o.mode = mode;
+        o.mode = parseMode(mode);
         o.seed = seed++;
         images.push_back(renderScene(scene, o).image);
     }

@@ -186,7 +186,7 @@ TEST(Render, furnaceSceneRendersRadianceOne) {
     o.material.fiberShadowFloor = 1.0;
     o.material.plyShadowFloor = 1.0;
     for (const char* mode : {"curves", "grid", "tubes"}) {
-        o.mode = mode;
+        o.mode = parseMode(mode);
         const RenderResult r = renderScene(scene, o);
         double sum = 0, var = 0;
         for (size_t i = 0; i < r.image.variance.size(); ++i) {
@@ -209,7 +209,7 @@ TEST(Render, threeModesRenderMatchingImages) {
     std::vector<Image> images;
     uint64_t seed = 1;
     for (const char* mode : {"curves", "grid", "tubes"}) {
-        o.mode = mode;
+        o.mode = parseMode(mode);
         o.seed = seed++;
         images.push_back(renderScene(scene, o).image);
     }
@@ -220,8 +220,8 @@ TEST(Render, threeModesRenderMatchingImages) {
     }
     // And the comparison can tell different images apart: front vs back light (the background
     // blocks, lit by the environment only, are equal in both).
-    o.mode = "curves";
-    o.light = "back";
+    o.mode = GeometryMode::Curves;
+    o.light = LightPlacement::Back;
     const Image back = renderScene(scene, o).image;
     const ImageComparison diff = compareImages(images[0], back, 5, 4.0);
     EXPECT_GT(diff.outliers, diff.blocks / 3);
@@ -235,7 +235,7 @@ TEST(Render, backLitImageShowsTransmittedLight) {
     dense.plyCount = 1;
     const Scene scene = makeSyntheticPlyScene(dense);
     RenderOptions o = smallRender();
-    o.light = "back";
+    o.light = LightPlacement::Back;
     o.environment = 0.0;
     o.material.kTT = Rgb(0.3);
     o.material.kR = Rgb(0.3);
@@ -283,7 +283,7 @@ TEST(Render, frontLightNeverHidesTheViewInANarrowField) {
 TEST(Render, deterministicForSeedAndThreadCount) {
     const Scene scene = makeSyntheticPlyScene(wavyCloth());
     RenderOptions o = smallRender();
-    o.mode = "grid";
+    o.mode = GeometryMode::Grid;
     const Image a = renderScene(scene, o).image;
     Image b;
     {
@@ -299,7 +299,7 @@ TEST(Render, farFromOriginRendersLikeAtOrigin) {
     SyntheticSceneOptions far = wavyCloth();
     far.offset = glm::dvec3(1e5, -2e5, 3e4);  // 100 km away: float32 world coordinates would fail
     RenderOptions o = smallRender();
-    o.mode = "grid";
+    o.mode = GeometryMode::Grid;
     const Image a = renderScene(makeSyntheticPlyScene(wavyCloth()), o).image;
     const Image b = renderScene(makeSyntheticPlyScene(far), o).image;
     const ImageComparison c = compareImages(a, b, 5, 4.0);
@@ -353,8 +353,8 @@ TEST(Render, badInputIsAClearError) {
     o.materialOverrides["alphaAlong"] = {5.0};
     expectError(scene, o, "alphaAlong");
     o = smallRender();
-    o.mode = "voxels";
-    expectError(scene, o, "voxels");
+    o.mode = static_cast<GeometryMode>(7);
+    expectError(scene, o, "unknown geometry mode 7");
     o = smallRender();
     expectError(Scene(), o, "no ply curves");
     o.output = "/nonexistent-folder/knit/image.png";
@@ -374,43 +374,6 @@ TEST(Render, failedWriteLeavesNoPartialFile) {
         files += e.path().filename().string().find("render_test_dir.png.tmp") != std::string::npos;
     EXPECT_EQ(files, 0u);
     std::filesystem::remove_all(dir);
-}
-
-}  // namespace
-}  // namespace knit
-
-#include <CLI/CLI.hpp>
-
-namespace knit {
-namespace {
-
-TEST(RenderFlags, flagsFillOptionsAndMaterialOverrides) {
-    CLI::App app("render");
-    RenderOptions o;
-    addRenderFlags(app, o);
-    const char* argv[] = {"knit", "--light", "back", "--mode", "grid", "--spp", "4", "--kR", "0.2,0.3,0.4",
-                          "--body-albedo", "0.5", "--no-fiber-detail", "--seed", "9"};
-    app.parse(static_cast<int>(std::size(argv)), argv);
-    EXPECT_EQ(o.light, "back");
-    EXPECT_EQ(o.mode, "grid");
-    EXPECT_EQ(o.spp, 4);
-    EXPECT_EQ(o.seed, 9u);
-    const PlyMaterial m = resolveMaterial(o);
-    EXPECT_EQ(m.kR, Rgb(0.2, 0.3, 0.4));
-    EXPECT_EQ(m.bodyAlbedo, Rgb(0.5));
-    EXPECT_FALSE(m.fiberDetail);
-    // An energy-violating flag combination is refused when resolved.
-    CLI::App app2("render");
-    RenderOptions bad;
-    addRenderFlags(app2, bad);
-    const char* argv2[] = {"knit", "--kTT", "0.7", "--body-albedo", "0.4"};
-    app2.parse(static_cast<int>(std::size(argv2)), argv2);
-    EXPECT_THROW(resolveMaterial(bad), Error);
-    CLI::App app3("render");
-    RenderOptions o3;
-    addRenderFlags(app3, o3);
-    const char* argv3[] = {"knit", "--mode", "voxels"};
-    EXPECT_THROW(app3.parse(static_cast<int>(std::size(argv3)), argv3), CLI::ValidationError);
 }
 
 }  // namespace

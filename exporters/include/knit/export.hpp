@@ -30,8 +30,6 @@
 
 #include "knit/scene.hpp"
 
-namespace CLI { class App; }
-
 namespace knit {
 
 enum class ExportWhat { Yarns, Plies, Tubes };
@@ -119,9 +117,6 @@ bool streamsPlies(const ExportOptions& options);
 // conflict (e.g. --draco with curves, --draco with --quantize, Draco for a non-glTF format).
 void validateExportOptions(const ExportOptions& options);
 
-// Registers the export flags (--export, --sides, --draco, ...) on a CLI11 (sub)command.
-void addExportFlags(CLI::App& command, ExportOptions& options);
-
 nlohmann::json exportReport(const ExportStats& stats);
 
 // OBJ polylines: one `l` record per curve; a closed curve repeats its first index at the end.
@@ -131,5 +126,11 @@ void writeObjPolylines(std::ostream& out, const Polylines& curves, const std::st
 // Throws knit::Error naming the path if it cannot be created or written.
 void writeFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write,
                          bool binary);
+
+// Throws knit::Error unless the folder of `path` (".": no folder part) exists, is a folder and
+// is writable: "cannot write <what> '<path>': folder '<folder>' does not exist" (or "'<folder>' is
+// not a folder", "folder '<folder>' is not writable"); with an empty `what`, "cannot write '<path>': ...".
+// The exporters check every output with it; callers use it to fail before long work.
+void requireWritableFolder(const std::string& path, const std::string& what = "");
 
 }  // namespace knit

@@ -20,17 +20,17 @@
 #include "knit/ply_material.hpp"
 #include "knit/trace_mode.hpp"
 
-namespace CLI {
-class App;
-}
-
 namespace knit {
 
 struct Scene;
 
+// Where the area light is: on the camera side (reflection) or behind the cloth (transmission).
+enum class LightPlacement { Front, Back };
+const char* lightPlacementName(LightPlacement light);  // "front" | "back" (as in the report)
+
 struct RenderOptions {
-    std::string light = "front";   // front | back
-    std::string mode = "curves";   // curves | tubes | grid
+    LightPlacement light = LightPlacement::Front;
+    GeometryMode mode = GeometryMode::Curves;
     int spp = 16;
     int width = 512, height = 384;
     std::string output;            // PNG (sRGB); empty = no file
@@ -52,7 +52,8 @@ struct RenderOptions {
 
 struct RenderResult {
     Image image;
-    std::string mode, light;
+    GeometryMode mode = GeometryMode::Curves;
+    LightPlacement light = LightPlacement::Front;
     int spp = 0;
     PlyMaterial material;          // as resolved and validated
     double tableSeconds = 0, buildSeconds = 0, renderSeconds = 0;
@@ -66,12 +67,6 @@ struct RenderResult {
     RectLight areaLight;           // the area light used (world space)
     std::vector<std::string> written;
 };
-
-// Registers --light --mode --spp --width --height --output --exr --seed --material and the
-// material flags (--eta --alpha-along --alpha-across --kR --alpha-tt --kTT --body-albedo
-// --reflect-fraction --fiber-count --fiber-twist --fiber-shadow-floor --ply-shadow-floor
-// --no-fiber-detail) plus --max-depth --env --light-irradiance --fov --base-mesh --tube-sides.
-void addRenderFlags(CLI::App& app, RenderOptions& options);
 
 // Resolves the material (defaults <- file <- overrides), validates everything before rendering
 // (knit::Error: bad material, spp < 1, bad size, unknown light/mode, empty scene, unwritable

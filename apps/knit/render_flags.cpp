@@ -1,15 +1,16 @@
-// CLI11 flags of `knit render` (the CLI itself lives in exporters/cli).
-#include <CLI/CLI.hpp>
+// The render flags of `knit render` (see render_flags.hpp).
+#include "render_flags.hpp"
 
-#include "knit/render.hpp"
+#include "choice.hpp"
 
-namespace knit {
+namespace knit::cli {
 
 void addRenderFlags(CLI::App& app, RenderOptions& o) {
-    app.add_option("--light", o.light, "Light placement: front (camera side) or back (behind the cloth)")
-        ->check(CLI::IsMember({"front", "back"}));
-    app.add_option("--mode", o.mode, "Geometry: curves (Embree round curves), tubes (swept meshes), grid (two-stage cells)")
-        ->check(CLI::IsMember({"curves", "tubes", "grid"}));
+    addChoice(app, "--light", o.light, Choices<LightPlacement>{{"front", LightPlacement::Front}, {"back", LightPlacement::Back}},
+              "Light placement: front (camera side) or back (behind the cloth)");
+    addChoice(app, "--mode", o.mode,
+              Choices<GeometryMode>{{"curves", GeometryMode::Curves}, {"tubes", GeometryMode::Tubes}, {"grid", GeometryMode::Grid}},
+              "Geometry: curves (Embree round curves), tubes (swept meshes), grid (two-stage cells)");
     app.add_option("--spp", o.spp, "Samples per pixel (>= 1)");
     app.add_option("--width", o.width, "Image width in pixels");
     app.add_option("--height", o.height, "Image height in pixels");
@@ -48,4 +49,4 @@ void addRenderFlags(CLI::App& app, RenderOptions& o) {
     app.add_option("--tube-sides", o.tubeSides, "Sides of the swept tubes (tubes mode)");
 }
 
-}  // namespace knit
+}  // namespace knit::cli

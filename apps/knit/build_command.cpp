@@ -1,0 +1,80 @@
+// `knit build`: check the outputs, build the scene, export it, write the report, print a summary.
+#include "build_command.hpp"
+
+#include <cstdio>
+#include <filesystem>
+
+#include <nlohmann/json.hpp>
+
+#include "export_flags.hpp"
+#include "report.hpp"
+
+namespace knit::cli {
+namespace {
+
+// The scene report plus the export; streamed plies are counted by the export.
+nlohmann::json buildReportJson(const Scene& scene, const ExportStats& stats, bool streamed) {
+    nlohmann::json report = sceneReport(scene);
+    if (streamed) {
+        const PlyOptions o = resolvePlyOptions(scene.plyOptions);
+        report["vertices"]["ply"] = stats.vertices;
+        report["plies"] = {{"curves", stats.curves},
+                           {"ply_radius", o.plyRadius},
+                           {"center_radius", o.centerRadius},
+                           {"pitch", o.pitch},
+                           {"streamed", true}};
+    }
+    report["export"] = exportReport(stats);
+    return report;
+}
+
+void printSummary(const Scene& s, const ExportStats& e, const std::string& output, bool streamed) {
+    const nlohmann::json r = sceneReport(s);
+    std::printf("pattern %s on mesh %s: repeats %.4g x %.4g, yarn radius %.4g m\n", s.pattern.name.c_str(), s.mesh.name.c_str(),
+                s.placement.repeats.x, s.placement.repeats.y, s.yarnRadius);
+    std::printf("%zu cells, %zu yarns (%zu closed loops, %zu open ends, %zu welded ends), %zu yarn vertices, %zu ply vertices\n",
+                s.grid.cells.size(), s.yarns.curves.curveCount(), s.bound.stats.closedLoops, s.bound.stats.openEnds,
+                s.bound.stats.weldedEnds, s.yarns.curves.pointCount(), streamed ? e.vertices : s.plies.curves.pointCount());
+    std::printf("wrote %s (%s, %zu curves, %zu vertices) in %.3f s total\n", output.c_str(), e.format.c_str(), e.curves, e.vertices,
+                r["seconds"]["total"].get<double>() + e.seconds);
+}
+
+}  // namespace
+
+void addBuildCommand(CLI::App& app, BuildCommand& b) {
+    b.exportOptions.path = "knit-plies.obj";
+    b.command = app.add_subcommand("build", "Tile, stitch, map and twist plies; export curves or tubes");
+    addSceneFlags(*b.command, b.scene);
+    addExportFlags(*b.command, b.exportOptions);
+    b.command->add_option("-o,--output", b.exportOptions.path, "Output file; the extension picks the format")->capture_default_str();
+    b.command->add_option("--report", b.report, "Write a JSON report (counts, stage times, segment lengths)");
+    b.command->footer(kSceneHelp);
+}
+
+int runBuild(const BuildCommand& b) {
+    // Step 1: fail before the scene is built: bad export options or an unwritable report folder.
+    validateExportOptions(b.exportOptions);
+    if (!b.report.empty()) requireWritableFolder(b.report, "report");
+    // Step 2: the scene; glTF / GLB ply curves are generated while writing, so it is built without them.
+    SceneOptions options = resolveScene(b.scene);
+    const bool streamed = streamsPlies(b.exportOptions);
+    options.buildPlies = b.exportOptions.what != ExportWhat::Yarns && !streamed;
+    const Scene scene = buildScene(options);
+    printWarnings(scene);
+    // Step 3: the export, then the report (part of the result: without it the export is removed).
+    const ExportStats stats = exportScene(scene, b.exportOptions);
+    if (!b.report.empty()) {
+        const nlohmann::json report = buildReportJson(scene, stats, streamed);
+        try {
+            writeReport(b.report, report);
+        } catch (...) {
+            std::filesystem::remove(b.exportOptions.path);
+            throw;
+        }
+    }
+    // Step 4: the summary on stdout.
+    printSummary(scene, stats, b.exportOptions.path, streamed);
+    return 0;
+}
+
+}  // namespace knit::cli

@@ -1,0 +1,26 @@
+// build_command.hpp — `knit build`: build the scene and export it (curves or tubes), with an
+// optional JSON report.
+#pragma once
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "knit/export.hpp"
+#include "scene_flags.hpp"
+
+namespace knit::cli {
+
+struct BuildCommand {
+    CLI::App* command = nullptr;  // set by addBuildCommand
+    SceneFlags scene;
+    ExportOptions exportOptions;  // -o defaults to knit-plies.obj
+    std::string report;           // --report path; empty = none
+};
+
+// Registers the subcommand and its flags on `app`, bound to `build` (which must outlive parsing).
+void addBuildCommand(CLI::App& app, BuildCommand& build);
+
+// Builds and exports; prints a summary on stdout. Throws knit::Error on bad input.
+int runBuild(const BuildCommand& build);
+
+}  // namespace knit::cli

@@ -1,0 +1,58 @@
+// knit — command-line front end. Each subcommand (one file each) only composes library stages
+// (knit/scene.hpp) with the exporters (knit/export.hpp) and, when built, the render check
+// (knit/render.hpp). This file parses, dispatches and maps errors to exit codes:
+// 0 success, 1 bad input (knit::Error), 3 internal error, CLI11's codes for bad flags.
+#include <cstdio>
+#include <exception>
+
+#include <CLI/CLI.hpp>
+
+#include "build_command.hpp"
+#include "generate_command.hpp"
+#include "info_command.hpp"
+#include "knit/error.hpp"
+#include "scene_flags.hpp"
+#ifdef KNIT_HAVE_RENDER_CHECK
+#include "render_command.hpp"
+#endif
+
+int main(int argc, char** argv) {
+    using namespace knit::cli;
+    CLI::App app{"knit: ply-level knitted fabric on a UV-mapped triangle mesh (libknit)"};
+    app.require_subcommand(1);
+    app.footer(kSceneHelp);
+
+    // Subcommands, in the order --help lists them.
+    BuildCommand build;
+    InfoCommand info;
+    GenerateCommand generate;
+    addBuildCommand(app, build);
+    addInfoCommand(app, info);
+    addGenerateCommand(app, generate);
+#ifdef KNIT_HAVE_RENDER_CHECK
+    RenderCommand render;
+    addRenderCommand(app, render);
+#endif
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e);
+    }
+
+    try {
+        if (*info.command) return runInfo(info);
+        if (*generate.command) return runGenerate(generate);
+        if (*build.command) return runBuild(build);
+#ifdef KNIT_HAVE_RENDER_CHECK
+        if (*render.command) return runRender(render);
+#endif
+    } catch (const knit::Error& e) {
+        std::fprintf(stderr, "knit: error: %s\n", e.what());
+        return 1;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "knit: internal error: %s\n", e.what());
+        return 3;
+    }
+    return 0;
+}

@@ -1,0 +1,33 @@
+// `knit render`: build the scene, render it, write the report, print the report on stdout.
+#include "render_command.hpp"
+
+#include <cstdio>
+
+#include <nlohmann/json.hpp>
+
+#include "render_flags.hpp"
+#include "report.hpp"
+
+namespace knit::cli {
+
+void addRenderCommand(CLI::App& app, RenderCommand& r) {
+    r.command = app.add_subcommand("render", "Path-trace the knit on its base mesh (front- or back-lit)");
+    addSceneFlags(*r.command, r.scene);
+    addRenderFlags(*r.command, r.options);
+    r.command->add_option("--report", r.report, "Write a JSON report (time, rays/s, memory)");
+    r.command->footer(kSceneHelp);
+}
+
+int runRender(const RenderCommand& r) {
+    RenderOptions options = r.options;
+    options.progress = options.progress && !r.scene.quiet;
+    const Scene scene = buildScene(resolveScene(r.scene));
+    printWarnings(scene);
+    const RenderResult result = renderScene(scene, options);
+    const nlohmann::json report = renderReport(result);
+    if (!r.report.empty()) writeReport(r.report, report);
+    std::printf("%s\n", report.dump().c_str());
+    return 0;
+}
+
+}  // namespace knit::cli

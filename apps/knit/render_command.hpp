@@ -1,0 +1,26 @@
+// render_command.hpp — `knit render`: build the scene and path-trace its plies (front- or
+// back-lit); prints the render report as one JSON line.
+#pragma once
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "knit/render.hpp"
+#include "scene_flags.hpp"
+
+namespace knit::cli {
+
+struct RenderCommand {
+    CLI::App* command = nullptr;  // set by addRenderCommand
+    SceneFlags scene;
+    RenderOptions options;
+    std::string report;           // --report path; empty = none
+};
+
+// Registers the subcommand and its flags on `app`, bound to `render` (which must outlive parsing).
+void addRenderCommand(CLI::App& app, RenderCommand& render);
+
+// Builds the scene, renders, writes the images and the report. Throws knit::Error on bad input.
+int runRender(const RenderCommand& render);
+
+}  // namespace knit::cli

@@ -1,0 +1,19 @@
+// report.hpp — what the commands write besides their main output: JSON reports (--report) and
+// notes on stderr.
+#pragma once
+#include <string>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "knit/scene.hpp"
+
+namespace knit::cli {
+
+// Writes `report` (indented, newline-terminated) to `path` atomically.
+void writeReport(const std::string& path, const nlohmann::json& report);
+
+// What the user should know about a built scene that is not an error (stderr): overlapping
+// UV charts.
+void printWarnings(const Scene& scene);
+
+}  // namespace knit::cli

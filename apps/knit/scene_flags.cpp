@@ -1,0 +1,60 @@
+// The scene flags of `knit build` and `knit render` (see scene_flags.hpp).
+#include "scene_flags.hpp"
+
+#include <cstdio>
+
+#include "choice.hpp"
+#include "knit/base_mesh.hpp"
+#include "knit/generator.hpp"
+
+namespace knit::cli {
+
+const char* const kSceneHelp = R"(Scene: a pattern (.pyp file, .json curves file, or built-in name) tiled over a
+base mesh (.obj/.ply/.off/.gltf/.glb with UVs, or built-in name). Alignment: with --repeats U V, pattern
+point (x, y) of tile (i, j) lands at uv ((x + i px)/(U px), (y + j py)/(V py)); the pattern's
+origin is uv (0,0). Heights and radii scale with the period. Without --repeats the pattern keeps
+its physical size (the mesh's area-weighted metres per UV unit).)";
+
+namespace {
+
+std::string commaList(const std::vector<std::string>& names) {
+    std::string list;
+    for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+    return list;
+}
+
+}  // namespace
+
+void addSceneFlags(CLI::App& cmd, SceneFlags& f) {
+    const Choices<Twist> twists = {{"S", Twist::S}, {"Z", Twist::Z}};
+    cmd.add_option("--pattern", f.scene.pattern, "Pattern file (.pyp, .json curves) or built-in: " + commaList(builtinPatternNames()))->capture_default_str();
+    cmd.add_option("--mesh", f.scene.mesh, "Base mesh file (.obj, .ply, .off, .gltf, .glb; needs UVs; glTF v is flipped to OBJ convention) or built-in: " + commaList(builtinMeshNames()))->capture_default_str();
+    cmd.add_option("--repeats", f.repeats, "Pattern periods across u in [0,1] and v in [0,1] (default: physical size)")->expected(2);
+    cmd.add_option("--mesh-res", f.meshRes, "Quads per side of built-in meshes (default 32)")->check(CLI::Range(1, 4096));
+    cmd.add_option("--plies", f.scene.plies.count, "Plies per yarn")->capture_default_str()->check(CLI::Range(1, 16));
+    cmd.add_option("--ply-pitch", f.scene.plies.pitch, "Length of one ply turn in metres (0: 6 yarn radii)")->capture_default_str();
+    cmd.add_option("--ply-radius", f.scene.plies.plyRadius, "Ply radius in metres (0: touching plies filling the yarn)")->capture_default_str();
+    cmd.add_option("--ply-center-radius", f.scene.plies.centerRadius, "Distance of ply centres from the yarn centre (0: auto)")->capture_default_str();
+    addChoice(cmd, "--twist", f.scene.plies.twist, twists, "Ply twist direction")->default_str(wordOf(twists, f.scene.plies.twist));
+    cmd.add_option("--samples-per-turn", f.scene.plies.samplesPerTurn, "Centreline samples per ply turn")->capture_default_str();
+    cmd.add_option("--clamp-tolerance", f.scene.bind.clampTolerance,
+                   "Points outside the UV region within this many yarn radii are clamped onto the closest triangle; farther ones are cut")->capture_default_str();
+    cmd.add_option("--weld-tolerance", f.scene.bind.weldTolerance,
+                   "Cut ends meeting again across a seam within this many yarn radii are welded")->capture_default_str();
+    cmd.add_flag("--no-weld", f.noWeld, "Do not weld yarn ends across UV seams");
+    cmd.add_flag("-q,--quiet", f.quiet, "No progress output on stderr");
+}
+
+SceneOptions resolveScene(const SceneFlags& f) {
+    SceneOptions o = f.scene;
+    if (!f.repeats.empty()) o.placement.repeats = {f.repeats[0], f.repeats[1]};
+    if (f.meshRes > 0) o.meshOptions.resU = o.meshOptions.resV = f.meshRes;
+    o.bind.weld = !f.noWeld;
+    if (!f.quiet)
+        o.progress = [](const std::string& stage, int index, int total) {
+            std::fprintf(stderr, "[%d/%d] %s\n", index + 1, total, stage.c_str());
+        };
+    return o;
+}
+
+}  // namespace knit::cli
