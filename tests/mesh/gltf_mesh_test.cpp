@@ -1,5 +1,5 @@
 // glTF 2.0 base meshes: files are assembled here byte by byte (JSON with a base64 buffer, GLB
-// container, external .bin), independently of the tinygltf reader under test.
+// container, external .bin), independently of the glTF reader under test (gltf_document.hpp).
 #include <gtest/gtest.h>
 
 #include <cmath>
