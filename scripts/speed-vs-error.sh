@@ -5,11 +5,12 @@
 #   bash scripts/speed-vs-error.sh
 #
 # Steps: install what is missing with apt-get (the build dependencies and gnuplot, Debian package
-# gnuplot-nox), configure and build the measurement program in Release, run it (all
-# six items, about 5-10 minutes on 2 cores; the garment item needs ~7 GiB of memory), write the
-# report and draw the plots. Every number in the report comes from this run; the machine (CPU,
-# threads, memory, load average), the git commit (marked dirty when the tree has uncommitted
-# changes) and the date are recorded in it. The docs are replaced only when everything succeeded.
+# gnuplot-nox), configure and build the measurement program (tools/speed_vs_error/) in Release,
+# run it (all six items, about 5-10 minutes on 2 cores; the garment item needs ~7 GiB of memory),
+# write the report and draw the plots. Every number in the report comes from this run; the
+# machine (CPU, threads, memory, load average), the git commit (marked dirty when the tree has
+# uncommitted changes) and the date are recorded in it. The docs are replaced only when
+# everything succeeded.
 #
 # Environment: KNIT_BUILD_DIR (default: build), KNIT_JOBS (default: nproc),
 #              KNIT_SVE_ITEMS (default: 6,1,4,2,3,5; e.g. "1,4" for a quick partial run).
@@ -27,8 +28,8 @@ command -v gnuplot >/dev/null 2>&1 || extra+=(gnuplot-nox)  # any installed gnup
 bash "$root/scripts/setup.sh" "${extra[@]}"
 
 # Step 2: Release build of the measurement program only.
-cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DKNIT_BUILD_BENCH=ON >/dev/null
-cmake --build "$build" --target speed_vs_error_bench -j"$jobs"
+cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DKNIT_BUILD_TOOLS=ON >/dev/null
+cmake --build "$build" --target speed_vs_error -j"$jobs"
 built=$(date +%s)
 
 # Step 3: measure into a staging folder (the docs stay untouched until everything succeeded).
@@ -40,13 +41,13 @@ dirty=unknown
 if [ "$commit" != unknown ]; then
   if [ -n "$(git -C "$root" --no-optional-locks status --porcelain 2>/dev/null)" ]; then dirty=1; else dirty=0; fi
 fi
-"$build/bench/speed_vs_error_bench" measure \
+"$build/tools/speed_vs_error" measure \
   --results "$stage/speed-vs-error/results.json" --work "$stage/files" --images "$stage/speed-vs-error" \
   --items "$items" --commit "$commit" --dirty "$dirty" --date "$(date -u '+%Y-%m-%d %H:%M UTC')" \
   --command "bash scripts/speed-vs-error.sh" --nproc "$(nproc)"
 
 # Step 4: report, plot data and plots.
-"$build/bench/speed_vs_error_bench" report --results "$stage/speed-vs-error/results.json" \
+"$build/tools/speed_vs_error" report --results "$stage/speed-vs-error/results.json" \
   --markdown "$stage/speed-vs-error.md" --images "$stage/speed-vs-error" --data "$stage/data"
 gnuplot "$stage/data/plots.gp"
 

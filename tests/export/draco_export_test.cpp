@@ -38,40 +38,39 @@ ExportStats write(const Polylines& c, double radius, const ExportOptions& o) {
     return exportCurves(in, o);
 }
 
-glm::dvec3 translationOf(const tinygltf::Node& n) {
-    return n.translation.size() == 3 ? glm::dvec3(n.translation[0], n.translation[1], n.translation[2]) : glm::dvec3(0);
+glm::dvec3 translationOf(const gltf::Document& m, size_t node) {
+    const std::vector<double> t = m.numbers(m.element("nodes", node, "test"), "translation", 3, "test");
+    return t.size() == 3 ? glm::dvec3(t[0], t[1], t[2]) : glm::dvec3(0);
 }
 
 // Plain (uncompressed) chunks, local coordinates.
-std::vector<ChunkData> readPlain(const tinygltf::Model& m) {
+std::vector<ChunkData> readPlain(const gltf::Document& m) {
     std::vector<ChunkData> out;
-    for (const auto& inst : test::meshInstances(m)) {
-        const auto& p = m.meshes[size_t(inst.mesh)].primitives.at(0);
+    for (const auto& inst : m.meshInstances()) {
+        const auto p = m.primitives(inst.mesh).at(0);
         ChunkData c;
-        c.translation = translationOf(m.nodes[size_t(inst.node)]);
-        const auto pos = test::readAccessor(m, p.attributes.at("POSITION"));
-        const auto nor = test::readAccessor(m, p.attributes.at("NORMAL"));
-        const auto uv = test::readAccessor(m, p.attributes.at("TEXCOORD_0"));
-        const auto tan = test::readAccessor(m, p.attributes.at("TANGENT"));
+        c.translation = translationOf(m, inst.node);
+        const auto pos = test::readAttribute(m, p, "POSITION");
+        const auto nor = test::readAttribute(m, p, "NORMAL");
+        const auto uv = test::readAttribute(m, p, "TEXCOORD_0");
+        const auto tan = test::readAttribute(m, p, "TANGENT");
         for (size_t i = 0; i < pos.size() / 3; ++i)
             c.v.push_back({{pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]},
                            {nor[3 * i], nor[3 * i + 1], nor[3 * i + 2]},
                            {uv[2 * i], uv[2 * i + 1]},
                            {tan[4 * i], tan[4 * i + 1], tan[4 * i + 2], tan[4 * i + 3]}});
-        c.triangles = m.accessors[size_t(p.indices)].count / 3;
+        c.triangles = m.accessor(m.indices(p).value(), "test").count / 3;
         out.push_back(std::move(c));
     }
     return out;
 }
 
 // Decodes one primitive's KHR_draco_mesh_compression bufferView with the Draco library.
-std::unique_ptr<draco::Mesh> decodePrimitive(const test::RawGltf& g, const nlohmann::json& prim) {
+std::unique_ptr<draco::Mesh> decodePrimitive(const gltf::Document& g, const nlohmann::json& prim) {
     const nlohmann::json& ext = prim["extensions"]["KHR_draco_mesh_compression"];
-    const nlohmann::json& view = g.doc["bufferViews"][ext["bufferView"].get<size_t>()];
-    const auto& buf = g.buffers.at(view["buffer"].get<size_t>());
+    const gltf::Bytes view = g.bufferView(ext["bufferView"].get<size_t>(), "test");
     draco::DecoderBuffer db;
-    db.Init(reinterpret_cast<const char*>(buf.data() + view.value("byteOffset", size_t(0))),
-            view["byteLength"].get<size_t>());
+    db.Init(reinterpret_cast<const char*>(view.data), view.size);
     draco::Decoder decoder;
     auto decoded = decoder.DecodeMeshFromBuffer(&db);
     EXPECT_TRUE(decoded.ok()) << decoded.status().error_msg_string();
@@ -80,9 +79,9 @@ std::unique_ptr<draco::Mesh> decodePrimitive(const test::RawGltf& g, const nlohm
 }
 
 // Draco chunks decoded with the Draco library; also checks the accessors describe the decoded data.
-std::vector<ChunkData> readDraco(const test::RawGltf& g) {
+std::vector<ChunkData> readDraco(const gltf::Document& g) {
     std::vector<ChunkData> out;
-    const nlohmann::json& doc = g.doc;
+    const nlohmann::json& doc = g.root();
     for (const auto& child : doc["nodes"][0]["children"]) {
         const nlohmann::json& node = doc["nodes"][child.get<size_t>()];
         const nlohmann::json& prim = doc["meshes"][node["mesh"].get<size_t>()]["primitives"][0];
@@ -187,9 +186,9 @@ void expectDracoMatchesPlain(int bits) {
     test::expectGltfValid(draco.path, &report);
     if (report.ran) EXPECT_TRUE(report.hasInfo("UNSUPPORTED_EXTENSION")) << "the validator does not decode Draco";
 
-    const tinygltf::Model pm = test::loadGltf(plain.path);
-    const test::RawGltf dg = test::loadRawGltf(draco.path);
-    EXPECT_EQ(dg.doc["extensionsRequired"], nlohmann::json::array({"KHR_draco_mesh_compression"}));
+    const gltf::Document pm = test::loadGltf(plain.path);
+    const gltf::Document dg = test::loadGltf(draco.path);
+    EXPECT_EQ(dg.root()["extensionsRequired"], nlohmann::json::array({"KHR_draco_mesh_compression"}));
     const std::vector<ChunkData> a = readPlain(pm), b = readDraco(dg);
     ASSERT_EQ(a.size(), b.size());
     ASSERT_GE(a.size(), 2u);
@@ -240,8 +239,8 @@ TEST(DracoExport, dracoWithYarnColoursDecodesColours) {
     o.yarnColors = true;
     exportCurves(in, o);
     test::expectGltfValid(o.path);
-    const test::RawGltf g = test::loadRawGltf(o.path);
-    const nlohmann::json& p = g.doc["meshes"][0]["primitives"][0];
+    const gltf::Document g = test::loadGltf(o.path);
+    const nlohmann::json& p = g.root()["meshes"][0]["primitives"][0];
     ASSERT_TRUE(p["attributes"].contains("COLOR_0"));
     const auto mesh = decodePrimitive(g, p);
     ASSERT_TRUE(mesh);
