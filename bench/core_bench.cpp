@@ -34,11 +34,11 @@ const Fixture& fixture() {
 
 void BM_TilingStitch(benchmark::State& state) {
     const knit::Scene& s = fixture().scene;
-    const knit::PatternAdjacency adj = knit::buildAdjacency(s.pattern);
+    const knit::PatternAdjacency adj = knit::buildAdjacency(s.pattern());
     size_t vertices = 0;
     for (auto _ : state) {
-        const knit::Tiling tiling = knit::tilesForCells(s.pattern, s.grid.cells);
-        const knit::UvYarns yarns = knit::stitchYarns(s.pattern, adj, tiling, s.placement);
+        const knit::Tiling tiling = knit::tilesForCells(s.pattern(), s.grid().cells);
+        const knit::UvYarns yarns = knit::stitchYarns(s.pattern(), adj, tiling, s.placement());
         vertices = yarns.vertexCount();
         benchmark::DoNotOptimize(yarns.uv.data());
     }
@@ -50,26 +50,26 @@ BENCHMARK(BM_TilingStitch)->Unit(benchmark::kMillisecond)->UseRealTime();
 void BM_GridBuild(benchmark::State& state) {
     const knit::Scene& s = fixture().scene;
     knit::UvGridOptions o;
-    o.cellSize = s.placement.cellSize();
+    o.cellSize = s.placement().cellSize();
     for (auto _ : state) {
-        const knit::UvGrid grid = knit::buildUvGrid(s.mesh, o);
+        const knit::UvGrid grid = knit::buildUvGrid(s.mesh(), o);
         benchmark::DoNotOptimize(grid.triangles.data());
     }
-    state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(s.mesh.faceCount()));
-    state.counters["cells"] = double(s.grid.cells.size());
+    state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(s.mesh().faceCount()));
+    state.counters["cells"] = double(s.grid().cells.size());
 }
 BENCHMARK(BM_GridBuild)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_Binding(benchmark::State& state) {
     const knit::Scene& s = fixture().scene;
     knit::BindOptions o;
-    o.yarnRadius = s.yarnRadius;
+    o.yarnRadius = s.yarnRadius();
     for (auto _ : state) {
-        const knit::BindResult r = knit::bindYarns(s.mesh, s.normals, s.grid, s.uvYarns, o);
+        const knit::BindResult r = knit::bindYarns(s.mesh(), s.normals(), s.grid(), s.stages().uvYarns, o);
         benchmark::DoNotOptimize(r.binding.face.data());
     }
-    state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(s.uvYarns.vertexCount()));
-    state.counters["yarn_vertices"] = double(s.uvYarns.vertexCount());
+    state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(s.stages().uvYarns.vertexCount()));
+    state.counters["yarn_vertices"] = double(s.stages().uvYarns.vertexCount());
 }
 BENCHMARK(BM_Binding)->Unit(benchmark::kMillisecond)->UseRealTime();
 
@@ -77,11 +77,11 @@ void BM_Evaluate(benchmark::State& state) {
     const knit::Scene& s = fixture().scene;
     knit::MappedYarns out;
     for (auto _ : state) {
-        knit::evaluateBinding(s.bound.binding, s.mesh.faces, s.mesh.positions, s.normals, out);
+        knit::evaluateBinding(s.binding(), s.mesh().faces, s.mesh().positions, s.normals(), out);
         benchmark::DoNotOptimize(out.curves.points.data());
     }
-    state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(s.bound.binding.vertexCount()));
-    state.counters["yarn_vertices"] = double(s.bound.binding.vertexCount());
+    state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(s.binding().vertexCount()));
+    state.counters["yarn_vertices"] = double(s.binding().vertexCount());
 }
 BENCHMARK(BM_Evaluate)->Unit(benchmark::kMillisecond)->UseRealTime();
 
@@ -90,10 +90,10 @@ void BM_EvaluateFloat(benchmark::State& state) {
     const knit::Scene& s = fixture().scene;
     std::vector<glm::vec3> out;
     for (auto _ : state) {
-        knit::evaluateBindingFloat(s.bound.binding, s.mesh.faces, s.mesh.positions, s.normals, glm::dvec3(0.0), out);
+        knit::evaluateBindingFloat(s.binding(), s.mesh().faces, s.mesh().positions, s.normals(), glm::dvec3(0.0), out);
         benchmark::DoNotOptimize(out.data());
     }
-    state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(s.bound.binding.vertexCount()));
+    state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(s.binding().vertexCount()));
 }
 BENCHMARK(BM_EvaluateFloat)->Unit(benchmark::kMillisecond)->UseRealTime();
 

@@ -52,10 +52,10 @@ const Fixture& fixture() {
         o.cellSize = 1.0 / 16;
         x->scene = makeSyntheticPlyScene(o);
         glm::dvec3 lo(1e300), hi(-1e300);
-        for (const glm::dvec3& p : x->scene.plies.curves.points) lo = glm::min(lo, p), hi = glm::max(hi, p);
+        for (const glm::dvec3& p : x->scene.plies().curves.points) lo = glm::min(lo, p), hi = glm::max(hi, p);
         x->centre = 0.5 * (lo + hi);
         x->radius = 0.5 * glm::length(hi - lo);
-        x->geometry = buildPlyGeometry(x->scene.plies, x->centre);
+        x->geometry = buildPlyGeometry(x->scene.plies(), x->centre);
         x->cells = segmentCells(x->scene, x->geometry);
         // Incoherent rays from both sides towards random points of the cloth.
         std::mt19937 rng(1);
@@ -77,10 +77,10 @@ const Fixture& pipeline() {
         auto x = std::make_unique<Fixture>();
         x->scene = buildScene(SceneOptions());
         glm::dvec3 lo(1e300), hi(-1e300);
-        for (const glm::dvec3& p : x->scene.plies.curves.points) lo = glm::min(lo, p), hi = glm::max(hi, p);
+        for (const glm::dvec3& p : x->scene.plies().curves.points) lo = glm::min(lo, p), hi = glm::max(hi, p);
         x->centre = 0.5 * (lo + hi);
         x->radius = 0.5 * glm::length(hi - lo);
-        x->geometry = buildPlyGeometry(x->scene.plies, x->centre, PlyMaterial().fiberTwist);
+        x->geometry = buildPlyGeometry(x->scene.plies(), x->centre, PlyMaterial().fiberTwist);
         x->cells = segmentCells(x->scene, x->geometry);
         // The camera of renderScene: on the mean normal (+z for the drape), radius / sin(15 deg) away.
         const glm::dvec3 eye = x->centre + glm::dvec3(0, 0, x->radius / std::sin(15.0 * 3.14159265358979 / 180.0));

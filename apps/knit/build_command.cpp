@@ -13,10 +13,10 @@ namespace knit::cli {
 namespace {
 
 // The scene report plus the export; streamed plies are counted by the export.
-nlohmann::json buildReportJson(const Scene& scene, const ExportStats& stats, bool streamed) {
-    nlohmann::json report = sceneReport(scene);
+nlohmann::json buildReportJson(const Scene& scene, const SceneStats& numbers, const ExportStats& stats, bool streamed) {
+    nlohmann::json report = sceneReport(scene, numbers);
     if (streamed) {
-        const PlyOptions o = resolvePlyOptions(scene.plyOptions);
+        const PlyOptions o = resolvePlyOptions(scene.plyOptions());
         report["vertices"]["ply"] = stats.vertices;
         report["plies"] = {{"curves", stats.curves},
                            {"ply_radius", o.plyRadius},
@@ -28,15 +28,14 @@ nlohmann::json buildReportJson(const Scene& scene, const ExportStats& stats, boo
     return report;
 }
 
-void printSummary(const Scene& s, const ExportStats& e, const std::string& output, bool streamed) {
-    const nlohmann::json r = sceneReport(s);
-    std::printf("pattern %s on mesh %s: repeats %.4g x %.4g, yarn radius %.4g m\n", s.pattern.name.c_str(), s.mesh.name.c_str(),
-                s.placement.repeats.x, s.placement.repeats.y, s.yarnRadius);
+void printSummary(const Scene& s, const SceneStats& st, const ExportStats& e, const std::string& output, bool streamed) {
+    std::printf("pattern %s on mesh %s: repeats %.4g x %.4g, yarn radius %.4g m\n", s.pattern().name.c_str(),
+                s.mesh().name.c_str(), s.placement().repeats.x, s.placement().repeats.y, s.yarnRadius());
     std::printf("%zu cells, %zu yarns (%zu closed loops, %zu open ends, %zu welded ends), %zu yarn vertices, %zu ply vertices\n",
-                s.grid.cells.size(), s.yarns.curves.curveCount(), s.bound.stats.closedLoops, s.bound.stats.openEnds,
-                s.bound.stats.weldedEnds, s.yarns.curves.pointCount(), streamed ? e.vertices : s.plies.curves.pointCount());
+                st.cells, st.yarns, st.bind.closedLoops, st.bind.openEnds, st.bind.weldedEnds, st.yarnVertices,
+                streamed ? e.vertices : st.plyVertices);
     std::printf("wrote %s (%s, %zu curves, %zu vertices) in %.3f s total\n", output.c_str(), e.format.c_str(), e.curves, e.vertices,
-                r["seconds"]["total"].get<double>() + e.seconds);
+                st.totalSeconds + e.seconds);
 }
 
 }  // namespace
@@ -63,8 +62,9 @@ int runBuild(const BuildCommand& b) {
     printWarnings(scene);
     // Step 3: the export, then the report (part of the result: without it the export is removed).
     const ExportStats stats = exportScene(scene, b.exportOptions);
+    const SceneStats sceneNumbers = sceneStats(scene);  // counts, segment lengths, stage times
     if (!b.report.empty()) {
-        const nlohmann::json report = buildReportJson(scene, stats, streamed);
+        const nlohmann::json report = buildReportJson(scene, sceneNumbers, stats, streamed);
         try {
             writeReport(b.report, report);
         } catch (...) {
@@ -73,7 +73,7 @@ int runBuild(const BuildCommand& b) {
         }
     }
     // Step 4: the summary on stdout.
-    printSummary(scene, stats, b.exportOptions.path, streamed);
+    printSummary(scene, sceneNumbers, stats, b.exportOptions.path, streamed);
     return 0;
 }
 

@@ -14,17 +14,76 @@ void writeReport(const std::string& path, const nlohmann::json& report) {
     writeFileAtomically(path, [&](std::ostream& out) { out << report.dump(2) << '\n'; }, false);
 }
 
+namespace {
+
+nlohmann::json segmentReport(const SegmentStats& st) {
+    nlohmann::json j;
+    j["segments"] = st.segments;
+    if (st.segments == 0) return j;
+    j["median_segment_length"] = st.medianLength;
+    j["longest_segment_length"] = st.longestLength;
+    return j;
+}
+
+}  // namespace
+
+nlohmann::json sceneReport(const Scene& s, const SceneStats& st) {
+    // Step 1: the inputs and their placement.
+    nlohmann::json j;
+    const Pattern& p = s.pattern();
+    j["pattern"] = {{"name", p.name}, {"period", {p.px, p.py}}, {"radius", p.radius}, {"vertices", p.points.size()}};
+    const BaseMesh& m = s.mesh();
+    j["mesh"] = {{"name", m.name},
+                 {"vertices", m.positions.size()},
+                 {"uvs", m.uvs.size()},
+                 {"faces", m.faces.size()},
+                 {"degenerate_uv_faces", s.grid().degenerateUvFaces},
+                 {"uv_charts", s.grid().chartCount},
+                 {"overlapping_uv_charts", nlohmann::json::array()}};
+    for (const glm::uvec2& pair : s.grid().overlappingCharts) j["mesh"]["overlapping_uv_charts"].push_back({pair.x, pair.y});
+    j["placement"] = {{"repeats", {s.placement().repeats.x, s.placement().repeats.y}},
+                      {"scale", s.placement().scale},
+                      {"yarn_radius", s.yarnRadius()}};
+    // Step 2: the statistics.
+    j["counts"] = {{"cells", st.cells},
+                   {"tiles", st.tiles},
+                   {"yarns", st.yarns},
+                   {"closed_loops", st.bind.closedLoops},
+                   {"open_ends", st.bind.openEnds},
+                   {"cut_vertices", st.bind.cutVertices},
+                   {"clamped_vertices", st.bind.clampedVertices},
+                   {"boundary_vertices", st.bind.boundaryVertices},
+                   {"welded_ends", st.bind.weldedEnds},
+                   {"tiled_yarns", st.tiledYarns}};
+    j["vertices"] = {{"tiled", st.tiledVertices}, {"yarn", st.yarnVertices}, {"ply", st.plyVertices}};
+    j["yarn_segments"] = segmentReport(st.yarnSegments);
+    if (st.plySegments) {
+        const Plies& pl = s.plies();
+        j["ply_segments"] = segmentReport(*st.plySegments);
+        j["plies"] = {{"curves", pl.curves.curveCount()},
+                      {"ply_radius", pl.plyRadius},
+                      {"center_radius", pl.centerRadius},
+                      {"pitch", pl.pitch}};
+    }
+    // Step 3: wall time per stage and in all.
+    nlohmann::json times = nlohmann::json::object();
+    for (const StageTime& t : st.stageTimes) times[t.stage] = t.seconds;
+    times["total"] = st.totalSeconds;
+    j["seconds"] = times;
+    return j;
+}
+
 void printWarnings(const Scene& s) {
-    if (s.grid.overlappingCharts.empty()) return;
+    if (s.grid().overlappingCharts.empty()) return;
     std::string pairs;
-    const size_t shown = std::min<size_t>(s.grid.overlappingCharts.size(), 8);
+    const size_t shown = std::min<size_t>(s.grid().overlappingCharts.size(), 8);
     for (size_t k = 0; k < shown; ++k)
-        pairs += (pairs.empty() ? "" : ", ") + std::to_string(s.grid.overlappingCharts[k].x) + "/" +
-                 std::to_string(s.grid.overlappingCharts[k].y);
-    if (shown < s.grid.overlappingCharts.size())
-        pairs += " and " + std::to_string(s.grid.overlappingCharts.size() - shown) + " more pairs";
+        pairs += (pairs.empty() ? "" : ", ") + std::to_string(s.grid().overlappingCharts[k].x) + "/" +
+                 std::to_string(s.grid().overlappingCharts[k].y);
+    if (shown < s.grid().overlappingCharts.size())
+        pairs += " and " + std::to_string(s.grid().overlappingCharts.size() - shown) + " more pairs";
     std::fprintf(stderr, "knit: note: %s: UV charts overlap (%s); each chart is tiled and knitted on its own\n",
-                 s.mesh.name.c_str(), pairs.c_str());
+                 s.mesh().name.c_str(), pairs.c_str());
 }
 
 }  // namespace knit::cli

@@ -12,6 +12,10 @@ namespace knit::cli {
 // Writes `report` (indented, newline-terminated) to `path` atomically.
 void writeReport(const std::string& path, const nlohmann::json& report);
 
+// The `knit build` report of a scene: pattern, mesh, placement, and its statistics (counts,
+// vertices per level, segment lengths, stage times).
+nlohmann::json sceneReport(const Scene& scene, const SceneStats& stats);
+
 // What the user should know about a built scene that is not an error (stderr): overlapping
 // UV charts.
 void printWarnings(const Scene& scene);

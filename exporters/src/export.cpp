@@ -168,7 +168,7 @@ ExportStats exportScene(const Scene& scene, const ExportOptions& options) {
     validateExportOptions(options);
     // Step: choose the curves (yarn centrelines, built plies, or plies generated while writing)
     // and their radius.
-    const bool havePlies = scene.plies.curves.curveCount() > 0;
+    const bool havePlies = scene.plies().curves.curveCount() > 0;
     bool usePlies = false;
     switch (options.what) {
         case ExportWhat::Yarns: usePlies = false; break;
@@ -178,13 +178,13 @@ ExportStats exportScene(const Scene& scene, const ExportOptions& options) {
                        (options.tubesOf == TubeSource::Auto && havePlies);
             break;
     }
-    nlohmann::json extras = {{"generator", "libknit"}, {"yarnRadius", scene.yarnRadius}};
+    nlohmann::json extras = {{"generator", "libknit"}, {"yarnRadius", scene.yarnRadius()}};
     std::vector<uint32_t> yarnIds;
     ExportInput in;
     std::unique_ptr<PlyGenerator> generator;
     if (usePlies && !havePlies) {
-        // Generated from the yarns while writing (validates scene.plyOptions).
-        generator = std::make_unique<PlyGenerator>(scene.yarns, scene.plyOptions);
+        // Generated from the yarns while writing (validates scene.plyOptions()).
+        generator = std::make_unique<PlyGenerator>(scene.yarns(), scene.plyOptions());
         const PlyOptions& o = generator->options();
         extras["curves"] = "plies";
         extras["plyCount"] = o.count;
@@ -194,7 +194,7 @@ ExportStats exportScene(const Scene& scene, const ExportOptions& options) {
         in.plies = generator.get();
         in.radius = o.plyRadius;
     } else if (usePlies) {
-        const Plies& p = scene.plies;
+        const Plies& p = scene.plies();
         int count = 0;
         for (uint8_t i : p.plyOfCurve) count = std::max(count, int(i) + 1);
         extras["curves"] = "plies";
@@ -208,12 +208,12 @@ ExportStats exportScene(const Scene& scene, const ExportOptions& options) {
         if (p.radial.size() == p.curves.pointCount()) in.seedNormals = &p.radial;
     } else {
         extras["curves"] = "yarns";
-        in.curves = &scene.yarns.curves;
-        in.radius = scene.yarnRadius;
-        yarnIds.resize(scene.yarns.curves.curveCount());
+        in.curves = &scene.yarns().curves;
+        in.radius = scene.yarnRadius();
+        yarnIds.resize(scene.yarns().curves.curveCount());
         for (size_t i = 0; i < yarnIds.size(); ++i) yarnIds[i] = static_cast<uint32_t>(i);
         in.yarnOfCurve = &yarnIds;
-        if (scene.yarns.normals.size() == scene.yarns.curves.pointCount()) in.seedNormals = &scene.yarns.normals;
+        if (scene.yarns().normals.size() == scene.yarns().curves.pointCount()) in.seedNormals = &scene.yarns().normals;
     }
     in.materialExtras = &extras;
     return exportCurves(in, options);

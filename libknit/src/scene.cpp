@@ -1,58 +1,13 @@
-// The whole pipeline as a plain composition of the stages, plus its JSON report.
+// The whole pipeline as a plain composition of the stages (buildScene), and Scene::fromParts.
 #include "knit/scene.hpp"
 
 #include <algorithm>
 #include <chrono>
-
-#include <glm/geometric.hpp>
-#include <nlohmann/json.hpp>
+#include <utility>
 
 #include "knit/error.hpp"
 
 namespace knit {
-namespace {
-
-class StageClock {
-public:
-    StageClock(Scene& scene, const ProgressFn& progress, int total) : scene_(scene), progress_(progress), total_(total) {}
-    // Runs one named stage, recording its wall time.
-    template <class F>
-    void run(const std::string& name, F&& stage) {
-        if (progress_) progress_(name, index_, total_);
-        const auto t0 = std::chrono::steady_clock::now();
-        stage();
-        const std::chrono::duration<double> dt = std::chrono::steady_clock::now() - t0;
-        scene_.timings.push_back({name, dt.count()});
-        ++index_;
-    }
-
-private:
-    Scene& scene_;
-    const ProgressFn& progress_;
-    int total_;
-    int index_ = 0;
-};
-
-nlohmann::json segmentStats(const Polylines& curves) {
-    std::vector<double> lengths;
-    lengths.reserve(curves.pointCount());
-    for (size_t c = 0; c < curves.curveCount(); ++c) {
-        const uint32_t b = curves.begin(c), n = curves.size(c);
-        for (uint32_t s = 0; s < curves.segmentCount(c); ++s)
-            lengths.push_back(glm::distance(curves.points[b + s], curves.points[b + (s + 1) % n]));
-    }
-    nlohmann::json j;
-    j["segments"] = lengths.size();
-    if (lengths.empty()) return j;
-    const auto mid = lengths.begin() + lengths.size() / 2;
-    std::nth_element(lengths.begin(), mid, lengths.end());
-    j["median_segment_length"] = *mid;
-    j["longest_segment_length"] = *std::max_element(lengths.begin(), lengths.end());
-    return j;
-}
-
-}  // namespace
-
 namespace {
 
 // The grid cells each UV chart's triangles of non-zero UV area touch (a cell shared by several
@@ -73,141 +28,147 @@ std::vector<std::vector<glm::ivec2>> cellsPerChart(const UvGrid& grid) {
     return cells;
 }
 
-void runStages(Scene& scene, const SceneOptions& options, StageClock& clock) {
-    std::vector<Tiling>& chartTilings = scene.chartTilings;
-    clock.run("normals", [&] { scene.normals = vertexNormals(scene.mesh.positions, scene.mesh.faces); });
-    clock.run("uv_grid", [&] {
-        scene.placement = placePattern(scene.pattern, scene.mesh, options.placement);
-        scene.yarnRadius = scene.pattern.radius * scene.placement.scale;
-        UvGridOptions gridOptions;
-        gridOptions.cellSize = scene.placement.cellSize();
-        scene.grid = buildUvGrid(scene.mesh, gridOptions);
-    });
-    clock.run("tiling", [&] {
-        // Vertices within binding's clamp tolerance of the covered cells are tiled too (they are
-        // clamped onto the UV boundary, not dropped because their own cell is empty).
-        const glm::dvec2 metresPerUv = uvToMetreScale(scene.mesh);
-        const double tolUv = options.bind.clampTolerance * scene.yarnRadius / std::max(metresPerUv.x, metresPerUv.y);
-        const glm::dvec2 margin = tolUv * scene.placement.repeats * glm::dvec2(scene.pattern.px, scene.pattern.py);
-        scene.tiling = tilesForCells(scene.pattern, scene.grid.cells, margin);
-        // Overlapping UV charts: each chart is also tiled over its own cells, so that each gets
-        // its own yarns (bound to that chart only).
-        if (!scene.grid.overlappingCharts.empty()) {
-            const std::vector<std::vector<glm::ivec2>> cells = cellsPerChart(scene.grid);
-            for (const std::vector<glm::ivec2>& c : cells)
-                chartTilings.push_back(c.empty() ? Tiling{} : tilesForCells(scene.pattern, c, margin));
-        }
-    });
-    clock.run("stitch", [&] {
-        const PatternAdjacency adjacency = buildAdjacency(scene.pattern);
-        if (chartTilings.empty()) {
-            scene.uvYarns = stitchYarns(scene.pattern, adjacency, scene.tiling, scene.placement);
-        } else {
-            scene.uvYarns = UvYarns{};
-            for (size_t c = 0; c < chartTilings.size(); ++c)
-                if (!chartTilings[c].tiles.empty())
-                    appendChartYarns(scene.uvYarns,
-                                     stitchYarns(scene.pattern, adjacency, chartTilings[c], scene.placement), uint32_t(c));
-        }
-    });
-    clock.run("binding", [&] {
-        BindOptions bind = options.bind;
-        bind.yarnRadius = scene.yarnRadius;
-        scene.bound = bindYarns(scene.mesh, scene.normals, scene.grid, scene.uvYarns, bind);
-    });
-    clock.run("evaluate", [&] {
-        evaluateBinding(scene.bound.binding, scene.mesh.faces, scene.mesh.positions, scene.normals, scene.yarns);
-    });
-    PlyOptions plies = options.plies;
-    plies.yarnRadius = scene.yarnRadius;
-    scene.plyOptions = plies;  // resolved below when the plies are built; else by their consumer
-    if (options.buildPlies)
-        clock.run("plies", [&] {
-            scene.plyOptions = resolvePlyOptions(plies);
-            scene.plies = makePlies(scene.yarns, scene.plyOptions);
-        });
-}
-
 int stageCount(const SceneOptions& options) { return options.buildPlies ? 9 : 8; }
 
 }  // namespace
 
+// Runs the stages into one Scene, each a named step with its wall time recorded (the only code
+// besides Scene::fromParts that writes a Scene).
+class SceneBuilder {
+public:
+    SceneBuilder(const SceneOptions& options, int stageCount) : options_(options), total_(stageCount) {}
+
+    // load_pattern, load_mesh: the inputs named by the options.
+    void loadInputs() {
+        run("load_pattern", [&] { s_.pattern_ = loadPatternFileOrName(options_.pattern); });
+        run("load_mesh", [&] {
+            s_.mesh_ = loadMeshFileOrName(options_.mesh, options_.meshOptions);
+            validateMesh(s_.mesh_);
+        });
+    }
+    // In-memory inputs (validated by the caller).
+    void adoptInputs(Pattern pattern, BaseMesh mesh) {
+        s_.pattern_ = std::move(pattern);
+        s_.mesh_ = std::move(mesh);
+    }
+    // The stages after the inputs, then the Scene.
+    Scene finish() {
+        run("normals", [&] { s_.normals_ = vertexNormals(s_.mesh_.positions, s_.mesh_.faces); });
+        run("uv_grid", [&] { placeAndGrid(); });
+        run("tiling", [&] { tile(); });
+        run("stitch", [&] { stitch(); });
+        run("binding", [&] { bind(); });
+        run("evaluate", [&] {
+            evaluateBinding(s_.bound_.binding, s_.mesh_.faces, s_.mesh_.positions, s_.normals_, s_.yarns_);
+        });
+        plies();
+        return std::move(s_);
+    }
+
+private:
+    // Runs one named stage, recording its wall time.
+    template <class F>
+    void run(const std::string& name, F&& stage) {
+        if (options_.progress) options_.progress(name, index_, total_);
+        const auto t0 = std::chrono::steady_clock::now();
+        stage();
+        const std::chrono::duration<double> dt = std::chrono::steady_clock::now() - t0;
+        s_.timings_.push_back({name, dt.count()});
+        ++index_;
+    }
+
+    // Step: the pattern's placement, the yarn radius it implies, and the UV grid of that size.
+    void placeAndGrid() {
+        s_.placement_ = placePattern(s_.pattern_, s_.mesh_, options_.placement);
+        s_.yarnRadius_ = s_.pattern_.radius * s_.placement_.scale;
+        UvGridOptions gridOptions;
+        gridOptions.cellSize = s_.placement_.cellSize();
+        s_.grid_ = buildUvGrid(s_.mesh_, gridOptions);
+    }
+
+    // Step: tiles over the covered cells (and over each chart's cells when charts overlap).
+    void tile() {
+        // Vertices within binding's clamp tolerance of the covered cells are tiled too (they are
+        // clamped onto the UV boundary, not dropped because their own cell is empty).
+        const glm::dvec2 metresPerUv = uvToMetreScale(s_.mesh_);
+        const double tolUv = options_.bind.clampTolerance * s_.yarnRadius_ / std::max(metresPerUv.x, metresPerUv.y);
+        const glm::dvec2 margin = tolUv * s_.placement_.repeats * glm::dvec2(s_.pattern_.px, s_.pattern_.py);
+        SceneStages& st = s_.stages_;
+        st.tiling = tilesForCells(s_.pattern_, s_.grid_.cells, margin);
+        // Overlapping UV charts: each chart is also tiled over its own cells, so that each gets
+        // its own yarns (bound to that chart only).
+        if (!s_.grid_.overlappingCharts.empty()) {
+            const std::vector<std::vector<glm::ivec2>> cells = cellsPerChart(s_.grid_);
+            for (const std::vector<glm::ivec2>& c : cells)
+                st.chartTilings.push_back(c.empty() ? Tiling{} : tilesForCells(s_.pattern_, c, margin));
+        }
+    }
+
+    // Step: the tiles' segments walked into yarns (per chart when charts overlap).
+    void stitch() {
+        const PatternAdjacency adjacency = buildAdjacency(s_.pattern_);
+        SceneStages& st = s_.stages_;
+        if (st.chartTilings.empty()) {
+            st.uvYarns = stitchYarns(s_.pattern_, adjacency, st.tiling, s_.placement_);
+        } else {
+            st.uvYarns = UvYarns{};
+            for (size_t c = 0; c < st.chartTilings.size(); ++c)
+                if (!st.chartTilings[c].tiles.empty())
+                    appendChartYarns(st.uvYarns, stitchYarns(s_.pattern_, adjacency, st.chartTilings[c], s_.placement_),
+                                     uint32_t(c));
+        }
+    }
+
+    // Step: the UV yarns bound to the mesh, with the scene's yarn radius.
+    void bind() {
+        BindOptions o = options_.bind;
+        o.yarnRadius = s_.yarnRadius_;
+        s_.bound_ = bindYarns(s_.mesh_, s_.normals_, s_.grid_, s_.stages_.uvYarns, o);
+    }
+
+    // Step: the ply settings with the scene's yarn radius; the plies when asked for.
+    void plies() {
+        PlyOptions o = options_.plies;
+        o.yarnRadius = s_.yarnRadius_;
+        s_.plyOptions_ = o;  // resolved below when the plies are built; else by their consumer
+        if (options_.buildPlies)
+            run("plies", [&] {
+                s_.plyOptions_ = resolvePlyOptions(o);
+                s_.plies_ = makePlies(s_.yarns_, s_.plyOptions_);
+            });
+    }
+
+    const SceneOptions& options_;
+    Scene s_;
+    int total_;
+    int index_ = 0;
+};
+
 Scene buildScene(const SceneOptions& options) {
-    Scene scene;
-    StageClock clock(scene, options.progress, stageCount(options));
-    clock.run("load_pattern", [&] { scene.pattern = loadPatternFileOrName(options.pattern); });
-    clock.run("load_mesh", [&] {
-        scene.mesh = loadMeshFileOrName(options.mesh, options.meshOptions);
-        validateMesh(scene.mesh);
-    });
-    runStages(scene, options, clock);
-    return scene;
+    SceneBuilder builder(options, stageCount(options));
+    builder.loadInputs();
+    return builder.finish();
 }
 
 Scene buildScene(Pattern pattern, BaseMesh mesh, const SceneOptions& options) {
     validatePattern(pattern, pattern.name);
     validateMesh(mesh);
-    Scene scene;
-    scene.pattern = std::move(pattern);
-    scene.mesh = std::move(mesh);
-    StageClock clock(scene, options.progress, stageCount(options) - 2);
-    runStages(scene, options, clock);
-    return scene;
+    SceneBuilder builder(options, stageCount(options) - 2);
+    builder.adoptInputs(std::move(pattern), std::move(mesh));
+    return builder.finish();
 }
 
-nlohmann::json sceneReport(const Scene& s) {
-    nlohmann::json j;
-    j["pattern"] = {{"name", s.pattern.name},
-                    {"period", {s.pattern.px, s.pattern.py}},
-                    {"radius", s.pattern.radius},
-                    {"vertices", s.pattern.points.size()}};
-    j["mesh"] = {{"name", s.mesh.name},
-                 {"vertices", s.mesh.positions.size()},
-                 {"uvs", s.mesh.uvs.size()},
-                 {"faces", s.mesh.faces.size()},
-                 {"degenerate_uv_faces", s.grid.degenerateUvFaces},
-                 {"uv_charts", s.grid.chartCount},
-                 {"overlapping_uv_charts", nlohmann::json::array()}};
-    for (const glm::uvec2& pair : s.grid.overlappingCharts) j["mesh"]["overlapping_uv_charts"].push_back({pair.x, pair.y});
-    j["placement"] = {{"repeats", {s.placement.repeats.x, s.placement.repeats.y}},
-                      {"scale", s.placement.scale},
-                      {"yarn_radius", s.yarnRadius}};
-    const BindStats& b = s.bound.stats;
-    size_t tileCount = s.tiling.tiles.size();  // the tiles the yarns come from
-    if (!s.chartTilings.empty()) {
-        tileCount = 0;
-        for (const Tiling& t : s.chartTilings) tileCount += t.tiles.size();
-    }
-    j["counts"] = {{"cells", s.grid.cells.size()},
-                   {"tiles", tileCount},
-                   {"yarns", s.yarns.curves.curveCount()},
-                   {"closed_loops", b.closedLoops},
-                   {"open_ends", b.openEnds},
-                   {"cut_vertices", b.cutVertices},
-                   {"clamped_vertices", b.clampedVertices},
-                   {"boundary_vertices", b.boundaryVertices},
-                   {"welded_ends", b.weldedEnds},
-                   {"tiled_yarns", s.uvYarns.yarnCount()}};
-    j["vertices"] = {{"tiled", s.uvYarns.vertexCount()},
-                     {"yarn", s.yarns.curves.pointCount()},
-                     {"ply", s.plies.curves.pointCount()}};
-    j["yarn_segments"] = segmentStats(s.yarns.curves);
-    if (s.plies.curves.curveCount() > 0) {
-        j["ply_segments"] = segmentStats(s.plies.curves);
-        j["plies"] = {{"curves", s.plies.curves.curveCount()},
-                      {"ply_radius", s.plies.plyRadius},
-                      {"center_radius", s.plies.centerRadius},
-                      {"pitch", s.plies.pitch}};
-    }
-    nlohmann::json times = nlohmann::json::object();
-    double total = 0;
-    for (const StageTime& t : s.timings) {
-        times[t.stage] = t.seconds;
-        total += t.seconds;
-    }
-    times["total"] = total;
-    j["seconds"] = times;
-    return j;
+Scene Scene::fromParts(SceneParts parts) {
+    Scene s;
+    s.mesh_ = std::move(parts.mesh);
+    s.normals_ = std::move(parts.normals);
+    s.yarnRadius_ = parts.yarnRadius;
+    s.grid_ = std::move(parts.grid);
+    s.bound_.binding = std::move(parts.binding);
+    s.yarns_ = std::move(parts.yarns);
+    s.plies_ = std::move(parts.plies);
+    s.plyOptions_.yarnRadius = parts.yarnRadius;
+    return s;
 }
 
 }  // namespace knit

@@ -103,14 +103,14 @@ PlyGeometry buildPlyGeometry(const Plies& plies, const glm::dvec3& origin, doubl
 }
 
 std::vector<int64_t> segmentCells(const Scene& scene, const PlyGeometry& g) {
-    const Binding& b = scene.bound.binding;
-    const MappedYarns& yarns = scene.yarns;
-    const BaseMesh& mesh = scene.mesh;
-    const glm::dvec2 cell = scene.grid.cellSize;
+    const Binding& b = scene.binding();
+    const MappedYarns& yarns = scene.yarns();
+    const BaseMesh& mesh = scene.mesh();
+    const glm::dvec2 cell = scene.grid().cellSize;
     if (!(cell.x > 0) || !(cell.y > 0)) throw Error("render: grid mode needs the scene's UV grid (cell size is zero)");
     if (b.vertexCount() == 0 || b.vertexCount() != yarns.curves.pointCount() || b.offsets != yarns.curves.offsets)
         throw Error("render: grid mode needs the binding of the scene's yarns (binding and mapped yarns differ)");
-    if (scene.plies.yarnOfCurve.size() != scene.plies.curves.curveCount())
+    if (scene.plies().yarnOfCurve.size() != scene.plies().curves.curveCount())
         throw Error("render: grid mode needs yarnOfCurve for every ply curve");
     // Step 1: UV cell of every yarn vertex from its binding.
     std::vector<int64_t> vertexCell(b.vertexCount());
@@ -128,9 +128,9 @@ std::vector<int64_t> segmentCells(const Scene& scene, const PlyGeometry& g) {
     // Step 2: each ply segment takes the cell of the nearest vertex of its yarn (a window search
     // that follows the ply along the yarn; a full scan when the window loses it).
     std::vector<int64_t> out(g.segmentCount());
-    const double far2 = std::pow(4.0 * std::max(scene.yarnRadius, g.unit * g.radius) + 1e-12, 2);
+    const double far2 = std::pow(4.0 * std::max(scene.yarnRadius(), g.unit * g.radius) + 1e-12, 2);
     for (size_t k = 0; k + 1 < g.curveSegments.size(); ++k) {
-        const uint32_t y = scene.plies.yarnOfCurve[k];
+        const uint32_t y = scene.plies().yarnOfCurve[k];
         if (y >= yarns.curves.curveCount()) throw Error("render: ply curve " + std::to_string(k) + " names yarn " +
                                                         std::to_string(y) + " that does not exist");
         const int64_t y0 = yarns.curves.begin(y), n = yarns.curves.size(y);

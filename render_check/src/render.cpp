@@ -72,7 +72,7 @@ RenderResult renderScene(const Scene& scene, const RenderOptions& o) {
     if (mode == GeometryMode::Tubes && o.tubeSides < 3) throw Error("render: tube sides must be >= 3");
     RenderResult res;
     res.material = resolveMaterial(o);
-    if (scene.plies.curves.curveCount() == 0 || scene.plies.curves.pointCount() == 0)
+    if (scene.plies().curves.curveCount() == 0 || scene.plies().curves.pointCount() == 0)
         throw Error("render: the scene has no ply curves (nothing to render; were plies built?)");
     if (!o.output.empty()) checkWritable(o.output);
     if (!o.exr.empty()) checkWritable(o.exr);
@@ -81,15 +81,15 @@ RenderResult renderScene(const Scene& scene, const RenderOptions& o) {
     res.spp = o.spp;
     // Step 2: ply segments relative to the centre of their bounds.
     glm::dvec3 lo(1e300), hi(-1e300);
-    for (const glm::dvec3& p : scene.plies.curves.points) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    for (const glm::dvec3& p : scene.plies().curves.points) lo = glm::min(lo, p), hi = glm::max(hi, p);
     const glm::dvec3 centre = 0.5 * (lo + hi);
     const double radius = std::max(0.5 * glm::length(hi - lo), 1e-6);
-    const PlyGeometry geometry = buildPlyGeometry(scene.plies, centre, res.material.fiberTwist);
+    const PlyGeometry geometry = buildPlyGeometry(scene.plies(), centre, res.material.fiberTwist);
     res.segments = geometry.segmentCount();
     // Step 3: fiber tables.
     auto t0 = std::chrono::steady_clock::now();
     int plyCount = 1;
-    for (uint8_t p : scene.plies.plyOfCurve) plyCount = std::max(plyCount, int(p) + 1);
+    for (uint8_t p : scene.plies().plyOfCurve) plyCount = std::max(plyCount, int(p) + 1);
     const FiberTables tables = buildFiberTables(fiberTableOptions(res.material, plyCount));
     res.tableSeconds = secondsSince(t0);
     res.tableBytes = tables.bytes();
@@ -100,7 +100,7 @@ RenderResult renderScene(const Scene& scene, const RenderOptions& o) {
     TraceSceneOptions so;
     so.mode = mode;
     so.tubeSides = o.tubeSides;
-    so.baseMesh = o.baseMesh ? &scene.mesh : nullptr;
+    so.baseMesh = o.baseMesh ? &scene.mesh() : nullptr;
     if (mode == GeometryMode::Grid) {
         cells = segmentCells(scene, geometry);
         so.segmentCells = &cells;
@@ -114,10 +114,10 @@ RenderResult renderScene(const Scene& scene, const RenderOptions& o) {
     // axis of the plies' bounds instead.
     glm::dvec3 normal(0.0);
     double normalLengths = 0;
-    for (const glm::uvec3& f : scene.mesh.faces)
-        if (f.x < scene.mesh.positions.size() && f.y < scene.mesh.positions.size() && f.z < scene.mesh.positions.size()) {
-            const glm::dvec3 n = glm::cross(scene.mesh.positions[f.y] - scene.mesh.positions[f.x],
-                                            scene.mesh.positions[f.z] - scene.mesh.positions[f.x]);
+    const std::vector<glm::dvec3>& positions = scene.mesh().positions;
+    for (const glm::uvec3& f : scene.mesh().faces)
+        if (f.x < positions.size() && f.y < positions.size() && f.z < positions.size()) {
+            const glm::dvec3 n = glm::cross(positions[f.y] - positions[f.x], positions[f.z] - positions[f.x]);
             normal += n, normalLengths += glm::length(n);
         }
     if (glm::length(normal) > 1e-3 * normalLengths && normalLengths > 0) {

@@ -2,6 +2,7 @@
 #include "knit/synthetic_scene.hpp"
 
 #include <cmath>
+#include <utility>
 
 #include <glm/geometric.hpp>
 
@@ -14,7 +15,7 @@ Scene makeSyntheticPlyScene(const SyntheticSceneOptions& o) {
     if (o.courses < 1 || !(o.size > 0) || !(o.yarnRadius > 0) || o.plyCount < 1 || o.samplesPerTurn < 3)
         throw Error("synthetic scene: invalid options");
     using util::kPi;
-    Scene s;
+    SceneParts s;
     // Step 1: base plane [0, size]^2 with uv = (x, y) / size, two triangles.
     s.mesh.name = "synthetic-plane";
     s.mesh.positions = {o.offset + glm::dvec3(0, 0, 0), o.offset + glm::dvec3(o.size, 0, 0),
@@ -33,7 +34,7 @@ Scene makeSyntheticPlyScene(const SyntheticSceneOptions& o) {
     s.plies.centerRadius = o.plyCount == 1 ? 0.0 : centre;
     s.plies.plyRadius = o.plyCount == 1 ? o.yarnRadius : centre * std::sin(kPi / o.plyCount);
     s.plies.pitch = pitch;
-    Binding& b = s.bound.binding;
+    Binding& b = s.binding;
     for (int c = 0; c < o.courses; ++c) {
         const double y = (c + 0.5) * o.size / o.courses;
         std::vector<glm::dvec3> pts(n);
@@ -73,7 +74,7 @@ Scene makeSyntheticPlyScene(const SyntheticSceneOptions& o) {
             s.plies.plyOfCurve.push_back(static_cast<uint8_t>(p));
         }
     }
-    return s;
+    return Scene::fromParts(std::move(s));
 }
 
 }  // namespace knit

@@ -25,29 +25,30 @@ TEST(Mapping, planeMapsUvhToXyhUnderAnyTriangulation) {
     for (auto kind : {test::Triangulation::Regular, test::Triangulation::Random, test::Triangulation::Slivers}) {
         const BaseMesh mesh = test::planeMesh(kind, 9, size);
         const Scene s = buildScene(loadPyp(test::sharedPattern("stocktiny.pyp")), mesh, yarnsOnly({7, 11}));
-        ASSERT_GT(s.uvYarns.vertexCount(), 1000u);
+        const UvYarns& uvYarns = s.stages().uvYarns;
+        ASSERT_GT(uvYarns.vertexCount(), 1000u);
         // Every tiled vertex inside the square maps to (u*size, v*size, h) to 1e-9 relative.
         Binding single;
         std::vector<glm::dvec3> expected;
-        for (size_t i = 0; i < s.uvYarns.vertexCount(); ++i) {
-            const LocateResult r = locatePoint(s.mesh, s.grid, s.uvYarns.uv[i], 0.0);
+        for (size_t i = 0; i < uvYarns.vertexCount(); ++i) {
+            const LocateResult r = locatePoint(s.mesh(), s.grid(), uvYarns.uv[i], 0.0);
             if (r.status != LocateStatus::Inside) continue;
             single.face.push_back(r.point.face);
             single.bary.emplace_back(r.point.bary.y, r.point.bary.z);
-            single.height.push_back(s.uvYarns.height[i]);
+            single.height.push_back(uvYarns.height[i]);
             single.twist.push_back(0);
-            expected.emplace_back(s.uvYarns.uv[i].x * size, s.uvYarns.uv[i].y * size, s.uvYarns.height[i]);
+            expected.emplace_back(uvYarns.uv[i].x * size, uvYarns.uv[i].y * size, uvYarns.height[i]);
         }
         single.offsets = {0, uint32_t(single.face.size())};
         single.closed = {0};
         MappedYarns mapped;
-        evaluateBinding(single, s.mesh.faces, s.mesh.positions, s.normals, mapped);
+        evaluateBinding(single, s.mesh().faces, s.mesh().positions, s.normals(), mapped);
         double worst = 0;
         for (size_t i = 0; i < expected.size(); ++i)
             worst = std::max(worst, glm::length(mapped.curves.points[i] - expected[i]) / size);
         EXPECT_LT(worst, 1e-9) << "triangulation " << int(kind);
         // The bound yarns stay on the square and keep their heights.
-        for (const glm::dvec3& p : s.yarns.curves.points) {
+        for (const glm::dvec3& p : s.yarns().curves.points) {
             ASSERT_GE(p.x, -1e-12);
             ASSERT_LE(p.x, size + 1e-12);
             ASSERT_GE(p.y, -1e-12);
@@ -58,9 +59,9 @@ TEST(Mapping, planeMapsUvhToXyhUnderAnyTriangulation) {
 
 TEST(Mapping, yarnsOnPlaneEndOnlyAtTheDomainBoundary) {
     const Scene s = buildScene(generateStockinette(), test::planeMesh(test::Triangulation::Random, 6), yarnsOnly({6, 9}));
-    ASSERT_GT(s.bound.stats.openEnds, 0u);
-    EXPECT_EQ(s.bound.stats.weldedEnds, 0u);
-    const Polylines& c = s.yarns.curves;
+    ASSERT_GT(s.bindStats().openEnds, 0u);
+    EXPECT_EQ(s.bindStats().weldedEnds, 0u);
+    const Polylines& c = s.yarns().curves;
     for (size_t y = 0; y < c.curveCount(); ++y) {
         ASSERT_FALSE(c.isClosed(y));
         for (const glm::dvec3 end : {c.points[c.begin(y)], c.points[c.end(y) - 1]}) {
@@ -79,11 +80,11 @@ TEST(Mapping, cylinderPutsHeightAtRadiusPlusH) {
     mo.height = 0.1;
     const Scene s = buildScene(loadPyp(test::sharedPattern("stockinette.pyp")), makeCylinder(mo), yarnsOnly({10, 6}));
     const double chord = mo.radius * (1 - std::cos(util::kPi / mo.resU));
-    const Binding& b = s.bound.binding;
+    const Binding& b = s.binding();
     ASSERT_GT(b.vertexCount(), 0u);
     double worst = 0;
     for (size_t i = 0; i < b.vertexCount(); ++i) {
-        const glm::dvec3 p = s.yarns.curves.points[i];
+        const glm::dvec3 p = s.yarns().curves.points[i];
         const double r = std::hypot(p.x, p.y);
         worst = std::max(worst, std::abs(r - (mo.radius + b.height[i])) - chord);
     }
@@ -99,11 +100,11 @@ TEST(Mapping, cylinderSeamWithIntegralRepeatsClosesCourses) {
     const Scene s = buildScene(p, makeCylinder(mo), yarnsOnly({20, V}));
     // Course j spans y in [j*py - h, j*py + h] with h = 4 model units = py * 4/4.5: it lies
     // inside v in [0,1] for j = 1..7, and only those close.
-    EXPECT_EQ(s.bound.stats.closedLoops, 7u);
-    EXPECT_GT(s.bound.stats.weldedEnds, 0u);
+    EXPECT_EQ(s.bindStats().closedLoops, 7u);
+    EXPECT_GT(s.bindStats().weldedEnds, 0u);
     // Non-integral repeats around the seam: nothing meets again, nothing closes.
     const Scene t = buildScene(p, makeCylinder(mo), yarnsOnly({20.5, V}));
-    EXPECT_EQ(t.bound.stats.closedLoops, 0u);
+    EXPECT_EQ(t.bindStats().closedLoops, 0u);
 }
 
 TEST(Mapping, mappedYarnsHaveNoLongStepsAcrossTriangleEdgesAndSeams) {
@@ -111,19 +112,19 @@ TEST(Mapping, mappedYarnsHaveNoLongStepsAcrossTriangleEdgesAndSeams) {
         SceneOptions o = yarnsOnly({16, 8});
         o.mesh = mesh;
         const Scene s = buildScene(o);
-        const Polylines& c = s.yarns.curves;
+        const Polylines& c = s.yarns().curves;
         // Local sampling: the step of the same pair in pattern space, scaled to the mesh.
         double longestPattern = 0;
-        const PatternAdjacency adj = buildAdjacency(s.pattern);
-        for (const PeriodicEdge& e : s.pattern.edges) {
-            const glm::dvec2 d = glm::dvec2(s.pattern.points[e.v1]) + glm::dvec2(e.dx * s.pattern.px, e.dy * s.pattern.py) -
-                                 glm::dvec2(s.pattern.points[e.v0]);
+        const PatternAdjacency adj = buildAdjacency(s.pattern());
+        for (const PeriodicEdge& e : s.pattern().edges) {
+            const glm::dvec2 d = glm::dvec2(s.pattern().points[e.v1]) + glm::dvec2(e.dx * s.pattern().px, e.dy * s.pattern().py) -
+                                 glm::dvec2(s.pattern().points[e.v0]);
             longestPattern = std::max(longestPattern, glm::length(d));
         }
-        const glm::dvec2 metresPerUv = uvToMetreScale(s.mesh);
-        const double stretch = std::max(metresPerUv.x / (s.placement.repeats.x * s.pattern.px),
-                                        metresPerUv.y / (s.placement.repeats.y * s.pattern.py));
-        const double local = longestPattern * stretch + 2 * s.yarnRadius;  // + height offsets
+        const glm::dvec2 metresPerUv = uvToMetreScale(s.mesh());
+        const double stretch = std::max(metresPerUv.x / (s.placement().repeats.x * s.pattern().px),
+                                        metresPerUv.y / (s.placement().repeats.y * s.pattern().py));
+        const double local = longestPattern * stretch + 2 * s.yarnRadius();  // + height offsets
         for (size_t y = 0; y < c.curveCount(); ++y)
             for (uint32_t k = 0; k < c.segmentCount(y); ++k) {
                 const double step = glm::distance(c.points[c.begin(y) + k], c.points[c.begin(y) + (k + 1) % c.size(y)]);
@@ -144,17 +145,17 @@ TEST(Mapping, bindingEvaluatedOnDeformedCopyEqualsFreshMapping) {
     const Scene a = buildScene(generateStockinette(), rest, yarnsOnly({12, 12}));
     const std::vector<glm::dvec3> bentNormals = vertexNormals(bent.positions, bent.faces);
     BindOptions bind;
-    bind.yarnRadius = a.yarnRadius;
-    const BindResult fresh = bindYarns(bent, bentNormals, a.grid, a.uvYarns, bind);
-    Scene b;
-    evaluateBinding(fresh.binding, bent.faces, bent.positions, bentNormals, b.yarns);
+    bind.yarnRadius = a.yarnRadius();
+    const BindResult fresh = bindYarns(bent, bentNormals, a.grid(), a.stages().uvYarns, bind);
+    MappedYarns mapped;
+    evaluateBinding(fresh.binding, bent.faces, bent.positions, bentNormals, mapped);
     MappedYarns animated;
-    evaluateBinding(a.bound.binding, bent.faces, bent.positions, bentNormals, animated);
-    ASSERT_EQ(animated.curves.pointCount(), b.yarns.curves.pointCount());
-    ASSERT_EQ(animated.curves.offsets, b.yarns.curves.offsets);
+    evaluateBinding(a.binding(), bent.faces, bent.positions, bentNormals, animated);
+    ASSERT_EQ(animated.curves.pointCount(), mapped.curves.pointCount());
+    ASSERT_EQ(animated.curves.offsets, mapped.curves.offsets);
     double worst = 0;
     for (size_t i = 0; i < animated.curves.pointCount(); ++i)
-        worst = std::max(worst, glm::distance(animated.curves.points[i], b.yarns.curves.points[i]));
+        worst = std::max(worst, glm::distance(animated.curves.points[i], mapped.curves.points[i]));
     EXPECT_LT(worst, 1e-12);
 }
 
@@ -165,9 +166,9 @@ TEST(Mapping, inconsistentUvYarnsAreRejected) {
     mo.resU = mo.resV = 6;
     const Scene a = buildScene(generateStockinette(), makeDrape(mo), yarnsOnly({3, 3}));
     BindOptions bind;
-    bind.yarnRadius = a.yarnRadius;
-    ASSERT_NO_THROW(bindYarns(a.mesh, a.normals, a.grid, a.uvYarns, bind));
-    std::vector<UvYarns> broken(5, a.uvYarns);
+    bind.yarnRadius = a.yarnRadius();
+    ASSERT_NO_THROW(bindYarns(a.mesh(), a.normals(), a.grid(), a.stages().uvYarns, bind));
+    std::vector<UvYarns> broken(5, a.stages().uvYarns);
     broken[0].offsets.back() -= 1;          // last vertex owned by no yarn
     broken[1].offsets.push_back(broken[1].offsets.back() + 3);  // a yarn past the end
     std::swap(broken[2].offsets[1], broken[2].offsets[2]);       // decreasing
@@ -175,7 +176,7 @@ TEST(Mapping, inconsistentUvYarnsAreRejected) {
     broken[4].ghosts.pop_back();
     for (size_t k = 0; k < broken.size(); ++k) {
         try {
-            bindYarns(a.mesh, a.normals, a.grid, broken[k], bind);
+            bindYarns(a.mesh(), a.normals(), a.grid(), broken[k], bind);
             ADD_FAILURE() << "case " << k << ": expected knit::Error";
         } catch (const Error& e) {
             EXPECT_NE(std::string(e.what()).find("inconsistent UvYarns"), std::string::npos) << e.what();
@@ -193,13 +194,13 @@ TEST(Mapping, floatEvaluationFarFromOriginKeepsPrecision) {
     for (glm::dvec3& x : far.positions) x += offset;
     const Scene s = buildScene(generateStockinette(), far, yarnsOnly({20, 20}));
     std::vector<glm::vec3> local;
-    evaluateBindingFloat(s.bound.binding, s.mesh.faces, s.mesh.positions, s.normals, offset, local);
-    ASSERT_EQ(local.size(), s.yarns.curves.pointCount());
+    evaluateBindingFloat(s.binding(), s.mesh().faces, s.mesh().positions, s.normals(), offset, local);
+    ASSERT_EQ(local.size(), s.yarns().curves.pointCount());
     double worst = 0;
     for (size_t i = 0; i < local.size(); ++i)
-        worst = std::max(worst, glm::distance(glm::dvec3(local[i]) + offset, s.yarns.curves.points[i]));
+        worst = std::max(worst, glm::distance(glm::dvec3(local[i]) + offset, s.yarns().curves.points[i]));
     EXPECT_LT(worst, 1e-6 * 0.5);  // float32 of ~0.5 m coordinates: ~3e-8 m
-    EXPECT_LT(worst, 1e-3 * s.yarnRadius);
+    EXPECT_LT(worst, 1e-3 * s.yarnRadius());
 }
 
 }  // namespace

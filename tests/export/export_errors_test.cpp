@@ -3,6 +3,8 @@
 // curves.
 #include <gtest/gtest.h>
 
+#include <utility>
+
 #include <nlohmann/json.hpp>
 
 #include "export/gltf_read.hpp"
@@ -146,7 +148,7 @@ TEST(ExportErrors, existingFileSurvivesFailedExport) {
 
 // ---- exportScene: which curves, which radius ----
 Scene syntheticScene(bool withPlies) {
-    Scene s;
+    SceneParts s;
     s.yarnRadius = 0.002;
     s.yarns.curves = test::mixedCurves();
     s.yarns.normals.assign(s.yarns.curves.pointCount(), glm::dvec3(0, 0, 1));
@@ -162,7 +164,7 @@ Scene syntheticScene(bool withPlies) {
         s.plies.pitch = 0.012;
         s.plies.radial.assign(s.plies.curves.pointCount(), glm::dvec3(1, 0, 0));
     }
-    return s;
+    return Scene::fromParts(std::move(s));
 }
 
 TEST(ExportScene, pliesYarnsAndTubesPickTheRightCurves) {
@@ -171,10 +173,10 @@ TEST(ExportScene, pliesYarnsAndTubesPickTheRightCurves) {
     ExportOptions o;
     o.path = dir + "/p.bcc";
     o.what = ExportWhat::Plies;
-    EXPECT_EQ(exportScene(s, o).vertices, s.plies.curves.pointCount());
+    EXPECT_EQ(exportScene(s, o).vertices, s.plies().curves.pointCount());
     o.what = ExportWhat::Yarns;
     o.path = dir + "/y.bcc";
-    EXPECT_EQ(exportScene(s, o).vertices, s.yarns.curves.pointCount());
+    EXPECT_EQ(exportScene(s, o).vertices, s.yarns().curves.pointCount());
     o.what = ExportWhat::Tubes;
     o.path = dir + "/t.obj";
     o.sides = 4;
@@ -194,8 +196,8 @@ TEST(ExportScene, pliesOfASceneBuiltWithoutPliesAreGeneratedWhileWriting) {
     const Scene built = buildScene(so);
     so.buildPlies = false;
     const Scene bare = buildScene(so);
-    ASSERT_GT(built.plies.curves.curveCount(), 4u);
-    ASSERT_EQ(bare.plies.curves.curveCount(), 0u);
+    ASSERT_GT(built.plies().curves.curveCount(), 4u);
+    ASSERT_EQ(bare.plies().curves.curveCount(), 0u);
 
     ExportOptions o;
     o.what = ExportWhat::Plies;
@@ -204,13 +206,13 @@ TEST(ExportScene, pliesOfASceneBuiltWithoutPliesAreGeneratedWhileWriting) {
     const ExportStats a = exportScene(built, o);
     o.path = dir + "/streamed.glb";
     const ExportStats b = exportScene(bare, o);
-    EXPECT_EQ(a.curves, built.plies.curves.curveCount());
+    EXPECT_EQ(a.curves, built.plies().curves.curveCount());
     EXPECT_EQ(b.curves, a.curves);
-    EXPECT_EQ(b.vertices, built.plies.curves.pointCount());
+    EXPECT_EQ(b.vertices, built.plies().curves.pointCount());
     EXPECT_GE(b.chunks, 3u);
     test::expectGltfValid(o.path);
-    const double worst = test::worstCurveDeviation(test::loadGltf(o.path), built.plies.curves);
-    EXPECT_LT(worst, 1e-3 * built.plies.plyRadius);  // float32 relative to each chunk's origin
+    const double worst = test::worstCurveDeviation(test::loadGltf(o.path), built.plies().curves);
+    EXPECT_LT(worst, 1e-3 * built.plies().plyRadius);  // float32 relative to each chunk's origin
 
     // Non-glTF formats generate the plies in full first: the same file as from the built plies.
     o.path = dir + "/built.bcc";
@@ -220,8 +222,8 @@ TEST(ExportScene, pliesOfASceneBuiltWithoutPliesAreGeneratedWhileWriting) {
     EXPECT_EQ(test::readBytes(dir + "/built.bcc"), test::readBytes(dir + "/streamed.bcc"));
 
     // Bad ply settings are reported before any file is written.
-    Scene broken = buildScene(so);
-    broken.plyOptions.samplesPerTurn = 2;
+    so.plies.samplesPerTurn = 2;  // kept unchecked in a scene built without plies
+    const Scene broken = buildScene(so);
     o.path = dir + "/broken.glb";
     try {
         exportScene(broken, o);
@@ -232,7 +234,7 @@ TEST(ExportScene, pliesOfASceneBuiltWithoutPliesAreGeneratedWhileWriting) {
     EXPECT_FALSE(std::filesystem::exists(o.path));
     o.what = ExportWhat::Tubes;  // auto: the yarns of a scene without plies
     o.path = dir + "/tubes.obj";
-    EXPECT_EQ(exportScene(broken, o).curves, broken.yarns.curves.curveCount());
+    EXPECT_EQ(exportScene(broken, o).curves, broken.yarns().curves.curveCount());
 }
 
 TEST(ExportReport, carriesCountsPeakMemoryAndRatio) {

@@ -14,11 +14,11 @@ namespace knit::hard {
 // (up to `mirror`ed u): the worst distance, relative to size.
 inline double planeMappingError(const Scene& s, double size, glm::dvec2 uvOrigin = glm::dvec2(0.0), bool mirror = false) {
     double worst = 0;
-    const Binding& b = s.bound.binding;
+    const Binding& b = s.binding();
     for (size_t i = 0; i < b.vertexCount(); ++i) {
         const glm::dvec2 uv = boundUv(s, i) - uvOrigin;
         const glm::dvec3 expected((mirror ? -uv.x : uv.x) * size, uv.y * size, b.height[i]);
-        worst = std::max(worst, glm::distance(s.yarns.curves.points[i], expected) / size);
+        worst = std::max(worst, glm::distance(s.yarns().curves.points[i], expected) / size);
     }
     return worst;
 }
@@ -38,12 +38,12 @@ inline std::vector<HardCase> catalogue() {
     add("uvPointsOnSharedEdgesAndVertices", gridAlignedPattern(), flatSquare(8, 0.1), withRepeats(8, 8), {},
         [](const Scene& s) {
             size_t outside = 0;
-            for (const glm::dvec2& uv : s.uvYarns.uv) outside += uv.x < 0 || uv.x > 1 || uv.y < 0 || uv.y > 1;
-            EXPECT_EQ(s.bound.stats.cutVertices, outside);
-            EXPECT_EQ(s.bound.stats.clampedVertices, 0u);
+            for (const glm::dvec2& uv : s.stages().uvYarns.uv) outside += uv.x < 0 || uv.x > 1 || uv.y < 0 || uv.y > 1;
+            EXPECT_EQ(s.bindStats().cutVertices, outside);
+            EXPECT_EQ(s.bindStats().clampedVertices, 0u);
             EXPECT_LT(planeMappingError(s, 0.1), 1e-12);
             // 9 courses at v = k/8 and 8 at v = (k + 1/2)/8, all open (a square, no seam).
-            EXPECT_EQ(s.yarns.curves.curveCount(), 17u);
+            EXPECT_EQ(s.yarns().curves.curveCount(), 17u);
         });
 
     // Zero-area UV triangles: one column of the sheet collapsed in UV (its two UV columns share
@@ -65,7 +65,7 @@ inline std::vector<HardCase> catalogue() {
         Expect e;
         e.extraStep = 0.1 / 8;  // the collapsed column's 3D width
         add("uvZeroAreaTriangles", stockinette, m, withRepeats(7, 8), e, [](const Scene& s) {
-            EXPECT_EQ(s.grid.degenerateUvFaces, 2u * 8 + 1);
+            EXPECT_EQ(s.grid().degenerateUvFaces, 2u * 8 + 1);
         });
     }
 
@@ -83,7 +83,7 @@ inline std::vector<HardCase> catalogue() {
         add("uvNearZeroAreaTriangles", stockinette, m, withRepeats(7, 8), e, [](const Scene& s) {
             // No segment is longer than the column plus a stitch.
             double worst = 0;
-            const Polylines& c = s.yarns.curves;
+            const Polylines& c = s.yarns().curves;
             for (size_t y = 0; y < c.curveCount(); ++y)
                 for (uint32_t k = 0; k + 1 < c.size(y); ++k)
                     worst = std::max(worst, glm::distance(c.points[c.begin(y) + k], c.points[c.begin(y) + k + 1]));
@@ -97,7 +97,7 @@ inline std::vector<HardCase> catalogue() {
         sheet("mirrored", 8, 8, [](double s, double t) { return glm::dvec3(s * 0.1, t * 0.1, 0.0); },
               [](double s, double t) { return glm::dvec2(-s, t); }),
         withRepeats(6, 6), {}, [](const Scene& s) {
-            EXPECT_EQ(s.grid.faceOrientation[0], -1);
+            EXPECT_EQ(s.grid().faceOrientation[0], -1);
             EXPECT_LT(planeMappingError(s, 0.1, glm::dvec2(0.0), true), 1e-12);
         });
 
@@ -130,7 +130,7 @@ inline std::vector<HardCase> catalogue() {
                   [origin](double s, double t) { return origin + glm::dvec2(s, t); }),
             withRepeats(9, 9), {}, [origin, far](const Scene& s) {
                 EXPECT_LT(planeMappingError(s, 0.1, origin), far ? 1e-10 : 1e-12);
-                EXPECT_LT(s.grid.minCell.y, 0);
+                EXPECT_LT(s.grid().minCell.y, 0);
             });
     }
 
@@ -142,14 +142,14 @@ inline std::vector<HardCase> catalogue() {
         append(m, sheet("upper", 8, 8, [](double s, double t) { return glm::dvec3(s * 0.1, t * 0.1, 0.05); },
                         [](double s, double t) { return glm::dvec2(s, t); }));
         add("uvOverlappingCharts", stockinette, m, withRepeats(7, 7), {}, [](const Scene& s) {
-            EXPECT_EQ(s.grid.overlappingCharts, (std::vector<glm::uvec2>{{0, 1}}));
-            const size_t half = s.mesh.faceCount() / 2;
+            EXPECT_EQ(s.grid().overlappingCharts, (std::vector<glm::uvec2>{{0, 1}}));
+            const size_t half = s.mesh().faceCount() / 2;
             size_t lower = 0, upper = 0;
-            for (uint32_t f : s.bound.binding.face) (f < half ? lower : upper)++;
+            for (uint32_t f : s.binding().face) (f < half ? lower : upper)++;
             EXPECT_GT(lower, 0u);
             EXPECT_EQ(upper, lower);
             // Chart 0's yarns first, then chart 1's: the same curves, 0.05 higher.
-            const Polylines& c = s.yarns.curves;
+            const Polylines& c = s.yarns().curves;
             ASSERT_EQ(c.curveCount() % 2, 0u);
             const size_t n = c.curveCount() / 2;
             double worst = 0;
@@ -176,13 +176,13 @@ inline std::vector<HardCase> catalogue() {
                             [u0](double s, double t) { return glm::dvec2(u0 + s, t); }));
         weldPositions(m);  // B and C share their edge in 3D
         add("uvPartlyOverlappingCharts", stockinette, m, withRepeats(14, 7), {}, [](const Scene& s) {
-            EXPECT_EQ(s.grid.chartCount, 3u);
-            EXPECT_EQ(s.grid.overlappingCharts, (std::vector<glm::uvec2>{{0, 1}}));
+            EXPECT_EQ(s.grid().chartCount, 3u);
+            EXPECT_EQ(s.grid().overlappingCharts, (std::vector<glm::uvec2>{{0, 1}}));
             std::vector<size_t> perChart(3, 0);
-            for (uint32_t f : s.bound.binding.face) ++perChart[s.grid.chartOfFace[f]];
+            for (uint32_t f : s.binding().face) ++perChart[s.grid().chartOfFace[f]];
             for (int c = 0; c < 3; ++c) EXPECT_GT(perChart[size_t(c)], 0u) << "chart " << c;
             // Courses run on from B into C across their shared 3D edge: welded there.
-            EXPECT_GT(s.bound.stats.weldedEnds, 0u);
+            EXPECT_GT(s.bindStats().weldedEnds, 0u);
             // Equal UV areas and the same pattern: similar amounts of yarn on each (the two
             // layouts differ only in phase at the borders).
             EXPECT_LT(double(std::max(perChart[0], perChart[1])) / double(std::min(perChart[0], perChart[1])), 1.1);
@@ -206,8 +206,8 @@ inline std::vector<HardCase> catalogue() {
         e.closedLoops = matching ? 7 : 0;
         add(matching ? "uvThreeChartsWholeCellGapsClose" : "uvThreeChartsOtherGapsStayOpen", stockinette, m,
             withRepeats(24, 8), e, [](const Scene& s) {
-                EXPECT_EQ(s.grid.chartCount, 3u);
-                EXPECT_TRUE(s.grid.overlappingCharts.empty());  // side by side: no overlap
+                EXPECT_EQ(s.grid().chartCount, 3u);
+                EXPECT_TRUE(s.grid().overlappingCharts.empty());  // side by side: no overlap
             });
     }
 
@@ -235,8 +235,8 @@ inline std::vector<HardCase> catalogue() {
             sheet("small-island", 4, 4, [](double s, double t) { return glm::dvec3(s * 0.003, t * 0.003, 0.0); },
                   [](double s, double t) { return glm::dvec2(0.2 + 0.3 * s, 0.35 + 0.3 * t); }),
             withRepeats(1, 1), e, [](const Scene& s) {
-                EXPECT_LE(s.grid.cells.size(), 1u);
-                EXPECT_GT(s.bound.stats.cutVertices, 0u);
+                EXPECT_LE(s.grid().cells.size(), 1u);
+                EXPECT_GT(s.bindStats().cutVertices, 0u);
             });
     }
 
@@ -268,7 +268,7 @@ inline std::vector<HardCase> catalogue() {
         add("uvNotchNarrowerThanAStepIsCut", straightCourses(0.01, 0.01, 0.0005, 0.005, 1, 0.625 * 0.01), m,
             withRepeats(6.25, 12), {}, [](const Scene& s) {
                 // Courses below v = 0.8 are cut at both arms: more open yarns than courses.
-                EXPECT_GT(s.yarns.curves.curveCount(), 12u);
+                EXPECT_GT(s.yarns().curves.curveCount(), 12u);
             });
     }
 
@@ -299,7 +299,7 @@ inline std::vector<HardCase> catalogue() {
         if (welded) weldPositions(m);
         add(welded ? "zeroArea3dTrianglesWelded" : "zeroArea3dTriangles", stockinette, m, withRepeats(7, 8), {},
             [](const Scene& s) {
-                for (const glm::dvec3& n : s.normals) EXPECT_NEAR(n.z, 1.0, 1e-12);
+                for (const glm::dvec3& n : s.normals()) EXPECT_NEAR(n.z, 1.0, 1e-12);
             });
     }
 
@@ -335,9 +335,9 @@ inline std::vector<HardCase> catalogue() {
         m.uvs.push_back({1e20, -1e20});
         add("isolatedVertices", stockinette, m, withRepeats(12, 12), {}, [](const Scene& s) {
             const Scene clean = buildScene(generateStockinette(), makeDrape({}), withRepeats(12, 12));
-            ASSERT_EQ(clean.yarns.curves.pointCount(), s.yarns.curves.pointCount());
-            for (size_t i = 0; i < clean.yarns.curves.pointCount(); ++i)
-                ASSERT_EQ(clean.yarns.curves.points[i], s.yarns.curves.points[i]);
+            ASSERT_EQ(clean.yarns().curves.pointCount(), s.yarns().curves.pointCount());
+            for (size_t i = 0; i < clean.yarns().curves.pointCount(); ++i)
+                ASSERT_EQ(clean.yarns().curves.points[i], s.yarns().curves.points[i]);
         });
     }
 
@@ -357,10 +357,10 @@ inline std::vector<HardCase> catalogue() {
         add(quarter ? "inconsistentOrientationFlippedQuarter" : "inconsistentOrientationEveryThirdFace", stockinette, m,
             withRepeats(12, 12), {}, [](const Scene& s) {
                 const Scene clean = buildScene(generateStockinette(), makeDrape({}), withRepeats(12, 12));
-                ASSERT_EQ(clean.yarns.curves.pointCount(), s.yarns.curves.pointCount());
+                ASSERT_EQ(clean.yarns().curves.pointCount(), s.yarns().curves.pointCount());
                 double worst = 0;
-                for (size_t i = 0; i < clean.yarns.curves.pointCount(); ++i)
-                    worst = std::max(worst, glm::distance(clean.yarns.curves.points[i], s.yarns.curves.points[i]));
+                for (size_t i = 0; i < clean.yarns().curves.pointCount(); ++i)
+                    worst = std::max(worst, glm::distance(clean.yarns().curves.points[i], s.yarns().curves.points[i]));
                 EXPECT_LT(worst, 1e-12) << "heights differ from the consistently oriented drape";
             });
     }
@@ -372,15 +372,15 @@ inline std::vector<HardCase> catalogue() {
         for (glm::dvec3& p : m.positions) p += shift;
         add("meshFarFromOrigin1e5", stockinette, m, withRepeats(12, 12), {}, [shift](const Scene& s) {
             const Scene home = buildScene(generateStockinette(), makeDrape({}), withRepeats(12, 12));
-            ASSERT_EQ(home.yarns.curves.pointCount(), s.yarns.curves.pointCount());
+            ASSERT_EQ(home.yarns().curves.pointCount(), s.yarns().curves.pointCount());
             double worst = 0;
-            for (size_t i = 0; i < home.yarns.curves.pointCount(); ++i)
-                worst = std::max(worst, glm::distance(home.yarns.curves.points[i] + shift, s.yarns.curves.points[i]));
+            for (size_t i = 0; i < home.yarns().curves.pointCount(); ++i)
+                worst = std::max(worst, glm::distance(home.yarns().curves.points[i] + shift, s.yarns().curves.points[i]));
             EXPECT_LT(worst, 1e-9);
-            ASSERT_EQ(home.plies.curves.pointCount(), s.plies.curves.pointCount());
+            ASSERT_EQ(home.plies().curves.pointCount(), s.plies().curves.pointCount());
             double plyWorst = 0;
-            for (size_t i = 0; i < home.plies.curves.pointCount(); ++i)
-                plyWorst = std::max(plyWorst, glm::distance(home.plies.curves.points[i] + shift, s.plies.curves.points[i]));
+            for (size_t i = 0; i < home.plies().curves.pointCount(); ++i)
+                plyWorst = std::max(plyWorst, glm::distance(home.plies().curves.points[i] + shift, s.plies().curves.points[i]));
             EXPECT_LT(plyWorst, 1e-8);
         });
     }
@@ -394,12 +394,12 @@ inline std::vector<HardCase> catalogue() {
             BaseMesh unit = makeDrape({});
             for (glm::dvec3& p : unit.positions) p *= 1.0 / 0.5;
             const Scene u = buildScene(generateStockinette(), unit, withRepeats(10, 10));
-            ASSERT_EQ(u.yarns.curves.pointCount(), s.yarns.curves.pointCount());
+            ASSERT_EQ(u.yarns().curves.pointCount(), s.yarns().curves.pointCount());
             double worst = 0;
-            for (size_t i = 0; i < u.yarns.curves.pointCount(); ++i)
-                worst = std::max(worst, glm::distance(u.yarns.curves.points[i] * scale, s.yarns.curves.points[i]) / scale);
+            for (size_t i = 0; i < u.yarns().curves.pointCount(); ++i)
+                worst = std::max(worst, glm::distance(u.yarns().curves.points[i] * scale, s.yarns().curves.points[i]) / scale);
             EXPECT_LT(worst, 1e-9);
-            EXPECT_NEAR(s.yarnRadius / u.yarnRadius, scale, 1e-12 * scale);
+            EXPECT_NEAR(s.yarnRadius() / u.yarnRadius(), scale, 1e-12 * scale);
         });
     }
     // The same scales at the pattern's physical size: the tiny mesh is smaller than one stitch
@@ -440,11 +440,11 @@ inline std::vector<HardCase> catalogue() {
     // helices at the centre radius.
     add("curvesStraightRuns", straightCourses(0.01, 0.01, 0.001, 0.005), flatSquare(4, 0.1), withRepeats(10, 10), {},
         [](const Scene& s) {
-            const Plies& p = s.plies;
+            const Plies& p = s.plies();
             ASSERT_GT(p.curves.pointCount(), 0u);
             // Each straight course lies at y = const, z = 0: ply points at distance R from it.
             for (size_t k = 0; k < p.curves.curveCount(); ++k) {
-                const glm::dvec3 a = s.yarns.curves.points[s.yarns.curves.begin(p.yarnOfCurve[k])];
+                const glm::dvec3 a = s.yarns().curves.points[s.yarns().curves.begin(p.yarnOfCurve[k])];
                 for (uint32_t i = p.curves.begin(k); i < p.curves.end(k); ++i) {
                     const glm::dvec3 q = p.curves.points[i];
                     ASSERT_NEAR(std::hypot(q.y - a.y, q.z - a.z), p.centerRadius, 1e-12);
@@ -466,8 +466,8 @@ inline std::vector<HardCase> catalogue() {
                     sum += glm::distance(c.points[c.begin(y) + k], c.points[c.begin(y) + (k + 1) % c.size(y)]);
             return sum;
         };
-        EXPECT_EQ(plain.yarns.curves.curveCount(), s.yarns.curves.curveCount());
-        EXPECT_NEAR(totalLength(s.plies.curves), totalLength(plain.plies.curves), 1e-9 * totalLength(plain.plies.curves));
+        EXPECT_EQ(plain.yarns().curves.curveCount(), s.yarns().curves.curveCount());
+        EXPECT_NEAR(totalLength(s.plies().curves), totalLength(plain.plies().curves), 1e-9 * totalLength(plain.plies().curves));
     });
 
     // Closed loops whose length is not a whole number of ply turns (and whose RMF does not
@@ -478,7 +478,7 @@ inline std::vector<HardCase> catalogue() {
         Expect e;
         e.closedLoops = 64;  // 8 x 8 tiles inside the square; the far border's rings are cut
         add("curvesClosedLoopNonIntegerTwist", ringPattern(), flatSquare(4, 0.08), o, e, [](const Scene& s) {
-            const Polylines& c = s.plies.curves;
+            const Polylines& c = s.plies().curves;
             for (size_t k = 0; k < c.curveCount(); ++k) {
                 if (!c.isClosed(k)) continue;
                 double longest = 0;
@@ -494,10 +494,10 @@ inline std::vector<HardCase> catalogue() {
     // boundary, not cut.
     add("uvPointsJustOutsideAreClamped", straightCourses(0.01, 0.01, 0.001, -1e-9, 4), flatSquare(4, 0.08),
         withRepeats(8, 8), {}, [](const Scene& s) {
-            EXPECT_GT(s.bound.stats.clampedVertices, 0u);
+            EXPECT_GT(s.bindStats().clampedVertices, 0u);
             // The course at v ~ 0 survives: 9 courses (v ~ 0, 1/8, ..., 1).
-            EXPECT_EQ(s.yarns.curves.curveCount(), 9u);
-            for (const glm::dvec3& p : s.yarns.curves.points) EXPECT_GE(p.y, 0.0);
+            EXPECT_EQ(s.yarns().curves.curveCount(), 9u);
+            for (const glm::dvec3& p : s.yarns().curves.points) EXPECT_GE(p.y, 0.0);
         });
 
     return cases;

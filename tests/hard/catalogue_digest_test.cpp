@@ -49,17 +49,17 @@ TEST(CatalogueDigest, writesOneLinePerCase) {
         }
         Fnv f;
         if (scene) {
-            f.curves(scene->yarns.curves);
-            f.vec(scene->yarns.normals);
-            f.curves(scene->plies.curves);
-            const Binding& b = scene->bound.binding;
+            f.curves(scene->yarns().curves);
+            f.vec(scene->yarns().normals);
+            f.curves(scene->plies().curves);
+            const Binding& b = scene->binding();
             f.vec(b.face);
             f.vec(b.bary);
             f.vec(b.height);
             f.vec(b.twist);
             f.vec(b.offsets);
             f.vec(b.closed);
-            const BindStats& st = scene->bound.stats;
+            const BindStats& st = scene->bindStats();
             for (size_t v : {st.clampedVertices, st.cutVertices, st.boundaryVertices, st.weldedEnds, st.openEnds, st.closedLoops})
                 f.bytes(&v, sizeof v);
         } else {

@@ -64,7 +64,7 @@ TEST_F(ExportHard, sceneWithNothingToExportGivesAnEmptyFileOrAnError) {
     // A UV island smaller than a stitch: no yarn survives (with plies built, and without).
     for (const bool plies : {true, false}) {
         const Scene scene = buildScene(generateStockinette(), flatSquare(2, 1e-4), withRepeats(0.01, 0.01, plies));
-        ASSERT_EQ(scene.yarns.curves.pointCount(), 0u);
+        ASSERT_EQ(scene.yarns().curves.pointCount(), 0u);
         for (const char* ext : kExtensions)
             for (const ExportWhat what : {ExportWhat::Yarns, ExportWhat::Plies, ExportWhat::Tubes}) {
                 ExportOptions o;
@@ -122,10 +122,10 @@ TEST_F(ExportHard, farFromOriginObjCurvesKeepDoublePrecision) {
         std::istringstream ls(line.substr(2));
         glm::dvec3 p;
         ls >> p.x >> p.y >> p.z;
-        ASSERT_LT(i, scene.yarns.curves.pointCount());
-        worst = std::max(worst, glm::distance(p, scene.yarns.curves.points[i++]));
+        ASSERT_LT(i, scene.yarns().curves.pointCount());
+        worst = std::max(worst, glm::distance(p, scene.yarns().curves.points[i++]));
     }
-    EXPECT_EQ(i, scene.yarns.curves.pointCount());
+    EXPECT_EQ(i, scene.yarns().curves.pointCount());
     EXPECT_LT(worst, 1e-10);
 }
 

@@ -268,9 +268,9 @@ using util::finite;
 
 // UV position of a bound vertex.
 inline glm::dvec2 boundUv(const Scene& s, size_t i) {
-    const Binding& b = s.bound.binding;
+    const Binding& b = s.binding();
     SurfacePoint sp{b.face[i], {1 - b.bary[i].x - b.bary[i].y, b.bary[i].x, b.bary[i].y}};
-    return sp.interpolate(s.mesh.uvs, s.mesh.faceUvs);
+    return sp.interpolate(s.mesh().uvs, s.mesh().faceUvs);
 }
 
 // Largest stretch (largest singular value of the UV -> 3D Jacobian) over triangles with
@@ -294,8 +294,8 @@ inline double maxStretch(const BaseMesh& m) {
 
 // Longest pattern edge in UV under the scene's placement.
 inline double longestEdgeUv(const Scene& s) {
-    const Pattern& p = s.pattern;
-    const glm::dvec2 toUv(1.0 / (s.placement.repeats.x * p.px), 1.0 / (s.placement.repeats.y * p.py));
+    const Pattern& p = s.pattern();
+    const glm::dvec2 toUv(1.0 / (s.placement().repeats.x * p.px), 1.0 / (s.placement().repeats.y * p.py));
     double worst = 0;
     for (const PeriodicEdge& e : p.edges) {
         const glm::dvec2 d = glm::dvec2(p.points[e.v1]) + glm::dvec2(e.dx * p.px, e.dy * p.py) - glm::dvec2(p.points[e.v0]);
@@ -307,10 +307,10 @@ inline double longestEdgeUv(const Scene& s) {
 // Distance in UV from `uv` to the closest UV boundary edge of the mesh.
 inline double distanceToUvBoundary(const Scene& s, glm::dvec2 uv) {
     double best = INFINITY;
-    for (uint32_t he : s.grid.boundaryEdges) {
-        const glm::uvec3 t = s.mesh.faceUvs[he / 3];
+    for (uint32_t he : s.grid().boundaryEdges) {
+        const glm::uvec3 t = s.mesh().faceUvs[he / 3];
         const uint32_t c[3] = {t.x, t.y, t.z};
-        const glm::dvec2 a = s.mesh.uvs[c[he % 3]], b = s.mesh.uvs[c[(he % 3 + 1) % 3]];
+        const glm::dvec2 a = s.mesh().uvs[c[he % 3]], b = s.mesh().uvs[c[(he % 3 + 1) % 3]];
         const glm::dvec2 d = b - a;
         const double len2 = glm::dot(d, d);
         const double t01 = len2 > 0 ? std::clamp(glm::dot(uv - a, d) / len2, 0.0, 1.0) : 0.0;
@@ -321,8 +321,8 @@ inline double distanceToUvBoundary(const Scene& s, glm::dvec2 uv) {
 
 // Yarn radius in UV units as binding measures it (tolerances scale with it).
 inline double radiusUv(const Scene& s) {
-    const glm::dvec2 m = uvToMetreScale(s.mesh);
-    return s.yarnRadius / std::max(m.x, m.y);
+    const glm::dvec2 m = uvToMetreScale(s.mesh());
+    return s.yarnRadius() / std::max(m.x, m.y);
 }
 
 // Yarn vertices whose offset surface folds over: the triangle's corners moved by the vertex's
@@ -331,11 +331,11 @@ inline double radiusUv(const Scene& s) {
 // field for this yet; see docs/hard-cases.md (proposed: counts.folded_offset_vertices).
 inline size_t foldedOffsetVertices(const Scene& s) {
     size_t folded = 0;
-    const Binding& b = s.bound.binding;
+    const Binding& b = s.binding();
     for (size_t i = 0; i < b.vertexCount(); ++i) {
-        const glm::uvec3 f = s.mesh.faces[b.face[i]];
-        const glm::dvec3 x[3] = {s.mesh.positions[f.x], s.mesh.positions[f.y], s.mesh.positions[f.z]};
-        const glm::dvec3 n[3] = {s.normals[f.x], s.normals[f.y], s.normals[f.z]};
+        const glm::uvec3 f = s.mesh().faces[b.face[i]];
+        const glm::dvec3 x[3] = {s.mesh().positions[f.x], s.mesh().positions[f.y], s.mesh().positions[f.z]};
+        const glm::dvec3 n[3] = {s.normals()[f.x], s.normals()[f.y], s.normals()[f.z]};
         const double h = b.height[i];
         const glm::dvec3 base = glm::cross(x[1] - x[0], x[2] - x[0]);
         const glm::dvec3 q0 = x[0] + h * n[0], q1 = x[1] + h * n[1], q2 = x[2] + h * n[2];
@@ -348,14 +348,15 @@ inline size_t foldedOffsetVertices(const Scene& s) {
 inline void checkInvariants(const std::string& name, const Scene& s, const SceneOptions& o, const Expect& e) {
     SCOPED_TRACE("hard case " + name);
     // 1. Finite everywhere.
-    for (size_t i = 0; i < s.uvYarns.vertexCount(); ++i) {
-        ASSERT_TRUE(finite(s.uvYarns.uv[i])) << "uv yarn vertex " << i;
-        ASSERT_TRUE(std::isfinite(s.uvYarns.height[i]) && std::isfinite(s.uvYarns.twist[i])) << "uv yarn vertex " << i;
+    const UvYarns& uvYarns = s.stages().uvYarns;
+    for (size_t i = 0; i < uvYarns.vertexCount(); ++i) {
+        ASSERT_TRUE(finite(uvYarns.uv[i])) << "uv yarn vertex " << i;
+        ASSERT_TRUE(std::isfinite(uvYarns.height[i]) && std::isfinite(uvYarns.twist[i])) << "uv yarn vertex " << i;
     }
-    const Binding& b = s.bound.binding;
+    const Binding& b = s.binding();
     for (size_t i = 0; i < b.vertexCount(); ++i) {
-        ASSERT_LT(b.face[i], s.mesh.faceCount()) << "bound vertex " << i;
-        ASSERT_NE(s.grid.faceOrientation[b.face[i]], 0) << "bound vertex " << i << " on a zero-area UV triangle";
+        ASSERT_LT(b.face[i], s.mesh().faceCount()) << "bound vertex " << i;
+        ASSERT_NE(s.grid().faceOrientation[b.face[i]], 0) << "bound vertex " << i << " on a zero-area UV triangle";
         const glm::dvec3 bary(1 - b.bary[i].x - b.bary[i].y, b.bary[i].x, b.bary[i].y);
         ASSERT_TRUE(finite(bary) && std::isfinite(b.height[i]) && std::isfinite(b.twist[i])) << "bound vertex " << i;
         for (int k = 0; k < 3; ++k) {
@@ -363,17 +364,17 @@ inline void checkInvariants(const std::string& name, const Scene& s, const Scene
             ASSERT_LE(bary[k], 1 + 1e-12) << "bound vertex " << i;
         }
     }
-    const Polylines& c = s.yarns.curves;
+    const Polylines& c = s.yarns().curves;
     ASSERT_EQ(c.offsets.size(), c.curveCount() + 1);
     ASSERT_EQ(c.offsets.back(), c.pointCount());
-    ASSERT_EQ(s.yarns.normals.size(), c.pointCount());
+    ASSERT_EQ(s.yarns().normals.size(), c.pointCount());
     for (size_t i = 0; i < c.pointCount(); ++i) {
         ASSERT_TRUE(finite(c.points[i])) << "yarn point " << i;
-        ASSERT_NEAR(glm::length(s.yarns.normals[i]), 1.0, 1e-9) << "yarn normal " << i;
+        ASSERT_NEAR(glm::length(s.yarns().normals[i]), 1.0, 1e-9) << "yarn normal " << i;
     }
-    for (size_t i = 0; i < s.plies.curves.pointCount(); ++i) {
-        ASSERT_TRUE(finite(s.plies.curves.points[i])) << "ply point " << i;
-        ASSERT_NEAR(glm::length(s.plies.radial[i]), 1.0, 1e-9) << "ply radial " << i;
+    for (size_t i = 0; i < s.plies().curves.pointCount(); ++i) {
+        ASSERT_TRUE(finite(s.plies().curves.points[i])) << "ply point " << i;
+        ASSERT_NEAR(glm::length(s.plies().radial[i]), 1.0, 1e-9) << "ply radial " << i;
     }
 
     // 2. Structure and counts.
@@ -383,27 +384,27 @@ inline void checkInvariants(const std::string& name, const Scene& s, const Scene
         ASSERT_GE(c.size(y), 2u) << "yarn " << y << " is a single point";
         (c.isClosed(y) ? closed : open)++;
     }
-    EXPECT_EQ(s.bound.stats.closedLoops, closed);
-    EXPECT_EQ(s.bound.stats.openEnds, 2 * open);
-    EXPECT_EQ(s.bound.stats.weldedEnds % 2, 0u);
+    EXPECT_EQ(s.bindStats().closedLoops, closed);
+    EXPECT_EQ(s.bindStats().openEnds, 2 * open);
+    EXPECT_EQ(s.bindStats().weldedEnds % 2, 0u);
     if (!e.allowEmpty) EXPECT_GT(c.pointCount(), 0u) << "no yarn at all";
     if (e.closedLoops >= 0) EXPECT_EQ(closed, size_t(e.closedLoops));
     EXPECT_GE(closed, size_t(e.minClosedLoops));
-    if (e.weldedEnds >= 0) EXPECT_EQ(s.bound.stats.weldedEnds, size_t(e.weldedEnds));
+    if (e.weldedEnds >= 0) EXPECT_EQ(s.bindStats().weldedEnds, size_t(e.weldedEnds));
     if (o.buildPlies) {
         size_t expectedPlyCurves = 0;
         for (size_t y = 0; y < c.curveCount(); ++y) expectedPlyCurves += size_t(o.plies.count);
-        EXPECT_EQ(s.plies.curves.curveCount(), expectedPlyCurves);
-        for (size_t k = 0; k < s.plies.curves.curveCount(); ++k)
-            ASSERT_EQ(s.plies.curves.closed[k], c.closed[s.plies.yarnOfCurve[k]]) << "ply curve " << k;
+        EXPECT_EQ(s.plies().curves.curveCount(), expectedPlyCurves);
+        for (size_t k = 0; k < s.plies().curves.curveCount(); ++k)
+            ASSERT_EQ(s.plies().curves.closed[k], c.closed[s.plies().yarnOfCurve[k]]) << "ply curve " << k;
     }
 
     // 3. Yarns stay on the surface: inside the mesh's box grown by the largest height.
     double hMax = 0;
     for (double h : b.height) hMax = std::max(hMax, std::abs(h));
     glm::dvec3 lo(INFINITY), hi(-INFINITY);
-    for (const glm::uvec3& f : s.mesh.faces)
-        for (int k = 0; k < 3; ++k) lo = glm::min(lo, s.mesh.positions[f[k]]), hi = glm::max(hi, s.mesh.positions[f[k]]);
+    for (const glm::uvec3& f : s.mesh().faces)
+        for (int k = 0; k < 3; ++k) lo = glm::min(lo, s.mesh().positions[f[k]]), hi = glm::max(hi, s.mesh().positions[f[k]]);
     const double scale = std::max(glm::length(hi - lo), std::max(glm::length(hi), glm::length(lo)));
     const double slack = hMax + 1e-12 * scale;
     for (size_t i = 0; i < c.pointCount(); ++i) {
@@ -417,8 +418,8 @@ inline void checkInvariants(const std::string& name, const Scene& s, const Scene
     //    (plus the clamp tolerance at both ends, the height offsets and a weld's gap).
     const double tolUv = o.bind.clampTolerance * radiusUv(s);
     if (e.boundedSteps) {
-        const double bound = maxStretch(s.mesh) * (longestEdgeUv(s) + 2 * tolUv) + 2 * hMax +
-                             o.bind.weldTolerance * s.yarnRadius + e.extraStep + 1e-9 * scale;
+        const double bound = maxStretch(s.mesh()) * (longestEdgeUv(s) + 2 * tolUv) + 2 * hMax +
+                             o.bind.weldTolerance * s.yarnRadius() + e.extraStep + 1e-9 * scale;
         double worst = 0;
         size_t worstAt = 0;
         for (size_t y = 0; y < c.curveCount(); ++y)

@@ -74,8 +74,8 @@ TEST(Mechanisms, stepOverAHoleInTheChartIsCut) {
     const Scene s = buildScene(straightCourses(0.01, 0.01, 0.0005, 0.005, 1, 0.005), holed, withRepeats(2, 12, false));
     size_t through = 0;  // courses at v in (1/3, 2/3)
     for (int j = 0; j < 12; ++j) through += (j + 0.5) / 12 > 4.0 / 12 && (j + 0.5) / 12 < 8.0 / 12;
-    EXPECT_EQ(s.yarns.curves.curveCount(), 12 + through);
-    for (const glm::dvec3& p : s.yarns.curves.points) {
+    EXPECT_EQ(s.yarns().curves.curveCount(), 12 + through);
+    for (const glm::dvec3& p : s.yarns().curves.points) {
         const glm::dvec2 uv = glm::dvec2(p) / 0.12;
         EXPECT_FALSE(uv.x > 4.0 / 12 + 1e-9 && uv.x < 8.0 / 12 - 1e-9 && uv.y > 4.0 / 12 && uv.y < 8.0 / 12) << "a yarn point in the hole";
     }

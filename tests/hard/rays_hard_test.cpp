@@ -45,7 +45,7 @@ struct Built {
 Built build(const SyntheticSceneOptions& o, glm::dvec3 originShift = glm::dvec3(0.0)) {
     Built b;
     b.scene = makeSyntheticPlyScene(o);
-    b.geometry = buildPlyGeometry(b.scene.plies, o.offset + glm::dvec3(o.size / 2, o.size / 2, 0) + originShift);
+    b.geometry = buildPlyGeometry(b.scene.plies(), o.offset + glm::dvec3(o.size / 2, o.size / 2, 0) + originShift);
     b.cells = segmentCells(b.scene, b.geometry);
     return b;
 }
@@ -97,7 +97,7 @@ TEST(HardRays, nearlyParallelRaysHitOnTheSurfaceOrMiss) {
         const TraceScene ts(device, g, options(m, b));
         // Rays along the yarn (+x), from outside its start, at a few offsets from the axis and
         // tiny angles towards it.
-        const glm::vec3 start = g.toScene(b.scene.plies.curves.points.front()) - glm::vec3(3, 0, 0);
+        const glm::vec3 start = g.toScene(b.scene.plies().curves.points.front()) - glm::vec3(3, 0, 0);
         int hits = 0, clearHits = 0;
         for (const float offset : {0.f, 0.3f, 0.95f, 0.999f, 1.001f, 1.05f, 2.f})
             for (const float angle : {0.f, 1e-7f, 1e-5f, 1e-3f, 1e-2f}) {
@@ -122,7 +122,7 @@ TEST(HardRays, tubeEndCapsAreHitHeadOn) {
     const Built b = build(singleStraightPly());
     EmbreeDevice device;
     const TraceScene ts(device, b.geometry, options(GeometryMode::Tubes, b));
-    const glm::vec3 start = b.geometry.toScene(b.scene.plies.curves.points.front());
+    const glm::vec3 start = b.geometry.toScene(b.scene.plies().curves.points.front());
     for (const float offset : {0.f, 0.3f}) {
         TraceHit h;
         ASSERT_TRUE(ts.intersect(start + glm::vec3(-3, offset, 0), glm::vec3(1, 0, 0), 0.f, 1e30f, h)) << offset;
@@ -137,7 +137,7 @@ TEST(HardRays, grazingRaysAtThePlyRadius) {
     const PlyGeometry& g = b.geometry;
     EmbreeDevice device;
     // Rays along -z passing the axis at distance d, in the middle of the yarn.
-    const glm::vec3 mid = g.toScene(b.scene.plies.curves.points[b.scene.plies.curves.pointCount() / 2]);
+    const glm::vec3 mid = g.toScene(b.scene.plies().curves.points[b.scene.plies().curves.pointCount() / 2]);
     for (GeometryMode m : kModes) {
         const TraceScene ts(device, g, options(m, b));
         const float inner = m == GeometryMode::Tubes ? std::cos(float(util::kPi) / 16) : 1.f;
@@ -164,7 +164,8 @@ TEST(HardRays, raysStartingOnThePlySurfaceNeverReenterIt) {
         int started = 0, reentered = 0;
         for (int i = 0; i < 400; ++i) {
             // A first hit from above, then rays from exactly that point (no spawn offset).
-            const glm::vec3 org = g.toScene(b.scene.plies.curves.points[5 + i % 50]) + glm::vec3(0.1f * (i % 7), 0.2f * ((i % 5) - 2), 10.f);
+            const glm::vec3 org = g.toScene(b.scene.plies().curves.points[5 + i % 50]) +
+                                  glm::vec3(0.1f * (i % 7), 0.2f * ((i % 5) - 2), 10.f);
             TraceHit h;
             if (!ts.intersect(org, glm::vec3(0, 0, -1), 0.f, 1e30f, h)) continue;
             const glm::vec3 p = org + h.t * glm::vec3(0, 0, -1);
@@ -225,7 +226,7 @@ TEST(HardRays, raysFromFarAwayStillHitWhatTheyAimAt) {
     const Built b = build(singleStraightPly());
     const PlyGeometry& g = b.geometry;
     EmbreeDevice device;
-    const glm::vec3 target = g.toScene(b.scene.plies.curves.points[b.scene.plies.curves.pointCount() / 2]);
+    const glm::vec3 target = g.toScene(b.scene.plies().curves.points[b.scene.plies().curves.pointCount() / 2]);
     for (GeometryMode m : {GeometryMode::Curves, GeometryMode::Grid}) {  // tubes: see below
         const TraceScene ts(device, g, options(m, b));
         for (const float distance : {1e2f, 1e3f, 1e4f, 1e6f}) {
@@ -250,7 +251,7 @@ TEST(HardRays, tubeRaysThroughSharedEdgesFromFarAwayHit) {
     const Built b = build(singleStraightPly());
     EmbreeDevice device;
     const TraceScene ts(device, b.geometry, options(GeometryMode::Tubes, b));
-    const glm::vec3 target = b.geometry.toScene(b.scene.plies.curves.points[b.scene.plies.curves.pointCount() / 2]);
+    const glm::vec3 target = b.geometry.toScene(b.scene.plies().curves.points[b.scene.plies().curves.pointCount() / 2]);
     const glm::vec3 from = glm::normalize(glm::vec3(0, 1, 1));
     for (const float distance : {1e2f, 1e4f, 1e6f}) {
         TraceHit h;
@@ -266,7 +267,7 @@ TEST(HardRays, gridRaysFromFarAwayHitWhereCurvesDo) {
     const Built b = build(singleStraightPly());
     EmbreeDevice device;
     const TraceScene ts(device, b.geometry, options(GeometryMode::Grid, b));
-    const glm::vec3 target = b.geometry.toScene(b.scene.plies.curves.points[b.scene.plies.curves.pointCount() / 2]);
+    const glm::vec3 target = b.geometry.toScene(b.scene.plies().curves.points[b.scene.plies().curves.pointCount() / 2]);
     for (const float distance : {3e3f, 1e4f, 1e5f})
         for (const glm::vec3 from : {glm::vec3(0, 0, 1), glm::normalize(glm::vec3(0, 1, 1)), glm::normalize(glm::vec3(0.2f, -1, 0.3f))}) {
             TraceHit h;

@@ -91,12 +91,12 @@ TEST(GltfMesh, knitOnGltfCylinderMatchesBuiltInCylinder) {
     so.buildPlies = false;
     const knit::Scene a = knit::buildScene(knit::generateStockinette(), ref, so);
     const knit::Scene b = knit::buildScene(knit::generateStockinette(), knit::parseGltfMesh(g.glb(), "c.glb", ""), so);
-    EXPECT_EQ(a.bound.stats.closedLoops, b.bound.stats.closedLoops);  // courses close across the welded seam
-    EXPECT_GT(b.bound.stats.closedLoops, 0u);
-    ASSERT_EQ(a.yarns.curves.pointCount(), b.yarns.curves.pointCount());
+    EXPECT_EQ(a.bindStats().closedLoops, b.bindStats().closedLoops);  // courses close across the welded seam
+    EXPECT_GT(b.bindStats().closedLoops, 0u);
+    ASSERT_EQ(a.yarns().curves.pointCount(), b.yarns().curves.pointCount());
     double worst = 0;
-    for (size_t i = 0; i < a.yarns.curves.pointCount(); ++i)
-        worst = std::max(worst, glm::distance(a.yarns.curves.points[i], b.yarns.curves.points[i]));
+    for (size_t i = 0; i < a.yarns().curves.pointCount(); ++i)
+        worst = std::max(worst, glm::distance(a.yarns().curves.points[i], b.yarns().curves.points[i]));
     EXPECT_LT(worst, 1e-6);
 }
 

@@ -59,13 +59,13 @@ void expectModesMatch(const Scene& scene) {
 
 TEST(PipelineModes, planeWithOpenYarnEndsMatchesInAllModes) {
     const Scene scene = pipelineScene("plane", 4, 4);
-    ASSERT_GT(scene.bound.stats.openEnds, 0u);
+    ASSERT_GT(scene.bindStats().openEnds, 0u);
     expectModesMatch(scene);
 }
 
 TEST(PipelineModes, cylinderWithClosedLoopsMatchesInAllModes) {
     const Scene scene = pipelineScene("cylinder", 6, 3);
-    ASSERT_GT(scene.bound.stats.closedLoops, 0u);
+    ASSERT_GT(scene.bindStats().closedLoops, 0u);
     expectModesMatch(scene);
 }
 

@@ -51,8 +51,8 @@ Built build(const SyntheticSceneOptions& o) {
     Built b;
     b.scene = makeSyntheticPlyScene(o);
     glm::dvec3 lo(1e300), hi(-1e300);
-    for (const glm::dvec3& p : b.scene.plies.curves.points) lo = glm::min(lo, p), hi = glm::max(hi, p);
-    b.geometry = buildPlyGeometry(b.scene.plies, 0.5 * (lo + hi));
+    for (const glm::dvec3& p : b.scene.plies().curves.points) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    b.geometry = buildPlyGeometry(b.scene.plies(), 0.5 * (lo + hi));
     b.cells = segmentCells(b.scene, b.geometry);
     return b;
 }

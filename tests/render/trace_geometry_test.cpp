@@ -64,7 +64,7 @@ TEST(TraceScene, gridHitsStayOnThePlySurfaceFromDistantOrigins) {
     so.waveAmplitude = 0.0004;
     so.cellSize = 0.25;
     const Scene scene = makeSyntheticPlyScene(so);
-    const PlyGeometry g = buildPlyGeometry(scene.plies, glm::dvec3(0.005, 0.005, 0));
+    const PlyGeometry g = buildPlyGeometry(scene.plies(), glm::dvec3(0.005, 0.005, 0));
     const std::vector<int64_t> cells = segmentCells(scene, g);
     EmbreeDevice device;
     const TraceScene curves(device, g, modeOptions(GeometryMode::Curves, cells));

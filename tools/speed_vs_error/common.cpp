@@ -72,13 +72,13 @@ knit::Scene physicalScene(double size) { return knitScene(64, size, {0, 0}, true
 
 json sceneSummary(const knit::Scene& s) {
     glm::dvec3 lo(1e300), hi(-1e300);
-    for (const dvec3& p : s.plies.curves.points) lo = glm::min(lo, p), hi = glm::max(hi, p);
-    return {{"cells", s.grid.cells.size()},
-            {"yarn_vertices", s.yarns.curves.pointCount()},
-            {"ply_vertices", s.plies.curves.pointCount()},
-            {"ply_curves", s.plies.curves.curveCount()},
-            {"yarn_radius_m", s.yarnRadius},
-            {"ply_radius_m", s.plies.plyRadius},
+    for (const dvec3& p : s.plies().curves.points) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    return {{"cells", s.grid().cells.size()},
+            {"yarn_vertices", s.yarns().curves.pointCount()},
+            {"ply_vertices", s.plies().curves.pointCount()},
+            {"ply_curves", s.plies().curves.curveCount()},
+            {"yarn_radius_m", s.yarnRadius()},
+            {"ply_radius_m", s.plies().plyRadius},
             {"extent_m", {hi.x - lo.x, hi.y - lo.y, hi.z - lo.z}}};
 }
 

@@ -152,7 +152,7 @@ DracoError dracoError(const GlbTubes& plain, const GlbTubes& decoded, double rad
 
 json measureDraco(const knit::Scene& scene, const std::string& work) {
     json out;
-    const double R = scene.yarnRadius;
+    const double R = scene.yarnRadius();
     out["scene"] = sceneSummary(scene);
     knit::ExportOptions plain;
     plain.what = knit::ExportWhat::Tubes;

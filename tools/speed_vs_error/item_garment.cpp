@@ -25,7 +25,7 @@ json measureMaterializedGarment(const knit::Scene& streamed, const std::string& 
     out["reset_peak_ok"] = knit::util::resetPeakResident();
     const auto t0 = std::chrono::steady_clock::now();
     const double cpu0 = cpuSeconds();
-    const knit::Plies plies = knit::makePlies(streamed.yarns, streamed.plyOptions);
+    const knit::Plies plies = knit::makePlies(streamed.yarns(), streamed.plyOptions());
     out["plies_seconds"] = seconds(t0);
     knit::ExportInput in;
     in.curves = &plies.curves;
@@ -82,19 +82,19 @@ json measureGarment(int repeats, const std::string& work) {
     const double cpuTotal = cpuSeconds() - cpu0;
     const size_t peak = knit::util::peakResidentBytes();
     out["repeats"] = repeats;
-    out["mesh"] = {{"name", "drape"}, {"res", mo.resU}, {"size_m", mo.size}, {"triangles", scene.mesh.faceCount()}};
-    out["cells"] = scene.grid.cells.size();
-    out["tiles"] = scene.tiling.tiles.size();
-    out["yarn_vertices"] = scene.yarns.curves.pointCount();
-    out["tiled_vertices"] = scene.uvYarns.vertexCount();
+    out["mesh"] = {{"name", "drape"}, {"res", mo.resU}, {"size_m", mo.size}, {"triangles", scene.mesh().faceCount()}};
+    out["cells"] = scene.grid().cells.size();
+    out["tiles"] = scene.stages().tiling.tiles.size();
+    out["yarn_vertices"] = scene.yarns().curves.pointCount();
+    out["tiled_vertices"] = scene.stages().uvYarns.vertexCount();
     out["ply_vertices"] = es.vertices;
-    out["yarn_radius_m"] = scene.yarnRadius;
+    out["yarn_radius_m"] = scene.yarnRadius();
     out["samples_per_turn"] = knit::PlyOptions{}.samplesPerTurn;
     out["plies"] = knit::PlyOptions{}.count;
-    for (size_t i = 0; i < scene.timings.size(); ++i) {
-        const knit::StageTime& s = scene.timings[i];
+    for (size_t i = 0; i < scene.timings().size(); ++i) {
+        const knit::StageTime& s = scene.timings()[i];
         double cpu = -1;
-        if (cpuMarks.size() == scene.timings.size() && cpuMarks[i].first == s.stage)
+        if (cpuMarks.size() == scene.timings().size() && cpuMarks[i].first == s.stage)
             cpu = (i + 1 < cpuMarks.size() ? cpuMarks[i + 1].second : cpuBuilt) - cpuMarks[i].second;
         out["stages"].push_back({{"stage", s.stage}, {"seconds", s.seconds}, {"cpu_seconds", cpu}});
     }
@@ -109,7 +109,7 @@ json measureGarment(int repeats, const std::string& work) {
     out["threads"] = std::thread::hardware_concurrency();
     fs::remove(path);
     std::fprintf(stderr, "  garment: %zu cells, %zu yarn vertices, %zu ply vertices: %.2f s (CPU %.2f s), peak %.2f GB\n",
-                 scene.grid.cells.size(), scene.yarns.curves.pointCount(), es.vertices, total,
+                 scene.grid().cells.size(), scene.yarns().curves.pointCount(), es.vertices, total,
                  cpuTotal, double(peak) / 1e9);
     out["materialized"] = measureMaterializedGarment(scene, path);
     return out;

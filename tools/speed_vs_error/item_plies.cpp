@@ -113,21 +113,22 @@ json measurePlies() {
     // have (the resampler splits each input segment into a whole number of pieces, so the error
     // of one setting depends on the input spacing: the reported error is the worst over these).
     const knit::Scene speed = knitScene(64, 0.5, {70, 70}, false);
+    const knit::Polylines& speedYarns = speed.yarns().curves;
     std::vector<double> seg;
-    for (size_t c = 0; c < speed.yarns.curves.curveCount(); ++c)
-        for (uint32_t s = 0; s + 1 < speed.yarns.curves.size(c); ++s)
-            seg.push_back(glm::distance(speed.yarns.curves.points[speed.yarns.curves.begin(c) + s],
-                                        speed.yarns.curves.points[speed.yarns.curves.begin(c) + s + 1]) /
-                          speed.yarnRadius);
+    for (size_t c = 0; c < speedYarns.curveCount(); ++c)
+        for (uint32_t s = 0; s + 1 < speedYarns.size(c); ++s)
+            seg.push_back(glm::distance(speedYarns.points[speedYarns.begin(c) + s],
+                                        speedYarns.points[speedYarns.begin(c) + s + 1]) /
+                          speed.yarnRadius());
     std::sort(seg.begin(), seg.end());
     // Tightest bends of the real yarns: circumradius of consecutive vertex triples (5% quantile).
     std::vector<double> bend;
-    for (size_t c = 0; c < speed.yarns.curves.curveCount(); ++c)
-        for (uint32_t s = 0; s + 2 < speed.yarns.curves.size(c); ++s) {
-            const dvec3* p = speed.yarns.curves.points.data() + speed.yarns.curves.begin(c) + s;
+    for (size_t c = 0; c < speedYarns.curveCount(); ++c)
+        for (uint32_t s = 0; s + 2 < speedYarns.size(c); ++s) {
+            const dvec3* p = speedYarns.points.data() + speedYarns.begin(c) + s;
             const double a = glm::distance(p[0], p[1]), b = glm::distance(p[1], p[2]), d = glm::distance(p[0], p[2]);
             const double area2 = glm::length(glm::cross(p[1] - p[0], p[2] - p[0]));
-            if (area2 > 0) bend.push_back(a * b * d / (2 * area2) / speed.yarnRadius);
+            if (area2 > 0) bend.push_back(a * b * d / (2 * area2) / speed.yarnRadius());
         }
     std::sort(bend.begin(), bend.end());
     const std::vector<double> quantiles = {0.05, 0.25, 0.5, 0.75, 0.95};
@@ -160,10 +161,10 @@ json measurePlies() {
     }
 
     double speedLength = 0;  // total length of the speed scene's yarns
-    for (size_t c = 0; c < speed.yarns.curves.curveCount(); ++c) {
-        const uint32_t b = speed.yarns.curves.begin(c), n = speed.yarns.curves.size(c);
-        for (uint32_t s = 0; s < speed.yarns.curves.segmentCount(c); ++s)
-            speedLength += glm::distance(speed.yarns.curves.points[b + s], speed.yarns.curves.points[b + (s + 1) % n]);
+    for (size_t c = 0; c < speedYarns.curveCount(); ++c) {
+        const uint32_t b = speedYarns.begin(c), n = speedYarns.size(c);
+        for (uint32_t s = 0; s < speedYarns.segmentCount(c); ++s)
+            speedLength += glm::distance(speedYarns.points[b + s], speedYarns.points[b + (s + 1) % n]);
     }
     out["yarn_radius_m"] = R;
     out["pitch_in_R"] = pitch / R;
@@ -175,9 +176,9 @@ json measurePlies() {
     out["circle_radius_in_R"] = circle.rc / R;
     out["tight_bend_radius_in_R"] = tightBend;
     out["circle_turns"] = circle.turns;
-    out["speed_scene"] = {{"yarn_vertices", speed.yarns.curves.pointCount()},
-                          {"yarns", speed.yarns.curves.curveCount()},
-                          {"cells", speed.grid.cells.size()}};
+    out["speed_scene"] = {{"yarn_vertices", speedYarns.pointCount()},
+                          {"yarns", speedYarns.curveCount()},
+                          {"cells", speed.grid().cells.size()}};
     for (int k : {4, 5, 6, 8, 10, 12, 16, 20, 24, 32, 48, 64}) {
         knit::PlyOptions o = base;
         o.samplesPerTurn = k;
@@ -192,20 +193,20 @@ json measurePlies() {
             dc.maxDistance = std::max(dc.maxDistance, b.maxDistance);
         }
         knit::PlyOptions so = o;
-        so.yarnRadius = speed.yarnRadius;
+        so.yarnRadius = speed.yarnRadius();
         size_t plyVertices = 0;
         const Timing t = timeRuns([&] {
-            const knit::Plies p = knit::makePlies(speed.yarns, so);
+            const knit::Plies p = knit::makePlies(speed.yarns(), so);
             plyVertices = p.curves.pointCount();
         }, 3, 15, 1.0);
-        const double yarnVertices = double(speed.yarns.curves.pointCount());
+        const double yarnVertices = double(speedYarns.pointCount());
         json row;
         row["samples_per_turn"] = k;
         row["straight_max_dev_R"] = ds.maxDistance / R;
         row["circle_max_dev_R"] = dc.maxDistance / R;
         row["max_dev_R"] = std::max(ds.maxDistance, dc.maxDistance) / R;
         row["per_spacing"] = perSpacing;
-        row["ply_points_per_turn"] = double(plyVertices) / ro.count / (speedLength / (ro.pitch / R * speed.yarnRadius));
+        row["ply_points_per_turn"] = double(plyVertices) / ro.count / (speedLength / (ro.pitch / R * speed.yarnRadius()));
         row["ply_vertices"] = plyVertices;
         row["ply_vertices_per_yarn_vertex"] = double(plyVertices) / yarnVertices;
         row["seconds"] = timingJson(t);

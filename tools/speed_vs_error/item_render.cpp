@@ -34,9 +34,9 @@ json measureRender(const std::string& imageDir) {
     out["reference_spp"] = refSpp;
     out["light"] = knit::lightPlacementName(ro.light);
     out["tube_sides"] = ro.tubeSides;
-    out["scene"] = {{"ply_vertices", scene.plies.curves.pointCount()},
-                    {"ply_curves", scene.plies.curves.curveCount()},
-                    {"cells", scene.grid.cells.size()},
+    out["scene"] = {{"ply_vertices", scene.plies().curves.pointCount()},
+                    {"ply_curves", scene.plies().curves.curveCount()},
+                    {"cells", scene.grid().cells.size()},
                     {"plane_m", mo.size}};
     std::map<std::string, knit::Image> refs;
     for (const char* mode : {"curves", "tubes", "grid"}) {

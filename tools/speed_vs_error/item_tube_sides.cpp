@@ -80,7 +80,7 @@ Hausdorff tubeHausdorff(const knit::TubeMesh& m, const ExactTube& exact, int na,
 json measureTubeSides(const knit::Scene& scene, const std::string& work) {
     json out;
     const double r = 1.0;  // ply radius (errors are reported in ply radii and yarn radii)
-    const double plyToYarn = scene.plies.plyRadius / scene.yarnRadius;
+    const double plyToYarn = scene.plies().plyRadius / scene.yarnRadius();
     // Cylinder: a straight ply of 16 radii at the ply sampling of the default settings; torus: a
     // loop whose radius is the curvature radius of a default ply helix, (Rc^2 + c^2) / Rc with
     // Rc the ply centre radius and c = pitch / 2 pi, sampled at 360 points (chord error ~2e-4 r,
@@ -144,7 +144,7 @@ json measureTubeSides(const knit::Scene& scene, const std::string& work) {
         row["hausdorff_R"] = std::max(hc.value(), ht.value()) / r * plyToYarn;
         row["triangles"] = es.triangles;
         row["vertices"] = es.vertices;
-        row["triangles_per_ply_vertex"] = double(es.triangles) / double(scene.plies.curves.pointCount());
+        row["triangles_per_ply_vertex"] = double(es.triangles) / double(scene.plies().curves.pointCount());
         row["bytes"] = fileBytes(path);
         row["export_seconds"] = timingJson(t);
         out["rows"].push_back(row);

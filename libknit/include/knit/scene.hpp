@@ -2,10 +2,9 @@
 // renderer and benchmarks. Each step is a plain call of a stage function; nothing hidden.
 #pragma once
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json_fwd.hpp>
 
 #include "knit/base_mesh.hpp"
 #include "knit/binding.hpp"
@@ -39,22 +38,67 @@ struct StageTime {
     double seconds = 0;
 };
 
-struct Scene {
-    Pattern pattern;
-    BaseMesh mesh;
-    std::vector<glm::dvec3> normals;  // rest-pose vertex normals
-    PatternPlacement placement;
-    double yarnRadius = 0;            // object space (metres)
-    UvGrid grid;
+// The intermediate results between the UV grid and the binding, for diagnostics and tests
+// (Scene::stages); exporters and renderers need none of them.
+struct SceneStages {
     Tiling tiling;                    // tiles over every covered cell
     std::vector<Tiling> chartTilings; // when UV charts overlap: one tiling per chart, which the
                                       // yarns come from (empty otherwise)
-    UvYarns uvYarns;
-    BindResult bound;
+    UvYarns uvYarns;                  // the stitched yarns in UV space, before binding
+};
+
+// What a Scene made without the pipeline stages holds (Scene::fromParts): synthetic scenes for
+// renderer and export tests and benchmarks. Parts left empty stay empty in the Scene.
+struct SceneParts {
+    BaseMesh mesh;
+    std::vector<glm::dvec3> normals;  // rest-pose vertex normals
+    double yarnRadius = 0;            // object space (metres)
+    UvGrid grid;                      // the renderer's grid mode needs only cellSize
+    Binding binding;                  // of `yarns` on `mesh`
     MappedYarns yarns;
-    Plies plies;                      // empty unless SceneOptions::buildPlies
-    PlyOptions plyOptions;            // ply settings, yarnRadius set (resolved when plies were built)
-    std::vector<StageTime> timings;
+    Plies plies;
+};
+
+// The result of the pipeline: read-only, made by buildScene (or Scene::fromParts).
+class Scene {
+public:
+    // An empty scene (no mesh, no yarns), to assign a built one to later.
+    Scene() = default;
+    // A scene from parts made without the pipeline: no pattern, placement, stages, bind
+    // statistics or timings; plyOptions are the defaults with the parts' yarn radius.
+    static Scene fromParts(SceneParts parts);
+
+    const Pattern& pattern() const { return pattern_; }
+    const BaseMesh& mesh() const { return mesh_; }
+    const std::vector<glm::dvec3>& normals() const { return normals_; }  // rest-pose vertex normals
+    const PatternPlacement& placement() const { return placement_; }
+    double yarnRadius() const { return yarnRadius_; }  // object space (metres)
+    const UvGrid& grid() const { return grid_; }
+    const Binding& binding() const { return bound_.binding; }
+    const BindStats& bindStats() const { return bound_.stats; }
+    const MappedYarns& yarns() const { return yarns_; }
+    const Plies& plies() const { return plies_; }  // empty unless SceneOptions::buildPlies
+    // Ply settings, yarnRadius set (resolved when the plies were built; else by their consumer).
+    const PlyOptions& plyOptions() const { return plyOptions_; }
+    const std::vector<StageTime>& timings() const { return timings_; }  // wall time per stage
+    // Intermediate results (tiling, UV yarns) for diagnostics and tests.
+    const SceneStages& stages() const { return stages_; }
+
+private:
+    friend class SceneBuilder;  // scene.cpp: runs the stages of buildScene into a Scene
+
+    Pattern pattern_;
+    BaseMesh mesh_;
+    std::vector<glm::dvec3> normals_;
+    PatternPlacement placement_;
+    double yarnRadius_ = 0;
+    UvGrid grid_;
+    SceneStages stages_;
+    BindResult bound_;
+    MappedYarns yarns_;
+    Plies plies_;
+    PlyOptions plyOptions_;
+    std::vector<StageTime> timings_;
 };
 
 // Runs: load pattern -> load mesh -> normals -> placement -> UV grid -> tiling -> stitch ->
@@ -63,7 +107,30 @@ Scene buildScene(const SceneOptions& options);
 // The same from an in-memory pattern and mesh (options.pattern / options.mesh are ignored).
 Scene buildScene(Pattern pattern, BaseMesh mesh, const SceneOptions& options);
 
-// Counts, per-stage wall times and segment statistics (the JSON report of `knit build`).
-nlohmann::json sceneReport(const Scene& scene);
+// Lengths of the segments of a curve set (closed curves count their closing segment).
+struct SegmentStats {
+    size_t segments = 0;
+    double medianLength = 0;   // the upper median; 0 without segments
+    double longestLength = 0;  // 0 without segments
+};
+
+// Counts, vertices per level, segment statistics and stage times of a scene: the numbers of the
+// `knit build` report besides the pattern, mesh and placement (apps/knit/report.cpp).
+struct SceneStats {
+    size_t cells = 0;
+    size_t tiles = 0;       // the tiles the yarns come from (all chart tilings when charts overlap)
+    size_t yarns = 0;
+    size_t tiledYarns = 0;
+    BindStats bind;         // closed loops, open ends, cut / clamped / boundary vertices, welds
+    size_t tiledVertices = 0;
+    size_t yarnVertices = 0;
+    size_t plyVertices = 0;
+    SegmentStats yarnSegments;
+    std::optional<SegmentStats> plySegments;  // when the scene holds plies
+    std::vector<StageTime> stageTimes;        // Scene::timings
+    double totalSeconds = 0;                  // their sum
+};
+
+SceneStats sceneStats(const Scene& scene);
 
 }  // namespace knit

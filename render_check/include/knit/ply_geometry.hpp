@@ -54,7 +54,7 @@ PlyGeometry buildPlyGeometry(const Plies& plies, const glm::dvec3& origin, doubl
 // Two-stage mode: the UV-grid cell (i, j) of every segment, packed as (int64(i) << 32) | uint32(j).
 // A ply segment takes the cell of the UV position of the nearest vertex of its source yarn
 // (binding: triangle + barycentrics, evaluated with the mesh's UVs; cells of size
-// scene.grid.cellSize). Throws knit::Error when the scene has no binding / grid for its yarns.
+// scene.grid().cellSize). Throws knit::Error when the scene has no binding / grid for its yarns.
 std::vector<int64_t> segmentCells(const Scene& scene, const PlyGeometry& geometry);
 
 }  // namespace knit

@@ -1,8 +1,8 @@
 // knit/synthetic_scene.hpp — a small analytic ply scene for renderer tests and benchmarks, built
 // without the pipeline stages: straight yarns along u over the plane z = 0 (optionally waving up and
 // down), each twisted into touching helical plies, with the binding (plane triangles + barycentrics)
-// and the UV-grid cell size the two-stage mode needs. Only the Scene fields the renderer reads are
-// filled: mesh, normals, grid.cellSize, yarnRadius, bound.binding, yarns, plies.
+// and the UV-grid cell size the two-stage mode needs. Only the parts the renderer reads are
+// filled (Scene::fromParts): mesh, normals, grid.cellSize, yarnRadius, binding, yarns, plies.
 #pragma once
 #include <glm/vec3.hpp>
 
