@@ -94,4 +94,18 @@ inline std::string checkStitch(const ChartCell& cell, int row, int column) {
     return "";
 }
 
+// The part of the promise that survives relaxation (where stitches lean and roll, crossings
+// with the loop below may merge or split in the projection): the highest crossing (the new
+// loop's legs over the old loop's head) has the new loop in front for knit, behind for purl,
+// and the lowest the other way round.
+inline std::string checkStitchEnds(const ChartCell& cell, int row, int column) {
+    const std::vector<Crossing> c = stitchCrossings(cell, row, column);
+    const std::string where = "stitch (" + std::to_string(row) + ", " + std::to_string(column) + ")";
+    if (c.size() < 2) return where + ": " + std::to_string(c.size()) + " crossings with the loop below, expected at least 2";
+    const bool knit = cell.loop(row, column).kind == StitchKind::Knit;
+    if ((c.back().at.z > c.back().zb) != knit) return where + ": the new loop's legs are on the wrong side of the head below";
+    if ((c.front().at.z > c.front().zb) == knit) return where + ": the new loop's base is on the wrong side of the legs below";
+    return "";
+}
+
 }  // namespace knit::test
