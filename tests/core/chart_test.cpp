@@ -3,17 +3,13 @@
 
 #include "knit/chart.hpp"
 #include "knit/error.hpp"
+#include "test_util.hpp"
 
 namespace knit {
 namespace {
 
 std::string chartError(const std::string& text) {
-    try {
-        parseChart(text, "bad.chart");
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "";
+    return test::errorOf([&] { parseChart(text, "bad.chart"); });
 }
 
 TEST(Chart, bottomRowIsTheLastLine) {

@@ -108,4 +108,14 @@ inline std::string checkStitchEnds(const ChartCell& cell, int row, int column) {
     return "";
 }
 
+// Stitch (knitRow, knitCol) knit and (purlRow, purlCol) purl: at its highest crossing with the
+// loop below, the knit loop is in front and the purl loop behind. "" or what is wrong.
+inline std::string knitInFrontPurlBehind(const ChartCell& cell, int knitRow, int knitCol, int purlRow, int purlCol) {
+    const std::vector<Crossing> k = stitchCrossings(cell, knitRow, knitCol), p = stitchCrossings(cell, purlRow, purlCol);
+    if (k.size() != 4 || p.size() != 4) return "expected 4 crossings per stitch";
+    if (!(k[3].at.z > k[3].zb)) return "the knit loop is not in front of the head below";
+    if (!(p[3].at.z < p[3].zb)) return "the purl loop is not behind the head below";
+    return "";
+}
+
 }  // namespace knit::test
