@@ -8,7 +8,7 @@
 #
 # Usage: scripts/fuzz.sh [SECONDS_PER_TARGET] [TARGET ...]
 #   SECONDS_PER_TARGET  default 60 (or $KNIT_FUZZ_SECONDS)
-#   TARGET              pyp curves_json obj ply off gltf material (default: all)
+#   TARGET              pyp curves_json obj ply off gltf chart material (default: all)
 # Environment: KNIT_FUZZ_BUILD_DIR (default build-fuzz), KNIT_JOBS (build jobs, default 2),
 #   KNIT_FUZZ_SEED (libFuzzer -seed, default 1),
 #   KNIT_FUZZ_RENDER_CHECK=OFF to skip the material parser (and the Embree build it needs).
@@ -24,7 +24,7 @@ render=${KNIT_FUZZ_RENDER_CHECK:-ON}
 seed=${KNIT_FUZZ_SEED:-1}
 targets=("$@")
 if [ ${#targets[@]} -eq 0 ]; then
-  targets=(pyp curves_json obj ply off gltf)
+  targets=(pyp curves_json obj ply off gltf chart)
   [ "$render" = ON ] && targets+=(material)
 fi
 

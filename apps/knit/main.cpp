@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 
 #include "build_command.hpp"
+#include "chart_command.hpp"
 #include "generate_command.hpp"
 #include "info_command.hpp"
 #include "knit/error.hpp"
@@ -26,9 +27,11 @@ int main(int argc, char** argv) {
     BuildCommand build;
     InfoCommand info;
     GenerateCommand generate;
+    ChartCommand chart;
     addBuildCommand(app, build);
     addInfoCommand(app, info);
     addGenerateCommand(app, generate);
+    addChartCommand(app, chart);
 #ifdef KNIT_HAVE_RENDER_CHECK
     RenderCommand render;
     addRenderCommand(app, render);
@@ -43,6 +46,7 @@ int main(int argc, char** argv) {
     try {
         if (*info.command) return runInfo(info);
         if (*generate.command) return runGenerate(generate);
+        if (*chart.command) return runChart(chart);
         if (*build.command) return runBuild(build);
 #ifdef KNIT_HAVE_RENDER_CHECK
         if (*render.command) return runRender(render);

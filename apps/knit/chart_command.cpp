@@ -1,0 +1,54 @@
+// `knit chart`: parse the chart, relax it, write the .pyp cell and an optional JSON report.
+#include "chart_command.hpp"
+
+#include <cstdio>
+
+#include <nlohmann/json.hpp>
+
+#include "knit/chart.hpp"
+#include "knit/chart_pattern.hpp"
+#include "knit/export.hpp"
+#include "knit/pattern.hpp"
+
+namespace knit::cli {
+
+void addChartCommand(CLI::App& app, ChartCommand& c) {
+    c.command = app.add_subcommand("chart", "Relax a stitch chart (.chart/.txt or chart:NAME) into a periodic .pyp cell");
+    c.command->add_option("chart", c.chart, "Chart file, or a built-in chart:NAME")->required();
+    c.command->add_option("-o,--output", c.output, "Output .pyp file")->required();
+    c.command->add_option("--yarn-radius", c.yarnRadius, "Yarn radius (metres)")->check(CLI::PositiveNumber)->capture_default_str();
+    c.command->add_option("--report", c.report, "Write a JSON report (size, iterations, min distance, period)");
+}
+
+namespace {
+
+nlohmann::json reportOf(const Chart& chart, const ChartPattern& cp) {
+    const Pattern& p = cp.relaxed.pattern;
+    return {{"chart", chart.name},
+            {"stitches", chart.width},
+            {"rows", chart.height},
+            {"vertices", p.points.size()},
+            {"period_m", {p.px, p.py}},
+            {"yarn_radius_m", p.radius},
+            {"iterations", cp.relaxed.iterations},
+            {"converged", cp.relaxed.converged},
+            {"min_distance_radii", cp.relaxed.minDistance},
+            {"seconds", cp.seconds}};
+}
+
+}  // namespace
+
+int runChart(const ChartCommand& c) {
+    const Chart chart = c.chart.rfind("chart:", 0) == 0 ? builtinChart(c.chart) : loadChart(c.chart);
+    ChartPatternOptions options;
+    options.radius = c.yarnRadius;
+    const ChartPattern cp = relaxChart(chart, options);
+    writeFileAtomically(c.output, [&](std::ostream& out) { writePyp(out, cp.relaxed.pattern); }, false);
+    if (!c.report.empty())
+        writeFileAtomically(c.report, [&](std::ostream& out) { out << reportOf(chart, cp).dump(2) << '\n'; }, false);
+    std::printf("wrote %s (%d x %d stitches, %zu vertices, min distance %.3f r, %.2f s)\n", c.output.c_str(), chart.width, chart.height,
+                cp.relaxed.pattern.points.size(), cp.relaxed.minDistance, cp.seconds);
+    return 0;
+}
+
+}  // namespace knit::cli

@@ -1,0 +1,48 @@
+// Chart relaxation targets of issue 13: a 2 x 2 stockinette in <= 2 s, a 12-stitch x 16-row
+// cable cell in <= 60 s (2 cores). Counters: iterations, min distance (radii), L r / A.
+#include <benchmark/benchmark.h>
+
+#include <string>
+
+#include <glm/geometric.hpp>
+
+#include "knit/chart.hpp"
+#include "knit/chart_pattern.hpp"
+
+namespace {
+
+double lengthPerArea(const knit::Pattern& p) {
+    double L = 0;
+    for (const knit::PeriodicEdge& e : p.edges)
+        L += glm::length(p.points[e.v1] + glm::dvec3(e.dx * p.px, e.dy * p.py, 0) - p.points[e.v0]);
+    return L * p.radius / (p.px * p.py);
+}
+
+// 12 stitches x 16 rows: two 2/2 cables (front and back) between purl columns, crossed every
+// 8 rows.
+std::string cableCell() {
+    std::string text;
+    for (int row = 15; row >= 0; --row) {
+        if (row % 8 == 0) text += "p p c2/2f p p c2/2b\n";
+        else text += "p p k k k k p p k k k k\n";
+    }
+    return text;
+}
+
+void relax(benchmark::State& state, const knit::Chart& chart) {
+    knit::ChartPattern cp;
+    for (auto _ : state) cp = knit::relaxChart(chart);
+    state.counters["iterations"] = cp.relaxed.iterations;
+    state.counters["min_distance_r"] = cp.relaxed.minDistance;
+    state.counters["L_r_per_A"] = lengthPerArea(cp.relaxed.pattern);
+    state.counters["vertices"] = double(cp.relaxed.pattern.points.size());
+}
+
+void BM_RelaxStockinette2x2(benchmark::State& state) { relax(state, knit::builtinChart("chart:stockinette")); }
+void BM_RelaxCable12x16(benchmark::State& state) { relax(state, knit::parseChart(cableCell(), "cable12x16")); }
+
+}  // namespace
+
+BENCHMARK(BM_RelaxStockinette2x2)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_RelaxCable12x16)->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK_MAIN();

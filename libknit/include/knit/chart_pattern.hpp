@@ -1,0 +1,31 @@
+// knit/chart_pattern.hpp — a stitch chart all the way to a relaxed periodic pattern:
+// parse (knit/chart.hpp) -> initial cell (knit/chart_topology.hpp) -> relaxYarn (knit/relax.hpp).
+#pragma once
+#include <string>
+
+#include "knit/chart.hpp"
+#include "knit/chart_topology.hpp"
+#include "knit/relax.hpp"
+
+namespace knit {
+
+struct ChartPatternOptions {
+    double radius = 0.001;      // yarn radius (metres)
+    int samplesPerStitch = 24;
+    // The initial cell is a loose construction: the yarn's rest length is this fraction of it,
+    // so relaxation pulls the stitches tight until the yarns touch (0.8 gives the HYLC
+    // stockinette's yarn length per area within 7%, see docs/charts.md).
+    double restLength = 0.8;
+    int maxIterations = 4000;
+};
+
+struct ChartPattern {
+    ChartCell cell;        // the initial cell and its stitch record (vertex ranges stay valid)
+    RelaxResult relaxed;   // relaxed.pattern is the result
+    double seconds = 0;    // relaxation wall time
+};
+
+// Throws knit::Error for bad options (radius, samples) or an invalid chart cell.
+ChartPattern relaxChart(const Chart& chart, const ChartPatternOptions& options = {});
+
+}  // namespace knit

@@ -1,0 +1,47 @@
+// knit/relax.hpp — the project's periodic yarn relaxation: a pattern's yarn comes to rest with
+// its period free.
+//
+// Energy (in yarn radii, r = 1), minimised over every vertex and the period (px, py):
+//   * inextensibility: stretch * sum_e L0_e (|e| / L0_e - 1)^2, L0 = restLength x the input's
+//     edge lengths (below 1: the input is a loose construction the yarn pulls tight);
+//   * bending: bend * sum_v |x_prev - 2 x_v + x_next|^2 / l^3 (l = mean rest length);
+//   * contact: contact * sum (D - d)^2 over pairs of distinct, non-adjacent segments (any
+//     periodic image) closer than D = contactDistance radii, d their centreline distance;
+//     pairs come from a spatial hash over the periodic images (a Verlet list rebuilt when any
+//     vertex has moved by half the skin).
+// Solver: L-BFGS (Nocedal & Wright, Numerical Optimization, algorithm 7.4, memory 8) with a
+// backtracking Armijo line search and a cap on how far a vertex may move per step (so yarns
+// cannot pass through each other). Single-threaded, fixed order: the result is deterministic.
+#pragma once
+#include "knit/pattern.hpp"
+
+namespace knit {
+
+struct RelaxOptions {
+    double stretch = 200;            // inextensibility weight
+    double bend = 1;                 // bending weight
+    double contact = 400;            // contact penalty weight
+    double contactDistance = 2.05;   // D, in yarn radii (the penalty settles slightly inside D)
+    double restLength = 1.0;         // rest length / input length, per edge
+    bool freePeriod = true;          // the period (px, py) is a variable
+    int maxIterations = 4000;
+    double gradientTolerance = 1e-4; // stop when the largest gradient entry is below this
+    double maxStep = 0.25;           // largest vertex move per step, in yarn radii
+};
+
+struct RelaxResult {
+    Pattern pattern;           // the relaxed cell (twist 0), ready for writePyp
+    int iterations = 0;
+    bool converged = false;    // the gradient tolerance was reached
+    double energy = 0;
+    double minDistance = 0;    // smallest distance between distinct non-adjacent segments, in radii
+};
+
+// Throws knit::Error when the pattern is invalid or a yarn has fewer than 4 vertices.
+RelaxResult relaxYarn(const Pattern& initial, const RelaxOptions& options = {});
+
+// Smallest centreline distance between distinct, non-adjacent segments (along a yarn: more
+// than two segments apart), over all periodic images, in yarn radii.
+double minYarnDistance(const Pattern& pattern);
+
+}  // namespace knit

