@@ -19,10 +19,10 @@ TEST(ChartScene, relaxedStockinetteClosesItsCoursesAroundACylinder) {
     o.placement.repeats = {4, 4};
     o.buildPlies = false;
     const Scene scene = buildScene(p, builtinMesh("cylinder"), o);
-    const Polylines& y = scene.yarns.curves;
+    const Polylines& y = scene.yarns().curves;
     // Around the cylinder (u wraps) every course of the 4 x 2 rows closes into a loop, but those
     // whose loops reach over the open top or bottom rim, which are cut there.
-    EXPECT_GE(scene.bound.stats.closedLoops, 6u);
+    EXPECT_GE(scene.bindStats().closedLoops, 6u);
     for (size_t c = 0; c < y.curveCount(); ++c) {
         ASSERT_GE(y.size(c), 2u);
         for (uint32_t i = y.begin(c); i + 1 < y.end(c); ++i) {
