@@ -12,10 +12,13 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <unistd.h>
 
 #include "knit/base_mesh.hpp"
+#include "knit/chart.hpp"
+#include "knit/chart_topology.hpp"
 #include "knit/error.hpp"
 #include "knit/pattern.hpp"
 #include "knit/uv_grid.hpp"
@@ -136,6 +139,24 @@ inline Outcome runPly(const uint8_t* data, size_t size) {
 inline Outcome runOff(const uint8_t* data, size_t size) {
     static TempFile file(".off");
     return runMesh(data, size, file);
+}
+
+// Stitch chart text -> Chart (every stitch's source column inside the chart) -> initial cell
+// (validated by chartToCell) for charts of at most 64 stitches.
+inline Outcome runChart(const uint8_t* data, size_t size) {
+    if (size > kMaxInput) return Outcome::Rejected;
+    try {
+        const Chart chart = parseChart(std::string(reinterpret_cast<const char*>(data), size), "fuzz.chart");
+        if (chart.width <= 0 || chart.height <= 0 || chart.kind.size() != size_t(chart.width) * size_t(chart.height))
+            throw std::logic_error("chart: inconsistent size");
+        for (int r = 0; r < chart.height; ++r)
+            for (int c = 0; c < chart.width; ++c)
+                if (chart.sourceColumn(r, c) < 0 || chart.sourceColumn(r, c) >= chart.width) throw std::logic_error("chart: source column outside");
+        if (chart.width * chart.height <= 64) chartToCell(chart, ChartCellOptions{0.001, 8});
+        return Outcome::Parsed;
+    } catch (const Error&) {
+        return Outcome::Rejected;
+    }
 }
 
 #ifdef KNIT_FUZZ_HAVE_RENDER_CHECK

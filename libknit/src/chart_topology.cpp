@@ -22,10 +22,18 @@ constexpr double kModelRadius = 0.8;
 // rows lie: the head is crossed by the legs above around |t| ~ 0.36, the legs are crossed by
 // the feet above around |t| ~ 1.45 and cross the head below around |t| ~ 1.7, the feet cross
 // the legs below around |t| ~ 2.78. Changes of height happen between them.
-constexpr double kHeadEnd = 0.4, kLegLower = 1.4;     // a cable's head shift fades over [0.4, 1.4]
 constexpr double kLegSwitch0 = 1.47, kLegSwitch1 = 1.67;  // upper -> lower stitch kind
 constexpr double kFootBlend = 0.36;                    // neighbouring columns' kinds meet at the foot
-constexpr double kCableDepth = 0.6;                    // extra height of crossing cable legs
+// A row below a cable row is stretched: the upper part of its loops (head and upper legs, all
+// that the row above touches) rises by kCableLift and, for the cable's loops, moves to the new
+// column, between the crossing with the feet above (|t| ~ 1.45) and the crossing with the head
+// below (|t| ~ 1.7). The cable's legs cross there, kCableDepth apart in height.
+constexpr double kShift0 = 1.5, kShift1 = 1.66;
+constexpr double kCableLift = 3.0;
+constexpr double kCableDepth = 1.0;
+// Such loops are sampled densely around |t| = pi / 2 (t = u + kWarp sin 2u, monotone for
+// kWarp < 1/2), so the long cable legs get several vertices.
+constexpr double kWarp = 0.4;
 
 double sign(StitchKind k) { return k == StitchKind::Knit ? 1.0 : -1.0; }
 double smooth(double a, double b, double x) {  // 0 at a, 1 at b (either order)
@@ -68,13 +76,31 @@ std::vector<StitchLoop> stitchLoops(const Chart& chart, int samples) {
     return loops;
 }
 
-// Step 2: one vertex of a loop at parameter t, in model units.
-glm::dvec3 loopPoint(const Chart& chart, const StitchLoop& l, double t) {
+// Step 2: where each row sits (rows below a cable row are stretched by kCableLift).
+struct RowLayout {
+    std::vector<double> y;         // y of each row's loop centres
+    std::vector<bool> stretched;   // the row above has a cable
+    double period = 0;
+};
+RowLayout rowLayout(const Chart& chart) {
+    RowLayout rows;
+    for (int r = 0; r < chart.height; ++r) {
+        const int up = wrap(r + 1, chart.height);
+        const bool cable = std::any_of(chart.cables.begin(), chart.cables.end(), [&](const ChartCable& c) { return c.row == up; });
+        rows.y.push_back(rows.period);
+        rows.stretched.push_back(cable);
+        rows.period += kRowPitch + (cable ? kCableLift : 0.0);
+    }
+    return rows;
+}
+
+// Step 3: one vertex of a loop at parameter t, in model units.
+glm::dvec3 loopPoint(const Chart& chart, const RowLayout& rows, const StitchLoop& l, double t) {
     const double at = std::abs(t);
-    // Plane: the plain-knit curve, the head moved by a cable of the row above.
-    const double shift = util::kTwoPi * l.headShift * smooth(kLegLower, kHeadEnd, at);
-    const double x = util::kTwoPi * l.column + t + kLoopWidth * std::sin(2 * t) + shift;
-    const double y = kRowPitch * l.row + kLoopHeight * std::cos(t);
+    // Plane: the plain-knit curve; the upper part lifted and moved by a cable of the row above.
+    const double upper = rows.stretched[size_t(l.row)] ? smooth(kShift1, kShift0, at) : 0.0;
+    const double x = util::kTwoPi * (l.column + l.headShift * upper) + t + kLoopWidth * std::sin(2 * t);
+    const double y = rows.y[size_t(l.row)] + kLoopHeight * std::cos(t) + kCableLift * upper;
     // Height: the upper half follows the stitch pulled through this loop, the lower half this
     // stitch; at the feet the neighbouring column's kind takes over half-way.
     const Above above = rowAbove(chart, l.row, l.column);
@@ -83,12 +109,18 @@ glm::dvec3 loopPoint(const Chart& chart, const StitchLoop& l, double t) {
     const double low = sign(l.kind) + 0.5 * (neighbour - sign(l.kind)) * smooth(util::kPi - kFootBlend, util::kPi, at);
     const double s = up + (low - up) * smooth(kLegSwitch0, kLegSwitch1, at);
     double z = -kDepth * std::cos(2 * t) * s;
-    // Cable legs: the left-moving ones in front for a front cross.
-    if (l.headShift != 0 && at > kHeadEnd && at < kLegLower) {
-        const double bump = std::sin(util::kPi * (at - kHeadEnd) / (kLegLower - kHeadEnd));
-        z += ((l.headShift < 0) == above.front ? 1.0 : -1.0) * kCableDepth * kDepth * bump * bump;
+    // Cable legs, where they cross: the left-moving ones in front for a front cross.
+    if (l.headShift != 0) {
+        const double bump = std::sin(util::kPi * upper);
+        z += ((l.headShift < 0) == above.front ? 1.0 : -1.0) * kCableDepth * kDepth * bump;
     }
     return {x, y, z};
+}
+
+// The loop parameter of sample i of n: uniform, or dense around |t| = pi / 2 on stretched rows.
+double loopParameter(const RowLayout& rows, const StitchLoop& l, int i, int n) {
+    const double u = -util::kPi + util::kTwoPi * i / n;
+    return rows.stretched[size_t(l.row)] ? u + kWarp * std::sin(2 * u) : u;
 }
 
 }  // namespace
@@ -105,11 +137,12 @@ ChartCell chartToCell(const Chart& chart, const ChartCellOptions& options) {
     Pattern& p = cell.pattern;
     p.name = chart.name;
     p.px = util::kTwoPi * chart.width * s;
-    p.py = kRowPitch * chart.height * s;
+    const RowLayout rows = rowLayout(chart);
+    p.py = rows.period * s;
     p.radius = options.radius;
-    // Step 3: the vertices, loop by loop along each course; the course closes through +x.
+    // Step 4: the vertices, loop by loop along each course; the course closes through +x.
     for (const StitchLoop& l : cell.loops)
-        for (int i = 0; i < n; ++i) p.points.push_back(loopPoint(chart, l, -util::kPi + util::kTwoPi * i / n) * s);
+        for (int i = 0; i < n; ++i) p.points.push_back(loopPoint(chart, rows, l, loopParameter(rows, l, i, n)) * s);
     p.twist.assign(p.points.size(), 0.0);
     const uint32_t perCourse = uint32_t(chart.width * n);
     for (int r = 0; r < chart.height; ++r) {
@@ -117,7 +150,7 @@ ChartCell chartToCell(const Chart& chart, const ChartCellOptions& options) {
         for (uint32_t i = 0; i + 1 < perCourse; ++i) p.edges.push_back({first + i, first + i + 1, 0, 0});
         p.edges.push_back({first + perCourse - 1, first, 1, 0});
     }
-    // Step 4: the colour layer, per loop.
+    // Step 5: the colour layer, per loop.
     if (!chart.colour.empty())
         for (const StitchLoop& l : cell.loops) cell.colour.push_back(chart.palette.at(chart.colour[size_t(l.row) * size_t(chart.width) + size_t(l.column)]));
     validatePattern(p, p.name);

@@ -99,9 +99,11 @@ double contactEnergy(const Problem& pb, const std::vector<Pair>& pairs, const Ve
     return e;
 }
 
-double energy(const Problem& pb, const std::vector<Pair>& pairs, const Vec& v, Vec& g) {
+// The total energy and its gradient; *minDistance (when given) gets the smallest pair distance.
+double energy(const Problem& pb, const std::vector<Pair>& pairs, const Vec& v, Vec& g, double* minDistance = nullptr) {
     g.setZero(v.size());
-    const double e = stretchEnergy(pb, v, g) + bendEnergy(pb, v, g) + contactEnergy(pb, pairs, v, g, nullptr);
+    if (minDistance) *minDistance = std::numeric_limits<double>::infinity();
+    const double e = stretchEnergy(pb, v, g) + bendEnergy(pb, v, g) + contactEnergy(pb, pairs, v, g, minDistance);
     if (!pb.opt.freePeriod) g[3 * pb.n] = g[3 * pb.n + 1] = 0;
     return e;
 }
@@ -158,6 +160,15 @@ double largestMove(const Problem& pb, const Vec& d) {
     return std::max({m, std::abs(d[Eigen::Index(3 * pb.n)]), std::abs(d[Eigen::Index(3 * pb.n + 1)])});
 }
 
+// Continuous collision bound: with M = largestMove, a point of a segment moves by at most 3 M in
+// a step (its vertices, plus the period up to twice for an image's end), a point of the other
+// segment of a pair by at most 5 M (its image offset adds up to two periods more), so two
+// segments dmin apart cannot meet while 8 M stays below dmin. Pairs outside the list are
+// farther apart than the skin, which the rebuild rule keeps larger than the moves.
+double collisionFreeStep(const Problem& pb, const Vec& d, double dmin) {
+    return 0.9 * dmin / std::max(8.0 * largestMove(pb, d), 1e-300);
+}
+
 // The L-BFGS two-loop recursion: direction = -H g.
 Vec lbfgsDirection(const Vec& g, const std::vector<Vec>& S, const std::vector<Vec>& Y) {
     Vec q = g;
@@ -191,9 +202,11 @@ RelaxResult relaxYarn(const Pattern& initial, const RelaxOptions& options) {
     std::vector<Pair> pairs = pairsOf(pb, v, skin);
     double moved = 0;  // since the pair list was built
     Vec g, gNew, vNew;
-    double e = energy(pb, pairs, v, g);
+    double dmin = 0, dminNew = 0;  // smallest pair distance now and after the trial step
+    double e = energy(pb, pairs, v, g, &dmin);
     std::vector<Vec> S, Y;
     RelaxResult result;
+    result.closestApproach = dmin;
     int it = 0;
     for (; it < options.maxIterations; ++it) {
         if (g.lpNorm<Eigen::Infinity>() < options.gradientTolerance) {
@@ -207,13 +220,14 @@ RelaxResult relaxYarn(const Pattern& initial, const RelaxOptions& options) {
             Y.clear();
             d = -g;
         }
-        // Step 3: backtracking line search from a step capped at maxStep per vertex.
-        double step = std::min(1.0, options.maxStep / std::max(largestMove(pb, d), 1e-300));
+        // Step 3: backtracking line search from a step capped at maxStep per vertex and by the
+        // continuous collision bound (no two segments can pass through each other).
+        double step = std::min({1.0, options.maxStep / std::max(largestMove(pb, d), 1e-300), collisionFreeStep(pb, d, dmin)});
         double eNew = e;
         bool accepted = false;
         for (int k = 0; k < 40 && !accepted; ++k, step *= 0.5) {
             vNew = v + step * d;
-            eNew = energy(pb, pairs, vNew, gNew);
+            eNew = energy(pb, pairs, vNew, gNew, &dminNew);
             accepted = eNew <= e + 1e-4 * step * d.dot(g);
         }
         if (!accepted) {
@@ -237,10 +251,12 @@ RelaxResult relaxYarn(const Pattern& initial, const RelaxOptions& options) {
         v.swap(vNew);
         g.swap(gNew);
         e = eNew;
+        dmin = dminNew;
+        result.closestApproach = std::min(result.closestApproach, dmin);
         if (moved > 0.5 * skin) {
             pairs = pairsOf(pb, v, skin);
             moved = 0;
-            e = energy(pb, pairs, v, g);
+            e = energy(pb, pairs, v, g, &dmin);
         }
     }
     result.iterations = it;

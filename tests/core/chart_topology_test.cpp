@@ -5,6 +5,7 @@
 #include "crossings.hpp"
 #include "knit/chart.hpp"
 #include "knit/chart_topology.hpp"
+#include "knit/relax.hpp"
 
 namespace knit {
 namespace {
@@ -20,9 +21,36 @@ TEST(ChartTopology, knitAndPurlChartsHaveTheCrossingStructureOfTheirStitches) {
         if (name != "chart:cable4") expectCrossingStructure(name);
 }
 
-// Known gap: the cable loops' displaced heads are not yet threaded by the loops above (all four
-// crossings come out in front). See docs/charts.md, "Status".
-TEST(ChartTopology, DISABLED_cableLoopsAreThreadedThroughTheirSourceLoops) { expectCrossingStructure("chart:cable4"); }
+TEST(ChartTopology, cableLoopsAreThreadedThroughTheirSourceLoops) {
+    expectCrossingStructure("chart:cable4");
+    for (const char* text : {"k k k k\nc2/2b\n", "k k k k k k k k k k\nk c1/1f c3/3b k\n", "p k k p\np c1/1b p\n"}) {
+        const ChartCell cell = chartToCell(parseChart(text, text));
+        // Distinct yarns do not touch in the loose construction (the relaxation starts untangled).
+        EXPECT_GT(minYarnDistance(cell.pattern), 0.3) << text;
+        for (int r = 0; r < cell.height; ++r)
+            for (int c = 0; c < cell.width; ++c) EXPECT_EQ(test::checkStitch(cell, r, c), "") << text;
+    }
+}
+
+// The legs of a cable's loops (the row below the cable row) cross each other, the left-moving
+// loop in front for a front cross, behind for a back cross.
+void expectCableCross(const std::string& text, int leftMoving, int rightMoving, bool front) {
+    const ChartCell cell = chartToCell(parseChart(text, "t.chart"));
+    const StitchLoop &l = cell.loop(cell.height - 1, leftMoving), &r = cell.loop(cell.height - 1, rightMoving);
+    ASSERT_LT(l.headShift, 0);
+    ASSERT_GT(r.headShift, 0);
+    const std::vector<test::Crossing> c = test::crossingsBetween(cell.pattern, l.first, l.first + l.count, r.first, r.first + r.count, 0);
+    EXPECT_EQ(c.size(), 4u) << text;  // each leg of one loop over (under) each leg of the other
+    for (const test::Crossing& x : c) EXPECT_EQ(x.at.z > x.zb, front) << text;
+}
+
+TEST(ChartTopology, cablesCrossInTheRequestedDirection) {
+    expectCableCross("k k k k\nc2/2f\n", 2, 0, true);
+    expectCableCross("k k k k\nc2/2b\n", 2, 0, false);
+    expectCableCross("k k k k\nc2/2f\n", 3, 1, true);
+    expectCableCross("p k k p\np c1/1b p\n", 2, 1, false);
+    expectCableCross("p k k p\np c1/1f p\n", 2, 1, true);
+}
 
 TEST(ChartTopology, ribAlternatesFrontAndBackColumns) {
     const ChartCell cell = chartToCell(builtinChart("chart:rib1x1"));

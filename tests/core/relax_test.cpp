@@ -37,6 +37,7 @@ void expectRelaxedApartWithCrossings(const std::string& name) {
                     cp.relaxed.iterations, cp.seconds, cp.relaxed.minDistance, lengthPerArea(cp.relaxed.pattern),
                     cp.relaxed.pattern.px / cp.relaxed.pattern.radius, cp.relaxed.pattern.py / cp.relaxed.pattern.radius);
         EXPECT_GE(cp.relaxed.minDistance, 1.9) << name;
+        EXPECT_GT(cp.relaxed.closestApproach, 0.2) << name;
         EXPECT_NO_THROW(validatePattern(cp.relaxed.pattern, name));
         const ChartCell cell = relaxedCell(cp);
         for (int r = 0; r < cell.height; ++r)
@@ -49,12 +50,33 @@ TEST(Relax, plainBuiltinsRelaxApartAndKeepTheirCrossings) {
         expectRelaxedApartWithCrossings(name);
 }
 
-// Known gap: after relaxation the ribs fold so far sideways (px shrinks to half) that the
-// projected crossings with the loop below no longer show the base crossing; whether that is the
-// check or a yarn passing through is not settled yet. Cable threading is the gap of
-// chart_topology_test.cpp. See docs/charts.md, "Status".
-TEST(Relax, DISABLED_ribBasketweaveAndCableRelaxApartAndKeepTheirCrossings) {
-    for (const char* name : {"chart:rib1x1", "chart:rib2x2", "chart:basketweave", "chart:cable4"}) expectRelaxedApartWithCrossings(name);
+// Ribs draw in to about half the stockinette width: the knit columns come forward (z > 0), the
+// purl columns go back, and a knit loop's feet run back into the purl column beside it, so the
+// base no longer crosses the legs below in projection (checkStitchEnds says why that is the
+// check's limit, not a yarn passing through: closestApproach stays far above 0).
+TEST(Relax, ribsRelaxApartAndKeepTheirCrossings) {
+    for (const char* name : {"chart:rib1x1", "chart:rib2x2"}) expectRelaxedApartWithCrossings(name);
+}
+
+TEST(Relax, ribAlternatesFrontAndBackColumns) {
+    const ChartPattern cp = relaxChart(builtinChart("chart:rib1x1"));
+    const ChartCell cell = relaxedCell(cp);
+    auto meanZ = [&](int column) {
+        double z = 0;
+        for (int r = 0; r < cell.height; ++r)
+            for (uint32_t i = 0; i < cell.loop(r, column).count; ++i) z += cell.pattern.points[cell.loop(r, column).first + i].z;
+        return z / (cell.height * double(cell.loop(0, column).count)) / cell.pattern.radius;
+    };
+    EXPECT_GT(meanZ(0), 1.0);   // the knit column in front
+    EXPECT_LT(meanZ(1), -1.0);  // the purl column behind
+}
+
+// Known gaps (docs/charts.md, "Status"): basketweave does not converge in 4000 iterations and two
+// knit stitches over purl ones at its block corners, (0, 0) and (2, 3), end with their legs
+// behind the head below in their local frame (no yarn passed through: closestApproach > 0.2 r);
+// the 6 x 4 cable cell does not converge either (about 40 s, too slow for this suite).
+TEST(Relax, DISABLED_basketweaveAndCableRelaxApartAndKeepTheirCrossings) {
+    for (const char* name : {"chart:basketweave", "chart:cable4"}) expectRelaxedApartWithCrossings(name);
 }
 
 TEST(Relax, plainChartsKeepAllFourCrossingsOfEveryStitch) {

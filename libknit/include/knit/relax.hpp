@@ -10,8 +10,9 @@
 //     pairs come from a spatial hash over the periodic images (a Verlet list rebuilt when any
 //     vertex has moved by half the skin).
 // Solver: L-BFGS (Nocedal & Wright, Numerical Optimization, algorithm 7.4, memory 8) with a
-// backtracking Armijo line search and a cap on how far a vertex may move per step (so yarns
-// cannot pass through each other). Single-threaded, fixed order: the result is deterministic.
+// backtracking Armijo line search, a cap on how far a vertex may move per step, and a continuous
+// collision bound: no step moves two segments by more than 0.9 of their smallest distance, so
+// yarns cannot pass through each other. Single-threaded, fixed order: deterministic.
 #pragma once
 #include "knit/pattern.hpp"
 
@@ -35,6 +36,9 @@ struct RelaxResult {
     bool converged = false;    // the gradient tolerance was reached
     double energy = 0;
     double minDistance = 0;    // smallest distance between distinct non-adjacent segments, in radii
+    // The smallest pair distance over every accepted step, in radii: above 0 means no yarn
+    // passed through another (each step is also capped by the continuous collision bound).
+    double closestApproach = 0;
 };
 
 // Throws knit::Error when the pattern is invalid or a yarn has fewer than 4 vertices.
