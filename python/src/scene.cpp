@@ -9,6 +9,7 @@
 #include "knit/error.hpp"
 #include "knit/generator.hpp"
 #include "knit/scene.hpp"
+#include "frame_plies.hpp"
 #include "ply_options.hpp"
 
 namespace knitpy {
@@ -126,14 +127,20 @@ void registerSceneClass(py::module_& m) {
              "positions"_a,
              "The yarns on new vertex positions (n, 3) float32/float64 of the scene's mesh (same "
              "connectivity): normals of the posed mesh, then the binding. Returns Yarns. Raises knit.Error.")
-        .def("evaluate_plies", [](const knit::Scene& s, const py::array& positions) {
+        .def("evaluate_plies", [](const knit::Scene& s, const py::array& positions, bool restLayout) {
                  const auto p = framePositions(s, positions);
+                 if (restLayout && s.plies().curves.curveCount() == 0 && s.yarns().curves.pointCount() > 0)
+                     throw knit::Error("evaluate_plies: rest_layout needs a scene built with build_plies=True");
                  py::gil_scoped_release release;
-                 return knit::makePlies(evaluatePose(s, p), s.plyOptions());
+                 const knit::MappedYarns yarns = evaluatePose(s, p);
+                 return restLayout ? pliesWithRestLayout(yarns, s.plyOptions(), s.plies())
+                                   : knit::makePlies(yarns, s.plyOptions());
              },
-             "positions"_a,
-             "The plies on new vertex positions, with the scene's ply options (evaluate, then make_plies). "
-             "The point count may differ from the rest pose's: resampling follows the yarn length.")
+             "positions"_a, "rest_layout"_a = true,
+             "The plies on new vertex positions, with the scene's ply options (evaluate, then the ply "
+             "stage). rest_layout=True keeps the rest plies' point counts and offsets (a stretched yarn's "
+             "centreline is re-sampled by arc length to its rest count), for animation caches and meshes; "
+             "False runs make_plies, whose point count follows the yarn length.")
         .def("__repr__", [](const knit::Scene& s) {
             return "<knit.Scene '" + s.pattern().name + "' on '" + s.mesh().name + "': " +
                    std::to_string(s.yarns().curves.curveCount()) + " yarns, " +

@@ -93,3 +93,19 @@ def test_binding_has_one_entry_per_yarn_vertex(scene):
     assert b.vertex_count == scene.yarns.point_count
     assert b.bary.shape == (b.vertex_count, 2) and b.face.shape == (b.vertex_count,)
     assert b.face.max() < len(scene.mesh.faces)
+
+
+def test_evaluate_plies_keeps_the_rest_layout_when_the_yarns_stretch(scene):
+    stretched = scene.mesh.positions * [1.5, 1.0, 1.0]
+    free = scene.evaluate_plies(stretched, rest_layout=False)
+    kept = scene.evaluate_plies(stretched)
+    assert free.point_count != scene.plies.point_count  # resampling follows the yarn length
+    np.testing.assert_array_equal(kept.offsets, scene.plies.offsets)
+    # Same curves: the kept layout spans the stretched yarns (x range grows by ~1.5).
+    assert np.ptp(kept.points[:, 0]) == pytest.approx(np.ptp(free.points[:, 0]), rel=1e-3)
+
+
+def test_evaluate_plies_rest_layout_needs_plies():
+    scene = knit.build_scene("stockinette", "plane", repeats=(2, 2), build_plies=False)
+    with pytest.raises(knit.Error, match="build_plies=True"):
+        scene.evaluate_plies(scene.mesh.positions)
