@@ -7,6 +7,7 @@ packages=(
   libcgal-dev libopenmesh-dev libdraco-dev libtinygltf-dev libglm-dev libembree-dev libtbb-dev
   libgtest-dev libbenchmark-dev libstb-dev nlohmann-json3-dev libcli11-dev libtinyexr-dev
   clang libclang-rt-14-dev
+  pybind11-dev python3-dev python3-numpy python3-pytest blender
   "$@"
 )
 # The glTF-Validator runs on Node.js: use the machine's node/npm if present (a NodeSource
