@@ -22,8 +22,6 @@ bl_info = {
 }
 
 import importlib
-import os
-import sys
 
 if "bpy" in locals():
     importlib.reload(build)  # noqa: F821 (Blender's add-on reload)
@@ -64,8 +62,14 @@ class OBJECT_OT_knit_apply(bpy.types.Operator):
 
     def execute(self, context):
         try:
+            knit = knit_module()
+        except ImportError as e:
+            self.report({"ERROR"}, f"the Python module knit was not found ({e}): install it with cmake --install, "
+                                   "or set KNIT_PYTHONPATH or the add-on's Module folder to <build>/python")
+            return {"CANCELLED"}
+        try:
             obj = build.apply_knit(context, context.active_object, self.as_keywords())
-        except (knit_module().Error, ValueError) as e:
+        except (knit.Error, ValueError) as e:
             self.report({"ERROR"}, str(e))
             return {"CANCELLED"}
         self.report({"INFO"}, f"{obj.name}: {len(obj.data.vertices)} ply points")

@@ -82,7 +82,7 @@ def render_coverage(obj):
 
 def main():
     knit_blender.register()
-    grid = make_animated_grid()
+    make_animated_grid()
     result = bpy.ops.object.knit_apply(pattern="stockinette", repeats=(6, 6), plies=2, twist="S")
     check(result == {"FINISHED"}, "knit_apply finished")
     obj = bpy.data.objects.get("Cloth.knit")
