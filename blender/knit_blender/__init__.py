@@ -1,0 +1,128 @@
+"""knit_blender: drape a knit (libknit) on the active mesh as ply curves, animated with the mesh.
+
+Object > Knit > Apply Knit (bpy.ops.object.knit_apply) binds the pattern to the active mesh once
+and creates `<mesh>.knit`: a mesh of edges (one chain per ply) with a `radius` point attribute and
+a geometry-nodes modifier (Mesh to Curve -> Set Curve Radius -> Curve to Mesh with a circle
+profile) that Cycles and EEVEE render as tubes. On every frame change the evaluated source mesh
+(modifiers, shape keys) is read and the plies are re-evaluated through the Python module `knit`.
+Object > Knit > Bake Knit to PC2 (bpy.ops.object.knit_bake_pc2) writes the frames to a PC2 cache.
+
+The module `knit` is found on sys.path (installed into Debian's dist-packages by `cmake --install`),
+else in the folders of the environment variable KNIT_PYTHONPATH or of the add-on preference
+"Module folder" (e.g. <checkout>/build/python).
+"""
+bl_info = {
+    "name": "Knit (libknit)",
+    "author": "libknit",
+    "version": (0, 1, 0),
+    "blender": (3, 4, 0),
+    "location": "View3D > Object > Knit",
+    "description": "Ply-level knitted fabric on the active mesh, animated with it",
+    "category": "Object",
+}
+
+import importlib
+
+if "bpy" in locals():
+    importlib.reload(build)  # noqa: F821 (Blender's add-on reload)
+import bpy
+
+from . import build
+from .build import ADDON, knit_module
+
+
+class KnitPreferences(bpy.types.AddonPreferences):
+    bl_idname = ADDON
+    module_folder: bpy.props.StringProperty(
+        name="Module folder", subtype="DIR_PATH",
+        description="Folder holding the knit package (e.g. <checkout>/build/python), if not installed")
+
+
+class OBJECT_OT_knit_apply(bpy.types.Operator):
+    """Bind a knit pattern to the active mesh and create <mesh>.knit (ply curves)"""
+    bl_idname = "object.knit_apply"
+    bl_label = "Apply Knit"
+    bl_options = {"REGISTER", "UNDO"}
+
+    pattern: bpy.props.StringProperty(name="Pattern", default="stockinette",
+                                      description="Built-in pattern name or a .pyp / .json file")
+    repeats: bpy.props.FloatVectorProperty(name="Repeats", size=2, default=(8.0, 8.0), min=0.0,
+                                           description="Pattern periods across the UV square (0, 0: see Gauge)")
+    gauge: bpy.props.FloatVectorProperty(name="Gauge", size=2, default=(0.0, 0.0), min=0.0,
+                                         description="Pattern periods per 10 cm along u and v; overrides Repeats when set")
+    plies: bpy.props.IntProperty(name="Plies", default=2, min=1, max=16)
+    ply_pitch: bpy.props.FloatProperty(name="Ply pitch", default=0.0, min=0.0, unit="LENGTH",
+                                       description="Length of one ply turn; 0 = 6 yarn radii")
+    twist: bpy.props.EnumProperty(name="Twist", items=[("S", "S", "S twist"), ("Z", "Z", "Z twist")], default="S")
+    profile_resolution: bpy.props.IntProperty(name="Profile sides", default=6, min=3, max=32)
+
+    @classmethod
+    def poll(cls, context):
+        return context.active_object is not None and context.active_object.type == "MESH"
+
+    def execute(self, context):
+        try:
+            knit = knit_module()
+        except ImportError as e:
+            self.report({"ERROR"}, f"the Python module knit was not found ({e}): install it with cmake --install, "
+                                   "or set KNIT_PYTHONPATH or the add-on's Module folder to <build>/python")
+            return {"CANCELLED"}
+        try:
+            obj = build.apply_knit(context, context.active_object, self.as_keywords())
+        except (knit.Error, ValueError) as e:
+            self.report({"ERROR"}, str(e))
+            return {"CANCELLED"}
+        self.report({"INFO"}, f"{obj.name}: {len(obj.data.vertices)} ply points")
+        return {"FINISHED"}
+
+
+class OBJECT_OT_knit_bake_pc2(bpy.types.Operator):
+    """Write the active knit object's points for a frame range to a PC2 point cache"""
+    bl_idname = "object.knit_bake_pc2"
+    bl_label = "Bake Knit to PC2"
+
+    filepath: bpy.props.StringProperty(subtype="FILE_PATH")
+    frame_start: bpy.props.IntProperty(name="Start", default=1)
+    frame_end: bpy.props.IntProperty(name="End", default=250)
+
+    @classmethod
+    def poll(cls, context):
+        obj = context.active_object
+        return obj is not None and build.SOURCE_PROP in obj
+
+    def execute(self, context):
+        path = bpy.path.abspath(self.filepath or f"//{context.active_object.name}.pc2")
+        frames = build.bake_pc2(context, context.active_object, path, self.frame_start, self.frame_end)
+        self.report({"INFO"}, f"{path}: {frames} frames")
+        return {"FINISHED"}
+
+
+class VIEW3D_MT_knit(bpy.types.Menu):
+    bl_label = "Knit"
+
+    def draw(self, context):
+        self.layout.operator(OBJECT_OT_knit_apply.bl_idname)
+        self.layout.operator(OBJECT_OT_knit_bake_pc2.bl_idname)
+
+
+def _menu(self, context):
+    self.layout.menu("VIEW3D_MT_knit")
+
+
+_classes = (KnitPreferences, OBJECT_OT_knit_apply, OBJECT_OT_knit_bake_pc2, VIEW3D_MT_knit)
+
+
+def register():
+    for c in _classes:
+        bpy.utils.register_class(c)
+    bpy.types.VIEW3D_MT_object.append(_menu)
+    if build.on_frame_change not in bpy.app.handlers.frame_change_post:
+        bpy.app.handlers.frame_change_post.append(build.on_frame_change)
+
+
+def unregister():
+    if build.on_frame_change in bpy.app.handlers.frame_change_post:
+        bpy.app.handlers.frame_change_post.remove(build.on_frame_change)
+    bpy.types.VIEW3D_MT_object.remove(_menu)
+    for c in reversed(_classes):
+        bpy.utils.unregister_class(c)

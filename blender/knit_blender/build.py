@@ -1,0 +1,244 @@
+"""The add-on's steps: read the source mesh, bind (knit.build_scene), write the ply mesh, build
+the geometry-nodes modifier, re-evaluate on frame change, bake PC2."""
+import json
+import os
+import struct
+import sys
+
+import bpy
+import numpy as np
+
+ADDON = __package__ or "knit_blender"
+SOURCE_PROP = "knit_source"    # on <mesh>.knit: the source object's name
+OPTIONS_PROP = "knit_options"  # on <mesh>.knit: the apply options (JSON), to re-bind after a reload
+NODE_GROUP = "knit_ply_curves"
+MATERIAL = "knit_yarn"
+
+# Bound scenes by knit object name. Blender cannot store Python objects in a .blend file, so a
+# scene missing here (after loading a file) is re-bound from OPTIONS_PROP on first use.
+_scenes = {}
+
+
+def knit_module():
+    """The Python module knit: from sys.path, else KNIT_PYTHONPATH or the add-on preference."""
+    try:
+        import knit
+        return knit
+    except ImportError:
+        pass
+    folders = os.environ.get("KNIT_PYTHONPATH", "").split(os.pathsep)
+    addon = bpy.context.preferences.addons.get(ADDON)
+    if addon and addon.preferences and addon.preferences.module_folder:
+        folders.append(bpy.path.abspath(addon.preferences.module_folder))
+    for f in filter(None, folders):
+        if f not in sys.path:
+            sys.path.append(f)
+    import knit
+    return knit
+
+
+# -- Step 1: the source mesh as arrays ------------------------------------------------------------
+
+def read_positions(obj, depsgraph):
+    """Vertex positions (n, 3) float32 of the evaluated object (modifiers, shape keys), local space."""
+    evaluated = obj.evaluated_get(depsgraph)
+    mesh = evaluated.to_mesh()
+    try:
+        co = np.empty(len(mesh.vertices) * 3, dtype=np.float32)
+        mesh.vertices.foreach_get("co", co)
+        return co.reshape(-1, 3)
+    finally:
+        evaluated.to_mesh_clear()
+
+
+def read_mesh(obj, depsgraph):
+    """knit.Mesh of the evaluated object: triangles, positions, UVs by loop (the active UV map)."""
+    knit = knit_module()
+    evaluated = obj.evaluated_get(depsgraph)
+    mesh = evaluated.to_mesh()
+    try:
+        if not mesh.uv_layers.active:
+            raise ValueError(f"{obj.name}: the mesh has no UV map (knit tiles the pattern in UV space)")
+        mesh.calc_loop_triangles()
+        tris = len(mesh.loop_triangles)
+        co = np.empty(len(mesh.vertices) * 3, dtype=np.float32)
+        mesh.vertices.foreach_get("co", co)
+        faces = np.empty(tris * 3, dtype=np.int64)
+        mesh.loop_triangles.foreach_get("vertices", faces)
+        loops = np.empty(tris * 3, dtype=np.int64)
+        mesh.loop_triangles.foreach_get("loops", loops)
+        uvs = np.empty(len(mesh.loops) * 2, dtype=np.float32)
+        mesh.uv_layers.active.data.foreach_get("uv", uvs)
+        return knit.Mesh(co.reshape(-1, 3), faces.reshape(-1, 3), uvs.reshape(-1, 2), loops.reshape(-1, 3), obj.name)
+    finally:
+        evaluated.to_mesh_clear()
+
+
+# -- Step 2: bind ---------------------------------------------------------------------------------
+
+def bind(source, options, depsgraph):
+    """knit.build_scene on the source's evaluated mesh with the operator's options."""
+    knit = knit_module()
+    mesh = read_mesh(source, depsgraph)
+    repeats = tuple(options["repeats"])
+    gauge = tuple(options.get("gauge", (0.0, 0.0)))
+    if gauge[0] > 0 and gauge[1] > 0:  # periods per 10 cm -> periods across the UV square
+        su, sv = knit.uv_to_metre_scale(mesh)
+        repeats = (su * gauge[0] / 0.1, sv * gauge[1] / 0.1)
+    return knit.build_scene(options["pattern"], mesh, repeats=repeats if repeats[0] > 0 else None,
+                            plies=options["plies"], ply_pitch=options["ply_pitch"], twist=options["twist"])
+
+
+# -- Step 3: the ply mesh (edges + radius) --------------------------------------------------------
+
+def curve_edges(offsets, closed):
+    """(k, 2) edges chaining each curve's points, closed curves back to their first point."""
+    offsets = np.asarray(offsets, dtype=np.int64)
+    n = int(offsets[-1])
+    starts, ends = offsets[:-1], offsets[1:]
+    inner = np.ones(max(n - 1, 0), dtype=bool)
+    inner[(ends[ends < n]) - 1] = False  # no edge from a curve's last point to the next curve
+    a = np.nonzero(inner)[0]
+    edges = np.stack([a, a + 1], axis=1)
+    loop = np.nonzero((np.asarray(closed) != 0) & (ends - starts > 2))[0]
+    closing = np.stack([ends[loop] - 1, starts[loop]], axis=1)
+    return np.concatenate([edges, closing]).astype(np.int32)
+
+
+def fill_ply_mesh(mesh, plies, radius):
+    """Replaces the mesh's geometry with the ply points, their edges and a `radius` point attribute."""
+    mesh.clear_geometry()
+    n = plies.point_count
+    edges = curve_edges(plies.offsets, plies.closed)
+    mesh.vertices.add(n)
+    mesh.vertices.foreach_set("co", plies.points.astype(np.float32).ravel())
+    mesh.edges.add(len(edges))
+    mesh.edges.foreach_set("vertices", edges.ravel())
+    attr = mesh.attributes.get("radius") or mesh.attributes.new("radius", "FLOAT", "POINT")
+    attr.data.foreach_set("value", np.full(n, radius, dtype=np.float32))
+    mesh.update()
+
+
+def set_ply_points(mesh, plies):
+    """Moves the mesh's vertices to the plies (same layout); returns False when the count differs."""
+    if len(mesh.vertices) != plies.point_count:
+        return False
+    mesh.vertices.foreach_set("co", plies.points.astype(np.float32).ravel())
+    mesh.update()
+    return True
+
+
+# -- Step 4: geometry nodes: Mesh to Curve -> Set Curve Radius -> Curve to Mesh (circle) ----------
+
+def _output(node, type_):
+    return next(s for s in node.outputs if s.type == type_ and s.enabled)
+
+
+def ply_node_group(profile_resolution):
+    group = bpy.data.node_groups.new(NODE_GROUP, "GeometryNodeTree")
+    group.inputs.new("NodeSocketGeometry", "Geometry")
+    group.outputs.new("NodeSocketGeometry", "Geometry")
+    nodes, links = group.nodes, group.links
+    source, sink = nodes.new("NodeGroupInput"), nodes.new("NodeGroupOutput")
+    to_curve = nodes.new("GeometryNodeMeshToCurve")
+    radius = nodes.new("GeometryNodeInputNamedAttribute")
+    radius.data_type = "FLOAT"
+    radius.inputs["Name"].default_value = "radius"
+    set_radius = nodes.new("GeometryNodeSetCurveRadius")
+    circle = nodes.new("GeometryNodeCurvePrimitiveCircle")
+    circle.mode = "RADIUS"
+    circle.inputs["Resolution"].default_value = profile_resolution
+    circle.inputs["Radius"].default_value = 1.0  # scaled by each point's curve radius
+    to_mesh = nodes.new("GeometryNodeCurveToMesh")
+    material = nodes.new("GeometryNodeSetMaterial")
+    material.inputs["Material"].default_value = yarn_material()
+    links.new(source.outputs["Geometry"], to_curve.inputs["Mesh"])
+    links.new(to_curve.outputs["Curve"], set_radius.inputs["Curve"])
+    links.new(_output(radius, "VALUE"), set_radius.inputs["Radius"])
+    links.new(set_radius.outputs["Curve"], to_mesh.inputs["Curve"])
+    links.new(circle.outputs["Curve"], to_mesh.inputs["Profile Curve"])
+    links.new(to_mesh.outputs["Mesh"], material.inputs["Geometry"])
+    links.new(material.outputs["Geometry"], sink.inputs["Geometry"])
+    return group
+
+
+def yarn_material():
+    material = bpy.data.materials.get(MATERIAL)
+    if material is None:
+        material = bpy.data.materials.new(MATERIAL)
+        material.use_nodes = True
+        bsdf = material.node_tree.nodes.get("Principled BSDF")
+        if bsdf:
+            bsdf.inputs["Base Color"].default_value = (0.8, 0.25, 0.2, 1.0)
+            bsdf.inputs["Roughness"].default_value = 0.7
+    return material
+
+
+# -- The operator's pipeline ----------------------------------------------------------------------
+
+def apply_knit(context, source, options):
+    """Bind, then create (or replace) <mesh>.knit parented to the source; returns it."""
+    depsgraph = context.evaluated_depsgraph_get()
+    options = {k: (list(v) if hasattr(v, "__len__") and not isinstance(v, str) else v) for k, v in options.items()}
+    scene = bind(source, options, depsgraph)
+    name = f"{source.name}.knit"
+    old = bpy.data.objects.get(name)
+    if old is not None:
+        bpy.data.objects.remove(old)
+    mesh = bpy.data.meshes.new(name)
+    fill_ply_mesh(mesh, scene.plies, scene.ply_radius)
+    obj = bpy.data.objects.new(name, mesh)
+    context.collection.objects.link(obj)
+    obj.parent = source  # follows the source's transform; points are in its local space
+    obj[SOURCE_PROP] = source.name
+    obj[OPTIONS_PROP] = json.dumps(options)
+    modifier = obj.modifiers.new("knit plies", "NODES")
+    modifier.node_group = ply_node_group(options.get("profile_resolution", 6))
+    _scenes[obj.name] = scene
+    return obj
+
+
+def scene_of(obj, depsgraph):
+    """The bound knit.Scene of a knit object (re-bound from its stored options if needed)."""
+    scene = _scenes.get(obj.name)
+    if scene is None:
+        source = bpy.data.objects[obj[SOURCE_PROP]]
+        scene = _scenes[obj.name] = bind(source, json.loads(obj[OPTIONS_PROP]), depsgraph)
+    return scene
+
+
+def update_knit(obj, depsgraph):
+    """Re-evaluates one knit object on its source's current evaluated mesh."""
+    source = bpy.data.objects.get(obj[SOURCE_PROP])
+    if source is None:
+        return
+    scene = scene_of(obj, depsgraph)
+    plies = scene.evaluate_plies(read_positions(source, depsgraph))
+    if not set_ply_points(obj.data, plies):
+        fill_ply_mesh(obj.data, plies, scene.ply_radius)
+
+
+@bpy.app.handlers.persistent
+def on_frame_change(scene, depsgraph=None):
+    depsgraph = depsgraph or bpy.context.evaluated_depsgraph_get()
+    for obj in scene.objects:
+        if SOURCE_PROP in obj and obj.type == "MESH":
+            update_knit(obj, depsgraph)
+
+
+def bake_pc2(context, obj, path, first, last):
+    """Writes frames first..last of the knit object's points to a PC2 file; returns the frame count."""
+    scene = context.scene
+    current = scene.frame_current
+    count = len(obj.data.vertices)
+    tmp = path + ".tmp"
+    with open(tmp, "wb") as f:
+        f.write(struct.pack("<12siiffi", b"POINTCACHE2\0", 1, count, float(first), 1.0, last - first + 1))
+        co = np.empty(count * 3, dtype=np.float32)
+        for frame in range(first, last + 1):
+            scene.frame_set(frame)  # runs on_frame_change
+            obj.data.vertices.foreach_get("co", co)
+            f.write(co.tobytes())
+    os.replace(tmp, path)
+    scene.frame_set(current)
+    return last - first + 1

@@ -1,0 +1,119 @@
+"""Headless test of the knit_blender add-on (run by ctest: blender -b --factory-startup
+--python-exit-code 1 --python blender/tests/test_addon.py). KNIT_PYTHONPATH points at build/python.
+
+Checks: <mesh>.knit exists, its point count is the library's, its radii are the ply radius, a frame
+change (a shape key animates the base mesh) moves it, a PC2 bake has the right size, and a small
+Cycles render of it is not blank."""
+import os
+import sys
+import tempfile
+
+import bpy
+import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+import knit_blender  # noqa: E402
+from knit_blender import build  # noqa: E402
+
+
+def check(condition, what):
+    print(("ok   " if condition else "FAIL ") + what)
+    if not condition:
+        raise SystemExit(f"knit_blender test failed: {what}")
+
+
+def make_animated_grid():
+    """A 0.5 m grid with UVs in the XY plane; a shape key 'Bulge' lifts it by up to 0.1 m, keyed
+    0 at frame 1 and 1 at frame 10."""
+    bpy.ops.object.select_all(action="SELECT")
+    bpy.ops.object.delete()
+    bpy.ops.mesh.primitive_grid_add(x_subdivisions=16, y_subdivisions=16, size=0.5, calc_uvs=True)
+    grid = bpy.context.active_object
+    grid.name = "Cloth"
+    grid.shape_key_add(name="Basis")
+    bulge = grid.shape_key_add(name="Bulge")
+    for p in bulge.data:
+        p.co.z += 0.1 * max(0.0, 1.0 - (p.co.x ** 2 + p.co.y ** 2) / 0.0625)
+    bulge.value = 0.0
+    bulge.keyframe_insert("value", frame=1)
+    bulge.value = 1.0
+    bulge.keyframe_insert("value", frame=10)
+    bpy.context.scene.frame_set(1)
+    return grid
+
+
+def points_of(obj):
+    co = np.empty(len(obj.data.vertices) * 3, dtype=np.float32)
+    obj.data.vertices.foreach_get("co", co)
+    return co.reshape(-1, 3)
+
+
+def render_coverage(obj):
+    """Renders a 64x48 Cycles image (CPU, 4 samples) from above; returns (coverage, variance)."""
+    scene = bpy.context.scene
+    scene.render.engine = "CYCLES"
+    scene.cycles.device = "CPU"
+    scene.cycles.samples = 4
+    scene.cycles.use_denoising = False  # Debian builds Blender without OpenImageDenoise
+    bpy.context.view_layer.cycles.denoising_store_passes = False
+    scene.render.resolution_x, scene.render.resolution_y = 64, 48
+    scene.render.resolution_percentage = 100
+    scene.world = scene.world or bpy.data.worlds.new("World")
+    scene.world.use_nodes = False
+    scene.world.color = (0.0, 0.0, 0.0)
+    bpy.data.objects["Cloth"].hide_render = True  # only the knit
+    camera = bpy.data.objects.new("Camera", bpy.data.cameras.new("Camera"))
+    camera.data.type = "ORTHO"
+    camera.data.ortho_scale = 0.6
+    camera.location = (0.0, 0.0, 1.0)
+    scene.collection.objects.link(camera)
+    scene.camera = camera
+    sun = bpy.data.objects.new("Sun", bpy.data.lights.new("Sun", "SUN"))
+    sun.data.energy = 5.0
+    scene.collection.objects.link(sun)
+    path = os.path.join(tempfile.mkdtemp(), "knit.png")
+    scene.render.filepath = path
+    bpy.ops.render.render(write_still=True)
+    image = bpy.data.images.load(path)
+    pixels = np.array(image.pixels[:]).reshape(-1, 4)[:, :3]
+    luminance = pixels.mean(axis=1)
+    return float((luminance > 0.02).mean()), float(luminance.var())
+
+
+def main():
+    knit_blender.register()
+    make_animated_grid()
+    result = bpy.ops.object.knit_apply(pattern="stockinette", repeats=(6, 6), plies=2, twist="S")
+    check(result == {"FINISHED"}, "knit_apply finished")
+    obj = bpy.data.objects.get("Cloth.knit")
+    check(obj is not None, "the object Cloth.knit exists")
+
+    scene = build.scene_of(obj, bpy.context.evaluated_depsgraph_get())
+    check(len(obj.data.vertices) == scene.plies.point_count > 0,
+          f"point count {len(obj.data.vertices)} is the library's {scene.plies.point_count}")
+    radius = np.empty(len(obj.data.vertices), dtype=np.float32)
+    obj.data.attributes["radius"].data.foreach_get("value", radius)
+    check(np.allclose(radius, scene.ply_radius, rtol=1e-6), f"radii are the ply radius {scene.ply_radius:.6g}")
+    check(np.allclose(points_of(obj), scene.plies.points, atol=1e-6), "points are the library's plies")
+    check(obj.modifiers[0].type == "NODES", "a geometry-nodes modifier renders the curves")
+
+    rest = points_of(obj)
+    bpy.context.scene.frame_set(10)
+    moved = points_of(obj)
+    lift = float((moved[:, 2] - rest[:, 2]).max())
+    check(0.08 < lift < 0.12, f"frame 10 lifts the knit with the shape key ({lift:.4f} m)")
+    bpy.context.scene.frame_set(1)
+    check(np.allclose(points_of(obj), rest, atol=1e-6), "frame 1 brings it back")
+
+    path = os.path.join(tempfile.mkdtemp(), "knit.pc2")
+    bpy.ops.object.select_all(action="DESELECT")
+    bpy.context.view_layer.objects.active = obj
+    check(bpy.ops.object.knit_bake_pc2(filepath=path, frame_start=1, frame_end=3) == {"FINISHED"}, "PC2 bake finished")
+    check(os.path.getsize(path) == 32 + 3 * len(obj.data.vertices) * 12, "PC2 file holds 3 frames of every point")
+
+    coverage, variance = render_coverage(obj)
+    check(coverage > 0.2 and variance > 1e-4, f"Cycles render is not blank (coverage {coverage:.2f}, variance {variance:.2g})")
+    print("knit_blender: all checks passed")
+
+
+main()

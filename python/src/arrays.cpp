@@ -1,0 +1,108 @@
+// python/src/arrays.cpp — zero-copy views out, checked conversions in (arrays.hpp).
+#include "arrays.hpp"
+
+#include <limits>
+
+#include "knit/error.hpp"
+
+namespace knitpy {
+
+namespace {
+
+// A read-only view of `count` rows of `columns` Ts at `data`, kept alive by `owner`.
+template <class T>
+py::array readOnlyView(const T* data, size_t count, size_t columns, py::handle owner) {
+    std::vector<py::ssize_t> shape{py::ssize_t(count)}, strides{py::ssize_t(columns * sizeof(T))};
+    if (columns > 1) {
+        shape.push_back(py::ssize_t(columns));
+        strides.push_back(py::ssize_t(sizeof(T)));
+    }
+    // numpy refuses a null data pointer with a base; an empty vector may have none.
+    static const T empty{};
+    py::array a(py::dtype::of<T>(), shape, strides, count ? data : &empty, owner);
+    py::detail::array_proxy(a.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+    return a;
+}
+
+std::string shapeText(const py::array& a) {
+    std::string s = "(";
+    for (py::ssize_t i = 0; i < a.ndim(); ++i) s += (i ? ", " : "") + std::to_string(a.shape(i));
+    return s + (a.ndim() == 1 ? ",)" : ")");
+}
+
+// Checks the shape (n, columns) of `a`; throws naming `what`.
+void requireRows(const py::array& a, py::ssize_t columns, const std::string& what) {
+    if (a.ndim() != 2 || a.shape(1) != columns)
+        throw knit::Error(what + ": expected an array of shape (n, " + std::to_string(columns) + "), got " +
+                          shapeText(a));
+}
+
+// Copies an (n, columns) float array into `out` (n * columns doubles), float32 or float64.
+void copyFloats(const py::array& a, py::ssize_t columns, const std::string& what, double* out) {
+    requireRows(a, columns, what);
+    const auto copyAs = [&](auto tag) {
+        using T = decltype(tag);
+        const auto r = a.unchecked<T, 2>();
+        for (py::ssize_t i = 0; i < r.shape(0); ++i)
+            for (py::ssize_t j = 0; j < columns; ++j) out[i * columns + j] = double(r(i, j));
+    };
+    if (py::isinstance<py::array_t<double>>(a)) copyAs(double{});
+    else if (py::isinstance<py::array_t<float>>(a)) copyAs(float{});
+    else throw knit::Error(what + ": expected float32 or float64 values, got dtype " + std::string(py::str(a.dtype())));
+}
+
+}  // namespace
+
+py::array viewVec3(const std::vector<glm::dvec3>& v, py::handle owner) {
+    return readOnlyView(v.empty() ? nullptr : &v[0].x, v.size(), 3, owner);
+}
+
+py::array viewVec2(const std::vector<glm::dvec2>& v, py::handle owner) {
+    return readOnlyView(v.empty() ? nullptr : &v[0].x, v.size(), 2, owner);
+}
+
+py::array viewUvec3(const std::vector<glm::uvec3>& v, py::handle owner) {
+    return readOnlyView(v.empty() ? nullptr : &v[0].x, v.size(), 3, owner);
+}
+
+template <class T>
+py::array viewScalars(const std::vector<T>& v, py::handle owner) {
+    return readOnlyView(v.data(), v.size(), 1, owner);
+}
+template py::array viewScalars(const std::vector<double>&, py::handle);
+template py::array viewScalars(const std::vector<uint32_t>&, py::handle);
+template py::array viewScalars(const std::vector<uint8_t>&, py::handle);
+
+std::vector<glm::dvec3> toVec3(const py::array& a, const std::string& what) {
+    requireRows(a, 3, what);
+    std::vector<glm::dvec3> out(size_t(a.shape(0)));
+    copyFloats(a, 3, what, out.empty() ? nullptr : &out[0].x);
+    return out;
+}
+
+std::vector<glm::dvec2> toVec2(const py::array& a, const std::string& what) {
+    requireRows(a, 2, what);
+    std::vector<glm::dvec2> out(size_t(a.shape(0)));
+    copyFloats(a, 2, what, out.empty() ? nullptr : &out[0].x);
+    return out;
+}
+
+std::vector<glm::uvec3> toUvec3(const py::array& a, const std::string& what) {
+    requireRows(a, 3, what);
+    if (a.dtype().kind() != 'i' && a.dtype().kind() != 'u')
+        throw knit::Error(what + ": expected integer indices, got dtype " + std::string(py::str(a.dtype())));
+    const auto ints = py::array_t<int64_t, py::array::forcecast>::ensure(a);
+    const auto r = ints.unchecked<2>();
+    std::vector<glm::uvec3> out(size_t(r.shape(0)));
+    for (py::ssize_t i = 0; i < r.shape(0); ++i)
+        for (py::ssize_t j = 0; j < 3; ++j) {
+            const int64_t x = r(i, j);
+            if (x < 0 || x > int64_t(std::numeric_limits<uint32_t>::max()))
+                throw knit::Error(what + ": row " + std::to_string(i) + " has the index " + std::to_string(x) +
+                                  " (indices are 0 .. 2^32-1)");
+            out[size_t(i)][int(j)] = uint32_t(x);
+        }
+    return out;
+}
+
+}  // namespace knitpy

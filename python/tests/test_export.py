@@ -1,0 +1,36 @@
+# export_scene: formats by extension, stats, errors.
+import os
+
+import pytest
+
+import knit
+
+
+@pytest.fixture(scope="module")
+def scene():
+    return knit.build_scene("stockinette", "plane", repeats=(3, 3))
+
+
+@pytest.mark.parametrize("name", ["plies.obj", "plies.glb", "yarns.ply"])
+def test_export_writes_the_file_and_reports_its_size(scene, tmp_path, name):
+    path = str(tmp_path / name)
+    stats = knit.export_scene(scene, path, what=name.split(".")[0])
+    assert os.path.getsize(path) == stats["bytes"] > 0
+    assert stats["format"] == name.split(".")[1] and stats["curves"] > 0
+
+
+def test_export_tubes_counts_triangles(scene, tmp_path):
+    stats = knit.export_scene(scene, str(tmp_path / "t.glb"), what="tubes", sides=6)
+    assert stats["triangles"] > 0
+
+
+def test_export_unknown_extension_raises_and_writes_nothing(scene, tmp_path):
+    path = tmp_path / "x.unknown"
+    with pytest.raises(knit.Error):
+        knit.export_scene(scene, str(path))
+    assert not path.exists()
+
+
+def test_export_unknown_what_names_the_argument(scene, tmp_path):
+    with pytest.raises(knit.Error, match="what: expected"):
+        knit.export_scene(scene, str(tmp_path / "x.obj"), what="ropes")

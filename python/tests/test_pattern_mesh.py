@@ -1,0 +1,86 @@
+# Patterns and meshes: loading by name or file, meshes from numpy arrays, their errors.
+import os
+
+import numpy as np
+import pytest
+
+import knit
+
+SHARED = os.environ.get("KNIT_SHARED_DIR", os.path.join(os.path.dirname(__file__), "..", "..", "..", "shared"))
+
+
+def quad(dtype=np.float64):
+    positions = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], dtype=dtype)
+    faces = np.array([[0, 1, 2], [0, 2, 3]])
+    return positions, faces, positions[:, :2].copy()
+
+
+def test_builtin_pattern_loads_by_name():
+    p = knit.load_pattern("stockinette")
+    assert "stockinette" in knit.builtin_patterns()
+    assert p.px > 0 and p.radius > 0 and p.points.shape[1] == 3 and p.edge_count > 0
+
+
+def test_pattern_file_loads():
+    folder = os.path.join(SHARED, "patterns", "hylc")
+    files = sorted(f for f in os.listdir(folder) if f.endswith(".pyp")) if os.path.isdir(folder) else []
+    if not files:
+        pytest.skip("no shared .pyp patterns in " + folder)
+    assert knit.load_pattern(os.path.join(folder, files[0])).points.shape[0] > 0
+
+
+def test_missing_pattern_file_raises_knit_error():
+    with pytest.raises(knit.Error):
+        knit.load_pattern("/nonexistent/pattern.pyp")
+
+
+def test_builtin_mesh_resolution_sets_the_vertex_count():
+    m = knit.load_mesh("plane", res_u=4, res_v=3)
+    assert m.positions.shape == (20, 3) and m.faces.shape == (24, 3)
+    assert set(knit.builtin_meshes()) >= {"plane", "drape"}
+
+
+@pytest.mark.parametrize("dtype", [np.float32, np.float64])
+def test_mesh_from_arrays_accepts_float32_and_float64(dtype):
+    positions, faces, uvs = quad(dtype)
+    m = knit.Mesh(positions, faces, uvs)
+    np.testing.assert_array_equal(m.positions, positions.astype(np.float64))
+    np.testing.assert_array_equal(m.face_uvs, m.faces)  # per-vertex UVs share the face indices
+
+
+def test_mesh_from_arrays_with_separate_uv_indices():
+    positions, faces, uvs = quad()
+    m = knit.Mesh(positions, faces, uvs[::-1].copy(), faces[:, ::-1].copy())
+    assert m.uvs.shape == (4, 2) and m.face_uvs[0].tolist() == [2, 1, 0]
+
+
+def test_mesh_from_arrays_with_an_index_out_of_range_raises_knit_error():
+    positions, faces, uvs = quad()
+    with pytest.raises(knit.Error):
+        knit.Mesh(positions, faces + 10, uvs)
+
+
+def test_mesh_from_arrays_with_negative_index_names_the_row():
+    positions, faces, uvs = quad()
+    faces[1, 2] = -1
+    with pytest.raises(knit.Error, match="faces: row 1"):
+        knit.Mesh(positions, faces, uvs)
+
+
+def test_mesh_from_integer_positions_is_refused():
+    positions, faces, uvs = quad()
+    with pytest.raises(knit.Error, match="float32 or float64"):
+        knit.Mesh(positions.astype(np.int32), faces, uvs)
+
+
+def test_scene_on_a_mesh_from_arrays():
+    positions, faces, uvs = quad(np.float32)
+    scene = knit.build_scene("stockinette", knit.Mesh(positions, faces, uvs), repeats=(3, 3), build_plies=False)
+    assert scene.yarns.point_count > 0 and scene.plies.point_count == 0
+    pts = scene.yarns.points
+    assert pts[:, 0].min() > -0.1 and pts[:, 0].max() < 1.1
+
+
+def test_vertex_normals_of_a_flat_quad_point_up():
+    positions, faces, _ = quad()
+    np.testing.assert_allclose(knit.vertex_normals(positions, faces), np.tile([0, 0, 1.0], (4, 1)))
