@@ -6,6 +6,7 @@ packages=(
   build-essential cmake pkg-config
   libcgal-dev libopenmesh-dev libdraco-dev libtinygltf-dev libglm-dev libembree-dev libtbb-dev
   libgtest-dev libbenchmark-dev libstb-dev nlohmann-json3-dev libcli11-dev libtinyexr-dev
+  libmeshoptimizer-dev blender
   clang libclang-rt-14-dev
   "$@"
 )

@@ -103,6 +103,15 @@ void validateExportOptions(const ExportOptions& o) {
             throw Error(std::string("cannot export '") + o.path +
                         "': --quantize applies to tube meshes only (--export tubes)");
     }
+    if (o.meshopt) {
+        if (!isGltf(ext))
+            throw Error("cannot export '" + o.path + "': --meshopt (EXT_meshopt_compression) needs a .glb or .gltf output");
+        if (!tubes)
+            throw Error(std::string("cannot export '") + o.path +
+                        "': --meshopt applies to tube meshes only (--export tubes)");
+        if (o.draco)
+            throw Error("cannot export '" + o.path + "': --draco and --meshopt are alternatives; choose one");
+    }
     if (o.dracoBits < 1 || o.dracoBits > 30)
         throw Error("export: --draco-bits must be in [1, 30], got " + std::to_string(o.dracoBits));
     if (o.dracoNormalBits < 1 || o.dracoNormalBits > 30 || o.dracoTexcoordBits < 1 || o.dracoTexcoordBits > 30)
@@ -120,7 +129,10 @@ ExportStats exportCurves(const ExportInput& input, const ExportOptions& requeste
     // Step 1: validate options, the output folder and the data before anything is written.
     validateExportOptions(requested);
     ExportOptions options = requested;
-    if (options.chunkVertices == 0) options.chunkVertices = options.draco ? size_t(1) << 18 : size_t(1) << 20;
+    if (options.chunkVertices == 0)
+        options.chunkVertices = options.draco                        ? size_t(1) << 18
+                                : options.quantize || options.meshopt ? size_t(65535)
+                                                                      : size_t(1) << 20;
     detail::checkOutputFolder(options.path);
     const bool tubes = options.what == ExportWhat::Tubes;
     validateInput(input, tubes);

@@ -50,12 +50,14 @@ struct ExportOptions {
     int dracoNormalBits = 10;            // normal / tangent quantization bits
     int dracoTexcoordBits = 12;          // TEXCOORD_0 quantization bits
     int dracoLevel = 7;                  // Draco compression level 0 (fast) .. 10 (small)
-    bool quantize = false;               // KHR_mesh_quantization (int16 positions, int16 normals)
+    bool quantize = false;               // KHR_mesh_quantization (int16 positions, normals, uint16 UVs)
+    bool meshopt = false;                // EXT_meshopt_compression of tube views (needs KNIT_WITH_MESHOPT)
     bool yarnColors = false;             // COLOR_0 per yarn (tubes) from a fixed palette
     bool prettyJson = false;             // indent the glTF JSON
 
     // Chunking: at most this many tube vertices (tubes) or curve points (curves) per chunk;
-    // 0 = auto: 1M (2^20), or 256k (2^18) with Draco, whose encoder needs ~0.5 KB per vertex.
+    // 0 = auto: 1M (2^20), or 256k (2^18) with Draco, whose encoder needs ~0.5 KB per vertex, or
+    // 65535 with --quantize / --meshopt (every chunk then fits UNSIGNED_SHORT indices).
     // Streamed plies are planned per yarn from a lower bound of their point count (resampling
     // adds a few percent on curved yarns), so their chunks may exceed it slightly; a curve or
     // yarn longer than the limit gets a chunk of its own.
