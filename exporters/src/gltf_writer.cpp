@@ -618,7 +618,11 @@ private:
         const size_t fallback = buffers.size();
         buffers.push_back({{"byteLength", std::max<uint64_t>(fallbackBytes_, 4)},
                            {"extensions", {{"EXT_meshopt_compression", {{"fallback", true}}}}}});
-        for (int v : meshoptViews_) doc["bufferViews"][size_t(v)]["buffer"] = fallback;
+        for (const auto& [v, ext] : meshoptViews_) {
+            nlohmann::json& view = doc["bufferViews"][size_t(v)];
+            view["buffer"] = fallback;
+            view["extensions"]["EXT_meshopt_compression"] = ext;
+        }
     }
 
     void checkChunkFits(uint64_t bytes) const {
@@ -803,17 +807,17 @@ private:
         v.byteStride = target == kElementArrayBuffer ? 0 : size;
         v.target = target;
         fallbackBytes_ += v.byteLength;
-        tinygltf::Value::Object ext;
-        ext["buffer"] = tinygltf::Value(sink_.buffer());
-        ext["byteOffset"] = tinygltf::Value(double(sink_.append(mv.bytes.data(), mv.bytes.size())));
-        ext["byteLength"] = tinygltf::Value(double(mv.bytes.size()));
-        ext["byteStride"] = tinygltf::Value(int(mv.stride));
-        ext["count"] = tinygltf::Value(double(mv.count));
-        ext["mode"] = tinygltf::Value(std::string(mv.mode));
-        v.extensions["EXT_meshopt_compression"] = tinygltf::Value(std::move(ext));
+        // The extension object goes into the JSON in finish() (tinygltf 2.7 drops bufferView extensions).
+        const uint64_t at = sink_.append(mv.bytes.data(), mv.bytes.size());
         model_.bufferViews.push_back(v);
-        meshoptViews_.push_back(int(model_.bufferViews.size()) - 1);
-        return meshoptViews_.back();
+        meshoptViews_.push_back({int(model_.bufferViews.size()) - 1,
+                                 {{"buffer", sink_.buffer()},
+                                  {"byteOffset", at},
+                                  {"byteLength", mv.bytes.size()},
+                                  {"byteStride", mv.stride},
+                                  {"count", mv.count},
+                                  {"mode", mv.mode}}});
+        return meshoptViews_.back().first;
     }
 
     void tubeDraco(const DracoChunk& d, bool colours, tinygltf::Primitive& prim) {
@@ -866,7 +870,8 @@ private:
     BufferSink sink_;
     tinygltf::Model model_;
     std::vector<float> radius_;  // the constant _RADIUS values, as long as the longest curve so far
-    std::vector<int> meshoptViews_;  // --meshopt: views whose data is in the fallback buffer
+    // --meshopt: views whose data is in the fallback buffer, with their extension objects.
+    std::vector<std::pair<int, nlohmann::json>> meshoptViews_;
     uint64_t fallbackBytes_ = 0;     // --meshopt: size of the fallback buffer
 };
 
