@@ -1,7 +1,7 @@
 // knit/export.hpp — write a built scene to a file; the format follows the output extension.
 //
 // Formats (by extension of ExportOptions::path):
-//   .obj   curves as `l` records, or tube meshes (v / vn / vt / f)
+//   .obj   curves as `l i j` segment records, or tube meshes (v / vn / vt / f)
 //   .ply   binary little-endian PLY: curves as vertex + edge elements, or tube meshes
 //   .bcc   Cem Yuksel's BCC curves ("C0" uniform Catmull-Rom; closed curves have negative counts)
 //   .pbrt  pbrt-v4 `Shape "curve"` (cylinder, cubic Bezier converted from Catmull-Rom), or
@@ -10,7 +10,8 @@
 //   .glb   binary glTF; the first buffer is the GLB BIN chunk, further buffers (only when the data
 //          exceeds maxBufferBytes) are external <name>_1.bin, ... files next to it
 //          Curves (glTF): one non-indexed LINE_STRIP per curve with POSITION and _RADIUS; a
-//          closed curve repeats its first point at the end
+//          closed curve repeats its first point at the end; asset.extras.attributes names _RADIUS
+//          Tubes: +meshopt (EXT_meshopt_compression) and/or quantize (KHR_mesh_quantization)
 // What is written is chosen by ExportOptions::what: the yarn centrelines, the ply curves, or
 // swept tube meshes (of the plies when the scene has plies, else of the yarns; see tubesOf).
 //
