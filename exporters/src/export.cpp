@@ -69,6 +69,15 @@ void validateInput(const ExportInput& in, bool tubes) {
                     std::to_string(c.points.size()) + " points");
 }
 
+// A tube-mesh glTF extension flag (--quantize, --meshopt) needs a .glb/.gltf output and tubes.
+void requireGltfTubes(const ExportOptions& o, const std::string& ext, bool tubes, const char* flag,
+                      const char* extension) {
+    if (!isGltf(ext))
+        throw Error("cannot export '" + o.path + "': " + flag + " (" + extension + ") needs a .glb or .gltf output");
+    if (!tubes)
+        throw Error("cannot export '" + o.path + "': " + flag + " applies to tube meshes only (--export tubes)");
+}
+
 }  // namespace
 
 bool streamsPlies(const ExportOptions& o) {
@@ -96,19 +105,9 @@ void validateExportOptions(const ExportOptions& o) {
         if (o.quantize)
             throw Error("cannot export '" + o.path + "': --draco and --quantize are alternatives; choose one");
     }
-    if (o.quantize) {
-        if (!isGltf(ext))
-            throw Error("cannot export '" + o.path + "': --quantize (KHR_mesh_quantization) needs a .glb or .gltf output");
-        if (!tubes)
-            throw Error(std::string("cannot export '") + o.path +
-                        "': --quantize applies to tube meshes only (--export tubes)");
-    }
+    if (o.quantize) requireGltfTubes(o, ext, tubes, "--quantize", "KHR_mesh_quantization");
     if (o.meshopt) {
-        if (!isGltf(ext))
-            throw Error("cannot export '" + o.path + "': --meshopt (EXT_meshopt_compression) needs a .glb or .gltf output");
-        if (!tubes)
-            throw Error(std::string("cannot export '") + o.path +
-                        "': --meshopt applies to tube meshes only (--export tubes)");
+        requireGltfTubes(o, ext, tubes, "--meshopt", "EXT_meshopt_compression");
         if (o.draco)
             throw Error("cannot export '" + o.path + "': --draco and --meshopt are alternatives; choose one");
     }

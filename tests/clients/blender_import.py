@@ -1,5 +1,5 @@
 # blender_import.py — imports exports with Blender's own importers (headless) and prints, per file,
-# what Blender built as one JSON line:
+# what Blender built as one line "KNIT <json>":
 #   {"file", "objects", "vertices", "edges", "faces", "looseEdges", "min": [x,y,z], "max": [x,y,z]}
 # (bounds in Blender's world space: Z up; the OBJ and glTF importers turn Y-up files to Z-up).
 #

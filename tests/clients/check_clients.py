@@ -178,6 +178,25 @@ def y_up_to_blender(lo, hi):
     return [lo[0], -hi[2], lo[1]], [hi[0], -lo[2], hi[1]]
 
 
+def run_client(client, command, files, prefix, checker, env=None):
+    """Runs the client on `files`; yields (path, name, summary) for every file it loaded (the
+    summaries are JSON lines starting with `prefix`), a failure for every other."""
+    out = subprocess.run(command + files, capture_output=True, text=True, timeout=600, env=env)
+    seen = {}
+    for line in out.stdout.splitlines():
+        if line.startswith(prefix):
+            s = json.loads(line[len(prefix):])
+            seen[os.path.basename(s["file"])] = s
+    for f in files:
+        name = os.path.basename(f)
+        s = seen.get(name)
+        if s is None or "error" in s:
+            detail = (s or {}).get("error", (out.stdout + out.stderr)[-2000:])
+            checker.failures.append("%s could not load %s: %s" % (client, name, detail))
+            continue
+        yield f, name, s
+
+
 def check_threejs(args, files, reports, checker):
     modules = args.node_modules
     node = args.node or shutil.which("node")
@@ -186,19 +205,8 @@ def check_threejs(args, files, reports, checker):
     if not modules or not os.path.isfile(os.path.join(modules, "three", "package.json")):
         skip_or_fail("three.js is not installed in %s (cmake --build <build> --target three_js)" % modules)
     gltfs = [f for f in files if f.endswith((".glb", ".gltf"))]
-    out = subprocess.run([node, os.path.join(HERE, "three_load.mjs"), modules] + gltfs,
-                         capture_output=True, text=True, timeout=600)
-    seen = {}
-    for line in out.stdout.splitlines():
-        if line.startswith("{"):
-            s = json.loads(line)
-            seen[os.path.basename(s["file"])] = s
-    for f in gltfs:
-        name = os.path.basename(f)
-        s = seen.get(name)
-        if s is None or "error" in s:
-            checker.failures.append("three.js could not load %s: %s" % (name, (s or {}).get("error", out.stderr[-2000:])))
-            continue
+    command = [node, os.path.join(HERE, "three_load.mjs"), modules]
+    for f, name, s in run_client("three.js", command, gltfs, "KNIT ", checker):
         want = declared(f)
         for key in ("vertices", "triangles", "lines", "lineVertices"):
             checker.eq("three.js %s %s" % (name, key), s[key], want[key])
@@ -221,19 +229,8 @@ def check_blender(args, files, compressed, checker):
     # Debian's Blender finds its system Python (numpy, for the glTF importer) through the python3
     # on PATH: put Blender's own folder first, so a pyenv/venv python3 running this script is not it.
     env = dict(os.environ, PATH=os.path.dirname(os.path.realpath(blender)) + os.pathsep + os.environ.get("PATH", ""))
-    out = subprocess.run([blender, "-b", "--factory-startup", "--python", os.path.join(HERE, "blender_import.py"),
-                          "--"] + plain, capture_output=True, text=True, timeout=600, env=env)
-    seen = {}
-    for line in out.stdout.splitlines():
-        if line.startswith("KNIT "):
-            s = json.loads(line[5:])
-            seen[os.path.basename(s["file"])] = s
-    for f in plain:
-        name = os.path.basename(f)
-        s = seen.get(name)
-        if s is None or "error" in s:
-            checker.failures.append("Blender could not import %s: %s" % (name, (s or {}).get("error", out.stdout[-2000:])))
-            continue
+    command = [blender, "-b", "--factory-startup", "--python", os.path.join(HERE, "blender_import.py"), "--"]
+    for f, name, s in run_client("Blender", command, plain, "KNIT ", checker, env):
         want = declared(f)
         checker.eq("Blender %s vertices" % name, s["vertices"], want["vertices"] or want.get("lineVertices"))
         if f.endswith((".obj", ".ply")):

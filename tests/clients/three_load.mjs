@@ -1,6 +1,6 @@
 // three_load.mjs — loads glTF/GLB files with three.js's GLTFLoader under node (Draco through
 // DRACOLoader with the decoder shipped in three's examples/jsm/libs/draco, meshopt through
-// MeshoptDecoder) and prints, per file, what three.js sees as one JSON line:
+// MeshoptDecoder) and prints, per file, what three.js sees as one line "KNIT <json>":
 //   {"file", "meshes", "triangles", "lines", "vertices", "lineVertices", "min": [x,y,z], "max": [x,y,z]}
 // (bounds in world space, after node transforms and dequantization).
 //
@@ -109,9 +109,9 @@ for (const file of files) {
         const data = fs.readFileSync(file);
         const buffer = data.buffer.slice(data.byteOffset, data.byteOffset + data.byteLength);
         const gltf = await loader.parseAsync(buffer, pathToFileURL(path.dirname(path.resolve(file))).href + '/');
-        console.log(JSON.stringify(summarize(file, gltf)));
+        console.log('KNIT ' + JSON.stringify(summarize(file, gltf)));
     } catch (e) {
-        console.log(JSON.stringify({ file, error: String(e && e.stack ? e.stack : e) }));
+        console.log('KNIT ' + JSON.stringify({ file, error: String(e && e.stack ? e.stack : e) }));
         failed = true;
     }
 }

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "export/export_helpers.hpp"
 #include "export/gltf_read.hpp"
 #include "export/gltf_validator.hpp"
 #include "export/test_curves.hpp"
@@ -18,22 +19,6 @@
 
 namespace knit {
 namespace {
-
-ExportStats write(const Polylines& c, double radius, ExportOptions o, const std::vector<uint32_t>* yarns = nullptr) {
-    ExportInput in;
-    in.curves = &c;
-    in.radius = radius;
-    in.yarnOfCurve = yarns;
-    return exportCurves(in, o);
-}
-
-ExportOptions tubes(const std::string& path, int sides) {
-    ExportOptions o;
-    o.path = path;
-    o.what = ExportWhat::Tubes;
-    o.sides = sides;
-    return o;
-}
 
 // One triangle primitive read back: world positions, normals, tangents, uvs and indices.
 struct Triangles {
@@ -62,7 +47,7 @@ Triangles readFirstPrimitive(const gltf::Document& d) {
 TEST(GltfClients, tangentIsDPduOfTheFilesOwnTexcoordsWithBitangentSignInW) {
     const std::string dir = test::scratchDir("gltf_clients_tangent");
     const Polylines c = test::mixedCurves();
-    write(c, 0.0015, tubes(dir + "/t.glb", 16));
+    test::exportWith(c, 0.0015, test::tubeOptions(dir + "/t.glb", 16));
     const Triangles r = readFirstPrimitive(test::loadGltf(dir + "/t.glb"));
     ASSERT_GT(r.idx.size(), 0u);
     for (size_t f = 0; f + 2 < r.idx.size(); f += 3) {
@@ -85,10 +70,10 @@ TEST(GltfClients, tangentIsDPduOfTheFilesOwnTexcoordsWithBitangentSignInW) {
 TEST(GltfClients, yarnColourIsThePaletteColourConvertedToLinear) {
     const std::string dir = test::scratchDir("gltf_clients_colour");
     const Polylines c = test::mixedCurves();
-    ExportOptions o = tubes(dir + "/c.glb", 4);
+    ExportOptions o = test::tubeOptions(dir + "/c.glb", 4);
     o.yarnColors = true;
     const std::vector<uint32_t> yarns(c.curveCount(), 0);
-    write(c, 0.001, o, &yarns);
+    test::exportWith(c, 0.001, o, &yarns);
     const gltf::Document d = test::loadGltf(o.path);
     const gltf::Primitive prim = d.primitives(d.meshInstances().at(0).mesh).at(0);
     const std::vector<double> col = test::readAttribute(d, prim, "COLOR_0");
@@ -104,14 +89,14 @@ TEST(GltfClients, yarnColourIsThePaletteColourConvertedToLinear) {
 TEST(GltfClients, chunksUpTo65535VerticesGetUnsignedShortIndices) {
     const std::string dir = test::scratchDir("gltf_clients_indices");
     const Polylines c = test::mixedCurves();
-    write(c, 0.001, tubes(dir + "/small.glb", 8));
+    test::exportWith(c, 0.001, test::tubeOptions(dir + "/small.glb", 8));
     const gltf::Document small = test::loadGltf(dir + "/small.glb");
     EXPECT_EQ(small.root()["accessors"][small.root()["meshes"][0]["primitives"][0]["indices"].get<size_t>()]
                   ["componentType"],
               gltf::kUnsignedShort);
     test::expectGltfValid(dir + "/small.glb");
     // 1024 sides: one chunk of more than 65535 vertices keeps UNSIGNED_INT.
-    const ExportStats s = write(c, 0.001, tubes(dir + "/large.glb", 1024));
+    const ExportStats s = test::exportWith(c, 0.001, test::tubeOptions(dir + "/large.glb", 1024));
     ASSERT_GT(s.maxChunkVertices, 65535u);
     const gltf::Document large = test::loadGltf(dir + "/large.glb");
     EXPECT_EQ(large.root()["accessors"][large.root()["meshes"][0]["primitives"][0]["indices"].get<size_t>()]
@@ -122,10 +107,10 @@ TEST(GltfClients, chunksUpTo65535VerticesGetUnsignedShortIndices) {
 TEST(GltfClients, quantizedTexcoordsTimesTheirScaleGiveThePlainTexcoords) {
     const std::string dir = test::scratchDir("gltf_clients_uv");
     const Polylines c = test::mixedCurves();
-    write(c, 0.001, tubes(dir + "/plain.glb", 8));
-    ExportOptions o = tubes(dir + "/q.glb", 8);
+    test::exportWith(c, 0.001, test::tubeOptions(dir + "/plain.glb", 8));
+    ExportOptions o = test::tubeOptions(dir + "/q.glb", 8);
     o.quantize = true;
-    write(c, 0.001, o);
+    test::exportWith(c, 0.001, o);
     test::expectGltfValid(o.path);
     const gltf::Document plain = test::loadGltf(dir + "/plain.glb"), q = test::loadGltf(o.path);
     const gltf::Primitive pp = plain.primitives(0).at(0), qp = q.primitives(0).at(0);
@@ -145,7 +130,7 @@ TEST(GltfClients, curveFileNamesTheRadiusAttributeInAssetExtras) {
     ExportOptions o;
     o.path = dir + "/curves.glb";
     o.what = ExportWhat::Yarns;
-    write(c, 0.002, o);
+    test::exportWith(c, 0.002, o);
     test::expectGltfValid(o.path);
     const gltf::Document d = test::loadGltf(o.path);
     const nlohmann::json& asset = d.root()["asset"];
@@ -161,10 +146,10 @@ TEST(GltfClients, curveFileNamesTheRadiusAttributeInAssetExtras) {
 TEST(GltfClients, meshoptViewsDecodeToThePlainExportsBytes) {
     const std::string dir = test::scratchDir("gltf_clients_meshopt");
     const Polylines c = test::mixedCurves();
-    write(c, 0.001, tubes(dir + "/plain.glb", 8));
-    ExportOptions o = tubes(dir + "/m.glb", 8);
+    test::exportWith(c, 0.001, test::tubeOptions(dir + "/plain.glb", 8));
+    ExportOptions o = test::tubeOptions(dir + "/m.glb", 8);
     o.meshopt = true;
-    const ExportStats s = write(c, 0.001, o);
+    const ExportStats s = test::exportWith(c, 0.001, o);
     test::expectGltfValid(o.path);
     const gltf::Document plain = test::loadGltf(dir + "/plain.glb"), m = test::loadGltf(o.path);
     const nlohmann::json& root = m.root();
