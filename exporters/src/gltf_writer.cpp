@@ -383,11 +383,64 @@ struct TubeChunk {
     QuantizedTubes quantized;          // --quantize
     DracoChunk draco;                  // --draco
     std::vector<uint16_t> indices16;   // the triangles as UNSIGNED_SHORT when <= 65535 vertices
+    std::vector<MeshoptView> meshopt;  // --meshopt: tubeViews(), encoded in the parallel half
 };
 
 // UNSIGNED_SHORT indices fit when every index is below 65535 (the primitive-restart value is
 // not allowed as an index).
 bool fitsShortIndices(const TubeMesh& m) { return m.vertexCount() <= 65535; }
+
+// One bufferView + accessor of a tube chunk: `count` elements of `size` bytes at `data`.
+struct TubeView {
+    const char* attribute;  // glTF attribute name, or nullptr for the indices
+    const void* data;
+    size_t count, size;
+    int stride, target, componentType, type;
+    bool normalized;
+};
+
+// The views of a plain or quantized (not Draco) tube chunk, in file order: POSITION, NORMAL,
+// TANGENT, TEXCOORD_0, COLOR_0 (colours), indices (UNSIGNED_SHORT when indices16 is filled).
+std::vector<TubeView> tubeViews(const TubeChunk& t, bool colours, bool quantized) {
+    const TubeMesh& m = t.mesh;
+    const QuantizedTubes& q = t.quantized;
+    const size_t n = m.vertexCount();
+    const int f = TINYGLTF_COMPONENT_TYPE_FLOAT, s = TINYGLTF_COMPONENT_TYPE_SHORT, b = TINYGLTF_COMPONENT_TYPE_BYTE;
+    const int v2 = TINYGLTF_TYPE_VEC2, v3 = TINYGLTF_TYPE_VEC3, v4 = TINYGLTF_TYPE_VEC4;
+    std::vector<TubeView> v;
+    if (!quantized) {
+        v.push_back({"POSITION", m.positions.data(), n, 12, 0, kArrayBuffer, f, v3, false});
+        v.push_back({"NORMAL", m.normals.data(), n, 12, 0, kArrayBuffer, f, v3, false});
+        v.push_back({"TANGENT", m.tangents.data(), n, 16, 0, kArrayBuffer, f, v4, false});
+        v.push_back({"TEXCOORD_0", m.uvs.data(), n, 8, 0, kArrayBuffer, f, v2, false});
+    } else {
+        v.push_back({"POSITION", q.position.data(), n, 8, 8, kArrayBuffer, s, v3, false});
+        if (q.normal8.empty()) {
+            v.push_back({"NORMAL", q.normal.data(), n, 8, 8, kArrayBuffer, s, v3, true});
+            v.push_back({"TANGENT", q.tangent.data(), n, 8, 0, kArrayBuffer, s, v4, true});
+        } else {
+            v.push_back({"NORMAL", q.normal8.data(), n, 4, 4, kArrayBuffer, b, v3, true});
+            v.push_back({"TANGENT", q.tangent8.data(), n, 4, 0, kArrayBuffer, b, v4, true});
+        }
+        v.push_back({"TEXCOORD_0", q.uv.data(), n, 4, 0, kArrayBuffer, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, v2, true});
+    }
+    if (colours)
+        v.push_back({"COLOR_0", t.colours.data(), n, 4, 0, kArrayBuffer, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, v4, true});
+    const bool shortIndices = !t.indices16.empty();
+    v.push_back({nullptr, shortIndices ? static_cast<const void*>(t.indices16.data()) : m.triangles.data(),
+                 m.triangles.size() * 3, shortIndices ? size_t(2) : size_t(4), 0, kElementArrayBuffer,
+                 shortIndices ? TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT : TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT,
+                 TINYGLTF_TYPE_SCALAR, false});
+    return v;
+}
+
+// --meshopt: every view of the chunk through meshoptimizer's codecs (index codec for indices).
+void encodeTubeViews(TubeChunk& t, bool colours, bool quantized) {
+    t.meshopt.clear();
+    for (const TubeView& v : tubeViews(t, colours, quantized))
+        t.meshopt.push_back(v.target == kElementArrayBuffer ? encodeMeshoptTriangles(v.data, v.count, v.size)
+                                                            : encodeMeshoptAttributes(v.data, v.count, v.size));
+}
 
 // Bytes reserved in front of a GLB's BIN data for the header and JSON chunk: generous per-chunk
 // (and per-curve) estimates of the JSON size; finish() pads the JSON with spaces to fill it.
@@ -447,7 +500,7 @@ public:
             model_.extensionsRequired.push_back("KHR_mesh_quantization");
         }
         if (job.tubes && job.options.meshopt) {
-            if (!meshoptAvailable()) encodeMeshoptAttributes(nullptr, 0, 4);  // throws the build's message
+            requireMeshopt();
             model_.extensionsUsed.push_back("EXT_meshopt_compression");
             model_.extensionsRequired.push_back("EXT_meshopt_compression");
         }
@@ -491,6 +544,7 @@ public:
             for (size_t i = 0; i < t.mesh.triangles.size(); ++i)
                 for (int k = 0; k < 3; ++k) t.indices16[i * 3 + size_t(k)] = uint16_t(t.mesh.triangles[i][k]);
         }
+        if (job_.options.meshopt) encodeTubeViews(t, col != nullptr, job_.options.quantize);
     }
 
     // The serial half: views, accessors and the chunk's node.
@@ -510,9 +564,7 @@ public:
             // The chunk's data is at most its plain size; meshopt's worst case adds a little.
             sink_.reserve(plain + plain / 8 + 1024);
             const uint64_t before = sink_.size(size_t(sink_.buffer()));
-            if (job_.options.quantize) tubeQuantized(mesh, t.quantized, col, prim, scale);
-            else tubePlain(mesh, col, prim);
-            addTubeIndices(t, prim);
+            tubeAccessors(t, col != nullptr, prim, scale);
             job_.stats.compressedMeshBytes += sink_.size(size_t(sink_.buffer())) - before;
         }
         addChunkNode(k, mesh.origin, prim, scale);
@@ -738,76 +790,45 @@ private:
         a.maxValues = {double(hi[0]), double(hi[1]), double(hi[2])};
     }
 
-    // Float attributes (and COLOR_0) of one chunk; the caller reserved the space.
-    void tubePlain(const TubeMesh& m, const std::vector<glm::u8vec4>* col, tinygltf::Primitive& prim) {
-        const size_t n = m.vertexCount();
-        const int f = TINYGLTF_COMPONENT_TYPE_FLOAT;
-        prim.attributes["POSITION"] = addAccessor(addTubeView(m.positions.data(), n, 12, 0), 0, f, TINYGLTF_TYPE_VEC3, n, false);
-        setBounds(model_.accessors[prim.attributes["POSITION"]], m.positions);
-        prim.attributes["NORMAL"] = addAccessor(addTubeView(m.normals.data(), n, 12, 0), 0, f, TINYGLTF_TYPE_VEC3, n, false);
-        prim.attributes["TANGENT"] = addAccessor(addTubeView(m.tangents.data(), n, 16, 0), 0, f, TINYGLTF_TYPE_VEC4, n, false);
-        prim.attributes["TEXCOORD_0"] = addAccessor(addTubeView(m.uvs.data(), n, 8, 0), 0, f, TINYGLTF_TYPE_VEC2, n, false);
-        addColours(col, n, prim);
-    }
-
-    // KHR_mesh_quantization attributes of one chunk (node scale = position step).
-    void tubeQuantized(const TubeMesh& m, const QuantizedTubes& q, const std::vector<glm::u8vec4>* col,
-                       tinygltf::Primitive& prim, std::vector<double>& scale) {
-        const size_t n = m.vertexCount();
-        scale = {q.step, q.step, q.step};
-        const int s = TINYGLTF_COMPONENT_TYPE_SHORT;
-        prim.attributes["POSITION"] = addAccessor(addTubeView(q.position.data(), n, 8, 8), 0, s, TINYGLTF_TYPE_VEC3, n, false);
-        tinygltf::Accessor& pa = model_.accessors[prim.attributes["POSITION"]];
-        pa.minValues = {double(q.lo.x), double(q.lo.y), double(q.lo.z)};
-        pa.maxValues = {double(q.hi.x), double(q.hi.y), double(q.hi.z)};
-        if (q.normal8.empty()) {
-            prim.attributes["NORMAL"] = addAccessor(addTubeView(q.normal.data(), n, 8, 8), 0, s, TINYGLTF_TYPE_VEC3, n, true);
-            prim.attributes["TANGENT"] = addAccessor(addTubeView(q.tangent.data(), n, 8, 0), 0, s, TINYGLTF_TYPE_VEC4, n, true);
-        } else {
-            const int b = TINYGLTF_COMPONENT_TYPE_BYTE;
-            prim.attributes["NORMAL"] = addAccessor(addTubeView(q.normal8.data(), n, 4, 4), 0, b, TINYGLTF_TYPE_VEC3, n, true);
-            prim.attributes["TANGENT"] = addAccessor(addTubeView(q.tangent8.data(), n, 4, 0), 0, b, TINYGLTF_TYPE_VEC4, n, true);
+    // The views and accessors of a plain or quantized chunk (the caller reserved the space), with
+    // the exact POSITION bounds, and for quantized data the node scale and texcoordScale extras.
+    void tubeAccessors(const TubeChunk& t, bool colours, tinygltf::Primitive& prim, std::vector<double>& scale) {
+        const bool quantized = job_.options.quantize;
+        const std::vector<TubeView> views = tubeViews(t, colours, quantized);
+        for (size_t i = 0; i < views.size(); ++i) {
+            const TubeView& v = views[i];
+            const int view = job_.options.meshopt ? addMeshoptView(v, t.meshopt[i])
+                                                  : addView(v.data, uint64_t(v.count) * v.size, v.stride, v.target);
+            const int accessor = addAccessor(view, 0, v.componentType, v.type, v.count, v.normalized);
+            if (v.attribute) prim.attributes[v.attribute] = accessor;
+            else prim.indices = accessor;
         }
-        prim.attributes["TEXCOORD_0"] = addAccessor(addTubeView(q.uv.data(), n, 4, 0), 0,
-                                                    TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC2, n, true);
+        tinygltf::Accessor& position = model_.accessors[size_t(prim.attributes["POSITION"])];
+        if (!quantized) {
+            setBounds(position, t.mesh.positions);
+            return;
+        }
+        const QuantizedTubes& q = t.quantized;
+        position.minValues = {double(q.lo.x), double(q.lo.y), double(q.lo.z)};
+        position.maxValues = {double(q.hi.x), double(q.hi.y), double(q.hi.z)};
+        scale = {q.step, q.step, q.step};
         tinygltf::Value::Object extras;
         extras["texcoordScale"] = tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(1.0), tinygltf::Value(q.vScale)});
         prim.extras = tinygltf::Value(std::move(extras));
-        addColours(col, n, prim);
     }
 
-    void addColours(const std::vector<glm::u8vec4>* col, size_t n, tinygltf::Primitive& prim) {
-        if (!col) return;
-        prim.attributes["COLOR_0"] = addAccessor(addTubeView(col->data(), n, 4, 0), 0,
-                                                 TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_TYPE_VEC4, n, true);
-    }
-
-    // Triangle indices: UNSIGNED_SHORT when the chunk fits (prepareTubeChunk filled indices16).
-    void addTubeIndices(const TubeChunk& t, tinygltf::Primitive& prim) {
-        const size_t count = t.mesh.triangles.size() * 3;
-        const bool shortIndices = !t.indices16.empty();
-        const void* data = shortIndices ? static_cast<const void*>(t.indices16.data()) : t.mesh.triangles.data();
-        const size_t size = shortIndices ? 2 : 4;
-        prim.indices = addAccessor(addTubeView(data, count, size, 0, kElementArrayBuffer), 0,
-                                   shortIndices ? TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT : TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT,
-                                   TINYGLTF_TYPE_SCALAR, count, false);
-    }
-
-    // A tube bufferView of `count` elements of `size` bytes: stored as is, or (--meshopt) encoded
-    // into the current buffer with the view itself in the fallback buffer (patched in finish()).
-    int addTubeView(const void* data, size_t count, size_t size, int stride, int target = kArrayBuffer) {
-        if (!job_.options.meshopt) return addView(data, uint64_t(count) * size, stride, target);
-        const MeshoptView mv = target == kElementArrayBuffer ? encodeMeshoptTriangles(data, count, size)
-                                                             : encodeMeshoptAttributes(data, count, size);
+    // An EXT_meshopt_compression view: the encoded bytes go into the current buffer, the view
+    // itself into the fallback buffer (its index and the extension object are set in finish()).
+    int addMeshoptView(const TubeView& source, const MeshoptView& mv) {
         tinygltf::BufferView v;
-        v.buffer = 0;  // the fallback buffer, set in finish() once the buffer count is known
+        v.buffer = 0;
         fallbackBytes_ = (fallbackBytes_ + 3) / 4 * 4;
         v.byteOffset = size_t(fallbackBytes_);
-        v.byteLength = count * size;
-        v.byteStride = target == kElementArrayBuffer ? 0 : size;
-        v.target = target;
+        v.byteLength = source.count * source.size;
+        v.byteStride = source.target == kElementArrayBuffer ? 0 : source.size;
+        v.target = source.target;
         fallbackBytes_ += v.byteLength;
-        // The extension object goes into the JSON in finish() (tinygltf 2.7 drops bufferView extensions).
+        // tinygltf 2.7 drops bufferView extensions: the object is added to the JSON in finish().
         const uint64_t at = sink_.append(mv.bytes.data(), mv.bytes.size());
         model_.bufferViews.push_back(v);
         meshoptViews_.push_back({int(model_.bufferViews.size()) - 1,

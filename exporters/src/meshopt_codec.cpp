@@ -19,7 +19,7 @@ namespace knit::detail {
 
 #ifdef KNIT_WITH_MESHOPT
 
-bool meshoptAvailable() { return true; }
+void requireMeshopt() {}
 
 MeshoptView encodeMeshoptAttributes(const void* data, size_t count, size_t stride) {
     if (stride == 0 || stride % 4 != 0 || stride > 256)
@@ -59,14 +59,18 @@ MeshoptView encodeMeshoptTriangles(const void* indices, size_t count, size_t ind
 
 #else
 
-bool meshoptAvailable() { return false; }
-
-[[noreturn]] static void noMeshopt() {
+void requireMeshopt() {
     throw Error("--meshopt: this build has no meshoptimizer (configure with KNIT_WITH_MESHOPT=ON and "
                 "libmeshoptimizer-dev installed)");
 }
-MeshoptView encodeMeshoptAttributes(const void*, size_t, size_t) { noMeshopt(); }
-MeshoptView encodeMeshoptTriangles(const void*, size_t, size_t) { noMeshopt(); }
+MeshoptView encodeMeshoptAttributes(const void*, size_t, size_t) {
+    requireMeshopt();
+    return {};
+}
+MeshoptView encodeMeshoptTriangles(const void*, size_t, size_t) {
+    requireMeshopt();
+    return {};
+}
 
 #endif
 

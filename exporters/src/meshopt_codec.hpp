@@ -16,8 +16,8 @@ struct MeshoptView {
     const char* mode = "ATTRIBUTES";
 };
 
-// True when the library was built with meshoptimizer.
-bool meshoptAvailable();
+// Throws knit::Error naming the build option when the library was built without meshoptimizer.
+void requireMeshopt();
 
 // Vertex codec (version 0): `count` elements of `stride` bytes (stride % 4 == 0, <= 256).
 MeshoptView encodeMeshoptAttributes(const void* data, size_t count, size_t stride);
