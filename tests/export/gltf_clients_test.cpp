@@ -4,6 +4,7 @@
 // data, and the curves' _RADIUS attribute named in the asset extras.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -11,6 +12,7 @@
 #include "export/gltf_read.hpp"
 #include "export/gltf_validator.hpp"
 #include "export/test_curves.hpp"
+#include "knit/error.hpp"
 #include "knit/export.hpp"
 
 #ifdef KNIT_WITH_MESHOPT
@@ -138,6 +140,31 @@ TEST(GltfClients, curveFileNamesTheRadiusAttributeInAssetExtras) {
     EXPECT_NE(asset["extras"]["attributes"]["_RADIUS"].get<std::string>().find("radius"), std::string::npos);
     const gltf::Primitive prim = d.primitives(0).at(0);
     for (double r : test::readAttribute(d, prim, "_RADIUS")) ASSERT_FLOAT_EQ(float(r), 0.002f);
+}
+
+// --meshopt needs a glTF output and tubes, and is an alternative to Draco (messages name the flag).
+TEST(GltfClients, meshoptNeedsGltfTubesAndIsNoDracoCompanion) {
+    const std::string dir = test::scratchDir("gltf_clients_meshopt_errors");
+    const Polylines c = test::mixedCurves();
+    auto errorOf = [&](ExportOptions o) {
+        try {
+            test::exportWith(c, 0.001, o);
+        } catch (const Error& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    ExportOptions obj = test::tubeOptions(dir + "/t.obj", 8);
+    obj.meshopt = true;
+    EXPECT_EQ(errorOf(obj), "cannot export '" + obj.path +
+                                "': --meshopt (EXT_meshopt_compression) needs a .glb or .gltf output");
+    ExportOptions curves;
+    curves.path = dir + "/c.glb";
+    curves.meshopt = true;
+    EXPECT_EQ(errorOf(curves), "cannot export '" + curves.path + "': --meshopt applies to tube meshes only (--export tubes)");
+    ExportOptions both = test::tubeOptions(dir + "/b.glb", 8);
+    both.meshopt = both.draco = true;
+    EXPECT_EQ(errorOf(both), "cannot export '" + both.path + "': --draco and --meshopt are alternatives; choose one");
 }
 
 #ifdef KNIT_WITH_MESHOPT
