@@ -7,5 +7,7 @@ bash "$root/scripts/build.sh"
 build="$root/build"
 # The Khronos glTF-Validator (npm) that the export tests run on every glTF/GLB they write.
 [ -d "$build/node/node_modules/gltf-validator" ] || cmake --build "$build" --target gltf_validator
+# three.js (npm) for the real-client tests (tests/clients).
+[ -d "$build/node/node_modules/three" ] || cmake --build "$build" --target three_js
 cd "$build"
 ctest --output-on-failure -j"${KNIT_JOBS:-$(nproc)}"

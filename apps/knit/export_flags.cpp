@@ -41,11 +41,15 @@ void addExportFlags(CLI::App& command, ExportOptions& options) {
                      "KHR_mesh_quantization: int16 positions/normals/tangents for tube meshes (.glb/.gltf)")
         ->excludes(draco)
         ->group("Export");
+    command.add_flag("--meshopt", options.meshopt,
+                     "EXT_meshopt_compression of tube meshes (.glb/.gltf; with --quantize: smallest files)")
+        ->excludes(draco)
+        ->group("Export");
     command.add_flag("--yarn-colors", options.yarnColors, "COLOR_0 per yarn on tube meshes (glTF)")
         ->group("Export");
     command.add_option("--chunk-vertices", options.chunkVertices,
                        "Streaming chunk size: tube vertices (or curve points) per chunk / glTF node; "
-                       "0 = auto (1048576, or 262144 with --draco)")
+                       "0 = auto (1048576, 262144 with --draco, 65535 with --quantize/--meshopt)")
         ->check(CLI::Range(size_t(0), size_t(1) << 31))
         ->capture_default_str()
         ->group("Export");

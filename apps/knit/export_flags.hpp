@@ -7,7 +7,7 @@
 namespace knit::cli {
 
 // Registers --export --tubes-of --sides --no-caps --draco --draco-bits --draco-level --quantize
-// --yarn-colors --chunk-vertices --pretty-json (help group "Export") filling `options`.
+// --meshopt --yarn-colors --chunk-vertices --pretty-json (help group "Export") filling `options`.
 void addExportFlags(CLI::App& command, ExportOptions& options);
 
 }  // namespace knit::cli

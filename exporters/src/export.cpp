@@ -69,6 +69,15 @@ void validateInput(const ExportInput& in, bool tubes) {
                     std::to_string(c.points.size()) + " points");
 }
 
+// A tube-mesh glTF extension flag (--quantize, --meshopt) needs a .glb/.gltf output and tubes.
+void requireGltfTubes(const ExportOptions& o, const std::string& ext, bool tubes, const char* flag,
+                      const char* extension) {
+    if (!isGltf(ext))
+        throw Error("cannot export '" + o.path + "': " + flag + " (" + extension + ") needs a .glb or .gltf output");
+    if (!tubes)
+        throw Error("cannot export '" + o.path + "': " + flag + " applies to tube meshes only (--export tubes)");
+}
+
 }  // namespace
 
 bool streamsPlies(const ExportOptions& o) {
@@ -96,12 +105,11 @@ void validateExportOptions(const ExportOptions& o) {
         if (o.quantize)
             throw Error("cannot export '" + o.path + "': --draco and --quantize are alternatives; choose one");
     }
-    if (o.quantize) {
-        if (!isGltf(ext))
-            throw Error("cannot export '" + o.path + "': --quantize (KHR_mesh_quantization) needs a .glb or .gltf output");
-        if (!tubes)
-            throw Error(std::string("cannot export '") + o.path +
-                        "': --quantize applies to tube meshes only (--export tubes)");
+    if (o.quantize) requireGltfTubes(o, ext, tubes, "--quantize", "KHR_mesh_quantization");
+    if (o.meshopt) {
+        requireGltfTubes(o, ext, tubes, "--meshopt", "EXT_meshopt_compression");
+        if (o.draco)
+            throw Error("cannot export '" + o.path + "': --draco and --meshopt are alternatives; choose one");
     }
     if (o.dracoBits < 1 || o.dracoBits > 30)
         throw Error("export: --draco-bits must be in [1, 30], got " + std::to_string(o.dracoBits));
@@ -120,7 +128,10 @@ ExportStats exportCurves(const ExportInput& input, const ExportOptions& requeste
     // Step 1: validate options, the output folder and the data before anything is written.
     validateExportOptions(requested);
     ExportOptions options = requested;
-    if (options.chunkVertices == 0) options.chunkVertices = options.draco ? size_t(1) << 18 : size_t(1) << 20;
+    if (options.chunkVertices == 0)
+        options.chunkVertices = options.draco                        ? size_t(1) << 18
+                                : options.quantize || options.meshopt ? size_t(65535)
+                                                                      : size_t(1) << 20;
     detail::checkOutputFolder(options.path);
     const bool tubes = options.what == ExportWhat::Tubes;
     validateInput(input, tubes);

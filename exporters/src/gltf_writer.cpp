@@ -2,13 +2,21 @@
 //
 // Structure: scene 0 -> root node "libknit" -> one child node per chunk, whose translation is the
 // chunk's local origin (double) and whose mesh holds float32 positions relative to it.
-//  * Tubes: one TRIANGLES primitive per chunk with POSITION, NORMAL, TANGENT (along the curve,
-//    w = -1, see sweep.cpp), TEXCOORD_0 (u around 0..1, v along in radius units) and optional
-//    COLOR_0 (RGBA8 normalized, one palette colour per yarn); UNSIGNED_INT indices.
+//  * Tubes: one TRIANGLES primitive per chunk with POSITION, NORMAL, TANGENT (xyz along increasing
+//    u of TEXCOORD_0, w the bitangent sign, see sweep.cpp), TEXCOORD_0 (u around 0..1, v along in
+//    radius units) and optional COLOR_0 (RGBA8 normalized, one palette colour per yarn, linear as
+//    glTF requires: the sRGB palette converted); UNSIGNED_SHORT indices when the chunk has
+//    <= 65535 vertices, else UNSIGNED_INT.
 //    --draco: the primitive carries KHR_draco_mesh_compression (required; no fallback data), its
 //    accessors describe the decoded data (count, exact POSITION bounds). --quantize:
 //    KHR_mesh_quantization (required): POSITION as SHORT scaled by the node's uniform scale,
-//    NORMAL / TANGENT as normalized SHORT (stride 8), TEXCOORD_0 float.
+//    NORMAL / TANGENT as normalized SHORT (stride 8), TEXCOORD_0 as normalized UNSIGNED_SHORT of
+//    (u, v / vScale); no texture uses TEXCOORD_0, so there is no KHR_texture_transform to carry
+//    vScale: the primitive's extras hold {"texcoordScale": [1, vScale]} (uv = stored * scale).
+//    --meshopt: EXT_meshopt_compression (required) on every tube bufferView (vertex codec for
+//    attributes, index codec for triangles, see meshopt_codec.hpp); the views point into a
+//    fallback buffer (the last buffer: no uri, extension `fallback: true`, never written). With
+//    --quantize, NORMAL / TANGENT are normalized BYTE (stride 4) instead of SHORT.
 //  * Curves: one non-indexed LINE_STRIP primitive per curve (a closed curve repeats its first
 //    point at the end) with its own POSITION (exact bounds) and `_RADIUS` accessors; a chunk's
 //    curves share one POSITION view and one constant `_RADIUS` view (both with byteStride).
@@ -31,6 +39,7 @@
 #include <sstream>
 
 #include <glm/common.hpp>
+#include <glm/gtc/type_precision.hpp>
 #include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
@@ -40,6 +49,7 @@
 #include "formats.hpp"
 #include "knit/error.hpp"
 #include "knit/plies.hpp"
+#include "meshopt_codec.hpp"
 
 namespace knit::detail {
 
@@ -92,7 +102,11 @@ tinygltf::Value toValue(const nlohmann::json& j) {
     }
 }
 
-// A palette colour per yarn (golden-ratio hue steps; deterministic), RGBA8.
+// sRGB-encoded value in [0,1] to linear (IEC 61966-2-1).
+double srgbToLinear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
+
+// A palette colour per yarn (golden-ratio hue steps in sRGB; deterministic) as linear RGBA8:
+// glTF's COLOR_0 is linear, so the sRGB palette colour is converted before it is stored.
 glm::u8vec4 yarnColour(uint32_t yarn) {
     const double h = std::fmod(0.13 + 0.6180339887498949 * double(yarn), 1.0) * 6.0;
     const double s = 0.55, v = 0.9;
@@ -107,8 +121,8 @@ glm::u8vec4 yarnColour(uint32_t yarn) {
         case 4: r = t, g = p, b = v; break;
         default: r = v, g = p, b = q; break;
     }
-    return glm::u8vec4(uint8_t(std::lround(r * 255)), uint8_t(std::lround(g * 255)), uint8_t(std::lround(b * 255)),
-                       255);
+    auto linear8 = [](double c) { return uint8_t(std::lround(srgbToLinear(c) * 255)); };
+    return glm::u8vec4(linear8(r), linear8(g), linear8(b), 255);
 }
 
 // Binary data for the glTF buffers, streamed into temporary files. GLB: buffer 0 is written
@@ -301,11 +315,41 @@ struct QuantizedTubes {
         int16_t v[4];
     };
     std::vector<S4> position, normal, tangent;
+    std::vector<glm::i8vec4> normal8, tangent8;  // instead of normal / tangent with --meshopt
+    std::vector<glm::u16vec2> uv;      // normalized (u, v / vScale)
     glm::ivec3 lo{32767}, hi{-32767};  // bounds of the quantized positions
     double step = 1.0;
+    double vScale = 1.0;               // largest v of the chunk (v >= 0)
 };
 
-void quantizeTubes(const TubeMesh& m, QuantizedTubes& q) {
+// TEXCOORD_0 as normalized uint16: u in [0, 1] directly, v (radius units, >= 0) over the chunk's
+// largest v, recorded as the primitive's texcoordScale.
+void quantizeTexcoords(const TubeMesh& m, QuantizedTubes& q) {
+    float vMax = 0.0f;
+    for (const glm::vec2& uv : m.uvs) vMax = std::max(vMax, uv.y);
+    q.vScale = vMax > 0.0f ? double(vMax) : 1.0;
+    q.uv.resize(m.uvs.size());
+    auto qu = [](double x) { return uint16_t(std::lround(std::clamp(x, 0.0, 1.0) * 65535.0)); };
+    for (size_t i = 0; i < m.uvs.size(); ++i) q.uv[i] = glm::u16vec2(qu(m.uvs[i].x), qu(m.uvs[i].y / q.vScale));
+}
+
+// --quantize --meshopt: NORMAL / TANGENT as normalized BYTE (stride 4, like gltfpack's default
+// 8-bit normals; ~0.5 degree), which halves them before the vertex codec.
+void quantizeDirectionsToBytes(const TubeMesh& m, QuantizedTubes& q) {
+    auto qb = [](double x) { return int8_t(std::lround(std::clamp(x, -1.0, 1.0) * 127.0)); };
+    q.normal8.resize(m.vertexCount());
+    q.tangent8.resize(m.vertexCount());
+    for (size_t i = 0; i < m.vertexCount(); ++i) {
+        const glm::vec3& n = m.normals[i];
+        const glm::vec4& t = m.tangents[i];
+        q.normal8[i] = glm::i8vec4(qb(n.x), qb(n.y), qb(n.z), 0);
+        q.tangent8[i] = glm::i8vec4(qb(t.x), qb(t.y), qb(t.z), t.w < 0 ? int8_t(-127) : int8_t(127));
+    }
+    q.normal.clear();
+    q.tangent.clear();
+}
+
+void quantizeTubes(const TubeMesh& m, QuantizedTubes& q, bool byteDirections) {
     const size_t n = m.vertexCount();
     float maxAbs = 0.0f;
     for (const glm::vec3& p : m.positions) maxAbs = std::max({maxAbs, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
@@ -327,6 +371,9 @@ void quantizeTubes(const TubeMesh& m, QuantizedTubes& q) {
         q.position[i].v[3] = q.normal[i].v[3] = 0;
         q.tangent[i].v[3] = m.tangents[i].w < 0 ? int16_t(-32767) : int16_t(32767);
     }
+    quantizeTexcoords(m, q);
+    if (byteDirections) quantizeDirectionsToBytes(m, q);
+    else q.normal8.clear(), q.tangent8.clear();
 }
 
 // One chunk of tubes on its way to the file (see GltfBuilder::writeTubes).
@@ -335,7 +382,65 @@ struct TubeChunk {
     std::vector<glm::u8vec4> colours;  // --yarn-colors
     QuantizedTubes quantized;          // --quantize
     DracoChunk draco;                  // --draco
+    std::vector<uint16_t> indices16;   // the triangles as UNSIGNED_SHORT when <= 65535 vertices
+    std::vector<MeshoptView> meshopt;  // --meshopt: tubeViews(), encoded in the parallel half
 };
+
+// UNSIGNED_SHORT indices fit when every index is below 65535 (the primitive-restart value is
+// not allowed as an index).
+bool fitsShortIndices(const TubeMesh& m) { return m.vertexCount() <= 65535; }
+
+// One bufferView + accessor of a tube chunk: `count` elements of `size` bytes at `data`.
+struct TubeView {
+    const char* attribute;  // glTF attribute name, or nullptr for the indices
+    const void* data;
+    size_t count, size;
+    int stride, target, componentType, type;
+    bool normalized;
+};
+
+// The views of a plain or quantized (not Draco) tube chunk, in file order: POSITION, NORMAL,
+// TANGENT, TEXCOORD_0, COLOR_0 (colours), indices (UNSIGNED_SHORT when indices16 is filled).
+std::vector<TubeView> tubeViews(const TubeChunk& t, bool colours, bool quantized) {
+    const TubeMesh& m = t.mesh;
+    const QuantizedTubes& q = t.quantized;
+    const size_t n = m.vertexCount();
+    const int f = TINYGLTF_COMPONENT_TYPE_FLOAT, s = TINYGLTF_COMPONENT_TYPE_SHORT, b = TINYGLTF_COMPONENT_TYPE_BYTE;
+    const int v2 = TINYGLTF_TYPE_VEC2, v3 = TINYGLTF_TYPE_VEC3, v4 = TINYGLTF_TYPE_VEC4;
+    std::vector<TubeView> v;
+    if (!quantized) {
+        v.push_back({"POSITION", m.positions.data(), n, 12, 0, kArrayBuffer, f, v3, false});
+        v.push_back({"NORMAL", m.normals.data(), n, 12, 0, kArrayBuffer, f, v3, false});
+        v.push_back({"TANGENT", m.tangents.data(), n, 16, 0, kArrayBuffer, f, v4, false});
+        v.push_back({"TEXCOORD_0", m.uvs.data(), n, 8, 0, kArrayBuffer, f, v2, false});
+    } else {
+        v.push_back({"POSITION", q.position.data(), n, 8, 8, kArrayBuffer, s, v3, false});
+        if (q.normal8.empty()) {
+            v.push_back({"NORMAL", q.normal.data(), n, 8, 8, kArrayBuffer, s, v3, true});
+            v.push_back({"TANGENT", q.tangent.data(), n, 8, 0, kArrayBuffer, s, v4, true});
+        } else {
+            v.push_back({"NORMAL", q.normal8.data(), n, 4, 4, kArrayBuffer, b, v3, true});
+            v.push_back({"TANGENT", q.tangent8.data(), n, 4, 0, kArrayBuffer, b, v4, true});
+        }
+        v.push_back({"TEXCOORD_0", q.uv.data(), n, 4, 0, kArrayBuffer, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, v2, true});
+    }
+    if (colours)
+        v.push_back({"COLOR_0", t.colours.data(), n, 4, 0, kArrayBuffer, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, v4, true});
+    const bool shortIndices = !t.indices16.empty();
+    v.push_back({nullptr, shortIndices ? static_cast<const void*>(t.indices16.data()) : m.triangles.data(),
+                 m.triangles.size() * 3, shortIndices ? size_t(2) : size_t(4), 0, kElementArrayBuffer,
+                 shortIndices ? TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT : TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT,
+                 TINYGLTF_TYPE_SCALAR, false});
+    return v;
+}
+
+// --meshopt: every view of the chunk through meshoptimizer's codecs (index codec for indices).
+void encodeTubeViews(TubeChunk& t, bool colours, bool quantized) {
+    t.meshopt.clear();
+    for (const TubeView& v : tubeViews(t, colours, quantized))
+        t.meshopt.push_back(v.target == kElementArrayBuffer ? encodeMeshoptTriangles(v.data, v.count, v.size)
+                                                            : encodeMeshoptAttributes(v.data, v.count, v.size));
+}
 
 // Bytes reserved in front of a GLB's BIN data for the header and JSON chunk: generous per-chunk
 // (and per-curve) estimates of the JSON size; finish() pads the JSON with spaces to fill it.
@@ -367,6 +472,16 @@ public:
           sink_(job.options.path, glb, job.options.maxBufferBytes, jsonReservation(job, curves_.get())) {
         model_.asset.version = "2.0";
         model_.asset.generator = "libknit";
+        if (!job.tubes) {
+            // Curves: name the custom per-point attribute, so a client can find the radius.
+            tinygltf::Value::Object attributes;
+            attributes["_RADIUS"] = tinygltf::Value(std::string(
+                "per-vertex curve radius in metres (FLOAT SCALAR, one value per LINE_STRIP vertex, in the "
+                "units of POSITION before node transforms)"));
+            tinygltf::Value::Object extras;
+            extras["attributes"] = tinygltf::Value(std::move(attributes));
+            model_.asset.extras = tinygltf::Value(std::move(extras));
+        }
         model_.defaultScene = 0;
         tinygltf::Scene scene;
         scene.name = "knit";
@@ -383,6 +498,11 @@ public:
         if (job.tubes && job.options.quantize) {
             model_.extensionsUsed.push_back("KHR_mesh_quantization");
             model_.extensionsRequired.push_back("KHR_mesh_quantization");
+        }
+        if (job.tubes && job.options.meshopt) {
+            requireMeshopt();
+            model_.extensionsUsed.push_back("EXT_meshopt_compression");
+            model_.extensionsRequired.push_back("EXT_meshopt_compression");
         }
     }
 
@@ -405,6 +525,7 @@ public:
         sweepTubes(curves, job_.input.radius, job_.tube, chunk.firstCurve, chunk.lastCurve, chunkOrigin(curves, chunk),
                    t.mesh);
         t.colours.clear();
+        t.indices16.clear();
         if (t.mesh.vertexCount() == 0) return;
         if (job_.options.yarnColors) t.colours = vertexColours(t.mesh);
         const std::vector<glm::u8vec4>* col = job_.options.yarnColors ? &t.colours : nullptr;
@@ -415,9 +536,15 @@ public:
             settings.texcoordBits = job_.options.dracoTexcoordBits;
             settings.level = job_.options.dracoLevel;
             t.draco = encodeDracoTubes(t.mesh, col, settings);
-        } else if (job_.options.quantize) {
-            quantizeTubes(t.mesh, t.quantized);
+            return;
         }
+        if (job_.options.quantize) quantizeTubes(t.mesh, t.quantized, job_.options.meshopt);
+        if (fitsShortIndices(t.mesh)) {
+            t.indices16.resize(t.mesh.triangles.size() * 3);
+            for (size_t i = 0; i < t.mesh.triangles.size(); ++i)
+                for (int k = 0; k < 3; ++k) t.indices16[i * 3 + size_t(k)] = uint16_t(t.mesh.triangles[i][k]);
+        }
+        if (job_.options.meshopt) encodeTubeViews(t, col != nullptr, job_.options.quantize);
     }
 
     // The serial half: views, accessors and the chunk's node.
@@ -433,11 +560,12 @@ public:
         job_.stats.uncompressedMeshBytes += plain;
         if (job_.options.draco) {
             tubeDraco(t.draco, col != nullptr, prim);
-        } else if (job_.options.quantize) {
-            tubeQuantized(mesh, t.quantized, col, prim, scale);
         } else {
-            tubePlain(mesh, col, prim);
-            job_.stats.compressedMeshBytes += plain;
+            // The chunk's data is at most its plain size; meshopt's worst case adds a little.
+            sink_.reserve(plain + plain / 8 + 1024);
+            const uint64_t before = sink_.size(size_t(sink_.buffer()));
+            tubeAccessors(t, col != nullptr, prim, scale);
+            job_.stats.compressedMeshBytes += sink_.size(size_t(sink_.buffer())) - before;
         }
         addChunkNode(k, mesh.origin, prim, scale);
         job_.stats.vertices += mesh.vertexCount();
@@ -473,6 +601,7 @@ public:
             if (!(glb_ && k == 0)) b["uri"] = uriEncode(sink_.fileName(k));
             buffers.push_back(b);
         }
+        addMeshoptFallback(doc, buffers);
         if (buffers.empty()) doc.erase("buffers");
         else doc["buffers"] = buffers;
         const std::string json = job_.options.prettyJson ? doc.dump(2) : doc.dump();
@@ -534,6 +663,20 @@ public:
     }
 
 private:
+    // EXT_meshopt_compression: the fallback buffer (last; no uri, never written) that the
+    // compressed views point to.
+    void addMeshoptFallback(nlohmann::json& doc, nlohmann::json& buffers) const {
+        if (meshoptViews_.empty()) return;
+        const size_t fallback = buffers.size();
+        buffers.push_back({{"byteLength", std::max<uint64_t>(fallbackBytes_, 4)},
+                           {"extensions", {{"EXT_meshopt_compression", {{"fallback", true}}}}}});
+        for (const auto& [v, ext] : meshoptViews_) {
+            nlohmann::json& view = doc["bufferViews"][size_t(v)];
+            view["buffer"] = fallback;
+            view["extensions"]["EXT_meshopt_compression"] = ext;
+        }
+    }
+
     void checkChunkFits(uint64_t bytes) const {
         if (bytes + 4 > job_.options.maxBufferBytes)
             throw Error("cannot export '" + job_.options.path + "': a chunk needs up to " + std::to_string(bytes) +
@@ -590,7 +733,11 @@ private:
         if (job_.tubes) {
             extras["tubeSides"] = job_.options.sides;
             extras["texcoord"] = "u around the tube 0..1 (seam column duplicated), v along in radius units";
-            extras["tangent"] = "along the curve, w = -1 (w * cross(normal, tangent) points along +u)";
+            extras["tangent"] = "along increasing u (around the tube), w = bitangent sign: w * cross(normal, tangent) "
+                                "points along increasing v";
+            extras["color"] = "COLOR_0 (--yarn-colors) is linear: the sRGB palette colour converted";
+            if (job_.options.quantize)
+                extras["texcoordScale"] = "TEXCOORD_0 is normalized uint16; uv = stored * primitive extras.texcoordScale";
         }
         m.extras = toValue(extras);
         model_.materials.push_back(std::move(m));
@@ -643,54 +790,55 @@ private:
         a.maxValues = {double(hi[0]), double(hi[1]), double(hi[2])};
     }
 
-    void tubePlain(const TubeMesh& m, const std::vector<glm::u8vec4>* col, tinygltf::Primitive& prim) {
-        const size_t n = m.vertexCount();
-        sink_.reserve(n * (48 + 4) + m.triangles.size() * 12 + 32);
-        const int f = TINYGLTF_COMPONENT_TYPE_FLOAT;
-        prim.attributes["POSITION"] =
-            addAccessor(addView(m.positions.data(), n * 12, 0, kArrayBuffer), 0, f, TINYGLTF_TYPE_VEC3, n, false);
-        setBounds(model_.accessors[prim.attributes["POSITION"]], m.positions);
-        prim.attributes["NORMAL"] =
-            addAccessor(addView(m.normals.data(), n * 12, 0, kArrayBuffer), 0, f, TINYGLTF_TYPE_VEC3, n, false);
-        prim.attributes["TANGENT"] =
-            addAccessor(addView(m.tangents.data(), n * 16, 0, kArrayBuffer), 0, f, TINYGLTF_TYPE_VEC4, n, false);
-        prim.attributes["TEXCOORD_0"] =
-            addAccessor(addView(m.uvs.data(), n * 8, 0, kArrayBuffer), 0, f, TINYGLTF_TYPE_VEC2, n, false);
-        if (col)
-            prim.attributes["COLOR_0"] = addAccessor(addView(col->data(), n * 4, 0, kArrayBuffer), 0,
-                                                     TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_TYPE_VEC4, n, true);
-        prim.indices = addAccessor(addView(m.triangles.data(), m.triangles.size() * 12, 0, kElementArrayBuffer), 0,
-                                   TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR,
-                                   m.triangles.size() * 3, false);
+    // The views and accessors of a plain or quantized chunk (the caller reserved the space), with
+    // the exact POSITION bounds, and for quantized data the node scale and texcoordScale extras.
+    void tubeAccessors(const TubeChunk& t, bool colours, tinygltf::Primitive& prim, std::vector<double>& scale) {
+        const bool quantized = job_.options.quantize;
+        const std::vector<TubeView> views = tubeViews(t, colours, quantized);
+        for (size_t i = 0; i < views.size(); ++i) {
+            const TubeView& v = views[i];
+            const int view = job_.options.meshopt ? addMeshoptView(v, t.meshopt[i])
+                                                  : addView(v.data, uint64_t(v.count) * v.size, v.stride, v.target);
+            const int accessor = addAccessor(view, 0, v.componentType, v.type, v.count, v.normalized);
+            if (v.attribute) prim.attributes[v.attribute] = accessor;
+            else prim.indices = accessor;
+        }
+        tinygltf::Accessor& position = model_.accessors[size_t(prim.attributes["POSITION"])];
+        if (!quantized) {
+            setBounds(position, t.mesh.positions);
+            return;
+        }
+        const QuantizedTubes& q = t.quantized;
+        position.minValues = {double(q.lo.x), double(q.lo.y), double(q.lo.z)};
+        position.maxValues = {double(q.hi.x), double(q.hi.y), double(q.hi.z)};
+        scale = {q.step, q.step, q.step};
+        tinygltf::Value::Object extras;
+        extras["texcoordScale"] = tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(1.0), tinygltf::Value(q.vScale)});
+        prim.extras = tinygltf::Value(std::move(extras));
     }
 
-    void tubeQuantized(const TubeMesh& m, const QuantizedTubes& q, const std::vector<glm::u8vec4>* col,
-                       tinygltf::Primitive& prim, std::vector<double>& scale) {
-        const size_t n = m.vertexCount();
-        scale = {q.step, q.step, q.step};
-        sink_.reserve(n * (8 * 3 + 8 + 4) + m.triangles.size() * 12 + 32);
-        const int s = TINYGLTF_COMPONENT_TYPE_SHORT;
-        prim.attributes["POSITION"] =
-            addAccessor(addView(q.position.data(), n * 8, 8, kArrayBuffer), 0, s, TINYGLTF_TYPE_VEC3, n, false);
-        tinygltf::Accessor& pa = model_.accessors[prim.attributes["POSITION"]];
-        pa.minValues = {double(q.lo.x), double(q.lo.y), double(q.lo.z)};
-        pa.maxValues = {double(q.hi.x), double(q.hi.y), double(q.hi.z)};
-        prim.attributes["NORMAL"] =
-            addAccessor(addView(q.normal.data(), n * 8, 8, kArrayBuffer), 0, s, TINYGLTF_TYPE_VEC3, n, true);
-        prim.attributes["TANGENT"] =
-            addAccessor(addView(q.tangent.data(), n * 8, 0, kArrayBuffer), 0, s, TINYGLTF_TYPE_VEC4, n, true);
-        prim.attributes["TEXCOORD_0"] = addAccessor(addView(m.uvs.data(), n * 8, 0, kArrayBuffer), 0,
-                                                    TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2, n, false);
-        size_t bytes = n * (8 * 3 + 8) + m.triangles.size() * 12;
-        if (col) {
-            prim.attributes["COLOR_0"] = addAccessor(addView(col->data(), n * 4, 0, kArrayBuffer), 0,
-                                                     TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_TYPE_VEC4, n, true);
-            bytes += n * 4;
-        }
-        prim.indices = addAccessor(addView(m.triangles.data(), m.triangles.size() * 12, 0, kElementArrayBuffer), 0,
-                                   TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR,
-                                   m.triangles.size() * 3, false);
-        job_.stats.compressedMeshBytes += bytes;
+    // An EXT_meshopt_compression view: the encoded bytes go into the current buffer, the view
+    // itself into the fallback buffer (its index and the extension object are set in finish()).
+    int addMeshoptView(const TubeView& source, const MeshoptView& mv) {
+        tinygltf::BufferView v;
+        v.buffer = 0;
+        fallbackBytes_ = (fallbackBytes_ + 3) / 4 * 4;
+        v.byteOffset = size_t(fallbackBytes_);
+        v.byteLength = source.count * source.size;
+        v.byteStride = source.target == kElementArrayBuffer ? 0 : source.size;
+        v.target = source.target;
+        fallbackBytes_ += v.byteLength;
+        // tinygltf 2.7 drops bufferView extensions: the object is added to the JSON in finish().
+        const uint64_t at = sink_.append(mv.bytes.data(), mv.bytes.size());
+        model_.bufferViews.push_back(v);
+        meshoptViews_.push_back({int(model_.bufferViews.size()) - 1,
+                                 {{"buffer", sink_.buffer()},
+                                  {"byteOffset", at},
+                                  {"byteLength", mv.bytes.size()},
+                                  {"byteStride", mv.stride},
+                                  {"count", mv.count},
+                                  {"mode", mv.mode}}});
+        return meshoptViews_.back().first;
     }
 
     void tubeDraco(const DracoChunk& d, bool colours, tinygltf::Primitive& prim) {
@@ -743,6 +891,9 @@ private:
     BufferSink sink_;
     tinygltf::Model model_;
     std::vector<float> radius_;  // the constant _RADIUS values, as long as the longest curve so far
+    // --meshopt: views whose data is in the fallback buffer, with their extension objects.
+    std::vector<std::pair<int, nlohmann::json>> meshoptViews_;
+    uint64_t fallbackBytes_ = 0;     // --meshopt: size of the fallback buffer
 };
 
 }  // namespace

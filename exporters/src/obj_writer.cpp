@@ -1,4 +1,4 @@
-// obj_writer.cpp — Wavefront OBJ: curves as `l` polylines, tube meshes as v/vn/vt/f.
+// obj_writer.cpp — Wavefront OBJ: curves as `l i j` segments, tube meshes as v/vn/vt/f.
 #include "obj_writer.hpp"
 
 #include <algorithm>
@@ -20,6 +20,11 @@ void writeHeaderComment(detail::TextOut& t, const std::string& header) {
     while (std::getline(lines, line)) t.str("# ").str(line).ch('\n');
 }
 
+// One `l i j` record between 0-based points i and j.
+void writeSegment(detail::TextOut& t, uint32_t i, uint32_t j) {
+    t.str("l ").num(uint64_t(i) + 1).ch(' ').num(uint64_t(j) + 1).ch('\n');
+}
+
 }  // namespace
 
 void writeObjPolylines(std::ostream& out, const Polylines& curves, const std::string& header) {
@@ -29,14 +34,14 @@ void writeObjPolylines(std::ostream& out, const Polylines& curves, const std::st
     for (const glm::dvec3& p : curves.points) {
         t.str("v ").num(p.x).ch(' ').num(p.y).ch(' ').num(p.z).ch('\n');
     }
-    // Step 2: one `l` record per curve with >= 2 points, 1-based; closed curves repeat the first.
+    // Step 2: every curve (>= 2 points) as 2-index `l i j` segments, 1-based; a closed curve ends
+    // with the segment back to its first vertex. Importers that keep only the first segment of a
+    // longer `l` record (Blender 3.4) read every segment this way.
     for (size_t c = 0; c < curves.curveCount(); ++c) {
         const uint32_t b = curves.begin(c), e = curves.end(c);
         if (e - b < 2) continue;
-        t.ch('l');
-        for (uint32_t i = b; i < e; ++i) t.ch(' ').num(uint64_t(i) + 1);
-        if (curves.isClosed(c)) t.ch(' ').num(uint64_t(b) + 1);
-        t.ch('\n');
+        for (uint32_t i = b; i + 1 < e; ++i) writeSegment(t, i, i + 1);
+        if (curves.isClosed(c)) writeSegment(t, e - 1, b);
     }
     t.flush();
 }

@@ -1,8 +1,11 @@
 // procedural_mesh.cpp — the built-in base meshes: plane, cylinder, sphere, drape.
 //
 // Conventions shared by all four:
+//  * +Y up (glTF's convention): each mesh is built in a z-up frame (the formulas below) and then
+//    rotated rigidly by -90 degrees about +x, (x, y, z) -> (x, z, -y) (step `toYUp`). UVs, faces
+//    and hence the knit on them are those of the z-up construction; only positions turn.
 //  * UVs lie in [0,1]^2; every UV triangle is counter-clockwise, and its 3D normal
-//    (p1-p0) x (p2-p0) points outward (cylinder, sphere) or up (+z: plane, drape), i.e. the
+//    (p1-p0) x (p2-p0) points outward (cylinder, sphere) or up (+y: plane, drape), i.e. the
 //    UV chart and the 3D surface have the same orientation.
 //  * A quad (i,j)-(i+1,j)-(i+1,j+1)-(i,j+1) is split into (a,b,c) and (a,c,d).
 //  * Closed directions share positions: the cylinder's and sphere's seam column at u = 0 and
@@ -36,6 +39,13 @@ void checkOptions(const char* what, const ProceduralMeshOptions& o, int minU, in
     positive(size, o.size, "size");
     positive(radius, o.radius, "radius");
     positive(height, o.height, "height");
+}
+
+// The rigid rotation from the z-up construction frame to +Y up: (x, y, z) -> (x, z, -y), a
+// -90 degree turn about +x (determinant +1, so windings and outward normals are kept).
+BaseMesh toYUp(BaseMesh m) {
+    for (glm::dvec3& p : m.positions) p = glm::dvec3(p.x, p.z, -p.y);
+    return m;
 }
 
 // Quads over a (nu+1) x (nv+1) UV lattice; posIndex maps a lattice point to its position.
@@ -82,13 +92,15 @@ double drapeHeight(double x, double y, double size) {
 
 }  // namespace
 
-// Plane: z = 0, x,y in [-size/2, size/2], uv = (x, y)/size + 0.5.
+// Plane: y = 0 (+y up), x in [-size/2, size/2] with u = x/size + 0.5, z in [-size/2, size/2] with
+// v = 0.5 - z/size (built as z = 0 with uv = (x, y)/size + 0.5, then toYUp).
 BaseMesh makePlane(const ProceduralMeshOptions& o) {
     checkOptions("plane", o, 1, 1, true, false, false);
-    return flatSheet(o, "plane", nullptr);
+    return toYUp(flatSheet(o, "plane", nullptr));
 }
 
-// Cylinder of `radius` around +z, z in [0, height]: position (R cos 2πu, R sin 2πu, v·height).
+// Cylinder of `radius` around +y, y in [0, height]: built around +z as (R cos 2πu, R sin 2πu, v·height),
+// then toYUp: position (R cos 2πu, v·height, -R sin 2πu).
 // resU columns of positions (closed around), resU+1 columns of UVs (u = 0 and u = 1 both exist).
 BaseMesh makeCylinder(const ProceduralMeshOptions& o) {
     checkOptions("cylinder", o, 3, 1, false, true, true);
@@ -103,11 +115,12 @@ BaseMesh makeCylinder(const ProceduralMeshOptions& o) {
         for (int i = 0; i <= o.resU; ++i) m.uvs.emplace_back(double(i) / o.resU, v);
     }
     addQuads(m, o.resU, 0, o.resV, [&](int i, int j) { return uint32_t(j * o.resU + i % o.resU); });
-    return m;
+    return toYUp(std::move(m));
 }
 
 // Sphere of `radius` at the origin, latitude-longitude: θ = 2πu, polar angle φ = πv from the
-// south pole, position R (sin φ cos θ, sin φ sin θ, -cos φ). Rings j = 1..resV-1 have resU
+// south pole, built as R (sin φ cos θ, sin φ sin θ, -cos φ) and then toYUp: R (sin φ cos θ, -cos φ,
+// -sin φ sin θ), the south pole at -y. Rings j = 1..resV-1 have resU
 // positions (closed around) and resU+1 UVs. Each pole is ONE position with resU UV vertices at
 // u = (i + 1/2)/resU (v = 0 or 1), so the pole rows are triangles (pole, ring) whose UV and 3D
 // shapes are both non-degenerate; the UV corners left of/right of each pole UV are not covered.
@@ -159,20 +172,21 @@ BaseMesh makeSphere(const ProceduralMeshOptions& o) {
     }
     for (glm::uvec3& f : m.faceUvs) f = glm::uvec3(remap[f.x], remap[f.y], remap[f.z]);
     m.uvs = std::move(used);
-    return m;
+    return toYUp(std::move(m));
 }
 
 // Drape: a square sheet of side `size` (regular resU x resV grid, uv = (x, y)/size + 0.5) laid
 // over a sphere of radius R = size/3 centred at the origin, as a height field z = h(r) over the
-// flat sheet's (x, y), r = |(x, y)|:
+// flat sheet's (x, y), r = |(x, y)| (then toYUp: the height is +y, the sheet hangs down):
 //   r <= a = R sin 45°:  h = sqrt(R² - r²)                        (on the sphere's cap)
 //   r >  a:              h = h(a) + h'(a) L (1 - exp(-(r - a)/L)),  L = R/2
 // The fall-off continues the cap with the same value and slope (C1, so normals are continuous)
 // and decreases monotonically. Being a graph over a regular grid it cannot self-intersect and
-// no triangle is degenerate (its xy projection has area size²/(2 resU resV)); normals face +z.
+// no triangle is degenerate (its xy projection has area size²/(2 resU resV)); normals face +z
+// before toYUp, +y after.
 BaseMesh makeDrape(const ProceduralMeshOptions& o) {
     checkOptions("drape", o, 1, 1, true, false, false);
-    return flatSheet(o, "drape", &drapeHeight);
+    return toYUp(flatSheet(o, "drape", &drapeHeight));
 }
 
 }  // namespace knit

@@ -11,11 +11,12 @@
 //    v = length / radius, so v increases monotonically along the loop; open curves get n rings.
 //    Consecutive rings share vertices between segments (no per-segment duplication).
 //  * UV: u = j / sides around; v = arc length from the curve start / radius (radius units).
-//  * TANGENT: xyz = T (along the curve, unit), w = -1. With w = -1, w * cross(normal, T) equals
-//    the direction of increasing u (around the tube), so the (T, bitangent, normal) basis maps
-//    texture v to T and texture u to the bitangent: a fiber texture's along-axis is texture v.
+//  * TANGENT (glTF: xyz along increasing u of TEXCOORD_0, w the bitangent sign): on a ring,
+//    xyz = dP/du normalized = -sin phi_j N + cos phi_j B (around the tube), w = +1: then
+//    w * cross(normal, tangent) = T, the direction of increasing v (along the curve).
 //  * Caps (open curves, options.caps): per end one centre vertex plus `sides` rim vertices with
-//    normal -T (start) / +T (end), tangent (N, -1), planar disc uv (0.5 + 0.5 cos, 0.5 + 0.5 sin).
+//    normal -T (start) / +T (end), planar disc uv (0.5 + 0.5 cos, 0.5 + 0.5 sin), so dP/du = N and
+//    dP/dv = B: tangent (N, -1) at the start cap (cross(-T, N) = -B), (N, +1) at the end cap.
 //  * Triangles wind counter-clockwise seen from outside (geometric normal = vertex normal).
 // Positions are float32 offsets from `origin` (computed in double, then rounded once).
 #include "knit/sweep.hpp"
@@ -159,7 +160,6 @@ void sweepTubes(const Polylines& curves, double radius, const TubeOptions& optio
                 if (i + 1 == rings) Tn = T, Nn = N;
                 const glm::dvec3 B = glm::cross(T, N);
                 const glm::vec3 cf(p - origin), Nf(N), Bf(B);
-                const glm::vec4 tf(float(T.x), float(T.y), float(T.z), -1.0f);
                 const float v = float(s * invRadius);
                 const size_t base = slot.vertex + i * ringSize;
                 glm::vec3* pos = mesh.positions.data() + base;
@@ -171,7 +171,7 @@ void sweepTubes(const Polylines& curves, double radius, const TubeOptions& optio
                     const glm::vec3 d = cosA[j] * Nf + sinA[j] * Bf;
                     nor[j] = d;
                     pos[j] = cf + r * d;
-                    tan[j] = tf;
+                    tan[j] = glm::vec4(-sinA[j] * Nf + cosA[j] * Bf, 1.0f);  // dP/du
                     uv[j] = glm::vec2(uA[j], v);
                     cv[j] = curveId;
                 }
@@ -193,7 +193,7 @@ void sweepTubes(const Polylines& curves, double radius, const TubeOptions& optio
                 const glm::dvec3 p = local.points[end == 0 ? b : b + n - 1];
                 const glm::vec3 cf(p - origin), Nf(N), Bf(B);
                 const glm::vec3 axial = glm::vec3(end == 0 ? -T : T);
-                const glm::vec4 tf(Nf, -1.0f);
+                const glm::vec4 tf(Nf, end == 0 ? -1.0f : 1.0f);  // dP/du = N, bitangent along B
                 const uint32_t centre = uint32_t(slot.vertex + rings * ringSize + size_t(end) * ringSize);
                 mesh.positions[centre] = cf;
                 mesh.normals[centre] = axial;

@@ -71,7 +71,8 @@ TEST_F(Cli, cylinderWithIntegralRepeatsGivesClosedCourses) {
     std::ifstream in(dir / "r.json");
     const nlohmann::json j = nlohmann::json::parse(in);
     EXPECT_GE(j["counts"]["closed_loops"].get<int>(), 8);
-    // Closed curves repeat their first index at the end of the `l` record.
+    // Curves are 2-index `l i j` segments; a closed curve ends with the segment back to its
+    // first vertex (the only segments whose second index is lower).
     std::ifstream obj(dir / "y.obj");
     bool sawClosed = false;
     for (std::string line; std::getline(obj, line);) {
@@ -79,7 +80,8 @@ TEST_F(Cli, cylinderWithIntegralRepeatsGivesClosedCourses) {
         std::istringstream ss(line.substr(2));
         std::vector<long> idx;
         for (long x; ss >> x;) idx.push_back(x);
-        sawClosed = sawClosed || (idx.size() > 2 && idx.front() == idx.back());
+        ASSERT_EQ(idx.size(), 2u) << line;
+        sawClosed = sawClosed || idx[1] < idx[0];
     }
     EXPECT_TRUE(sawClosed);
 }

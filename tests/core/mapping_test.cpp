@@ -85,7 +85,7 @@ TEST(Mapping, cylinderPutsHeightAtRadiusPlusH) {
     double worst = 0;
     for (size_t i = 0; i < b.vertexCount(); ++i) {
         const glm::dvec3 p = s.yarns().curves.points[i];
-        const double r = std::hypot(p.x, p.y);
+        const double r = std::hypot(p.x, p.z);  // the cylinder stands along +y
         worst = std::max(worst, std::abs(r - (mo.radius + b.height[i])) - chord);
     }
     EXPECT_LE(worst, 1e-12) << "radius error beyond the chord error " << chord;

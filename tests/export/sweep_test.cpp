@@ -68,8 +68,9 @@ TEST(Sweep, ringsAreOneRadiusOutAndPerpendicularToAveragedTangent) {
             EXPECT_NEAR(glm::length(d), r, 1e-7 * 0.02 + 1e-9) << i << "/" << j;
             EXPECT_NEAR(glm::dot(d, t) / r, 0.0, 1e-5) << "ring " << i << " not perpendicular";
             EXPECT_NEAR(glm::length(glm::dvec3(m.normals[v]) - d / r), 0.0, 1e-4);
-            EXPECT_NEAR(glm::length(glm::dvec3(m.tangents[v]) - t), 0.0, 1e-6);
-            EXPECT_EQ(m.tangents[v].w, -1.0f);
+            // glTF TANGENT: along increasing u (around the ring, t x normal), w = +1.
+            EXPECT_NEAR(glm::length(glm::dvec3(m.tangents[v]) - glm::cross(t, d / r)), 0.0, 1e-4);
+            EXPECT_EQ(m.tangents[v].w, 1.0f);
             EXPECT_EQ(m.curveOfVertex[v], 0u);
         }
     }
@@ -254,6 +255,43 @@ TEST(Sweep, resultIsIdenticalForOneAndManyThreads) {
     EXPECT_EQ(one.tangents, many.tangents);
     EXPECT_EQ(one.uvs, many.uvs);
     EXPECT_EQ(one.triangles, many.triangles);
+}
+
+}  // namespace
+}  // namespace knit
+
+namespace knit {
+namespace {
+
+// dP/du and dP/dv of one triangle from its positions and UVs (the mesh's own parametrization).
+void triangleUvGradients(const TubeMesh& m, const glm::uvec3& t, glm::dvec3& dPdu, glm::dvec3& dPdv) {
+    const glm::dvec3 p0(m.positions[t[0]]), e1 = glm::dvec3(m.positions[t[1]]) - p0,
+                                            e2 = glm::dvec3(m.positions[t[2]]) - p0;
+    const glm::dvec2 w0(m.uvs[t[0]]), d1 = glm::dvec2(m.uvs[t[1]]) - w0, d2 = glm::dvec2(m.uvs[t[2]]) - w0;
+    const double det = d1.x * d2.y - d2.x * d1.y;
+    dPdu = (e1 * d2.y - e2 * d1.y) / det;
+    dPdv = (e2 * d1.x - e1 * d2.x) / det;
+}
+
+TEST(Sweep, tangentRunsAlongIncreasingUWithTheBitangentSignInW) {
+    // Dense samples: consecutive ring frames differ by a few degrees only.
+    const Polylines c = single(test::helix(96, 0.01, 0.004, 1.0), false);
+    TubeOptions o;
+    o.sides = 16;  // a ring chord (a triangle's dP/du) is within 11.25 degrees of the vertex tangent
+    const TubeMesh m = sweepTubes(c, 0.0008, o, 0, 1, glm::dvec3(0.0));
+    ASSERT_FALSE(m.triangles.empty());
+    for (const glm::uvec3& t : m.triangles) {
+        glm::dvec3 dPdu, dPdv;
+        triangleUvGradients(m, t, dPdu, dPdv);
+        for (int k = 0; k < 3; ++k) {
+            const glm::vec4& tan = m.tangents[t[k]];
+            const glm::dvec3 n(m.normals[t[k]]), tx(tan);
+            // xyz points along dP/du (side rings: a chord of the ring vs its tangent, caps: exact).
+            EXPECT_GT(glm::dot(tx, glm::normalize(dPdu)), 0.9) << "triangle vertex " << t[k];
+            // w * cross(normal, tangent) points along dP/dv.
+            EXPECT_GT(double(tan.w) * glm::dot(glm::cross(n, tx), dPdv), 0.0) << "triangle vertex " << t[k];
+        }
+    }
 }
 
 }  // namespace

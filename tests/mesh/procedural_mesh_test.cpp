@@ -1,4 +1,4 @@
-// Tests for the built-in meshes: UV range and orientation, seams, poles, the drape's shape.
+// Tests for the built-in meshes: +Y up, UV range and orientation, seams, poles, the drape's shape.
 #include "knit/base_mesh.hpp"
 #include "knit/error.hpp"
 #include "util/math.hpp"
@@ -52,9 +52,10 @@ TEST(ProceduralMesh, allHaveUvsInUnitSquareCcwUvTrianglesAndOutwardNormals) {
         for (size_t f = 0; f < m.faces.size(); ++f) {
             EXPECT_GT(uvDet(m, f), 0.0) << "face " << f;
             const glm::dvec3 n = faceNormal(m, f), c = centroid(m, f);
-            const glm::dvec3 outward = name == "cylinder" ? glm::dvec3(c.x, c.y, 0.0)
+            // +Y up: the cylinder stands along +y, the plane and the drape face +y.
+            const glm::dvec3 outward = name == "cylinder" ? glm::dvec3(c.x, 0.0, c.z)
                                        : name == "sphere" ? c
-                                                          : glm::dvec3(0, 0, 1);
+                                                          : glm::dvec3(0, 1, 0);
             EXPECT_GT(glm::dot(n, outward), 0.0) << "face " << f;
         }
         // Every UV vertex and every position is used.
@@ -66,7 +67,7 @@ TEST(ProceduralMesh, allHaveUvsInUnitSquareCcwUvTrianglesAndOutwardNormals) {
     }
 }
 
-TEST(ProceduralMesh, planeUvIsPositionOverSizePlusHalf) {
+TEST(ProceduralMesh, planeLiesInYZeroWithUAlongXAndVAlongMinusZ) {
     knit::ProceduralMeshOptions o = opts(4, 3);
     o.size = 0.8;
     const BaseMesh m = knit::makePlane(o);
@@ -75,9 +76,9 @@ TEST(ProceduralMesh, planeUvIsPositionOverSizePlusHalf) {
         for (int k = 0; k < 3; ++k) {
             const glm::dvec3 p = m.positions[m.faces[f][k]];
             const glm::dvec2 uv = m.uvs[m.faceUvs[f][k]];
-            EXPECT_EQ(p.z, 0.0);
+            EXPECT_EQ(p.y, 0.0);
             EXPECT_NEAR(uv.x, p.x / o.size + 0.5, 1e-15);
-            EXPECT_NEAR(uv.y, p.y / o.size + 0.5, 1e-15);
+            EXPECT_NEAR(uv.y, 0.5 - p.z / o.size, 1e-15);
         }
 }
 
@@ -91,10 +92,10 @@ TEST(ProceduralMesh, cylinderSeamSharesPositionsButNotUvs) {
         for (int k = 0; k < 3; ++k) {
             const glm::dvec2 uv = m.uvs[m.faceUvs[f][k]];
             const glm::dvec3 p = m.positions[m.faces[f][k]];
-            EXPECT_NEAR(p.z, uv.y * 0.3, 1e-15);
+            EXPECT_NEAR(p.y, uv.y * 0.3, 1e-15);  // v along +y
             if (uv.x == 1.0 || uv.x == 0.0) {
                 EXPECT_EQ(p.x, 0.1);
-                EXPECT_EQ(p.y, 0.0);
+                EXPECT_EQ(p.z, 0.0);
                 ++seamCorners;
             }
         }
@@ -108,9 +109,9 @@ TEST(ProceduralMesh, cylinderNormalsContinuousAcrossSeam) {
     const BaseMesh m = knit::makeCylinder(opts(24, 5));
     const auto n = knit::vertexNormals(m.positions, m.faces);
     for (size_t i = 0; i < m.positions.size(); ++i) {
-        const glm::dvec3 radial = glm::normalize(glm::dvec3(m.positions[i].x, m.positions[i].y, 0.0));
+        const glm::dvec3 radial = glm::normalize(glm::dvec3(m.positions[i].x, 0.0, m.positions[i].z));
         EXPECT_GT(glm::dot(n[i], radial), 1.0 - 1e-12) << i;
-        EXPECT_NEAR(n[i].z, 0.0, 1e-12) << i;
+        EXPECT_NEAR(n[i].y, 0.0, 1e-12) << i;
     }
     // The two UV copies of a seam vertex are one position, hence one normal: check through faces.
     for (size_t f = 0; f < m.faces.size(); ++f)
@@ -130,9 +131,9 @@ TEST(ProceduralMesh, sphereNormalsPointOutward) {
         // Within half a ring spacing of the radial direction.
         EXPECT_GT(glm::dot(n[i], glm::normalize(m.positions[i])), std::cos(0.5 * knit::util::kPi / nv)) << i;
     }
-    // The poles' normals are the axis (symmetric fan).
-    EXPECT_NEAR(n.front().z, -1.0, 1e-12);
-    EXPECT_NEAR(n.back().z, 1.0, 1e-12);
+    // The poles' normals are the axis (symmetric fan): south pole at -y, north pole at +y.
+    EXPECT_NEAR(n.front().y, -1.0, 1e-12);
+    EXPECT_NEAR(n.back().y, 1.0, 1e-12);
 }
 
 TEST(ProceduralMesh, spherePoleTrianglesAreNotDegenerate) {
@@ -151,13 +152,13 @@ TEST(ProceduralMesh, drapeHasNoDegenerateTriangles) {
     knit::ProceduralMeshOptions o = opts(40, 40);
     o.size = 0.6;
     const BaseMesh m = knit::makeDrape(o);
-    // A height field over the regular grid: each 3D triangle is at least as large as its xy
+    // A height field (+y) over the regular grid: each 3D triangle is at least as large as its xz
     // projection, size²/(2·resU·resV).
     const double flatArea = o.size * o.size / (2.0 * o.resU * o.resV);
     for (size_t f = 0; f < m.faces.size(); ++f) {
         const glm::dvec3 n = faceNormal(m, f);
         EXPECT_GE(0.5 * glm::length(n), flatArea * (1 - 1e-9)) << f;
-        EXPECT_NEAR(0.5 * n.z, flatArea, 1e-12) << f;
+        EXPECT_NEAR(0.5 * n.y, flatArea, 1e-12) << f;
     }
 }
 
@@ -168,19 +169,19 @@ TEST(ProceduralMesh, drapeLiesOnSphereCapAndFallsOff) {
     const double R = o.size / 3, a = R * std::sin(knit::util::kPi / 4);
     size_t onCap = 0;
     for (const glm::dvec3& p : m.positions) {
-        const double r = std::hypot(p.x, p.y);
+        const double r = std::hypot(p.x, p.z);
         if (r <= a) {
             EXPECT_NEAR(glm::length(p), R, 1e-12);
             ++onCap;
         } else {
-            EXPECT_LT(p.z, std::sqrt(R * R - a * a));  // below the contact circle
+            EXPECT_LT(p.y, std::sqrt(R * R - a * a));  // below the contact circle
             EXPECT_GE(glm::length(p), R * (1 - 1e-12));  // never inside the sphere
         }
     }
     EXPECT_GT(onCap, 10u);
     // The corner is lower than the edge midpoint, which is lower than the top.
-    EXPECT_LT(m.positions.front().z, m.positions[15].z);
-    EXPECT_LT(m.positions[15].z, R);
+    EXPECT_LT(m.positions.front().y, m.positions[15].y);
+    EXPECT_LT(m.positions[15].y, R);
 }
 
 TEST(ProceduralMesh, drapeNormalsVaryContinuously) {

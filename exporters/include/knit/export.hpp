@@ -1,7 +1,7 @@
 // knit/export.hpp — write a built scene to a file; the format follows the output extension.
 //
 // Formats (by extension of ExportOptions::path):
-//   .obj   curves as `l` records, or tube meshes (v / vn / vt / f)
+//   .obj   curves as `l i j` segment records, or tube meshes (v / vn / vt / f)
 //   .ply   binary little-endian PLY: curves as vertex + edge elements, or tube meshes
 //   .bcc   Cem Yuksel's BCC curves ("C0" uniform Catmull-Rom; closed curves have negative counts)
 //   .pbrt  pbrt-v4 `Shape "curve"` (cylinder, cubic Bezier converted from Catmull-Rom), or
@@ -10,7 +10,8 @@
 //   .glb   binary glTF; the first buffer is the GLB BIN chunk, further buffers (only when the data
 //          exceeds maxBufferBytes) are external <name>_1.bin, ... files next to it
 //          Curves (glTF): one non-indexed LINE_STRIP per curve with POSITION and _RADIUS; a
-//          closed curve repeats its first point at the end
+//          closed curve repeats its first point at the end; asset.extras.attributes names _RADIUS
+//          Tubes: +meshopt (EXT_meshopt_compression) and/or quantize (KHR_mesh_quantization)
 // What is written is chosen by ExportOptions::what: the yarn centrelines, the ply curves, or
 // swept tube meshes (of the plies when the scene has plies, else of the yarns; see tubesOf).
 //
@@ -50,12 +51,14 @@ struct ExportOptions {
     int dracoNormalBits = 10;            // normal / tangent quantization bits
     int dracoTexcoordBits = 12;          // TEXCOORD_0 quantization bits
     int dracoLevel = 7;                  // Draco compression level 0 (fast) .. 10 (small)
-    bool quantize = false;               // KHR_mesh_quantization (int16 positions, int16 normals)
+    bool quantize = false;               // KHR_mesh_quantization (int16 positions, normals, uint16 UVs)
+    bool meshopt = false;                // EXT_meshopt_compression of tube views (needs KNIT_WITH_MESHOPT)
     bool yarnColors = false;             // COLOR_0 per yarn (tubes) from a fixed palette
     bool prettyJson = false;             // indent the glTF JSON
 
     // Chunking: at most this many tube vertices (tubes) or curve points (curves) per chunk;
-    // 0 = auto: 1M (2^20), or 256k (2^18) with Draco, whose encoder needs ~0.5 KB per vertex.
+    // 0 = auto: 1M (2^20), or 256k (2^18) with Draco, whose encoder needs ~0.5 KB per vertex, or
+    // 65535 with --quantize / --meshopt (every chunk then fits UNSIGNED_SHORT indices).
     // Streamed plies are planned per yarn from a lower bound of their point count (resampling
     // adds a few percent on curved yarns), so their chunks may exceed it slightly; a curve or
     // yarn longer than the limit gets a chunk of its own.

@@ -59,17 +59,17 @@ BaseMesh loadGltfMesh(const std::string& path, const MeshLoadOptions& options = 
 BaseMesh parseGltfMesh(const std::string& bytes, const std::string& name, const std::string& baseDir,
                        const MeshLoadOptions& options = {});
 
-// Built-in procedural meshes; all have UVs in [0,1]^2.
+// Built-in procedural meshes; all have UVs in [0,1]^2 and are +Y up (glTF's convention).
 struct ProceduralMeshOptions {
     int resU = 32, resV = 32;   // quads along u and v
     double size = 0.5;          // plane / drape: side length (m)
     double radius = 0.1;        // cylinder / sphere radius (m)
     double height = 0.3;        // cylinder height (m)
 };
-BaseMesh makePlane(const ProceduralMeshOptions& o = {});     // z = 0, centred: uv = (x, y) / size + 0.5
-BaseMesh makeCylinder(const ProceduralMeshOptions& o = {});  // u around (seam at u = 0/1), v along z
+BaseMesh makePlane(const ProceduralMeshOptions& o = {});     // y = 0, centred: uv = (x/size + 0.5, 0.5 - z/size)
+BaseMesh makeCylinder(const ProceduralMeshOptions& o = {});  // u around (seam at u = 0/1), v along +y
 BaseMesh makeSphere(const ProceduralMeshOptions& o = {});    // latitude-longitude, seam at u = 0/1
-BaseMesh makeDrape(const ProceduralMeshOptions& o = {});     // square sheet draped over a sphere
+BaseMesh makeDrape(const ProceduralMeshOptions& o = {});     // square sheet draped over a sphere (top at +y)
 std::vector<std::string> builtinMeshNames();
 BaseMesh builtinMesh(const std::string& name, const ProceduralMeshOptions& o = {});
 // A mesh from a file or a built-in name.

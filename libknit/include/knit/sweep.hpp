@@ -26,7 +26,7 @@ struct TubeMesh {
     glm::dvec3 origin{0.0};
     std::vector<glm::vec3> positions;  // relative to origin
     std::vector<glm::vec3> normals;    // unit
-    std::vector<glm::vec4> tangents;   // along the curve, w = +1 or -1
+    std::vector<glm::vec4> tangents;   // glTF TANGENT: xyz along increasing u, w = bitangent sign
     std::vector<glm::vec2> uvs;        // u: around (0..1), v: along, in radius units
     std::vector<glm::uvec3> triangles;
     std::vector<uint32_t> curveOfVertex;
