@@ -128,7 +128,9 @@ RenderResult renderScene(const Scene& scene, const RenderOptions& o) {
         normal = glm::dvec3(0.0);
         normal[axis] = 1.0;
     }
-    const glm::dvec3 helper = std::abs(normal.y) < 0.9 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0);
+    // Image up: +y (glTF's up) unless the cloth faces +-y (lies flat); then -z, glTF's forward, so
+    // a flat +Y-up cloth is framed as the same cloth standing in the xy plane would be.
+    const glm::dvec3 helper = std::abs(normal.y) < 0.9 ? glm::dvec3(0, 1, 0) : glm::dvec3(0, 0, -1);
     const glm::dvec3 right = glm::normalize(glm::cross(helper, normal)), up = glm::cross(normal, right);
     TraceSettings ts;
     ts.width = o.width, ts.height = o.height, ts.spp = o.spp, ts.seed = o.seed, ts.maxDepth = o.maxDepth;
