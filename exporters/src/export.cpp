@@ -35,6 +35,21 @@ const char* whatName(ExportWhat w) {
     return "?";
 }
 
+// Step: the offsets span the points and never decrease, so every curve's range lies inside the
+// points; checked for all curves before any point is read.
+void validateOffsets(const Polylines& c) {
+    if (!util::offsetEnds(c.offsets, c.curveCount(), c.pointCount()))
+        throw Error("export: inconsistent curve offsets (" + std::to_string(c.offsets.size()) + " offsets, " +
+                    std::to_string(c.closed.size()) + " curves, " + std::to_string(c.points.size()) + " points)");
+    for (size_t k = 0; k < c.curveCount(); ++k) {
+        if (c.offsets[k + 1] > c.pointCount())
+            throw Error("export: curve " + std::to_string(k) + " ends at offset " + std::to_string(c.offsets[k + 1]) +
+                        ", past the " + std::to_string(c.pointCount()) + " points");
+        if (c.offsets[k + 1] < c.offsets[k])
+            throw Error("export: curve " + std::to_string(k) + " has decreasing offsets");
+    }
+}
+
 // Step: every point finite (user data problems are reported before any numeric loop runs).
 // Generated plies were validated by their PlyGenerator.
 void validateInput(const ExportInput& in, bool tubes) {
@@ -46,12 +61,8 @@ void validateInput(const ExportInput& in, bool tubes) {
         return;
     }
     const Polylines& c = *in.curves;
-    if (!util::offsetEnds(c.offsets, c.curveCount(), c.pointCount()))
-        throw Error("export: inconsistent curve offsets (" + std::to_string(c.offsets.size()) + " offsets, " +
-                    std::to_string(c.closed.size()) + " curves, " + std::to_string(c.points.size()) + " points)");
+    validateOffsets(c);
     for (size_t k = 0; k < c.curveCount(); ++k) {
-        if (c.offsets[k + 1] < c.offsets[k])
-            throw Error("export: curve " + std::to_string(k) + " has decreasing offsets");
         for (uint32_t i = c.begin(k); i < c.end(k); ++i) {
             if (!util::finite(c.points[i]))
                 throw Error("export: curve " + std::to_string(k) + " point " + std::to_string(i - c.begin(k)) +

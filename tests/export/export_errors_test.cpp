@@ -109,6 +109,28 @@ TEST(ExportErrors, nonFinitePointNamesCurveAndPoint) {
     EXPECT_TRUE(test::listDir(dir).empty());
 }
 
+TEST(ExportErrors, offsetsPastTheEndAreRefusedBeforeReading) {
+    // Offsets {0, 10, 3, 6} over 6 points: curve 0 claims points 0..9. The 4 slots past the end
+    // hold NaN (capacity kept after the resize), so reading them would report "curve 0 point 6
+    // is not finite" instead of the offsets.
+    const std::string dir = test::scratchDir("err_offsets");
+    Polylines c;
+    c.points.assign(10, glm::dvec3(std::nan("")));
+    for (size_t i = 0; i < 6; ++i) c.points[i] = glm::dvec3(0.001 * double(i), 0, 0);
+    c.points.resize(6);
+    c.offsets = {0, 10, 3, 6};
+    c.closed = {0, 0, 0};
+    ExportOptions o;
+    o.path = dir + "/x.obj";
+    o.what = ExportWhat::Yarns;
+    const std::string e = errorOf(c, o);
+    EXPECT_EQ(e, "export: curve 0 ends at offset 10, past the 6 points");
+    EXPECT_TRUE(test::listDir(dir).empty());
+    // Within the points but decreasing: named as before.
+    c.offsets = {0, 4, 3, 6};
+    EXPECT_EQ(errorOf(c, o), "export: curve 1 has decreasing offsets");
+}
+
 TEST(ExportErrors, chunkLargerThanBufferLimitIsRefusedWithoutFiles) {
     const std::string dir = test::scratchDir("err_late");
     // Small curves first (chunks stream into buffers), then one curve too big for any buffer.
