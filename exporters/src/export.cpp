@@ -10,6 +10,7 @@
 #include "atomic_file.hpp"
 #include "formats.hpp"
 #include "knit/error.hpp"
+#include "material_extras.hpp"
 #include "util/checks.hpp"
 #include "util/csr.hpp"
 #include "util/platform.hpp"
@@ -55,6 +56,7 @@ void validateOffsets(const Polylines& c) {
 void validateInput(const ExportInput& in, bool tubes) {
     if (!in.curves && !in.plies) throw Error("export: no curves given");
     if (in.curves && in.plies) throw Error("export: both curves and a ply generator given; pass one");
+    detail::parseMaterialExtras(in.materialExtrasJson);  // throws unless empty or a JSON object
     if (in.plies) {
         if (!util::positiveFinite(in.radius))
             throw Error("export: radius must be a positive number, got " + std::to_string(in.radius));
@@ -226,29 +228,8 @@ ExportStats exportScene(const Scene& scene, const ExportOptions& options) {
         in.yarnOfCurve = &yarnIds;
         if (scene.yarns.normals.size() == scene.yarns.curves.pointCount()) in.seedNormals = &scene.yarns.normals;
     }
-    in.materialExtras = &extras;
+    in.materialExtrasJson = extras.dump();
     return exportCurves(in, options);
-}
-
-nlohmann::json exportReport(const ExportStats& s) {
-    nlohmann::json j = {{"format", s.format},
-                        {"curves", s.curves},
-                        {"vertices", s.vertices},
-                        {"triangles", s.triangles},
-                        {"chunks", s.chunks},
-                        {"maxChunkVertices", s.maxChunkVertices},
-                        {"buffers", s.buffers},
-                        {"bytes", s.bytes},
-                        {"peakMemoryBytes", s.peakMemoryBytes},
-                        {"peakMemoryMiB", double(s.peakMemoryBytes) / (1024.0 * 1024.0)},
-                        {"seconds", s.seconds}};
-    if (s.uncompressedMeshBytes > 0) {
-        j["uncompressedMeshBytes"] = s.uncompressedMeshBytes;
-        j["compressedMeshBytes"] = s.compressedMeshBytes;
-        if (s.compressedMeshBytes > 0)
-            j["compressionRatio"] = double(s.uncompressedMeshBytes) / double(s.compressedMeshBytes);
-    }
-    return j;
 }
 
 void writeFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write,

@@ -3,8 +3,6 @@
 // curves.
 #include <gtest/gtest.h>
 
-#include <nlohmann/json.hpp>
-
 #include "export/gltf_read.hpp"
 #include "export/gltf_validator.hpp"
 #include "export/test_curves.hpp"
@@ -12,7 +10,6 @@
 #include "knit/scene.hpp"
 #include "knit/export.hpp"
 #include "knit/sweep.hpp"
-#include "util/platform.hpp"
 
 namespace knit {
 namespace {
@@ -129,6 +126,29 @@ TEST(ExportErrors, offsetsPastTheEndAreRefusedBeforeReading) {
     // Within the points but decreasing: named as before.
     c.offsets = {0, 4, 3, 6};
     EXPECT_EQ(errorOf(c, o), "export: curve 1 has decreasing offsets");
+}
+
+TEST(ExportErrors, materialExtrasThatAreNotAJsonObjectAreRefused) {
+    const std::string dir = test::scratchDir("err_extras");
+    const Polylines c = test::mixedCurves();
+    ExportInput in;
+    in.curves = &c;
+    in.radius = 0.001;
+    ExportOptions o;
+    o.path = dir + "/x.glb";
+    const auto errorWith = [&](const std::string& extras) {
+        in.materialExtrasJson = extras;
+        try {
+            exportCurves(in, o);
+        } catch (const Error& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    EXPECT_EQ(errorWith("[1, 2]"), "export: materialExtrasJson must be a JSON object");
+    const std::string e = errorWith("{\"generator\": ");
+    EXPECT_TRUE(contains(e, "export: materialExtrasJson is not valid JSON: ")) << e;
+    EXPECT_TRUE(test::listDir(dir).empty());
 }
 
 TEST(ExportErrors, chunkLargerThanBufferLimitIsRefusedWithoutFiles) {
@@ -255,21 +275,6 @@ TEST(ExportScene, pliesOfASceneBuiltWithoutPliesAreGeneratedWhileWriting) {
     o.what = ExportWhat::Tubes;  // auto: the yarns of a scene without plies
     o.path = dir + "/tubes.obj";
     EXPECT_EQ(exportScene(broken, o).curves, broken.yarns.curves.curveCount());
-}
-
-TEST(ExportReport, carriesCountsPeakMemoryAndRatio) {
-    ExportStats s;
-    s.format = "glb";
-    s.vertices = 10;
-    s.uncompressedMeshBytes = 1000;
-    s.compressedMeshBytes = 250;
-    s.peakMemoryBytes = util::peakResidentBytes();
-    EXPECT_GT(s.peakMemoryBytes, 0u);
-    const nlohmann::json j = exportReport(s);
-    EXPECT_EQ(j["format"], "glb");
-    EXPECT_EQ(j["vertices"], 10);
-    EXPECT_DOUBLE_EQ(j["compressionRatio"].get<double>(), 4.0);
-    EXPECT_EQ(j["peakMemoryBytes"].get<size_t>(), s.peakMemoryBytes);
 }
 
 }  // namespace

@@ -134,6 +134,26 @@ TEST(GltfExport, tubeGlbPassesValidatorAndRoundTrips) {
     EXPECT_DOUBLE_EQ(materials[0].at("extras").at("radius").get<double>(), radius);
 }
 
+TEST(GltfExport, materialExtrasTextReachesTheMaterial) {
+    const std::string dir = test::scratchDir("gltf_extras");
+    const Polylines c = test::mixedCurves();
+    ExportInput in;
+    in.curves = &c;
+    in.radius = 0.001;
+    in.materialExtrasJson = R"({"generator": "test", "weights": [1, 2.5], "nested": {"on": true}})";
+    ExportOptions o;
+    o.path = dir + "/extras.gltf";
+    o.what = ExportWhat::Yarns;
+    exportCurves(in, o);
+    test::expectGltfValid(o.path);
+    const gltf::Document m = test::loadGltf(o.path);
+    const nlohmann::json& extras = m.root().at("materials").at(0).at("extras");
+    EXPECT_EQ(extras.at("generator"), "test");
+    EXPECT_EQ(extras.at("weights"), nlohmann::json::parse("[1, 2.5]"));
+    EXPECT_EQ(extras.at("nested").at("on"), true);
+    EXPECT_DOUBLE_EQ(extras.at("radius").get<double>(), 0.001);  // added by the exporter
+}
+
 TEST(GltfExport, tubeGltfWritesExternalBinAndPassesValidator) {
     const std::string dir = test::scratchDir("gltf_tubes_text");
     const Polylines c = test::mixedCurves();
