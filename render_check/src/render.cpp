@@ -15,6 +15,7 @@
 #include "knit/ply_geometry.hpp"
 #include "knit/scene.hpp"
 #include "material_overrides.hpp"
+#include "render_image.hpp"
 #include "trace_scene.hpp"
 #include "util/math.hpp"
 #include "util/platform.hpp"
