@@ -22,6 +22,8 @@ void writeHeaderComment(detail::TextOut& t, const std::string& header) {
 
 }  // namespace
 
+namespace detail {
+
 void writeObjPolylines(std::ostream& out, const Polylines& curves, const std::string& header) {
     detail::TextOut t(out);
     writeHeaderComment(t, header);
@@ -40,8 +42,6 @@ void writeObjPolylines(std::ostream& out, const Polylines& curves, const std::st
     }
     t.flush();
 }
-
-namespace detail {
 
 void writeObjTubeHeader(std::ostream& out, const std::string& header) {
     TextOut t(out);

@@ -117,9 +117,6 @@ bool streamsPlies(const ExportOptions& options);
 // conflict (e.g. --draco with curves, --draco with --quantize, Draco for a non-glTF format).
 void validateExportOptions(const ExportOptions& options);
 
-// OBJ polylines: one `l` record per curve; a closed curve repeats its first index at the end.
-void writeObjPolylines(std::ostream& out, const Polylines& curves, const std::string& header);
-
 // Writes `path` through a temporary sibling file renamed on success; `write` fills the stream.
 // Throws knit::Error naming the path if it cannot be created or written.
 void writeFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write,
