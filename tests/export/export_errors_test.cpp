@@ -14,10 +14,12 @@
 namespace knit {
 namespace {
 
-std::string errorOf(const Polylines& c, const ExportOptions& o, double radius = 0.001) {
+std::string errorOf(const Polylines& c, const ExportOptions& o, double radius = 0.001,
+                    const std::string& materialExtrasJson = "") {
     ExportInput in;
     in.curves = &c;
     in.radius = radius;
+    in.materialExtrasJson = materialExtrasJson;
     try {
         exportCurves(in, o);
     } catch (const Error& e) {
@@ -130,23 +132,10 @@ TEST(ExportErrors, offsetsPastTheEndAreRefusedBeforeReading) {
 
 TEST(ExportErrors, materialExtrasThatAreNotAJsonObjectAreRefused) {
     const std::string dir = test::scratchDir("err_extras");
-    const Polylines c = test::mixedCurves();
-    ExportInput in;
-    in.curves = &c;
-    in.radius = 0.001;
     ExportOptions o;
     o.path = dir + "/x.glb";
-    const auto errorWith = [&](const std::string& extras) {
-        in.materialExtrasJson = extras;
-        try {
-            exportCurves(in, o);
-        } catch (const Error& e) {
-            return std::string(e.what());
-        }
-        return std::string();
-    };
-    EXPECT_EQ(errorWith("[1, 2]"), "export: materialExtrasJson must be a JSON object");
-    const std::string e = errorWith("{\"generator\": ");
+    EXPECT_EQ(errorOf(test::mixedCurves(), o, 0.001, "[1, 2]"), "export: materialExtrasJson must be a JSON object");
+    const std::string e = errorOf(test::mixedCurves(), o, 0.001, "{\"generator\": ");
     EXPECT_TRUE(contains(e, "export: materialExtrasJson is not valid JSON: ")) << e;
     EXPECT_TRUE(test::listDir(dir).empty());
 }

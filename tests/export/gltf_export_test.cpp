@@ -18,11 +18,13 @@
 namespace knit {
 namespace {
 
-ExportStats write(const Polylines& c, double radius, ExportOptions o, const std::vector<uint32_t>* yarns = nullptr) {
+ExportStats write(const Polylines& c, double radius, ExportOptions o, const std::vector<uint32_t>* yarns = nullptr,
+                  const std::string& materialExtrasJson = "") {
     ExportInput in;
     in.curves = &c;
     in.radius = radius;
     in.yarnOfCurve = yarns;
+    in.materialExtrasJson = materialExtrasJson;
     return exportCurves(in, o);
 }
 
@@ -136,15 +138,10 @@ TEST(GltfExport, tubeGlbPassesValidatorAndRoundTrips) {
 
 TEST(GltfExport, materialExtrasTextReachesTheMaterial) {
     const std::string dir = test::scratchDir("gltf_extras");
-    const Polylines c = test::mixedCurves();
-    ExportInput in;
-    in.curves = &c;
-    in.radius = 0.001;
-    in.materialExtrasJson = R"({"generator": "test", "weights": [1, 2.5], "nested": {"on": true}})";
     ExportOptions o;
     o.path = dir + "/extras.gltf";
     o.what = ExportWhat::Yarns;
-    exportCurves(in, o);
+    write(test::mixedCurves(), 0.001, o, nullptr, R"({"generator": "test", "weights": [1, 2.5], "nested": {"on": true}})");
     test::expectGltfValid(o.path);
     const gltf::Document m = test::loadGltf(o.path);
     const nlohmann::json& extras = m.root().at("materials").at(0).at("extras");

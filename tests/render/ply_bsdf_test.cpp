@@ -15,6 +15,7 @@
 #include "knit/error.hpp"
 #include "knit/fiber_tables.hpp"
 #include "knit/ply_bsdf.hpp"
+#include "test_util.hpp"
 
 namespace knit {
 namespace {
@@ -445,12 +446,7 @@ TEST(PlyMaterial, jsonTextRoundTripsEveryFieldExactly) {
 
 TEST(PlyMaterial, textErrorsNameTheSource) {
     const auto errorOf = [](const std::string& text) {
-        try {
-            parseMaterialJson(text, "material text");
-        } catch (const Error& e) {
-            return std::string(e.what());
-        }
-        return std::string();
+        return test::errorOf([&] { parseMaterialJson(text, "material text"); });
     };
     EXPECT_EQ(errorOf("[0.3, 0.4]"), "material text: a material must be a JSON object");
     EXPECT_EQ(errorOf("{\"kR\": 0.3,").rfind("material text: invalid JSON: ", 0), 0u) << errorOf("{\"kR\": 0.3,");
