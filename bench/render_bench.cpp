@@ -24,6 +24,7 @@
 #include "knit/ply_geometry.hpp"
 #include "knit/scene.hpp"
 #include "knit/synthetic_scene.hpp"
+#include "render_image.hpp"
 #include "trace_scene.hpp"
 
 namespace {

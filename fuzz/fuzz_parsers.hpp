@@ -23,7 +23,7 @@
 #include "knit/pattern.hpp"
 #include "knit/uv_grid.hpp"
 #ifdef KNIT_FUZZ_HAVE_RENDER_CHECK
-#include <nlohmann/json.hpp>
+#include <stdexcept>
 
 #include "knit/ply_material.hpp"
 #endif
@@ -160,19 +160,32 @@ inline Outcome runChart(const uint8_t* data, size_t size) {
 }
 
 #ifdef KNIT_FUZZ_HAVE_RENDER_CHECK
-// Render material JSON (the --material file of `knit render`) through loadMaterialFile.
+// Render material JSON (the --material file of `knit render`) through loadMaterialFile. A
+// material it accepts must also come out of the same bytes as text (parseMaterialJson) and
+// survive materialJsonText -> parseMaterialJson unchanged; a difference, or a knit::Error in
+// those steps, is a bug (std::logic_error).
 inline Outcome runMaterial(const uint8_t* data, size_t size) {
     if (size > kMaxInput) return Outcome::Rejected;
     static TempFile file(".json");
     const std::string& path = file.write(data, size);
+    PlyMaterial m;
     try {
-        const PlyMaterial m = loadMaterialFile(path);
+        m = loadMaterialFile(path);
         validateMaterial(m);
-        materialToJson(m);
-        return Outcome::Parsed;
     } catch (const Error&) {
         return Outcome::Rejected;
     }
+    try {
+        const std::string text = materialJsonText(m);
+        const std::string bytes(reinterpret_cast<const char*>(data), size);
+        if (materialJsonText(parseMaterialJson(bytes, "text")) != text)
+            throw std::logic_error("material: the file and the same text parse differently");
+        if (materialJsonText(parseMaterialJson(text, "round trip")) != text)
+            throw std::logic_error("material: materialJsonText does not read back: " + text);
+    } catch (const Error& e) {
+        throw std::logic_error(std::string("material: accepted as a file, refused as text: ") + e.what());
+    }
+    return Outcome::Parsed;
 }
 #endif
 

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "export_flags.hpp"
+#include "export_report.hpp"
 #include "report.hpp"
 
 namespace knit::cli {

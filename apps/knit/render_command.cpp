@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "render_flags.hpp"
+#include "render_report.hpp"
 #include "report.hpp"
 
 namespace knit::cli {

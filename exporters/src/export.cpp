@@ -10,6 +10,7 @@
 #include "atomic_file.hpp"
 #include "formats.hpp"
 #include "knit/error.hpp"
+#include "material_extras.hpp"
 #include "util/checks.hpp"
 #include "util/csr.hpp"
 #include "util/platform.hpp"
@@ -35,23 +36,35 @@ const char* whatName(ExportWhat w) {
     return "?";
 }
 
+// Step: the offsets span the points and never decrease, so every curve's range lies inside the
+// points; checked for all curves before any point is read.
+void validateOffsets(const Polylines& c) {
+    if (!util::offsetEnds(c.offsets, c.curveCount(), c.pointCount()))
+        throw Error("export: inconsistent curve offsets (" + std::to_string(c.offsets.size()) + " offsets, " +
+                    std::to_string(c.closed.size()) + " curves, " + std::to_string(c.points.size()) + " points)");
+    for (size_t k = 0; k < c.curveCount(); ++k) {
+        if (c.offsets[k + 1] > c.pointCount())
+            throw Error("export: curve " + std::to_string(k) + " ends at offset " + std::to_string(c.offsets[k + 1]) +
+                        ", past the " + std::to_string(c.pointCount()) + " points");
+        if (c.offsets[k + 1] < c.offsets[k])
+            throw Error("export: curve " + std::to_string(k) + " has decreasing offsets");
+    }
+}
+
 // Step: every point finite (user data problems are reported before any numeric loop runs).
 // Generated plies were validated by their PlyGenerator.
 void validateInput(const ExportInput& in, bool tubes) {
     if (!in.curves && !in.plies) throw Error("export: no curves given");
     if (in.curves && in.plies) throw Error("export: both curves and a ply generator given; pass one");
+    detail::parseMaterialExtras(in.materialExtrasJson);  // throws unless empty or a JSON object
     if (in.plies) {
         if (!util::positiveFinite(in.radius))
             throw Error("export: radius must be a positive number, got " + std::to_string(in.radius));
         return;
     }
     const Polylines& c = *in.curves;
-    if (!util::offsetEnds(c.offsets, c.curveCount(), c.pointCount()))
-        throw Error("export: inconsistent curve offsets (" + std::to_string(c.offsets.size()) + " offsets, " +
-                    std::to_string(c.closed.size()) + " curves, " + std::to_string(c.points.size()) + " points)");
+    validateOffsets(c);
     for (size_t k = 0; k < c.curveCount(); ++k) {
-        if (c.offsets[k + 1] < c.offsets[k])
-            throw Error("export: curve " + std::to_string(k) + " has decreasing offsets");
         for (uint32_t i = c.begin(k); i < c.end(k); ++i) {
             if (!util::finite(c.points[i]))
                 throw Error("export: curve " + std::to_string(k) + " point " + std::to_string(i - c.begin(k)) +
@@ -226,29 +239,8 @@ ExportStats exportScene(const Scene& scene, const ExportOptions& options) {
         in.yarnOfCurve = &yarnIds;
         if (scene.yarns().normals.size() == scene.yarns().curves.pointCount()) in.seedNormals = &scene.yarns().normals;
     }
-    in.materialExtras = &extras;
+    in.materialExtrasJson = extras.dump();
     return exportCurves(in, options);
-}
-
-nlohmann::json exportReport(const ExportStats& s) {
-    nlohmann::json j = {{"format", s.format},
-                        {"curves", s.curves},
-                        {"vertices", s.vertices},
-                        {"triangles", s.triangles},
-                        {"chunks", s.chunks},
-                        {"maxChunkVertices", s.maxChunkVertices},
-                        {"buffers", s.buffers},
-                        {"bytes", s.bytes},
-                        {"peakMemoryBytes", s.peakMemoryBytes},
-                        {"peakMemoryMiB", double(s.peakMemoryBytes) / (1024.0 * 1024.0)},
-                        {"seconds", s.seconds}};
-    if (s.uncompressedMeshBytes > 0) {
-        j["uncompressedMeshBytes"] = s.uncompressedMeshBytes;
-        j["compressedMeshBytes"] = s.compressedMeshBytes;
-        if (s.compressedMeshBytes > 0)
-            j["compressionRatio"] = double(s.uncompressedMeshBytes) / double(s.compressedMeshBytes);
-    }
-    return j;
 }
 
 void writeFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write,

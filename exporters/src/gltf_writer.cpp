@@ -47,6 +47,7 @@
 #include "chunks.hpp"
 #include "draco_codec.hpp"
 #include "formats.hpp"
+#include "material_extras.hpp"
 #include "knit/error.hpp"
 #include "knit/plies.hpp"
 #include "meshopt_codec.hpp"
@@ -455,7 +456,7 @@ uint64_t jsonReservation(const FormatJob& job, const CurveChunkSource* curves) {
     } else {
         return 4096;
     }
-    const uint64_t extras = job.input.materialExtras ? job.input.materialExtras->dump().size() : 0;
+    const uint64_t extras = job.input.materialExtrasJson.size();
     // A curve: a primitive and two accessors (POSITION with min / max, _RADIUS), ~400 bytes.
     uint64_t bytes = 4096 + 2 * extras + chunks * 2048 + curveCount * 512;
     if (job.options.prettyJson) bytes *= 3;
@@ -728,7 +729,7 @@ private:
             tinygltf::Value(0.8), tinygltf::Value(0.8), tinygltf::Value(0.8)});
         sheen["sheenRoughnessFactor"] = tinygltf::Value(0.6);
         m.extensions["KHR_materials_sheen"] = tinygltf::Value(std::move(sheen));
-        nlohmann::json extras = job_.input.materialExtras ? *job_.input.materialExtras : nlohmann::json::object();
+        nlohmann::json extras = parseMaterialExtras(job_.input.materialExtrasJson);
         extras["radius"] = job_.input.radius;
         if (job_.tubes) {
             extras["tubeSides"] = job_.options.sides;

@@ -27,6 +27,8 @@ void writeSegment(detail::TextOut& t, uint32_t i, uint32_t j) {
 
 }  // namespace
 
+namespace detail {
+
 void writeObjPolylines(std::ostream& out, const Polylines& curves, const std::string& header) {
     detail::TextOut t(out);
     writeHeaderComment(t, header);
@@ -45,8 +47,6 @@ void writeObjPolylines(std::ostream& out, const Polylines& curves, const std::st
     }
     t.flush();
 }
-
-namespace detail {
 
 void writeObjTubeHeader(std::ostream& out, const std::string& header) {
     TextOut t(out);

@@ -1,4 +1,4 @@
-// obj_writer.hpp (internal) — OBJ tube meshes (writeObjPolylines is public in knit/export.hpp).
+// obj_writer.hpp (internal) — OBJ polylines and tube meshes.
 #pragma once
 #include <cstdint>
 #include <ostream>
@@ -9,6 +9,8 @@
 
 namespace knit::detail {
 
+// OBJ polylines: one `l` record per curve; a closed curve repeats its first index at the end.
+void writeObjPolylines(std::ostream& out, const Polylines& curves, const std::string& header);
 void writeObjTubeHeader(std::ostream& out, const std::string& header);
 // One chunk of a streamed tube mesh; `vertexBase` = vertices written by earlier chunks.
 void writeObjTubeChunk(std::ostream& out, const TubeMesh& mesh, uint64_t vertexBase);

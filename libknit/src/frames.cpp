@@ -29,6 +29,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "frames_curve.hpp"
 #include "knit/error.hpp"
 #include "util/checks.hpp"
 #include "util/csr.hpp"

@@ -3,7 +3,8 @@
 // Steps (PlyGenerator::generate, per yarn; makePlies runs it over fixed yarn batches in
 // parallel and concatenates): resample the yarn (spacing = pitch / samplesPerTurn);
 // rotation-minimizing frames seeded with the surface normal (curveFrames, same result as
-// rotationMinimizingFrames); sweep the helices
+// rotationMinimizingFrames); sweep the helices (the two steps are detail::PlyKernel,
+// plies_kernel.hpp)
 //   c_i(s) = C(s) + R_ply (cos(theta(s) + 2 pi i / n) N(s) + sin(theta(s) + 2 pi i / n) B(s)),
 // with B = T x N and s the arc length of the resampled polyline from the yarn's first point.
 //
@@ -40,7 +41,10 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 
+#include "frames_curve.hpp"
 #include "knit/error.hpp"
+#include "plies_kernel.hpp"
+#include "resample_curve.hpp"
 #include "util/checks.hpp"
 #include "util/math.hpp"
 
@@ -108,28 +112,42 @@ size_t PlyGenerator::estimatePoints(size_t y) const {
     return samples < 2 ? 0 : static_cast<size_t>(options_.count) * samples;  // < 2 points: no plies
 }
 
-size_t PlyGenerator::centreline(size_t y, std::vector<dvec3>& centre, PlyScratch& scratch) const {
-    return resampleCurve(yarns_, y, spacing_, centre, nullptr, scratch.resample);
+PlyScratch::PlyScratch() = default;
+PlyScratch::~PlyScratch() = default;
+PlyScratch::PlyScratch(PlyScratch&&) noexcept = default;
+PlyScratch& PlyScratch::operator=(PlyScratch&&) noexcept = default;
+
+namespace detail {
+
+PlyScratch::Buffers& PlyKernel::buffers(PlyScratch& scratch) {
+    if (!scratch.buffers_) scratch.buffers_ = std::make_unique<PlyScratch::Buffers>();
+    return *scratch.buffers_;
 }
 
-void PlyGenerator::sweep(size_t y, const dvec3* X, size_t m, dvec3* P, dvec3* D, PlyScratch& scratch) const {
-    const PlyOptions& opt = options_;
-    const Polylines& yarnCurves = yarns_.curves;
+size_t PlyKernel::centreline(const PlyGenerator& g, size_t y, std::vector<dvec3>& centre, PlyScratch& scratch) {
+    return resampleCurve(g.yarns_, y, g.spacing_, centre, nullptr, buffers(scratch).resample);
+}
+
+void PlyKernel::sweep(const PlyGenerator& g, size_t y, const dvec3* X, size_t m, dvec3* P, dvec3* D,
+                      PlyScratch& scratch) {
+    const PlyOptions& opt = g.options_;
+    const Polylines& yarnCurves = g.yarns_.curves;
     const uint32_t n = static_cast<uint32_t>(opt.count);
     const bool closed = yarnCurves.isClosed(y);
     // The frame seed is the surface normal at the first point, which resampling keeps unchanged
     // (no normals need interpolating).
-    const dvec3* seed = yarns_.normals.empty() ? nullptr : yarns_.normals.data() + yarnCurves.begin(y);
+    const dvec3* seed = g.yarns_.normals.empty() ? nullptr : g.yarns_.normals.data() + yarnCurves.begin(y);
+    PlyScratch::Buffers& buf = buffers(scratch);
 
     // Step 1: rotation-minimizing frames.
-    scratch.tangent.resize(m);
-    scratch.normal.resize(m);
-    curveFrames(X, m, closed, seed, scratch.tangent.data(), scratch.normal.data());
-    const dvec3* T = scratch.tangent.data();
-    const dvec3* N = scratch.normal.data();
+    buf.tangent.resize(m);
+    buf.normal.resize(m);
+    curveFrames(X, m, closed, seed, buf.tangent.data(), buf.normal.data());
+    const dvec3* T = buf.tangent.data();
+    const dvec3* N = buf.normal.data();
 
     // Step 2: arc length; closed yarns get an integer number of turns so the helix closes.
-    std::vector<double>& arc = scratch.arc;
+    std::vector<double>& arc = buf.arc;
     arc.resize(m);
     arc[0] = 0.0;
     for (size_t j = 1; j < m; ++j) arc[j] = arc[j - 1] + glm::length(X[j] - X[j - 1]);
@@ -142,8 +160,8 @@ void PlyGenerator::sweep(size_t y, const dvec3* X, size_t m, dvec3* P, dvec3* D,
     const double rate = (opt.twist == Twist::Z ? 1.0 : -1.0) * util::kTwoPi / pitch;  // dtheta/ds
 
     // Step 3: the helices, with phase offsets 2 pi i / n.
-    const double* cosPly = cosPly_;
-    const double* sinPly = sinPly_;
+    const double* cosPly = g.cosPly_;
+    const double* sinPly = g.sinPly_;
     const double R = opt.centerRadius;
     for (size_t j = 0; j < m; ++j) {
         const double theta = rate * arc[j];
@@ -161,6 +179,8 @@ void PlyGenerator::sweep(size_t y, const dvec3* X, size_t m, dvec3* P, dvec3* D,
     }
 }
 
+}  // namespace detail
+
 void PlyGenerator::generate(size_t first, size_t last, Plies& out, PlyScratch& scratch, bool withRadial) const {
     const uint32_t n = static_cast<uint32_t>(options_.count);
     // Step 1: empty the batch (capacity is kept for the next one).
@@ -174,10 +194,11 @@ void PlyGenerator::generate(size_t first, size_t last, Plies& out, PlyScratch& s
     out.centerRadius = options_.centerRadius;
     out.pitch = options_.pitch;
 
+    std::vector<dvec3>& centre = detail::PlyKernel::buffers(scratch).centre;
     for (size_t y = first; y < last; ++y) {
         // Step 2: resample the centreline.
-        scratch.centre.clear();
-        const size_t m = centreline(y, scratch.centre, scratch);
+        centre.clear();
+        const size_t m = detail::PlyKernel::centreline(*this, y, centre, scratch);
         if (m < 2) continue;  // degenerate yarn: no plies
         // Step 3: n curves of m points (yarn-major, ply-minor) swept around it.
         const size_t base = out.curves.points.size();
@@ -189,8 +210,8 @@ void PlyGenerator::generate(size_t first, size_t last, Plies& out, PlyScratch& s
             out.yarnOfCurve.push_back(static_cast<uint32_t>(y));
             out.plyOfCurve.push_back(static_cast<uint8_t>(i));
         }
-        sweep(y, scratch.centre.data(), m, out.curves.points.data() + base,
-              withRadial ? out.radial.data() + base : nullptr, scratch);
+        detail::PlyKernel::sweep(*this, y, centre.data(), m, out.curves.points.data() + base,
+                                 withRadial ? out.radial.data() + base : nullptr, scratch);
     }
 }
 
@@ -229,7 +250,7 @@ Plies makePlies(const PlyGenerator& generator) {
         PlyScratch scratch;
         for (size_t k = r.begin(); k < r.end(); ++k)
             for (size_t y = batchStart[k]; y < batchStart[k + 1]; ++y)
-                samples[y] = generator.centreline(y, centres[k], scratch);
+                samples[y] = detail::PlyKernel::centreline(generator, y, centres[k], scratch);
     });
 
     // Step 3: layout, yarn-major and ply-minor (yarns with < 2 samples get no plies).
@@ -262,8 +283,8 @@ Plies makePlies(const PlyGenerator& generator) {
             for (size_t y = batchStart[k]; y < batchStart[k + 1]; ++y) {
                 const size_t m = samples[y];
                 if (m >= 2)
-                    generator.sweep(y, X, m, out.curves.points.data() + firstPoint[y], out.radial.data() + firstPoint[y],
-                                    scratch);
+                    detail::PlyKernel::sweep(generator, y, X, m, out.curves.points.data() + firstPoint[y],
+                                             out.radial.data() + firstPoint[y], scratch);
                 X += m;
             }
             std::vector<dvec3>().swap(centres[k]);  // release memory early

@@ -24,6 +24,7 @@
 #include <tbb/parallel_invoke.h>
 
 #include "knit/error.hpp"
+#include "resample_curve.hpp"
 #include "util/checks.hpp"
 #include "util/csr.hpp"
 

@@ -14,6 +14,7 @@
 
 #include "knit/error.hpp"
 #include "knit/ply_bsdf.hpp"
+#include "render_image.hpp"
 #include "trace_scene.hpp"
 #include "util/math.hpp"
 

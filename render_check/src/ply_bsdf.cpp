@@ -6,6 +6,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "microfacet.hpp"
 #include "util/math.hpp"
 
 namespace knit {

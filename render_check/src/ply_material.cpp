@@ -1,4 +1,5 @@
-// Ply material: range checks, the energy bound, and JSON (file) loading with field-naming errors.
+// Ply material: range checks, the energy bound, JSON (text / file) loading with field-naming
+// errors, and the per-field overrides of the render options.
 #include "knit/ply_material.hpp"
 
 #include <cmath>
@@ -9,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "knit/error.hpp"
+#include "material_overrides.hpp"
 
 namespace knit {
 namespace {
@@ -83,6 +85,9 @@ void validateMaterial(const PlyMaterial& m, const std::string& where) {
     }
 }
 
+namespace {
+
+// Fields of `j` override `base`; unknown fields and wrong types are errors naming the field.
 PlyMaterial materialFromJson(const nlohmann::json& j, const PlyMaterial& base, const std::string& where) {
     if (!j.is_object()) throw Error(where + ": a material must be a JSON object");
     PlyMaterial m = base;
@@ -112,41 +117,67 @@ PlyMaterial materialFromJson(const nlohmann::json& j, const PlyMaterial& base, c
     return m;
 }
 
+// The first JSON value of `in` (what follows it is not read) as a material; read errors surface
+// as exceptions of the stream or the parser.
+PlyMaterial parseMaterialStream(std::istream& in, const std::string& where, const PlyMaterial& base) {
+    nlohmann::json j;
+    try {
+        in >> j;
+    } catch (const nlohmann::json::exception& e) {
+        throw Error(where + ": invalid JSON: " + e.what());
+    } catch (const std::exception& e) {
+        throw Error(where + ": cannot be read: " + e.what());
+    }
+    return materialFromJson(j, base, where);
+}
+
+}  // namespace
+
+PlyMaterial parseMaterialJson(const std::string& text, const std::string& source, const PlyMaterial& base) {
+    std::istringstream in(text);
+    return parseMaterialStream(in, source, base);
+}
+
 PlyMaterial loadMaterialFile(const std::string& path, const PlyMaterial& base) {
     // Step 1: a readable regular file (a folder opens as a stream on Linux, then fails to read).
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec)) throw Error("material file '" + path + "': is a directory, not a file");
     std::ifstream in(path);
     if (!in) throw Error("material file '" + path + "': cannot be opened");
-    // Step 2: parse (read errors surface as exceptions of the stream or the parser).
-    nlohmann::json j;
-    try {
-        in >> j;
-    } catch (const nlohmann::json::exception& e) {
-        throw Error("material file '" + path + "': invalid JSON: " + e.what());
-    } catch (const std::exception& e) {
-        throw Error("material file '" + path + "': cannot be read: " + e.what());
-    }
-    return materialFromJson(j, base, "material file '" + path + "'");
+    // Step 2: parse.
+    return parseMaterialStream(in, "material file '" + path + "'", base);
 }
 
-nlohmann::json materialToJson(const PlyMaterial& m) {
+PlyMaterial applyMaterialOverrides(const std::map<std::string, std::vector<double>>& overrides,
+                                   const PlyMaterial& base, const std::string& where) {
+    nlohmann::json j = nlohmann::json::object();
+    for (const auto& [key, values] : overrides) {
+        if (key == "fiberDetail") j[key] = !values.empty() && values[0] != 0;
+        else if (key == "fiberCount" || key == "tableSize" || key == "aoRays") j[key] = static_cast<long long>(std::lround(values.at(0)));
+        else if (values.size() == 1) j[key] = values[0];
+        else j[key] = values;
+    }
+    return materialFromJson(j, base, where);
+}
+
+std::string materialJsonText(const PlyMaterial& m) {
     auto rgb = [](const Rgb& c) { return nlohmann::json::array({c.x, c.y, c.z}); };
-    return {{"eta", m.eta},
-            {"alphaAlong", m.alphaAlong},
-            {"alphaAcross", m.alphaAcross},
-            {"kR", rgb(m.kR)},
-            {"alphaTT", m.alphaTT},
-            {"kTT", rgb(m.kTT)},
-            {"bodyAlbedo", rgb(m.bodyAlbedo)},
-            {"reflectFraction", m.reflectFraction},
-            {"fiberDetail", m.fiberDetail},
-            {"fiberCount", m.fiberCount},
-            {"fiberTwist", m.fiberTwist},
-            {"fiberShadowFloor", m.fiberShadowFloor},
-            {"plyShadowFloor", m.plyShadowFloor},
-            {"tableSize", m.tableSize},
-            {"aoRays", m.aoRays}};
+    const nlohmann::json j = {{"eta", m.eta},
+                              {"alphaAlong", m.alphaAlong},
+                              {"alphaAcross", m.alphaAcross},
+                              {"kR", rgb(m.kR)},
+                              {"alphaTT", m.alphaTT},
+                              {"kTT", rgb(m.kTT)},
+                              {"bodyAlbedo", rgb(m.bodyAlbedo)},
+                              {"reflectFraction", m.reflectFraction},
+                              {"fiberDetail", m.fiberDetail},
+                              {"fiberCount", m.fiberCount},
+                              {"fiberTwist", m.fiberTwist},
+                              {"fiberShadowFloor", m.fiberShadowFloor},
+                              {"plyShadowFloor", m.plyShadowFloor},
+                              {"tableSize", m.tableSize},
+                              {"aoRays", m.aoRays}};
+    return j.dump();
 }
 
 }  // namespace knit

@@ -8,13 +8,14 @@
 #include <mutex>
 
 #include <glm/geometric.hpp>
-#include <nlohmann/json.hpp>
 
 #include "knit/error.hpp"
 #include "knit/fiber_tables.hpp"
 #include "knit/image_io.hpp"
 #include "knit/ply_geometry.hpp"
 #include "knit/scene.hpp"
+#include "material_overrides.hpp"
+#include "render_image.hpp"
 #include "trace_scene.hpp"
 #include "util/math.hpp"
 #include "util/platform.hpp"
@@ -39,16 +40,7 @@ const char* lightPlacementName(LightPlacement light) {
 PlyMaterial resolveMaterial(const RenderOptions& o) {
     PlyMaterial m = o.material;
     if (!o.materialFile.empty()) m = loadMaterialFile(o.materialFile, m);
-    if (!o.materialOverrides.empty()) {
-        nlohmann::json j = nlohmann::json::object();
-        for (const auto& [key, values] : o.materialOverrides) {
-            if (key == "fiberDetail") j[key] = !values.empty() && values[0] != 0;
-            else if (key == "fiberCount" || key == "tableSize" || key == "aoRays") j[key] = static_cast<long long>(std::lround(values.at(0)));
-            else if (values.size() == 1) j[key] = values[0];
-            else j[key] = values;
-        }
-        m = materialFromJson(j, m, "material flags");
-    }
+    if (!o.materialOverrides.empty()) m = applyMaterialOverrides(o.materialOverrides, m, "material flags");
     validateMaterial(m, o.materialFile.empty() ? "material" : "material file '" + o.materialFile + "'");
     return m;
 }
@@ -181,32 +173,6 @@ RenderResult renderScene(const Scene& scene, const RenderOptions& o) {
     if (!o.exr.empty()) writeExr(o.exr, res.image), res.written.push_back(o.exr);
     res.peakMemoryBytes = int64_t(util::peakResidentBytes());
     return res;
-}
-
-nlohmann::json renderReport(const RenderResult& r) {
-    const Rgb m = r.image.mean();
-    return {{"mode", modeName(r.mode)},
-            {"light", lightPlacementName(r.light)},
-            {"width", r.image.width},
-            {"height", r.image.height},
-            {"spp", r.spp},
-            {"segments", r.segments},
-            {"primitives", r.primitives},
-            {"tableSeconds", r.tableSeconds},
-            {"buildSeconds", r.buildSeconds},
-            {"renderSeconds", r.renderSeconds},
-            {"seconds", r.tableSeconds + r.buildSeconds + r.renderSeconds},
-            {"rays", r.rays},
-            {"raysPerSecond", r.raysPerSecond},
-            {"sceneMemoryBytes", r.memory.sceneBytes()},
-            {"embreeMemoryBytes", r.memory.embreeBytes},
-            {"geometryMemoryBytes", r.memory.geometryBytes},
-            {"shadingMemoryBytes", r.memory.shadingBytes},
-            {"tableMemoryBytes", r.tableBytes},
-            {"peakMemoryBytes", r.peakMemoryBytes},
-            {"meanRadiance", {m.x, m.y, m.z}},
-            {"material", materialToJson(r.material)},
-            {"written", r.written}};
 }
 
 }  // namespace knit

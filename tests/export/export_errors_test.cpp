@@ -5,8 +5,6 @@
 
 #include <utility>
 
-#include <nlohmann/json.hpp>
-
 #include "export/gltf_read.hpp"
 #include "export/gltf_validator.hpp"
 #include "export/test_curves.hpp"
@@ -14,15 +12,16 @@
 #include "knit/scene.hpp"
 #include "knit/export.hpp"
 #include "knit/sweep.hpp"
-#include "util/platform.hpp"
 
 namespace knit {
 namespace {
 
-std::string errorOf(const Polylines& c, const ExportOptions& o, double radius = 0.001) {
+std::string errorOf(const Polylines& c, const ExportOptions& o, double radius = 0.001,
+                    const std::string& materialExtrasJson = "") {
     ExportInput in;
     in.curves = &c;
     in.radius = radius;
+    in.materialExtrasJson = materialExtrasJson;
     try {
         exportCurves(in, o);
     } catch (const Error& e) {
@@ -108,6 +107,38 @@ TEST(ExportErrors, nonFinitePointNamesCurveAndPoint) {
     const std::string e = errorOf(c, o);
     EXPECT_TRUE(contains(e, "curve 2 point 4")) << e;
     EXPECT_TRUE(contains(errorOf(test::mixedCurves(), o, -1.0), "radius")) << "negative radius";
+    EXPECT_TRUE(test::listDir(dir).empty());
+}
+
+TEST(ExportErrors, offsetsPastTheEndAreRefusedBeforeReading) {
+    // Offsets {0, 10, 3, 6} over 6 points: curve 0 claims points 0..9. The 4 slots past the end
+    // hold NaN (capacity kept after the resize), so reading them would report "curve 0 point 6
+    // is not finite" instead of the offsets.
+    const std::string dir = test::scratchDir("err_offsets");
+    Polylines c;
+    c.points.assign(10, glm::dvec3(std::nan("")));
+    for (size_t i = 0; i < 6; ++i) c.points[i] = glm::dvec3(0.001 * double(i), 0, 0);
+    c.points.resize(6);
+    c.offsets = {0, 10, 3, 6};
+    c.closed = {0, 0, 0};
+    ExportOptions o;
+    o.path = dir + "/x.obj";
+    o.what = ExportWhat::Yarns;
+    const std::string e = errorOf(c, o);
+    EXPECT_EQ(e, "export: curve 0 ends at offset 10, past the 6 points");
+    EXPECT_TRUE(test::listDir(dir).empty());
+    // Within the points but decreasing: named as before.
+    c.offsets = {0, 4, 3, 6};
+    EXPECT_EQ(errorOf(c, o), "export: curve 1 has decreasing offsets");
+}
+
+TEST(ExportErrors, materialExtrasThatAreNotAJsonObjectAreRefused) {
+    const std::string dir = test::scratchDir("err_extras");
+    ExportOptions o;
+    o.path = dir + "/x.glb";
+    EXPECT_EQ(errorOf(test::mixedCurves(), o, 0.001, "[1, 2]"), "export: materialExtrasJson must be a JSON object");
+    const std::string e = errorOf(test::mixedCurves(), o, 0.001, "{\"generator\": ");
+    EXPECT_TRUE(contains(e, "export: materialExtrasJson is not valid JSON: ")) << e;
     EXPECT_TRUE(test::listDir(dir).empty());
 }
 
@@ -235,21 +266,6 @@ TEST(ExportScene, pliesOfASceneBuiltWithoutPliesAreGeneratedWhileWriting) {
     o.what = ExportWhat::Tubes;  // auto: the yarns of a scene without plies
     o.path = dir + "/tubes.obj";
     EXPECT_EQ(exportScene(broken, o).curves, broken.yarns().curves.curveCount());
-}
-
-TEST(ExportReport, carriesCountsPeakMemoryAndRatio) {
-    ExportStats s;
-    s.format = "glb";
-    s.vertices = 10;
-    s.uncompressedMeshBytes = 1000;
-    s.compressedMeshBytes = 250;
-    s.peakMemoryBytes = util::peakResidentBytes();
-    EXPECT_GT(s.peakMemoryBytes, 0u);
-    const nlohmann::json j = exportReport(s);
-    EXPECT_EQ(j["format"], "glb");
-    EXPECT_EQ(j["vertices"], 10);
-    EXPECT_DOUBLE_EQ(j["compressionRatio"].get<double>(), 4.0);
-    EXPECT_EQ(j["peakMemoryBytes"].get<size_t>(), s.peakMemoryBytes);
 }
 
 }  // namespace

@@ -19,8 +19,9 @@
 namespace knit {
 namespace {
 
-ExportStats write(const Polylines& c, double radius, ExportOptions o, const std::vector<uint32_t>* yarns = nullptr) {
-    return test::exportWith(c, radius, std::move(o), yarns);
+ExportStats write(const Polylines& c, double radius, ExportOptions o, const std::vector<uint32_t>* yarns = nullptr,
+                  const std::string& materialExtrasJson = "") {
+    return test::exportWith(c, radius, std::move(o), yarns, materialExtrasJson);
 }
 
 ExportOptions tubes(const std::string& path, int sides = 8) { return test::tubeOptions(path, sides); }
@@ -123,6 +124,21 @@ TEST(GltfExport, tubeGlbPassesValidatorAndRoundTrips) {
     ASSERT_EQ(materials.size(), 1u);
     EXPECT_TRUE(materials[0].at("extensions").contains("KHR_materials_sheen"));
     EXPECT_DOUBLE_EQ(materials[0].at("extras").at("radius").get<double>(), radius);
+}
+
+TEST(GltfExport, materialExtrasTextReachesTheMaterial) {
+    const std::string dir = test::scratchDir("gltf_extras");
+    ExportOptions o;
+    o.path = dir + "/extras.gltf";
+    o.what = ExportWhat::Yarns;
+    write(test::mixedCurves(), 0.001, o, nullptr, R"({"generator": "test", "weights": [1, 2.5], "nested": {"on": true}})");
+    test::expectGltfValid(o.path);
+    const gltf::Document m = test::loadGltf(o.path);
+    const nlohmann::json& extras = m.root().at("materials").at(0).at("extras");
+    EXPECT_EQ(extras.at("generator"), "test");
+    EXPECT_EQ(extras.at("weights"), nlohmann::json::parse("[1, 2.5]"));
+    EXPECT_EQ(extras.at("nested").at("on"), true);
+    EXPECT_DOUBLE_EQ(extras.at("radius").get<double>(), 0.001);  // added by the exporter
 }
 
 TEST(GltfExport, tubeGltfWritesExternalBinAndPassesValidator) {

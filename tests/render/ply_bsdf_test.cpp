@@ -11,11 +11,11 @@
 
 #include <boost/math/special_functions/gamma.hpp>
 #include <glm/geometric.hpp>
-#include <nlohmann/json.hpp>
 
 #include "knit/error.hpp"
 #include "knit/fiber_tables.hpp"
 #include "knit/ply_bsdf.hpp"
+#include "test_util.hpp"
 
 namespace knit {
 namespace {
@@ -398,26 +398,59 @@ TEST(PlyMaterial, energyViolationIsRejectedPerChannel) {
 }
 
 TEST(PlyMaterial, jsonUnknownFieldAndWrongTypeAreNamed) {
-    nlohmann::json j = {{"kR", 0.2}, {"shinyness", 3}};
     try {
-        materialFromJson(j);
+        parseMaterialJson(R"({"kR": 0.2, "shinyness": 3})", "m.json");
         FAIL();
     } catch (const Error& e) {
-        EXPECT_NE(std::string(e.what()).find("shinyness"), std::string::npos);
+        EXPECT_EQ(std::string(e.what()), "m.json: unknown field 'shinyness'");
     }
-    j = {{"bodyAlbedo", "red"}};
     try {
-        materialFromJson(j);
+        parseMaterialJson(R"({"bodyAlbedo": "red"})", "m.json");
         FAIL();
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("bodyAlbedo"), std::string::npos);
     }
-    j = {{"kR", {0.1, 0.2, 0.3}}, {"fiberCount", 12}, {"fiberDetail", false}};
-    const PlyMaterial m = materialFromJson(j);
+    const PlyMaterial m = parseMaterialJson(R"({"kR": [0.1, 0.2, 0.3], "fiberCount": 12, "fiberDetail": false})", "m");
     EXPECT_DOUBLE_EQ(m.kR.z, 0.3);
     EXPECT_EQ(m.fiberCount, 12);
     EXPECT_FALSE(m.fiberDetail);
-    EXPECT_EQ(materialFromJson(materialToJson(m)).kR, m.kR);
+    EXPECT_EQ(parseMaterialJson(materialJsonText(m), "m").kR, m.kR);
+}
+
+TEST(PlyMaterial, textOverridesTheBaseMaterial) {
+    PlyMaterial base;
+    base.eta = 1.3;
+    base.fiberCount = 7;
+    const PlyMaterial m = parseMaterialJson(R"({"fiberCount": 9})", "m", base);
+    EXPECT_EQ(m.eta, 1.3);
+    EXPECT_EQ(m.fiberCount, 9);
+    EXPECT_EQ(parseMaterialJson("{}", "m", base).fiberCount, 7);
+}
+
+TEST(PlyMaterial, jsonTextRoundTripsEveryFieldExactly) {
+    PlyMaterial m;
+    m.eta = 1.0 / 3.0 + 1.0;
+    m.kTT = Rgb(0.1, 0.2 / 3.0, 0.3);
+    m.fiberDetail = false;
+    m.fiberTwist = -std::sqrt(2.0);
+    m.aoRays = 17;
+    const std::string text = materialJsonText(m);
+    EXPECT_EQ(materialJsonText(parseMaterialJson(text, "m")), text);
+    const PlyMaterial back = parseMaterialJson(text, "m", PlyMaterial{});
+    EXPECT_EQ(back.eta, m.eta);
+    EXPECT_EQ(back.kTT, m.kTT);
+    EXPECT_EQ(back.fiberTwist, m.fiberTwist);
+    EXPECT_EQ(back.aoRays, 17);
+    EXPECT_FALSE(back.fiberDetail);
+}
+
+TEST(PlyMaterial, textErrorsNameTheSource) {
+    const auto errorOf = [](const std::string& text) {
+        return test::errorOf([&] { parseMaterialJson(text, "material text"); });
+    };
+    EXPECT_EQ(errorOf("[0.3, 0.4]"), "material text: a material must be a JSON object");
+    EXPECT_EQ(errorOf("{\"kR\": 0.3,").rfind("material text: invalid JSON: ", 0), 0u) << errorOf("{\"kR\": 0.3,");
+    EXPECT_EQ(errorOf(R"({"tableSize": 1.5})"), "material text: field 'tableSize' must be an integer");
 }
 
 TEST(PlyMaterial, fileErrorsNameTheFile) {

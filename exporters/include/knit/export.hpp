@@ -27,8 +27,6 @@
 #include <ostream>
 #include <string>
 
-#include <nlohmann/json_fwd.hpp>
-
 #include "knit/scene.hpp"
 
 namespace knit {
@@ -99,7 +97,7 @@ ExportStats exportScene(const Scene& scene, const ExportOptions& options);
 
 // Lower-level entry: exports the given curves (yarn centrelines or plies) with constant `radius`.
 // `yarnOfCurve` (optional, one entry per curve) selects the COLOR_0 palette entry and is stored;
-// `material` extras (optional JSON object) go into the glTF material's extras.
+// `materialExtrasJson` (optional: the text of a JSON object) goes into the glTF material's extras.
 struct ExportInput {
     const Polylines* curves = nullptr;
     // Instead of `curves`: plies generated while writing (streamed for .glb / .gltf curves;
@@ -108,7 +106,9 @@ struct ExportInput {
     double radius = 0;
     const std::vector<uint32_t>* yarnOfCurve = nullptr;
     const std::vector<glm::dvec3>* seedNormals = nullptr;  // per point, tube frame seed (optional)
-    const nlohmann::json* materialExtras = nullptr;
+    // glTF material extras as JSON object text, e.g. {"generator":"libknit"} (empty: none; the
+    // exporter adds radius and tube fields). Anything but a JSON object is a knit::Error.
+    std::string materialExtrasJson;
 };
 ExportStats exportCurves(const ExportInput& input, const ExportOptions& options);
 
@@ -119,11 +119,6 @@ bool streamsPlies(const ExportOptions& options);
 // Checks the options against each other and the extension; throws knit::Error naming the
 // conflict (e.g. --draco with curves, --draco with --quantize, Draco for a non-glTF format).
 void validateExportOptions(const ExportOptions& options);
-
-nlohmann::json exportReport(const ExportStats& stats);
-
-// OBJ polylines: one `l` record per curve; a closed curve repeats its first index at the end.
-void writeObjPolylines(std::ostream& out, const Polylines& curves, const std::string& header);
 
 // Writes `path` through a temporary sibling file renamed on success; `write` fills the stream.
 // Throws knit::Error naming the path if it cannot be created or written.

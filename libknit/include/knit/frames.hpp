@@ -26,12 +26,4 @@ struct FrameOptions {
 Frames rotationMinimizingFrames(const Polylines& curves, const std::vector<glm::dvec3>* seedNormals,
                                 const FrameOptions& options = {});
 
-// Addition (backwards compatible): the per-curve kernel of rotationMinimizingFrames, for
-// callers that fuse it into their own per-curve loop without whole-set frame arrays. Writes
-// `count` tangents and normals for points[0, count) (closed: last -> first is a segment);
-// `seedNormal` (the surface normal at points[0]) may be null. Points must be finite (not
-// checked here; rotationMinimizingFrames validates). Does not allocate, never throws.
-void curveFrames(const glm::dvec3* points, size_t count, bool closed, const glm::dvec3* seedNormal,
-                 glm::dvec3* tangent, glm::dvec3* normal, const FrameOptions& options = {});
-
 }  // namespace knit

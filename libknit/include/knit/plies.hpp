@@ -1,13 +1,16 @@
 // knit/plies.hpp — plies twisted around the mapped yarns, in object space.
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "knit/binding.hpp"
-#include "knit/frames.hpp"
-#include "knit/resample.hpp"
 
 namespace knit {
+
+namespace detail {
+struct PlyKernel;  // the per-yarn steps of PlyGenerator (internal: libknit/src/plies_kernel.hpp)
+}
 
 // Yarn held vertical: S strands slant like the middle of "S" (a left-handed helix,
 // theta = -2 pi s / pitch with B = T x N), Z strands like the middle of "Z" (right-handed,
@@ -48,11 +51,19 @@ PlyOptions resolvePlyOptions(const PlyOptions& options);
 // On closed yarns the number of turns is rounded so the helix closes with no twist jump.
 Plies makePlies(const MappedYarns& yarns, const PlyOptions& options);
 
-// Reusable buffers of PlyGenerator::generate (one per thread).
-struct PlyScratch {
-    ResampleScratch resample;
-    std::vector<glm::dvec3> centre, tangent, normal;
-    std::vector<double> arc;
+// Reusable buffers of PlyGenerator::generate (one per thread; allocated on first use, kept
+// between calls). Movable, not copyable.
+class PlyScratch {
+public:
+    PlyScratch();
+    ~PlyScratch();
+    PlyScratch(PlyScratch&&) noexcept;
+    PlyScratch& operator=(PlyScratch&&) noexcept;
+
+private:
+    friend struct detail::PlyKernel;
+    struct Buffers;
+    std::unique_ptr<Buffers> buffers_;
 };
 
 // The plies of a yarn set, batch by batch: what makePlies computes, for consumers that never
@@ -74,19 +85,10 @@ public:
     // empty (for consumers of the curves alone: less memory traffic).
     void generate(size_t first, size_t last, Plies& out, PlyScratch& scratch, bool withRadial = true) const;
 
-    // The two halves of generate, for callers that place the plies themselves (makePlies): the
-    // resampled centreline of yarn `y`, appended to `centre` (returns its point count; < 2
-    // means no plies) ...
-    size_t centreline(size_t y, std::vector<glm::dvec3>& centre, PlyScratch& scratch) const;
-    // ... and the `count` plies of yarn `y` swept around its m-point centreline: ply i's point j
-    // goes to points[i * m + j] (and its unit radial direction to radial[i * m + j] unless
-    // radial is null).
-    void sweep(size_t y, const glm::dvec3* centre, size_t m, glm::dvec3* points, glm::dvec3* radial,
-               PlyScratch& scratch) const;
-
     const MappedYarns& yarns() const { return yarns_; }
 
 private:
+    friend struct detail::PlyKernel;
     const MappedYarns& yarns_;
     PlyOptions options_;
     double spacing_ = 0;

@@ -19,30 +19,4 @@ struct ResampleOptions {
 // than 2^32-1 points.
 MappedYarns resampleYarns(const MappedYarns& yarns, const ResampleOptions& options);
 
-// The per-curve pieces of resampleYarns, for callers that resample curve by curve (makePlies,
-// streaming export) without materializing every resampled curve.
-
-// Reusable buffers of resampleCurve (one per thread).
-struct ResampleScratch {
-    std::vector<glm::dvec3> points, normals, samples;
-    std::vector<double> knots;
-};
-
-// The checks resampleYarns makes before it resamples: positive finite spacing, consistent
-// offsets, one normal per point (or none), finite points and normals. Throws knit::Error naming
-// the curve and point.
-void validateResampleInput(const MappedYarns& yarns, const ResampleOptions& options);
-
-// Resamples curve `c` of `yarns` (exactly as resampleYarns does) and appends its points to
-// `points` and, when `normals` is not null and the yarns have normals, its normals to
-// `normals`. Returns the number of points appended. The input must have passed
-// validateResampleInput; never throws (except std::bad_alloc).
-size_t resampleCurve(const MappedYarns& yarns, size_t c, double spacing, std::vector<glm::dvec3>& points,
-                     std::vector<glm::dvec3>* normals, ResampleScratch& scratch);
-
-// A lower bound of the points resampleCurve produces for curve `c` (the sum of
-// ceil(chord / spacing) over its segments, plus the last point of an open curve): for planning
-// batches and reserving memory.
-size_t estimateResampledSize(const Polylines& curves, size_t c, double spacing);
-
 }  // namespace knit

@@ -1,24 +1,15 @@
-// knit/path_tracer.hpp — pinhole camera, rectangular area light + constant environment, unidirectional
-// path tracing with next-event estimation and MIS (power heuristic), on a TraceScene.
-//
-// Deterministic for a seed and any thread count: every pixel has its own random stream seeded from
-// (seed, pixel index); tiles are rendered in parallel with TBB. Plies use the ply BSDF in the frame
-// of plyShadingFrame(); the base mesh (when present) is a two-sided Lambertian reflector. Paths
-// whose direction is on a different side of the geometric normal than of the shading normal carry
-// no energy (no light leaks through the fiber perturbation).
+// knit/path_tracer.hpp — what the path tracer takes and makes: pinhole camera, rectangular area
+// light, image. The tracer itself (unidirectional path tracing with next-event estimation and MIS
+// on the internal Embree scene) is render_check/src/render_image.hpp; renderScene (render.hpp) is
+// its public entry.
 #pragma once
-#include <cstdint>
-#include <functional>
 #include <vector>
 
 #include <glm/vec3.hpp>
 
-#include "knit/fiber_tables.hpp"
 #include "knit/ply_material.hpp"
 
 namespace knit {
-
-class TraceScene;  // render_check internal (src/trace_scene.hpp): the Embree scene to trace
 
 struct Camera {
     glm::dvec3 eye{0, 0, 1}, target{0.0}, up{0, 1, 0};  // world space (metres)
@@ -33,17 +24,6 @@ struct RectLight {
     Rgb radiance{0.0};
 };
 
-struct TraceSettings {
-    int width = 64, height = 64, spp = 16;
-    uint64_t seed = 1;
-    int maxDepth = 16;           // bounces; Russian roulette from depth 3
-    Camera camera;
-    RectLight light;
-    Rgb environment{0.0};        // constant radiance from every direction
-    Rgb baseAlbedo{0.5};
-    std::function<void(double fractionDone)> progress;  // called from worker threads (may be empty)
-};
-
 struct Image {
     int width = 0, height = 0;
     std::vector<float> rgb;       // linear, row-major from the top, 3 floats per pixel
@@ -51,13 +31,5 @@ struct Image {
     Rgb pixel(int x, int y) const;
     Rgb mean() const;
 };
-
-struct TraceStats {
-    uint64_t rays = 0;  // intersect + occlusion queries
-    double seconds = 0;
-};
-
-Image renderImage(const TraceScene& scene, const PlyMaterial& material, const FiberTables& tables,
-                  const TraceSettings& settings, TraceStats* stats = nullptr);
 
 }  // namespace knit

@@ -7,7 +7,6 @@
 #include <string>
 
 #include <glm/vec3.hpp>
-#include <nlohmann/json_fwd.hpp>
 
 namespace knit {
 
@@ -37,12 +36,15 @@ struct PlyMaterial {
 // `where` prefixes the message (e.g. a file name).
 void validateMaterial(const PlyMaterial& material, const std::string& where = "material");
 
-// Fields of `json` override `base`; unknown fields and wrong types are errors naming the field.
-// Colours are a number (grey) or [r, g, b]. The result is validated.
-PlyMaterial materialFromJson(const nlohmann::json& json, const PlyMaterial& base = {},
-                             const std::string& where = "material");
-// Reads a JSON material file (see materialFromJson); errors name the file.
+// Parses a JSON material: the fields of the object in `text` override `base`; invalid JSON, a
+// value that is not an object, unknown fields and wrong types are errors naming `source` and the
+// field ("<source>: unknown field 'x'"). Colours are a number (grey) or [r, g, b]. As in a file,
+// text after the first JSON value is not read. The result is validated.
+PlyMaterial parseMaterialJson(const std::string& text, const std::string& source, const PlyMaterial& base = {});
+// Reads a JSON material file (see parseMaterialJson); errors name the file
+// ("material file '<path>': ...").
 PlyMaterial loadMaterialFile(const std::string& path, const PlyMaterial& base = {});
-nlohmann::json materialToJson(const PlyMaterial& material);
+// Every field of `material` as a JSON object text, which parseMaterialJson reads back exactly.
+std::string materialJsonText(const PlyMaterial& material);
 
 }  // namespace knit

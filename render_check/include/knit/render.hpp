@@ -14,8 +14,6 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json_fwd.hpp>
-
 #include "knit/path_tracer.hpp"
 #include "knit/ply_material.hpp"
 #include "knit/trace_mode.hpp"
@@ -72,9 +70,6 @@ struct RenderResult {
 // (knit::Error: bad material, spp < 1, bad size, unknown light/mode, empty scene, unwritable
 // output path), builds the tables and the Embree scene, renders and writes the images.
 RenderResult renderScene(const Scene& scene, const RenderOptions& options);
-
-// Time, rays/s, peak memory and scene memory (and the settings) as JSON.
-nlohmann::json renderReport(const RenderResult& result);
 
 // Resolved + validated material of the options (used by renderScene).
 PlyMaterial resolveMaterial(const RenderOptions& options);

@@ -1,0 +1,20 @@
+// material_extras.cpp — the glTF material extras given as JSON text (see material_extras.hpp).
+#include "material_extras.hpp"
+
+#include "knit/error.hpp"
+
+namespace knit::detail {
+
+nlohmann::json parseMaterialExtras(const std::string& text) {
+    if (text.empty()) return nlohmann::json::object();
+    nlohmann::json extras;
+    try {
+        extras = nlohmann::json::parse(text);
+    } catch (const nlohmann::json::exception& e) {
+        throw Error(std::string("export: materialExtrasJson is not valid JSON: ") + e.what());
+    }
+    if (!extras.is_object()) throw Error("export: materialExtrasJson must be a JSON object");
+    return extras;
+}
+
+}  // namespace knit::detail

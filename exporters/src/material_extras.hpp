@@ -1,0 +1,14 @@
+// material_extras.hpp (internal) — ExportInput::materialExtrasJson, the glTF material's extras.
+#pragma once
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace knit::detail {
+
+// The extras text as a JSON object (an empty text: an empty object). Throws knit::Error unless
+// the text is one JSON object: "export: materialExtrasJson is not valid JSON: ..." or
+// "export: materialExtrasJson must be a JSON object".
+nlohmann::json parseMaterialExtras(const std::string& text);
+
+}  // namespace knit::detail

@@ -1,0 +1,37 @@
+// plies_kernel.hpp (internal) — the two per-yarn steps of PlyGenerator (plies.cpp): resample a
+// yarn's centreline, then sweep its plies around it. PlyGenerator::generate runs both per yarn;
+// makePlies runs the first for all yarns, lays the plies out, then runs the second in place.
+#pragma once
+#include <cstddef>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "knit/plies.hpp"
+#include "resample_curve.hpp"
+
+namespace knit {
+
+struct PlyScratch::Buffers {
+    ResampleScratch resample;
+    std::vector<glm::dvec3> centre, tangent, normal;
+    std::vector<double> arc;
+};
+
+namespace detail {
+
+struct PlyKernel {
+    // The buffers of `scratch`, allocated on first use.
+    static PlyScratch::Buffers& buffers(PlyScratch& scratch);
+    // The resampled centreline of yarn `y`, appended to `centre`; returns its point count (< 2
+    // means no plies).
+    static size_t centreline(const PlyGenerator& generator, size_t y, std::vector<glm::dvec3>& centre,
+                             PlyScratch& scratch);
+    // The `count` plies of yarn `y` swept around its m-point centreline: ply i's point j goes to
+    // points[i * m + j] (and its unit radial direction to radial[i * m + j] unless radial is null).
+    static void sweep(const PlyGenerator& generator, size_t y, const glm::dvec3* centre, size_t m,
+                      glm::dvec3* points, glm::dvec3* radial, PlyScratch& scratch);
+};
+
+}  // namespace detail
+}  // namespace knit
