@@ -112,14 +112,30 @@ size_t PlyGenerator::centreline(size_t y, std::vector<dvec3>& centre, PlyScratch
     return resampleCurve(yarns_, y, spacing_, centre, nullptr, scratch.resample);
 }
 
+double PlyGenerator::arcAndPitch(size_t y, const dvec3* X, size_t m, std::vector<double>& arc) const {
+    arc.resize(m);
+    arc[0] = 0.0;
+    for (size_t j = 1; j < m; ++j) arc[j] = arc[j - 1] + glm::length(X[j] - X[j - 1]);
+    if (!yarns_.curves.isClosed(y)) return options_.pitch;
+    const double length = arc[m - 1] + glm::length(X[0] - X[m - 1]);
+    const double turns = std::max(1.0, std::round(length / options_.pitch));
+    return length / turns;
+}
+
 void PlyGenerator::sweep(size_t y, const dvec3* X, size_t m, dvec3* P, dvec3* D, PlyScratch& scratch) const {
-    const PlyOptions& opt = options_;
-    const Polylines& yarnCurves = yarns_.curves;
-    const uint32_t n = static_cast<uint32_t>(opt.count);
-    const bool closed = yarnCurves.isClosed(y);
+    // Arc length; closed yarns get an integer number of turns so the helix closes.
+    const double pitch = arcAndPitch(y, X, m, scratch.arc);
     // The frame seed is the surface normal at the first point, which resampling keeps unchanged
     // (no normals need interpolating).
-    const dvec3* seed = yarns_.normals.empty() ? nullptr : yarns_.normals.data() + yarnCurves.begin(y);
+    const dvec3* seed = yarns_.normals.empty() ? nullptr : yarns_.normals.data() + yarns_.curves.begin(y);
+    sweepWithPhase(y, X, m, scratch.arc.data(), pitch, seed, P, D, scratch);
+}
+
+void PlyGenerator::sweepWithPhase(size_t y, const dvec3* X, size_t m, const double* arc, double pitch,
+                                  const dvec3* seed, dvec3* P, dvec3* D, PlyScratch& scratch) const {
+    const PlyOptions& opt = options_;
+    const uint32_t n = static_cast<uint32_t>(opt.count);
+    const bool closed = yarns_.curves.isClosed(y);
 
     // Step 1: rotation-minimizing frames.
     scratch.tangent.resize(m);
@@ -128,17 +144,7 @@ void PlyGenerator::sweep(size_t y, const dvec3* X, size_t m, dvec3* P, dvec3* D,
     const dvec3* T = scratch.tangent.data();
     const dvec3* N = scratch.normal.data();
 
-    // Step 2: arc length; closed yarns get an integer number of turns so the helix closes.
-    std::vector<double>& arc = scratch.arc;
-    arc.resize(m);
-    arc[0] = 0.0;
-    for (size_t j = 1; j < m; ++j) arc[j] = arc[j - 1] + glm::length(X[j] - X[j - 1]);
-    double pitch = opt.pitch;
-    if (closed) {
-        const double length = arc[m - 1] + glm::length(X[0] - X[m - 1]);
-        const double turns = std::max(1.0, std::round(length / opt.pitch));
-        pitch = length / turns;
-    }
+    // Step 2: the twist rate from the pitch.
     const double rate = (opt.twist == Twist::Z ? 1.0 : -1.0) * util::kTwoPi / pitch;  // dtheta/ds
 
     // Step 3: the helices, with phase offsets 2 pi i / n.

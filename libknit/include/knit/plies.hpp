@@ -83,6 +83,14 @@ public:
     // radial is null).
     void sweep(size_t y, const glm::dvec3* centre, size_t m, glm::dvec3* points, glm::dvec3* radial,
                PlyScratch& scratch) const;
+    // Addition (animation): sweep's two parts. The arc length of each centre point (written to
+    // `arc`) and the twist pitch (closed yarns: a whole number of turns) ...
+    double arcAndPitch(size_t y, const glm::dvec3* centre, size_t m, std::vector<double>& arc) const;
+    // ... and the helices with a given arc length per point and pitch (the rest pose's, so the
+    // twist phase stays attached to the yarn material on a deformed pose) and frame seed (the
+    // surface normal at the first point, or null), for any pose of yarn `y`.
+    void sweepWithPhase(size_t y, const glm::dvec3* centre, size_t m, const double* arc, double pitch,
+                        const glm::dvec3* seed, glm::dvec3* points, glm::dvec3* radial, PlyScratch& scratch) const;
 
     const MappedYarns& yarns() const { return yarns_; }
 
