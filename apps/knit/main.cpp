@@ -7,6 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "animate_command.hpp"
 #include "build_command.hpp"
 #include "generate_command.hpp"
 #include "info_command.hpp"
@@ -26,7 +27,9 @@ int main(int argc, char** argv) {
     BuildCommand build;
     InfoCommand info;
     GenerateCommand generate;
+    AnimateCommand animate;
     addBuildCommand(app, build);
+    addAnimateCommand(app, animate);
     addInfoCommand(app, info);
     addGenerateCommand(app, generate);
 #ifdef KNIT_HAVE_RENDER_CHECK
@@ -44,6 +47,7 @@ int main(int argc, char** argv) {
         if (*info.command) return runInfo(info);
         if (*generate.command) return runGenerate(generate);
         if (*build.command) return runBuild(build);
+        if (*animate.command) return runAnimate(animate);
 #ifdef KNIT_HAVE_RENDER_CHECK
         if (*render.command) return runRender(render);
 #endif

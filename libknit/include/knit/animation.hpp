@@ -134,7 +134,7 @@ public:
     const AnimatorOptions& options() const { return options_; }
     const PlyOptions& plyOptions() const { return generator_.options(); }  // resolved
     size_t centrePointCount() const { return centreOffsets_.back(); }
-    size_t plyPointCount() const { return plyTopology_.curves.pointCount(); }
+    size_t plyPointCount() const { return plyTopology_.curves.offsets.back(); }
     // The constant ply curves (offsets, closed flags, yarn and ply of each curve; no points).
     const Plies& plyTopology() const { return plyTopology_; }
 
