@@ -62,14 +62,13 @@ double maxYarnStretch(const Polylines& yarns, const std::vector<double>& restSeg
     return best.combine([](double a, double b) { return std::max(a, b); });
 }
 
-double minYarnDistance(const Polylines& centres, const std::vector<uint32_t>& yarnOf, const std::vector<double>& arc,
-                       const std::vector<double>& length, double yarnRadius, const AnimatorOptions& options,
-                       DistanceScratch& scratch) {
-    const double diameter = 2.0 * yarnRadius;
-    const double cell = options.distanceCutoff * diameter;
-    const double separation = options.sameYarnSeparation * diameter;
+namespace {
+
+// The smallest distance between different-yarn points closer than `cell` (+infinity when
+// there is none): a hash of cells of that size, each point checked against its 27 cells.
+double closestWithin(const Polylines& centres, const std::vector<uint32_t>& yarnOf, const std::vector<double>& arc,
+                     const std::vector<double>& length, double separation, double cell, DistanceScratch& scratch) {
     const size_t n = centres.pointCount();
-    if (n == 0 || !(cell > 0.0)) return std::numeric_limits<double>::infinity();
     const dvec3* p = centres.points.data();
     const double inv = 1.0 / cell;
     auto cellOf = [&](const dvec3& q) {
@@ -77,13 +76,15 @@ double minYarnDistance(const Polylines& centres, const std::vector<uint32_t>& ya
                     static_cast<int64_t>(std::floor(q.z * inv))};
     };
 
-    // Step 1: a hash table of at least 2n buckets, filled by counting sort (CSR).
+    // Step 1: a hash table of at least n buckets, filled by counting sort (CSR), with the
+    // points copied in bucket order (neighbours are then read from contiguous memory).
     uint32_t buckets = 1;
-    while (buckets < 2 * n) buckets <<= 1;
+    while (buckets < n) buckets <<= 1;
     const uint32_t mask = buckets - 1;
     scratch.keys.resize(n);
     scratch.bucketStart.assign(size_t(buckets) + 1, 0);
     scratch.items.resize(n);
+    scratch.sorted.resize(n);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1 << 14), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t i = r.begin(); i < r.end(); ++i) {
             const Cell c = cellOf(p[i]);
@@ -96,32 +97,61 @@ double minYarnDistance(const Polylines& centres, const std::vector<uint32_t>& ya
     for (size_t i = 0; i < n; ++i) scratch.items[scratch.bucketStart[scratch.keys[i]]++] = static_cast<uint32_t>(i);
     for (size_t b = buckets; b > 0; --b) scratch.bucketStart[b] = scratch.bucketStart[b - 1];
     scratch.bucketStart[0] = 0;
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1 << 14), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t k = r.begin(); k < r.end(); ++k) scratch.sorted[k] = p[scratch.items[k]];
+    });
 
-    // Step 2: per point, the nearest qualifying point in the 27 neighbouring cells.
-    tbb::combinable<double> best([] { return std::numeric_limits<double>::infinity(); });
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, centres.curveCount(), 64), [&](const tbb::blocked_range<size_t>& r) {
+    // Step 2: per point (in bucket order, so consecutive points share their 27 neighbouring
+    // cells), the nearest qualifying point closer than `cell`.
+    const uint32_t* start = scratch.bucketStart.data();
+    const uint32_t* items = scratch.items.data();
+    const dvec3* q = scratch.sorted.data();
+    tbb::combinable<double> best([&] { return cell * cell; });
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t>& r) {
         double& b2 = best.local();
-        for (size_t y = r.begin(); y < r.end(); ++y) {
-            const bool closed = centres.isClosed(y);
-            for (uint32_t i = centres.begin(y); i < centres.end(y); ++i) {
-                const Cell c = cellOf(p[i]);
-                for (int dz = -1; dz <= 1; ++dz)
-                    for (int dy = -1; dy <= 1; ++dy)
-                        for (int dx = -1; dx <= 1; ++dx) {
-                            const uint32_t b = bucketOf(c.x + dx, c.y + dy, c.z + dz, mask);
-                            for (uint32_t k = scratch.bucketStart[b]; k < scratch.bucketStart[b + 1]; ++k) {
-                                const uint32_t j = scratch.items[k];
-                                if (j <= i) continue;  // each pair once
-                                const dvec3 d = p[j] - p[i];
-                                const double d2 = glm::dot(d, d);
-                                if (d2 < b2 && different(i, j, yarnOf, arc, length, closed, separation)) b2 = d2;
-                            }
-                        }
+        Cell last{INT64_MIN, 0, 0};
+        uint32_t neighbour[27];
+        for (size_t k = r.begin(); k < r.end(); ++k) {
+            const Cell c = cellOf(q[k]);
+            if (c.x != last.x || c.y != last.y || c.z != last.z) {
+                for (int m = 0; m < 27; ++m) neighbour[m] = bucketOf(c.x + m % 3 - 1, c.y + m / 3 % 3 - 1, c.z + m / 9 - 1, mask);
+                last = c;
             }
+            const uint32_t i = items[k];
+            const bool closed = centres.isClosed(yarnOf[i]);
+            for (int m = 0; m < 27; ++m)
+                for (uint32_t kk = start[neighbour[m]]; kk < start[neighbour[m] + 1]; ++kk) {
+                    const dvec3 d = q[kk] - q[k];
+                    const double d2 = glm::dot(d, d);
+                    if (d2 < b2 && items[kk] > i && different(i, items[kk], yarnOf, arc, length, closed, separation))
+                        b2 = d2;
+                }
         }
     });
     const double d = std::sqrt(best.combine([](double a, double b) { return std::min(a, b); }));
-    return d <= cell ? d / diameter : std::numeric_limits<double>::infinity();
+    return d < cell ? d : std::numeric_limits<double>::infinity();
+}
+
+}  // namespace
+
+double minYarnDistance(const Polylines& centres, const std::vector<uint32_t>& yarnOf, const std::vector<double>& arc,
+                       const std::vector<double>& length, double yarnRadius, const AnimatorOptions& options,
+                       DistanceScratch& scratch) {
+    const double diameter = 2.0 * yarnRadius;
+    const double cutoff = options.distanceCutoff * diameter;
+    if (centres.pointCount() == 0 || !(cutoff > 0.0)) return std::numeric_limits<double>::infinity();
+    // The search cost grows with the cube of the cell size, so start just above the previous
+    // frame's answer (frames change little) and widen up to the cutoff until a pair is found:
+    // any pair closer than the cell size is found, so the first hit is the exact minimum.
+    double cell = scratch.lastDistance > 0.0 ? std::min(cutoff, 1.25 * scratch.lastDistance) : cutoff;
+    for (;;) {
+        const double d = closestWithin(centres, yarnOf, arc, length, options.sameYarnSeparation * diameter, cell, scratch);
+        if (std::isfinite(d) || cell >= cutoff) {
+            scratch.lastDistance = d;
+            return std::isfinite(d) ? d / diameter : d;
+        }
+        cell = std::min(cutoff, 2.0 * cell);
+    }
 }
 
 }  // namespace knit

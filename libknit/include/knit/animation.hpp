@@ -104,6 +104,8 @@ struct AnimationStageTimes {
 // Reusable scratch of the yarn distance search.
 struct DistanceScratch {
     std::vector<uint32_t> bucketStart, items, keys;
+    std::vector<glm::dvec3> sorted;
+    double lastDistance = 0;  // the previous frame's answer (metres): where the next search starts
 };
 
 // One evaluated frame: the buffers an Animator fills, reused from frame to frame.
