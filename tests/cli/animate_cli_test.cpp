@@ -35,17 +35,21 @@ protected:
         std::sort(names.begin(), names.end());
         return names;
     }
+    // `knit build --rest frame_0001.obj --mesh <frame> -o b.obj`: the static reference of a frame.
+    std::vector<glm::dvec3> buildRestReference(const std::string& frame) const {
+        const CliRun r = runKnit("build -q --rest frame_0001.obj --mesh " + frame + " --repeats 3 3 -o b.obj", dir);
+        EXPECT_EQ(r.exitCode, 0) << r.output;
+        return objVertices((dir / "b.obj").string());
+    }
     fs::path dir;
 };
 
 TEST_F(Animate, frameKEqualsBuildRestOnFrameK) {
     writeWaveSequence(dir, 5, 8);
-    CliRun r = runKnit("animate -q --frames frame_%04d.obj --repeats 3 3 -o f_%04d.obj --report r.json", dir);
-    ASSERT_EQ(r.exitCode, 0) << r.output;
-    r = runKnit("build -q --rest frame_0001.obj --mesh frame_0004.obj --repeats 3 3 -o b.obj", dir);
+    const CliRun r = runKnit("animate -q --frames frame_%04d.obj --repeats 3 3 -o f_%04d.obj --report r.json", dir);
     ASSERT_EQ(r.exitCode, 0) << r.output;
     const std::vector<glm::dvec3> a = objVertices((dir / "f_0004.obj").string());
-    const std::vector<glm::dvec3> b = objVertices((dir / "b.obj").string());
+    const std::vector<glm::dvec3> b = buildRestReference("frame_0004.obj");
     ASSERT_EQ(a.size(), b.size());
     ASSERT_GT(a.size(), 100u);
     const nlohmann::json report = nlohmann::json::parse(std::ifstream(dir / "r.json"));
@@ -60,11 +64,9 @@ TEST_F(Animate, frameKEqualsBuildRestOnFrameK) {
 
 TEST_F(Animate, pointCacheHoldsEveryFramesPliesAndTheTopology) {
     writeWaveSequence(dir, 4, 8);
-    CliRun r = runKnit("animate -q --frames . --repeats 3 3 -o c.pc2", dir);
+    const CliRun r = runKnit("animate -q --frames . --repeats 3 3 -o c.pc2", dir);
     ASSERT_EQ(r.exitCode, 0) << r.output;
-    r = runKnit("build -q --rest frame_0001.obj --mesh frame_0003.obj --repeats 3 3 -o b.obj", dir);
-    ASSERT_EQ(r.exitCode, 0) << r.output;
-    const std::vector<glm::dvec3> ref = objVertices((dir / "b.obj").string());
+    const std::vector<glm::dvec3> ref = buildRestReference("frame_0003.obj");
     const std::vector<glm::dvec3> cached = pc2Frame((dir / "c.pc2").string(), 2);
     ASSERT_EQ(cached.size(), ref.size());
     for (size_t i = 0; i < ref.size(); ++i) ASSERT_LE(glm::length(cached[i] - ref[i]), 1e-6) << "point " << i;

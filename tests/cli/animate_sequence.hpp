@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -85,20 +86,19 @@ inline std::vector<glm::dvec3> pc2Frame(const std::string& path, int k) {
     return out;
 }
 
-// Runs a shell script in `cwd`, capturing stdout + stderr.
+// Runs a bash script in `cwd`; its stdout + stderr go to `cwd`/shell.log, which is read back
+// and removed.
 inline CliRun runShell(const std::string& script, const std::filesystem::path& cwd) {
-    const std::string cmd = "cd '" + cwd.string() + "' && bash -c '" + [&] {
-        std::string q;
-        for (char c : script) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-        return q;
-    }() + "' 2>&1";
+    const std::filesystem::path scriptFile = cwd / "shell.sh", log = cwd / "shell.log";
+    std::ofstream(scriptFile) << script << '\n';
+    const int status = std::system(("cd '" + cwd.string() + "' && bash shell.sh > shell.log 2>&1").c_str());
     CliRun r;
-    FILE* pipe = popen(cmd.c_str(), "r");
-    if (!pipe) return r;
-    char buf[4096];
-    while (size_t n = fread(buf, 1, sizeof buf, pipe)) r.output.append(buf, n);
-    const int status = pclose(pipe);
     r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    std::ifstream in(log);
+    r.output.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    in.close();
+    std::filesystem::remove(scriptFile);
+    std::filesystem::remove(log);
     return r;
 }
 

@@ -32,6 +32,19 @@ std::vector<dvec3> mapped(const std::vector<dvec3>& p, const glm::dmat3& a, dvec
     return out;
 }
 
+// The rest frame and the frame of the rest mesh mapped by x -> a x.
+struct RestAndDeformed {
+    AnimationFrame rest, deformed;
+};
+RestAndDeformed restAndDeformed(const glm::dmat3& a) {
+    const Scene s = restScene();
+    const Animator animator(s);
+    RestAndDeformed f;
+    animator.evaluate(s.mesh().positions, f.rest);
+    animator.evaluate(mapped(s.mesh().positions, a, dvec3(0)), f.deformed);
+    return f;
+}
+
 TEST(Animator, restPoseGivesTheScenesPliesBitForBit) {
     const Scene s = restScene();
     const Animator animator(s);
@@ -67,12 +80,9 @@ TEST(Animator, rigidMotionMovesEveryOutputPointByExactlyThatMotion) {
 // against its yarn centre by more than a small fraction of how far the surface moves (a phase
 // taken from the stretched arc length would turn the plies by up to a radius per few pitches).
 TEST(Animator, stretchSequenceKeepsThePhase) {
-    const Scene s = restScene();
-    const Animator animator(s);
-    AnimationFrame rest, stretched;
-    animator.evaluate(s.mesh().positions, rest);
-    const glm::dmat3 a(dvec3(1.05, 0, 0), dvec3(0, 1, 0), dvec3(0, 0, 1));
-    animator.evaluate(mapped(s.mesh().positions, a, dvec3(0)), stretched);
+    const RestAndDeformed f = restAndDeformed(glm::dmat3(dvec3(1.05, 0, 0), dvec3(0, 1, 0), dvec3(0, 0, 1)));
+    const AnimationFrame& rest = f.rest;
+    const AnimationFrame& stretched = f.deformed;
     double surfaceMoves = 0, againstSurface = 0;
     const Plies& p0 = rest.plies;
     for (size_t c = 0; c < p0.curves.curveCount(); ++c) {
@@ -91,12 +101,9 @@ TEST(Animator, stretchSequenceKeepsThePhase) {
 }
 
 TEST(Animator, compressionBringsYarnsCloser) {
-    const Scene s = restScene();
-    const Animator animator(s);
-    AnimationFrame rest, squashed;
-    animator.evaluate(s.mesh().positions, rest);
-    const glm::dmat3 a(dvec3(1, 0, 0), dvec3(0, 0.5, 0), dvec3(0, 0, 1));
-    animator.evaluate(mapped(s.mesh().positions, a, dvec3(0)), squashed);
+    const RestAndDeformed f = restAndDeformed(glm::dmat3(dvec3(1, 0, 0), dvec3(0, 0.5, 0), dvec3(0, 0, 1)));
+    const AnimationFrame& rest = f.rest;
+    const AnimationFrame& squashed = f.deformed;
     ASSERT_TRUE(std::isfinite(rest.stats.minYarnDistance));
     EXPECT_LT(squashed.stats.minYarnDistance, rest.stats.minYarnDistance);
     EXPECT_LT(squashed.stats.maxStretch, 1.0 + 1e-9);
