@@ -101,8 +101,9 @@ double closestWithin(const Polylines& centres, const std::vector<uint32_t>& yarn
         for (size_t k = r.begin(); k < r.end(); ++k) scratch.sorted[k] = p[scratch.items[k]];
     });
 
-    // Step 2: per point (in bucket order, so consecutive points share their 27 neighbouring
-    // cells), the nearest qualifying point closer than `cell`.
+    // Step 2: per point (in bucket order, so consecutive points share their neighbouring
+    // cells), the nearest qualifying point closer than `cell`: each pair once, by a half
+    // stencil (the later points of the own bucket and every point of the 13 cells after it).
     const uint32_t* start = scratch.bucketStart.data();
     const uint32_t* items = scratch.items.data();
     const dvec3* q = scratch.sorted.data();
@@ -110,22 +111,26 @@ double closestWithin(const Polylines& centres, const std::vector<uint32_t>& yarn
     tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t>& r) {
         double& b2 = best.local();
         Cell last{INT64_MIN, 0, 0};
-        uint32_t neighbour[27];
+        uint32_t own = 0, forward[13];
+        const auto visit = [&](size_t k, uint32_t from, uint32_t to) {
+            const uint32_t i = items[k];
+            for (uint32_t kk = from; kk < to; ++kk) {
+                const dvec3 d = q[kk] - q[k];
+                const double d2 = glm::dot(d, d);
+                if (d2 < b2 && different(i, items[kk], yarnOf, arc, length, centres.isClosed(yarnOf[i]), separation))
+                    b2 = d2;
+            }
+        };
         for (size_t k = r.begin(); k < r.end(); ++k) {
             const Cell c = cellOf(q[k]);
             if (c.x != last.x || c.y != last.y || c.z != last.z) {
-                for (int m = 0; m < 27; ++m) neighbour[m] = bucketOf(c.x + m % 3 - 1, c.y + m / 3 % 3 - 1, c.z + m / 9 - 1, mask);
+                own = bucketOf(c.x, c.y, c.z, mask);
+                for (int m = 14; m < 27; ++m)  // (dx, dy, dz) after (0, 0, 0) in z-major order
+                    forward[m - 14] = bucketOf(c.x + m % 3 - 1, c.y + m / 3 % 3 - 1, c.z + m / 9 - 1, mask);
                 last = c;
             }
-            const uint32_t i = items[k];
-            const bool closed = centres.isClosed(yarnOf[i]);
-            for (int m = 0; m < 27; ++m)
-                for (uint32_t kk = start[neighbour[m]]; kk < start[neighbour[m] + 1]; ++kk) {
-                    const dvec3 d = q[kk] - q[k];
-                    const double d2 = glm::dot(d, d);
-                    if (d2 < b2 && items[kk] > i && different(i, items[kk], yarnOf, arc, length, closed, separation))
-                        b2 = d2;
-                }
+            visit(k, static_cast<uint32_t>(k + 1), start[own + 1]);
+            for (const uint32_t b : forward) visit(k, start[b], start[b + 1]);
         }
     });
     const double d = std::sqrt(best.combine([](double a, double b) { return std::min(a, b); }));
