@@ -134,6 +134,7 @@ nlohmann::json distanceJson(double d) { return std::isfinite(d) ? nlohmann::json
 
 nlohmann::json animateReport(double bindSeconds, const std::vector<FrameRecord>& frames, const StageTotals& s,
                              const Animator& animator) {
+    const bool stats = animator.options().stats;
     std::vector<double> t;
     for (const FrameRecord& f : frames) t.push_back(f.seconds);
     std::sort(t.begin(), t.end());
@@ -148,9 +149,13 @@ nlohmann::json animateReport(double bindSeconds, const std::vector<FrameRecord>&
         {"plyVertices", animator.plyPointCount()},
         {"yarnRadius", animator.rest().yarnRadius()}};
     nlohmann::json& list = report["frames"] = nlohmann::json::array();
-    for (const FrameRecord& f : frames)
-        list.push_back({{"frame", f.number}, {"seconds", f.seconds}, {"maxStretch", f.stats.maxStretch},
-                        {"minYarnDistance", distanceJson(f.stats.minYarnDistance)}});
+    for (const FrameRecord& f : frames) {
+        list.push_back({{"frame", f.number}, {"seconds", f.seconds}});
+        if (stats) {
+            list.back()["maxStretch"] = f.stats.maxStretch;
+            list.back()["minYarnDistance"] = distanceJson(f.stats.minYarnDistance);
+        }
+    }
     return report;
 }
 
@@ -192,6 +197,8 @@ void addAnimateCommand(CLI::App& app, AnimateCommand& a) {
     a.command->add_option("--last", a.range.last, "Last frame number (default: the largest found)");
     a.command->add_option("--step", a.range.step, "Frame number step")->capture_default_str();
     a.command->add_option("--fps", a.fps, "Frames per second (MDD frame times)")->capture_default_str();
+    a.command->add_flag("--no-stats", a.noStats,
+                        "Skip the per-frame maxStretch / minYarnDistance (the distance search costs more than the plies)");
     addSceneFlags(*a.command, a.scene);
     addExportFlags(*a.command, a.exportOptions);
     a.command->add_option("-o,--output", a.exportOptions.path,
@@ -212,6 +219,7 @@ int runAnimate(const AnimateCommand& a) {
     printWarnings(rest);
     AnimatorOptions ao;
     ao.plies = a.exportOptions.what != ExportWhat::Yarns;
+    ao.stats = !a.noStats;
     const Animator animator(rest, ao);
     const double bindSeconds = since(t0);
     // Step 3: the frames, streamed into the outputs; then commit.

@@ -19,6 +19,7 @@ struct AnimateCommand {
     std::string rest;             // --rest: the rest pose (default: the first frame)
     FrameRange range;             // --first --last --step
     double fps = 24;              // --fps: MDD frame times
+    bool noStats = false;         // --no-stats: skip maxStretch / minYarnDistance per frame
     std::string report;           // --report path; empty = none
 };
 
