@@ -8,7 +8,9 @@
 
 #include "export_flags.hpp"
 #include "export_report.hpp"
+#include "knit/animation.hpp"
 #include "report.hpp"
+#include "rest_pose.hpp"
 
 namespace knit::cli {
 namespace {
@@ -39,6 +41,38 @@ void printSummary(const Scene& s, const SceneStats& st, const ExportStats& e, co
                 st.totalSeconds + e.seconds);
 }
 
+// --rest: bound on the rest mesh, evaluated on --mesh (what `knit animate` writes for that frame).
+int runBuildOnRestPose(const BuildCommand& b) {
+    validateExportOptions(b.exportOptions);
+    if (!b.report.empty()) requireWritableFolder(b.report, "report");
+    const SceneOptions options = resolveScene(b.scene);
+    const Scene rest = bindRestPose(options, b.rest);
+    printWarnings(rest);
+    AnimatorOptions ao;
+    ao.plies = b.exportOptions.what != ExportWhat::Yarns;
+    ao.stats = false;
+    const Animator animator(rest, ao);
+    BaseMesh mesh = loadMesh(options.mesh);
+    checkFrame(rest.mesh(), mesh, "--mesh '" + options.mesh + "'");
+    AnimationFrame frame;
+    animator.evaluate(mesh.positions, frame);
+    const ExportStats stats = exportScene(frameScene(animator, mesh, frame), b.exportOptions);
+    if (!b.report.empty()) {
+        nlohmann::json report = sceneReport(rest, sceneStats(rest));
+        report["rest"] = b.rest;
+        report["export"] = exportReport(stats);
+        try {
+            writeReport(b.report, report);
+        } catch (...) {
+            std::filesystem::remove(b.exportOptions.path);
+            throw;
+        }
+    }
+    std::printf("bound on %s, evaluated on %s: wrote %s (%s, %zu curves, %zu vertices)\n", b.rest.c_str(),
+                options.mesh.c_str(), b.exportOptions.path.c_str(), stats.format.c_str(), stats.curves, stats.vertices);
+    return 0;
+}
+
 }  // namespace
 
 void addBuildCommand(CLI::App& app, BuildCommand& b) {
@@ -48,10 +82,13 @@ void addBuildCommand(CLI::App& app, BuildCommand& b) {
     addExportFlags(*b.command, b.exportOptions);
     b.command->add_option("-o,--output", b.exportOptions.path, "Output file; the extension picks the format")->capture_default_str();
     b.command->add_option("--report", b.report, "Write a JSON report (counts, stage times, segment lengths)");
+    b.command->add_option("--rest", b.rest,
+                          "Bind on this rest-pose mesh and evaluate on --mesh (same connectivity): one frame of `knit animate`");
     b.command->footer(kSceneHelp);
 }
 
 int runBuild(const BuildCommand& b) {
+    if (!b.rest.empty()) return runBuildOnRestPose(b);
     // Step 1: fail before the scene is built: bad export options or an unwritable report folder.
     validateExportOptions(b.exportOptions);
     if (!b.report.empty()) requireWritableFolder(b.report, "report");

@@ -15,6 +15,7 @@ struct BuildCommand {
     SceneFlags scene;
     ExportOptions exportOptions;  // -o defaults to knit-plies.obj
     std::string report;           // --report path; empty = none
+    std::string rest;             // --rest: bind on this mesh, evaluate on --mesh (same connectivity)
 };
 
 // Registers the subcommand and its flags on `app`, bound to `build` (which must outlive parsing).

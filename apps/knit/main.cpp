@@ -7,6 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "animate_command.hpp"
 #include "build_command.hpp"
 #include "chart_command.hpp"
 #include "generate_command.hpp"
@@ -28,7 +29,9 @@ int main(int argc, char** argv) {
     InfoCommand info;
     GenerateCommand generate;
     ChartCommand chart;
+    AnimateCommand animate;
     addBuildCommand(app, build);
+    addAnimateCommand(app, animate);
     addInfoCommand(app, info);
     addGenerateCommand(app, generate);
     addChartCommand(app, chart);
@@ -48,6 +51,7 @@ int main(int argc, char** argv) {
         if (*generate.command) return runGenerate(generate);
         if (*chart.command) return runChart(chart);
         if (*build.command) return runBuild(build);
+        if (*animate.command) return runAnimate(animate);
 #ifdef KNIT_HAVE_RENDER_CHECK
         if (*render.command) return runRender(render);
 #endif

@@ -128,15 +128,32 @@ size_t PlyKernel::centreline(const PlyGenerator& g, size_t y, std::vector<dvec3>
     return resampleCurve(g.yarns_, y, g.spacing_, centre, nullptr, buffers(scratch).resample);
 }
 
+double PlyKernel::arcAndPitch(const PlyGenerator& g, size_t y, const dvec3* X, size_t m, std::vector<double>& arc) {
+    arc.resize(m);
+    arc[0] = 0.0;
+    for (size_t j = 1; j < m; ++j) arc[j] = arc[j - 1] + glm::length(X[j] - X[j - 1]);
+    if (!g.yarns_.curves.isClosed(y)) return g.options_.pitch;
+    const double length = arc[m - 1] + glm::length(X[0] - X[m - 1]);
+    const double turns = std::max(1.0, std::round(length / g.options_.pitch));
+    return length / turns;
+}
+
 void PlyKernel::sweep(const PlyGenerator& g, size_t y, const dvec3* X, size_t m, dvec3* P, dvec3* D,
                       PlyScratch& scratch) {
-    const PlyOptions& opt = g.options_;
-    const Polylines& yarnCurves = g.yarns_.curves;
-    const uint32_t n = static_cast<uint32_t>(opt.count);
-    const bool closed = yarnCurves.isClosed(y);
+    // Arc length; closed yarns get an integer number of turns so the helix closes.
+    PlyScratch::Buffers& buf = buffers(scratch);
+    const double pitch = arcAndPitch(g, y, X, m, buf.arc);
     // The frame seed is the surface normal at the first point, which resampling keeps unchanged
     // (no normals need interpolating).
-    const dvec3* seed = g.yarns_.normals.empty() ? nullptr : g.yarns_.normals.data() + yarnCurves.begin(y);
+    const dvec3* seed = g.yarns_.normals.empty() ? nullptr : g.yarns_.normals.data() + g.yarns_.curves.begin(y);
+    sweepWithPhase(g, y, X, m, buf.arc.data(), pitch, seed, P, D, scratch);
+}
+
+void PlyKernel::sweepWithPhase(const PlyGenerator& g, size_t y, const dvec3* X, size_t m, const double* arc,
+                               double pitch, const dvec3* seed, dvec3* P, dvec3* D, PlyScratch& scratch) {
+    const PlyOptions& opt = g.options_;
+    const uint32_t n = static_cast<uint32_t>(opt.count);
+    const bool closed = g.yarns_.curves.isClosed(y);
     PlyScratch::Buffers& buf = buffers(scratch);
 
     // Step 1: rotation-minimizing frames.
@@ -146,17 +163,7 @@ void PlyKernel::sweep(const PlyGenerator& g, size_t y, const dvec3* X, size_t m,
     const dvec3* T = buf.tangent.data();
     const dvec3* N = buf.normal.data();
 
-    // Step 2: arc length; closed yarns get an integer number of turns so the helix closes.
-    std::vector<double>& arc = buf.arc;
-    arc.resize(m);
-    arc[0] = 0.0;
-    for (size_t j = 1; j < m; ++j) arc[j] = arc[j - 1] + glm::length(X[j] - X[j - 1]);
-    double pitch = opt.pitch;
-    if (closed) {
-        const double length = arc[m - 1] + glm::length(X[0] - X[m - 1]);
-        const double turns = std::max(1.0, std::round(length / opt.pitch));
-        pitch = length / turns;
-    }
+    // Step 2: the twist rate from the pitch.
     const double rate = (opt.twist == Twist::Z ? 1.0 : -1.0) * util::kTwoPi / pitch;  // dtheta/ds
 
     // Step 3: the helices, with phase offsets 2 pi i / n.

@@ -31,6 +31,17 @@ struct PlyKernel {
     // points[i * m + j] (and its unit radial direction to radial[i * m + j] unless radial is null).
     static void sweep(const PlyGenerator& generator, size_t y, const glm::dvec3* centre, size_t m,
                       glm::dvec3* points, glm::dvec3* radial, PlyScratch& scratch);
+    // sweep's two parts (animation replays the second with the rest pose's phase): the arc length
+    // of each centre point (written to `arc`) and the twist pitch (closed yarns: a whole number of
+    // turns) ...
+    static double arcAndPitch(const PlyGenerator& generator, size_t y, const glm::dvec3* centre, size_t m,
+                              std::vector<double>& arc);
+    // ... and the helices with a given arc length per point and pitch (the rest pose's, so the
+    // twist phase stays attached to the yarn material on a deformed pose) and frame seed (the
+    // surface normal at the first point, or null), for any pose of yarn `y`.
+    static void sweepWithPhase(const PlyGenerator& generator, size_t y, const glm::dvec3* centre, size_t m,
+                               const double* arc, double pitch, const glm::dvec3* seed, glm::dvec3* points,
+                               glm::dvec3* radial, PlyScratch& scratch);
 };
 
 }  // namespace detail

@@ -65,6 +65,34 @@ Cubic makeCubic(const dvec3& p0, const dvec3& p1, const dvec3& p2, const dvec3& 
     return c;
 }
 
+// The piece of segment s (from pts[s] to the next point) of a curve of n >= 2 merged points
+// with centripetal knot intervals `knot` (one per segment). Open ends use the reflected
+// neighbour (same knot interval as the end segment); closed curves wrap around.
+Cubic segmentCubic(const dvec3* pts, const double* knot, size_t n, bool closed, size_t s) {
+    const size_t segments = closed ? n : n - 1;
+    const size_t s1 = s + 1 == n ? 0 : s + 1;
+    const dvec3& p1 = pts[s];
+    const dvec3& p2 = pts[s1];
+    dvec3 p0, p3;
+    double t01, t23;
+    if (s > 0 || closed) {
+        const size_t s0 = s == 0 ? n - 1 : s - 1;
+        p0 = pts[s0];
+        t01 = knot[s == 0 ? segments - 1 : s - 1];
+    } else {
+        p0 = 2.0 * p1 - p2;
+        t01 = knot[0];
+    }
+    if (s + 1 < segments || closed) {
+        p3 = pts[s1 + 1 == n ? 0 : s1 + 1];
+        t23 = knot[s + 1 == segments ? 0 : s + 1];
+    } else {
+        p3 = 2.0 * p2 - p1;
+        t23 = knot[s];
+    }
+    return makeCubic(p0, p1, p2, p3, t01, knot[s], t23);
+}
+
 // Normal interpolated linearly between n1 and n2 at fraction f, renormalized. Opposite
 // normals (sum ~ 0) fall back to the nearer end's normal.
 dvec3 lerpNormal(const dvec3& n1, const dvec3& n2, double f) {
@@ -111,7 +139,7 @@ void splitPiece(const Cubic& cubic, const dvec3& p1, const dvec3& p2, double cho
 }  // namespace
 
 size_t resampleCurve(const MappedYarns& yarns, size_t c, double spacing, std::vector<dvec3>& outPoints,
-                     std::vector<dvec3>* outNormals, ResampleScratch& scratch) {
+                     std::vector<dvec3>* outNormals, ResampleScratch& scratch, ResampleLayout* layout) {
     const bool withNormals = outNormals && !yarns.normals.empty();
     std::vector<dvec3>& pts = scratch.points;
     std::vector<dvec3>& nrm = scratch.normals;
@@ -126,6 +154,10 @@ size_t resampleCurve(const MappedYarns& yarns, size_t c, double spacing, std::ve
     pts.clear();
     nrm.clear();
     knot.clear();
+    if (layout) {
+        layout->kept.clear();
+        layout->pieces.clear();
+    }
     for (uint32_t i = b; i < e; ++i) {
         if (!pts.empty()) {
             const dvec3 d = in.points[i] - pts.back();
@@ -135,6 +167,7 @@ size_t resampleCurve(const MappedYarns& yarns, size_t c, double spacing, std::ve
         }
         pts.push_back(in.points[i]);
         if (withNormals) nrm.push_back(yarns.normals[i]);
+        if (layout) layout->kept.push_back(i - b);
     }
     if (closed) {
         while (pts.size() > 1) {
@@ -147,6 +180,7 @@ size_t resampleCurve(const MappedYarns& yarns, size_t c, double spacing, std::ve
             pts.pop_back();
             knot.pop_back();
             if (withNormals) nrm.pop_back();
+            if (layout) layout->kept.pop_back();
         }
     }
     const size_t n = pts.size();
@@ -159,34 +193,17 @@ size_t resampleCurve(const MappedYarns& yarns, size_t c, double spacing, std::ve
     }
 
     // Step 2: one centripetal Catmull-Rom piece per segment, split so no chord exceeds spacing.
-    // Open ends use the reflected neighbour (same knot interval as the end segment).
     const size_t segments = closed ? n : n - 1;
     for (size_t s = 0; s < segments; ++s) {
         const size_t s1 = s + 1 == n ? 0 : s + 1;
         const dvec3& p1 = pts[s];
         const dvec3& p2 = pts[s1];
-        dvec3 p0, p3;
-        double t01, t23;
-        if (s > 0 || closed) {
-            const size_t s0 = s == 0 ? n - 1 : s - 1;
-            p0 = pts[s0];
-            t01 = knot[s == 0 ? segments - 1 : s - 1];
-        } else {
-            p0 = 2.0 * p1 - p2;
-            t01 = knot[0];
-        }
-        if (s + 1 < segments || closed) {
-            p3 = pts[s1 + 1 == n ? 0 : s1 + 1];
-            t23 = knot[s + 1 == segments ? 0 : s + 1];
-        } else {
-            p3 = 2.0 * p2 - p1;
-            t23 = knot[s];
-        }
         const double t12 = knot[s];
         outPoints.push_back(p1);
         if (withNormals) outNormals->push_back(nrm[s]);
-        const Cubic cubic = makeCubic(p0, p1, p2, p3, t01, t12, t23);
+        const Cubic cubic = segmentCubic(pts.data(), knot.data(), n, closed, s);
         splitPiece(cubic, p1, p2, t12 * t12, spacing, samples);
+        if (layout) layout->pieces.push_back(static_cast<uint32_t>(samples.size() + 1));
         if (samples.empty()) continue;
         const size_t k = samples.size() + 1;
         outPoints.insert(outPoints.end(), samples.begin(), samples.end());
@@ -202,6 +219,41 @@ size_t resampleCurve(const MappedYarns& yarns, size_t c, double spacing, std::ve
         if (withNormals) outNormals->push_back(nrm[n - 1]);
     }
     return outPoints.size() - start;
+}
+
+size_t resampleCurveWithLayout(const Polylines& curves, size_t c, const uint32_t* kept, size_t keptCount,
+                               const uint32_t* pieces, dvec3* out, ResampleScratch& scratch) {
+    const bool closed = curves.isClosed(c);
+    const dvec3* in = curves.points.data() + curves.begin(c);
+    std::vector<dvec3>& pts = scratch.points;
+    std::vector<double>& knot = scratch.knots;
+    // Step 1: the kept points and their centripetal knot intervals on this pose (coincident
+    // points get a tiny interval instead of a division by zero).
+    pts.clear();
+    knot.clear();
+    for (size_t i = 0; i < keptCount; ++i) pts.push_back(in[kept[i]]);
+    const size_t n = pts.size();
+    if (n < 2) {
+        std::copy(pts.begin(), pts.end(), out);
+        return n;
+    }
+    const size_t segments = closed ? n : n - 1;
+    for (size_t s = 0; s < segments; ++s) {
+        const dvec3 d = pts[s + 1 == n ? 0 : s + 1] - pts[s];
+        knot.push_back(std::max(std::sqrt(std::sqrt(glm::dot(d, d))), 1e-150));
+    }
+    // Step 2: each piece evaluated at the rest pose's parameters j / k.
+    size_t o = 0;
+    for (size_t s = 0; s < segments; ++s) {
+        out[o++] = pts[s];
+        const size_t k = pieces[s];
+        if (k <= 1) continue;
+        const Cubic cubic = segmentCubic(pts.data(), knot.data(), n, closed, s);
+        const double du = 1.0 / static_cast<double>(k);
+        for (size_t j = 1; j < k; ++j) out[o++] = cubic.eval(static_cast<double>(j) * du);
+    }
+    if (!closed) out[o++] = pts[n - 1];
+    return o;
 }
 
 size_t estimateResampledSize(const Polylines& in, size_t c, double spacing) {

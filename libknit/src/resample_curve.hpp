@@ -3,6 +3,7 @@
 // materializing every resampled curve.
 #pragma once
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -22,12 +23,27 @@ struct ResampleScratch {
 // the curve and point.
 void validateResampleInput(const MappedYarns& yarns, const ResampleOptions& options);
 
+// What resampleCurve decided for one curve, to replay on another pose of it (animation: the
+// point count and order stay those of the rest pose).
+struct ResampleLayout {
+    std::vector<uint32_t> kept;    // input points kept after merging repeats (index within the curve)
+    std::vector<uint32_t> pieces;  // per segment between kept points (closed: the closing one too), >= 1
+};
+
 // Resamples curve `c` of `yarns` (exactly as resampleYarns does) and appends its points to
 // `points` and, when `normals` is not null and the yarns have normals, its normals to
 // `normals`. Returns the number of points appended. The input must have passed
-// validateResampleInput; never throws (except std::bad_alloc).
+// validateResampleInput; never throws (except std::bad_alloc). `layout` (optional) receives
+// the decisions made (replaced).
 size_t resampleCurve(const MappedYarns& yarns, size_t c, double spacing, std::vector<glm::dvec3>& points,
-                     std::vector<glm::dvec3>* normals, ResampleScratch& scratch);
+                     std::vector<glm::dvec3>* normals, ResampleScratch& scratch, ResampleLayout* layout = nullptr);
+
+// Resamples curve `c` of `curves` (a deformed pose of the curve a layout was recorded on) with
+// that layout's kept points and piece counts, writing sum(pieces) + (open ? 1 : 0) points (or the
+// 0 / 1 kept points of a degenerate curve) to `out`. On the recording pose it gives
+// resampleCurve's points. Never throws, never allocates once the scratch has grown.
+size_t resampleCurveWithLayout(const Polylines& curves, size_t c, const uint32_t* kept, size_t keptCount,
+                               const uint32_t* pieces, glm::dvec3* out, ResampleScratch& scratch);
 
 // A lower bound of the points resampleCurve produces for curve `c` (the sum of
 // ceil(chord / spacing) over its segments, plus the last point of an open curve): for planning

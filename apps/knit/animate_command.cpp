@@ -1,0 +1,240 @@
+// `knit animate`: frames -> bind the rest pose once -> per frame: read, evaluate, write ->
+// commit the outputs -> report. Per-frame outputs are written as they come; a point cache is
+// streamed into a temporary file renamed at the end, so an error or SIGINT / SIGTERM leaves no
+// partial cache.
+#include "animate_command.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "export_flags.hpp"
+#include "interrupt.hpp"
+#include "knit/cache.hpp"
+#include "knit/error.hpp"
+#include "report.hpp"
+#include "rest_pose.hpp"
+#include "util/platform.hpp"
+
+namespace knit::cli {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+bool hasFramePattern(const std::string& path) {
+    const std::string name = std::filesystem::path(path).filename().string();
+    const size_t p = name.find('%');
+    return p != std::string::npos && name.find('d', p) != std::string::npos;
+}
+
+std::string framePath(const std::string& pattern, int number) {
+    char buf[4096];
+    std::snprintf(buf, sizeof buf, pattern.c_str(), number);
+    return buf;
+}
+
+// Where the frames go: a point cache with its topology, or one file per frame.
+class FrameSink {
+public:
+    virtual ~FrameSink() = default;
+    virtual void write(int number, const BaseMesh& mesh, const AnimationFrame& frame) = 0;
+    virtual void commit() = 0;
+};
+
+// The points a cache holds: the ply curves, or the yarn centrelines with --export yarns.
+const Polylines& cacheCurves(const AnimationFrame& f, bool plies) { return plies ? f.plies.curves : f.yarns.curves; }
+
+class CacheSink : public FrameSink {
+public:
+    CacheSink(const std::string& path, const Animator& animator, const FrameSequence& seq, double fps)
+        : topologyPath_(std::filesystem::path(path).replace_extension(".obj").string()),
+          plies_(animator.options().plies) {
+        CacheInfo info;
+        info.points = plies_ ? animator.plyPointCount() : animator.rest().yarns().curves.pointCount();
+        info.frames = seq.size();
+        info.startFrame = seq.frame(0).number;
+        info.fps = fps;
+        cache_ = std::make_unique<PointCacheWriter>(path, info);
+    }
+    void write(int, const BaseMesh&, const AnimationFrame& frame) override {
+        const Polylines& c = cacheCurves(frame, plies_);
+        if (first_.curveCount() == 0) first_ = c;  // the topology, with the first frame's points
+        cache_->writeFrame(c.points);
+    }
+    void commit() override {
+        writeSegmentObj(topologyPath_, first_, "libknit point cache topology: one l record per segment");
+        cache_->commit();
+    }
+
+private:
+    std::string topologyPath_;
+    bool plies_;
+    std::unique_ptr<PointCacheWriter> cache_;
+    Polylines first_;
+};
+
+class FilesSink : public FrameSink {
+public:
+    FilesSink(const Animator& animator, const ExportOptions& options) : animator_(animator), options_(options) {}
+    void write(int number, const BaseMesh& mesh, const AnimationFrame& frame) override {
+        ExportOptions o = options_;
+        o.path = framePath(options_.path, number);
+        exportScene(frameScene(animator_, mesh, frame), o);
+    }
+    void commit() override {}
+
+private:
+    const Animator& animator_;
+    ExportOptions options_;
+};
+
+// Step: the output kind from -o, refused before any work when unsupported.
+void checkOutput(const ExportOptions& o) {
+    CacheFormat format;
+    if (cacheFormatOf(o.path, format)) {
+        if (o.what == ExportWhat::Tubes)
+            throw Error("-o '" + o.path + "': point caches hold curve points; --export tubes needs per-frame files (e.g. out_%04d.glb)");
+        requireWritableFolder(o.path, "point cache");
+        return;
+    }
+    if (!hasFramePattern(o.path))
+        throw Error("-o '" + o.path + "': give a point cache (out.pc2, out.mdd) or a per-frame pattern such as out_%04d." +
+                    (util::lowerExtension(o.path).empty() ? std::string("glb") : util::lowerExtension(o.path)) +
+                    " (one animated .glb is not supported yet)");
+    validateExportOptions(o);
+    requireWritableFolder(o.path);
+}
+
+struct FrameRecord {
+    int number = 0;
+    double seconds = 0;
+    FrameStats stats;
+};
+
+struct StageTotals {
+    double read = 0, write = 0;
+    AnimationStageTimes evaluate;
+    void add(const AnimationStageTimes& t) {
+        evaluate.normals += t.normals;
+        evaluate.evaluate += t.evaluate;
+        evaluate.resample += t.resample;
+        evaluate.plies += t.plies;
+        evaluate.stats += t.stats;
+    }
+};
+
+nlohmann::json distanceJson(double d) { return std::isfinite(d) ? nlohmann::json(d) : nlohmann::json(nullptr); }
+
+nlohmann::json animateReport(double bindSeconds, const std::vector<FrameRecord>& frames, const StageTotals& s,
+                             const Animator& animator) {
+    const bool stats = animator.options().stats;
+    std::vector<double> t;
+    for (const FrameRecord& f : frames) t.push_back(f.seconds);
+    std::sort(t.begin(), t.end());
+    nlohmann::json report = {
+        {"bindSeconds", bindSeconds},
+        {"frameSeconds", {{"min", t.front()}, {"median", t[t.size() / 2]}, {"max", t.back()}}},
+        {"stageSeconds",
+         {{"read", s.read}, {"normals", s.evaluate.normals}, {"evaluate", s.evaluate.evaluate},
+          {"resample", s.evaluate.resample}, {"plies", s.evaluate.plies}, {"stats", s.evaluate.stats}, {"write", s.write}}},
+        {"peakMemoryBytes", util::peakResidentBytes()},
+        {"yarnVertices", animator.rest().yarns().curves.pointCount()},
+        {"plyVertices", animator.plyPointCount()},
+        {"yarnRadius", animator.rest().yarnRadius()}};
+    nlohmann::json& list = report["frames"] = nlohmann::json::array();
+    for (const FrameRecord& f : frames) {
+        list.push_back({{"frame", f.number}, {"seconds", f.seconds}});
+        if (stats) {
+            list.back()["maxStretch"] = f.stats.maxStretch;
+            list.back()["minYarnDistance"] = distanceJson(f.stats.minYarnDistance);
+        }
+    }
+    return report;
+}
+
+// Step: every frame read, evaluated and written; the per-frame records.
+std::vector<FrameRecord> runFrames(const FrameSequence& seq, const Animator& animator, FrameSink& sink, StageTotals& totals,
+                                   bool quiet) {
+    const InterruptGuard interrupt;
+    AnimationFrame frame;
+    std::vector<FrameRecord> records;
+    for (size_t i = 0; i < seq.size(); ++i) {
+        interrupt.check();
+        const auto t0 = Clock::now();
+        const BaseMesh mesh = seq.load(i, animator.rest().mesh());
+        totals.read += since(t0);
+        AnimationStageTimes times;
+        animator.evaluate(mesh.positions, frame, &times);
+        totals.add(times);
+        const auto t1 = Clock::now();
+        sink.write(seq.frame(i).number, mesh, frame);
+        totals.write += since(t1);
+        records.push_back({seq.frame(i).number, since(t0), frame.stats});
+        if (!quiet)
+            std::fprintf(stderr, "frame %d (%zu/%zu): %.3f s, max stretch %.4g\n", seq.frame(i).number, i + 1, seq.size(),
+                         records.back().seconds, frame.stats.maxStretch);
+    }
+    interrupt.check();
+    return records;
+}
+
+}  // namespace
+
+void addAnimateCommand(CLI::App& app, AnimateCommand& a) {
+    a.exportOptions.path = "knit-anim.pc2";
+    a.command = app.add_subcommand("animate", "Bind once on the rest pose; evaluate every frame of a mesh sequence");
+    a.command->add_option("--frames", a.frames, "Mesh sequence: printf pattern (frames/frame_%04d.obj) or folder of numbered meshes")
+        ->required();
+    a.command->add_option("--rest", a.rest, "Rest pose mesh that is bound (default: the first frame)");
+    a.command->add_option("--first", a.range.first, "First frame number (default: the smallest found)");
+    a.command->add_option("--last", a.range.last, "Last frame number (default: the largest found)");
+    a.command->add_option("--step", a.range.step, "Frame number step")->capture_default_str();
+    a.command->add_option("--fps", a.fps, "Frames per second (MDD frame times)")->capture_default_str();
+    a.command->add_flag("--no-stats", a.noStats,
+                        "Skip the per-frame maxStretch / minYarnDistance (the distance search costs more than the plies)");
+    addSceneFlags(*a.command, a.scene);
+    addExportFlags(*a.command, a.exportOptions);
+    a.command->add_option("-o,--output", a.exportOptions.path,
+                          "out.pc2 / out.mdd (+ topology out.obj) or a per-frame pattern out_%04d.glb|.obj|.bcc|.pbrt")
+        ->capture_default_str();
+    a.command->add_option("--report", a.report, "Write a JSON report (bind and frame times, per-frame stretch and yarn distance)");
+    a.command->footer(kSceneHelp);
+}
+
+int runAnimate(const AnimateCommand& a) {
+    // Step 1: fail before long work: outputs, the sequence and its files.
+    checkOutput(a.exportOptions);
+    if (!a.report.empty()) requireWritableFolder(a.report, "report");
+    const FrameSequence seq(a.frames, a.range);
+    // Step 2: bind once on the rest pose.
+    const auto t0 = Clock::now();
+    const Scene rest = bindRestPose(resolveScene(a.scene), a.rest.empty() ? seq.frame(0).path : a.rest);
+    printWarnings(rest);
+    AnimatorOptions ao;
+    ao.plies = a.exportOptions.what != ExportWhat::Yarns;
+    ao.stats = !a.noStats;
+    const Animator animator(rest, ao);
+    const double bindSeconds = since(t0);
+    // Step 3: the frames, streamed into the outputs; then commit.
+    CacheFormat format;
+    std::unique_ptr<FrameSink> sink;
+    if (cacheFormatOf(a.exportOptions.path, format)) sink = std::make_unique<CacheSink>(a.exportOptions.path, animator, seq, a.fps);
+    else sink = std::make_unique<FilesSink>(animator, a.exportOptions);
+    StageTotals totals;
+    const std::vector<FrameRecord> frames = runFrames(seq, animator, *sink, totals, a.scene.quiet);
+    sink->commit();
+    // Step 4: the report and the summary.
+    if (!a.report.empty()) writeReport(a.report, animateReport(bindSeconds, frames, totals, animator));
+    std::printf("animated %zu frames (%zu yarn vertices, %zu ply vertices per frame): bind %.3f s, wrote %s\n", frames.size(),
+                rest.yarns().curves.pointCount(), animator.plyPointCount(), bindSeconds, a.exportOptions.path.c_str());
+    return 0;
+}
+
+}  // namespace knit::cli

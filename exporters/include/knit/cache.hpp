@@ -1,0 +1,65 @@
+// knit/cache.hpp — point caches of an animated curve set: the points of every frame streamed
+// into one file that animation tools read (Blender's Mesh Cache modifier, Houdini, Maya, 3ds
+// Max), with the constant topology written once beside it.
+//
+// Formats (by extension of the cache path):
+//   .pc2  PC2, little-endian: char[12] "POINTCACHE2\0", int32 version 1, int32 points,
+//         float32 start frame, float32 sample rate (frames between samples: 1), int32 samples,
+//         then float32 x, y, z per point per sample.
+//   .mdd  MDD, big-endian: int32 frames, int32 points, float32 time (seconds) per frame, then
+//         float32 x, y, z per point per frame.
+// The header holds the frame count, so it is given up front. The cache is written to a
+// temporary sibling and renamed by commit(): an exception (or an interrupted run that unwinds)
+// leaves no partial cache.
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "knit/polylines.hpp"
+
+namespace knit {
+
+enum class CacheFormat { Pc2, Mdd };
+
+// The cache format of `path` by extension; false when it is neither .pc2 nor .mdd.
+bool cacheFormatOf(const std::string& path, CacheFormat& format);
+
+struct CacheInfo {
+    size_t points = 0;
+    size_t frames = 0;
+    double startFrame = 0;  // PC2: the first sample's frame number
+    double fps = 24;        // MDD: frame k's time is k / fps seconds
+};
+
+class PointCacheWriter {
+public:
+    // Opens the temporary file and writes the header. Throws knit::Error naming the path
+    // (unknown extension, unwritable folder, more than 2^31-1 points or frames).
+    PointCacheWriter(const std::string& path, const CacheInfo& info);
+    ~PointCacheWriter();  // removes the temporary file unless committed
+    PointCacheWriter(const PointCacheWriter&) = delete;
+    PointCacheWriter& operator=(const PointCacheWriter&) = delete;
+
+    // Appends one frame (exactly info.points points, as float32). Throws knit::Error on a wrong
+    // count, a frame too many, or a failed write.
+    void writeFrame(const std::vector<glm::dvec3>& points);
+    // Renames the finished cache onto its path; throws unless every frame was written.
+    void commit();
+    // The temporary file (for tests of interrupted runs).
+    const std::string& tempPath() const;
+
+private:
+    struct State;
+    std::unique_ptr<State> state_;
+};
+
+// The topology of a point cache as OBJ: `v` per point (of one frame) in cache order, then one
+// `l i j` record per segment (closed curves: last -> first too; no point repeated), which every
+// OBJ reader imports as plain edges with the vertex order kept. Written atomically.
+void writeSegmentObj(const std::string& path, const Polylines& curves, const std::string& header);
+
+}  // namespace knit

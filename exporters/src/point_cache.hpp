@@ -1,0 +1,38 @@
+// point_cache.hpp (internal) — the byte layouts of the point cache formats (knit/cache.hpp):
+// one header and one frame encoder per format (pc2_writer.cpp, mdd_writer.cpp).
+#pragma once
+#include <cstdint>
+#include <cstring>
+#include <ostream>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "knit/cache.hpp"
+
+namespace knit::detail {
+
+// float32 / int32 bytes in little- or big-endian order, independent of the host.
+inline void putU32(std::vector<char>& out, uint32_t v, bool bigEndian) {
+    for (int i = 0; i < 4; ++i) out.push_back(static_cast<char>(v >> (bigEndian ? 24 - 8 * i : 8 * i)));
+}
+inline void putF32(std::vector<char>& out, float f, bool bigEndian) {
+    uint32_t v;
+    std::memcpy(&v, &f, 4);
+    putU32(out, v, bigEndian);
+}
+// The points of one frame as float32 x, y, z, appended to `out`.
+inline void putPoints(std::vector<char>& out, const std::vector<glm::dvec3>& points, bool bigEndian) {
+    for (const glm::dvec3& p : points) {
+        putF32(out, static_cast<float>(p.x), bigEndian);
+        putF32(out, static_cast<float>(p.y), bigEndian);
+        putF32(out, static_cast<float>(p.z), bigEndian);
+    }
+}
+
+void pc2Header(const CacheInfo& info, std::vector<char>& out);
+void pc2Frame(const std::vector<glm::dvec3>& points, std::vector<char>& out);
+void mddHeader(const CacheInfo& info, std::vector<char>& out);
+void mddFrame(const std::vector<glm::dvec3>& points, std::vector<char>& out);
+
+}  // namespace knit::detail

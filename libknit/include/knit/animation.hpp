@@ -1,0 +1,169 @@
+// knit/animation.hpp — bind once on the rest pose, evaluate every frame of a mesh sequence.
+//
+// A cloth simulation exported as a mesh sequence (same connectivity and UVs in every frame) is
+// read frame by frame (FrameSequence); the yarns are bound once on the rest pose (a Scene) and
+// an Animator evaluates them on each frame's positions. What is fixed at bind time, so that the
+// output has the same points in the same order on every frame (point caches stay valid) and
+// nothing swims, flips or pops:
+//  * the binding (triangle, barycentrics, height per yarn vertex);
+//  * the resampling of every yarn centreline: which points are kept and how many pieces each
+//    segment is split into (ResampleLayout), decided on the rest pose;
+//  * the ply twist phase: theta = +-2 pi s / pitch with s the rest arc length of the resampled
+//    centreline and the rest pitch (closed yarns: a whole number of turns at rest), so the twist
+//    moves with the yarn material when the yarn stretches;
+//  * the frame seed: each yarn's ply frame starts from the surface normal at its first point
+//    on the current frame (continuous in time, history-free) and is transported along the yarn
+//    by rotation-minimizing frames, so a frame's plies do not depend on the frames before it:
+//    frame k equals a single evaluation on mesh k (`knit build --rest REST --mesh FRAME_k`).
+// Per frame only: vertex normals, the binding evaluation, resampling with the fixed layout, the
+// frames and the helices, and the frame statistics; all into buffers reused across frames.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "knit/base_mesh.hpp"
+#include "knit/plies.hpp"
+#include "knit/scene.hpp"
+
+namespace knit {
+
+// ---------------------------------------------------------------------------------------------
+// Frame sequences (src/frame_sequence.cpp)
+
+// Which frame numbers to read; -1 = from the files found (the smallest / largest number).
+struct FrameRange {
+    int first = -1;
+    int last = -1;
+    int step = 1;
+};
+
+struct FrameFile {
+    int number = 0;    // the frame number (from the file name)
+    std::string path;
+};
+
+// The frames of a mesh sequence: a printf pattern with one integer conversion
+// (`frames/frame_%04d.obj`) or a folder of numbered mesh files (.obj .ply .off .gltf .glb; the
+// number is the last run of digits of the file name; one extension per folder). Every number
+// first, first + step, ... up to last must exist: a missing one is an error naming the frame
+// and the file. Throws knit::Error (bad pattern, empty folder, no frames in the range).
+class FrameSequence {
+public:
+    FrameSequence(const std::string& patternOrFolder, const FrameRange& range = {});
+
+    size_t size() const { return frames_.size(); }
+    const FrameFile& frame(size_t i) const { return frames_[i]; }
+    const std::vector<FrameFile>& frames() const { return frames_; }
+
+    // Reads frame i and checks it against the rest mesh (checkFrame); errors name the frame:
+    // "frame 37 ('frames/frame_0037.obj'): ...".
+    BaseMesh load(size_t i, const BaseMesh& rest) const;
+
+private:
+    std::vector<FrameFile> frames_;
+};
+
+// Checks that `frame` has the rest mesh's connectivity and UVs: the same vertex, face and UV
+// counts, the same face indices, the same UV indices and UV coordinates (exactly, as the
+// files store them). Throws knit::Error "<name>: <what> (rest <a>, frame <b>)" naming the
+// first differing element, e.g. "face 12 has vertices (3, 4, 9) but the rest mesh (3, 4, 8)".
+void checkFrame(const BaseMesh& rest, const BaseMesh& frame, const std::string& name);
+
+// ---------------------------------------------------------------------------------------------
+// Evaluation per frame (src/animator.cpp, src/animation_stats.cpp)
+
+struct AnimatorOptions {
+    bool plies = true;  // sweep the plies per frame (false: yarn centrelines only)
+    bool stats = true;  // compute FrameStats per frame
+    // minYarnDistance looks for other yarns up to this distance (yarn diameters); a frame with
+    // none that close reports +infinity.
+    double distanceCutoff = 2.0;
+    // Points of one yarn count as "different yarns" for minYarnDistance when they are farther
+    // apart along the rest yarn than this (yarn diameters): a loop pressed onto its own yarn.
+    double sameYarnSeparation = 4.0;
+};
+
+struct FrameStats {
+    // Largest ratio of a yarn segment's length (between binding vertices) to its rest length.
+    double maxStretch = 1.0;
+    // Smallest distance between centreline points of different yarns (distinct yarns, or points
+    // of one yarn more than sameYarnSeparation apart along it), in yarn diameters, measured on
+    // the resampled centrelines (spacing pitch / samplesPerTurn); +infinity when none is within
+    // distanceCutoff.
+    double minYarnDistance = 0.0;
+};
+
+// Wall time of the per-frame stages of one evaluate call.
+struct AnimationStageTimes {
+    double normals = 0, evaluate = 0, resample = 0, plies = 0, stats = 0;
+};
+
+// Reusable scratch of the yarn distance search.
+struct DistanceScratch {
+    std::vector<uint32_t> bucketStart, items, keys;
+    std::vector<glm::dvec3> sorted;
+    double lastDistance = 0;  // the previous frame's answer (metres): where the next search starts
+};
+
+// One evaluated frame: the buffers an Animator fills, reused from frame to frame.
+struct AnimationFrame {
+    std::vector<glm::dvec3> meshNormals;  // vertex normals of the frame's mesh
+    MappedYarns yarns;                    // the binding evaluated on the frame
+    Polylines centres;                    // resampled centrelines (fixed layout)
+    Plies plies;                          // fixed layout, yarn-major, ply-minor (no radial)
+    FrameStats stats;
+    DistanceScratch distance;
+};
+
+class Animator {
+public:
+    // Bind-time work on the rest scene (its mesh, binding and yarns; plyOptions resolved here):
+    // the resampling layouts, rest arc lengths and pitches, rest segment lengths. Keeps a
+    // reference to `rest`, which must outlive the Animator. Throws knit::Error for bad ply
+    // options or more than 2^32-1 ply points.
+    explicit Animator(const Scene& rest, const AnimatorOptions& options = {});
+
+    // Evaluates the frame whose mesh positions are `positions` (rest connectivity; checked:
+    // the count, and finiteness) into `out`. Thread-parallel; allocates only on the first call
+    // with a given `out`. `times` (optional) receives the stage times.
+    void evaluate(const std::vector<glm::dvec3>& positions, AnimationFrame& out,
+                  AnimationStageTimes* times = nullptr) const;
+
+    const Scene& rest() const { return rest_; }
+    const AnimatorOptions& options() const { return options_; }
+    const PlyOptions& plyOptions() const { return generator_.options(); }  // resolved
+    size_t centrePointCount() const { return centreOffsets_.back(); }
+    size_t plyPointCount() const { return plyTopology_.curves.offsets.back(); }
+    // The constant ply curves (offsets, closed flags, yarn and ply of each curve; no points).
+    const Plies& plyTopology() const { return plyTopology_; }
+
+private:
+    void resample(AnimationFrame& out) const;
+    void sweep(AnimationFrame& out) const;
+
+    const Scene& rest_;
+    AnimatorOptions options_;
+    PlyGenerator generator_;                // on the rest yarns: options, spacing, ply phases
+    // Resampling layout per yarn (CSR over yarns): kept points and pieces per segment.
+    std::vector<uint32_t> keptOffsets_{0}, kept_, pieceOffsets_{0}, pieces_;
+    std::vector<uint32_t> centreOffsets_{0};  // resampled points per yarn (CSR)
+    std::vector<double> restArc_;             // rest arc length per resampled point
+    std::vector<double> restPitch_;           // per yarn
+    std::vector<double> restLength_;          // per yarn: resampled rest length (closed: with the closing segment)
+    std::vector<uint32_t> yarnOfCentre_;      // yarn of each resampled point
+    std::vector<double> restSegment_;         // rest length of the segment from each yarn vertex (0: none)
+    std::vector<size_t> plyOfYarn_;           // first ply point of each yarn
+    Plies plyTopology_;
+};
+
+// The statistics of a frame (what Animator::evaluate computes when options.stats is set):
+// `restSegment` per yarn vertex, `yarnOfCentre` and `restArc` per centre point, `yarnRadius`.
+double maxYarnStretch(const Polylines& yarns, const std::vector<double>& restSegment);
+double minYarnDistance(const Polylines& centres, const std::vector<uint32_t>& yarnOfCentre,
+                       const std::vector<double>& restArc, const std::vector<double>& restLength,
+                       double yarnRadius, const AnimatorOptions& options, DistanceScratch& scratch);
+
+}  // namespace knit

@@ -1,0 +1,183 @@
+// animator.cpp — the yarns of one rest binding evaluated on every frame of a sequence.
+//
+// Bind time (constructor): the rest yarns are resampled once, recording each yarn's layout
+// (ResampleLayout), the rest arc length of every resampled point, the rest pitch of every yarn
+// and the rest length of every yarn segment. Per frame (evaluate): vertex normals -> binding
+// evaluation -> resampling with the fixed layouts -> rotation-minimizing frames and helices
+// with the rest phase -> statistics. On the rest pose this gives exactly the plies makePlies
+// makes from the rest scene (same layout, same arc lengths, same seeds).
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+
+#include <glm/geometric.hpp>
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include "knit/animation.hpp"
+#include "knit/error.hpp"
+#include "plies_kernel.hpp"
+#include "resample_curve.hpp"
+#include "util/checks.hpp"
+
+namespace knit {
+namespace {
+
+using glm::dvec3;
+using Clock = std::chrono::steady_clock;
+
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// Yarns per parallel task: small enough to balance, large enough to amortize.
+constexpr size_t kYarnGrain = 64;
+
+}  // namespace
+
+Animator::Animator(const Scene& rest, const AnimatorOptions& options)
+    : rest_(rest), options_(options), generator_(rest.yarns(), rest.plyOptions()) {
+    const Polylines& yarns = rest.yarns().curves;
+    const size_t yarnCount = yarns.curveCount();
+    const double spacing = generator_.options().pitch / generator_.options().samplesPerTurn;
+
+    // Step 1: resample the rest yarns, recording each layout and the rest arc lengths / pitches.
+    ResampleLayout layout;
+    ResampleScratch resampleScratch;
+    std::vector<double> arc;
+    std::vector<dvec3> centre;
+    restPitch_.assign(yarnCount, 0.0);
+    restLength_.assign(yarnCount, 0.0);
+    for (size_t y = 0; y < yarnCount; ++y) {
+        centre.clear();
+        const size_t m = resampleCurve(rest.yarns(), y, spacing, centre, nullptr, resampleScratch, &layout);
+        kept_.insert(kept_.end(), layout.kept.begin(), layout.kept.end());
+        keptOffsets_.push_back(static_cast<uint32_t>(kept_.size()));
+        pieces_.insert(pieces_.end(), layout.pieces.begin(), layout.pieces.end());
+        pieceOffsets_.push_back(static_cast<uint32_t>(pieces_.size()));
+        if (centreOffsets_.back() + m > UINT32_MAX)
+            throw Error("Animator: more than 2^32-1 resampled centreline points; increase the ply pitch");
+        centreOffsets_.push_back(static_cast<uint32_t>(centreOffsets_.back() + m));
+        yarnOfCentre_.insert(yarnOfCentre_.end(), m, static_cast<uint32_t>(y));
+        if (m < 2) {
+            restArc_.insert(restArc_.end(), m, 0.0);
+            continue;
+        }
+        restPitch_[y] = detail::PlyKernel::arcAndPitch(generator_, y, centre.data(), m, arc);
+        restArc_.insert(restArc_.end(), arc.begin(), arc.end());
+        restLength_[y] = arc[m - 1] + (yarns.isClosed(y) ? glm::length(centre[0] - centre[m - 1]) : 0.0);
+    }
+
+    // Step 2: the constant ply layout (yarn-major, ply-minor, as makePlies).
+    const uint32_t n = static_cast<uint32_t>(generator_.options().count);
+    plyOfYarn_.assign(yarnCount + 1, 0);
+    size_t total = 0;
+    for (size_t y = 0; y < yarnCount; ++y) {
+        plyOfYarn_[y] = total;
+        const size_t m = centreOffsets_[y + 1] - centreOffsets_[y];
+        if (m < 2 || !options_.plies) continue;
+        for (uint32_t i = 0; i < n; ++i) {
+            total += m;
+            if (total > UINT32_MAX)
+                throw Error("makePlies: more than 2^32-1 ply points; increase PlyOptions.pitch or reduce samplesPerTurn");
+            plyTopology_.curves.offsets.push_back(static_cast<uint32_t>(total));
+            plyTopology_.curves.closed.push_back(yarns.closed[y]);
+            plyTopology_.yarnOfCurve.push_back(static_cast<uint32_t>(y));
+            plyTopology_.plyOfCurve.push_back(static_cast<uint8_t>(i));
+        }
+    }
+    plyOfYarn_[yarnCount] = total;
+    plyTopology_.plyRadius = generator_.options().plyRadius;
+    plyTopology_.centerRadius = generator_.options().centerRadius;
+    plyTopology_.pitch = generator_.options().pitch;
+
+    // Step 3: rest length of the segment starting at each yarn vertex (the stretch reference).
+    restSegment_.assign(yarns.pointCount(), 0.0);
+    for (size_t y = 0; y < yarnCount; ++y) {
+        const uint32_t b = yarns.begin(y), e = yarns.end(y);
+        for (uint32_t i = b; i < e; ++i) {
+            const uint32_t j = i + 1 < e ? i + 1 : (yarns.isClosed(y) && e - b > 2 ? b : i);
+            restSegment_[i] = glm::length(yarns.points[j] - yarns.points[i]);
+        }
+    }
+}
+
+void Animator::evaluate(const std::vector<dvec3>& positions, AnimationFrame& out, AnimationStageTimes* times) const {
+    const BaseMesh& mesh = rest_.mesh();
+    if (positions.size() != mesh.positions.size())
+        throw Error("Animator: the frame has " + std::to_string(positions.size()) + " vertices but the rest mesh " +
+                    std::to_string(mesh.positions.size()));
+    for (size_t i = 0; i < positions.size(); ++i)
+        if (!util::finite(positions[i])) throw Error("Animator: vertex " + std::to_string(i) + " is not finite");
+    AnimationStageTimes t;
+
+    // Step 1: the frame's vertex normals.
+    auto t0 = Clock::now();
+    out.meshNormals = vertexNormals(positions, mesh.faces);  // same size every frame
+    t.normals = since(t0);
+
+    // Step 2: the binding evaluated on the frame.
+    t0 = Clock::now();
+    evaluateBinding(rest_.binding(), mesh.faces, positions, out.meshNormals, out.yarns);
+    t.evaluate = since(t0);
+
+    // Step 3: the centrelines resampled with the rest layouts.
+    t0 = Clock::now();
+    resample(out);
+    t.resample = since(t0);
+
+    // Step 4: frames and helices with the rest twist phase.
+    t0 = Clock::now();
+    if (options_.plies) sweep(out);
+    t.plies = since(t0);
+
+    // Step 5: stretch and the closest approach of different yarns.
+    t0 = Clock::now();
+    if (options_.stats) {
+        out.stats.maxStretch = maxYarnStretch(out.yarns.curves, restSegment_);
+        out.stats.minYarnDistance = minYarnDistance(out.centres, yarnOfCentre_, restArc_, restLength_,
+                                                    rest_.yarnRadius(), options_, out.distance);
+    }
+    t.stats = since(t0);
+    if (times) *times = t;
+}
+
+void Animator::resample(AnimationFrame& out) const {
+    const size_t yarnCount = restPitch_.size();
+    Polylines& c = out.centres;
+    if (c.offsets != centreOffsets_) {  // first frame with this buffer
+        c.offsets = centreOffsets_;
+        c.closed = rest_.yarns().curves.closed;
+        c.points.resize(centreOffsets_.back());
+    }
+    tbb::enumerable_thread_specific<ResampleScratch> scratches;
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, yarnCount, kYarnGrain), [&](const tbb::blocked_range<size_t>& r) {
+        ResampleScratch& scratch = scratches.local();
+        for (size_t y = r.begin(); y < r.end(); ++y)
+            resampleCurveWithLayout(out.yarns.curves, y, kept_.data() + keptOffsets_[y], keptOffsets_[y + 1] - keptOffsets_[y],
+                                    pieces_.data() + pieceOffsets_[y], c.points.data() + centreOffsets_[y], scratch);
+    });
+}
+
+void Animator::sweep(AnimationFrame& out) const {
+    Plies& p = out.plies;
+    if (p.curves.offsets != plyTopology_.curves.offsets) {  // first frame with this buffer
+        p = plyTopology_;
+        p.curves.points.resize(plyTopology_.curves.offsets.back());
+    }
+    const size_t yarnCount = restPitch_.size();
+    tbb::enumerable_thread_specific<PlyScratch> scratches;
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, yarnCount, kYarnGrain), [&](const tbb::blocked_range<size_t>& r) {
+        PlyScratch& scratch = scratches.local();
+        for (size_t y = r.begin(); y < r.end(); ++y) {
+            const size_t m = centreOffsets_[y + 1] - centreOffsets_[y];
+            if (m < 2) continue;
+            const dvec3* seed = out.yarns.normals.data() + out.yarns.curves.begin(y);
+            detail::PlyKernel::sweepWithPhase(generator_, y, out.centres.points.data() + centreOffsets_[y], m,
+                                              restArc_.data() + centreOffsets_[y], restPitch_[y], seed,
+                                              p.curves.points.data() + plyOfYarn_[y], nullptr, scratch);
+        }
+    });
+}
+
+}  // namespace knit

@@ -1,0 +1,116 @@
+// `knit animate` and `knit build --rest` end to end: frame k equals the static reference, bad
+// frames and interrupted runs leave no partial cache.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "animate_sequence.hpp"
+#include "common/run_knit.hpp"
+
+namespace fs = std::filesystem;
+
+namespace knit::test {
+namespace {
+
+class Animate : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir = fs::temp_directory_path() / ("knit_animate_" + std::to_string(::getpid()) + "_" +
+                                           ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(dir);
+        fs::create_directories(dir);
+    }
+    void TearDown() override { fs::remove_all(dir); }
+    std::vector<std::string> files() const {
+        std::vector<std::string> names;
+        for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
+        std::sort(names.begin(), names.end());
+        return names;
+    }
+    // `knit build --rest frame_0001.obj --mesh <frame> -o b.obj`: the static reference of a frame.
+    std::vector<glm::dvec3> buildRestReference(const std::string& frame) const {
+        const CliRun r = runKnit("build -q --rest frame_0001.obj --mesh " + frame + " --repeats 3 3 -o b.obj", dir);
+        EXPECT_EQ(r.exitCode, 0) << r.output;
+        return objVertices((dir / "b.obj").string());
+    }
+    fs::path dir;
+};
+
+TEST_F(Animate, frameKEqualsBuildRestOnFrameK) {
+    writeWaveSequence(dir, 5, 8);
+    const CliRun r = runKnit("animate -q --frames frame_%04d.obj --repeats 3 3 -o f_%04d.obj --report r.json", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const std::vector<glm::dvec3> a = objVertices((dir / "f_0004.obj").string());
+    const std::vector<glm::dvec3> b = buildRestReference("frame_0004.obj");
+    ASSERT_EQ(a.size(), b.size());
+    ASSERT_GT(a.size(), 100u);
+    const nlohmann::json report = nlohmann::json::parse(std::ifstream(dir / "r.json"));
+    const double radius = report["yarnRadius"];
+    for (size_t i = 0; i < a.size(); ++i) ASSERT_LE(glm::length(a[i] - b[i]), 1e-4 * radius) << "vertex " << i;
+    ASSERT_EQ(report["frames"].size(), 5u);
+    EXPECT_EQ(report["frames"][0]["maxStretch"], 1.0);
+    EXPECT_GT(report["frames"][4]["maxStretch"].get<double>(), 1.0);
+    for (const char* key : {"min", "median", "max"}) EXPECT_GT(report["frameSeconds"][key].get<double>(), 0.0);
+    EXPECT_GT(report["peakMemoryBytes"].get<double>(), 0.0);
+}
+
+TEST_F(Animate, pointCacheHoldsEveryFramesPliesAndTheTopology) {
+    writeWaveSequence(dir, 4, 8);
+    const CliRun r = runKnit("animate -q --frames . --repeats 3 3 -o c.pc2", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const std::vector<glm::dvec3> ref = buildRestReference("frame_0003.obj");
+    const std::vector<glm::dvec3> cached = pc2Frame((dir / "c.pc2").string(), 2);
+    ASSERT_EQ(cached.size(), ref.size());
+    for (size_t i = 0; i < ref.size(); ++i) ASSERT_LE(glm::length(cached[i] - ref[i]), 1e-6) << "point " << i;
+    EXPECT_EQ(objVertices((dir / "c.obj").string()).size(), ref.size());
+}
+
+TEST_F(Animate, badFrameFailsNamingItAndLeavesNoPartialCache) {
+    writeWaveSequence(dir, 5, 8);
+    writeWaveFrame(dir / "frame_0004.obj", 4, 9);  // another resolution: another vertex count
+    const std::vector<std::string> before = files();
+    const CliRun r = runKnit("animate -q --frames frame_%04d.obj --repeats 3 3 -o c.mdd", dir);
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find("knit: error: frame 4 ('./frame_0004.obj'): has 100 vertices but the rest mesh 81"),
+              std::string::npos)
+        << r.output;
+    EXPECT_EQ(files(), before);  // no cache, no topology, no temporary file
+}
+
+TEST_F(Animate, sigtermMidRunLeavesNoPartialCacheAndNoTempFile) {
+    writeWaveSequence(dir, 400, 16);
+    const std::vector<std::string> before = files();
+    // Start the run, wait for its temporary cache to appear, then send SIGTERM.
+    const std::string script = "'" KNIT_CLI "' animate -q --frames frame_%04d.obj --repeats 6 6 -o c.pc2 > log.txt 2>&1 & "
+                               "pid=$!; for i in $(seq 1 2000); do ls .c.pc2.*.tmp >/dev/null 2>&1 && break; sleep 0.005; done; "
+                               "kill -TERM $pid; wait $pid; echo rc=$?";
+    const CliRun r = runShell(script, dir);
+    EXPECT_NE(r.output.find("rc=1"), std::string::npos) << r.output;
+    std::vector<std::string> after = files();
+    after.erase(std::remove(after.begin(), after.end(), "log.txt"), after.end());
+    EXPECT_EQ(after, before);
+    std::ifstream log(dir / "log.txt");
+    const std::string text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
+    EXPECT_NE(text.find("interrupted by signal 15"), std::string::npos) << text;
+}
+
+TEST_F(Animate, unsupportedOutputsAreRefusedBeforeAnyWork) {
+    writeWaveSequence(dir, 2, 4);
+    CliRun r = runKnit("animate -q --frames frame_%04d.obj -o out.glb", dir);
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.output.find("one animated .glb is not supported yet"), std::string::npos) << r.output;
+    r = runKnit("animate -q --frames frame_%04d.obj --export tubes -o out.pc2", dir);
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.output.find("point caches hold curve points"), std::string::npos) << r.output;
+}
+
+}  // namespace
+}  // namespace knit::test
