@@ -46,6 +46,10 @@ void checkOutputFolder(const std::string& path) {
     std::error_code ec;
     if (fs::is_directory(fs::status(path, ec)))
         throw Error("cannot write '" + path + "': a folder with that name exists");
+    // The final rename would replace a device or FIFO node (or fail half-way): refuse it.
+    const fs::file_status st = fs::status(path, ec);
+    if (fs::exists(st) && !fs::is_regular_file(st))
+        throw Error("cannot write '" + path + "': it exists and is not a regular file (a device, FIFO or socket)");
 }
 
 AtomicFile::AtomicFile(const std::string& path, bool binary) : path_(path) {

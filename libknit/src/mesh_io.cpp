@@ -45,6 +45,7 @@
 #include "knit/error.hpp"
 #include "mesh_weld.hpp"
 #include "util/platform.hpp"
+#include "special_file.hpp"
 
 #include <OpenMesh/Core/IO/Options.hh>
 #include <OpenMesh/Core/IO/importer/BaseImporter.hh>
@@ -235,6 +236,11 @@ ObjScan scanObj(const std::string& path) {
             }
             if (key == "v") scan.positions.emplace_back(c[0], c[1], c[2]);
             else ++scan.uvCount;
+        } else if (key == "mtllib") {
+            // OpenMesh reads the material library itself: never let it open a device or FIFO.
+            const std::string name = trimmed(line.substr(6));
+            const std::string lib = (std::filesystem::path(path).parent_path() / name).string();
+            if (detail::isSpecialFile(lib)) failLine(path, lineNo, "mtllib '" + name + "' " + detail::notRegularFile());
         } else if (key == "f") {
             FaceRef ref{lineNo, 0, 0};
             std::vector<long> verts;
@@ -679,6 +685,7 @@ BaseMesh loadMesh(const std::string& path, const MeshLoadOptions& options) {
     const auto status = std::filesystem::status(path, ec);
     if (ec || !std::filesystem::exists(status)) fail(path, "no such file");
     if (std::filesystem::is_directory(status)) fail(path, "is a directory, not a mesh file");
+    if (detail::isSpecialFile(path)) fail(path, detail::notRegularFile());
     const std::string ext = util::lowerExtension(path);  // without the dot
     if (ext == "gltf" || ext == "glb") return loadGltfMesh(path, options);
     if (ext != "obj" && ext != "ply" && ext != "off") {

@@ -15,6 +15,7 @@
 
 #include "knit/error.hpp"
 #include "util/checks.hpp"
+#include "special_file.hpp"
 
 namespace knit {
 namespace {
@@ -177,6 +178,7 @@ Pattern loadPyp(const std::string& path) {
     struct stat st {};
     if (stat(path.c_str(), &st) != 0) throw Error(path + ": cannot open pattern file (does not exist)");
     if (S_ISDIR(st.st_mode)) throw Error(path + ": is a directory, expected a .pyp pattern file");
+    if (detail::isSpecialFile(path)) throw Error(path + ": " + detail::notRegularFile());
     std::ifstream in(path);
     if (!in) throw Error(path + ": cannot open pattern file");
     return parsePyp(in, path);

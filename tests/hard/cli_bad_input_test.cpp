@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <sys/stat.h>
 #include <sys/wait.h>
 
 #include "common/run_knit.hpp"
@@ -94,6 +95,28 @@ TEST_F(CliBadInput, hugeMeshAtPhysicalSizeIsRefusedClearly) {
     // 1 km plane at the pattern's physical size: ~1e10 cells, refused before any work.
     write("huge.obj", "v 0 0 0\nv 1000 0 0\nv 1000 1000 0\nv 0 1000 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3 4/4\n");
     expectFailure(std::string("build -q --mesh huge.obj -o out.obj"), "pattern cells");
+}
+
+TEST_F(CliBadInput, overTheMemoryBudgetIsRefusedNamingOptionAndEstimate) {
+    expectFailure(kSmall + std::string("--ply-pitch 1e-7 -o out.obj"), "(estimate) for");
+    expectFailure(kSmall + std::string("--ply-pitch 1e-7 -o out.obj"), "--samples-per-turn (or raise --ply-pitch)");
+    expectFailure(std::string("build -q --mesh plane --mesh-res 4 --repeats 3000 3000 --max-memory 64M -o out.obj"),
+                  "lower --repeats or raise --max-memory");
+    expectFailure(kSmall + std::string("--max-memory 8X -o out.obj"), "--max-memory '8X'");
+    const CliRun raised = knit(kSmall + std::string("--max-memory 1G -o out.obj"), dir);
+    EXPECT_EQ(raised.exitCode, 0) << raised.output;
+}
+
+TEST_F(CliBadInput, inputsThatAreNotRegularFilesAreRefusedWithoutBlocking) {
+    ASSERT_EQ(::mkfifo((dir / "fifo.pyp").c_str(), 0600), 0);
+    ASSERT_EQ(::mkfifo((dir / "fifo.obj").c_str(), 0600), 0);
+    expectFailure(std::string("build -q --pattern fifo.pyp -o out.obj"), "fifo.pyp: is not a regular file");
+    expectFailure(std::string("build -q --mesh fifo.obj -o out.obj"), "fifo.obj: is not a regular file");
+    expectFailure(std::string("build -q --mesh /dev/zero -o out.obj"), "/dev/zero: is not a regular file");
+    write("mtl.obj", "mtllib fifo.obj\nv 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nf 1/1 2/2 3/3\n");
+    expectFailure(std::string("build -q --mesh mtl.obj -o out.obj"), "mtl.obj:1: mtllib 'fifo.obj' is not a regular file");
+    ASSERT_EQ(::mkfifo((dir / "out.obj").c_str(), 0600), 0);  // an output that is a FIFO is not replaced
+    expectFailure(kSmall + std::string("-o out.obj"), "'out.obj': it exists and is not a regular file");
 }
 
 }  // namespace
