@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <utility>
+#include <sstream>
 
 #include <glm/geometric.hpp>
 #include <tbb/blocked_range.h>
@@ -38,6 +39,21 @@ void validateBindInput(const BaseMesh& mesh, const std::vector<glm::dvec3>& norm
         throw Error("binding: inconsistent UvYarns (offsets, heights, twists, ghosts or charts do not match the vertices)");
 }
 
+// Every search radius is bounded by one pattern period (a grid cell): a clamp or weld tolerance
+// beyond it would scan the whole mesh per vertex (hours) and clamp or weld across whole stitches.
+void requireBoundedSearch(const UvGrid& grid, glm::dvec2 metresPerUv, const BindOptions& options) {
+    const double period = std::max(grid.cellSize.x * metresPerUv.x, grid.cellSize.y * metresPerUv.y) / options.yarnRadius;
+    const auto require = [&](double tolerance, const char* name, const char* option) {
+        if (!(tolerance > period)) return;
+        std::ostringstream msg;
+        msg << name << " " << tolerance << " yarn radii (" << option << ") reaches beyond one pattern period (" << period
+            << " yarn radii here); use at most that";
+        throw Error(msg.str());
+    };
+    require(options.clampTolerance, "clamp tolerance", "--clamp-tolerance");
+    if (options.weld) require(options.weldTolerance, "weld tolerance", "--weld-tolerance");
+}
+
 }  // namespace
 
 BindResult bindYarns(const BaseMesh& mesh, const std::vector<glm::dvec3>& normals, const UvGrid& grid,
@@ -49,6 +65,7 @@ BindResult bindYarns(const BaseMesh& mesh, const std::vector<glm::dvec3>& normal
     //    the steps that leave their chart.
     const glm::dvec2 metresPerUv = uvToMetreScale(mesh);
     const double radiusUv = options.yarnRadius / std::max(metresPerUv.x, metresPerUv.y);
+    requireBoundedSearch(grid, metresPerUv, options);
     const detail::LocatedYarns located = detail::locateYarns(mesh, grid, yarns, {options.clampTolerance * radiusUv});
     const detail::PieceVertices vertices = located.vertices(yarns);
 

@@ -26,12 +26,14 @@ const char* repeatsOption(bool physicalSize) {
 
 void checkGridBudget(const BaseMesh& mesh, const PatternPlacement& placement, bool physicalSize,
                      const MemoryBudget& budget) {
-    if (mesh.uvs.empty()) return;
-    glm::dvec2 lo = mesh.uvs[0], hi = mesh.uvs[0];
-    for (const glm::dvec2& uv : mesh.uvs) {
-        lo = glm::min(lo, uv);
-        hi = glm::max(hi, uv);
-    }
+    if (mesh.faceUvs.empty()) return;
+    // The UVs the faces use (unreferenced UVs are never gridded).
+    glm::dvec2 lo = mesh.uvs[mesh.faceUvs[0].x], hi = lo;
+    for (const glm::uvec3& t : mesh.faceUvs)
+        for (int k = 0; k < 3; ++k) {
+            lo = glm::min(lo, mesh.uvs[t[k]]);
+            hi = glm::max(hi, mesh.uvs[t[k]]);
+        }
     // Cells touched by the UV box (+1 per axis for a box not aligned with the cells).
     const glm::dvec2 span = (hi - lo) * placement.repeats + 1.0;
     const double cells = std::floor(span.x + 1) * std::floor(span.y + 1);

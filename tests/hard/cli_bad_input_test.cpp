@@ -119,5 +119,10 @@ TEST_F(CliBadInput, inputsThatAreNotRegularFilesAreRefusedWithoutBlocking) {
     expectFailure(kSmall + std::string("-o out.obj"), "'out.obj': it exists and is not a regular file");
 }
 
+TEST_F(CliBadInput, absurdSearchTolerancesAreRefusedNamingTheOption) {
+    expectFailure(kSmall + std::string("--clamp-tolerance 1e12 -o out.obj"), "--clamp-tolerance) reaches beyond one pattern period");
+    expectFailure(kSmall + std::string("--weld-tolerance 1e300 -o out.obj"), "--weld-tolerance) reaches beyond one pattern period");
+}
+
 }  // namespace
 #endif  // KNIT_CLI
