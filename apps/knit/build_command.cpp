@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "export_flags.hpp"
+#include "path_collisions.hpp"
 #include "report.hpp"
 
 namespace knit::cli {
@@ -54,6 +55,9 @@ int runBuild(const BuildCommand& b) {
     // Step 1: fail before the scene is built: bad export options or an unwritable report folder.
     validateExportOptions(b.exportOptions);
     if (!b.report.empty()) requireWritableFolder(b.report, "report");
+    const std::string& out = b.exportOptions.path;
+    refuseCollidingPaths({{"--mesh", b.scene.scene.mesh}, {"--pattern", b.scene.scene.pattern}},
+                         {{"-o", out}, {"the glTF buffer of -o", gltfBufferOf(out)}, {"--report", b.report}});
     // Step 2: the scene; glTF / GLB ply curves are generated while writing, so it is built without them.
     SceneOptions options = resolveScene(b.scene);
     const bool streamed = streamsPlies(b.exportOptions);

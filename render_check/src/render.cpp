@@ -26,6 +26,13 @@ double secondsSince(std::chrono::steady_clock::time_point t) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
+// An image path whose extension is not the format written to it (a .jpg holding PNG bytes).
+void checkImageName(const std::string& path, const char* ext, const char* option, const char* format) {
+    if (util::lowerExtension(path) != ext)
+        throw Error(std::string("render: ") + option + " '" + path + "': only " + format + " is written there (use a ." + ext +
+                    " name)");
+}
+
 }  // namespace
 
 const char* lightPlacementName(LightPlacement light) {
@@ -74,6 +81,8 @@ RenderResult renderScene(const Scene& scene, const RenderOptions& o) {
     res.material = resolveMaterial(o);
     if (scene.plies().curves.curveCount() == 0 || scene.plies().curves.pointCount() == 0)
         throw Error("render: the scene has no ply curves (nothing to render; were plies built?)");
+    if (!o.output.empty()) checkImageName(o.output, "png", "--output", "PNG");
+    if (!o.exr.empty()) checkImageName(o.exr, "exr", "--exr", "EXR");
     if (!o.output.empty()) checkWritable(o.output);
     if (!o.exr.empty()) checkWritable(o.exr);
     res.mode = mode;

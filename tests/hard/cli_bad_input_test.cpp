@@ -124,5 +124,26 @@ TEST_F(CliBadInput, absurdSearchTolerancesAreRefusedNamingTheOption) {
     expectFailure(kSmall + std::string("--weld-tolerance 1e300 -o out.obj"), "--weld-tolerance) reaches beyond one pattern period");
 }
 
+TEST_F(CliBadInput, outputsThatOverwriteAnInputOrEachOtherAreRefusedBeforeAnyWork) {
+    write("mesh.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nf 1/1 2/2 3/3\n");
+    fs::create_directories(dir / "sub");
+    expectFailure(std::string("build -q --mesh mesh.obj --repeats 3 3 -o mesh.obj"), "-o 'mesh.obj' and --mesh 'mesh.obj' name the same file");
+    expectFailure(std::string("build -q --mesh mesh.obj --repeats 3 3 -o sub/../mesh.obj"), "name the same file");
+    expectFailure(kSmall + std::string("-o out.obj --report out.obj"), "--report 'out.obj' and -o 'out.obj' name the same file");
+    expectFailure(kSmall + std::string("-o out.gltf --report out.bin"), "--report 'out.bin' and the glTF buffer of -o");
+    fs::create_symlink("mesh.obj", dir / "link.obj");
+    expectFailure(std::string("build -q --mesh mesh.obj --repeats 3 3 -o link.obj"), "name the same file");
+    EXPECT_EQ(fs::file_size(dir / "mesh.obj"), 59u);  // the input is untouched
+}
+
+#ifdef KNIT_HARD_HAVE_RENDER_CHECK
+TEST_F(CliBadInput, renderRefusesImageNamesItDoesNotWriteAndCollidingImages) {
+    const std::string render = "render -q --mesh plane --mesh-res 4 --repeats 3 3 --width 8 --height 8 --spp 1 ";
+    expectFailure(render + "--output o.jpg", "--output 'o.jpg': only PNG is written there");
+    expectFailure(render + "--exr o.png", "--exr 'o.png': only EXR is written there");
+    expectFailure(render + "--output o.png --report o.png", "--report 'o.png' and --output 'o.png' name the same file");
+}
+#endif
+
 }  // namespace
 #endif  // KNIT_CLI
