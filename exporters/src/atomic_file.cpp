@@ -13,6 +13,7 @@
 
 #include "knit/error.hpp"
 #include "knit/export.hpp"
+#include "temp_registry.hpp"
 
 namespace knit::detail {
 namespace fs = std::filesystem;
@@ -55,6 +56,7 @@ void checkOutputFolder(const std::string& path) {
 AtomicFile::AtomicFile(const std::string& path, bool binary) : path_(path) {
     checkOutputFolder(path);
     temp_ = tempSibling(path);
+    registrySlot_ = registerTempFile(temp_);  // before it exists: no window where a signal leaks it
     buffer_.reset(new char[kStreamBuffer]);
     out_.rdbuf()->pubsetbuf(buffer_.get(), kStreamBuffer);
     errno = 0;
@@ -62,6 +64,7 @@ AtomicFile::AtomicFile(const std::string& path, bool binary) : path_(path) {
                             : std::ios::out | std::ios::trunc);
     if (!out_) {
         const int err = errno;
+        unregisterTempFile(registrySlot_);
         throw Error("cannot write '" + path + "': cannot create a file in folder '" + folderOf(path) +
                     "'" + (err ? std::string(" (") + std::strerror(err) + ")" : std::string()));
     }
@@ -73,6 +76,7 @@ AtomicFile::~AtomicFile() {
         std::error_code ec;
         fs::remove(temp_, ec);
     }
+    unregisterTempFile(registrySlot_);
 }
 
 void AtomicFile::close() {
@@ -100,6 +104,8 @@ void AtomicFile::commit() {
                     std::strerror(err) + ")");
     }
     committed_ = true;
+    unregisterTempFile(registrySlot_);
+    registrySlot_ = -1;
 }
 
 void AtomicFile::undoCommit() {
