@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "empty_result.hpp"
 #include "export_flags.hpp"
 #include "path_collisions.hpp"
 #include "report.hpp"
@@ -64,6 +65,7 @@ int runBuild(const BuildCommand& b) {
     options.buildPlies = b.exportOptions.what != ExportWhat::Yarns && !streamed;
     const Scene scene = buildScene(options);
     printWarnings(scene);
+    refuseEmptyExport(scene, b.exportOptions);
     // Step 3: the export, then the report (part of the result: without it the export is removed).
     const ExportStats stats = exportScene(scene, b.exportOptions);
     const SceneStats sceneNumbers = sceneStats(scene);  // counts, segment lengths, stage times

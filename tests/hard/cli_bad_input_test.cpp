@@ -145,5 +145,16 @@ TEST_F(CliBadInput, renderRefusesImageNamesItDoesNotWriteAndCollidingImages) {
 }
 #endif
 
+TEST_F(CliBadInput, exportsWithNoCurvesAreRefusedSayingWhy) {
+    write("noedge.pyp", "*pattern\n0.01 0.01 0.001 2\n*Q\n0 0 0 0\n0.005 0.005 0 0\n*E\n");
+    expectFailure(std::string("build -q --mesh plane --repeats 3 3 --pattern noedge.pyp -o out.obj"),
+                  "nothing to export: the pattern 'noedge.pyp' has no edges");
+    expectFailure(std::string("build -q --mesh plane --repeats 1e-6 1e-6 -o out.obj"), "raise --repeats");
+    for (const char* out : {"out.obj", "out.glb"})
+        expectFailure(kSmall + std::string("--ply-pitch 1e30 -o ") + out, "no ply curve was made; lower --ply-pitch");
+    const CliRun yarns = knit(kSmall + std::string("--ply-pitch 1e30 --export yarns -o y.obj"), dir);
+    EXPECT_EQ(yarns.exitCode, 0) << yarns.output;  // the yarns alone are not empty
+}
+
 }  // namespace
 #endif  // KNIT_CLI
