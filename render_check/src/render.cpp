@@ -15,6 +15,7 @@
 #include "knit/image_io.hpp"
 #include "knit/ply_geometry.hpp"
 #include "knit/scene.hpp"
+#include "scene_scale.hpp"
 #include "trace_scene.hpp"
 #include "util/math.hpp"
 #include "util/platform.hpp"
@@ -61,6 +62,8 @@ PlyMaterial resolveMaterial(const RenderOptions& o) {
 }
 
 RenderResult renderScene(const Scene& scene, const RenderOptions& o) {
+    // Step 0: a scene far from metre size is traced as a copy at unit size (any scale renders).
+    if (const std::optional<Scene> scaled = detail::sceneAtTracingScale(scene)) return renderScene(*scaled, o);
     // Step 1: validate every option before any work.
     if (o.light != LightPlacement::Front && o.light != LightPlacement::Back)
         throw Error("render: unknown light placement " + std::to_string(int(o.light)) + " (expected front or back)");

@@ -301,6 +301,37 @@ TEST(HardRays, renderFarFromTheOriginMatchesTheRenderAtTheOrigin) {
     EXPECT_LT(diff, 0.02 * sum);
 }
 
+// Render at any scale (docs/hard-cases.md, "Float range"): a 1e-8 m scene rendered empty and a
+// 1e-30 m one aborted inside Embree; a scene far from metre size is traced at unit size.
+TEST(HardRays, renderAtAnyScaleMatchesTheRenderAtCentimetreScale) {
+    RenderOptions o;
+    o.width = 24;
+    o.height = 16;
+    o.spp = 4;
+    o.progress = false;
+    o.material.tableSize = 64;
+    o.material.aoRays = 64;
+    const SyntheticSceneOptions base = singleStraightPly();
+    const RenderResult home = renderScene(makeSyntheticPlyScene(base), o);
+    for (const double scale : {1e-6, 1e-28, 1e12}) {
+        SyntheticSceneOptions s = base;
+        s.size *= scale;
+        s.yarnRadius *= scale;
+        s.waveLength *= scale;
+        s.pitch *= scale;
+        const RenderResult scaled = renderScene(makeSyntheticPlyScene(s), o);
+        ASSERT_EQ(home.image.rgb.size(), scaled.image.rgb.size());
+        double diff = 0, sum = 0;
+        for (size_t i = 0; i < home.image.rgb.size(); ++i) {
+            ASSERT_TRUE(std::isfinite(scaled.image.rgb[i])) << scale;
+            diff += std::abs(double(home.image.rgb[i]) - scaled.image.rgb[i]);
+            sum += home.image.rgb[i];
+        }
+        EXPECT_GT(sum, 0);
+        EXPECT_LT(diff, 0.02 * sum) << "scale " << scale;
+    }
+}
+
 }  // namespace
 }  // namespace knit
 #endif  // KNIT_HARD_HAVE_RENDER_CHECK
