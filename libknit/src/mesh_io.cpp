@@ -59,6 +59,7 @@
 #include <cctype>
 #include <cerrno>
 #include <cmath>
+#include <limits>
 #include <cstdlib>
 #include <cstring>
 #include <iomanip>
@@ -88,6 +89,21 @@ bool parseFinite(const std::string& token, double& value) {
     char* end = nullptr;
     value = std::strtod(token.c_str(), &end);
     return end == token.c_str() + token.size() && errno != ERANGE && std::isfinite(value);
+}
+
+// A parsed number the mesh reader (OpenMesh, float32) can store: beyond +-3.4e38 it would read
+// garbage and report only a vertex count, so the line and the value are named here.
+void requireFloatRange(const std::string& path, size_t lineNo, const std::string& token, double value) {
+    if (std::abs(value) > double(std::numeric_limits<float>::max()))
+        failLine(path, lineNo, "'" + token + "' is beyond the float32 range (3.4e38) of mesh coordinates");
+}
+
+// Files saved with a UTF-8 byte-order mark: named instead of blamed on the first element.
+void refuseByteOrderMark(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    char head[3] = {};
+    if (in.read(head, 3) && head[0] == '\xEF' && head[1] == '\xBB' && head[2] == '\xBF')
+        fail(path, "starts with a UTF-8 byte-order mark (BOM), which mesh files may not have; save it without the BOM");
 }
 
 bool parseIndex(const std::string& token, long& value) {
@@ -233,6 +249,7 @@ ObjScan scanObj(const std::string& path) {
                 if (!(ls >> tok) || !parseFinite(tok, c[i]))
                     failLine(path, lineNo, key == "v" ? "vertex position is not three finite numbers"
                                                       : "texture coordinate (vt) is not two finite numbers");
+                requireFloatRange(path, lineNo, tok, c[i]);
             }
             if (key == "v") scan.positions.emplace_back(c[0], c[1], c[2]);
             else ++scan.uvCount;
@@ -377,6 +394,7 @@ void checkPlyBody(std::istream& in, const std::string& path, const PlyHeader& h,
                     double v;
                     while (ls >> tok) {
                         if (!parseFinite(tok, v)) failLine(path, lineNo, "'" + tok + "' is not a finite number");
+                        requireFloatRange(path, lineNo, tok, v);
                         values.push_back(v);
                     }
                 }
@@ -583,6 +601,7 @@ void scanOff(const std::string& path, std::string& cleaned) {
         double v;
         while (ls >> tok) {
             if (!parseFinite(tok, v)) failLine(path, lineNo, "'" + tok + "' is not a finite number");
+            requireFloatRange(path, lineNo, tok, v);
             values.push_back(v);
         }
         if (values.empty()) return;
@@ -693,6 +712,7 @@ BaseMesh loadMesh(const std::string& path, const MeshLoadOptions& options) {
         fail(path, "unknown mesh file extension '" + dot + ext + "' (supported: .obj, .ply, .off, .gltf, .glb)");
     }
     if (!std::ifstream(path, std::ios::binary)) fail(path, "cannot open for reading");
+    refuseByteOrderMark(path);
 
     // Pre-scan what OpenMesh would accept silently.
     ObjScan obj;

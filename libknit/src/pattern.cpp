@@ -104,6 +104,13 @@ void requireColumns(const Row& row, size_t n, const std::string& block, const st
 }  // namespace
 
 Pattern parsePyp(std::istream& in, const std::string& source) {
+    // A UTF-8 byte-order mark (editors on Windows add one) is skipped.
+    char bom[3] = {};
+    const std::streampos start = in.tellg();
+    if (!(in.read(bom, 3) && bom[0] == '\xEF' && bom[1] == '\xBB' && bom[2] == '\xBF')) {
+        in.clear();
+        in.seekg(start);
+    }
     const std::vector<Block> blocks = readBlocks(in, source);
     Pattern p;
     p.name = source;

@@ -156,5 +156,23 @@ TEST_F(CliBadInput, exportsWithNoCurvesAreRefusedSayingWhy) {
     EXPECT_EQ(yarns.exitCode, 0) << yarns.output;  // the yarns alone are not empty
 }
 
+TEST_F(CliBadInput, coordinatesBeyondFloatRangeAndByteOrderMarksAreNamed) {
+    write("big.obj", "v 0 0 0\nv 1e39 0 0\nv 1e39 1e39 0\nvt 0 0\nvt 1 0\nvt 1 1\nf 1/1 2/2 3/3\n");
+    expectFailure(std::string("build -q --mesh big.obj --repeats 3 3 -o out.obj"),
+                  "big.obj:2: '1e39' is beyond the float32 range (3.4e38) of mesh coordinates");
+    write("big.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 -5e38 0\n3 0 1 2\n");
+    expectFailure(std::string("build -q --mesh big.off --repeats 3 3 -o out.obj"), "big.off:5: '-5e38' is beyond the float32 range");
+    write("bom.obj", "\xEF\xBB\xBFv 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nf 1/1 2/2 3/3\n");
+    expectFailure(std::string("build -q --mesh bom.obj --repeats 3 3 -o out.obj"), "bom.obj: starts with a UTF-8 byte-order mark");
+    const std::string pyp = "*pattern\n0.01 0.01 0.001 2\n*Q\n0.002 0.005 0 0\n0.008 0.005 0 0\n*E\n0 1 0 0\n1 0 1 0\n";
+    write("a.pyp", pyp);
+    write("b.pyp", "\xEF\xBB\xBF" + pyp);  // with a BOM
+    const CliRun plain = knit(kSmall + std::string("--pattern a.pyp -o a.obj"), dir);
+    const CliRun bom = knit(kSmall + std::string("--pattern b.pyp -o b.obj"), dir);
+    EXPECT_EQ(bom.exitCode, 0) << bom.output;  // the BOM is skipped: same curves as without it
+    EXPECT_EQ(plain.exitCode, 0) << plain.output;
+    EXPECT_EQ(fs::file_size(dir / "b.obj"), fs::file_size(dir / "a.obj"));
+}
+
 }  // namespace
 #endif  // KNIT_CLI
