@@ -8,6 +8,7 @@
 
 #include "empty_result.hpp"
 #include "export_flags.hpp"
+#include "float_range.hpp"
 #include "path_collisions.hpp"
 #include "report.hpp"
 
@@ -65,6 +66,7 @@ int runBuild(const BuildCommand& b) {
     options.buildPlies = b.exportOptions.what != ExportWhat::Yarns && !streamed;
     const Scene scene = buildScene(options);
     printWarnings(scene);
+    refuseValuesBeyondFloat32(scene, b.exportOptions);
     refuseEmptyExport(scene, b.exportOptions);
     // Step 3: the export, then the report (part of the result: without it the export is removed).
     const ExportStats stats = exportScene(scene, b.exportOptions);

@@ -47,7 +47,7 @@ void requireBoundedSearch(const UvGrid& grid, glm::dvec2 metresPerUv, const Bind
         if (!(tolerance > period)) return;
         std::ostringstream msg;
         msg << name << " " << tolerance << " yarn radii (" << option << ") reaches beyond one pattern period (" << period
-            << " yarn radii here); use at most that";
+            << " yarn radii of " << options.yarnRadius << " m here); use at most that";
         throw Error(msg.str());
     };
     require(options.clampTolerance, "clamp tolerance", "--clamp-tolerance");

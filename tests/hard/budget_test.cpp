@@ -7,29 +7,15 @@
 #include "knit/budget.hpp"
 #include "knit/error.hpp"
 #include "knit/scene.hpp"
+#include "scene_refusals.hpp"
 
 namespace {
 
 using knit::MemoryBudget;
 
-// The message of the knit::Error `f` throws ("" when it does not throw).
-template <class F>
-std::string errorOf(F&& f) {
-    try {
-        f();
-    } catch (const knit::Error& e) {
-        return e.what();
-    }
-    return "";
-}
+using knit::test::errorOf;
 
-knit::SceneOptions smallPlane() {
-    knit::SceneOptions o;
-    o.mesh = "plane";
-    o.meshOptions.resU = o.meshOptions.resV = 4;
-    o.placement.repeats = {3, 3};
-    return o;
-}
+knit::SceneOptions smallPlane() { return knit::test::smallPlaneScene(); }
 
 TEST(Budget, defaultIsAtMostFourGiB) {
     EXPECT_LE(MemoryBudget().bytes(), uint64_t(4) << 30);

@@ -174,5 +174,15 @@ TEST_F(CliBadInput, coordinatesBeyondFloatRangeAndByteOrderMarksAreNamed) {
     EXPECT_EQ(fs::file_size(dir / "b.obj"), fs::file_size(dir / "a.obj"));
 }
 
+TEST_F(CliBadInput, valuesBeyondFloat32AreRefusedNamingTheOption) {
+    expectFailure(kSmall + std::string("--ply-pitch 1e39 -o out.glb"), "the ply pitch 1e+39 is beyond the float32 range (3.4e38); lower --ply-pitch");
+    expectFailure(kSmall + std::string("--ply-radius 1e39 -o out.obj"), "lower --ply-radius");
+    write("edge.obj", "v 0 0 0\nv 3.4e38 0 0\nv 3.4e38 3.4e38 0\nv 0 3.4e38 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3 4/4\n");
+    // Yarns up to 3.4e38 plus the yarn radius pass float32's range in a float32 file; .obj keeps doubles.
+    expectFailure(std::string("build -q --mesh edge.obj --repeats 1 1 --export yarns -o out.bcc"), "a coordinate of the curves");
+    const CliRun obj = knit(std::string("build -q --mesh edge.obj --repeats 1 1 --export yarns -o out.obj"), dir);
+    EXPECT_EQ(obj.exitCode, 0) << obj.output;
+}
+
 }  // namespace
 #endif  // KNIT_CLI

@@ -276,7 +276,8 @@ TEST(HardRays, gridRaysFromFarAwayHitWhereCurvesDo) {
         }
 }
 
-TEST(HardRays, renderFarFromTheOriginMatchesTheRenderAtTheOrigin) {
+// A 24 x 16 render at 4 spp with small fiber tables (milliseconds).
+RenderOptions smallRender() {
     RenderOptions o;
     o.width = 24;
     o.height = 16;
@@ -284,6 +285,11 @@ TEST(HardRays, renderFarFromTheOriginMatchesTheRenderAtTheOrigin) {
     o.progress = false;
     o.material.tableSize = 64;
     o.material.aoRays = 64;
+    return o;
+}
+
+TEST(HardRays, renderFarFromTheOriginMatchesTheRenderAtTheOrigin) {
+    const RenderOptions o = smallRender();
     SyntheticSceneOptions s = singleStraightPly();
     s.courses = 4;
     s.plyCount = 2;
@@ -304,13 +310,7 @@ TEST(HardRays, renderFarFromTheOriginMatchesTheRenderAtTheOrigin) {
 // Render at any scale (docs/hard-cases.md, "Float range"): a 1e-8 m scene rendered empty and a
 // 1e-30 m one aborted inside Embree; a scene far from metre size is traced at unit size.
 TEST(HardRays, renderAtAnyScaleMatchesTheRenderAtCentimetreScale) {
-    RenderOptions o;
-    o.width = 24;
-    o.height = 16;
-    o.spp = 4;
-    o.progress = false;
-    o.material.tableSize = 64;
-    o.material.aoRays = 64;
+    const RenderOptions o = smallRender();
     const SyntheticSceneOptions base = singleStraightPly();
     const RenderResult home = renderScene(makeSyntheticPlyScene(base), o);
     for (const double scale : {1e-6, 1e-28, 1e12}) {

@@ -10,26 +10,13 @@
 #include "knit/error.hpp"
 #include "knit/pattern.hpp"
 #include "knit/scene.hpp"
+#include "scene_refusals.hpp"
 
 namespace {
 
-template <class F>
-std::string errorOf(F&& f) {
-    try {
-        f();
-    } catch (const knit::Error& e) {
-        return e.what();
-    }
-    return "";
-}
+using knit::test::errorOf;
 
-knit::SceneOptions smallPlane() {
-    knit::SceneOptions o;
-    o.mesh = "plane";
-    o.meshOptions.resU = o.meshOptions.resV = 4;
-    o.placement.repeats = {3, 3};
-    return o;
-}
+knit::SceneOptions smallPlane() { return knit::test::smallPlaneScene(); }
 
 double secondsOf(const std::function<void()>& f) {
     const auto t0 = std::chrono::steady_clock::now();
