@@ -56,7 +56,7 @@ void addBuildCommand(CLI::App& app, BuildCommand& b) {
 int runBuild(const BuildCommand& b) {
     // Step 1: fail before the scene is built: bad export options or an unwritable report folder.
     validateExportOptions(b.exportOptions);
-    if (!b.report.empty()) requireWritableFolder(b.report, "report");
+    checkReportPath(b.report);
     const std::string& out = b.exportOptions.path;
     refuseCollidingPaths({{"--mesh", b.scene.scene.mesh}, {"--pattern", b.scene.scene.pattern}},
                          {{"-o", out}, {"the glTF buffer of -o", gltfBufferOf(out)}, {"--report", b.report}});

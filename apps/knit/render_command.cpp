@@ -20,6 +20,7 @@ void addRenderCommand(CLI::App& app, RenderCommand& r) {
 }
 
 int runRender(const RenderCommand& r) {
+    checkReportPath(r.report);  // before the scene and the render: the same check as `build`
     refuseCollidingPaths({{"--mesh", r.scene.scene.mesh}, {"--pattern", r.scene.scene.pattern}, {"--material", r.options.materialFile}},
                          {{"--output", r.options.output}, {"--exr", r.options.exr}, {"--report", r.report}});
     RenderOptions options = r.options;

@@ -143,6 +143,15 @@ TEST_F(CliBadInput, renderRefusesImageNamesItDoesNotWriteAndCollidingImages) {
     expectFailure(render + "--exr o.png", "--exr 'o.png': only EXR is written there");
     expectFailure(render + "--output o.png --report o.png", "--report 'o.png' and --output 'o.png' name the same file");
 }
+
+TEST_F(CliBadInput, buildAndRenderCheckTheReportPathAlikeBeforeAnyWork) {
+    fs::create_directories(dir / "adir");
+    const std::string render = "render -q --mesh plane --mesh-res 4 --repeats 3 3 --width 8 --height 8 --spp 1 --output o.png ";
+    for (const std::string& command : {std::string(kSmall) + "-o out.obj ", render}) {
+        expectFailure(command + "--report no/such/r.json", "cannot write report 'no/such/r.json': folder 'no/such' does not exist");
+        expectFailure(command + "--report adir", "cannot write report 'adir': a folder with that name exists");
+    }
+}
 #endif
 
 TEST_F(CliBadInput, exportsWithNoCurvesAreRefusedSayingWhy) {
