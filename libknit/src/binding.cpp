@@ -30,7 +30,8 @@ void validateBindInput(const BaseMesh& mesh, const std::vector<glm::dvec3>& norm
                        const BindOptions& options) {
     if (!util::positiveFinite(options.yarnRadius) || !(options.clampTolerance >= 0) || !(options.weldTolerance >= 0) ||
         !util::finite(options.clampTolerance) || !util::finite(options.weldTolerance))
-        throw Error("binding: yarn radius must be positive, clamp and weld tolerances non-negative");
+        throw Error("--clamp-tolerance and --weld-tolerance must be finite and >= 0, and the yarn radius (the pattern's radius "
+                    "times its placement scale) positive");
     if (normals.size() != mesh.positions.size()) throw Error("binding: normals do not match the mesh's vertices");
     if (!util::validOffsets(yarns.offsets, yarns.yarnCount(), yarns.vertexCount()) ||
         yarns.height.size() != yarns.vertexCount() || yarns.twist.size() != yarns.vertexCount() ||

@@ -183,6 +183,15 @@ TEST_F(CliBadInput, coordinatesBeyondFloatRangeAndByteOrderMarksAreNamed) {
     EXPECT_EQ(fs::file_size(dir / "b.obj"), fs::file_size(dir / "a.obj"));
 }
 
+TEST_F(CliBadInput, optionErrorsNameTheOptionNotTheInternalField) {
+    expectFailure(kSmall + std::string("--ply-pitch -1 -o out.obj"), "--ply-pitch (PlyOptions.pitch) must be a finite value >= 0");
+    expectFailure(kSmall + std::string("--ply-radius -1 -o out.obj"), "--ply-radius (PlyOptions.plyRadius)");
+    expectFailure(kSmall + std::string("--samples-per-turn 2 -o out.obj"), "--samples-per-turn (PlyOptions.samplesPerTurn) must be in 3..1024");
+    expectFailure(kSmall + std::string("--clamp-tolerance -1 -o out.obj"), "--clamp-tolerance and --weld-tolerance must be finite and >= 0");
+    const CliRun r = knit(kSmall + std::string("--ply-pitch -1 -o out.obj"), dir);
+    EXPECT_EQ(r.output.find("binding:"), std::string::npos) << r.output;
+}
+
 TEST_F(CliBadInput, valuesBeyondFloat32AreRefusedNamingTheOption) {
     expectFailure(kSmall + std::string("--ply-pitch 1e39 -o out.glb"), "the ply pitch 1e+39 is beyond the float32 range (3.4e38); lower --ply-pitch");
     expectFailure(kSmall + std::string("--ply-radius 1e39 -o out.obj"), "lower --ply-radius");
