@@ -620,6 +620,13 @@ void scanOff(const std::string& path, std::string& cleaned) {
                 if (values[i] < 0 || values[i] >= nv || values[i] != std::floor(values[i]))
                     failLine(path, lineNo, "face references vertex " + std::to_string(values[i]) +
                                                " but the file has " + countText(nv) + " vertices");
+            // A face colour after the indices (integer or float RGB[A], valid OFF) is not passed
+            // on: OpenMesh misreads float colours as more corners. libknit does not use colours.
+            std::ostringstream face;
+            for (size_t i = 0; i <= size_t(k); ++i) face << (i ? " " : "") << uint64_t(values[i]);
+            ++dataLine;
+            out << face.str() << "\n";
+            return;
         }
         ++dataLine;
         out << text << "\n";
