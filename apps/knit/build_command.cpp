@@ -6,9 +6,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include "empty_result.hpp"
 #include "export_flags.hpp"
 #include "export_report.hpp"
 #include "knit/animation.hpp"
+#include "float_range.hpp"
+#include "path_collisions.hpp"
 #include "report.hpp"
 #include "rest_pose.hpp"
 
@@ -91,13 +94,18 @@ int runBuild(const BuildCommand& b) {
     if (!b.rest.empty()) return runBuildOnRestPose(b);
     // Step 1: fail before the scene is built: bad export options or an unwritable report folder.
     validateExportOptions(b.exportOptions);
-    if (!b.report.empty()) requireWritableFolder(b.report, "report");
+    checkReportPath(b.report);
+    const std::string& out = b.exportOptions.path;
+    refuseCollidingPaths({{"--mesh", b.scene.scene.mesh}, {"--pattern", b.scene.scene.pattern}},
+                         {{"-o", out}, {"the glTF buffer of -o", gltfBufferOf(out)}, {"--report", b.report}});
     // Step 2: the scene; glTF / GLB ply curves are generated while writing, so it is built without them.
     SceneOptions options = resolveScene(b.scene);
     const bool streamed = streamsPlies(b.exportOptions);
     options.buildPlies = b.exportOptions.what != ExportWhat::Yarns && !streamed;
     const Scene scene = buildScene(options);
     printWarnings(scene);
+    refuseValuesBeyondFloat32(scene, b.exportOptions);
+    refuseEmptyExport(scene, b.exportOptions);
     // Step 3: the export, then the report (part of the result: without it the export is removed).
     const ExportStats stats = exportScene(scene, b.exportOptions);
     const SceneStats sceneNumbers = sceneStats(scene);  // counts, segment lengths, stage times

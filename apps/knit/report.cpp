@@ -3,12 +3,21 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 
 #include <nlohmann/json.hpp>
 
+#include "knit/error.hpp"
 #include "knit/export.hpp"
 
 namespace knit::cli {
+
+void checkReportPath(const std::string& path) {
+    if (path.empty()) return;
+    requireWritableFolder(path, "report");
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) throw Error("cannot write report '" + path + "': a folder with that name exists");
+}
 
 void writeReport(const std::string& path, const nlohmann::json& report) {
     writeFileAtomically(path, [&](std::ostream& out) { out << report.dump(2) << '\n'; }, false);

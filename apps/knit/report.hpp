@@ -9,6 +9,10 @@
 
 namespace knit::cli {
 
+// The check `build` and `render` make before any work: a --report path (if given) whose folder
+// exists and is writable and that is not a folder; throws knit::Error naming it.
+void checkReportPath(const std::string& path);
+
 // Writes `report` (indented, newline-terminated) to `path` atomically.
 void writeReport(const std::string& path, const nlohmann::json& report);
 

@@ -42,6 +42,8 @@ void addSceneFlags(CLI::App& cmd, SceneFlags& f) {
     cmd.add_option("--weld-tolerance", f.scene.bind.weldTolerance,
                    "Cut ends meeting again across a seam within this many yarn radii are welded")->capture_default_str();
     cmd.add_flag("--no-weld", f.noWeld, "Do not weld yarn ends across UV seams");
+    cmd.add_option("--max-memory", f.maxMemory,
+                   "Memory budget (8G, 512M, ...; default min(4G, half the physical memory)): steps estimated to need more are refused");
     cmd.add_flag("-q,--quiet", f.quiet, "No progress output on stderr");
 }
 
@@ -50,6 +52,7 @@ SceneOptions resolveScene(const SceneFlags& f) {
     if (!f.repeats.empty()) o.placement.repeats = {f.repeats[0], f.repeats[1]};
     if (f.meshRes > 0) o.meshOptions.resU = o.meshOptions.resV = f.meshRes;
     o.bind.weld = !f.noWeld;
+    if (!f.maxMemory.empty()) o.budget = MemoryBudget(parseMemorySize(f.maxMemory));
     if (!f.quiet)
         o.progress = [](const std::string& stage, int index, int total) {
             std::fprintf(stderr, "[%d/%d] %s\n", index + 1, total, stage.c_str());

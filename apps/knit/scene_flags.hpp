@@ -21,10 +21,12 @@ struct SceneFlags {
     int meshRes = 0;              // 0: the built-in meshes' default
     bool noWeld = false;
     bool quiet = false;
+    std::string maxMemory;        // empty: MemoryBudget's default
 };
 
 // Registers --pattern --mesh --repeats --mesh-res --plies --ply-pitch --ply-radius
-// --ply-center-radius --twist --samples-per-turn --clamp-tolerance --weld-tolerance --no-weld -q.
+// --ply-center-radius --twist --samples-per-turn --clamp-tolerance --weld-tolerance --no-weld
+// --max-memory -q.
 void addSceneFlags(CLI::App& command, SceneFlags& flags);
 
 // The scene options the parsed flags ask for (with stage progress on stderr unless --quiet).

@@ -13,6 +13,7 @@
 
 #include "knit/error.hpp"
 #include "knit/export.hpp"
+#include "temp_registry.hpp"
 
 namespace knit::detail {
 namespace fs = std::filesystem;
@@ -46,11 +47,16 @@ void checkOutputFolder(const std::string& path) {
     std::error_code ec;
     if (fs::is_directory(fs::status(path, ec)))
         throw Error("cannot write '" + path + "': a folder with that name exists");
+    // The final rename would replace a device or FIFO node (or fail half-way): refuse it.
+    const fs::file_status st = fs::status(path, ec);
+    if (fs::exists(st) && !fs::is_regular_file(st))
+        throw Error("cannot write '" + path + "': it exists and is not a regular file (a device, FIFO or socket)");
 }
 
 AtomicFile::AtomicFile(const std::string& path, bool binary) : path_(path) {
     checkOutputFolder(path);
     temp_ = tempSibling(path);
+    registrySlot_ = registerTempFile(temp_);  // before it exists: no window where a signal leaks it
     buffer_.reset(new char[kStreamBuffer]);
     out_.rdbuf()->pubsetbuf(buffer_.get(), kStreamBuffer);
     errno = 0;
@@ -58,6 +64,7 @@ AtomicFile::AtomicFile(const std::string& path, bool binary) : path_(path) {
                             : std::ios::out | std::ios::trunc);
     if (!out_) {
         const int err = errno;
+        unregisterTempFile(registrySlot_);
         throw Error("cannot write '" + path + "': cannot create a file in folder '" + folderOf(path) +
                     "'" + (err ? std::string(" (") + std::strerror(err) + ")" : std::string()));
     }
@@ -69,6 +76,7 @@ AtomicFile::~AtomicFile() {
         std::error_code ec;
         fs::remove(temp_, ec);
     }
+    unregisterTempFile(registrySlot_);
 }
 
 void AtomicFile::close() {
@@ -96,6 +104,8 @@ void AtomicFile::commit() {
                     std::strerror(err) + ")");
     }
     committed_ = true;
+    unregisterTempFile(registrySlot_);
+    registrySlot_ = -1;
 }
 
 void AtomicFile::undoCommit() {

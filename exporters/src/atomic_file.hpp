@@ -9,7 +9,8 @@
 namespace knit::detail {
 
 // A temporary file next to `path` (same folder, so the final rename is atomic). The destructor
-// removes the temporary file unless commit() renamed it onto `path`. Errors name `path`.
+// removes the temporary file unless commit() renamed it onto `path`; SIGINT / SIGTERM while it
+// is open removes it too (temp_registry.hpp). Errors name `path`.
 class AtomicFile {
 public:
     AtomicFile(const std::string& path, bool binary);
@@ -37,6 +38,7 @@ private:
     bool closed_ = false;
     bool committed_ = false;
     uint64_t size_ = 0;
+    int registrySlot_ = -1;  // in the signal cleanup registry while the temporary file exists
 };
 
 // Checks that `path` names a file whose folder exists and is writable (knit::requireWritableFolder)

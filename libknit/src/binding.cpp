@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <utility>
+#include <sstream>
 
 #include <glm/geometric.hpp>
 #include <tbb/blocked_range.h>
@@ -29,13 +30,29 @@ void validateBindInput(const BaseMesh& mesh, const std::vector<glm::dvec3>& norm
                        const BindOptions& options) {
     if (!util::positiveFinite(options.yarnRadius) || !(options.clampTolerance >= 0) || !(options.weldTolerance >= 0) ||
         !util::finite(options.clampTolerance) || !util::finite(options.weldTolerance))
-        throw Error("binding: yarn radius must be positive, clamp and weld tolerances non-negative");
+        throw Error("--clamp-tolerance and --weld-tolerance must be finite and >= 0, and the yarn radius (the pattern's radius "
+                    "times its placement scale) positive");
     if (normals.size() != mesh.positions.size()) throw Error("binding: normals do not match the mesh's vertices");
     if (!util::validOffsets(yarns.offsets, yarns.yarnCount(), yarns.vertexCount()) ||
         yarns.height.size() != yarns.vertexCount() || yarns.twist.size() != yarns.vertexCount() ||
         (!yarns.ghosts.empty() && yarns.ghosts.size() != yarns.yarnCount()) ||
         (!yarns.chart.empty() && yarns.chart.size() != yarns.yarnCount()))
         throw Error("binding: inconsistent UvYarns (offsets, heights, twists, ghosts or charts do not match the vertices)");
+}
+
+// Every search radius is bounded by one pattern period (a grid cell): a clamp or weld tolerance
+// beyond it would scan the whole mesh per vertex (hours) and clamp or weld across whole stitches.
+void requireBoundedSearch(const UvGrid& grid, glm::dvec2 metresPerUv, const BindOptions& options) {
+    const double period = std::max(grid.cellSize.x * metresPerUv.x, grid.cellSize.y * metresPerUv.y) / options.yarnRadius;
+    const auto require = [&](double tolerance, const char* name, const char* option) {
+        if (!(tolerance > period)) return;
+        std::ostringstream msg;
+        msg << name << " " << tolerance << " yarn radii (" << option << ") reaches beyond one pattern period (" << period
+            << " yarn radii of " << options.yarnRadius << " m here); use at most that";
+        throw Error(msg.str());
+    };
+    require(options.clampTolerance, "clamp tolerance", "--clamp-tolerance");
+    if (options.weld) require(options.weldTolerance, "weld tolerance", "--weld-tolerance");
 }
 
 }  // namespace
@@ -49,6 +66,7 @@ BindResult bindYarns(const BaseMesh& mesh, const std::vector<glm::dvec3>& normal
     //    the steps that leave their chart.
     const glm::dvec2 metresPerUv = uvToMetreScale(mesh);
     const double radiusUv = options.yarnRadius / std::max(metresPerUv.x, metresPerUv.y);
+    requireBoundedSearch(grid, metresPerUv, options);
     const detail::LocatedYarns located = detail::locateYarns(mesh, grid, yarns, {options.clampTolerance * radiusUv});
     const detail::PieceVertices vertices = located.vertices(yarns);
 

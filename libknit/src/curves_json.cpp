@@ -8,6 +8,7 @@
 
 #include "knit/error.hpp"
 #include "knit/pattern.hpp"
+#include "special_file.hpp"
 
 namespace knit {
 namespace {
@@ -65,6 +66,7 @@ CurveCell loadCurvesJson(const std::string& path) {
     struct stat st {};
     if (stat(path.c_str(), &st) != 0) throw Error(path + ": cannot open curves file (does not exist)");
     if (S_ISDIR(st.st_mode)) throw Error(path + ": is a directory, expected a JSON curves file");
+    if (detail::isSpecialFile(path)) throw Error(path + ": " + detail::notRegularFile());
     std::ifstream in(path);
     if (!in) throw Error(path + ": cannot open curves file");
     std::stringstream ss;

@@ -171,6 +171,11 @@ private:
 };
 
 BaseMesh meshOf(const gltf::Document& doc, const MeshLoadOptions& options) {
+    // meshopt-compressed buffer views cannot be read: say so, rather than report their
+    // fallback buffer (which has no data) as missing.
+    for (const std::string& e : doc.extensionsUsed())
+        if (e == "EXT_meshopt_compression" || e == "KHR_meshopt_compression")
+            doc.fail(e + " is not supported (compressed buffer views); export the base mesh without meshopt compression");
     TriangleCollector triangles(doc, options.maxElements);
     doc.forEachMeshInstance([&](const gltf::MeshInstance& instance) { triangles.add(instance); });
     return triangles.weld(options);

@@ -45,6 +45,7 @@
 #include "knit/error.hpp"
 #include "mesh_weld.hpp"
 #include "util/platform.hpp"
+#include "special_file.hpp"
 
 #include <OpenMesh/Core/IO/Options.hh>
 #include <OpenMesh/Core/IO/importer/BaseImporter.hh>
@@ -58,6 +59,7 @@
 #include <cctype>
 #include <cerrno>
 #include <cmath>
+#include <limits>
 #include <cstdlib>
 #include <cstring>
 #include <iomanip>
@@ -87,6 +89,21 @@ bool parseFinite(const std::string& token, double& value) {
     char* end = nullptr;
     value = std::strtod(token.c_str(), &end);
     return end == token.c_str() + token.size() && errno != ERANGE && std::isfinite(value);
+}
+
+// A parsed number the mesh reader (OpenMesh, float32) can store: beyond +-3.4e38 it would read
+// garbage and report only a vertex count, so the line and the value are named here.
+void requireFloatRange(const std::string& path, size_t lineNo, const std::string& token, double value) {
+    if (std::abs(value) > double(std::numeric_limits<float>::max()))
+        failLine(path, lineNo, "'" + token + "' is beyond the float32 range (3.4e38) of mesh coordinates");
+}
+
+// Files saved with a UTF-8 byte-order mark: named instead of blamed on the first element.
+void refuseByteOrderMark(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    char head[3] = {};
+    if (in.read(head, 3) && head[0] == '\xEF' && head[1] == '\xBB' && head[2] == '\xBF')
+        fail(path, "starts with a UTF-8 byte-order mark (BOM), which mesh files may not have; save it without the BOM");
 }
 
 bool parseIndex(const std::string& token, long& value) {
@@ -232,9 +249,15 @@ ObjScan scanObj(const std::string& path) {
                 if (!(ls >> tok) || !parseFinite(tok, c[i]))
                     failLine(path, lineNo, key == "v" ? "vertex position is not three finite numbers"
                                                       : "texture coordinate (vt) is not two finite numbers");
+                requireFloatRange(path, lineNo, tok, c[i]);
             }
             if (key == "v") scan.positions.emplace_back(c[0], c[1], c[2]);
             else ++scan.uvCount;
+        } else if (key == "mtllib") {
+            // OpenMesh reads the material library itself: never let it open a device or FIFO.
+            const std::string name = trimmed(line.substr(6));
+            const std::string lib = (std::filesystem::path(path).parent_path() / name).string();
+            if (detail::isSpecialFile(lib)) failLine(path, lineNo, "mtllib '" + name + "' " + detail::notRegularFile());
         } else if (key == "f") {
             FaceRef ref{lineNo, 0, 0};
             std::vector<long> verts;
@@ -371,6 +394,7 @@ void checkPlyBody(std::istream& in, const std::string& path, const PlyHeader& h,
                     double v;
                     while (ls >> tok) {
                         if (!parseFinite(tok, v)) failLine(path, lineNo, "'" + tok + "' is not a finite number");
+                        requireFloatRange(path, lineNo, tok, v);
                         values.push_back(v);
                     }
                 }
@@ -577,6 +601,7 @@ void scanOff(const std::string& path, std::string& cleaned) {
         double v;
         while (ls >> tok) {
             if (!parseFinite(tok, v)) failLine(path, lineNo, "'" + tok + "' is not a finite number");
+            requireFloatRange(path, lineNo, tok, v);
             values.push_back(v);
         }
         if (values.empty()) return;
@@ -595,6 +620,13 @@ void scanOff(const std::string& path, std::string& cleaned) {
                 if (values[i] < 0 || values[i] >= nv || values[i] != std::floor(values[i]))
                     failLine(path, lineNo, "face references vertex " + std::to_string(values[i]) +
                                                " but the file has " + countText(nv) + " vertices");
+            // A face colour after the indices (integer or float RGB[A], valid OFF) is not passed
+            // on: OpenMesh misreads float colours as more corners. libknit does not use colours.
+            std::ostringstream face;
+            for (size_t i = 0; i <= size_t(k); ++i) face << (i ? " " : "") << uint64_t(values[i]);
+            ++dataLine;
+            out << face.str() << "\n";
+            return;
         }
         ++dataLine;
         out << text << "\n";
@@ -679,6 +711,7 @@ BaseMesh loadMesh(const std::string& path, const MeshLoadOptions& options) {
     const auto status = std::filesystem::status(path, ec);
     if (ec || !std::filesystem::exists(status)) fail(path, "no such file");
     if (std::filesystem::is_directory(status)) fail(path, "is a directory, not a mesh file");
+    if (detail::isSpecialFile(path)) fail(path, detail::notRegularFile());
     const std::string ext = util::lowerExtension(path);  // without the dot
     if (ext == "gltf" || ext == "glb") return loadGltfMesh(path, options);
     if (ext != "obj" && ext != "ply" && ext != "off") {
@@ -686,6 +719,7 @@ BaseMesh loadMesh(const std::string& path, const MeshLoadOptions& options) {
         fail(path, "unknown mesh file extension '" + dot + ext + "' (supported: .obj, .ply, .off, .gltf, .glb)");
     }
     if (!std::ifstream(path, std::ios::binary)) fail(path, "cannot open for reading");
+    refuseByteOrderMark(path);
 
     // Pre-scan what OpenMesh would accept silently.
     ObjScan obj;

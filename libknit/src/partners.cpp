@@ -13,6 +13,7 @@
 
 #include "knit/error.hpp"
 #include "knit/pattern.hpp"
+#include "point_grid.hpp"
 
 namespace knit {
 namespace {
@@ -32,6 +33,8 @@ std::string endName(const EndRef& e) {
 
 Pattern patternFromCurves(const CurveCell& cell, const PartnerOptions& options) {
     if (!(options.tolerance > 0)) throw Error(cell.name + ": partner tolerance must be positive");
+    if (!(cell.px > 0 && cell.py > 0 && std::isfinite(cell.px) && std::isfinite(cell.py)))
+        throw Error(cell.name + ": period must be positive");
     Pattern p;
     p.name = cell.name;
     p.px = cell.px;
@@ -46,6 +49,8 @@ Pattern patternFromCurves(const CurveCell& cell, const PartnerOptions& options) 
         if (curve.empty()) throw Error(cell.name + ": curve " + std::to_string(c) + " has no points");
         const uint32_t first = uint32_t(p.points.size());
         for (size_t i = 0; i < curve.size(); ++i) {
+            if (!std::isfinite(curve[i].x) || !std::isfinite(curve[i].y) || !std::isfinite(curve[i].z))
+                throw Error(cell.name + ": curve " + std::to_string(c) + " point " + std::to_string(i) + " is not finite");
             p.points.push_back(curve[i]);
             p.twist.push_back(0.0);
             if (i > 0) {
@@ -71,19 +76,33 @@ Pattern patternFromCurves(const CurveCell& cell, const PartnerOptions& options) 
         uint32_t a, b;
         int dx, dy;
     };
+    //    The ends near each shifted end come from a grid of cell size tol (sub-quadratic on big
+    //    curves cells); candidates keep the order of the all-pairs loop (a, then b, then shift).
     std::vector<Candidate> candidates;
     const int shifts[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+    std::vector<glm::dvec3> endPoints;
+    for (const EndRef& e : ends) endPoints.emplace_back(glm::dvec2(p.points[e.vertex]), 0.0);
+    // The search radius is bounded by 4 periods (a partner is in a neighbouring cell), so an absurd
+    //    tolerance cannot make every pair a candidate.
+    const double radius = std::min(tol, 4.0 * std::max(cell.px, cell.py));
+    const detail::PointGrid grid(std::move(endPoints), radius > 0 ? radius : 1.0);
+    std::vector<detail::PointGrid::Neighbour> near;
+    std::vector<std::pair<uint32_t, int>> found;  // (b, shift)
     for (uint32_t a = 0; a < ends.size(); ++a) {
         const glm::dvec2 pa(p.points[ends[a].vertex]);
-        for (uint32_t b = 0; b < ends.size(); ++b) {
-            if (a == b) continue;
-            const glm::dvec2 pb(p.points[ends[b].vertex]);
-            for (const auto& s : shifts) {
-                const glm::dvec2 qb = pb + glm::dvec2(s[0] * cell.px, s[1] * cell.py);
-                if (glm::distance(pa, qb) > tol) continue;
-                const double cost = glm::distance(pa + ends[a].step, qb) + glm::distance(qb + ends[b].step, pa);
-                candidates.push_back({cost, a, b, s[0], s[1]});
-            }
+        found.clear();
+        for (int k = 0; k < 4; ++k) {
+            const glm::dvec2 shift(shifts[k][0] * cell.px, shifts[k][1] * cell.py);
+            grid.within(glm::dvec3(pa - shift, 0.0), radius, near);
+            for (const detail::PointGrid::Neighbour& nb : near)
+                if (nb.index != a) found.push_back({nb.index, k});
+        }
+        std::sort(found.begin(), found.end());
+        for (const auto& [b, k] : found) {
+            const glm::dvec2 qb = glm::dvec2(p.points[ends[b].vertex]) + glm::dvec2(shifts[k][0] * cell.px, shifts[k][1] * cell.py);
+            if (glm::distance(pa, qb) > tol) continue;
+            const double cost = glm::distance(pa + ends[a].step, qb) + glm::distance(qb + ends[b].step, pa);
+            candidates.push_back({cost, a, b, shifts[k][0], shifts[k][1]});
         }
     }
 

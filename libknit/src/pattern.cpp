@@ -15,6 +15,7 @@
 
 #include "knit/error.hpp"
 #include "util/checks.hpp"
+#include "special_file.hpp"
 
 namespace knit {
 namespace {
@@ -103,6 +104,13 @@ void requireColumns(const Row& row, size_t n, const std::string& block, const st
 }  // namespace
 
 Pattern parsePyp(std::istream& in, const std::string& source) {
+    // A UTF-8 byte-order mark (editors on Windows add one) is skipped.
+    char bom[3] = {};
+    const std::streampos start = in.tellg();
+    if (!(in.read(bom, 3) && bom[0] == '\xEF' && bom[1] == '\xBB' && bom[2] == '\xBF')) {
+        in.clear();
+        in.seekg(start);
+    }
     const std::vector<Block> blocks = readBlocks(in, source);
     Pattern p;
     p.name = source;
@@ -177,6 +185,7 @@ Pattern loadPyp(const std::string& path) {
     struct stat st {};
     if (stat(path.c_str(), &st) != 0) throw Error(path + ": cannot open pattern file (does not exist)");
     if (S_ISDIR(st.st_mode)) throw Error(path + ": is a directory, expected a .pyp pattern file");
+    if (detail::isSpecialFile(path)) throw Error(path + ": " + detail::notRegularFile());
     std::ifstream in(path);
     if (!in) throw Error(path + ": cannot open pattern file");
     return parsePyp(in, path);

@@ -59,9 +59,10 @@ std::string num(double v) {
     return buf;
 }
 
-void requireNonNegativeFinite(double v, const char* name, const char* meaning) {
+// Messages name the command-line option and the PlyOptions field it sets.
+void requireNonNegativeFinite(double v, const char* option, const char* name, const char* meaning) {
     if (!std::isfinite(v) || v < 0.0)
-        throw Error(std::string("PlyOptions.") + name + " must be a finite value >= 0 (" + meaning + "), got " + num(v));
+        throw Error(std::string(option) + " (PlyOptions." + name + ") must be a finite value >= 0 (" + meaning + "), got " + num(v));
 }
 
 }  // namespace
@@ -70,16 +71,17 @@ PlyOptions resolvePlyOptions(const PlyOptions& options) {
     PlyOptions o = options;
     // Validate.
     if (o.count < 1 || o.count > 16)
-        throw Error("PlyOptions.count must be in 1..16, got " + std::to_string(o.count));
+        throw Error("--plies (PlyOptions.count) must be in 1..16, got " + std::to_string(o.count));
     if (!util::positiveFinite(o.yarnRadius))
-        throw Error("PlyOptions.yarnRadius must be a positive finite length, got " + num(o.yarnRadius));
-    requireNonNegativeFinite(o.centerRadius, "centerRadius", "0 = touching plies filling the yarn");
-    requireNonNegativeFinite(o.plyRadius, "plyRadius", "0 = touching plies filling the yarn");
-    requireNonNegativeFinite(o.pitch, "pitch", "0 = 6 yarn radii");
+        throw Error("the yarn radius (the pattern's radius times its placement scale; PlyOptions.yarnRadius) must be a positive finite length, got " +
+                    num(o.yarnRadius));
+    requireNonNegativeFinite(o.centerRadius, "--ply-center-radius", "centerRadius", "0 = touching plies filling the yarn");
+    requireNonNegativeFinite(o.plyRadius, "--ply-radius", "plyRadius", "0 = touching plies filling the yarn");
+    requireNonNegativeFinite(o.pitch, "--ply-pitch", "pitch", "0 = 6 yarn radii");
     if (o.samplesPerTurn < 3 || o.samplesPerTurn > 1024)
-        throw Error("PlyOptions.samplesPerTurn must be in 3..1024, got " + std::to_string(o.samplesPerTurn));
+        throw Error("--samples-per-turn (PlyOptions.samplesPerTurn) must be in 3..1024, got " + std::to_string(o.samplesPerTurn));
     if (o.twist != Twist::S && o.twist != Twist::Z)
-        throw Error("PlyOptions.twist must be Twist::S or Twist::Z, got " +
+        throw Error("--twist (PlyOptions.twist) must be S or Z, got " +
                     std::to_string(static_cast<int>(o.twist)));
     // Fill defaults: touching plies that fill the yarn.
     const double n = static_cast<double>(o.count);
@@ -88,8 +90,8 @@ PlyOptions resolvePlyOptions(const PlyOptions& options) {
     if (o.plyRadius == 0.0) {
         o.plyRadius = o.count == 1 ? o.yarnRadius - o.centerRadius : o.centerRadius * sinPiN;
         if (!(o.plyRadius > 0.0))
-            throw Error("PlyOptions.plyRadius: cannot derive it for one ply with centerRadius " + num(o.centerRadius) +
-                        " >= yarnRadius " + num(o.yarnRadius) + "; set plyRadius explicitly");
+            throw Error("--ply-radius (PlyOptions.plyRadius): cannot derive it for one ply with --ply-center-radius " +
+                        num(o.centerRadius) + " >= the yarn radius " + num(o.yarnRadius) + "; set --ply-radius explicitly");
     }
     if (o.pitch == 0.0) o.pitch = 6.0 * o.yarnRadius;
     return o;
@@ -245,7 +247,7 @@ Plies makePlies(const PlyGenerator& generator) {
     }
     batchStart.push_back(C.curveCount());
     const auto tooMany = [] {
-        return Error("makePlies: more than 2^32-1 ply points; increase PlyOptions.pitch or reduce samplesPerTurn");
+        return Error("more than 2^32-1 ply points; raise --ply-pitch or lower --samples-per-turn");
     };
     if (estimate > UINT32_MAX) throw tooMany();
 

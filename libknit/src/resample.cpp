@@ -301,7 +301,7 @@ struct CurveBuffer {
 
 void validateResampleInput(const MappedYarns& yarns, const ResampleOptions& options) {
     if (!util::positiveFinite(options.spacing))
-        throw Error("resampleYarns: ResampleOptions.spacing must be a positive finite length (got " +
+        throw Error("the resampling step (--ply-pitch / --samples-per-turn; ResampleOptions.spacing) must be a positive finite length (got " +
                     std::to_string(options.spacing) + ")");
     const Polylines& in = yarns.curves;
     if (!util::validOffsets(in.offsets, in.curveCount(), in.pointCount()))
@@ -351,8 +351,8 @@ MappedYarns resampleYarns(const MappedYarns& yarns, const ResampleOptions& optio
     size_t total = 0;
     for (size_t k = 0; k < chunks; ++k) total += estimate[k];
     if (total > UINT32_MAX)
-        throw Error("resampleYarns: about " + std::to_string(total) +
-                    " resampled points (more than 2^32-1); use a larger ResampleOptions.spacing or fewer yarns");
+        throw Error("about " + std::to_string(total) +
+                    " resampled points (more than 2^32-1) at this spacing; raise --ply-pitch or lower --samples-per-turn");
 
     // Step 3: resample chunk by chunk into separate buffers.
     std::vector<CurveBuffer> buffers(chunks);
@@ -376,7 +376,7 @@ MappedYarns resampleYarns(const MappedYarns& yarns, const ResampleOptions& optio
     out.curves.closed.assign(in.closed.begin(), in.closed.end());
     for (size_t k = 0; k < chunks; ++k) pointStart[k + 1] = pointStart[k] + buffers[k].points.size();
     if (pointStart[chunks] > UINT32_MAX)
-        throw Error("resampleYarns: more than 2^32-1 resampled points; use a larger spacing or fewer yarns");
+        throw Error("more than 2^32-1 resampled points at this spacing; raise --ply-pitch or lower --samples-per-turn");
     for (size_t k = 0; k < chunks; ++k)
         for (const uint32_t size : buffers[k].sizes) out.curves.offsets.push_back(out.curves.offsets.back() + size);
     // The two big arrays are allocated (and zero-filled) concurrently.

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "knit/error.hpp"
+#include "scene_budget.hpp"
 
 namespace knit {
 namespace {
@@ -81,6 +82,7 @@ private:
     void placeAndGrid() {
         s_.placement_ = placePattern(s_.pattern_, s_.mesh_, options_.placement);
         s_.yarnRadius_ = s_.pattern_.radius * s_.placement_.scale;
+        detail::checkGridBudget(s_.mesh_, s_.placement_, physicalSize(), options_.budget);
         UvGridOptions gridOptions;
         gridOptions.cellSize = s_.placement_.cellSize();
         s_.grid_ = buildUvGrid(s_.mesh_, gridOptions);
@@ -93,6 +95,8 @@ private:
         const glm::dvec2 metresPerUv = uvToMetreScale(s_.mesh_);
         const double tolUv = options_.bind.clampTolerance * s_.yarnRadius_ / std::max(metresPerUv.x, metresPerUv.y);
         const glm::dvec2 margin = tolUv * s_.placement_.repeats * glm::dvec2(s_.pattern_.px, s_.pattern_.py);
+        detail::checkTilingBudget(s_.pattern_, s_.grid_.cells.size(), s_.grid_.dims, tileReach(s_.pattern_, margin),
+                                  physicalSize(), options_.budget);
         SceneStages& st = s_.stages_;
         st.tiling = tilesForCells(s_.pattern_, s_.grid_.cells, margin);
         // Overlapping UV charts: each chart is also tiled over its own cells, so that each gets
@@ -134,9 +138,12 @@ private:
         if (options_.buildPlies)
             run("plies", [&] {
                 s_.plyOptions_ = resolvePlyOptions(o);
+                detail::checkPlyBudget(s_.yarns_, s_.plyOptions_, options_.budget);
                 s_.plies_ = makePlies(s_.yarns_, s_.plyOptions_);
             });
     }
+
+    bool physicalSize() const { return options_.placement.repeats == glm::dvec2(0.0); }
 
     const SceneOptions& options_;
     Scene s_;

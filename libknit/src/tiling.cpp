@@ -58,12 +58,9 @@ Tiling tilingFromMarks(glm::ivec2 minTile, glm::ivec2 dims, std::vector<int32_t>
 
 }  // namespace
 
-Tiling tilesForCells(const Pattern& pattern, const std::vector<glm::ivec2>& cells, glm::dvec2 margin) {
-    if (cells.empty()) return {};
+TileReach tileReach(const Pattern& pattern, glm::dvec2 margin) {
     if (!(margin.x >= 0 && margin.x <= pattern.px)) margin.x = margin.x > pattern.px ? pattern.px : 0.0;
     if (!(margin.y >= 0 && margin.y <= pattern.py)) margin.y = margin.y > pattern.py ? pattern.py : 0.0;
-    // Range of cells (relative to its own tile) that the pattern's vertices, grown by the
-    // margin, fall into.
     glm::ivec2 lo(INT32_MAX), hi(INT32_MIN);
     for (const glm::dvec3& q : pattern.points) {
         const glm::ivec2 c0(int32_t(std::floor((q.x - margin.x) / pattern.px)), int32_t(std::floor((q.y - margin.y) / pattern.py)));
@@ -71,6 +68,15 @@ Tiling tilesForCells(const Pattern& pattern, const std::vector<glm::ivec2>& cell
         lo = glm::min(lo, c0);
         hi = glm::max(hi, c1);
     }
+    return {lo, hi};
+}
+
+Tiling tilesForCells(const Pattern& pattern, const std::vector<glm::ivec2>& cells, glm::dvec2 margin) {
+    if (cells.empty()) return {};
+    // Range of cells (relative to its own tile) that the pattern's vertices, grown by the
+    // margin, fall into.
+    const TileReach reach = tileReach(pattern, margin);
+    const glm::ivec2 lo = reach.lo, hi = reach.hi;
     // Tile t reaches cells t + [lo, hi]; so cell c needs tiles c - hi .. c - lo.
     glm::ivec2 cmin = cells[0], cmax = cells[0];
     for (const glm::ivec2& c : cells) {

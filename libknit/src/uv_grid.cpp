@@ -337,7 +337,9 @@ LocateResult locatePoint(const BaseMesh& mesh, const UvGrid& grid, glm::dvec2 uv
     if (!(tolerance > 0)) return result;
 
     // 2. Closest triangle within the tolerance (ties: lowest id), with clamped barycentrics.
-    const glm::ivec2 c0 = grid.cellOf(uv - tolerance), c1 = grid.cellOf(uv + tolerance);
+    //    The search window is bounded by the grid's cells: nothing lies beyond them.
+    const glm::ivec2 c0 = glm::max(grid.cellOf(uv - tolerance), grid.minCell);
+    const glm::ivec2 c1 = glm::min(grid.cellOf(uv + tolerance), grid.minCell + grid.dims - 1);
     double best = tolerance;
     bool found = false;
     for (int32_t y = c0.y; y <= c1.y; ++y)

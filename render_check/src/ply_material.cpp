@@ -142,6 +142,9 @@ PlyMaterial loadMaterialFile(const std::string& path, const PlyMaterial& base) {
     // Step 1: a readable regular file (a folder opens as a stream on Linux, then fails to read).
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec)) throw Error("material file '" + path + "': is a directory, not a file");
+    const std::filesystem::file_status st = std::filesystem::status(path, ec);
+    if (std::filesystem::exists(st) && !std::filesystem::is_regular_file(st))
+        throw Error("material file '" + path + "': is not a regular file (a device, FIFO or socket)");
     std::ifstream in(path);
     if (!in) throw Error("material file '" + path + "': cannot be opened");
     // Step 2: parse.

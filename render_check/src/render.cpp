@@ -16,6 +16,7 @@
 #include "knit/scene.hpp"
 #include "material_overrides.hpp"
 #include "render_image.hpp"
+#include "scene_scale.hpp"
 #include "trace_scene.hpp"
 #include "util/math.hpp"
 #include "util/platform.hpp"
@@ -25,6 +26,13 @@ namespace {
 
 double secondsSince(std::chrono::steady_clock::time_point t) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+// An image path whose extension is not the format written to it (a .jpg holding PNG bytes).
+void checkImageName(const std::string& path, const char* ext, const char* option, const char* format) {
+    if (util::lowerExtension(path) != ext)
+        throw Error(std::string("render: ") + option + " '" + path + "': only " + format + " is written there (use a ." + ext +
+                    " name)");
 }
 
 }  // namespace
@@ -46,6 +54,8 @@ PlyMaterial resolveMaterial(const RenderOptions& o) {
 }
 
 RenderResult renderScene(const Scene& scene, const RenderOptions& o) {
+    // Step 0: a scene far from metre size is traced as a copy at unit size (any scale renders).
+    if (const std::optional<Scene> scaled = detail::sceneAtTracingScale(scene)) return renderScene(*scaled, o);
     // Step 1: validate every option before any work.
     if (o.light != LightPlacement::Front && o.light != LightPlacement::Back)
         throw Error("render: unknown light placement " + std::to_string(int(o.light)) + " (expected front or back)");
@@ -66,6 +76,8 @@ RenderResult renderScene(const Scene& scene, const RenderOptions& o) {
     res.material = resolveMaterial(o);
     if (scene.plies().curves.curveCount() == 0 || scene.plies().curves.pointCount() == 0)
         throw Error("render: the scene has no ply curves (nothing to render; were plies built?)");
+    if (!o.output.empty()) checkImageName(o.output, "png", "--output", "PNG");
+    if (!o.exr.empty()) checkImageName(o.exr, "exr", "--exr", "EXR");
     if (!o.output.empty()) checkWritable(o.output);
     if (!o.exr.empty()) checkWritable(o.exr);
     res.mode = mode;

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <sys/stat.h>
 #include <sys/wait.h>
 
 #include "common/run_knit.hpp"
@@ -94,6 +95,111 @@ TEST_F(CliBadInput, hugeMeshAtPhysicalSizeIsRefusedClearly) {
     // 1 km plane at the pattern's physical size: ~1e10 cells, refused before any work.
     write("huge.obj", "v 0 0 0\nv 1000 0 0\nv 1000 1000 0\nv 0 1000 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3 4/4\n");
     expectFailure(std::string("build -q --mesh huge.obj -o out.obj"), "pattern cells");
+}
+
+TEST_F(CliBadInput, overTheMemoryBudgetIsRefusedNamingOptionAndEstimate) {
+    expectFailure(kSmall + std::string("--ply-pitch 1e-7 -o out.obj"), "(estimate) for");
+    expectFailure(kSmall + std::string("--ply-pitch 1e-7 -o out.obj"), "--samples-per-turn (or raise --ply-pitch)");
+    expectFailure(std::string("build -q --mesh plane --mesh-res 4 --repeats 3000 3000 --max-memory 64M -o out.obj"),
+                  "lower --repeats or raise --max-memory");
+    expectFailure(kSmall + std::string("--max-memory 8X -o out.obj"), "--max-memory '8X'");
+    const CliRun raised = knit(kSmall + std::string("--max-memory 1G -o out.obj"), dir);
+    EXPECT_EQ(raised.exitCode, 0) << raised.output;
+}
+
+TEST_F(CliBadInput, inputsThatAreNotRegularFilesAreRefusedWithoutBlocking) {
+    ASSERT_EQ(::mkfifo((dir / "fifo.pyp").c_str(), 0600), 0);
+    ASSERT_EQ(::mkfifo((dir / "fifo.obj").c_str(), 0600), 0);
+    expectFailure(std::string("build -q --pattern fifo.pyp -o out.obj"), "fifo.pyp: is not a regular file");
+    expectFailure(std::string("build -q --mesh fifo.obj -o out.obj"), "fifo.obj: is not a regular file");
+    expectFailure(std::string("build -q --mesh /dev/zero -o out.obj"), "/dev/zero: is not a regular file");
+    write("mtl.obj", "mtllib fifo.obj\nv 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nf 1/1 2/2 3/3\n");
+    expectFailure(std::string("build -q --mesh mtl.obj -o out.obj"), "mtl.obj:1: mtllib 'fifo.obj' is not a regular file");
+    ASSERT_EQ(::mkfifo((dir / "out.obj").c_str(), 0600), 0);  // an output that is a FIFO is not replaced
+    expectFailure(kSmall + std::string("-o out.obj"), "'out.obj': it exists and is not a regular file");
+}
+
+TEST_F(CliBadInput, absurdSearchTolerancesAreRefusedNamingTheOption) {
+    expectFailure(kSmall + std::string("--clamp-tolerance 1e12 -o out.obj"), "--clamp-tolerance) reaches beyond one pattern period");
+    expectFailure(kSmall + std::string("--weld-tolerance 1e300 -o out.obj"), "--weld-tolerance) reaches beyond one pattern period");
+}
+
+TEST_F(CliBadInput, outputsThatOverwriteAnInputOrEachOtherAreRefusedBeforeAnyWork) {
+    write("mesh.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nf 1/1 2/2 3/3\n");
+    fs::create_directories(dir / "sub");
+    expectFailure(std::string("build -q --mesh mesh.obj --repeats 3 3 -o mesh.obj"), "-o 'mesh.obj' and --mesh 'mesh.obj' name the same file");
+    expectFailure(std::string("build -q --mesh mesh.obj --repeats 3 3 -o sub/../mesh.obj"), "name the same file");
+    expectFailure(kSmall + std::string("-o out.obj --report out.obj"), "--report 'out.obj' and -o 'out.obj' name the same file");
+    expectFailure(kSmall + std::string("-o out.gltf --report out.bin"), "--report 'out.bin' and the glTF buffer of -o");
+    fs::create_symlink("mesh.obj", dir / "link.obj");
+    expectFailure(std::string("build -q --mesh mesh.obj --repeats 3 3 -o link.obj"), "name the same file");
+    EXPECT_EQ(fs::file_size(dir / "mesh.obj"), 59u);  // the input is untouched
+}
+
+#ifdef KNIT_HARD_HAVE_RENDER_CHECK
+TEST_F(CliBadInput, renderRefusesImageNamesItDoesNotWriteAndCollidingImages) {
+    const std::string render = "render -q --mesh plane --mesh-res 4 --repeats 3 3 --width 8 --height 8 --spp 1 ";
+    expectFailure(render + "--output o.jpg", "--output 'o.jpg': only PNG is written there");
+    expectFailure(render + "--exr o.png", "--exr 'o.png': only EXR is written there");
+    expectFailure(render + "--output o.png --report o.png", "--report 'o.png' and --output 'o.png' name the same file");
+}
+
+TEST_F(CliBadInput, buildAndRenderCheckTheReportPathAlikeBeforeAnyWork) {
+    fs::create_directories(dir / "adir");
+    const std::string render = "render -q --mesh plane --mesh-res 4 --repeats 3 3 --width 8 --height 8 --spp 1 --output o.png ";
+    for (const std::string& command : {std::string(kSmall) + "-o out.obj ", render}) {
+        expectFailure(command + "--report no/such/r.json", "cannot write report 'no/such/r.json': folder 'no/such' does not exist");
+        expectFailure(command + "--report adir", "cannot write report 'adir': a folder with that name exists");
+    }
+}
+#endif
+
+TEST_F(CliBadInput, exportsWithNoCurvesAreRefusedSayingWhy) {
+    write("noedge.pyp", "*pattern\n0.01 0.01 0.001 2\n*Q\n0 0 0 0\n0.005 0.005 0 0\n*E\n");
+    expectFailure(std::string("build -q --mesh plane --repeats 3 3 --pattern noedge.pyp -o out.obj"),
+                  "nothing to export: the pattern 'noedge.pyp' has no edges");
+    expectFailure(std::string("build -q --mesh plane --repeats 1e-6 1e-6 -o out.obj"), "raise --repeats");
+    for (const char* out : {"out.obj", "out.glb"})
+        expectFailure(kSmall + std::string("--ply-pitch 1e30 -o ") + out, "no ply curve was made; lower --ply-pitch");
+    const CliRun yarns = knit(kSmall + std::string("--ply-pitch 1e30 --export yarns -o y.obj"), dir);
+    EXPECT_EQ(yarns.exitCode, 0) << yarns.output;  // the yarns alone are not empty
+}
+
+TEST_F(CliBadInput, coordinatesBeyondFloatRangeAndByteOrderMarksAreNamed) {
+    write("big.obj", "v 0 0 0\nv 1e39 0 0\nv 1e39 1e39 0\nvt 0 0\nvt 1 0\nvt 1 1\nf 1/1 2/2 3/3\n");
+    expectFailure(std::string("build -q --mesh big.obj --repeats 3 3 -o out.obj"),
+                  "big.obj:2: '1e39' is beyond the float32 range (3.4e38) of mesh coordinates");
+    write("big.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 -5e38 0\n3 0 1 2\n");
+    expectFailure(std::string("build -q --mesh big.off --repeats 3 3 -o out.obj"), "big.off:5: '-5e38' is beyond the float32 range");
+    write("bom.obj", "\xEF\xBB\xBFv 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nf 1/1 2/2 3/3\n");
+    expectFailure(std::string("build -q --mesh bom.obj --repeats 3 3 -o out.obj"), "bom.obj: starts with a UTF-8 byte-order mark");
+    const std::string pyp = "*pattern\n0.01 0.01 0.001 2\n*Q\n0.002 0.005 0 0\n0.008 0.005 0 0\n*E\n0 1 0 0\n1 0 1 0\n";
+    write("a.pyp", pyp);
+    write("b.pyp", "\xEF\xBB\xBF" + pyp);  // with a BOM
+    const CliRun plain = knit(kSmall + std::string("--pattern a.pyp -o a.obj"), dir);
+    const CliRun bom = knit(kSmall + std::string("--pattern b.pyp -o b.obj"), dir);
+    EXPECT_EQ(bom.exitCode, 0) << bom.output;  // the BOM is skipped: same curves as without it
+    EXPECT_EQ(plain.exitCode, 0) << plain.output;
+    EXPECT_EQ(fs::file_size(dir / "b.obj"), fs::file_size(dir / "a.obj"));
+}
+
+TEST_F(CliBadInput, optionErrorsNameTheOptionNotTheInternalField) {
+    expectFailure(kSmall + std::string("--ply-pitch -1 -o out.obj"), "--ply-pitch (PlyOptions.pitch) must be a finite value >= 0");
+    expectFailure(kSmall + std::string("--ply-radius -1 -o out.obj"), "--ply-radius (PlyOptions.plyRadius)");
+    expectFailure(kSmall + std::string("--samples-per-turn 2 -o out.obj"), "--samples-per-turn (PlyOptions.samplesPerTurn) must be in 3..1024");
+    expectFailure(kSmall + std::string("--clamp-tolerance -1 -o out.obj"), "--clamp-tolerance and --weld-tolerance must be finite and >= 0");
+    const CliRun r = knit(kSmall + std::string("--ply-pitch -1 -o out.obj"), dir);
+    EXPECT_EQ(r.output.find("binding:"), std::string::npos) << r.output;
+}
+
+TEST_F(CliBadInput, valuesBeyondFloat32AreRefusedNamingTheOption) {
+    expectFailure(kSmall + std::string("--ply-pitch 1e39 -o out.glb"), "the ply pitch 1e+39 is beyond the float32 range (3.4e38); lower --ply-pitch");
+    expectFailure(kSmall + std::string("--ply-radius 1e39 -o out.obj"), "lower --ply-radius");
+    write("edge.obj", "v 0 0 0\nv 3.4e38 0 0\nv 3.4e38 3.4e38 0\nv 0 3.4e38 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3 4/4\n");
+    // Yarns up to 3.4e38 plus the yarn radius pass float32's range in a float32 file; .obj keeps doubles.
+    expectFailure(std::string("build -q --mesh edge.obj --repeats 1 1 --export yarns -o out.bcc"), "a coordinate of the curves");
+    const CliRun obj = knit(std::string("build -q --mesh edge.obj --repeats 1 1 --export yarns -o out.obj"), dir);
+    EXPECT_EQ(obj.exitCode, 0) << obj.output;
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "knit/base_mesh.hpp"
+#include "knit/budget.hpp"
 #include "knit/binding.hpp"
 #include "knit/generator.hpp"
 #include "knit/pattern.hpp"
@@ -31,6 +32,9 @@ struct SceneOptions {
     bool buildPlies = true;
     PlyOptions plies;                     // yarnRadius is set from the pattern and placement
     ProgressFn progress;                  // optional
+    // Each big stage estimates its memory from its counts first and refuses (knit::Error naming
+    // the option that drives it) when over this budget.
+    MemoryBudget budget;
 };
 
 struct StageTime {

@@ -59,6 +59,13 @@ struct Tiling {
 // within this distance of it, so a vertex just outside the covered cells (within binding's clamp
 // tolerance of the UV boundary) is generated and clamped instead of silently missing.
 Tiling tilesForCells(const Pattern& pattern, const std::vector<glm::ivec2>& cells, glm::dvec2 margin = glm::dvec2(0.0));
+// The cells (relative to its own tile) that a tile's vertices, grown by `margin`, fall into:
+// tile t reaches cells t + [lo, hi]. tilesForCells marks (cell span + hi - lo) tiles; a pattern
+// vertex far outside its cell makes that large, so the pipeline sizes it first (knit/budget.hpp).
+struct TileReach {
+    glm::ivec2 lo{0}, hi{0};
+};
+TileReach tileReach(const Pattern& pattern, glm::dvec2 margin = glm::dvec2(0.0));
 // All tiles in [first, last] (inclusive): per-region generation for level of detail.
 // periodic: the region wraps around (a torus of (last - first + 1) tiles).
 Tiling tilesForRegion(glm::ivec2 first, glm::ivec2 last, bool periodic = false);

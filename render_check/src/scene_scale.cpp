@@ -1,0 +1,53 @@
+// A scene scaled to unit size for tracing (see scene_scale.hpp).
+#include "scene_scale.hpp"
+
+#include <algorithm>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include "knit/error.hpp"
+#include "util/checks.hpp"
+
+namespace knit::detail {
+namespace {
+
+void scalePoints(std::vector<glm::dvec3>& points, const glm::dvec3& centre, double scale) {
+    for (glm::dvec3& p : points) p = (p - centre) * scale;
+}
+
+}  // namespace
+
+std::optional<Scene> sceneAtTracingScale(const Scene& scene) {
+    const std::vector<glm::dvec3>& points = scene.plies().curves.points;
+    if (points.empty()) return std::nullopt;
+    // Step 1: the plies' bounds; their radius decides whether to scale.
+    glm::dvec3 lo(points[0]), hi(points[0]);
+    for (const glm::dvec3& p : points) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    if (!util::finite(lo) || !util::finite(hi)) throw Error("render: the ply curves have points that are not finite");
+    const glm::dvec3 centre = 0.5 * lo + 0.5 * hi;
+    const glm::dvec3 half = 0.5 * hi - 0.5 * lo;  // halves first: no overflow near 1e308
+    const double e = std::max(half.x, std::max(half.y, half.z));
+    const double radius = e > 0 ? e * glm::length(half / e) : 0.0;  // scaled: no overflow of the squares
+    if (radius >= kMinTracedRadius && radius <= kMaxTracedRadius) return std::nullopt;
+    if (!(radius > 0)) throw Error("render: the ply curves have no extent (all points coincide)");
+    // Step 2: a copy scaled about the centre to radius 1.
+    const double s = 1.0 / radius;
+    SceneParts parts;
+    parts.mesh = scene.mesh();
+    scalePoints(parts.mesh.positions, centre, s);
+    parts.normals = scene.normals();
+    parts.yarnRadius = scene.yarnRadius() * s;
+    parts.grid = scene.grid();
+    parts.binding = scene.binding();
+    parts.yarns = scene.yarns();
+    scalePoints(parts.yarns.curves.points, centre, s);
+    parts.plies = scene.plies();
+    scalePoints(parts.plies.curves.points, centre, s);
+    parts.plies.plyRadius *= s;
+    parts.plies.centerRadius *= s;
+    parts.plies.pitch *= s;
+    return Scene::fromParts(std::move(parts));
+}
+
+}  // namespace knit::detail

@@ -1,0 +1,83 @@
+// Search without bound (docs/hard-cases.md, "Search radii"): absurd clamp, weld and partner
+// tolerances finish fast with a clear error or a result; the partner search is sub-quadratic.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <functional>
+#include <string>
+
+#include "knit/error.hpp"
+#include "knit/pattern.hpp"
+#include "knit/scene.hpp"
+#include "scene_refusals.hpp"
+
+namespace {
+
+using knit::test::errorOf;
+
+knit::SceneOptions smallPlane() { return knit::test::smallPlaneScene(); }
+
+double secondsOf(const std::function<void()>& f) {
+    const auto t0 = std::chrono::steady_clock::now();
+    f();
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+TEST(SearchBounds, absurdClampToleranceIsRefusedFastNamingTheOption) {
+    for (double tol : {1e3, 1e12, 1e300}) {
+        knit::SceneOptions o = smallPlane();
+        o.bind.clampTolerance = tol;
+        std::string m;
+        EXPECT_LT(secondsOf([&] { m = errorOf([&] { knit::buildScene(o); }); }), 5.0);
+        EXPECT_NE(m.find("--clamp-tolerance"), std::string::npos) << m;
+        EXPECT_NE(m.find("beyond one pattern period"), std::string::npos) << m;
+    }
+}
+
+TEST(SearchBounds, absurdWeldToleranceIsRefusedUnlessWeldingIsOff) {
+    knit::SceneOptions o = smallPlane();
+    o.bind.weldTolerance = 1e200;
+    EXPECT_NE(errorOf([&] { knit::buildScene(o); }).find("--weld-tolerance"), std::string::npos);
+    o.bind.weld = false;
+    EXPECT_EQ(errorOf([&] { knit::buildScene(o); }), "");
+}
+
+TEST(SearchBounds, clampToleranceWithinOnePeriodStillClamps) {
+    knit::SceneOptions o = smallPlane();
+    o.bind.clampTolerance = 5;  // below the period (~6.6 yarn radii here)
+    EXPECT_EQ(errorOf([&] { knit::buildScene(o); }), "");
+}
+
+// 40000 short courses in one curves cell: the all-pairs partner search took minutes (80000 ends,
+// 2.6e10 distance tests); the grid finds the same pairs in well under a second.
+TEST(SearchBounds, partnerSearchOnABigCurvesCellIsSubQuadratic) {
+    knit::CurveCell cell;
+    cell.name = "big.json";
+    const int courses = 40000;
+    cell.px = 0.01;
+    cell.py = 0.01 * courses;
+    cell.radius = 0.001;
+    for (int c = 0; c < courses; ++c) {
+        const double y = 0.01 * c + 0.005;
+        cell.curves.push_back({{0.001, y, 0}, {0.005, y, 0}, {0.009, y, 0}});
+    }
+    knit::Pattern p;
+    EXPECT_LT(secondsOf([&] { p = knit::patternFromCurves(cell); }), 10.0);
+    EXPECT_EQ(p.edges.size(), size_t(courses) * 3);  // two in-cell edges + one periodic edge per course
+}
+
+TEST(SearchBounds, absurdPartnerToleranceStillPairsNeighbours) {
+    knit::CurveCell cell;
+    cell.name = "c.json";
+    cell.px = cell.py = 0.01;
+    cell.radius = 0.001;
+    cell.curves.push_back({{0.001, 0.005, 0}, {0.009, 0.005, 0}});
+    knit::PartnerOptions o;
+    o.tolerance = 1e300;
+    const knit::Pattern p = knit::patternFromCurves(cell, o);
+    ASSERT_EQ(p.edges.size(), 2u);
+    EXPECT_EQ(std::abs(p.edges[1].dx), 1);
+}
+
+}  // namespace
