@@ -33,6 +33,9 @@ void relax(benchmark::State& state, const knit::Chart& chart) {
     knit::ChartPattern cp;
     for (auto _ : state) cp = knit::relaxChart(chart);
     state.counters["iterations"] = cp.relaxed.iterations;
+    state.counters["evaluations"] = cp.relaxed.evaluations;
+    state.counters["pair_rebuilds"] = cp.relaxed.pairRebuilds;
+    state.counters["converged"] = cp.relaxed.converged;
     state.counters["min_distance_r"] = cp.relaxed.minDistance;
     state.counters["L_r_per_A"] = lengthPerArea(cp.relaxed.pattern);
     state.counters["vertices"] = double(cp.relaxed.pattern.points.size());

@@ -34,6 +34,16 @@ nlohmann::json segmentReport(const SegmentStats& st) {
     return j;
 }
 
+// Stitches and rows per 10 cm the placement achieves (the pattern's stitches and rows per period
+// over the period's size on the mesh).
+nlohmann::json gaugeReport(const Pattern& p, const PatternPlacement& placement) {
+    if (!(placement.periodMetres.x > 0 && placement.periodMetres.y > 0)) return nullptr;  // no placement
+    return {{"stitches_per_10cm", 0.1 * p.stitchesPerPeriod / placement.periodMetres.x},
+            {"rows_per_10cm", 0.1 * p.rowsPerPeriod / placement.periodMetres.y},
+            {"stitches_per_period", p.stitchesPerPeriod},
+            {"rows_per_period", p.rowsPerPeriod}};
+}
+
 }  // namespace
 
 nlohmann::json sceneReport(const Scene& s, const SceneStats& st) {
@@ -52,7 +62,8 @@ nlohmann::json sceneReport(const Scene& s, const SceneStats& st) {
     for (const glm::uvec2& pair : s.grid().overlappingCharts) j["mesh"]["overlapping_uv_charts"].push_back({pair.x, pair.y});
     j["placement"] = {{"repeats", {s.placement().repeats.x, s.placement().repeats.y}},
                       {"scale", s.placement().scale},
-                      {"yarn_radius", s.yarnRadius()}};
+                      {"yarn_radius", s.yarnRadius()},
+                      {"gauge", gaugeReport(p, s.placement())}};
     // Step 2: the statistics.
     j["counts"] = {{"cells", st.cells},
                    {"tiles", st.tiles},

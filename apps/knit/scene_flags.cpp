@@ -5,6 +5,7 @@
 
 #include "choice.hpp"
 #include "knit/base_mesh.hpp"
+#include "knit/error.hpp"
 #include "knit/generator.hpp"
 
 namespace knit::cli {
@@ -13,7 +14,9 @@ const char* const kSceneHelp = R"(Scene: a pattern (.pyp file, .json curves file
 base mesh (.obj/.ply/.off/.gltf/.glb with UVs, or built-in name). Alignment: with --repeats U V, pattern
 point (x, y) of tile (i, j) lands at uv ((x + i px)/(U px), (y + j py)/(V py)); the pattern's
 origin is uv (0,0). Heights and radii scale with the period. Without --repeats the pattern keeps
-its physical size (the mesh's area-weighted metres per UV unit).)";
+its physical size (the mesh's area-weighted metres per UV unit). --gauge 22x30/10cm sets the size
+of a stitch instead (a chart pattern knows its stitches and rows per period; other patterns: one
+period is one stitch by one row).)";
 
 namespace {
 
@@ -30,6 +33,7 @@ void addSceneFlags(CLI::App& cmd, SceneFlags& f) {
     cmd.add_option("--pattern", f.scene.pattern, "Pattern file (.pyp, .json curves) or built-in: " + commaList(builtinPatternNames()))->capture_default_str();
     cmd.add_option("--mesh", f.scene.mesh, "Base mesh file (.obj, .ply, .off, .gltf, .glb; needs UVs; glTF v is flipped to OBJ convention) or built-in: " + commaList(builtinMeshNames()))->capture_default_str();
     cmd.add_option("--repeats", f.repeats, "Pattern periods across u in [0,1] and v in [0,1] (default: physical size)")->expected(2);
+    cmd.add_option("--gauge", f.gauge, "Stitches x rows per length, e.g. 22x30/10cm (units mm, cm, m, in); instead of --repeats");
     cmd.add_option("--mesh-res", f.meshRes, "Quads per side of built-in meshes (default 32)")->check(CLI::Range(1, 4096));
     cmd.add_option("--plies", f.scene.plies.count, "Plies per yarn")->capture_default_str()->check(CLI::Range(1, 16));
     cmd.add_option("--ply-pitch", f.scene.plies.pitch, "Length of one ply turn in metres (0: 6 yarn radii)")->capture_default_str();
@@ -50,6 +54,10 @@ void addSceneFlags(CLI::App& cmd, SceneFlags& f) {
 SceneOptions resolveScene(const SceneFlags& f) {
     SceneOptions o = f.scene;
     if (!f.repeats.empty()) o.placement.repeats = {f.repeats[0], f.repeats[1]};
+    if (!f.gauge.empty()) {
+        if (!f.repeats.empty()) throw Error("--gauge and --repeats are mutually exclusive (a gauge sets the repeats)");
+        o.placement.gauge = parseGauge(f.gauge);
+    }
     if (f.meshRes > 0) o.meshOptions.resU = o.meshOptions.resV = f.meshRes;
     o.bind.weld = !f.noWeld;
     if (!f.maxMemory.empty()) o.budget = MemoryBudget(parseMemorySize(f.maxMemory));

@@ -18,13 +18,14 @@ extern const char* const kSceneHelp;
 struct SceneFlags {
     SceneOptions scene;
     std::vector<double> repeats;  // empty, or U V
+    std::string gauge;            // empty, or STITCHES x ROWS / LENGTH
     int meshRes = 0;              // 0: the built-in meshes' default
     bool noWeld = false;
     bool quiet = false;
     std::string maxMemory;        // empty: MemoryBudget's default
 };
 
-// Registers --pattern --mesh --repeats --mesh-res --plies --ply-pitch --ply-radius
+// Registers --pattern --mesh --repeats --gauge --mesh-res --plies --ply-pitch --ply-radius
 // --ply-center-radius --twist --samples-per-turn --clamp-tolerance --weld-tolerance --no-weld
 // --max-memory -q.
 void addSceneFlags(CLI::App& command, SceneFlags& flags);

@@ -136,6 +136,8 @@ ChartCell chartToCell(const Chart& chart, const ChartCellOptions& options) {
     cell.loops = stitchLoops(chart, n);
     Pattern& p = cell.pattern;
     p.name = chart.name;
+    p.stitchesPerPeriod = chart.width;
+    p.rowsPerPeriod = chart.height;
     p.px = util::kTwoPi * chart.width * s;
     const RowLayout rows = rowLayout(chart);
     p.py = rows.period * s;

@@ -156,9 +156,21 @@ Pattern parsePyp(std::istream& in, const std::string& source) {
         edgeLines.push_back(r.line);
     }
 
+    // *GAUGE (optional): stitch columns and rows per period.
+    if (const Block* g = findBlock(blocks, "GAUGE")) {
+        if (g->rows.size() != 1) fail(source, g->line, "*GAUGE must have exactly one row 'stitches rows'");
+        requireColumns(g->rows[0], 2, "GAUGE", source);
+        const long stitches = parseInteger(g->rows[0].tokens[0], source, g->rows[0].line);
+        const long rows = parseInteger(g->rows[0].tokens[1], source, g->rows[0].line);
+        if (stitches < 1 || rows < 1 || stitches > 1000000 || rows > 1000000)
+            fail(source, g->rows[0].line, "*GAUGE stitches and rows per period must be in 1 .. 1000000");
+        p.stitchesPerPeriod = int(stitches);
+        p.rowsPerPeriod = int(rows);
+    }
+
     // Everything else: kept verbatim (numbers only).
     for (const Block& b : blocks) {
-        if (b.name == "pattern" || b.name == "Q" || b.name == "E") continue;
+        if (b.name == "pattern" || b.name == "Q" || b.name == "E" || b.name == "GAUGE") continue;
         auto& rows = p.extraBlocks[b.name];
         for (const Row& r : b.rows) {
             std::vector<double> values;
@@ -199,6 +211,8 @@ void writePyp(std::ostream& out, const Pattern& p) {
         out << p.points[i].x << ' ' << p.points[i].y << ' ' << p.points[i].z << ' ' << (i < p.twist.size() ? p.twist[i] : 0.0) << '\n';
     out << "\n*E # edges: v0 v1 dx dy\n";
     for (const PeriodicEdge& e : p.edges) out << e.v0 << ' ' << e.v1 << ' ' << e.dx << ' ' << e.dy << '\n';
+    if (p.stitchesPerPeriod != 1 || p.rowsPerPeriod != 1)
+        out << "\n*GAUGE # stitches rows per period\n" << p.stitchesPerPeriod << ' ' << p.rowsPerPeriod << '\n';
     for (const auto& [name, rows] : p.extraBlocks) {
         out << "\n*" << name << '\n';
         for (const auto& row : rows) {
@@ -214,6 +228,7 @@ void validatePattern(const Pattern& p, const std::string& source) {
     if (!util::positiveFinite(p.radius)) bad("yarn radius must be positive and finite");
     if (p.points.empty()) bad("pattern has no vertices");
     if (p.twist.size() != p.points.size()) bad("twist count differs from vertex count");
+    if (p.stitchesPerPeriod < 1 || p.rowsPerPeriod < 1) bad("stitches and rows per period must be at least 1");
     for (size_t i = 0; i < p.points.size(); ++i)
         if (!util::finite(p.points[i]) || !util::finite(p.twist[i]))
             bad("vertex " + std::to_string(i) + " has a non-finite coordinate");

@@ -7,6 +7,8 @@
 #include <limits>
 
 #include <Eigen/Core>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <glm/geometric.hpp>
 
 #include "knit/error.hpp"
@@ -19,6 +21,12 @@ using relax::Pair;
 using relax::Seg;
 using Vec = Eigen::VectorXd;
 
+// One contact pair's share: its energy and the force on its closest points (a, b their parameters).
+struct PairForce {
+    double energy = 0, dist = 0, a = 0, b = 0;
+    glm::dvec3 gd{0.0};
+};
+
 // The cell in yarn radii: segments, rest lengths, bending stencils and the yarn index.
 struct Problem {
     size_t n = 0;
@@ -28,6 +36,8 @@ struct Problem {
     std::vector<Seg> before;  // per vertex: the segment arriving at it (a = previous vertex)
     relax::YarnIndex yarns;
     RelaxOptions opt;
+    mutable std::vector<PairForce> scratch;  // per-pair forces of the last evaluation
+    mutable int evaluations = 0;             // energy evaluations (for RelaxResult)
 };
 
 glm::dvec3 vertex(const Vec& v, size_t i) { return {v[3 * i], v[3 * i + 1], v[3 * i + 2]}; }
@@ -76,31 +86,48 @@ double bendEnergy(const Problem& pb, const Vec& v, Vec& g) {
     return e;
 }
 
-double contactEnergy(const Problem& pb, const std::vector<Pair>& pairs, const Vec& v, Vec& g, double* minDistance) {
+PairForce pairForce(const Problem& pb, const Pair& pr, const Vec& v) {
     const double D = pb.opt.contactDistance;
+    const Seg &s = pb.segs[pr.s], &t = pb.segs[pr.t];
+    const glm::dvec3 p0 = vertex(v, s.a), p1 = at(v, pb.n, s.b, s.dx, s.dy);
+    const glm::dvec3 q0 = at(v, pb.n, t.a, pr.ix, pr.iy), q1 = at(v, pb.n, t.b, t.dx + pr.ix, t.dy + pr.iy);
+    PairForce f;
+    relax::closestParameters(p0, p1, q0, q1, f.a, f.b);
+    const glm::dvec3 d = (p0 + f.a * (p1 - p0)) - (q0 + f.b * (q1 - q0));
+    f.dist = glm::length(d);
+    if (f.dist >= D) return f;
+    f.energy = pb.opt.contact * (D - f.dist) * (D - f.dist);
+    f.gd = (-2 * pb.opt.contact * (D - f.dist) / std::max(f.dist, 1e-12)) * d;
+    return f;
+}
+
+// The pairs' forces are computed in parallel, each into its own slot, then summed and scattered
+// in pair order: the same arithmetic as a serial loop, so the result does not depend on threads.
+double contactEnergy(const Problem& pb, const std::vector<Pair>& pairs, const Vec& v, Vec& g, double* minDistance) {
+    std::vector<PairForce>& forces = pb.scratch;
+    forces.resize(pairs.size());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, pairs.size(), 1024), [&](const tbb::blocked_range<size_t>& range) {
+        for (size_t k = range.begin(); k != range.end(); ++k) forces[k] = pairForce(pb, pairs[k], v);
+    });
     double e = 0;
-    for (const Pair& pr : pairs) {
-        const Seg &s = pb.segs[pr.s], &t = pb.segs[pr.t];
-        const glm::dvec3 p0 = vertex(v, s.a), p1 = at(v, pb.n, s.b, s.dx, s.dy);
-        const glm::dvec3 q0 = at(v, pb.n, t.a, pr.ix, pr.iy), q1 = at(v, pb.n, t.b, t.dx + pr.ix, t.dy + pr.iy);
-        double a = 0, b = 0;
-        relax::closestParameters(p0, p1, q0, q1, a, b);
-        const glm::dvec3 d = (p0 + a * (p1 - p0)) - (q0 + b * (q1 - q0));
-        const double dist = glm::length(d);
-        if (minDistance) *minDistance = std::min(*minDistance, dist);
-        if (dist >= D) continue;
-        e += pb.opt.contact * (D - dist) * (D - dist);
-        const glm::dvec3 gd = (-2 * pb.opt.contact * (D - dist) / std::max(dist, 1e-12)) * d;
-        addVertex(g, s.a, (1 - a) * gd);
-        addAt(g, pb.n, s.b, s.dx, s.dy, a * gd);
-        addAt(g, pb.n, t.a, pr.ix, pr.iy, -(1 - b) * gd);
-        addAt(g, pb.n, t.b, t.dx + pr.ix, t.dy + pr.iy, -b * gd);
+    for (size_t k = 0; k < pairs.size(); ++k) {
+        const PairForce& f = forces[k];
+        if (minDistance) *minDistance = std::min(*minDistance, f.dist);
+        if (f.dist >= pb.opt.contactDistance) continue;
+        const Seg &s = pb.segs[pairs[k].s], &t = pb.segs[pairs[k].t];
+        const Pair& pr = pairs[k];
+        e += f.energy;
+        addVertex(g, s.a, (1 - f.a) * f.gd);
+        addAt(g, pb.n, s.b, s.dx, s.dy, f.a * f.gd);
+        addAt(g, pb.n, t.a, pr.ix, pr.iy, -(1 - f.b) * f.gd);
+        addAt(g, pb.n, t.b, t.dx + pr.ix, t.dy + pr.iy, -f.b * f.gd);
     }
     return e;
 }
 
 // The total energy and its gradient; *minDistance (when given) gets the smallest pair distance.
 double energy(const Problem& pb, const std::vector<Pair>& pairs, const Vec& v, Vec& g, double* minDistance = nullptr) {
+    ++pb.evaluations;
     g.setZero(v.size());
     if (minDistance) *minDistance = std::numeric_limits<double>::infinity();
     const double e = stretchEnergy(pb, v, g) + bendEnergy(pb, v, g) + contactEnergy(pb, pairs, v, g, minDistance);
@@ -164,9 +191,9 @@ double largestMove(const Problem& pb, const Vec& d) {
 // a step (its vertices, plus the period up to twice for an image's end), a point of the other
 // segment of a pair by at most 5 M (its image offset adds up to two periods more), so two
 // segments dmin apart cannot meet while 8 M stays below dmin. Pairs outside the list are
-// farther apart than the skin, which the rebuild rule keeps larger than the moves.
-double collisionFreeStep(const Problem& pb, const Vec& d, double dmin) {
-    return 0.9 * dmin / std::max(8.0 * largestMove(pb, d), 1e-300);
+// farther apart than the cutoff (D + skin), so dmin counts as at most the cutoff.
+double collisionFreeStep(const Problem& pb, const Vec& d, double dmin, double cutoff) {
+    return 0.9 * std::min(dmin, cutoff) / std::max(8.0 * largestMove(pb, d), 1e-300);
 }
 
 // The L-BFGS two-loop recursion: direction = -H g.
@@ -222,7 +249,7 @@ RelaxResult relaxYarn(const Pattern& initial, const RelaxOptions& options) {
         }
         // Step 3: backtracking line search from a step capped at maxStep per vertex and by the
         // continuous collision bound (no two segments can pass through each other).
-        double step = std::min({1.0, options.maxStep / std::max(largestMove(pb, d), 1e-300), collisionFreeStep(pb, d, dmin)});
+        double step = std::min({1.0, options.maxStep / std::max(largestMove(pb, d), 1e-300), collisionFreeStep(pb, d, dmin, options.contactDistance + skin)});
         double eNew = e;
         bool accepted = false;
         for (int k = 0; k < 40 && !accepted; ++k, step *= 0.5) {
@@ -255,11 +282,13 @@ RelaxResult relaxYarn(const Pattern& initial, const RelaxOptions& options) {
         result.closestApproach = std::min(result.closestApproach, dmin);
         if (moved > 0.5 * skin) {
             pairs = pairsOf(pb, v, skin);
+            ++result.pairRebuilds;
             moved = 0;
             e = energy(pb, pairs, v, g, &dmin);
         }
     }
     result.iterations = it;
+    result.evaluations = pb.evaluations;
     result.energy = e;
     result.pattern = toPattern(initial, pb, v);
     result.minDistance = minYarnDistance(result.pattern);

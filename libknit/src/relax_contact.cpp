@@ -107,6 +107,16 @@ struct Grid {
 
 int floorDiv(double v, double p) { return int(std::floor(v / p)); }
 
+// Centreline distance of segment s and segment t moved by `shift`: the midpoint test alone keeps
+// pairs up to two segment lengths farther than the cutoff (long cable legs: ten times too many).
+double segmentDistance(const std::vector<glm::dvec3>& x, double px, double py, const Seg& s, const Seg& t, const glm::dvec3& shift) {
+    const glm::dvec3 p0 = x[s.a], p1 = x[s.b] + glm::dvec3(s.dx * px, s.dy * py, 0);
+    const glm::dvec3 q0 = x[t.a] + shift, q1 = x[t.b] + glm::dvec3(t.dx * px, t.dy * py, 0) + shift;
+    double a = 0, b = 0;
+    closestParameters(p0, p1, q0, q1, a, b);
+    return glm::length((p0 + a * (p1 - p0)) - (q0 + b * (q1 - q0)));
+}
+
 }  // namespace
 
 std::vector<Pair> findPairs(const std::vector<glm::dvec3>& x, double px, double py, const std::vector<Seg>& segs,
@@ -151,6 +161,7 @@ std::vector<Pair> findPairs(const std::vector<glm::dvec3>& x, double px, double 
                     const glm::dvec3 shift(pr.ix * px, pr.iy * py, 0);
                     if (glm::length(mid[t] + shift - mid[s]) > reach) continue;
                     if (nearAlongYarn(yi, segs, pr, 3)) continue;
+                    if (segmentDistance(x, px, py, segs[s], segs[t], shift) > cutoff) continue;
                     pairs.push_back(pr);
                 }
             }

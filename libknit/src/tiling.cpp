@@ -2,7 +2,9 @@
 #include "knit/tiling.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <sstream>
 
 #include <glm/common.hpp>
@@ -14,7 +16,66 @@
 
 namespace knit {
 
+namespace {
+
+[[noreturn]] void badGauge(const std::string& text, const std::string& what) {
+    throw Error("--gauge '" + text + "': " + what + " (expected STITCHES x ROWS / LENGTH with a unit mm, cm, m or in, e.g. 22x30/10cm)");
+}
+
+// A positive finite number filling all of `token`; `what` names it in the error.
+double gaugeNumber(const std::string& text, const std::string& token, const std::string& what) {
+    const char* begin = token.c_str();
+    char* end = nullptr;
+    const double value = token.empty() ? 0.0 : std::strtod(begin, &end);
+    if (token.empty() || end == begin || *end != '\0') badGauge(text, what + " '" + token + "' is not a number");
+    if (!util::positiveFinite(value)) badGauge(text, what + " '" + token + "' must be positive and finite");
+    return value;
+}
+
+// Metres per unit of a gauge length, 0 for an unknown unit.
+double metresPerUnit(const std::string& unit) {
+    if (unit == "mm") return 0.001;
+    if (unit == "cm") return 0.01;
+    if (unit == "m") return 1.0;
+    if (unit == "in") return 0.0254;
+    return 0.0;
+}
+
+// Repeats that give one period the gauge's size: stitchesPerPeriod stitches by rowsPerPeriod rows.
+glm::dvec2 gaugeRepeats(const Pattern& pattern, const Gauge& g, glm::dvec2 metresPerUv) {
+    const glm::dvec2 periodMetres(pattern.stitchesPerPeriod * g.length / g.stitches, pattern.rowsPerPeriod * g.length / g.rows);
+    return metresPerUv / periodMetres;
+}
+
+}  // namespace
+
+Gauge parseGauge(const std::string& text) {
+    // Step 1: drop blanks, split at 'x' and '/'.
+    std::string t;
+    for (const char c : text)
+        if (!std::isspace(static_cast<unsigned char>(c))) t += c;
+    const size_t slash = t.find('/');
+    if (slash == std::string::npos) badGauge(text, "no '/' before the length");
+    const size_t cross = t.find_first_of("xX");
+    if (cross == std::string::npos || cross > slash) badGauge(text, "no 'x' between stitches and rows");
+    // Step 2: the length's unit is its trailing letters.
+    const std::string lengthText = t.substr(slash + 1);
+    size_t unitAt = lengthText.size();
+    while (unitAt > 0 && std::isalpha(static_cast<unsigned char>(lengthText[unitAt - 1]))) --unitAt;
+    const std::string unit = lengthText.substr(unitAt);
+    if (unit.empty()) badGauge(text, "the length has no unit");
+    const double perUnit = metresPerUnit(unit);
+    if (perUnit == 0.0) badGauge(text, "unknown length unit '" + unit + "'");
+    // Step 3: the three numbers.
+    Gauge g;
+    g.stitches = gaugeNumber(text, t.substr(0, cross), "stitches");
+    g.rows = gaugeNumber(text, t.substr(cross + 1, slash - cross - 1), "rows");
+    g.length = gaugeNumber(text, lengthText.substr(0, unitAt), "length") * perUnit;
+    return g;
+}
+
 PatternPlacement placePattern(const Pattern& pattern, const BaseMesh& mesh, const PlacementOptions& options) {
+    // Step 1: the options: repeats, or a gauge, or neither (physical size).
     const glm::dvec2 r = options.repeats;
     const bool physical = r.x == 0.0 && r.y == 0.0;
     if (!physical && !util::positiveFinite(r)) {
@@ -22,17 +83,25 @@ PatternPlacement placePattern(const Pattern& pattern, const BaseMesh& mesh, cons
         msg << "repeats (" << r.x << ", " << r.y << ") must both be positive (or both 0 for the pattern's physical size)";
         throw Error(msg.str());
     }
+    if (options.gauge && !physical) throw Error("--gauge and --repeats are mutually exclusive (a gauge sets the repeats)");
+    if (options.gauge && !(util::positiveFinite(options.gauge->stitches) && util::positiveFinite(options.gauge->rows) &&
+                           util::positiveFinite(options.gauge->length)))
+        throw Error("--gauge: stitches, rows and length must be positive and finite");
+    // Step 2: the mesh's own size and the repeats.
     const glm::dvec2 metresPerUv = uvToMetreScale(mesh);
     if (!(metresPerUv.x > 0 && metresPerUv.y > 0))
         throw Error(mesh.name + ": cannot place the pattern: the mesh has no triangle with non-degenerate UVs and 3D area");
     PatternPlacement placement;
-    placement.repeats = physical ? metresPerUv / glm::dvec2(pattern.px, pattern.py) : r;
+    placement.repeats = options.gauge ? gaugeRepeats(pattern, *options.gauge, metresPerUv)
+                        : physical    ? metresPerUv / glm::dvec2(pattern.px, pattern.py)
+                                      : r;
     if (placement.repeats.x > 1e7 || placement.repeats.y > 1e7) {
         std::ostringstream msg;
         msg << "repeats (" << placement.repeats.x << ", " << placement.repeats.y << ") exceed 1e7 periods per UV unit";
         throw Error(msg.str());
     }
-    // Physical size of one period on the mesh relative to the pattern's own period.
+    // Step 3: physical size of one period on the mesh relative to the pattern's own period.
+    placement.periodMetres = metresPerUv / placement.repeats;
     const double sx = metresPerUv.x / (placement.repeats.x * pattern.px);
     const double sy = metresPerUv.y / (placement.repeats.y * pattern.py);
     placement.scale = std::sqrt(sx * sy);

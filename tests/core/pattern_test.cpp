@@ -150,5 +150,30 @@ TEST(Generator, shippedStockinetteIsWhatTheGeneratorMakes) {
     EXPECT_EQ(shipped.edges, made.edges);
 }
 
+// *GAUGE: stitches and rows per period, written only when not 1 x 1 and read back; files
+// without it are one stitch by one row per period.
+TEST(Pattern, gaugeBlockRoundTripsAndDefaultsToOneStitchByOneRow) {
+    std::istringstream tiny(kTiny);
+    Pattern p = parsePyp(tiny, "tiny.pyp");
+    EXPECT_EQ(p.stitchesPerPeriod, 1);
+    EXPECT_EQ(p.rowsPerPeriod, 1);
+    p.stitchesPerPeriod = 12;
+    p.rowsPerPeriod = 16;
+    std::stringstream text;
+    writePyp(text, p);
+    EXPECT_NE(text.str().find("*GAUGE"), std::string::npos);
+    const Pattern back = parsePyp(text, "back.pyp");
+    EXPECT_EQ(back.stitchesPerPeriod, 12);
+    EXPECT_EQ(back.rowsPerPeriod, 16);
+    EXPECT_EQ(back.extraBlocks.count("GAUGE"), 0u);
+}
+
+TEST(Pattern, badGaugeBlockFailsWithItsLine) {
+    EXPECT_NE(errorOf(std::string(kTiny) + "*GAUGE\n0 2\n").find("bad.pyp:14: *GAUGE stitches and rows per period must be in 1 .. 1000000"),
+              std::string::npos)
+        << errorOf(std::string(kTiny) + "*GAUGE\n0 2\n");
+    EXPECT_NE(errorOf(std::string(kTiny) + "*GAUGE\n3\n").find("*GAUGE row has 1 values, expected 2"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace knit

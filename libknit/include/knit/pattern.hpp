@@ -33,6 +33,9 @@ struct Pattern {
     std::vector<glm::dvec3> points; // x, y in the plane, z = height above the mid-surface (metres)
     std::vector<double> twist;      // per-vertex twist angle t (radians), same size as points
     std::vector<PeriodicEdge> edges;
+    // Stitch columns and rows in one period (the optional *GAUGE block "stitches rows"; a chart
+    // records its size). Files without the block: one period is one stitch column by one row.
+    int stitchesPerPeriod = 1, rowsPerPeriod = 1;
     // Optional simulation blocks (*RL, *RK, *RT, *RefD1, *RefT, ...), kept verbatim by name.
     std::map<std::string, std::vector<std::vector<double>>> extraBlocks;
 };

@@ -12,7 +12,8 @@
 // Solver: L-BFGS (Nocedal & Wright, Numerical Optimization, algorithm 7.4, memory 8) with a
 // backtracking Armijo line search, a cap on how far a vertex may move per step, and a continuous
 // collision bound: no step moves two segments by more than 0.9 of their smallest distance, so
-// yarns cannot pass through each other. Single-threaded, fixed order: deterministic.
+// yarns cannot pass through each other. Contact forces are computed in parallel (TBB), one slot per
+// pair, and summed in pair order: deterministic, the same result for any thread count.
 #pragma once
 #include "knit/pattern.hpp"
 
@@ -39,6 +40,10 @@ struct RelaxResult {
     // The smallest pair distance over every accepted step, in radii: above 0 means no yarn
     // passed through another (each step is also capped by the continuous collision bound).
     double closestApproach = 0;
+    // Work done: energy (and gradient) evaluations, line-search ones included, and rebuilds of
+    // the contact pair list.
+    int evaluations = 0;
+    int pairRebuilds = 0;
 };
 
 // Throws knit::Error when the pattern is invalid or a yarn has fewer than 4 vertices.

@@ -6,6 +6,8 @@
 // physical factor as the period (see PatternPlacement::scale).
 #pragma once
 #include <cstdint>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -20,15 +22,30 @@ struct PatternPlacement {
     // Metres of object space per metre of pattern space: applied to heights and radii.
     // sqrt(sx * sy) of the per-axis factors sx = metresPerU / (U * px), sy = metresPerV / (V * py).
     double scale = 1.0;
+    // Metres one period spans on the mesh along u and v (metresPerU / U, metresPerV / V): with
+    // the pattern's stitches and rows per period, the gauge achieved.
+    glm::dvec2 periodMetres{0.0};
     glm::dvec2 cellSize() const { return {1.0 / repeats.x, 1.0 / repeats.y}; }
 };
+
+// A knitter's gauge: `stitches` stitch columns and `rows` rows measure `length` metres.
+struct Gauge {
+    double stitches = 0, rows = 0;
+    double length = 0;  // metres
+};
+// Parses "STITCHES x ROWS / LENGTH" with LENGTH a number and a unit mm, cm, m or in, e.g.
+// "22x30/10cm" (blanks allowed, X for x). Throws knit::Error "--gauge 'TEXT': what is wrong".
+Gauge parseGauge(const std::string& text);
 
 struct PlacementOptions {
     // (0, 0): keep the pattern's physical size on the mesh, using the mesh's own UV-to-metre
     // scale (uvToMetreScale); repeats then need not be integers.
     glm::dvec2 repeats{0.0};
+    // Instead of repeats: the physical size of a stitch. One period is then
+    // pattern.stitchesPerPeriod stitches by pattern.rowsPerPeriod rows of this gauge.
+    std::optional<Gauge> gauge;
 };
-// Throws knit::Error for negative, NaN or absurd repeats.
+// Throws knit::Error for negative, NaN or absurd repeats, and for a gauge with repeats.
 PatternPlacement placePattern(const Pattern& pattern, const BaseMesh& mesh, const PlacementOptions& options);
 
 // A set of tiles (copies of the pattern cell) to generate, with O(1) lookup.
