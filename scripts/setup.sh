@@ -6,7 +6,7 @@ packages=(
   build-essential cmake pkg-config
   libcgal-dev libopenmesh-dev libdraco-dev libtinygltf-dev libglm-dev libembree-dev libtbb-dev
   libgtest-dev libbenchmark-dev libstb-dev nlohmann-json3-dev libcli11-dev libtinyexr-dev
-  clang libclang-rt-14-dev
+  clang libclang-rt-14-dev clang-format clang-tidy
   "$@"
 )
 # The glTF-Validator runs on Node.js: use the machine's node/npm if present (a NodeSource
