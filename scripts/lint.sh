@@ -66,10 +66,10 @@ if [ "$run_tidy" = 1 ]; then
     _ "$build" "$logs" {} || true
   mapfile -t tidy_logs < <(find "$logs" -name '*.log' | sort)
   if [ ${#tidy_logs[@]} -gt 0 ]; then
-    grep -hv 'warnings\? generated\.$' "${tidy_logs[@]}"
+    grep -hv 'warnings\? generated\.$' "${tidy_logs[@]}" || true
     # A finding in a header shows up once per file that includes it: the summary lists it once.
     echo "  clang-tidy failed on ${#tidy_logs[@]} of ${#units[@]} files; distinct findings:"
-    grep -hE '^[^ ]+:[0-9]+:[0-9]+: error: ' "${tidy_logs[@]}" | sed "s|^$root/||; s/^/    /" | sort -u
+    grep -hE '^[^ ]+:[0-9]+:[0-9]+: error: ' "${tidy_logs[@]}" | sed "s|^$root/||; s/^/    /" | sort -u || true
     failed+=(tidy)
   fi
 fi
