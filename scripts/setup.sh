@@ -9,6 +9,7 @@ packages=(
   libeigen3-dev libmeshoptimizer-dev
   clang libclang-rt-14-dev
   pybind11-dev python3-dev python3-numpy python3-pytest blender
+  clang-format clang-tidy
   "$@"
 )
 # The glTF-Validator runs on Node.js: use the machine's node/npm if present (a NodeSource
