@@ -18,7 +18,9 @@
 #include "render_command.hpp"
 #endif
 
-int main(int argc, char** argv) {
+namespace {
+
+int runKnit(int argc, char** argv) {
     using namespace knit::cli;
     CLI::App app{"knit: ply-level knitted fabric on a UV-mapped triangle mesh (libknit)"};
     app.require_subcommand(1);
@@ -63,4 +65,18 @@ int main(int argc, char** argv) {
         return 3;
     }
     return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    // Errors raised while the flags are set up (outside runKnit's own handlers) still exit cleanly.
+    try {
+        return runKnit(argc, argv);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "knit: internal error: %s\n", e.what());
+    } catch (...) {
+        std::fprintf(stderr, "knit: internal error: unknown exception\n");
+    }
+    return 3;
 }

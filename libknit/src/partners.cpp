@@ -5,8 +5,6 @@
 #include <limits>
 #include <sstream>
 
-#include <glm/geometric.hpp>
-
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>

@@ -133,6 +133,7 @@ json measurePlies() {
     std::sort(bend.begin(), bend.end());
     const std::vector<double> quantiles = {0.05, 0.25, 0.5, 0.75, 0.95};
     std::vector<double> spacings;  // in R
+    spacings.reserve(quantiles.size());
     for (double q : quantiles) spacings.push_back(seg[std::min(seg.size() - 1, size_t(q * double(seg.size())))]);
 
     // Straight yarn: 12 ply turns; circle: as tight as the real yarns' tight bends (5% quantile

@@ -28,7 +28,9 @@
 #include "measure.hpp"
 #include "report.hpp"
 
-int main(int argc, char** argv) {
+namespace {
+
+int runTool(int argc, char** argv) {
     CLI::App app{"Measures libknit's speed-against-error trade-offs and writes docs/speed-vs-error.md"};
     app.require_subcommand(1);
     sve::MeasureOptions mo;
@@ -63,4 +65,17 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "speed_vs_error: error: %s\n", e.what());
         return 1;
     }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    try {
+        return runTool(argc, argv);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "speed_vs_error: error: %s\n", e.what());
+    } catch (...) {
+        std::fprintf(stderr, "speed_vs_error: error: unknown exception\n");
+    }
+    return 1;
 }

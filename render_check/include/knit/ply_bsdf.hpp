@@ -36,7 +36,7 @@ class PlyBsdf {
 public:
     enum Lobe { R = 0, TT = 1, BodyR = 2, BodyT = 3 };
     // `shadow` is the self-shadowing factor S' in [0, 1]; it scales the body lobes only.
-    PlyBsdf(const PlyMaterial& material, double shadow = 1.0);
+    explicit PlyBsdf(const PlyMaterial& material, double shadow = 1.0);
 
     Rgb eval(const glm::dvec3& wo, const glm::dvec3& wi) const;
     double pdf(const glm::dvec3& wo, const glm::dvec3& wi) const;
