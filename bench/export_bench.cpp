@@ -71,8 +71,8 @@ void BM_SweepTubes(benchmark::State& state) {
         benchmark::DoNotOptimize(m.positions.data());
     }
     state.counters["vertices"] = double(vertices);
-    state.counters["vertices/s"] = benchmark::Counter(double(vertices) * double(state.iterations()),
-                                                      benchmark::Counter::kIsRate);
+    state.counters["vertices/s"] =
+        benchmark::Counter(double(vertices) * double(state.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_SweepTubes)->Arg(2500)->Unit(benchmark::kMillisecond)->UseRealTime();
 
@@ -89,14 +89,15 @@ void BM_SweepTubesChunked(benchmark::State& state) {
     for (auto _ : state) {
         vertices = 0;
         for (size_t first = 0; first < c.curveCount(); first += curvesPerChunk) {
-            sweepTubes(c, 0.0004, o, first, std::min(c.curveCount(), first + curvesPerChunk), glm::dvec3(0.1, 0.2, 0.0), m);
+            sweepTubes(c, 0.0004, o, first, std::min(c.curveCount(), first + curvesPerChunk), glm::dvec3(0.1, 0.2, 0.0),
+                       m);
             vertices += m.vertexCount();
             benchmark::DoNotOptimize(m.positions.data());
         }
     }
     state.counters["vertices"] = double(vertices);
-    state.counters["vertices/s"] = benchmark::Counter(double(vertices) * double(state.iterations()),
-                                                      benchmark::Counter::kIsRate);
+    state.counters["vertices/s"] =
+        benchmark::Counter(double(vertices) * double(state.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_SweepTubesChunked)->Arg(1 << 20)->Unit(benchmark::kMillisecond)->UseRealTime();
 
@@ -114,8 +115,8 @@ ExportStats timeExports(benchmark::State& state, const Polylines& c, const Expor
     }
     removeOutputs(o.path);
     state.counters["MB"] = double(s.bytes) / 1e6;
-    state.counters["MB/s"] = benchmark::Counter(double(s.bytes) * double(state.iterations()) / 1e6,
-                                                benchmark::Counter::kIsRate);
+    state.counters["MB/s"] =
+        benchmark::Counter(double(s.bytes) * double(state.iterations()) / 1e6, benchmark::Counter::kIsRate);
     return s;
 }
 
@@ -152,9 +153,9 @@ std::unique_ptr<draco::Mesh> toDraco(const TubeMesh& m) {
     mesh.set_num_points(n);
     mesh.SetNumFaces(m.triangles.size());
     for (size_t f = 0; f < m.triangles.size(); ++f)
-        mesh.SetFace(draco::FaceIndex(uint32_t(f)), {draco::PointIndex(m.triangles[f].x),
-                                                     draco::PointIndex(m.triangles[f].y),
-                                                     draco::PointIndex(m.triangles[f].z)});
+        mesh.SetFace(draco::FaceIndex(uint32_t(f)),
+                     {draco::PointIndex(m.triangles[f].x), draco::PointIndex(m.triangles[f].y),
+                      draco::PointIndex(m.triangles[f].z)});
     auto add = [&](draco::GeometryAttribute::Type t, int comps, const void* data) {
         draco::GeometryAttribute ga;
         ga.Init(t, nullptr, uint8_t(comps), draco::DT_FLOAT32, false, 4 * comps, 0);

@@ -19,7 +19,7 @@
 
 namespace {
 
-constexpr double kScale = 0.0005;           // curve scale (metres)
+constexpr double kScale = 0.0005;  // curve scale (metres)
 constexpr double kYarnRadius = 0.8 * kScale;
 
 const knit::MappedYarns& benchYarns() {

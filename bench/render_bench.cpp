@@ -184,7 +184,8 @@ void modeRender(benchmark::State& state, const Fixture& f, bool farCamera) {
     TraceSettings s;
     s.width = 96, s.height = 72, s.spp = 4;
     // Synthetic: close up; pipeline: where renderScene puts it (30-degree view of the bounds).
-    s.camera.eye = f.centre + glm::dvec3(0, 0, farCamera ? f.radius / std::sin(15.0 * 3.14159265358979 / 180.0) : 2.5 * f.radius);
+    s.camera.eye =
+        f.centre + glm::dvec3(0, 0, farCamera ? f.radius / std::sin(15.0 * 3.14159265358979 / 180.0) : 2.5 * f.radius);
     s.camera.fovYDegrees = farCamera ? 30 : s.camera.fovYDegrees;
     s.camera.target = f.centre;
     s.environment = Rgb(0.05);
@@ -208,15 +209,9 @@ void modeRender(benchmark::State& state, const Fixture& f, bool farCamera) {
     state.counters["scene_MB"] = ts.memory().sceneBytes() / 1e6;
 }
 void BM_ModeRender(benchmark::State& state) { modeRender(state, fixture(), false); }
-BENCHMARK(BM_ModeRender)
-    ->ArgsProduct({{0, 1, 2}, {1, 2}})
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime();
+BENCHMARK(BM_ModeRender)->ArgsProduct({{0, 1, 2}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime();
 void BM_PipelineModeRender(benchmark::State& state) { modeRender(state, pipeline(), true); }
-BENCHMARK(BM_PipelineModeRender)
-    ->ArgsProduct({{0, 1, 2}, {1}})
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime();
+BENCHMARK(BM_PipelineModeRender)->ArgsProduct({{0, 1, 2}, {1}})->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 

@@ -74,7 +74,8 @@ inline Outcome runCurvesJson(const uint8_t* data, size_t size) {
 class TempFile {
 public:
     explicit TempFile(const std::string& extension) {
-        path_ = (std::filesystem::temp_directory_path() / ("knit_fuzz_" + std::to_string(::getpid()) + extension)).string();
+        path_ =
+            (std::filesystem::temp_directory_path() / ("knit_fuzz_" + std::to_string(::getpid()) + extension)).string();
     }
     ~TempFile() { std::remove(path_.c_str()); }
     const std::string& write(const uint8_t* data, size_t size) {
@@ -153,7 +154,8 @@ inline Outcome runChart(const uint8_t* data, size_t size) {
             throw std::logic_error("chart: inconsistent size");
         for (int r = 0; r < chart.height; ++r)
             for (int c = 0; c < chart.width; ++c)
-                if (chart.sourceColumn(r, c) < 0 || chart.sourceColumn(r, c) >= chart.width) throw std::logic_error("chart: source column outside");
+                if (chart.sourceColumn(r, c) < 0 || chart.sourceColumn(r, c) >= chart.width)
+                    throw std::logic_error("chart: source column outside");
         if (chart.width * chart.height <= 64) chartToCell(chart, ChartCellOptions{0.001, 8});
         return Outcome::Parsed;
     } catch (const Error&) {

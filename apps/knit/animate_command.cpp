@@ -100,12 +100,14 @@ void checkOutput(const ExportOptions& o) {
     CacheFormat format;
     if (cacheFormatOf(o.path, format)) {
         if (o.what == ExportWhat::Tubes)
-            throw Error("-o '" + o.path + "': point caches hold curve points; --export tubes needs per-frame files (e.g. out_%04d.glb)");
+            throw Error("-o '" + o.path +
+                        "': point caches hold curve points; --export tubes needs per-frame files (e.g. out_%04d.glb)");
         requireWritableFolder(o.path, "point cache");
         return;
     }
     if (!hasFramePattern(o.path))
-        throw Error("-o '" + o.path + "': give a point cache (out.pc2, out.mdd) or a per-frame pattern such as out_%04d." +
+        throw Error("-o '" + o.path +
+                    "': give a point cache (out.pc2, out.mdd) or a per-frame pattern such as out_%04d." +
                     (util::lowerExtension(o.path).empty() ? std::string("glb") : util::lowerExtension(o.path)) +
                     " (one animated .glb is not supported yet)");
     validateExportOptions(o);
@@ -138,16 +140,20 @@ nlohmann::json animateReport(double bindSeconds, const std::vector<FrameRecord>&
     std::vector<double> t;
     for (const FrameRecord& f : frames) t.push_back(f.seconds);
     std::sort(t.begin(), t.end());
-    nlohmann::json report = {
-        {"bindSeconds", bindSeconds},
-        {"frameSeconds", {{"min", t.front()}, {"median", t[t.size() / 2]}, {"max", t.back()}}},
-        {"stageSeconds",
-         {{"read", s.read}, {"normals", s.evaluate.normals}, {"evaluate", s.evaluate.evaluate},
-          {"resample", s.evaluate.resample}, {"plies", s.evaluate.plies}, {"stats", s.evaluate.stats}, {"write", s.write}}},
-        {"peakMemoryBytes", util::peakResidentBytes()},
-        {"yarnVertices", animator.rest().yarns().curves.pointCount()},
-        {"plyVertices", animator.plyPointCount()},
-        {"yarnRadius", animator.rest().yarnRadius()}};
+    nlohmann::json report = {{"bindSeconds", bindSeconds},
+                             {"frameSeconds", {{"min", t.front()}, {"median", t[t.size() / 2]}, {"max", t.back()}}},
+                             {"stageSeconds",
+                              {{"read", s.read},
+                               {"normals", s.evaluate.normals},
+                               {"evaluate", s.evaluate.evaluate},
+                               {"resample", s.evaluate.resample},
+                               {"plies", s.evaluate.plies},
+                               {"stats", s.evaluate.stats},
+                               {"write", s.write}}},
+                             {"peakMemoryBytes", util::peakResidentBytes()},
+                             {"yarnVertices", animator.rest().yarns().curves.pointCount()},
+                             {"plyVertices", animator.plyPointCount()},
+                             {"yarnRadius", animator.rest().yarnRadius()}};
     nlohmann::json& list = report["frames"] = nlohmann::json::array();
     for (const FrameRecord& f : frames) {
         list.push_back({{"frame", f.number}, {"seconds", f.seconds}});
@@ -160,8 +166,8 @@ nlohmann::json animateReport(double bindSeconds, const std::vector<FrameRecord>&
 }
 
 // Step: every frame read, evaluated and written; the per-frame records.
-std::vector<FrameRecord> runFrames(const FrameSequence& seq, const Animator& animator, FrameSink& sink, StageTotals& totals,
-                                   bool quiet) {
+std::vector<FrameRecord> runFrames(const FrameSequence& seq, const Animator& animator, FrameSink& sink,
+                                   StageTotals& totals, bool quiet) {
     const InterruptGuard interrupt;
     AnimationFrame frame;
     std::vector<FrameRecord> records;
@@ -178,8 +184,8 @@ std::vector<FrameRecord> runFrames(const FrameSequence& seq, const Animator& ani
         totals.write += since(t1);
         records.push_back({seq.frame(i).number, since(t0), frame.stats});
         if (!quiet)
-            std::fprintf(stderr, "frame %d (%zu/%zu): %.3f s, max stretch %.4g\n", seq.frame(i).number, i + 1, seq.size(),
-                         records.back().seconds, frame.stats.maxStretch);
+            std::fprintf(stderr, "frame %d (%zu/%zu): %.3f s, max stretch %.4g\n", seq.frame(i).number, i + 1,
+                         seq.size(), records.back().seconds, frame.stats.maxStretch);
     }
     interrupt.check();
     return records;
@@ -190,21 +196,26 @@ std::vector<FrameRecord> runFrames(const FrameSequence& seq, const Animator& ani
 void addAnimateCommand(CLI::App& app, AnimateCommand& a) {
     a.exportOptions.path = "knit-anim.pc2";
     a.command = app.add_subcommand("animate", "Bind once on the rest pose; evaluate every frame of a mesh sequence");
-    a.command->add_option("--frames", a.frames, "Mesh sequence: printf pattern (frames/frame_%04d.obj) or folder of numbered meshes")
+    a.command
+        ->add_option("--frames", a.frames,
+                     "Mesh sequence: printf pattern (frames/frame_%04d.obj) or folder of numbered meshes")
         ->required();
     a.command->add_option("--rest", a.rest, "Rest pose mesh that is bound (default: the first frame)");
     a.command->add_option("--first", a.range.first, "First frame number (default: the smallest found)");
     a.command->add_option("--last", a.range.last, "Last frame number (default: the largest found)");
     a.command->add_option("--step", a.range.step, "Frame number step")->capture_default_str();
     a.command->add_option("--fps", a.fps, "Frames per second (MDD frame times)")->capture_default_str();
-    a.command->add_flag("--no-stats", a.noStats,
-                        "Skip the per-frame maxStretch / minYarnDistance (the distance search costs more than the plies)");
+    a.command->add_flag(
+        "--no-stats", a.noStats,
+        "Skip the per-frame maxStretch / minYarnDistance (the distance search costs more than the plies)");
     addSceneFlags(*a.command, a.scene);
     addExportFlags(*a.command, a.exportOptions);
-    a.command->add_option("-o,--output", a.exportOptions.path,
-                          "out.pc2 / out.mdd (+ topology out.obj) or a per-frame pattern out_%04d.glb|.obj|.bcc|.pbrt")
+    a.command
+        ->add_option("-o,--output", a.exportOptions.path,
+                     "out.pc2 / out.mdd (+ topology out.obj) or a per-frame pattern out_%04d.glb|.obj|.bcc|.pbrt")
         ->capture_default_str();
-    a.command->add_option("--report", a.report, "Write a JSON report (bind and frame times, per-frame stretch and yarn distance)");
+    a.command->add_option("--report", a.report,
+                          "Write a JSON report (bind and frame times, per-frame stretch and yarn distance)");
     a.command->footer(kSceneHelp);
 }
 
@@ -225,15 +236,17 @@ int runAnimate(const AnimateCommand& a) {
     // Step 3: the frames, streamed into the outputs; then commit.
     CacheFormat format;
     std::unique_ptr<FrameSink> sink;
-    if (cacheFormatOf(a.exportOptions.path, format)) sink = std::make_unique<CacheSink>(a.exportOptions.path, animator, seq, a.fps);
+    if (cacheFormatOf(a.exportOptions.path, format))
+        sink = std::make_unique<CacheSink>(a.exportOptions.path, animator, seq, a.fps);
     else sink = std::make_unique<FilesSink>(animator, a.exportOptions);
     StageTotals totals;
     const std::vector<FrameRecord> frames = runFrames(seq, animator, *sink, totals, a.scene.quiet);
     sink->commit();
     // Step 4: the report and the summary.
     if (!a.report.empty()) writeReport(a.report, animateReport(bindSeconds, frames, totals, animator));
-    std::printf("animated %zu frames (%zu yarn vertices, %zu ply vertices per frame): bind %.3f s, wrote %s\n", frames.size(),
-                rest.yarns().curves.pointCount(), animator.plyPointCount(), bindSeconds, a.exportOptions.path.c_str());
+    std::printf("animated %zu frames (%zu yarn vertices, %zu ply vertices per frame): bind %.3f s, wrote %s\n",
+                frames.size(), rest.yarns().curves.pointCount(), animator.plyPointCount(), bindSeconds,
+                a.exportOptions.path.c_str());
     return 0;
 }
 

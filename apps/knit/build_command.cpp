@@ -34,14 +34,16 @@ nlohmann::json buildReportJson(const Scene& scene, const SceneStats& numbers, co
     return report;
 }
 
-void printSummary(const Scene& s, const SceneStats& st, const ExportStats& e, const std::string& output, bool streamed) {
+void printSummary(const Scene& s, const SceneStats& st, const ExportStats& e, const std::string& output,
+                  bool streamed) {
     std::printf("pattern %s on mesh %s: repeats %.4g x %.4g, yarn radius %.4g m\n", s.pattern().name.c_str(),
                 s.mesh().name.c_str(), s.placement().repeats.x, s.placement().repeats.y, s.yarnRadius());
-    std::printf("%zu cells, %zu yarns (%zu closed loops, %zu open ends, %zu welded ends), %zu yarn vertices, %zu ply vertices\n",
+    std::printf("%zu cells, %zu yarns (%zu closed loops, %zu open ends, %zu welded ends), %zu yarn vertices, %zu ply "
+                "vertices\n",
                 st.cells, st.yarns, st.bind.closedLoops, st.bind.openEnds, st.bind.weldedEnds, st.yarnVertices,
                 streamed ? e.vertices : st.plyVertices);
-    std::printf("wrote %s (%s, %zu curves, %zu vertices) in %.3f s total\n", output.c_str(), e.format.c_str(), e.curves, e.vertices,
-                st.totalSeconds + e.seconds);
+    std::printf("wrote %s (%s, %zu curves, %zu vertices) in %.3f s total\n", output.c_str(), e.format.c_str(), e.curves,
+                e.vertices, st.totalSeconds + e.seconds);
 }
 
 // --rest: bound on the rest mesh, evaluated on --mesh (what `knit animate` writes for that frame).
@@ -83,10 +85,12 @@ void addBuildCommand(CLI::App& app, BuildCommand& b) {
     b.command = app.add_subcommand("build", "Tile, stitch, map and twist plies; export curves or tubes");
     addSceneFlags(*b.command, b.scene);
     addExportFlags(*b.command, b.exportOptions);
-    b.command->add_option("-o,--output", b.exportOptions.path, "Output file; the extension picks the format")->capture_default_str();
+    b.command->add_option("-o,--output", b.exportOptions.path, "Output file; the extension picks the format")
+        ->capture_default_str();
     b.command->add_option("--report", b.report, "Write a JSON report (counts, stage times, segment lengths)");
-    b.command->add_option("--rest", b.rest,
-                          "Bind on this rest-pose mesh and evaluate on --mesh (same connectivity): one frame of `knit animate`");
+    b.command->add_option(
+        "--rest", b.rest,
+        "Bind on this rest-pose mesh and evaluate on --mesh (same connectivity): one frame of `knit animate`");
     b.command->footer(kSceneHelp);
 }
 

@@ -13,10 +13,13 @@
 namespace knit::cli {
 
 void addChartCommand(CLI::App& app, ChartCommand& c) {
-    c.command = app.add_subcommand("chart", "Relax a stitch chart (.chart/.txt or chart:NAME) into a periodic .pyp cell");
+    c.command =
+        app.add_subcommand("chart", "Relax a stitch chart (.chart/.txt or chart:NAME) into a periodic .pyp cell");
     c.command->add_option("chart", c.chart, "Chart file, or a built-in chart:NAME")->required();
     c.command->add_option("-o,--output", c.output, "Output .pyp file")->required();
-    c.command->add_option("--yarn-radius", c.yarnRadius, "Yarn radius (metres)")->check(CLI::PositiveNumber)->capture_default_str();
+    c.command->add_option("--yarn-radius", c.yarnRadius, "Yarn radius (metres)")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
     c.command->add_option("--report", c.report, "Write a JSON report (size, iterations, min distance, period)");
 }
 
@@ -43,11 +46,13 @@ int runChart(const ChartCommand& c) {
     ChartPatternOptions options;
     options.radius = c.yarnRadius;
     const ChartPattern cp = relaxChart(chart, options);
-    writeFileAtomically(c.output, [&](std::ostream& out) { writePyp(out, cp.relaxed.pattern); }, false);
+    writeFileAtomically(
+        c.output, [&](std::ostream& out) { writePyp(out, cp.relaxed.pattern); }, false);
     if (!c.report.empty())
-        writeFileAtomically(c.report, [&](std::ostream& out) { out << reportOf(chart, cp).dump(2) << '\n'; }, false);
-    std::printf("wrote %s (%d x %d stitches, %zu vertices, min distance %.3f r, %.2f s)\n", c.output.c_str(), chart.width, chart.height,
-                cp.relaxed.pattern.points.size(), cp.relaxed.minDistance, cp.seconds);
+        writeFileAtomically(
+            c.report, [&](std::ostream& out) { out << reportOf(chart, cp).dump(2) << '\n'; }, false);
+    std::printf("wrote %s (%d x %d stitches, %zu vertices, min distance %.3f r, %.2f s)\n", c.output.c_str(),
+                chart.width, chart.height, cp.relaxed.pattern.points.size(), cp.relaxed.minDistance, cp.seconds);
     return 0;
 }
 

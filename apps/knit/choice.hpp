@@ -39,8 +39,7 @@ CLI::Option* addChoice(CLI::App& command, const std::string& flag, Enum& target,
         help);
     if (spelling == Spelling::AnyCase)
         option->transform(CLI::IsMember(words, CLI::ignore_case));  // maps to the listed spelling
-    else
-        option->check(CLI::IsMember(words));
+    else option->check(CLI::IsMember(words));
     return option;
 }
 

@@ -33,7 +33,8 @@ size_t plyPoints(const Scene& s) {
 
 void refuseEmptyExport(const Scene& scene, const ExportOptions& options) {
     if (scene.yarns().curves.pointCount() == 0) refuse(whyNoYarns(scene));
-    const bool needsPlies = options.what == ExportWhat::Plies || (options.what == ExportWhat::Tubes && options.tubesOf == TubeSource::Plies);
+    const bool needsPlies = options.what == ExportWhat::Plies ||
+                            (options.what == ExportWhat::Tubes && options.tubesOf == TubeSource::Plies);
     if (!needsPlies || plyPoints(scene) > 0) return;
     const PlyOptions o = resolvePlyOptions(scene.plyOptions());
     std::ostringstream why;

@@ -7,10 +7,12 @@ namespace knit::cli {
 
 void addExportFlags(CLI::App& command, ExportOptions& options) {
     // Enum options as checked words (shown as TEXT:{...}); any case is read as the listed spelling.
-    const Choices<ExportWhat> what = {{"yarns", ExportWhat::Yarns}, {"plies", ExportWhat::Plies}, {"tubes", ExportWhat::Tubes}};
-    const Choices<TubeSource> tubesOf = {{"auto", TubeSource::Auto}, {"plies", TubeSource::Plies}, {"yarns", TubeSource::Yarns}};
-    addChoice(command, "--export", options.what, what, "What to write: yarn centrelines, ply curves, or swept tube meshes",
-              Spelling::AnyCase)
+    const Choices<ExportWhat> what = {
+        {"yarns", ExportWhat::Yarns}, {"plies", ExportWhat::Plies}, {"tubes", ExportWhat::Tubes}};
+    const Choices<TubeSource> tubesOf = {
+        {"auto", TubeSource::Auto}, {"plies", TubeSource::Plies}, {"yarns", TubeSource::Yarns}};
+    addChoice(command, "--export", options.what, what,
+              "What to write: yarn centrelines, ply curves, or swept tube meshes", Spelling::AnyCase)
         ->default_str(wordOf(what, options.what))
         ->group("Export");
     addChoice(command, "--tubes-of", options.tubesOf, tubesOf,
@@ -21,8 +23,9 @@ void addExportFlags(CLI::App& command, ExportOptions& options) {
         ->check(CLI::Range(3, 1024))
         ->capture_default_str()
         ->group("Export");
-    command.add_flag_function(
-               "--no-caps", [&options](int64_t) { options.caps = false; }, "Leave open tube ends open")
+    command
+        .add_flag_function(
+            "--no-caps", [&options](int64_t) { options.caps = false; }, "Leave open tube ends open")
         ->group("Export");
     CLI::Option* draco =
         command.add_flag("--draco", options.draco, "KHR_draco_mesh_compression for tube meshes (.glb/.gltf)")
@@ -37,19 +40,21 @@ void addExportFlags(CLI::App& command, ExportOptions& options) {
         ->capture_default_str()
         ->needs(draco)
         ->group("Export");
-    command.add_flag("--quantize", options.quantize,
-                     "KHR_mesh_quantization: int16 positions/normals/tangents for tube meshes (.glb/.gltf)")
+    command
+        .add_flag("--quantize", options.quantize,
+                  "KHR_mesh_quantization: int16 positions/normals/tangents for tube meshes (.glb/.gltf)")
         ->excludes(draco)
         ->group("Export");
-    command.add_flag("--meshopt", options.meshopt,
-                     "EXT_meshopt_compression of tube meshes (.glb/.gltf; with --quantize: smallest files)")
+    command
+        .add_flag("--meshopt", options.meshopt,
+                  "EXT_meshopt_compression of tube meshes (.glb/.gltf; with --quantize: smallest files)")
         ->excludes(draco)
         ->group("Export");
-    command.add_flag("--yarn-colors", options.yarnColors, "COLOR_0 per yarn on tube meshes (glTF)")
-        ->group("Export");
-    command.add_option("--chunk-vertices", options.chunkVertices,
-                       "Streaming chunk size: tube vertices (or curve points) per chunk / glTF node; "
-                       "0 = auto (1048576, 262144 with --draco, 65535 with --quantize/--meshopt)")
+    command.add_flag("--yarn-colors", options.yarnColors, "COLOR_0 per yarn on tube meshes (glTF)")->group("Export");
+    command
+        .add_option("--chunk-vertices", options.chunkVertices,
+                    "Streaming chunk size: tube vertices (or curve points) per chunk / glTF node; "
+                    "0 = auto (1048576, 262144 with --draco, 65535 with --quantize/--meshopt)")
         ->check(CLI::Range(size_t(0), size_t(1) << 31))
         ->capture_default_str()
         ->group("Export");

@@ -17,7 +17,8 @@ constexpr double kFloatMax = double(std::numeric_limits<float>::max());
 void require(double value, const std::string& what, const std::string& fix, const std::string& output) {
     if (std::abs(value) <= kFloatMax) return;
     std::ostringstream msg;
-    msg << "cannot write '" << output << "': " << what << " " << value << " is beyond the float32 range (3.4e38); " << fix;
+    msg << "cannot write '" << output << "': " << what << " " << value << " is beyond the float32 range (3.4e38); "
+        << fix;
     throw Error(msg.str());
 }
 

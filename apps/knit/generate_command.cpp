@@ -11,7 +11,9 @@ namespace knit::cli {
 void addGenerateCommand(CLI::App& app, GenerateCommand& g) {
     StockinetteParams& s = g.stockinette;
     g.command = app.add_subcommand("generate", "Write one of the project's parametric patterns as .pyp");
-    g.command->add_option("name", g.name, "Generator: stockinette")->check(CLI::IsMember({"stockinette"}))->capture_default_str();
+    g.command->add_option("name", g.name, "Generator: stockinette")
+        ->check(CLI::IsMember({"stockinette"}))
+        ->capture_default_str();
     g.command->add_option("-o,--output", g.output, "Output .pyp file")->required();
     g.command->add_option("--a", s.a, "Loop width (model units)")->capture_default_str();
     g.command->add_option("--h", s.h, "Loop height (model units)")->capture_default_str();
@@ -24,7 +26,8 @@ void addGenerateCommand(CLI::App& app, GenerateCommand& g) {
 
 int runGenerate(const GenerateCommand& g) {
     const Pattern p = generateStockinette(g.stockinette);
-    writeFileAtomically(g.output, [&](std::ostream& out) { writePyp(out, p); }, false);
+    writeFileAtomically(
+        g.output, [&](std::ostream& out) { writePyp(out, p); }, false);
     std::printf("wrote %s (%zu vertices, period %.9g x %.9g m)\n", g.output.c_str(), p.points.size(), p.px, p.py);
     return 0;
 }

@@ -11,7 +11,7 @@ namespace knit::cli {
 struct GenerateCommand {
     CLI::App* command = nullptr;  // set by addGenerateCommand
     std::string name = "stockinette";
-    std::string output;           // .pyp path (required)
+    std::string output;  // .pyp path (required)
     StockinetteParams stockinette;
 };
 

@@ -13,14 +13,16 @@ namespace knit::cli {
 namespace {
 
 void printJson(const Pattern& p, const PatternInfo& info) {
-    const nlohmann::json j = {{"name", p.name},
-                              {"period", {info.px, info.py}},
-                              {"radius", info.radius},
-                              {"vertices", info.vertexCount},
-                              {"edges", info.edgeCount},
-                              {"crossings", {{"+x", info.crossings[0]}, {"-x", info.crossings[1]}, {"+y", info.crossings[2]}, {"-y", info.crossings[3]}}},
-                              {"loops_1x1", info.loops1x1},
-                              {"open_yarns_1x1", info.openYarns1x1}};
+    const nlohmann::json j = {
+        {"name", p.name},
+        {"period", {info.px, info.py}},
+        {"radius", info.radius},
+        {"vertices", info.vertexCount},
+        {"edges", info.edgeCount},
+        {"crossings",
+         {{"+x", info.crossings[0]}, {"-x", info.crossings[1]}, {"+y", info.crossings[2]}, {"-y", info.crossings[3]}}},
+        {"loops_1x1", info.loops1x1},
+        {"open_yarns_1x1", info.openYarns1x1}};
     std::cout << j.dump(2) << '\n';
 }
 
@@ -29,16 +31,18 @@ void printText(const Pattern& p, const PatternInfo& info) {
     std::printf("period    %.9g x %.9g m\n", info.px, info.py);
     std::printf("radius    %.9g m\n", info.radius);
     std::printf("vertices  %zu\nedges     %zu\n", info.vertexCount, info.edgeCount);
-    std::printf("crossing  +x %zu, -x %zu, +y %zu, -y %zu\n", info.crossings[0], info.crossings[1], info.crossings[2], info.crossings[3]);
-    std::printf("bounds    x [%.6g, %.6g] y [%.6g, %.6g] z [%.6g, %.6g]\n", info.boundsMin.x, info.boundsMax.x, info.boundsMin.y,
-                info.boundsMax.y, info.boundsMin.z, info.boundsMax.z);
+    std::printf("crossing  +x %zu, -x %zu, +y %zu, -y %zu\n", info.crossings[0], info.crossings[1], info.crossings[2],
+                info.crossings[3]);
+    std::printf("bounds    x [%.6g, %.6g] y [%.6g, %.6g] z [%.6g, %.6g]\n", info.boundsMin.x, info.boundsMax.x,
+                info.boundsMin.y, info.boundsMax.y, info.boundsMin.z, info.boundsMax.z);
     std::printf("1x1 periodic tiling: %zu closed loops, %zu open yarns\n", info.loops1x1, info.openYarns1x1);
 }
 
 }  // namespace
 
 void addInfoCommand(CLI::App& app, InfoCommand& i) {
-    i.command = app.add_subcommand("info", "Describe a pattern: period, radius, counts, edges crossing each side, loops of a 1x1 tiling");
+    i.command = app.add_subcommand(
+        "info", "Describe a pattern: period, radius, counts, edges crossing each side, loops of a 1x1 tiling");
     i.command->add_option("pattern", i.pattern, "Pattern file (.pyp / .json) or built-in name")->required();
     i.command->add_flag("--json", i.json, "Print JSON");
 }
@@ -46,10 +50,8 @@ void addInfoCommand(CLI::App& app, InfoCommand& i) {
 int runInfo(const InfoCommand& i) {
     const Pattern p = loadPatternFileOrName(i.pattern);
     const PatternInfo info = describePattern(p);
-    if (i.json)
-        printJson(p, info);
-    else
-        printText(p, info);
+    if (i.json) printJson(p, info);
+    else printText(p, info);
     return 0;
 }
 

@@ -22,8 +22,9 @@ void addRenderCommand(CLI::App& app, RenderCommand& r) {
 
 int runRender(const RenderCommand& r) {
     checkReportPath(r.report);  // before the scene and the render: the same check as `build`
-    refuseCollidingPaths({{"--mesh", r.scene.scene.mesh}, {"--pattern", r.scene.scene.pattern}, {"--material", r.options.materialFile}},
-                         {{"--output", r.options.output}, {"--exr", r.options.exr}, {"--report", r.report}});
+    refuseCollidingPaths(
+        {{"--mesh", r.scene.scene.mesh}, {"--pattern", r.scene.scene.pattern}, {"--material", r.options.materialFile}},
+        {{"--output", r.options.output}, {"--exr", r.options.exr}, {"--report", r.report}});
     RenderOptions options = r.options;
     options.progress = options.progress && !r.scene.quiet;
     const Scene scene = buildScene(resolveScene(r.scene));

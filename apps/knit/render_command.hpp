@@ -14,7 +14,7 @@ struct RenderCommand {
     CLI::App* command = nullptr;  // set by addRenderCommand
     SceneFlags scene;
     RenderOptions options;
-    std::string report;           // --report path; empty = none
+    std::string report;  // --report path; empty = none
 };
 
 // Registers the subcommand and its flags on `app`, bound to `render` (which must outlive parsing).

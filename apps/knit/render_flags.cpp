@@ -6,10 +6,12 @@
 namespace knit::cli {
 
 void addRenderFlags(CLI::App& app, RenderOptions& o) {
-    addChoice(app, "--light", o.light, Choices<LightPlacement>{{"front", LightPlacement::Front}, {"back", LightPlacement::Back}},
+    addChoice(app, "--light", o.light,
+              Choices<LightPlacement>{{"front", LightPlacement::Front}, {"back", LightPlacement::Back}},
               "Light placement: front (camera side) or back (behind the cloth)");
     addChoice(app, "--mode", o.mode,
-              Choices<GeometryMode>{{"curves", GeometryMode::Curves}, {"tubes", GeometryMode::Tubes}, {"grid", GeometryMode::Grid}},
+              Choices<GeometryMode>{
+                  {"curves", GeometryMode::Curves}, {"tubes", GeometryMode::Tubes}, {"grid", GeometryMode::Grid}},
               "Geometry: curves (Embree round curves), tubes (swept meshes), grid (two-stage cells)");
     app.add_option("--spp", o.spp, "Samples per pixel (>= 1)");
     app.add_option("--width", o.width, "Image width in pixels");
@@ -19,7 +21,8 @@ void addRenderFlags(CLI::App& app, RenderOptions& o) {
     app.add_option("--seed", o.seed, "Random seed (images are deterministic for a seed)");
     app.add_option("--material", o.materialFile, "Ply material JSON file (flags below override its fields)");
     auto scalar = [&](const char* flag, const char* field, const char* help) {
-        app.add_option_function<double>(flag, [&o, field](double v) { o.materialOverrides[field] = {v}; }, help);
+        app.add_option_function<double>(
+            flag, [&o, field](double v) { o.materialOverrides[field] = {v}; }, help);
     };
     auto color = [&](const char* flag, const char* field, const char* help) {
         app.add_option_function<std::vector<double>>(
@@ -39,8 +42,9 @@ void addRenderFlags(CLI::App& app, RenderOptions& o) {
     scalar("--fiber-twist", "fiberTwist", "Fiber twist (radians per ply radius)");
     scalar("--fiber-shadow-floor", "fiberShadowFloor", "Fiber shadow floor thr");
     scalar("--ply-shadow-floor", "plyShadowFloor", "Ply shadow floor thr");
-    app.add_flag_callback("--no-fiber-detail", [&o] { o.materialOverrides["fiberDetail"] = {0.0}; },
-                          "Disable the fiber normal/tangent perturbation");
+    app.add_flag_callback(
+        "--no-fiber-detail", [&o] { o.materialOverrides["fiberDetail"] = {0.0}; },
+        "Disable the fiber normal/tangent perturbation");
     app.add_option("--max-depth", o.maxDepth, "Maximum path length (bounces)");
     app.add_option("--env", o.environment, "Constant environment radiance");
     app.add_option("--light-irradiance", o.lightIrradiance, "Irradiance of the area light at the cloth centre");

@@ -16,11 +16,13 @@ void checkReportPath(const std::string& path) {
     if (path.empty()) return;
     requireWritableFolder(path, "report");
     std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) throw Error("cannot write report '" + path + "': a folder with that name exists");
+    if (std::filesystem::is_directory(path, ec))
+        throw Error("cannot write report '" + path + "': a folder with that name exists");
 }
 
 void writeReport(const std::string& path, const nlohmann::json& report) {
-    writeFileAtomically(path, [&](std::ostream& out) { out << report.dump(2) << '\n'; }, false);
+    writeFileAtomically(
+        path, [&](std::ostream& out) { out << report.dump(2) << '\n'; }, false);
 }
 
 namespace {
@@ -59,7 +61,8 @@ nlohmann::json sceneReport(const Scene& s, const SceneStats& st) {
                  {"degenerate_uv_faces", s.grid().degenerateUvFaces},
                  {"uv_charts", s.grid().chartCount},
                  {"overlapping_uv_charts", nlohmann::json::array()}};
-    for (const glm::uvec2& pair : s.grid().overlappingCharts) j["mesh"]["overlapping_uv_charts"].push_back({pair.x, pair.y});
+    for (const glm::uvec2& pair : s.grid().overlappingCharts)
+        j["mesh"]["overlapping_uv_charts"].push_back({pair.x, pair.y});
     j["placement"] = {{"repeats", {s.placement().repeats.x, s.placement().repeats.y}},
                       {"scale", s.placement().scale},
                       {"yarn_radius", s.yarnRadius()},

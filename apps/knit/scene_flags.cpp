@@ -30,24 +30,43 @@ std::string commaList(const std::vector<std::string>& names) {
 
 void addSceneFlags(CLI::App& cmd, SceneFlags& f) {
     const Choices<Twist> twists = {{"S", Twist::S}, {"Z", Twist::Z}};
-    cmd.add_option("--pattern", f.scene.pattern, "Pattern file (.pyp, .json curves) or built-in: " + commaList(builtinPatternNames()))->capture_default_str();
-    cmd.add_option("--mesh", f.scene.mesh, "Base mesh file (.obj, .ply, .off, .gltf, .glb; needs UVs; glTF v is flipped to OBJ convention) or built-in: " + commaList(builtinMeshNames()))->capture_default_str();
-    cmd.add_option("--repeats", f.repeats, "Pattern periods across u in [0,1] and v in [0,1] (default: physical size)")->expected(2);
-    cmd.add_option("--gauge", f.gauge, "Stitches x rows per length, e.g. 22x30/10cm (units mm, cm, m, in); instead of --repeats");
-    cmd.add_option("--mesh-res", f.meshRes, "Quads per side of built-in meshes (default 32)")->check(CLI::Range(1, 4096));
+    cmd.add_option("--pattern", f.scene.pattern,
+                   "Pattern file (.pyp, .json curves) or built-in: " + commaList(builtinPatternNames()))
+        ->capture_default_str();
+    cmd.add_option("--mesh", f.scene.mesh,
+                   "Base mesh file (.obj, .ply, .off, .gltf, .glb; needs UVs; glTF v is flipped to OBJ convention) or "
+                   "built-in: " +
+                       commaList(builtinMeshNames()))
+        ->capture_default_str();
+    cmd.add_option("--repeats", f.repeats, "Pattern periods across u in [0,1] and v in [0,1] (default: physical size)")
+        ->expected(2);
+    cmd.add_option("--gauge", f.gauge,
+                   "Stitches x rows per length, e.g. 22x30/10cm (units mm, cm, m, in); instead of --repeats");
+    cmd.add_option("--mesh-res", f.meshRes, "Quads per side of built-in meshes (default 32)")
+        ->check(CLI::Range(1, 4096));
     cmd.add_option("--plies", f.scene.plies.count, "Plies per yarn")->capture_default_str()->check(CLI::Range(1, 16));
-    cmd.add_option("--ply-pitch", f.scene.plies.pitch, "Length of one ply turn in metres (0: 6 yarn radii)")->capture_default_str();
-    cmd.add_option("--ply-radius", f.scene.plies.plyRadius, "Ply radius in metres (0: touching plies filling the yarn)")->capture_default_str();
-    cmd.add_option("--ply-center-radius", f.scene.plies.centerRadius, "Distance of ply centres from the yarn centre (0: auto)")->capture_default_str();
-    addChoice(cmd, "--twist", f.scene.plies.twist, twists, "Ply twist direction")->default_str(wordOf(twists, f.scene.plies.twist));
-    cmd.add_option("--samples-per-turn", f.scene.plies.samplesPerTurn, "Centreline samples per ply turn")->capture_default_str();
+    cmd.add_option("--ply-pitch", f.scene.plies.pitch, "Length of one ply turn in metres (0: 6 yarn radii)")
+        ->capture_default_str();
+    cmd.add_option("--ply-radius", f.scene.plies.plyRadius, "Ply radius in metres (0: touching plies filling the yarn)")
+        ->capture_default_str();
+    cmd.add_option("--ply-center-radius", f.scene.plies.centerRadius,
+                   "Distance of ply centres from the yarn centre (0: auto)")
+        ->capture_default_str();
+    addChoice(cmd, "--twist", f.scene.plies.twist, twists, "Ply twist direction")
+        ->default_str(wordOf(twists, f.scene.plies.twist));
+    cmd.add_option("--samples-per-turn", f.scene.plies.samplesPerTurn, "Centreline samples per ply turn")
+        ->capture_default_str();
     cmd.add_option("--clamp-tolerance", f.scene.bind.clampTolerance,
-                   "Points outside the UV region within this many yarn radii are clamped onto the closest triangle; farther ones are cut")->capture_default_str();
+                   "Points outside the UV region within this many yarn radii are clamped onto the closest triangle; "
+                   "farther ones are cut")
+        ->capture_default_str();
     cmd.add_option("--weld-tolerance", f.scene.bind.weldTolerance,
-                   "Cut ends meeting again across a seam within this many yarn radii are welded")->capture_default_str();
+                   "Cut ends meeting again across a seam within this many yarn radii are welded")
+        ->capture_default_str();
     cmd.add_flag("--no-weld", f.noWeld, "Do not weld yarn ends across UV seams");
     cmd.add_option("--max-memory", f.maxMemory,
-                   "Memory budget (8G, 512M, ...; default min(4G, half the physical memory)): steps estimated to need more are refused");
+                   "Memory budget (8G, 512M, ...; default min(4G, half the physical memory)): steps estimated to need "
+                   "more are refused");
     cmd.add_flag("-q,--quiet", f.quiet, "No progress output on stderr");
 }
 

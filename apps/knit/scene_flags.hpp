@@ -22,7 +22,7 @@ struct SceneFlags {
     int meshRes = 0;              // 0: the built-in meshes' default
     bool noWeld = false;
     bool quiet = false;
-    std::string maxMemory;        // empty: MemoryBudget's default
+    std::string maxMemory;  // empty: MemoryBudget's default
 };
 
 // Registers --pattern --mesh --repeats --gauge --mesh-res --plies --ply-pitch --ply-radius

@@ -60,13 +60,12 @@ AtomicFile::AtomicFile(const std::string& path, bool binary) : path_(path) {
     buffer_.reset(new char[kStreamBuffer]);
     out_.rdbuf()->pubsetbuf(buffer_.get(), kStreamBuffer);
     errno = 0;
-    out_.open(temp_, binary ? std::ios::out | std::ios::binary | std::ios::trunc
-                            : std::ios::out | std::ios::trunc);
+    out_.open(temp_, binary ? std::ios::out | std::ios::binary | std::ios::trunc : std::ios::out | std::ios::trunc);
     if (!out_) {
         const int err = errno;
         unregisterTempFile(registrySlot_);
-        throw Error("cannot write '" + path + "': cannot create a file in folder '" + folderOf(path) +
-                    "'" + (err ? std::string(" (") + std::strerror(err) + ")" : std::string()));
+        throw Error("cannot write '" + path + "': cannot create a file in folder '" + folderOf(path) + "'" +
+                    (err ? std::string(" (") + std::strerror(err) + ")" : std::string()));
     }
 }
 
@@ -87,8 +86,7 @@ void AtomicFile::close() {
     const bool ok = static_cast<bool>(out_);
     size_ = ok ? static_cast<uint64_t>(out_.tellp()) : 0;
     out_.close();
-    if (!ok || out_.fail())
-        throw Error("cannot write '" + path_ + "': writing failed (disk full or I/O error)");
+    if (!ok || out_.fail()) throw Error("cannot write '" + path_ + "': writing failed (disk full or I/O error)");
 }
 
 uint64_t AtomicFile::bytesWritten() {
@@ -100,8 +98,7 @@ void AtomicFile::commit() {
     close();
     if (std::rename(temp_.c_str(), path_.c_str()) != 0) {
         const int err = errno;
-        throw Error("cannot write '" + path_ + "': renaming the finished file failed (" +
-                    std::strerror(err) + ")");
+        throw Error("cannot write '" + path_ + "': renaming the finished file failed (" + std::strerror(err) + ")");
     }
     committed_ = true;
     unregisterTempFile(registrySlot_);

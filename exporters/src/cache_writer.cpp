@@ -61,8 +61,7 @@ void PointCacheWriter::writeFrame(const std::vector<glm::dvec3>& points) {
     if (s.format == CacheFormat::Pc2) detail::pc2Frame(points, s.bytes);
     else detail::mddFrame(points, s.bytes);
     s.file.stream().write(s.bytes.data(), static_cast<std::streamsize>(s.bytes.size()));
-    if (!s.file.stream())
-        throw Error("cannot write '" + s.file.path() + "': writing failed (disk full or I/O error)");
+    if (!s.file.stream()) throw Error("cannot write '" + s.file.path() + "': writing failed (disk full or I/O error)");
     ++s.written;
 }
 

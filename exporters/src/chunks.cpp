@@ -56,8 +56,7 @@ glm::dvec3 chunkOrigin(const Polylines& curves, const Chunk& chunk) {
     return 0.5 * (lo + hi);
 }
 
-void forEachTubeChunk(const Polylines& curves, double radius, const TubeOptions& tube,
-                      const std::vector<Chunk>& chunks,
+void forEachTubeChunk(const Polylines& curves, double radius, const TubeOptions& tube, const std::vector<Chunk>& chunks,
                       const std::function<void(size_t chunkIndex, const TubeMesh& mesh)>& consume) {
     // One mesh reused for every chunk: at most one chunk's tube mesh is alive, and its memory
     // is allocated (and page-faulted) once instead of once per chunk.

@@ -36,8 +36,7 @@ glm::dvec3 chunkOrigin(const Polylines& curves, const Chunk& chunk);
 
 // Sweeps each chunk into one reused mesh and hands it to `consume`: at most one chunk mesh in
 // memory, allocated once.
-void forEachTubeChunk(const Polylines& curves, double radius, const TubeOptions& tube,
-                      const std::vector<Chunk>& chunks,
+void forEachTubeChunk(const Polylines& curves, double radius, const TubeOptions& tube, const std::vector<Chunk>& chunks,
                       const std::function<void(size_t chunkIndex, const TubeMesh& mesh)>& consume);
 
 // Produces chunks 0 .. count-1 in parallel and consumes them in chunk order (a TBB pipeline):
@@ -60,29 +59,24 @@ void orderedChunks(size_t count, Produce produce, Consume consume) {
     }
     size_t next = 0;
     tbb::parallel_pipeline(
-        tokens,
-        tbb::make_filter<void, Slot*>(tbb::filter_mode::serial_in_order,
-                                      [&](tbb::flow_control& fc) -> Slot* {
-                                          if (next == count) {
-                                              fc.stop();
-                                              return nullptr;
-                                          }
-                                          // A slot is back in `free` before its token retires, and
-                                          // at most `tokens` are live: one is always free here.
-                                          Slot* slot = nullptr;
-                                          if (!free.try_pop(slot)) throw std::logic_error("orderedChunks: no free slot");
-                                          slot->index = next++;
-                                          return slot;
-                                      }) &
-            tbb::make_filter<Slot*, Slot*>(tbb::filter_mode::parallel,
-                                           [&](Slot* slot) {
-                                               produce(slot->index, slot->token);
-                                               return slot;
-                                           }) &
-            tbb::make_filter<Slot*, void>(tbb::filter_mode::serial_in_order, [&](Slot* slot) {
-                consume(slot->index, slot->token);
-                free.push(slot);
-            }));
+        tokens, tbb::make_filter<void, Slot*>(tbb::filter_mode::serial_in_order, [&](tbb::flow_control& fc) -> Slot* {
+                    if (next == count) {
+                        fc.stop();
+                        return nullptr;
+                    }
+                    // A slot is back in `free` before its token retires, and
+                    // at most `tokens` are live: one is always free here.
+                    Slot* slot = nullptr;
+                    if (!free.try_pop(slot)) throw std::logic_error("orderedChunks: no free slot");
+                    slot->index = next++;
+                    return slot;
+                }) & tbb::make_filter<Slot*, Slot*>(tbb::filter_mode::parallel, [&](Slot* slot) {
+                    produce(slot->index, slot->token);
+                    return slot;
+                }) & tbb::make_filter<Slot*, void>(tbb::filter_mode::serial_in_order, [&](Slot* slot) {
+                    consume(slot->index, slot->token);
+                    free.push(slot);
+                }));
 }
 
 }  // namespace knit::detail

@@ -45,12 +45,12 @@ DracoChunk encodeDracoTubes(const TubeMesh& tube, const std::vector<glm::u8vec4>
     }
     const int pos = addAttribute(mesh, draco::GeometryAttribute::POSITION, 3, draco::DT_FLOAT32, false, 4,
                                  tube.positions.data(), nv);
-    const int nor = addAttribute(mesh, draco::GeometryAttribute::NORMAL, 3, draco::DT_FLOAT32, false, 4,
-                                 tube.normals.data(), nv);
-    const int tex = addAttribute(mesh, draco::GeometryAttribute::TEX_COORD, 2, draco::DT_FLOAT32, false, 4,
-                                 tube.uvs.data(), nv);
-    const int tan = addAttribute(mesh, draco::GeometryAttribute::GENERIC, 4, draco::DT_FLOAT32, false, 4,
-                                 tube.tangents.data(), nv);
+    const int nor =
+        addAttribute(mesh, draco::GeometryAttribute::NORMAL, 3, draco::DT_FLOAT32, false, 4, tube.normals.data(), nv);
+    const int tex =
+        addAttribute(mesh, draco::GeometryAttribute::TEX_COORD, 2, draco::DT_FLOAT32, false, 4, tube.uvs.data(), nv);
+    const int tan =
+        addAttribute(mesh, draco::GeometryAttribute::GENERIC, 4, draco::DT_FLOAT32, false, 4, tube.tangents.data(), nv);
     int col = -1;
     if (colors)
         col = addAttribute(mesh, draco::GeometryAttribute::COLOR, 4, draco::DT_UINT8, true, 1, colors->data(), nv);
@@ -79,8 +79,8 @@ DracoChunk encodeDracoTubes(const TubeMesh& tube, const std::vector<glm::u8vec4>
     in.Init(out.bytes.data(), out.bytes.size());
     draco::Decoder decoder;
     auto decoded = decoder.DecodeMeshFromBuffer(&in);
-    if (!decoded.ok()) throw Error(std::string("Draco decoding of the encoded chunk failed: ") +
-                                   decoded.status().error_msg());
+    if (!decoded.ok())
+        throw Error(std::string("Draco decoding of the encoded chunk failed: ") + decoded.status().error_msg());
     const std::unique_ptr<draco::Mesh> dm = std::move(decoded).value();
     out.points = dm->num_points();
     out.faces = dm->num_faces();

@@ -14,14 +14,14 @@ namespace knit::detail {
 
 struct DracoSettings {
     int positionBits = 14;
-    int normalBits = 10;    // NORMAL and TANGENT
+    int normalBits = 10;  // NORMAL and TANGENT
     int texcoordBits = 12;
-    int level = 7;          // 0 fast .. 10 small (speed = 10 - level)
+    int level = 7;  // 0 fast .. 10 small (speed = 10 - level)
 };
 
 struct DracoChunk {
-    std::vector<char> bytes;                 // the compressed Draco bitstream
-    std::map<std::string, int> attributeIds; // glTF attribute name -> Draco unique id
+    std::vector<char> bytes;                  // the compressed Draco bitstream
+    std::map<std::string, int> attributeIds;  // glTF attribute name -> Draco unique id
     // What a decoder gets back (the glTF accessors must describe the decoded data):
     size_t points = 0;
     size_t faces = 0;

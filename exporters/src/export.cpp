@@ -121,8 +121,7 @@ void validateExportOptions(const ExportOptions& o) {
     if (o.quantize) requireGltfTubes(o, ext, tubes, "--quantize", "KHR_mesh_quantization");
     if (o.meshopt) {
         requireGltfTubes(o, ext, tubes, "--meshopt", "EXT_meshopt_compression");
-        if (o.draco)
-            throw Error("cannot export '" + o.path + "': --draco and --meshopt are alternatives; choose one");
+        if (o.draco) throw Error("cannot export '" + o.path + "': --draco and --meshopt are alternatives; choose one");
     }
     if (o.dracoBits < 1 || o.dracoBits > 30)
         throw Error("export: --draco-bits must be in [1, 30], got " + std::to_string(o.dracoBits));
@@ -142,7 +141,7 @@ ExportStats exportCurves(const ExportInput& input, const ExportOptions& requeste
     validateExportOptions(requested);
     ExportOptions options = requested;
     if (options.chunkVertices == 0)
-        options.chunkVertices = options.draco                        ? size_t(1) << 18
+        options.chunkVertices = options.draco                         ? size_t(1) << 18
                                 : options.quantize || options.meshopt ? size_t(65535)
                                                                       : size_t(1) << 20;
     detail::checkOutputFolder(options.path);
@@ -170,10 +169,10 @@ ExportStats exportCurves(const ExportInput& input, const ExportOptions& requeste
     job.tube.seedNormals = input.seedNormals;
     {
         std::ostringstream h;
-        const size_t curves = input.curves ? input.curves->curveCount()
-                                           : input.plies->yarnCount() * size_t(input.plies->options().count);
-        h << "libknit export: " << curves << " curves, " << whatName(options.what)
-          << ", radius " << input.radius << " m";
+        const size_t curves =
+            input.curves ? input.curves->curveCount() : input.plies->yarnCount() * size_t(input.plies->options().count);
+        h << "libknit export: " << curves << " curves, " << whatName(options.what) << ", radius " << input.radius
+          << " m";
         job.header = h.str();
     }
     // Step 2: dispatch on the extension.
@@ -198,8 +197,7 @@ ExportStats exportScene(const Scene& scene, const ExportOptions& options) {
         case ExportWhat::Yarns: usePlies = false; break;
         case ExportWhat::Plies: usePlies = true; break;
         case ExportWhat::Tubes:
-            usePlies = options.tubesOf == TubeSource::Plies ||
-                       (options.tubesOf == TubeSource::Auto && havePlies);
+            usePlies = options.tubesOf == TubeSource::Plies || (options.tubesOf == TubeSource::Auto && havePlies);
             break;
     }
     nlohmann::json extras = {{"generator", "libknit"}, {"yarnRadius", scene.yarnRadius()}};
@@ -243,8 +241,7 @@ ExportStats exportScene(const Scene& scene, const ExportOptions& options) {
     return exportCurves(in, options);
 }
 
-void writeFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write,
-                         bool binary) {
+void writeFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write, bool binary) {
     detail::AtomicFile file(path, binary);  // throws naming the path (missing / unwritable folder)
     write(file.stream());                   // an exception here removes the temporary file
     file.commit();

@@ -13,9 +13,9 @@ namespace knit::detail {
 struct FormatJob {
     const ExportInput& input;
     const ExportOptions& options;
-    TubeOptions tube;      // sides, caps, seed normals
-    bool tubes = false;    // what == Tubes
-    std::string header;    // one-line description for file comments
+    TubeOptions tube;    // sides, caps, seed normals
+    bool tubes = false;  // what == Tubes
+    std::string header;  // one-line description for file comments
     ExportStats& stats;
 };
 

@@ -139,8 +139,7 @@ public:
     void reserve(uint64_t bytes) {
         if (bytes + 4 > maxBytes_)
             throw Error("cannot export '" + output_ + "': one chunk needs " + std::to_string(bytes) +
-                        " bytes, more than the buffer limit " + std::to_string(maxBytes_) +
-                        "; lower --chunk-vertices");
+                        " bytes, more than the buffer limit " + std::to_string(maxBytes_) + "; lower --chunk-vertices");
         if (files_.empty() || sizes_.back() + bytes + 4 > maxBytes_) openBuffer();
     }
     int buffer() const { return int(files_.size()) - 1; }
@@ -246,7 +245,8 @@ public:
             // One yarn's plies are one batch with 32-bit offsets: refuse absurd ones up front.
             if (e > size_t(1) << 31)
                 throw Error("cannot export '" + path + "': yarn " + std::to_string(y) + " would have at least " +
-                            std::to_string(e) + " ply points (more than 2^31); increase the ply pitch or lower the "
+                            std::to_string(e) +
+                            " ply points (more than 2^31); increase the ply pitch or lower the "
                             "samples per turn");
             if (acc > 0 && acc + e > maxPoints) {
                 yarnStart_.push_back(y);
@@ -305,8 +305,8 @@ public:
 
 private:
     const ExportInput& input_;
-    std::vector<Chunk> chunks_;       // materialized curves
-    std::vector<size_t> yarnStart_;   // generated plies: chunk k = yarns [yarnStart_[k], yarnStart_[k + 1])
+    std::vector<Chunk> chunks_;      // materialized curves
+    std::vector<size_t> yarnStart_;  // generated plies: chunk k = yarns [yarnStart_[k], yarnStart_[k + 1])
 };
 
 // KHR_mesh_quantization data of one tube chunk: one uniform step per chunk (the node scale),
@@ -317,10 +317,10 @@ struct QuantizedTubes {
     };
     std::vector<S4> position, normal, tangent;
     std::vector<glm::i8vec4> normal8, tangent8;  // instead of normal / tangent with --meshopt
-    std::vector<glm::u16vec2> uv;      // normalized (u, v / vScale)
-    glm::ivec3 lo{32767}, hi{-32767};  // bounds of the quantized positions
+    std::vector<glm::u16vec2> uv;                // normalized (u, v / vScale)
+    glm::ivec3 lo{32767}, hi{-32767};            // bounds of the quantized positions
     double step = 1.0;
-    double vScale = 1.0;               // largest v of the chunk (v >= 0)
+    double vScale = 1.0;  // largest v of the chunk (v >= 0)
 };
 
 // TEXCOORD_0 as normalized uint16: u in [0, 1] directly, v (radius units, >= 0) over the chunk's
@@ -423,10 +423,12 @@ std::vector<TubeView> tubeViews(const TubeChunk& t, bool colours, bool quantized
             v.push_back({"NORMAL", q.normal8.data(), n, 4, 4, kArrayBuffer, b, v3, true});
             v.push_back({"TANGENT", q.tangent8.data(), n, 4, 0, kArrayBuffer, b, v4, true});
         }
-        v.push_back({"TEXCOORD_0", q.uv.data(), n, 4, 0, kArrayBuffer, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, v2, true});
+        v.push_back(
+            {"TEXCOORD_0", q.uv.data(), n, 4, 0, kArrayBuffer, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, v2, true});
     }
     if (colours)
-        v.push_back({"COLOR_0", t.colours.data(), n, 4, 0, kArrayBuffer, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, v4, true});
+        v.push_back(
+            {"COLOR_0", t.colours.data(), n, 4, 0, kArrayBuffer, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, v4, true});
     const bool shortIndices = !t.indices16.empty();
     v.push_back({nullptr, shortIndices ? static_cast<const void*>(t.indices16.data()) : m.triangles.data(),
                  m.triangles.size() * 3, shortIndices ? size_t(2) : size_t(4), 0, kElementArrayBuffer,
@@ -468,17 +470,18 @@ public:
     GltfBuilder(const FormatJob& job, bool glb)
         : job_(job),
           glb_(glb),
-          curves_(job.tubes ? nullptr
-                            : std::make_unique<CurveChunkSource>(job.input, job.options.chunkVertices, job.options.path)),
+          curves_(job.tubes
+                      ? nullptr
+                      : std::make_unique<CurveChunkSource>(job.input, job.options.chunkVertices, job.options.path)),
           sink_(job.options.path, glb, job.options.maxBufferBytes, jsonReservation(job, curves_.get())) {
         model_.asset.version = "2.0";
         model_.asset.generator = "libknit";
         if (!job.tubes) {
             // Curves: name the custom per-point attribute, so a client can find the radius.
             tinygltf::Value::Object attributes;
-            attributes["_RADIUS"] = tinygltf::Value(std::string(
-                "per-vertex curve radius in metres (FLOAT SCALAR, one value per LINE_STRIP vertex, in the "
-                "units of POSITION before node transforms)"));
+            attributes["_RADIUS"] = tinygltf::Value(
+                std::string("per-vertex curve radius in metres (FLOAT SCALAR, one value per LINE_STRIP vertex, in the "
+                            "units of POSITION before node transforms)"));
             tinygltf::Value::Object extras;
             extras["attributes"] = tinygltf::Value(std::move(attributes));
             model_.asset.extras = tinygltf::Value(std::move(extras));
@@ -725,8 +728,8 @@ private:
         m.pbrMetallicRoughness.metallicFactor = 0.0;
         m.pbrMetallicRoughness.roughnessFactor = 0.85;
         tinygltf::Value::Object sheen;
-        sheen["sheenColorFactor"] = tinygltf::Value(tinygltf::Value::Array{
-            tinygltf::Value(0.8), tinygltf::Value(0.8), tinygltf::Value(0.8)});
+        sheen["sheenColorFactor"] =
+            tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(0.8), tinygltf::Value(0.8), tinygltf::Value(0.8)});
         sheen["sheenRoughnessFactor"] = tinygltf::Value(0.6);
         m.extensions["KHR_materials_sheen"] = tinygltf::Value(std::move(sheen));
         nlohmann::json extras = parseMaterialExtras(job_.input.materialExtrasJson);
@@ -738,7 +741,8 @@ private:
                                 "points along increasing v";
             extras["color"] = "COLOR_0 (--yarn-colors) is linear: the sRGB palette colour converted";
             if (job_.options.quantize)
-                extras["texcoordScale"] = "TEXCOORD_0 is normalized uint16; uv = stored * primitive extras.texcoordScale";
+                extras["texcoordScale"] =
+                    "TEXCOORD_0 is normalized uint16; uv = stored * primitive extras.texcoordScale";
         }
         m.extras = toValue(extras);
         model_.materials.push_back(std::move(m));
@@ -814,7 +818,8 @@ private:
         position.maxValues = {double(q.hi.x), double(q.hi.y), double(q.hi.z)};
         scale = {q.step, q.step, q.step};
         tinygltf::Value::Object extras;
-        extras["texcoordScale"] = tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(1.0), tinygltf::Value(q.vScale)});
+        extras["texcoordScale"] =
+            tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(1.0), tinygltf::Value(q.vScale)});
         prim.extras = tinygltf::Value(std::move(extras));
     }
 
@@ -858,7 +863,8 @@ private:
         if (colours)
             prim.attributes["COLOR_0"] =
                 addAccessor(-1, 0, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_TYPE_VEC4, d.points, true);
-        prim.indices = addAccessor(-1, 0, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, d.faces * 3, false);
+        prim.indices =
+            addAccessor(-1, 0, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, d.faces * 3, false);
         tinygltf::Value::Object attrs;
         for (const auto& [name, id] : d.attributeIds) attrs[name] = tinygltf::Value(id);
         tinygltf::Value::Object ext;
@@ -894,7 +900,7 @@ private:
     std::vector<float> radius_;  // the constant _RADIUS values, as long as the longest curve so far
     // --meshopt: views whose data is in the fallback buffer, with their extension objects.
     std::vector<std::pair<int, nlohmann::json>> meshoptViews_;
-    uint64_t fallbackBytes_ = 0;     // --meshopt: size of the fallback buffer
+    uint64_t fallbackBytes_ = 0;  // --meshopt: size of the fallback buffer
 };
 
 }  // namespace

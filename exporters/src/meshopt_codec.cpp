@@ -50,8 +50,8 @@ MeshoptView encodeMeshoptTriangles(const void* indices, size_t count, size_t ind
         v.bytes.resize(meshopt_encodeIndexBufferBound(count, vertices));
         return meshopt_encodeIndexBuffer(v.bytes.data(), v.bytes.size(), idx, count);
     };
-    const size_t n = indexSize == 2 ? encode(static_cast<const uint16_t*>(indices))
-                                    : encode(static_cast<const uint32_t*>(indices));
+    const size_t n =
+        indexSize == 2 ? encode(static_cast<const uint16_t*>(indices)) : encode(static_cast<const uint32_t*>(indices));
     if (n == 0) throw Error("meshopt: the index codec failed");
     v.bytes.resize(n);
     return v;

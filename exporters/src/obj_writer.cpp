@@ -58,8 +58,13 @@ void writeObjTubeChunk(std::ostream& out, const TubeMesh& mesh, uint64_t vertexB
     TextOut t(out);
     // Positions are written in world space: chunk origin (double) + float offset.
     for (const glm::vec3& p : mesh.positions) {
-        t.str("v ").num(mesh.origin.x + double(p.x)).ch(' ').num(mesh.origin.y + double(p.y))
-            .ch(' ').num(mesh.origin.z + double(p.z)).ch('\n');
+        t.str("v ")
+            .num(mesh.origin.x + double(p.x))
+            .ch(' ')
+            .num(mesh.origin.y + double(p.y))
+            .ch(' ')
+            .num(mesh.origin.z + double(p.z))
+            .ch('\n');
     }
     for (const glm::vec3& n : mesh.normals) t.str("vn ").num(n.x).ch(' ').num(n.y).ch(' ').num(n.z).ch('\n');
     for (const glm::vec2& uv : mesh.uvs) t.str("vt ").num(uv.x).ch(' ').num(uv.y).ch('\n');

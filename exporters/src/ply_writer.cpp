@@ -57,8 +57,8 @@ void exportPly(const FormatJob& job) {
         for (size_t c = 0; c < curves.curveCount(); ++c) edges += curves.segmentCount(c);
         std::ostringstream h;
         h << "ply\nformat binary_little_endian 1.0\ncomment " << job.header << "\nelement vertex "
-          << curves.pointCount() << "\nproperty double x\nproperty double y\nproperty double z\nelement edge "
-          << edges << "\nproperty int vertex1\nproperty int vertex2\nend_header\n";
+          << curves.pointCount() << "\nproperty double x\nproperty double y\nproperty double z\nelement edge " << edges
+          << "\nproperty int vertex1\nproperty int vertex2\nend_header\n";
         out << h.str();
         for (const glm::dvec3& p : curves.points) {
             pack.put(p.x);

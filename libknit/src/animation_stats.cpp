@@ -150,7 +150,8 @@ double minYarnDistance(const Polylines& centres, const std::vector<uint32_t>& ya
     // any pair closer than the cell size is found, so the first hit is the exact minimum.
     double cell = scratch.lastDistance > 0.0 ? std::min(cutoff, 1.25 * scratch.lastDistance) : cutoff;
     for (;;) {
-        const double d = closestWithin(centres, yarnOf, arc, length, options.sameYarnSeparation * diameter, cell, scratch);
+        const double d =
+            closestWithin(centres, yarnOf, arc, length, options.sameYarnSeparation * diameter, cell, scratch);
         if (std::isfinite(d) || cell >= cutoff) {
             scratch.lastDistance = d;
             return std::isfinite(d) ? d / diameter : d;

@@ -79,7 +79,8 @@ Animator::Animator(const Scene& rest, const AnimatorOptions& options)
         for (uint32_t i = 0; i < n; ++i) {
             total += m;
             if (total > UINT32_MAX)
-                throw Error("makePlies: more than 2^32-1 ply points; increase PlyOptions.pitch or reduce samplesPerTurn");
+                throw Error(
+                    "makePlies: more than 2^32-1 ply points; increase PlyOptions.pitch or reduce samplesPerTurn");
             plyTopology_.curves.offsets.push_back(static_cast<uint32_t>(total));
             plyTopology_.curves.closed.push_back(yarns.closed[y]);
             plyTopology_.yarnOfCurve.push_back(static_cast<uint32_t>(y));
@@ -154,8 +155,9 @@ void Animator::resample(AnimationFrame& out) const {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, yarnCount, kYarnGrain), [&](const tbb::blocked_range<size_t>& r) {
         ResampleScratch& scratch = scratches.local();
         for (size_t y = r.begin(); y < r.end(); ++y)
-            resampleCurveWithLayout(out.yarns.curves, y, kept_.data() + keptOffsets_[y], keptOffsets_[y + 1] - keptOffsets_[y],
-                                    pieces_.data() + pieceOffsets_[y], c.points.data() + centreOffsets_[y], scratch);
+            resampleCurveWithLayout(out.yarns.curves, y, kept_.data() + keptOffsets_[y],
+                                    keptOffsets_[y + 1] - keptOffsets_[y], pieces_.data() + pieceOffsets_[y],
+                                    c.points.data() + centreOffsets_[y], scratch);
     });
 }
 

@@ -117,7 +117,8 @@ std::vector<int8_t> windingSigns(const std::vector<glm::dvec3>& positions, const
         for (size_t q = 0; q < queue.size(); ++q) {
             const uint32_t f = queue[q];
             const glm::uvec3 t = faces[f];
-            area[sign[f] < 0] += glm::length(glm::cross(positions[t.y] - positions[t.x], positions[t.z] - positions[t.x]));
+            area[sign[f] < 0] +=
+                glm::length(glm::cross(positions[t.y] - positions[t.x], positions[t.z] - positions[t.x]));
             for (int k = 0; k < 3; ++k) {
                 const uint32_t g = across[3 * f + k];
                 if (g == UINT32_MAX || sign[g] != 0) continue;
@@ -222,12 +223,14 @@ void validateMesh(const BaseMesh& mesh) {
         if (!util::finite(mesh.positions[i]))
             throw Error(p + "position " + std::to_string(i) + " is not finite " + str(mesh.positions[i]));
     for (size_t i = 0; i < mesh.uvs.size(); ++i)
-        if (!util::finite(mesh.uvs[i])) throw Error(p + "uv " + std::to_string(i) + " is not finite " + str(mesh.uvs[i]));
+        if (!util::finite(mesh.uvs[i]))
+            throw Error(p + "uv " + std::to_string(i) + " is not finite " + str(mesh.uvs[i]));
     for (size_t f = 0; f < mesh.faces.size(); ++f)
         for (int k = 0; k < 3; ++k) {
             if (mesh.faces[f][k] >= mesh.positions.size())
-                throw Error(p + "face " + std::to_string(f) + " references position " + std::to_string(mesh.faces[f][k]) +
-                            " but the mesh has " + std::to_string(mesh.positions.size()) + " positions");
+                throw Error(p + "face " + std::to_string(f) + " references position " +
+                            std::to_string(mesh.faces[f][k]) + " but the mesh has " +
+                            std::to_string(mesh.positions.size()) + " positions");
             if (mesh.faceUvs[f][k] >= mesh.uvs.size())
                 throw Error(p + "face " + std::to_string(f) + " references uv " + std::to_string(mesh.faceUvs[f][k]) +
                             " but the mesh has " + std::to_string(mesh.uvs.size()) + " uvs");
@@ -258,7 +261,8 @@ BaseMesh loadMeshFileOrName(const std::string& fileOrName, const ProceduralMeshO
     if (std::find(names.begin(), names.end(), fileOrName) == names.end()) {
         std::string known;
         for (const std::string& n : names) known += (known.empty() ? "" : ", ") + n;
-        throw Error("'" + fileOrName + "' is neither a mesh file (.obj, .ply, .off, .gltf, .glb) nor a built-in mesh (" + known + ")");
+        throw Error("'" + fileOrName +
+                    "' is neither a mesh file (.obj, .ply, .off, .gltf, .glb) nor a built-in mesh (" + known + ")");
     }
     return builtinMesh(fileOrName, o);
 }

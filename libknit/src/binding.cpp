@@ -30,25 +30,28 @@ void validateBindInput(const BaseMesh& mesh, const std::vector<glm::dvec3>& norm
                        const BindOptions& options) {
     if (!util::positiveFinite(options.yarnRadius) || !(options.clampTolerance >= 0) || !(options.weldTolerance >= 0) ||
         !util::finite(options.clampTolerance) || !util::finite(options.weldTolerance))
-        throw Error("--clamp-tolerance and --weld-tolerance must be finite and >= 0, and the yarn radius (the pattern's radius "
-                    "times its placement scale) positive");
+        throw Error(
+            "--clamp-tolerance and --weld-tolerance must be finite and >= 0, and the yarn radius (the pattern's radius "
+            "times its placement scale) positive");
     if (normals.size() != mesh.positions.size()) throw Error("binding: normals do not match the mesh's vertices");
     if (!util::validOffsets(yarns.offsets, yarns.yarnCount(), yarns.vertexCount()) ||
         yarns.height.size() != yarns.vertexCount() || yarns.twist.size() != yarns.vertexCount() ||
         (!yarns.ghosts.empty() && yarns.ghosts.size() != yarns.yarnCount()) ||
         (!yarns.chart.empty() && yarns.chart.size() != yarns.yarnCount()))
-        throw Error("binding: inconsistent UvYarns (offsets, heights, twists, ghosts or charts do not match the vertices)");
+        throw Error(
+            "binding: inconsistent UvYarns (offsets, heights, twists, ghosts or charts do not match the vertices)");
 }
 
 // Every search radius is bounded by one pattern period (a grid cell): a clamp or weld tolerance
 // beyond it would scan the whole mesh per vertex (hours) and clamp or weld across whole stitches.
 void requireBoundedSearch(const UvGrid& grid, glm::dvec2 metresPerUv, const BindOptions& options) {
-    const double period = std::max(grid.cellSize.x * metresPerUv.x, grid.cellSize.y * metresPerUv.y) / options.yarnRadius;
+    const double period =
+        std::max(grid.cellSize.x * metresPerUv.x, grid.cellSize.y * metresPerUv.y) / options.yarnRadius;
     const auto require = [&](double tolerance, const char* name, const char* option) {
         if (!(tolerance > period)) return;
         std::ostringstream msg;
-        msg << name << " " << tolerance << " yarn radii (" << option << ") reaches beyond one pattern period (" << period
-            << " yarn radii of " << options.yarnRadius << " m here); use at most that";
+        msg << name << " " << tolerance << " yarn radii (" << option << ") reaches beyond one pattern period ("
+            << period << " yarn radii of " << options.yarnRadius << " m here); use at most that";
         throw Error(msg.str());
     };
     require(options.clampTolerance, "clamp tolerance", "--clamp-tolerance");
@@ -81,7 +84,8 @@ BindResult bindYarns(const BaseMesh& mesh, const std::vector<glm::dvec3>& normal
         welds = detail::weldEnds(detail::pieceEnds(rest, cut.pieces, vertices), {weldTol, options.weldMinCos});
 
     // 4. Chain the pieces along the welds into yarns; a chain that returns to its start is a loop.
-    detail::ChainResult chained = detail::chainPieces(rest, cut.pieces, vertices, welds.partner, {1e-4 * options.yarnRadius});
+    detail::ChainResult chained =
+        detail::chainPieces(rest, cut.pieces, vertices, welds.partner, {1e-4 * options.yarnRadius});
 
     BindResult result;
     result.binding = std::move(chained.binding);
@@ -100,8 +104,8 @@ namespace {
 // The evaluation kernel shared by the double and the float32 entry points: a flat gather,
 // P = sum b_i x_i + h * normalize(sum b_i n_i), handed to `store(i, P, n)`.
 template <class Store>
-void evaluateKernel(const Binding& binding, const std::vector<glm::uvec3>& faces, const std::vector<glm::dvec3>& positions,
-                    const std::vector<glm::dvec3>& normals, Store store) {
+void evaluateKernel(const Binding& binding, const std::vector<glm::uvec3>& faces,
+                    const std::vector<glm::dvec3>& positions, const std::vector<glm::dvec3>& normals, Store store) {
     const size_t n = binding.vertexCount();
     const uint32_t* face = binding.face.data();
     const glm::dvec2* bary = binding.bary.data();

@@ -60,7 +60,8 @@ bool insideChart(const BaseMesh& mesh, const UvGrid& grid, uint32_t chart, glm::
 
 }  // namespace
 
-std::optional<BoundVertex> boundaryCrossing(const BaseMesh& mesh, const UvGrid& grid, uint32_t chart, const UvStep& step) {
+std::optional<BoundVertex> boundaryCrossing(const BaseMesh& mesh, const UvGrid& grid, uint32_t chart,
+                                            const UvStep& step) {
     const glm::dvec2 p = step.p, q = step.q;
     // The closest crossing along p -> q (the lowest half-edge on ties).
     double bestT = INFINITY;

@@ -23,7 +23,8 @@ struct UvStep {
 // First crossing of the UV segment p -> q with a boundary edge of `chart`, as a bound vertex on
 // that edge with height and twist interpolated along the segment. None when p is already on the
 // boundary (t ~ 0) or no boundary edge is crossed.
-std::optional<BoundVertex> boundaryCrossing(const BaseMesh& mesh, const UvGrid& grid, uint32_t chart, const UvStep& step);
+std::optional<BoundVertex> boundaryCrossing(const BaseMesh& mesh, const UvGrid& grid, uint32_t chart,
+                                            const UvStep& step);
 
 // True when the UV segment p -> q between two vertices located in `chart` passes outside the
 // chart on the way: over a gap, a hole or a notch of the UV layout narrower than the segment,

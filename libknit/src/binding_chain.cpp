@@ -24,7 +24,12 @@ class ChainPlanner {
 public:
     ChainPlanner(const RestSurface& rest, const std::vector<Piece>& pieces, const PieceVertices& vertices,
                  const std::vector<int64_t>& partner, const ChainOptions& options, ChainResult& out)
-        : rest_(rest), pieces_(pieces), vertices_(vertices), partner_(partner), options_(options), out_(out),
+        : rest_(rest),
+          pieces_(pieces),
+          vertices_(vertices),
+          partner_(partner),
+          options_(options),
+          out_(out),
           used_(pieces.size(), 0) {
         segments_.reserve(pieces.size());
     }
@@ -66,7 +71,8 @@ private:
             used_[pi] = 1;
             const bool reversed = enter == 1;
             const glm::dvec3 head = rest_.position(vertices_.end(pieces_[pi], false, reversed));
-            const bool drop = !firstPiece && glm::distance(endPosition(segments_.back(), true), head) < options_.dedupeDistance;
+            const bool drop =
+                !firstPiece && glm::distance(endPosition(segments_.back(), true), head) < options_.dedupeDistance;
             addSegment(pi, reversed, drop);
             firstPiece = false;
             const int64_t next = partner_[2 * pi + (1 - enter)];

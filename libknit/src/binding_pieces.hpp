@@ -39,7 +39,9 @@ struct PieceVertices {
     const double* height = nullptr;
     const double* twist = nullptr;
 
-    BoundVertex vertex(size_t i) const { return BoundVertex{loc[i].point.face, loc[i].point.bary, height[i], twist[i]}; }
+    BoundVertex vertex(size_t i) const {
+        return BoundVertex{loc[i].point.face, loc[i].point.bary, height[i], twist[i]};
+    }
 
     // Vertex k of a piece, in piece order (head, the run, tail).
     BoundVertex at(const Piece& pc, size_t k) const {

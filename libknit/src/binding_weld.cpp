@@ -47,7 +47,8 @@ std::vector<Candidate> weldCandidates(const std::vector<WeldEnd>& ends, const We
 
 }  // namespace
 
-std::vector<WeldEnd> pieceEnds(const RestSurface& rest, const std::vector<Piece>& pieces, const PieceVertices& vertices) {
+std::vector<WeldEnd> pieceEnds(const RestSurface& rest, const std::vector<Piece>& pieces,
+                               const PieceVertices& vertices) {
     std::vector<WeldEnd> ends(2 * pieces.size());
     for (size_t pi = 0; pi < pieces.size(); ++pi) {
         const Piece& pc = pieces[pi];

@@ -13,13 +13,14 @@ namespace knit::detail {
 
 // One end of a piece: end 2p is piece p's first vertex, 2p+1 its last.
 struct WeldEnd {
-    bool present = false;       // a boundary end of an open piece (only those may weld)
-    glm::dvec3 position{0.0};   // at rest
-    glm::dvec3 outward{0.0};    // unit direction from the piece's next-to-end vertex (0 if they coincide)
+    bool present = false;      // a boundary end of an open piece (only those may weld)
+    glm::dvec3 position{0.0};  // at rest
+    glm::dvec3 outward{0.0};   // unit direction from the piece's next-to-end vertex (0 if they coincide)
 };
 
 // The two ends of every piece, evaluated on the rest surface.
-std::vector<WeldEnd> pieceEnds(const RestSurface& rest, const std::vector<Piece>& pieces, const PieceVertices& vertices);
+std::vector<WeldEnd> pieceEnds(const RestSurface& rest, const std::vector<Piece>& pieces,
+                               const PieceVertices& vertices);
 
 struct WeldOptions {
     double tolerance = 0;  // object-space distance (metres); <= 0: nothing welds

@@ -98,9 +98,11 @@ Stitch parseStitch(const Token& token, const std::string& source, int line) {
         return s;
     }
     bool overPurl = false;
-    if (!parseCable(token.text, s, overPurl)) fail(source, line, token.column, "unknown stitch '" + token.text + "' (" + kKnownTokens + ")");
+    if (!parseCable(token.text, s, overPurl))
+        fail(source, line, token.column, "unknown stitch '" + token.text + "' (" + kKnownTokens + ")");
     if (overPurl)
-        fail(source, line, token.column, "cable '" + token.text + "' over purl stitches: the stitches a cable crosses are knit stitches");
+        fail(source, line, token.column,
+             "cable '" + token.text + "' over purl stitches: the stitches a cable crosses are knit stitches");
     return s;
 }
 
@@ -127,14 +129,17 @@ void readStitches(const Block& block, const std::string& source, Chart& chart) {
             const Stitch& s = rows[i][k];
             if (s.span > chart.width)
                 fail(source, line.number, line.tokens[k].column,
-                     "cable '" + line.tokens[k].text + "' spans " + std::to_string(s.span) + " stitches but the chart is " + std::to_string(chart.width) + " wide");
+                     "cable '" + line.tokens[k].text + "' spans " + std::to_string(s.span) +
+                         " stitches but the chart is " + std::to_string(chart.width) + " wide");
             if (s.span > 1) chart.cables.push_back({row, column, s.right, s.left, s.front});
-            for (int j = 0; j < s.span && column + j < chart.width; ++j) chart.kind[size_t(row) * size_t(chart.width) + size_t(column + j)] = s.kind;
+            for (int j = 0; j < s.span && column + j < chart.width; ++j)
+                chart.kind[size_t(row) * size_t(chart.width) + size_t(column + j)] = s.kind;
             column += s.span;
         }
         if (column != chart.width)
             fail(source, line.number, line.tokens.back().column,
-                 "row has " + std::to_string(column) + " stitches, expected " + std::to_string(chart.width) + " (as the first row, line " + std::to_string(block[0].number) + ")");
+                 "row has " + std::to_string(column) + " stitches, expected " + std::to_string(chart.width) +
+                     " (as the first row, line " + std::to_string(block[0].number) + ")");
     }
 }
 
@@ -158,7 +163,8 @@ void readPalette(const std::vector<Line>& lines, const std::string& source, Char
                 rgb[size_t(c)] = uint8_t(hi * 16 + lo);
             }
             if (!ok) fail(source, line.number, t.column, "palette entry '" + s + "' is not LETTER=#rrggbb");
-            if (chart.palette.count(s[0])) fail(source, line.number, t.column, "colour '" + s.substr(0, 1) + "' is defined twice");
+            if (chart.palette.count(s[0]))
+                fail(source, line.number, t.column, "colour '" + s.substr(0, 1) + "' is defined twice");
             chart.palette[s[0]] = rgb;
         }
 }
@@ -166,19 +172,23 @@ void readPalette(const std::vector<Line>& lines, const std::string& source, Char
 // The colour block: one palette letter per stitch, the same size as the stitch block.
 void readColours(const Block& block, const std::string& source, Chart& chart) {
     if (int(block.size()) != chart.height)
-        fail(source, block[0].number, 1, "colour block has " + std::to_string(block.size()) + " rows, expected " + std::to_string(chart.height) + " (as the stitch block)");
+        fail(source, block[0].number, 1,
+             "colour block has " + std::to_string(block.size()) + " rows, expected " + std::to_string(chart.height) +
+                 " (as the stitch block)");
     chart.colour.assign(chart.kind.size(), 0);
     for (size_t i = 0; i < block.size(); ++i) {
         const Line& line = block[i];
         if (int(line.tokens.size()) != chart.width)
             fail(source, line.number, line.tokens.back().column,
-                 "colour row has " + std::to_string(line.tokens.size()) + " letters, expected " + std::to_string(chart.width));
+                 "colour row has " + std::to_string(line.tokens.size()) + " letters, expected " +
+                     std::to_string(chart.width));
         const int row = chart.height - 1 - int(i);
         for (int c = 0; c < chart.width; ++c) {
             const Token& t = line.tokens[size_t(c)];
             if (t.text.size() != 1 || !std::isalpha(static_cast<unsigned char>(t.text[0])))
                 fail(source, line.number, t.column, "colour '" + t.text + "' is not one letter");
-            if (!chart.palette.count(t.text[0])) fail(source, line.number, t.column, "colour '" + t.text + "' is not in the palette");
+            if (!chart.palette.count(t.text[0]))
+                fail(source, line.number, t.column, "colour '" + t.text + "' is not in the palette");
             chart.colour[size_t(row) * size_t(chart.width) + size_t(c)] = t.text[0];
         }
     }
@@ -201,11 +211,13 @@ Chart parseChart(const std::string& text, const std::string& source) {
     Chart chart;
     chart.name = source;
     // Step 1: the stitch block (required).
-    if (layout.blocks.empty()) fail(source, layout.lastLine > 0 ? layout.lastLine : 1, 1, "empty chart: no stitch rows");
+    if (layout.blocks.empty())
+        fail(source, layout.lastLine > 0 ? layout.lastLine : 1, 1, "empty chart: no stitch rows");
     readStitches(layout.blocks[0], source, chart);
     // Step 2: the optional palette and colour block.
     readPalette(layout.palette, source, chart);
-    if (layout.blocks.size() > 2) fail(source, layout.blocks[2][0].number, 1, "a chart has at most two blocks (stitches, then colours)");
+    if (layout.blocks.size() > 2)
+        fail(source, layout.blocks[2][0].number, 1, "a chart has at most two blocks (stitches, then colours)");
     if (layout.blocks.size() == 2) readColours(layout.blocks[1], source, chart);
     return chart;
 }

@@ -28,7 +28,8 @@ uint64_t fnv1a(const std::string& s) {
 std::string chartCacheKey(const std::string& chartText, const ChartPatternOptions& o) {
     std::ostringstream key;
     key.precision(17);
-    key << "v3 " << o.radius << ' ' << o.samplesPerStitch << ' ' << o.restLength << ' ' << o.maxIterations << '\n' << chartText;
+    key << "v3 " << o.radius << ' ' << o.samplesPerStitch << ' ' << o.restLength << ' ' << o.maxIterations << '\n'
+        << chartText;
     char name[40];
     std::snprintf(name, sizeof name, "chart-%016llx.pyp", static_cast<unsigned long long>(fnv1a(key.str())));
     return name;
@@ -41,7 +42,8 @@ std::string chartCacheDir() {
     return "";
 }
 
-Pattern cachedChartPattern(const std::string& chartText, const std::string& source, const ChartPatternOptions& options) {
+Pattern cachedChartPattern(const std::string& chartText, const std::string& source,
+                           const ChartPatternOptions& options) {
     const Chart chart = parseChart(chartText, source);  // errors name the chart, cached or not
     const std::string dir = chartCacheDir();
     const std::string path = dir.empty() ? "" : dir + "/" + chartCacheKey(chartText, options);

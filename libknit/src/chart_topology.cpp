@@ -23,7 +23,7 @@ constexpr double kModelRadius = 0.8;
 // the feet above around |t| ~ 1.45 and cross the head below around |t| ~ 1.7, the feet cross
 // the legs below around |t| ~ 2.78. Changes of height happen between them.
 constexpr double kLegSwitch0 = 1.47, kLegSwitch1 = 1.67;  // upper -> lower stitch kind
-constexpr double kFootBlend = 0.36;                    // neighbouring columns' kinds meet at the foot
+constexpr double kFootBlend = 0.36;                       // neighbouring columns' kinds meet at the foot
 // A row below a cable row is stretched: the upper part of its loops (head and upper legs, all
 // that the row above touches) rises by kCableLift and, for the cable's loops, moves to the new
 // column, between the crossing with the feet above (|t| ~ 1.45) and the crossing with the head
@@ -78,15 +78,16 @@ std::vector<StitchLoop> stitchLoops(const Chart& chart, int samples) {
 
 // Step 2: where each row sits (rows below a cable row are stretched by kCableLift).
 struct RowLayout {
-    std::vector<double> y;         // y of each row's loop centres
-    std::vector<bool> stretched;   // the row above has a cable
+    std::vector<double> y;        // y of each row's loop centres
+    std::vector<bool> stretched;  // the row above has a cable
     double period = 0;
 };
 RowLayout rowLayout(const Chart& chart) {
     RowLayout rows;
     for (int r = 0; r < chart.height; ++r) {
         const int up = wrap(r + 1, chart.height);
-        const bool cable = std::any_of(chart.cables.begin(), chart.cables.end(), [&](const ChartCable& c) { return c.row == up; });
+        const bool cable =
+            std::any_of(chart.cables.begin(), chart.cables.end(), [&](const ChartCable& c) { return c.row == up; });
         rows.y.push_back(rows.period);
         rows.stretched.push_back(cable);
         rows.period += kRowPitch + (cable ? kCableLift : 0.0);
@@ -154,7 +155,9 @@ ChartCell chartToCell(const Chart& chart, const ChartCellOptions& options) {
     }
     // Step 5: the colour layer, per loop.
     if (!chart.colour.empty())
-        for (const StitchLoop& l : cell.loops) cell.colour.push_back(chart.palette.at(chart.colour[size_t(l.row) * size_t(chart.width) + size_t(l.column)]));
+        for (const StitchLoop& l : cell.loops)
+            cell.colour.push_back(
+                chart.palette.at(chart.colour[size_t(l.row) * size_t(chart.width) + size_t(l.column)]));
     validatePattern(p, p.name);
     return cell;
 }

@@ -48,7 +48,8 @@ CurveCell parseCurvesJson(const std::string& text, const std::string& source) {
     if (!curves.is_array() || curves.empty()) throw Error(source + ": \"curves\" must be a non-empty array of curves");
     for (size_t c = 0; c < curves.size(); ++c) {
         const std::string where = "curves[" + std::to_string(c) + "]";
-        if (!curves[c].is_array() || curves[c].empty()) throw Error(source + ": " + where + " must be a non-empty array of points");
+        if (!curves[c].is_array() || curves[c].empty())
+            throw Error(source + ": " + where + " must be a non-empty array of points");
         std::vector<glm::dvec3> pts;
         for (size_t i = 0; i < curves[c].size(); ++i) {
             const auto& pt = curves[c][i];

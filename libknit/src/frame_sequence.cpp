@@ -73,7 +73,8 @@ std::map<int, std::string> filesOfPattern(const NamePattern& p) {
             name.compare(name.size() - p.suffix.size(), p.suffix.size(), p.suffix) != 0)
             continue;
         const long number = numberOf(name.substr(0, name.size() - p.suffix.size()));
-        if (number >= 0 && format(p, static_cast<int>(number)) == name) found[static_cast<int>(number)] = entry.path().string();
+        if (number >= 0 && format(p, static_cast<int>(number)) == name)
+            found[static_cast<int>(number)] = entry.path().string();
     }
     return found;
 }
@@ -88,8 +89,8 @@ std::map<int, std::string> filesOfFolder(const std::string& folder) {
         if (number < 0) continue;
         const std::string ext = util::lowerExtension(name);
         if (!extension.empty() && ext != extension)
-            throw Error("--frames: folder '" + folder + "' holds numbered meshes of two formats (" + extension + " and " +
-                        ext + "); give a printf pattern such as frame_%04d." + extension);
+            throw Error("--frames: folder '" + folder + "' holds numbered meshes of two formats (" + extension +
+                        " and " + ext + "); give a printf pattern such as frame_%04d." + extension);
         extension = ext;
         const auto [it, inserted] = found.emplace(static_cast<int>(number), entry.path().string());
         if (!inserted)
@@ -126,9 +127,10 @@ FrameSequence::FrameSequence(const std::string& source, const FrameRange& range)
         const int number = static_cast<int>(k);
         const auto it = found.find(number);
         if (it == found.end())
-            throw Error("frame " + std::to_string(number) + " is missing: " +
-                        (folder ? "no mesh file numbered " + std::to_string(number) + " in folder '" + source + "'"
-                                : "'" + (fs::path(pattern.folder) / format(pattern, number)).string() + "' does not exist"));
+            throw Error(
+                "frame " + std::to_string(number) + " is missing: " +
+                (folder ? "no mesh file numbered " + std::to_string(number) + " in folder '" + source + "'"
+                        : "'" + (fs::path(pattern.folder) / format(pattern, number)).string() + "' does not exist"));
         frames_.push_back({number, it->second});
     }
 }

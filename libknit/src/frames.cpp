@@ -82,8 +82,8 @@ inline dvec3 transport(const dvec3& x0, const dvec3& t0, const dvec3& r0, const 
 
 }  // namespace
 
-void curveFrames(const glm::dvec3* x, size_t n, bool closed, const glm::dvec3* seedNormal, glm::dvec3* T,
-                 glm::dvec3* N, const FrameOptions& options) {
+void curveFrames(const glm::dvec3* x, size_t n, bool closed, const glm::dvec3* seedNormal, glm::dvec3* T, glm::dvec3* N,
+                 const FrameOptions& options) {
     if (n == 0) return;
 
     // Seed candidate (the surface normal at the first point), if usable.

@@ -13,7 +13,7 @@ namespace knit {
 // normals for points[0, count) (closed: last -> first is a segment); `seedNormal` (the surface
 // normal at points[0]) may be null. Points must be finite (not checked here;
 // rotationMinimizingFrames validates). Does not allocate, never throws.
-void curveFrames(const glm::dvec3* points, size_t count, bool closed, const glm::dvec3* seedNormal,
-                 glm::dvec3* tangent, glm::dvec3* normal, const FrameOptions& options = {});
+void curveFrames(const glm::dvec3* points, size_t count, bool closed, const glm::dvec3* seedNormal, glm::dvec3* tangent,
+                 glm::dvec3* normal, const FrameOptions& options = {});
 
 }  // namespace knit

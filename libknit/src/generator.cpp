@@ -13,8 +13,10 @@
 namespace knit {
 
 Pattern generateStockinette(const StockinetteParams& prm) {
-    if (!(prm.radius > 0) || !(prm.modelRadius > 0) || !(prm.h > 0) || !(prm.rowGap > -prm.h) || prm.samplesPerStitch < 4)
-        throw Error("stockinette generator: radius, modelRadius, h must be positive, h + rowGap > 0 and samplesPerStitch >= 4");
+    if (!(prm.radius > 0) || !(prm.modelRadius > 0) || !(prm.h > 0) || !(prm.rowGap > -prm.h) ||
+        prm.samplesPerStitch < 4)
+        throw Error(
+            "stockinette generator: radius, modelRadius, h must be positive, h + rowGap > 0 and samplesPerStitch >= 4");
     const double s = prm.radius / prm.modelRadius;  // metres per model unit
     Pattern p;
     p.name = "stockinette";

@@ -89,19 +89,31 @@ int componentsOf(const std::string& type) {
 double Accessor::get(size_t i, int k) const {
     const unsigned char* p = base + i * stride + size_t(k) * size_t(componentBytes(componentType));
     switch (componentType) {
-        case kFloat: { float f; std::memcpy(&f, p, 4); return f; }
+        case kFloat: {
+            float f;
+            std::memcpy(&f, p, 4);
+            return f;
+        }
         case kUnsignedByte: return normalized ? p[0] / 255.0 : p[0];
         case kByte: {
             const double v = double(int8_t(p[0]));
             return normalized ? std::max(v / 127.0, -1.0) : v;
         }
-        case kUnsignedShort: { uint16_t v; std::memcpy(&v, p, 2); return normalized ? v / 65535.0 : v; }
+        case kUnsignedShort: {
+            uint16_t v;
+            std::memcpy(&v, p, 2);
+            return normalized ? v / 65535.0 : v;
+        }
         case kShort: {
             int16_t v;
             std::memcpy(&v, p, 2);
             return normalized ? std::max(v / 32767.0, -1.0) : double(v);
         }
-        case kUnsignedInt: { uint32_t v; std::memcpy(&v, p, 4); return double(v); }
+        case kUnsignedInt: {
+            uint32_t v;
+            std::memcpy(&v, p, 4);
+            return double(v);
+        }
         default: return 0.0;
     }
 }
@@ -144,7 +156,9 @@ void Document::parseContainer(const std::string& bytes) {
         if (bytes.size() < 20) fail("truncated GLB header");
         if (u32(4) != 2) fail("GLB version " + std::to_string(u32(4)) + " (only glTF 2.0 is read)");
         const size_t total = u32(8);
-        if (total > bytes.size()) fail("truncated GLB: the header says " + std::to_string(total) + " bytes, the file has " + std::to_string(bytes.size()));
+        if (total > bytes.size())
+            fail("truncated GLB: the header says " + std::to_string(total) + " bytes, the file has " +
+                 std::to_string(bytes.size()));
         const size_t jsonLength = u32(12);
         if (u32(16) != kJsonChunk) fail("the first GLB chunk is not JSON");
         if (jsonLength > total - 20) fail("the GLB JSON chunk runs past the end of the file");
@@ -155,7 +169,8 @@ void Document::parseContainer(const std::string& bytes) {
         if (next + 8 <= total && u32(next + 4) == kBinChunk) {
             const size_t binLength = u32(next);
             if (binLength > total - next - 8) fail("the GLB BIN chunk runs past the end of the file");
-            glbBin_.emplace(bytes.begin() + std::ptrdiff_t(next + 8), bytes.begin() + std::ptrdiff_t(next + 8 + binLength));
+            glbBin_.emplace(bytes.begin() + std::ptrdiff_t(next + 8),
+                            bytes.begin() + std::ptrdiff_t(next + 8 + binLength));
         }
     }
     try {
@@ -195,15 +210,15 @@ std::optional<size_t> Document::index(const json& obj, const char* key, const st
 
 const json& Document::element(const char* array, size_t i, const std::string& what) const {
     const json& a = member(doc_, array, json::value_t::array, "the document");
-    if (i >= a.size() || !a[i].is_object())
-        fail(what + ": " + array + "[" + std::to_string(i) + "] does not exist");
+    if (i >= a.size() || !a[i].is_object()) fail(what + ": " + array + "[" + std::to_string(i) + "] does not exist");
     return a[i];
 }
 
 std::vector<double> Document::numbers(const json& obj, const char* key, size_t n, const std::string& where) const {
     if (!obj.contains(key)) return {};
     const json& v = obj[key];
-    if (!v.is_array() || v.size() != n) fail(where + "." + key + " must be an array of " + std::to_string(n) + " numbers");
+    if (!v.is_array() || v.size() != n)
+        fail(where + "." + key + " must be an array of " + std::to_string(n) + " numbers");
     std::vector<double> out;
     for (const json& x : v) {
         if (!x.is_number()) fail(where + "." + key + " must be an array of " + std::to_string(n) + " numbers");
@@ -254,13 +269,15 @@ const std::vector<unsigned char>& Document::buffer(size_t i, const std::string& 
         }
     }
     if (data.size() < length)
-        fail(where + " has " + std::to_string(data.size()) + " bytes, less than its byteLength " + std::to_string(length));
+        fail(where + " has " + std::to_string(data.size()) + " bytes, less than its byteLength " +
+             std::to_string(length));
     data.resize(length);
     return buffers_.emplace(i, std::move(data)).first->second;
 }
 
 // The first `length` bytes of an external file (its size is checked first).
-std::vector<unsigned char> Document::externalFile(const std::string& uri, const std::string& where, size_t length) const {
+std::vector<unsigned char> Document::externalFile(const std::string& uri, const std::string& where,
+                                                  size_t length) const {
     if (baseDir_.empty()) fail(where + ": external file '" + uri + "' not allowed here (parsed from memory)");
     if (uri.empty() || uri.find(':') != std::string::npos || fs::path(uri).is_absolute())
         fail(where + ": uri '" + uri + "' is not a relative file path");
@@ -391,7 +408,8 @@ glm::dmat4 Document::localTransform(size_t i) const {
 void Document::forEachPrimitive(size_t meshIndex, const std::function<void(const Primitive&)>& visit) const {
     const json& mesh = element("meshes", meshIndex, "a node");
     const std::string meshWhere = "meshes[" + std::to_string(meshIndex) + "]";
-    const std::string meshName = mesh.contains("name") && mesh["name"].is_string() ? mesh["name"].get<std::string>() : "";
+    const std::string meshName =
+        mesh.contains("name") && mesh["name"].is_string() ? mesh["name"].get<std::string>() : "";
     const json& prims = member(mesh, "primitives", json::value_t::array, meshWhere);
     for (size_t p = 0; p < prims.size(); ++p) {
         Primitive prim;

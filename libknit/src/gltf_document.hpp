@@ -135,13 +135,14 @@ private:
     void parseContainer(const std::string& bytes);
     std::vector<unsigned char> externalFile(const std::string& uri, const std::string& where, size_t length) const;
     std::vector<std::string> names(const char* key) const;
-    void visitTree(size_t root, std::vector<char>& reached, const std::function<void(const MeshInstance&)>& visit) const;
+    void visitTree(size_t root, std::vector<char>& reached,
+                   const std::function<void(const MeshInstance&)>& visit) const;
 
     std::string name_, baseDir_;
     nlohmann::json doc_;
     GlbLayout glb_;
-    mutable std::optional<std::vector<unsigned char>> glbBin_;          // until buffer 0 takes it
-    mutable std::map<size_t, std::vector<unsigned char>> buffers_;      // read on first use
+    mutable std::optional<std::vector<unsigned char>> glbBin_;      // until buffer 0 takes it
+    mutable std::map<size_t, std::vector<unsigned char>> buffers_;  // read on first use
 };
 
 }  // namespace knit::gltf

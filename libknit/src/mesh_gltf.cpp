@@ -68,9 +68,11 @@ public:
 
     // Step 2: weld into a BaseMesh.
     BaseMesh weld(const MeshLoadOptions& options) const {
-        if (faceStart_.size() == 1) doc_.fail("no triangle primitives in the default scene (libknit needs a triangle mesh)");
-        BaseMesh mesh = detail::weldPolygons(doc_.name(), points_, faceStart_, faceVerts_,
-                                             [&](uint32_t c) { return uvs_[size_t(faceVerts_[c])]; }, options);
+        if (faceStart_.size() == 1)
+            doc_.fail("no triangle primitives in the default scene (libknit needs a triangle mesh)");
+        BaseMesh mesh = detail::weldPolygons(
+            doc_.name(), points_, faceStart_, faceVerts_, [&](uint32_t c) { return uvs_[size_t(faceVerts_[c])]; },
+            options);
         validateMesh(mesh);
         return mesh;
     }
@@ -89,7 +91,8 @@ private:
         if (P.components != 3) doc_.fail(p.what + ": POSITION is not VEC3");
         if (T.components != 2) doc_.fail(p.what + ": TEXCOORD_0 is not VEC2");
         if (T.count != P.count)
-            doc_.fail(p.what + ": TEXCOORD_0 has " + std::to_string(T.count) + " elements, POSITION " + std::to_string(P.count));
+            doc_.fail(p.what + ": TEXCOORD_0 has " + std::to_string(T.count) + " elements, POSITION " +
+                      std::to_string(P.count));
         const size_t first = points_.size();
         addVertices(p, P, T, world);
         const std::optional<size_t> indices = doc_.indices(p);
@@ -97,9 +100,11 @@ private:
     }
 
     // World positions in double, v flipped (glTF's texture origin is top-left).
-    void addVertices(const gltf::Primitive& p, const gltf::Accessor& P, const gltf::Accessor& T, const glm::dmat4& world) {
+    void addVertices(const gltf::Primitive& p, const gltf::Accessor& P, const gltf::Accessor& T,
+                     const glm::dmat4& world) {
         if (points_.size() + P.count > std::min<uint64_t>(maxElements_, uint64_t(std::numeric_limits<int>::max())))
-            doc_.fail("more than " + std::to_string(maxElements_) + " vertices in the scene (MeshLoadOptions::maxElements)");
+            doc_.fail("more than " + std::to_string(maxElements_) +
+                      " vertices in the scene (MeshLoadOptions::maxElements)");
         for (size_t i = 0; i < P.count; ++i) {
             const glm::dvec4 x = world * glm::dvec4(P.get(i, 0), P.get(i, 1), P.get(i, 2), 1.0);
             const glm::dvec2 uv(T.get(i, 0), 1.0 - T.get(i, 1));
@@ -113,7 +118,8 @@ private:
     }
 
     // The primitive's indices (checked against its vertex count), or 0..vertices-1.
-    std::vector<uint32_t> vertexIndices(const gltf::Primitive& p, const std::optional<size_t>& indices, size_t vertices) const {
+    std::vector<uint32_t> vertexIndices(const gltf::Primitive& p, const std::optional<size_t>& indices,
+                                        size_t vertices) const {
         std::vector<uint32_t> idx;
         if (!indices) {
             idx.resize(vertices);
@@ -148,7 +154,8 @@ private:
         };
         const size_t triangles = p.mode == gltf::kTriangles ? idx.size() / 3 : (idx.size() >= 3 ? idx.size() - 2 : 0);
         if (faceStart_.size() - 1 + triangles > maxElements_)
-            doc_.fail("more than " + std::to_string(maxElements_) + " triangles in the scene (MeshLoadOptions::maxElements)");
+            doc_.fail("more than " + std::to_string(maxElements_) +
+                      " triangles in the scene (MeshLoadOptions::maxElements)");
         if (p.mode == gltf::kTriangles) {
             if (idx.size() % 3 != 0)
                 doc_.fail(p.what + ": " + std::to_string(idx.size()) + (indexed ? " indices" : " vertices") +
@@ -175,7 +182,8 @@ BaseMesh meshOf(const gltf::Document& doc, const MeshLoadOptions& options) {
     // fallback buffer (which has no data) as missing.
     for (const std::string& e : doc.extensionsUsed())
         if (e == "EXT_meshopt_compression" || e == "KHR_meshopt_compression")
-            doc.fail(e + " is not supported (compressed buffer views); export the base mesh without meshopt compression");
+            doc.fail(e +
+                     " is not supported (compressed buffer views); export the base mesh without meshopt compression");
     TriangleCollector triangles(doc, options.maxElements);
     doc.forEachMeshInstance([&](const gltf::MeshInstance& instance) { triangles.add(instance); });
     return triangles.weld(options);

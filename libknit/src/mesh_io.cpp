@@ -75,9 +75,7 @@ namespace {
 
 namespace OMIO = OpenMesh::IO;
 
-[[noreturn]] void fail(const std::string& file, const std::string& what) {
-    throw Error(file + ": " + what);
-}
+[[noreturn]] void fail(const std::string& file, const std::string& what) { throw Error(file + ": " + what); }
 [[noreturn]] void failLine(const std::string& file, size_t line, const std::string& what) {
     throw Error(file + ":" + std::to_string(line) + ": " + what);
 }
@@ -128,7 +126,7 @@ public:
     std::vector<OpenMesh::Vec3d> points;
     std::vector<OpenMesh::Vec2f> vertexUv;
     std::vector<char> vertexHasUv;
-    std::vector<uint32_t> faceStart{0};   // polygon k = faceVerts[faceStart[k] .. faceStart[k+1])
+    std::vector<uint32_t> faceStart{0};  // polygon k = faceVerts[faceStart[k] .. faceStart[k+1])
     std::vector<int> faceVerts;
     std::vector<OpenMesh::Vec2f> cornerUv;  // same layout as faceVerts
     std::vector<char> faceHasCornerUv;
@@ -186,9 +184,12 @@ public:
     size_t n_edges() const override { return 0; }
 
     // Everything below is information libknit does not use.
-    OpenMesh::HalfedgeHandle add_edge(OpenMesh::VertexHandle, OpenMesh::VertexHandle) override { return OpenMesh::HalfedgeHandle(); }
+    OpenMesh::HalfedgeHandle add_edge(OpenMesh::VertexHandle, OpenMesh::VertexHandle) override {
+        return OpenMesh::HalfedgeHandle();
+    }
     OpenMesh::FaceHandle add_face(OpenMesh::HalfedgeHandle) override { return OpenMesh::FaceHandle(); }
-    void add_face_texcoords(OpenMesh::FaceHandle, OpenMesh::VertexHandle, const std::vector<OpenMesh::Vec3f>&) override {}
+    void add_face_texcoords(OpenMesh::FaceHandle, OpenMesh::VertexHandle,
+                            const std::vector<OpenMesh::Vec3f>&) override {}
     void set_face_texindex(OpenMesh::FaceHandle, int) override {}
     void set_halfedge(OpenMesh::VertexHandle, OpenMesh::HalfedgeHandle) override {}
     void set_normal(OpenMesh::VertexHandle, const OpenMesh::Vec3f&) override {}
@@ -232,7 +233,10 @@ ObjScan scanObj(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) fail(path, "cannot open for reading");
     ObjScan scan;
-    struct FaceRef { size_t line; long maxV, maxVt; };
+    struct FaceRef {
+        size_t line;
+        long maxV, maxVt;
+    };
     std::vector<FaceRef> refs;
     bool anyVtInFaces = false, anyFaceWithoutVt = false;
     size_t firstFaceWithoutVt = 0;
@@ -247,8 +251,9 @@ ObjScan scanObj(const std::string& path) {
             double c[3] = {0, 0, 0};
             for (int i = 0; i < need; ++i) {
                 if (!(ls >> tok) || !parseFinite(tok, c[i]))
-                    failLine(path, lineNo, key == "v" ? "vertex position is not three finite numbers"
-                                                      : "texture coordinate (vt) is not two finite numbers");
+                    failLine(path, lineNo,
+                             key == "v" ? "vertex position is not three finite numbers"
+                                        : "texture coordinate (vt) is not two finite numbers");
                 requireFloatRange(path, lineNo, tok, c[i]);
             }
             if (key == "v") scan.positions.emplace_back(c[0], c[1], c[2]);
@@ -273,9 +278,11 @@ ObjScan scanObj(const std::string& path) {
                     const size_t s2 = tok.find('/', s1 + 1);
                     const std::string t = tok.substr(s1 + 1, s2 == std::string::npos ? std::string::npos : s2 - s1 - 1);
                     if (!t.empty()) {
-                        if (!parseIndex(t, vt)) failLine(path, lineNo, "face corner '" + tok + "' has an invalid vt index");
+                        if (!parseIndex(t, vt))
+                            failLine(path, lineNo, "face corner '" + tok + "' has an invalid vt index");
                         if (vt < 0) vt = long(scan.uvCount) + vt + 1;
-                        if (vt < 1) failLine(path, lineNo, "face corner '" + tok + "' references a vt before the first one");
+                        if (vt < 1)
+                            failLine(path, lineNo, "face corner '" + tok + "' references a vt before the first one");
                         ++withVt;
                     }
                 }
@@ -287,8 +294,9 @@ ObjScan scanObj(const std::string& path) {
             std::vector<long> sorted = verts;
             std::sort(sorted.begin(), sorted.end());
             if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end())
-                failLine(path, lineNo, "face uses vertex " + std::to_string(*std::adjacent_find(sorted.begin(), sorted.end())) +
-                                           " twice");
+                failLine(
+                    path, lineNo,
+                    "face uses vertex " + std::to_string(*std::adjacent_find(sorted.begin(), sorted.end())) + " twice");
             if (withVt != 0 && withVt != verts.size())
                 failLine(path, lineNo, "face mixes corners with and without texture coordinates");
             if (withVt) anyVtInFaces = true;
@@ -304,15 +312,18 @@ ObjScan scanObj(const std::string& path) {
     // Positive indices may point forward, so ranges are checked once all v/vt are known.
     for (const FaceRef& r : refs) {
         if (size_t(r.maxV) > scan.positions.size())
-            failLine(path, r.line, "face references vertex " + std::to_string(r.maxV) + " but the file has " +
-                                       std::to_string(scan.positions.size()) + " vertices (v)");
+            failLine(path, r.line,
+                     "face references vertex " + std::to_string(r.maxV) + " but the file has " +
+                         std::to_string(scan.positions.size()) + " vertices (v)");
         if (size_t(r.maxVt) > scan.uvCount)
-            failLine(path, r.line, "face references texture coordinate " + std::to_string(r.maxVt) +
-                                       " but the file has " + std::to_string(scan.uvCount) + " (vt)");
+            failLine(path, r.line,
+                     "face references texture coordinate " + std::to_string(r.maxVt) + " but the file has " +
+                         std::to_string(scan.uvCount) + " (vt)");
     }
     if (refs.empty()) fail(path, "the mesh has no faces");
     if (!anyVtInFaces) fail(path, "no texture coordinates (vt); libknit needs UVs");
-    if (anyFaceWithoutVt) failLine(path, firstFaceWithoutVt, "face has no texture coordinates (v/vt); libknit needs UVs on every face");
+    if (anyFaceWithoutVt)
+        failLine(path, firstFaceWithoutVt, "face has no texture coordinates (v/vt); libknit needs UVs on every face");
     return scan;
 }
 
@@ -457,7 +468,8 @@ void checkPlyConvertible(const PlyHeader& h, const std::string& path) {
             if (p.list && (p.name == "vertex_indices" || p.name == "vertex_index") && plyFloatType(p.type))
                 need = "an integer type";
             else if (!p.list && e.name == "vertex" &&
-                     std::any_of(std::begin(kFloatValued), std::end(kFloatValued), [&](const char* n) { return p.name == n; }) &&
+                     std::any_of(std::begin(kFloatValued), std::end(kFloatValued),
+                                 [&](const char* n) { return p.name == n; }) &&
                      !plyFloatType(p.type))
                 need = "float or double";
             else if (!p.list && isDouble &&
@@ -521,7 +533,8 @@ PlyHeader scanPly(const std::string& path) {
             }
             std::string extra;
             ls >> p.name >> extra;
-            if (p.name.empty() || !extra.empty()) failLine(path, lineNo, "a property line must be 'property TYPE NAME'");
+            if (p.name.empty() || !extra.empty())
+                failLine(path, lineNo, "a property line must be 'property TYPE NAME'");
             h.elements.back().props.push_back(p);
         } else if (word == "end_header" && trimmed(line) == "end_header") {
             ended = true;
@@ -588,8 +601,7 @@ void scanOff(const std::string& path, std::string& cleaned) {
         failLine(path, 1, "not an OFF file (the first line must start with a header such as OFF or STOFF)");
     std::string rest;
     std::getline(header, rest);
-    if (trimmed(rest).rfind("BINARY", 0) == 0)
-        fail(path, "binary OFF is not supported (use ASCII OFF, PLY or OBJ)");
+    if (trimmed(rest).rfind("BINARY", 0) == 0) fail(path, "binary OFF is not supported (use ASCII OFF, PLY or OBJ)");
     std::ostringstream out;
     out << keyword << "\n";
     size_t dataLine = 0;  // 0: counts, then vertices, then faces
@@ -618,8 +630,9 @@ void scanOff(const std::string& path, std::string& cleaned) {
                 failLine(path, lineNo, "a face line must be 'k i1 .. ik' with k >= 3 vertex indices");
             for (size_t i = 1; i <= size_t(k); ++i)
                 if (values[i] < 0 || values[i] >= nv || values[i] != std::floor(values[i]))
-                    failLine(path, lineNo, "face references vertex " + std::to_string(values[i]) +
-                                               " but the file has " + countText(nv) + " vertices");
+                    failLine(path, lineNo,
+                             "face references vertex " + std::to_string(values[i]) + " but the file has " +
+                                 countText(nv) + " vertices");
             // A face colour after the indices (integer or float RGB[A], valid OFF) is not passed
             // on: OpenMesh misreads float colours as more corners. libknit does not use colours.
             std::ostringstream face;
@@ -635,8 +648,8 @@ void scanOff(const std::string& path, std::string& cleaned) {
     for (size_t lineNo = 2; std::getline(in, line); ++lineNo) take(line.substr(0, line.find('#')), lineNo);
     if (dataLine == 0) fail(path, "OFF header has no 'vertices faces edges' counts");
     if (double(dataLine) < 1 + nv + nf)
-        fail(path, "declares " + countText(nv) + " vertices and " + countText(nf) +
-                       " faces but holds only " + std::to_string(dataLine - 1) + " data lines (truncated?)");
+        fail(path, "declares " + countText(nv) + " vertices and " + countText(nf) + " faces but holds only " +
+                       std::to_string(dataLine - 1) + " data lines (truncated?)");
     if (nf == 0) fail(path, "the mesh has no faces");
     cleaned = out.str();
 }
@@ -684,7 +697,8 @@ BaseMesh buildMesh(const std::string& path, const RecordingImporter& rec, const 
                                std::to_string(nv) + " vertices");
             for (uint32_t d = b; d < c; ++d)
                 if (rec.faceVerts[d] == v)
-                    fail(path, faceName(f) + " uses vertex " + std::to_string(v) + " twice (malformed or truncated file?)");
+                    fail(path,
+                         faceName(f) + " uses vertex " + std::to_string(v) + " twice (malformed or truncated file?)");
             const glm::dvec2 uv = cornerUvs ? glm::dvec2(rec.cornerUv[c][0], rec.cornerUv[c][1]) : vertexUv[v];
             if (!std::isfinite(uv.x) || !std::isfinite(uv.y))
                 fail(path, faceName(f) + " has a non-finite texture coordinate at vertex " + std::to_string(v));
@@ -693,9 +707,12 @@ BaseMesh buildMesh(const std::string& path, const RecordingImporter& rec, const 
             fail(path, faceName(f) + ": texture coordinates missing or not one per corner");
     }
     // Weld and fan-triangulate.
-    return detail::weldPolygons(path, points, rec.faceStart, rec.faceVerts, [&](uint32_t c) {
-        return cornerUvs ? glm::dvec2(rec.cornerUv[c][0], rec.cornerUv[c][1]) : vertexUv[size_t(rec.faceVerts[c])];
-    }, options);
+    return detail::weldPolygons(
+        path, points, rec.faceStart, rec.faceVerts,
+        [&](uint32_t c) {
+            return cornerUvs ? glm::dvec2(rec.cornerUv[c][0], rec.cornerUv[c][1]) : vertexUv[size_t(rec.faceVerts[c])];
+        },
+        options);
 }
 
 std::mutex& openMeshReaderMutex() {

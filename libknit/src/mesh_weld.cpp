@@ -46,7 +46,8 @@ BaseMesh weldPolygons(const std::string& name, const std::vector<glm::dvec3>& po
     Key3Map uvIndex;
     auto uvOf = [&](uint32_t pos, glm::dvec2 uv) {
         uv += glm::dvec2(0.0);
-        auto [it, inserted] = uvIndex.emplace(std::array<double, 3>{double(pos), uv.x, uv.y}, uint32_t(mesh.uvs.size()));
+        auto [it, inserted] =
+            uvIndex.emplace(std::array<double, 3>{double(pos), uv.x, uv.y}, uint32_t(mesh.uvs.size()));
         if (inserted) mesh.uvs.push_back(uv);
         return it->second;
     };

@@ -18,9 +18,9 @@ namespace {
 
 struct EndRef {
     uint32_t curve;
-    bool atEnd;        // false: first point, true: last point
-    uint32_t vertex;   // index in the concatenated vertex list
-    glm::dvec2 step;   // the curve's last step leaving through this end (zero for 1-point curves)
+    bool atEnd;       // false: first point, true: last point
+    uint32_t vertex;  // index in the concatenated vertex list
+    glm::dvec2 step;  // the curve's last step leaving through this end (zero for 1-point curves)
 };
 
 std::string endName(const EndRef& e) {
@@ -48,12 +48,14 @@ Pattern patternFromCurves(const CurveCell& cell, const PartnerOptions& options) 
         const uint32_t first = uint32_t(p.points.size());
         for (size_t i = 0; i < curve.size(); ++i) {
             if (!std::isfinite(curve[i].x) || !std::isfinite(curve[i].y) || !std::isfinite(curve[i].z))
-                throw Error(cell.name + ": curve " + std::to_string(c) + " point " + std::to_string(i) + " is not finite");
+                throw Error(cell.name + ": curve " + std::to_string(c) + " point " + std::to_string(i) +
+                            " is not finite");
             p.points.push_back(curve[i]);
             p.twist.push_back(0.0);
             if (i > 0) {
                 p.edges.push_back({first + uint32_t(i) - 1, first + uint32_t(i), 0, 0});
-                longestSegment = std::max(longestSegment, glm::distance(glm::dvec2(curve[i]), glm::dvec2(curve[i - 1])));
+                longestSegment =
+                    std::max(longestSegment, glm::distance(glm::dvec2(curve[i]), glm::dvec2(curve[i - 1])));
             }
         }
         const size_t last = curve.size() - 1;
@@ -97,7 +99,8 @@ Pattern patternFromCurves(const CurveCell& cell, const PartnerOptions& options) 
         }
         std::sort(found.begin(), found.end());
         for (const auto& [b, k] : found) {
-            const glm::dvec2 qb = glm::dvec2(p.points[ends[b].vertex]) + glm::dvec2(shifts[k][0] * cell.px, shifts[k][1] * cell.py);
+            const glm::dvec2 qb =
+                glm::dvec2(p.points[ends[b].vertex]) + glm::dvec2(shifts[k][0] * cell.px, shifts[k][1] * cell.py);
             if (glm::distance(pa, qb) > tol) continue;
             const double cost = glm::distance(pa + ends[a].step, qb) + glm::distance(qb + ends[b].step, pa);
             candidates.push_back({cost, a, b, shifts[k][0], shifts[k][1]});
@@ -124,8 +127,7 @@ Pattern patternFromCurves(const CurveCell& cell, const PartnerOptions& options) 
         if (partner[a] >= 0) continue;
         std::ostringstream msg;
         msg << cell.name << ": " << endName(ends[a]) << " at (" << p.points[ends[a].vertex].x << ", "
-            << p.points[ends[a].vertex].y << ") has no partner endpoint within " << tol
-            << " m in a neighbouring cell";
+            << p.points[ends[a].vertex].y << ") has no partner endpoint within " << tol << " m in a neighbouring cell";
         throw Error(msg.str());
     }
     validatePattern(p, cell.name);
@@ -172,7 +174,8 @@ CurveCell splitAtPeriodicEdges(const Pattern& pattern, std::vector<uint32_t>* or
     }
     for (uint32_t v = 0; v < pattern.points.size(); ++v)
         if (!seen[v])
-            throw Error(pattern.name + ": vertex " + std::to_string(v) + " lies on a loop with no periodic edge; the curves-only form cannot represent it");
+            throw Error(pattern.name + ": vertex " + std::to_string(v) +
+                        " lies on a loop with no periodic edge; the curves-only form cannot represent it");
     return cell;
 }
 

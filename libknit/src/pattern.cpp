@@ -73,7 +73,9 @@ std::vector<Block> readBlocks(std::istream& in, const std::string& source) {
             std::string name = row[0].substr(1);
             if (name.empty()) fail(source, lineNo, "block header '*' without a name");
             for (const Block& b : blocks)
-                if (b.name == name) fail(source, lineNo, "block *" + name + " appears twice (first at line " + std::to_string(b.line) + ")");
+                if (b.name == name)
+                    fail(source, lineNo,
+                         "block *" + name + " appears twice (first at line " + std::to_string(b.line) + ")");
             blocks.push_back({name, lineNo, {}});
             continue;
         }
@@ -98,7 +100,8 @@ const Block& requireBlock(const std::vector<Block>& blocks, const std::string& n
 
 void requireColumns(const Row& row, size_t n, const std::string& block, const std::string& source) {
     if (row.tokens.size() != n)
-        fail(source, row.line, "*" + block + " row has " + std::to_string(row.tokens.size()) + " values, expected " + std::to_string(n));
+        fail(source, row.line,
+             "*" + block + " row has " + std::to_string(row.tokens.size()) + " values, expected " + std::to_string(n));
 }
 
 }  // namespace
@@ -126,12 +129,15 @@ Pattern parsePyp(std::istream& in, const std::string& source) {
     const long n = parseInteger(h.tokens[3], source, h.line);
     if (!(p.px > 0) || !(p.py > 0)) fail(source, h.line, "period px, py must be positive");
     if (!(p.radius > 0)) fail(source, h.line, "yarn radius must be positive");
-    if (n <= 0 || n > (1L << 26)) fail(source, h.line, "vertex count " + std::to_string(n) + " is out of range (1 .. 2^26)");
+    if (n <= 0 || n > (1L << 26))
+        fail(source, h.line, "vertex count " + std::to_string(n) + " is out of range (1 .. 2^26)");
 
     // *Q: n rows x y z t
     const Block& q = requireBlock(blocks, "Q", source);
     if (q.rows.size() != size_t(n))
-        fail(source, q.line, "*Q has " + std::to_string(q.rows.size()) + " rows but *pattern declares " + std::to_string(n) + " vertices");
+        fail(source, q.line,
+             "*Q has " + std::to_string(q.rows.size()) + " rows but *pattern declares " + std::to_string(n) +
+                 " vertices");
     p.points.reserve(n);
     p.twist.reserve(n);
     for (const Row& r : q.rows) {
@@ -149,9 +155,12 @@ Pattern parsePyp(std::istream& in, const std::string& source) {
         const long v0 = parseInteger(r.tokens[0], source, r.line), v1 = parseInteger(r.tokens[1], source, r.line);
         const long dx = parseInteger(r.tokens[2], source, r.line), dy = parseInteger(r.tokens[3], source, r.line);
         if (v0 < 0 || v0 >= n || v1 < 0 || v1 >= n)
-            fail(source, r.line, "edge " + std::to_string(v0) + " -> " + std::to_string(v1) + " references a missing vertex (the pattern has " + std::to_string(n) + ")");
+            fail(source, r.line,
+                 "edge " + std::to_string(v0) + " -> " + std::to_string(v1) +
+                     " references a missing vertex (the pattern has " + std::to_string(n) + ")");
         if (dx < -1 || dx > 1 || dy < -1 || dy > 1 || (dx != 0 && dy != 0))  // |dx|+|dy| > 1, overflow-free
-            fail(source, r.line, "edge offset (" + std::to_string(dx) + ", " + std::to_string(dy) + ") has |dx|+|dy| > 1");
+            fail(source, r.line,
+                 "edge offset (" + std::to_string(dx) + ", " + std::to_string(dy) + ") has |dx|+|dy| > 1");
         p.edges.push_back({uint32_t(v0), uint32_t(v1), int32_t(dx), int32_t(dy)});
         edgeLines.push_back(r.line);
     }
@@ -187,7 +196,8 @@ Pattern parsePyp(std::istream& in, const std::string& source) {
             fail(source, edgeLines[i], "edge joins vertex " + std::to_string(ed.v0) + " to itself");
         for (const uint32_t v : {ed.v0, ed.v1})
             if (++degree[v] > 2)
-                fail(source, edgeLines[i], "vertex " + std::to_string(v) + " gets a third edge (yarn vertices have degree <= 2)");
+                fail(source, edgeLines[i],
+                     "vertex " + std::to_string(v) + " gets a third edge (yarn vertices have degree <= 2)");
     }
     validatePattern(p, source);
     return p;
@@ -205,10 +215,12 @@ Pattern loadPyp(const std::string& path) {
 
 void writePyp(std::ostream& out, const Pattern& p) {
     out << std::setprecision(17);
-    out << "*pattern # px py radius num_vertedges\n" << p.px << ' ' << p.py << ' ' << p.radius << ' ' << p.points.size() << "\n\n";
+    out << "*pattern # px py radius num_vertedges\n"
+        << p.px << ' ' << p.py << ' ' << p.radius << ' ' << p.points.size() << "\n\n";
     out << "*Q # dofs: x y z t\n";
     for (size_t i = 0; i < p.points.size(); ++i)
-        out << p.points[i].x << ' ' << p.points[i].y << ' ' << p.points[i].z << ' ' << (i < p.twist.size() ? p.twist[i] : 0.0) << '\n';
+        out << p.points[i].x << ' ' << p.points[i].y << ' ' << p.points[i].z << ' '
+            << (i < p.twist.size() ? p.twist[i] : 0.0) << '\n';
     out << "\n*E # edges: v0 v1 dx dy\n";
     for (const PeriodicEdge& e : p.edges) out << e.v0 << ' ' << e.v1 << ' ' << e.dx << ' ' << e.dy << '\n';
     if (p.stitchesPerPeriod != 1 || p.rowsPerPeriod != 1)
@@ -234,17 +246,20 @@ void validatePattern(const Pattern& p, const std::string& source) {
             bad("vertex " + std::to_string(i) + " has a non-finite coordinate");
     for (size_t i = 0; i < p.edges.size(); ++i) {
         const PeriodicEdge& e = p.edges[i];
-        if (e.v0 >= p.points.size() || e.v1 >= p.points.size()) bad("edge " + std::to_string(i) + " references a missing vertex");
+        if (e.v0 >= p.points.size() || e.v1 >= p.points.size())
+            bad("edge " + std::to_string(i) + " references a missing vertex");
         if (e.dx < -1 || e.dx > 1 || e.dy < -1 || e.dy > 1 || (e.dx != 0 && e.dy != 0))
             bad("edge " + std::to_string(i) + " has |dx|+|dy| > 1");
-        if (e.v0 == e.v1 && e.dx == 0 && e.dy == 0) bad("edge " + std::to_string(i) + " joins vertex " + std::to_string(e.v0) + " to itself");
+        if (e.v0 == e.v1 && e.dx == 0 && e.dy == 0)
+            bad("edge " + std::to_string(i) + " joins vertex " + std::to_string(e.v0) + " to itself");
     }
     const PatternAdjacency adj = buildAdjacency(p);  // throws on degree > 2
     // The same undirected periodic edge twice would make a zero-length double edge.
     for (size_t v = 0; v < adj.slots.size(); ++v) {
         const auto& s = adj.slots[v];
         if (s[0].v >= 0 && s[0].v == s[1].v && s[0].dx == s[1].dx && s[0].dy == s[1].dy)
-            bad("vertex " + std::to_string(v) + " is joined twice to vertex " + std::to_string(s[0].v) + " in the same tile");
+            bad("vertex " + std::to_string(v) + " is joined twice to vertex " + std::to_string(s[0].v) +
+                " in the same tile");
     }
 }
 
@@ -255,7 +270,9 @@ PatternAdjacency buildAdjacency(const Pattern& p) {
         auto& s = adj.slots[from];
         if (s[0].v < 0) s[0] = nb;
         else if (s[1].v < 0) s[1] = nb;
-        else throw Error(p.name + ": vertex " + std::to_string(from) + " has more than two edges (edge " + std::to_string(edge) + "); yarn vertices have degree <= 2");
+        else
+            throw Error(p.name + ": vertex " + std::to_string(from) + " has more than two edges (edge " +
+                        std::to_string(edge) + "); yarn vertices have degree <= 2");
     };
     for (size_t i = 0; i < p.edges.size(); ++i) {
         const PeriodicEdge& e = p.edges[i];

@@ -29,8 +29,8 @@ struct PlyKernel {
                              PlyScratch& scratch);
     // The `count` plies of yarn `y` swept around its m-point centreline: ply i's point j goes to
     // points[i * m + j] (and its unit radial direction to radial[i * m + j] unless radial is null).
-    static void sweep(const PlyGenerator& generator, size_t y, const glm::dvec3* centre, size_t m,
-                      glm::dvec3* points, glm::dvec3* radial, PlyScratch& scratch);
+    static void sweep(const PlyGenerator& generator, size_t y, const glm::dvec3* centre, size_t m, glm::dvec3* points,
+                      glm::dvec3* radial, PlyScratch& scratch);
     // sweep's two parts (animation replays the second with the rest pose's phase): the arc length
     // of each centre point (written to `arc`) and the twist pitch (closed yarns: a whole number of
     // turns) ...

@@ -22,7 +22,8 @@ int64_t cellIndex(double v) {
 
 }  // namespace
 
-PointGrid::PointGrid(std::vector<glm::dvec3> points, double cellSize) : cellSize_(cellSize), points_(std::move(points)) {
+PointGrid::PointGrid(std::vector<glm::dvec3> points, double cellSize)
+    : cellSize_(cellSize), points_(std::move(points)) {
     assert(cellSize > 0 && std::isfinite(cellSize));
     // Sort the point indices by (cell, index), then list each occupied cell once.
     std::vector<Cell> cellOfPoint(points_.size());

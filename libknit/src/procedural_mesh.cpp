@@ -80,11 +80,11 @@ BaseMesh flatSheet(const ProceduralMeshOptions& o, const char* name, double (*he
 
 // The drape's height field (see makeDrape).
 double drapeHeight(double x, double y, double size) {
-    const double R = size / 3.0;               // sphere radius, centre at the origin
+    const double R = size / 3.0;                     // sphere radius, centre at the origin
     const double a = R * std::sin(util::kPi / 4.0);  // the sheet leaves the sphere at polar angle 45°
     const double ha = std::sqrt(R * R - a * a);
-    const double slope = -a / ha;              // dh/dr of the sphere at r = a
-    const double L = R / 2.0;                  // fall-off length
+    const double slope = -a / ha;  // dh/dr of the sphere at r = a
+    const double L = R / 2.0;      // fall-off length
     const double r = std::hypot(x, y);
     if (r <= a) return std::sqrt(R * R - r * r);
     return ha + slope * L * (1.0 - std::exp(-(r - a) / L));

@@ -76,7 +76,8 @@ double bendEnergy(const Problem& pb, const Vec& v, Vec& g) {
     for (size_t vtx = 0; vtx < pb.n; ++vtx) {
         const Seg& in = pb.before[vtx];  // in.a -> vtx, vtx in tile (in.dx, in.dy) of in.a
         const Seg& out = pb.segs[vtx];   // vtx -> out.b (segments are indexed by their first vertex)
-        const glm::dvec3 b = at(v, pb.n, in.a, -in.dx, -in.dy) - 2.0 * vertex(v, vtx) + at(v, pb.n, out.b, out.dx, out.dy);
+        const glm::dvec3 b =
+            at(v, pb.n, in.a, -in.dx, -in.dy) - 2.0 * vertex(v, vtx) + at(v, pb.n, out.b, out.dx, out.dy);
         e += w * glm::dot(b, b);
         const glm::dvec3 gb = 2 * w * b;
         addAt(g, pb.n, in.a, -in.dx, -in.dy, gb);
@@ -144,7 +145,9 @@ Problem setUp(const Pattern& p, const RelaxOptions& opt, Vec& v) {
     pb.segs.resize(pb.n);
     std::vector<int> seen(pb.n, 0);
     for (const PeriodicEdge& e : p.edges) {
-        if (seen[e.v0]++) throw Error(p.name + ": relaxation needs closed yarns with consistently oriented edges (vertex " + std::to_string(e.v0) + ")");
+        if (seen[e.v0]++)
+            throw Error(p.name + ": relaxation needs closed yarns with consistently oriented edges (vertex " +
+                        std::to_string(e.v0) + ")");
         pb.segs[e.v0] = {e.v0, e.v1, e.dx, e.dy};
     }
     if (!(opt.restLength > 0) || !(opt.contactDistance > 0) || opt.maxIterations < 0)
@@ -176,8 +179,8 @@ std::vector<glm::dvec3> positions(const Problem& pb, const Vec& v) {
 }
 
 std::vector<Pair> pairsOf(const Problem& pb, const Vec& v, double skin) {
-    return relax::findPairs(positions(pb, v), v[Eigen::Index(3 * pb.n)], v[Eigen::Index(3 * pb.n + 1)], pb.segs, pb.yarns,
-                            pb.opt.contactDistance + skin);
+    return relax::findPairs(positions(pb, v), v[Eigen::Index(3 * pb.n)], v[Eigen::Index(3 * pb.n + 1)], pb.segs,
+                            pb.yarns, pb.opt.contactDistance + skin);
 }
 
 // The largest vertex move of a step (the period counts as moving the far copies).
@@ -249,7 +252,8 @@ RelaxResult relaxYarn(const Pattern& initial, const RelaxOptions& options) {
         }
         // Step 3: backtracking line search from a step capped at maxStep per vertex and by the
         // continuous collision bound (no two segments can pass through each other).
-        double step = std::min({1.0, options.maxStep / std::max(largestMove(pb, d), 1e-300), collisionFreeStep(pb, d, dmin, options.contactDistance + skin)});
+        double step = std::min({1.0, options.maxStep / std::max(largestMove(pb, d), 1e-300),
+                                collisionFreeStep(pb, d, dmin, options.contactDistance + skin)});
         double eNew = e;
         bool accepted = false;
         for (int k = 0; k < 40 && !accepted; ++k, step *= 0.5) {

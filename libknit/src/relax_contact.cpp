@@ -17,7 +17,9 @@ YarnIndex indexYarns(const Pattern& p, const std::vector<Seg>& segs) {
     // Out/in segment per vertex: every yarn must be a closed, consistently oriented cycle.
     std::vector<int32_t> out(n, -1);
     for (size_t i = 0; i < segs.size(); ++i) {
-        if (out[segs[i].a] >= 0) throw Error(p.name + ": relaxation needs closed yarns with consistently oriented edges (vertex " + std::to_string(segs[i].a) + ")");
+        if (out[segs[i].a] >= 0)
+            throw Error(p.name + ": relaxation needs closed yarns with consistently oriented edges (vertex " +
+                        std::to_string(segs[i].a) + ")");
         out[segs[i].a] = int32_t(i);
     }
     YarnIndex yi;
@@ -27,7 +29,8 @@ YarnIndex indexYarns(const Pattern& p, const std::vector<Seg>& segs) {
         const int32_t y = int32_t(yi.length.size());
         int32_t count = 0, ux = 0, uy = 0;
         for (size_t v = start; yi.yarn[v] < 0;) {
-            if (out[v] < 0) throw Error(p.name + ": relaxation needs closed yarns (vertex " + std::to_string(v) + " ends a yarn)");
+            if (out[v] < 0)
+                throw Error(p.name + ": relaxation needs closed yarns (vertex " + std::to_string(v) + " ends a yarn)");
             yi.yarn[v] = y;
             yi.index[v] = count++;
             yi.ux[v] = ux;
@@ -36,7 +39,8 @@ YarnIndex indexYarns(const Pattern& p, const std::vector<Seg>& segs) {
             ux += s.dx;
             uy += s.dy;
             v = s.b;
-            if (v != start && yi.yarn[v] >= 0) throw Error(p.name + ": yarns of the pattern merge at vertex " + std::to_string(v));
+            if (v != start && yi.yarn[v] >= 0)
+                throw Error(p.name + ": yarns of the pattern merge at vertex " + std::to_string(v));
         }
         yi.length.push_back(count);
         yi.wx.push_back(ux);
@@ -65,7 +69,8 @@ bool nearAlongYarn(const YarnIndex& yi, const std::vector<Seg>& segs, const Pair
     return delta <= gap;
 }
 
-void closestParameters(const glm::dvec3& p0, const glm::dvec3& p1, const glm::dvec3& q0, const glm::dvec3& q1, double& s, double& t) {
+void closestParameters(const glm::dvec3& p0, const glm::dvec3& p1, const glm::dvec3& q0, const glm::dvec3& q1,
+                       double& s, double& t) {
     // C. Ericson, Real-Time Collision Detection, 5.1.9.
     const glm::dvec3 d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
     const double a = glm::dot(d1, d1), e = glm::dot(d2, d2), f = glm::dot(d2, r);
@@ -109,7 +114,8 @@ int floorDiv(double v, double p) { return int(std::floor(v / p)); }
 
 // Centreline distance of segment s and segment t moved by `shift`: the midpoint test alone keeps
 // pairs up to two segment lengths farther than the cutoff (long cable legs: ten times too many).
-double segmentDistance(const std::vector<glm::dvec3>& x, double px, double py, const Seg& s, const Seg& t, const glm::dvec3& shift) {
+double segmentDistance(const std::vector<glm::dvec3>& x, double px, double py, const Seg& s, const Seg& t,
+                       const glm::dvec3& shift) {
     const glm::dvec3 p0 = x[s.a], p1 = x[s.b] + glm::dvec3(s.dx * px, s.dy * py, 0);
     const glm::dvec3 q0 = x[t.a] + shift, q1 = x[t.b] + glm::dvec3(t.dx * px, t.dy * py, 0) + shift;
     double a = 0, b = 0;

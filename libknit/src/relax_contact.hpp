@@ -39,6 +39,7 @@ std::vector<Pair> findPairs(const std::vector<glm::dvec3>& x, double px, double 
                             const YarnIndex& yi, double cutoff);
 
 // Closest points between segments p0p1 and q0q1: parameters s, t in [0, 1].
-void closestParameters(const glm::dvec3& p0, const glm::dvec3& p1, const glm::dvec3& q0, const glm::dvec3& q1, double& s, double& t);
+void closestParameters(const glm::dvec3& p0, const glm::dvec3& p1, const glm::dvec3& q0, const glm::dvec3& q1,
+                       double& s, double& t);
 
 }  // namespace knit::relax

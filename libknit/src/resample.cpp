@@ -109,7 +109,7 @@ dvec3 lerpNormal(const dvec3& n1, const dvec3& n2, double f) {
 void splitPiece(const Cubic& cubic, const dvec3& p1, const dvec3& p2, double chord, double spacing,
                 std::vector<dvec3>& samples) {
     samples.clear();
-    if (cubic.polygon <= spacing) return;  // arc length <= control polygon: one segment is enough
+    if (cubic.polygon <= spacing) return;                   // arc length <= control polygon: one segment is enough
     const double estimate = 0.5 * (chord + cubic.polygon);  // Gravesen: mean of chord and polygon
     size_t k = static_cast<size_t>(std::ceil(estimate / spacing));
     if (k <= 1) {
@@ -301,7 +301,8 @@ struct CurveBuffer {
 
 void validateResampleInput(const MappedYarns& yarns, const ResampleOptions& options) {
     if (!util::positiveFinite(options.spacing))
-        throw Error("the resampling step (--ply-pitch / --samples-per-turn; ResampleOptions.spacing) must be a positive finite length (got " +
+        throw Error("the resampling step (--ply-pitch / --samples-per-turn; ResampleOptions.spacing) must be a "
+                    "positive finite length (got " +
                     std::to_string(options.spacing) + ")");
     const Polylines& in = yarns.curves;
     if (!util::validOffsets(in.offsets, in.curveCount(), in.pointCount()))
@@ -351,8 +352,9 @@ MappedYarns resampleYarns(const MappedYarns& yarns, const ResampleOptions& optio
     size_t total = 0;
     for (size_t k = 0; k < chunks; ++k) total += estimate[k];
     if (total > UINT32_MAX)
-        throw Error("about " + std::to_string(total) +
-                    " resampled points (more than 2^32-1) at this spacing; raise --ply-pitch or lower --samples-per-turn");
+        throw Error(
+            "about " + std::to_string(total) +
+            " resampled points (more than 2^32-1) at this spacing; raise --ply-pitch or lower --samples-per-turn");
 
     // Step 3: resample chunk by chunk into separate buffers.
     std::vector<CurveBuffer> buffers(chunks);
@@ -364,8 +366,8 @@ MappedYarns resampleYarns(const MappedYarns& yarns, const ResampleOptions& optio
             buf.points.reserve(reserve);
             if (withNormals) buf.normals.reserve(reserve);
             for (size_t c = chunkStart[k]; c < chunkStart[k + 1]; ++c)
-                buf.sizes.push_back(static_cast<uint32_t>(
-                    resampleCurve(yarns, c, options.spacing, buf.points, withNormals ? &buf.normals : nullptr, scratch)));
+                buf.sizes.push_back(static_cast<uint32_t>(resampleCurve(
+                    yarns, c, options.spacing, buf.points, withNormals ? &buf.normals : nullptr, scratch)));
         }
     });
 
@@ -381,7 +383,9 @@ MappedYarns resampleYarns(const MappedYarns& yarns, const ResampleOptions& optio
         for (const uint32_t size : buffers[k].sizes) out.curves.offsets.push_back(out.curves.offsets.back() + size);
     // The two big arrays are allocated (and zero-filled) concurrently.
     tbb::parallel_invoke([&] { out.curves.points.resize(pointStart[chunks]); },
-                         [&] { if (withNormals) out.normals.resize(pointStart[chunks]); });
+                         [&] {
+                             if (withNormals) out.normals.resize(pointStart[chunks]);
+                         });
     tbb::parallel_for(tbb::blocked_range<size_t>(0, chunks, 1), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t k = r.begin(); k < r.end(); ++k) {
             std::copy(buffers[k].points.begin(), buffers[k].points.end(), out.curves.points.begin() + pointStart[k]);

@@ -59,9 +59,8 @@ public:
         run("tiling", [&] { tile(); });
         run("stitch", [&] { stitch(); });
         run("binding", [&] { bind(); });
-        run("evaluate", [&] {
-            evaluateBinding(s_.bound_.binding, s_.mesh_.faces, s_.mesh_.positions, s_.normals_, s_.yarns_);
-        });
+        run("evaluate",
+            [&] { evaluateBinding(s_.bound_.binding, s_.mesh_.faces, s_.mesh_.positions, s_.normals_, s_.yarns_); });
         plies();
         return std::move(s_);
     }

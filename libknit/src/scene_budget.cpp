@@ -47,8 +47,9 @@ void checkTilingBudget(const Pattern& pattern, size_t coveredCells, glm::ivec2 c
     const double marks = (double(cellSpan.x) + reachSize.x) * (double(cellSpan.y) + reachSize.y);
     const double tiles = std::min(marks, double(coveredCells) * reachSize.x * reachSize.y);
     const bool farVertex = reachSize.x * reachSize.y > 9;
-    const std::string option = farVertex ? std::string("the pattern's vertices far outside its cell (in ") + pattern.name + ")"
-                                         : repeatsOption(physicalSize);
+    const std::string option =
+        farVertex ? std::string("the pattern's vertices far outside its cell (in ") + pattern.name + ")"
+                  : repeatsOption(physicalSize);
     budget.require(marks * 4 + tiles * 8, count(tiles, "pattern tiles"), option);
     const double vertices = tiles * double(pattern.points.size());
     budget.require(vertices * kBytesPerYarnVertex, count(vertices, "yarn vertices"), option);

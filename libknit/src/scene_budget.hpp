@@ -12,9 +12,9 @@ namespace knit::detail {
 
 // Bytes the stages keep per element (their vectors plus the working copies while they run);
 // deliberately generous: an estimate that refuses a bit early beats swapping.
-constexpr double kBytesPerCell = 64;        // UV grid cell, its triangle list share, tile mark
-constexpr double kBytesPerYarnVertex = 160; // UV yarns, binding, mapped yarns and normals
-constexpr double kBytesPerPlyPoint = 48;    // ply point and radial direction
+constexpr double kBytesPerCell = 64;         // UV grid cell, its triangle list share, tile mark
+constexpr double kBytesPerYarnVertex = 160;  // UV yarns, binding, mapped yarns and normals
+constexpr double kBytesPerPlyPoint = 48;     // ply point and radial direction
 
 // The UV grid: cells spanned by the mesh's UV range at the placement's cell size. Driven by
 // --repeats (or the mesh's size at the pattern's physical size).

@@ -77,8 +77,8 @@ TubeMesh sweepTubes(const Polylines& curves, double radius, const TubeOptions& o
     return mesh;
 }
 
-void sweepTubes(const Polylines& curves, double radius, const TubeOptions& options, size_t firstCurve,
-                size_t lastCurve, glm::dvec3 origin, TubeMesh& mesh) {
+void sweepTubes(const Polylines& curves, double radius, const TubeOptions& options, size_t firstCurve, size_t lastCurve,
+                glm::dvec3 origin, TubeMesh& mesh) {
     mesh.origin = origin;
     if (lastCurve > curves.curveCount()) lastCurve = curves.curveCount();
     if (firstCurve >= lastCurve || options.sides < 3) {
@@ -124,96 +124,97 @@ void sweepTubes(const Polylines& curves, double radius, const TubeOptions& optio
 
     // Step 3: per block of curves (in parallel; each curve writes only its own slots, so the
     // result does not depend on the thread count): RMF frames, rings, caps, triangles.
-    tbb::parallel_for(tbb::blocked_range<size_t>(firstCurve, lastCurve, 8), [&](const tbb::blocked_range<size_t>& range) {
-        // Frames of this block's curves (a local copy so each block runs independently).
-        Polylines local;
-        local.points.reserve(curves.end(range.end() - 1) - curves.begin(range.begin()));
-        std::vector<glm::dvec3> seeds;
-        for (size_t c = range.begin(); c < range.end(); ++c) {
-            local.addCurve(curves.points.data() + curves.begin(c), curves.size(c), curves.isClosed(c));
-            if (options.seedNormals)
-                seeds.insert(seeds.end(), options.seedNormals->begin() + curves.begin(c),
-                             options.seedNormals->begin() + curves.end(c));
-        }
-        const Frames frames = rotationMinimizingFrames(local, options.seedNormals ? &seeds : nullptr);
+    tbb::parallel_for(
+        tbb::blocked_range<size_t>(firstCurve, lastCurve, 8), [&](const tbb::blocked_range<size_t>& range) {
+            // Frames of this block's curves (a local copy so each block runs independently).
+            Polylines local;
+            local.points.reserve(curves.end(range.end() - 1) - curves.begin(range.begin()));
+            std::vector<glm::dvec3> seeds;
+            for (size_t c = range.begin(); c < range.end(); ++c) {
+                local.addCurve(curves.points.data() + curves.begin(c), curves.size(c), curves.isClosed(c));
+                if (options.seedNormals)
+                    seeds.insert(seeds.end(), options.seedNormals->begin() + curves.begin(c),
+                                 options.seedNormals->begin() + curves.end(c));
+            }
+            const Frames frames = rotationMinimizingFrames(local, options.seedNormals ? &seeds : nullptr);
 
-        for (size_t c = range.begin(); c < range.end(); ++c) {
-            const size_t lc = c - range.begin();
-            const uint32_t n = local.size(lc);
-            if (n < 2) continue;
-            const bool closed = local.isClosed(lc);
-            const uint32_t b = local.begin(lc);
-            const size_t rings = closed ? size_t(n) + 1 : size_t(n);
-            const CurveSlots slot = slots[c - firstCurve];
-            const uint32_t curveId = uint32_t(c);
-            double s = 0.0;  // arc length
-            glm::dvec3 prev = local.points[b];
-            glm::dvec3 T0(0.0), N0(0.0), Tn(0.0), Nn(0.0);
-            for (size_t i = 0; i < rings; ++i) {
-                const uint32_t k = b + uint32_t(i % n);
-                const glm::dvec3 p = local.points[k];
-                s += glm::length(p - prev);
-                prev = p;
-                glm::dvec3 T, N;
-                ringFrame(frames.tangent[k], frames.normal[k], T, N);
-                if (i == 0) T0 = T, N0 = N;
-                if (i + 1 == rings) Tn = T, Nn = N;
-                const glm::dvec3 B = glm::cross(T, N);
-                const glm::vec3 cf(p - origin), Nf(N), Bf(B);
-                const float v = float(s * invRadius);
-                const size_t base = slot.vertex + i * ringSize;
-                glm::vec3* pos = mesh.positions.data() + base;
-                glm::vec3* nor = mesh.normals.data() + base;
-                glm::vec4* tan = mesh.tangents.data() + base;
-                glm::vec2* uv = mesh.uvs.data() + base;
-                uint32_t* cv = mesh.curveOfVertex.data() + base;
-                for (size_t j = 0; j < ringSize; ++j) {
-                    const glm::vec3 d = cosA[j] * Nf + sinA[j] * Bf;
-                    nor[j] = d;
-                    pos[j] = cf + r * d;
-                    tan[j] = glm::vec4(-sinA[j] * Nf + cosA[j] * Bf, 1.0f);  // dP/du
-                    uv[j] = glm::vec2(uA[j], v);
-                    cv[j] = curveId;
+            for (size_t c = range.begin(); c < range.end(); ++c) {
+                const size_t lc = c - range.begin();
+                const uint32_t n = local.size(lc);
+                if (n < 2) continue;
+                const bool closed = local.isClosed(lc);
+                const uint32_t b = local.begin(lc);
+                const size_t rings = closed ? size_t(n) + 1 : size_t(n);
+                const CurveSlots slot = slots[c - firstCurve];
+                const uint32_t curveId = uint32_t(c);
+                double s = 0.0;  // arc length
+                glm::dvec3 prev = local.points[b];
+                glm::dvec3 T0(0.0), N0(0.0), Tn(0.0), Nn(0.0);
+                for (size_t i = 0; i < rings; ++i) {
+                    const uint32_t k = b + uint32_t(i % n);
+                    const glm::dvec3 p = local.points[k];
+                    s += glm::length(p - prev);
+                    prev = p;
+                    glm::dvec3 T, N;
+                    ringFrame(frames.tangent[k], frames.normal[k], T, N);
+                    if (i == 0) T0 = T, N0 = N;
+                    if (i + 1 == rings) Tn = T, Nn = N;
+                    const glm::dvec3 B = glm::cross(T, N);
+                    const glm::vec3 cf(p - origin), Nf(N), Bf(B);
+                    const float v = float(s * invRadius);
+                    const size_t base = slot.vertex + i * ringSize;
+                    glm::vec3* pos = mesh.positions.data() + base;
+                    glm::vec3* nor = mesh.normals.data() + base;
+                    glm::vec4* tan = mesh.tangents.data() + base;
+                    glm::vec2* uv = mesh.uvs.data() + base;
+                    uint32_t* cv = mesh.curveOfVertex.data() + base;
+                    for (size_t j = 0; j < ringSize; ++j) {
+                        const glm::vec3 d = cosA[j] * Nf + sinA[j] * Bf;
+                        nor[j] = d;
+                        pos[j] = cf + r * d;
+                        tan[j] = glm::vec4(-sinA[j] * Nf + cosA[j] * Bf, 1.0f);  // dP/du
+                        uv[j] = glm::vec2(uA[j], v);
+                        cv[j] = curveId;
+                    }
+                }
+                // Side triangles between consecutive rings: (a, b, c), (b, d, c), outward.
+                glm::uvec3* tri = mesh.triangles.data() + slot.triangle;
+                for (size_t i = 0; i + 1 < rings; ++i) {
+                    const uint32_t r0 = uint32_t(slot.vertex + i * ringSize), r1 = uint32_t(r0 + ringSize);
+                    for (uint32_t j = 0; j < uint32_t(sides); ++j) {
+                        *tri++ = glm::uvec3(r0 + j, r0 + j + 1, r1 + j);
+                        *tri++ = glm::uvec3(r0 + j + 1, r1 + j + 1, r1 + j);
+                    }
+                }
+                if (closed || !options.caps) continue;
+                // Caps: centre + rim with the axial normal, fan triangles facing outward.
+                for (int end = 0; end < 2; ++end) {
+                    const glm::dvec3 T = end == 0 ? T0 : Tn, N = end == 0 ? N0 : Nn;
+                    const glm::dvec3 B = glm::cross(T, N);
+                    const glm::dvec3 p = local.points[end == 0 ? b : b + n - 1];
+                    const glm::vec3 cf(p - origin), Nf(N), Bf(B);
+                    const glm::vec3 axial = glm::vec3(end == 0 ? -T : T);
+                    const glm::vec4 tf(Nf, end == 0 ? -1.0f : 1.0f);  // dP/du = N, bitangent along B
+                    const uint32_t centre = uint32_t(slot.vertex + rings * ringSize + size_t(end) * ringSize);
+                    mesh.positions[centre] = cf;
+                    mesh.normals[centre] = axial;
+                    mesh.tangents[centre] = tf;
+                    mesh.uvs[centre] = glm::vec2(0.5f, 0.5f);
+                    mesh.curveOfVertex[centre] = curveId;
+                    for (int j = 0; j < sides; ++j) {
+                        const uint32_t vtx = centre + 1 + uint32_t(j);
+                        const glm::vec3 d = cosA[j] * Nf + sinA[j] * Bf;
+                        mesh.positions[vtx] = cf + r * d;
+                        mesh.normals[vtx] = axial;
+                        mesh.tangents[vtx] = tf;
+                        mesh.uvs[vtx] = glm::vec2(0.5f + 0.5f * cosA[j], 0.5f + 0.5f * sinA[j]);
+                        mesh.curveOfVertex[vtx] = curveId;
+                        const uint32_t next = centre + 1 + uint32_t((j + 1) % sides);
+                        *tri++ = end == 0 ? glm::uvec3(centre, next, vtx) : glm::uvec3(centre, vtx, next);
+                    }
                 }
             }
-            // Side triangles between consecutive rings: (a, b, c), (b, d, c), outward.
-            glm::uvec3* tri = mesh.triangles.data() + slot.triangle;
-            for (size_t i = 0; i + 1 < rings; ++i) {
-                const uint32_t r0 = uint32_t(slot.vertex + i * ringSize), r1 = uint32_t(r0 + ringSize);
-                for (uint32_t j = 0; j < uint32_t(sides); ++j) {
-                    *tri++ = glm::uvec3(r0 + j, r0 + j + 1, r1 + j);
-                    *tri++ = glm::uvec3(r0 + j + 1, r1 + j + 1, r1 + j);
-                }
-            }
-            if (closed || !options.caps) continue;
-            // Caps: centre + rim with the axial normal, fan triangles facing outward.
-            for (int end = 0; end < 2; ++end) {
-                const glm::dvec3 T = end == 0 ? T0 : Tn, N = end == 0 ? N0 : Nn;
-                const glm::dvec3 B = glm::cross(T, N);
-                const glm::dvec3 p = local.points[end == 0 ? b : b + n - 1];
-                const glm::vec3 cf(p - origin), Nf(N), Bf(B);
-                const glm::vec3 axial = glm::vec3(end == 0 ? -T : T);
-                const glm::vec4 tf(Nf, end == 0 ? -1.0f : 1.0f);  // dP/du = N, bitangent along B
-                const uint32_t centre = uint32_t(slot.vertex + rings * ringSize + size_t(end) * ringSize);
-                mesh.positions[centre] = cf;
-                mesh.normals[centre] = axial;
-                mesh.tangents[centre] = tf;
-                mesh.uvs[centre] = glm::vec2(0.5f, 0.5f);
-                mesh.curveOfVertex[centre] = curveId;
-                for (int j = 0; j < sides; ++j) {
-                    const uint32_t vtx = centre + 1 + uint32_t(j);
-                    const glm::vec3 d = cosA[j] * Nf + sinA[j] * Bf;
-                    mesh.positions[vtx] = cf + r * d;
-                    mesh.normals[vtx] = axial;
-                    mesh.tangents[vtx] = tf;
-                    mesh.uvs[vtx] = glm::vec2(0.5f + 0.5f * cosA[j], 0.5f + 0.5f * sinA[j]);
-                    mesh.curveOfVertex[vtx] = curveId;
-                    const uint32_t next = centre + 1 + uint32_t((j + 1) % sides);
-                    *tri++ = end == 0 ? glm::uvec3(centre, next, vtx) : glm::uvec3(centre, vtx, next);
-                }
-            }
-        }
-    });
+        });
 }
 
 }  // namespace knit

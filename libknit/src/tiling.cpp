@@ -19,7 +19,8 @@ namespace knit {
 namespace {
 
 [[noreturn]] void badGauge(const std::string& text, const std::string& what) {
-    throw Error("--gauge '" + text + "': " + what + " (expected STITCHES x ROWS / LENGTH with a unit mm, cm, m or in, e.g. 22x30/10cm)");
+    throw Error("--gauge '" + text + "': " + what +
+                " (expected STITCHES x ROWS / LENGTH with a unit mm, cm, m or in, e.g. 22x30/10cm)");
 }
 
 // A positive finite number filling all of `token`; `what` names it in the error.
@@ -43,7 +44,8 @@ double metresPerUnit(const std::string& unit) {
 
 // Repeats that give one period the gauge's size: stitchesPerPeriod stitches by rowsPerPeriod rows.
 glm::dvec2 gaugeRepeats(const Pattern& pattern, const Gauge& g, glm::dvec2 metresPerUv) {
-    const glm::dvec2 periodMetres(pattern.stitchesPerPeriod * g.length / g.stitches, pattern.rowsPerPeriod * g.length / g.rows);
+    const glm::dvec2 periodMetres(pattern.stitchesPerPeriod * g.length / g.stitches,
+                                  pattern.rowsPerPeriod * g.length / g.rows);
     return metresPerUv / periodMetres;
 }
 
@@ -80,17 +82,20 @@ PatternPlacement placePattern(const Pattern& pattern, const BaseMesh& mesh, cons
     const bool physical = r.x == 0.0 && r.y == 0.0;
     if (!physical && !util::positiveFinite(r)) {
         std::ostringstream msg;
-        msg << "repeats (" << r.x << ", " << r.y << ") must both be positive (or both 0 for the pattern's physical size)";
+        msg << "repeats (" << r.x << ", " << r.y
+            << ") must both be positive (or both 0 for the pattern's physical size)";
         throw Error(msg.str());
     }
-    if (options.gauge && !physical) throw Error("--gauge and --repeats are mutually exclusive (a gauge sets the repeats)");
+    if (options.gauge && !physical)
+        throw Error("--gauge and --repeats are mutually exclusive (a gauge sets the repeats)");
     if (options.gauge && !(util::positiveFinite(options.gauge->stitches) && util::positiveFinite(options.gauge->rows) &&
                            util::positiveFinite(options.gauge->length)))
         throw Error("--gauge: stitches, rows and length must be positive and finite");
     // Step 2: the mesh's own size and the repeats.
     const glm::dvec2 metresPerUv = uvToMetreScale(mesh);
     if (!(metresPerUv.x > 0 && metresPerUv.y > 0))
-        throw Error(mesh.name + ": cannot place the pattern: the mesh has no triangle with non-degenerate UVs and 3D area");
+        throw Error(mesh.name +
+                    ": cannot place the pattern: the mesh has no triangle with non-degenerate UVs and 3D area");
     PatternPlacement placement;
     placement.repeats = options.gauge ? gaugeRepeats(pattern, *options.gauge, metresPerUv)
                         : physical    ? metresPerUv / glm::dvec2(pattern.px, pattern.py)
@@ -132,8 +137,10 @@ TileReach tileReach(const Pattern& pattern, glm::dvec2 margin) {
     if (!(margin.y >= 0 && margin.y <= pattern.py)) margin.y = margin.y > pattern.py ? pattern.py : 0.0;
     glm::ivec2 lo(INT32_MAX), hi(INT32_MIN);
     for (const glm::dvec3& q : pattern.points) {
-        const glm::ivec2 c0(int32_t(std::floor((q.x - margin.x) / pattern.px)), int32_t(std::floor((q.y - margin.y) / pattern.py)));
-        const glm::ivec2 c1(int32_t(std::floor((q.x + margin.x) / pattern.px)), int32_t(std::floor((q.y + margin.y) / pattern.py)));
+        const glm::ivec2 c0(int32_t(std::floor((q.x - margin.x) / pattern.px)),
+                            int32_t(std::floor((q.y - margin.y) / pattern.py)));
+        const glm::ivec2 c1(int32_t(std::floor((q.x + margin.x) / pattern.px)),
+                            int32_t(std::floor((q.y + margin.y) / pattern.py)));
         lo = glm::min(lo, c0);
         hi = glm::max(hi, c1);
     }

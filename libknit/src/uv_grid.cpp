@@ -130,14 +130,16 @@ std::vector<glm::uvec2> overlappingChartPairs(const BaseMesh& mesh, const UvGrid
                     grid.faceOrientation[g] == 0)
                     continue;
                 const Tri &s = tris[i - b], &t = tris[j - b];
-                if (s.hi.x <= t.lo.x || t.hi.x <= s.lo.x || s.hi.y <= t.lo.y || t.hi.y <= s.lo.y) continue;  // no interior overlap
+                if (s.hi.x <= t.lo.x || t.hi.x <= s.lo.x || s.hi.y <= t.lo.y || t.hi.y <= s.lo.y)
+                    continue;  // no interior overlap
                 if (interiorsOverlap(s.v, grid.faceOrientation[f], t.v, grid.faceOrientation[g])) {
                     pairs.emplace_back(std::min(cf, cg), std::max(cf, cg));
                     overlaps[cf] = overlaps[cg] = 1;
                 }
             }
     }
-    std::sort(pairs.begin(), pairs.end(), [](glm::uvec2 x, glm::uvec2 y) { return x.x != y.x ? x.x < y.x : x.y < y.y; });
+    std::sort(pairs.begin(), pairs.end(),
+              [](glm::uvec2 x, glm::uvec2 y) { return x.x != y.x ? x.x < y.x : x.y < y.y; });
     pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
     return pairs;
 }
@@ -161,8 +163,7 @@ int32_t UvGrid::slotOf(glm::ivec2 cell) const {
 }
 
 UvGrid buildUvGrid(const BaseMesh& mesh, const UvGridOptions& options) {
-    if (!util::positiveFinite(options.cellSize))
-        throw Error("UV grid: cell size must be positive and finite");
+    if (!util::positiveFinite(options.cellSize)) throw Error("UV grid: cell size must be positive and finite");
     UvGrid grid;
     grid.cellSize = options.cellSize;
     const size_t nf = mesh.faces.size();
@@ -219,7 +220,8 @@ UvGrid buildUvGrid(const BaseMesh& mesh, const UvGridOptions& options) {
             if (i > 0) grid.triOffsets.push_back(uint32_t(grid.triangles.size()));
             grid.cellSlot[cellFace[i].first] = int32_t(grid.cells.size());
             const uint64_t lin = cellFace[i].first;
-            grid.cells.push_back(lo + glm::ivec2(int32_t(lin % uint64_t(grid.dims.x)), int32_t(lin / uint64_t(grid.dims.x))));
+            grid.cells.push_back(
+                lo + glm::ivec2(int32_t(lin % uint64_t(grid.dims.x)), int32_t(lin / uint64_t(grid.dims.x))));
         }
         grid.triangles.push_back(cellFace[i].second);
     }
@@ -311,7 +313,8 @@ LocateResult locatePoint(const BaseMesh& mesh, const UvGrid& grid, glm::dvec2 uv
         const glm::uvec3 t = mesh.faceUvs[hint];
         const glm::dvec2 a = mesh.uvs[t.x], b = mesh.uvs[t.y], c = mesh.uvs[t.z];
         const int o = grid.faceOrientation[hint];
-        if (filteredOrientation(a, b, uv) == o && filteredOrientation(b, c, uv) == o && filteredOrientation(c, a, uv) == o) {
+        if (filteredOrientation(a, b, uv) == o && filteredOrientation(b, c, uv) == o &&
+            filteredOrientation(c, a, uv) == o) {
             result.status = LocateStatus::Inside;
             result.point = {hint, clampedBarycentrics(a, b, c, uv)};
             return result;

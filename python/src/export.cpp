@@ -17,35 +17,37 @@ knit::ExportWhat exportWhat(const std::string& what) {
 }
 
 py::dict statsDict(const knit::ExportStats& s) {
-    return py::dict("format"_a = s.format, "curves"_a = s.curves, "vertices"_a = s.vertices, "triangles"_a = s.triangles,
-                    "chunks"_a = s.chunks, "buffers"_a = s.buffers, "bytes"_a = s.bytes, "seconds"_a = s.seconds);
+    return py::dict("format"_a = s.format, "curves"_a = s.curves, "vertices"_a = s.vertices,
+                    "triangles"_a = s.triangles, "chunks"_a = s.chunks, "buffers"_a = s.buffers, "bytes"_a = s.bytes,
+                    "seconds"_a = s.seconds);
 }
 
 }  // namespace
 
 void registerExport(py::module_& m) {
-    m.def("export_scene",
-          [](const knit::Scene& scene, const std::string& path, const std::string& what, int sides, bool caps,
-             bool draco, bool quantize, bool yarnColors) {
-              knit::ExportOptions o;
-              o.path = path;
-              o.what = exportWhat(what);
-              o.sides = sides;
-              o.caps = caps;
-              o.draco = draco;
-              o.quantize = quantize;
-              o.yarnColors = yarnColors;
-              knit::ExportStats stats;
-              {
-                  py::gil_scoped_release release;
-                  stats = knit::exportScene(scene, o);
-              }
-              return statsDict(stats);
-          },
-          "scene"_a, "path"_a, "what"_a = "plies", "sides"_a = 8, "caps"_a = true, "draco"_a = false,
-          "quantize"_a = false, "yarn_colors"_a = false,
-          "Writes the scene's yarns, plies or tube meshes; the format follows the extension of path "
-          "(.obj .ply .bcc .pbrt .gltf .glb), written atomically. Returns the export's counts. Raises knit.Error.");
+    m.def(
+        "export_scene",
+        [](const knit::Scene& scene, const std::string& path, const std::string& what, int sides, bool caps, bool draco,
+           bool quantize, bool yarnColors) {
+            knit::ExportOptions o;
+            o.path = path;
+            o.what = exportWhat(what);
+            o.sides = sides;
+            o.caps = caps;
+            o.draco = draco;
+            o.quantize = quantize;
+            o.yarnColors = yarnColors;
+            knit::ExportStats stats;
+            {
+                py::gil_scoped_release release;
+                stats = knit::exportScene(scene, o);
+            }
+            return statsDict(stats);
+        },
+        "scene"_a, "path"_a, "what"_a = "plies", "sides"_a = 8, "caps"_a = true, "draco"_a = false,
+        "quantize"_a = false, "yarn_colors"_a = false,
+        "Writes the scene's yarns, plies or tube meshes; the format follows the extension of path "
+        "(.obj .ply .bcc .pbrt .gltf .glb), written atomically. Returns the export's counts. Raises knit.Error.");
 }
 
 }  // namespace knitpy

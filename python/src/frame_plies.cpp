@@ -74,7 +74,7 @@ knit::Plies pliesWithRestLayout(const knit::MappedYarns& yarns, const knit::PlyO
             }
             const size_t base = rest.curves.begin(layout.firstCurve[y]);
             knit::detail::PlyKernel::sweep(generator, y, line->data(), m, out.curves.points.data() + base,
-                            out.radial.empty() ? nullptr : out.radial.data() + base, scratch);
+                                           out.radial.empty() ? nullptr : out.radial.data() + base, scratch);
         }
     });
     return out;

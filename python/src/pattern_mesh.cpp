@@ -30,13 +30,15 @@ knit::BaseMesh meshFromArrays(const py::array& positions, const py::array& faces
 }
 
 void registerPattern(py::module_& m) {
-    py::class_<knit::Pattern>(m, "Pattern", "One periodic pattern cell (metres): points, periodic edges, period, radius.")
+    py::class_<knit::Pattern>(m, "Pattern",
+                              "One periodic pattern cell (metres): points, periodic edges, period, radius.")
         .def_readonly("name", &knit::Pattern::name)
         .def_readonly("px", &knit::Pattern::px, "period along x (pattern x -> u)")
         .def_readonly("py", &knit::Pattern::py, "period along y (pattern y -> v)")
         .def_readonly("radius", &knit::Pattern::radius, "yarn radius")
-        .def_property_readonly("points", [](py::object self) { return viewVec3(self.cast<const knit::Pattern&>().points, self); },
-                               "(n, 3) float64 read-only view: x, y in the plane, z = height")
+        .def_property_readonly(
+            "points", [](py::object self) { return viewVec3(self.cast<const knit::Pattern&>().points, self); },
+            "(n, 3) float64 read-only view: x, y in the plane, z = height")
         .def_property_readonly("edge_count", [](const knit::Pattern& p) { return p.edges.size(); })
         .def("__repr__", [](const knit::Pattern& p) {
             return "<knit.Pattern '" + p.name + "' " + std::to_string(p.points.size()) + " points>";
@@ -49,54 +51,64 @@ void registerPattern(py::module_& m) {
 
 void registerMesh(py::module_& m) {
     py::class_<knit::BaseMesh>(m, "Mesh",
-        "A triangle mesh with UVs. Positions and UVs are indexed separately (faces / face_uvs), "
-        "like OBJ v / vt: a position with several UVs is a seam.")
+                               "A triangle mesh with UVs. Positions and UVs are indexed separately (faces / face_uvs), "
+                               "like OBJ v / vt: a position with several UVs is a seam.")
         .def(py::init(&meshFromArrays), "positions"_a, "faces"_a, "uvs"_a = py::none(), "face_uvs"_a = py::none(),
              "name"_a = "arrays",
              "A mesh from numpy arrays: positions (n, 3) float32/float64, faces (m, 3) integers, "
              "uvs (k, 2) with face_uvs (m, 3), or per-vertex uvs (n, 2) without face_uvs. Raises knit.Error.")
         .def_readonly("name", &knit::BaseMesh::name)
-        .def_property_readonly("positions", [](py::object self) { return viewVec3(self.cast<const knit::BaseMesh&>().positions, self); },
-                               "(n, 3) float64 read-only view")
-        .def_property_readonly("faces", [](py::object self) { return viewUvec3(self.cast<const knit::BaseMesh&>().faces, self); },
-                               "(m, 3) uint32 read-only view")
-        .def_property_readonly("uvs", [](py::object self) { return viewVec2(self.cast<const knit::BaseMesh&>().uvs, self); },
-                               "(k, 2) float64 read-only view")
-        .def_property_readonly("face_uvs", [](py::object self) { return viewUvec3(self.cast<const knit::BaseMesh&>().faceUvs, self); },
-                               "(m, 3) uint32 read-only view")
+        .def_property_readonly(
+            "positions", [](py::object self) { return viewVec3(self.cast<const knit::BaseMesh&>().positions, self); },
+            "(n, 3) float64 read-only view")
+        .def_property_readonly(
+            "faces", [](py::object self) { return viewUvec3(self.cast<const knit::BaseMesh&>().faces, self); },
+            "(m, 3) uint32 read-only view")
+        .def_property_readonly(
+            "uvs", [](py::object self) { return viewVec2(self.cast<const knit::BaseMesh&>().uvs, self); },
+            "(k, 2) float64 read-only view")
+        .def_property_readonly(
+            "face_uvs", [](py::object self) { return viewUvec3(self.cast<const knit::BaseMesh&>().faceUvs, self); },
+            "(m, 3) uint32 read-only view")
         .def("__repr__", [](const knit::BaseMesh& b) {
             return "<knit.Mesh '" + b.name + "' " + std::to_string(b.positions.size()) + " vertices, " +
                    std::to_string(b.faces.size()) + " triangles>";
         });
-    m.def("load_mesh", [](const std::string& fileOrName, int resU, int resV) {
-              knit::ProceduralMeshOptions o;
-              o.resU = resU;
-              o.resV = resV;
-              return knit::loadMeshFileOrName(fileOrName, o);
-          },
-          "file_or_name"_a, "res_u"_a = 32, "res_v"_a = 32,
-          "Loads a mesh: .obj / .ply / .off / .gltf / .glb with UVs, or a built-in name "
-          "(builtin_meshes(); res_u x res_v quads). Raises knit.Error.",
-          py::call_guard<py::gil_scoped_release>());
+    m.def(
+        "load_mesh",
+        [](const std::string& fileOrName, int resU, int resV) {
+            knit::ProceduralMeshOptions o;
+            o.resU = resU;
+            o.resV = resV;
+            return knit::loadMeshFileOrName(fileOrName, o);
+        },
+        "file_or_name"_a, "res_u"_a = 32, "res_v"_a = 32,
+        "Loads a mesh: .obj / .ply / .off / .gltf / .glb with UVs, or a built-in name "
+        "(builtin_meshes(); res_u x res_v quads). Raises knit.Error.",
+        py::call_guard<py::gil_scoped_release>());
     m.def("builtin_meshes", &knit::builtinMeshNames, "Names load_mesh accepts besides files.");
-    m.def("vertex_normals", [](const py::array& positions, const py::array& faces) {
-              const auto p = toVec3(positions, "positions");
-              const auto f = toUvec3(faces, "faces");
-              std::vector<glm::dvec3> n;
-              {
-                  py::gil_scoped_release release;
-                  n = knit::vertexNormals(p, f);
-              }
-              py::array_t<double> out({py::ssize_t(n.size()), py::ssize_t(3)});
-              if (!n.empty()) std::copy(&n[0].x, &n[0].x + 3 * n.size(), out.mutable_data());
-              return out;
-          },
-          "positions"_a, "faces"_a, "Angle-weighted vertex normals (n, 3) on the 3D topology.");
-    m.def("uv_to_metre_scale", [](const knit::BaseMesh& mesh) {
-              const glm::dvec2 s = knit::uvToMetreScale(mesh);
-              return py::make_tuple(s.x, s.y);
-          },
-          "mesh"_a, "Metres per UV unit along u and v (area-weighted).");
+    m.def(
+        "vertex_normals",
+        [](const py::array& positions, const py::array& faces) {
+            const auto p = toVec3(positions, "positions");
+            const auto f = toUvec3(faces, "faces");
+            std::vector<glm::dvec3> n;
+            {
+                py::gil_scoped_release release;
+                n = knit::vertexNormals(p, f);
+            }
+            py::array_t<double> out({py::ssize_t(n.size()), py::ssize_t(3)});
+            if (!n.empty()) std::copy(&n[0].x, &n[0].x + 3 * n.size(), out.mutable_data());
+            return out;
+        },
+        "positions"_a, "faces"_a, "Angle-weighted vertex normals (n, 3) on the 3D topology.");
+    m.def(
+        "uv_to_metre_scale",
+        [](const knit::BaseMesh& mesh) {
+            const glm::dvec2 s = knit::uvToMetreScale(mesh);
+            return py::make_tuple(s.x, s.y);
+        },
+        "mesh"_a, "Metres per UV unit along u and v (area-weighted).");
 }
 
 }  // namespace

@@ -57,8 +57,9 @@ ScenePtr buildScene(const py::object& pattern, const py::object& mesh, const Sce
     }
     knit::Pattern p = py::isinstance<py::str>(pattern) ? knit::loadPatternFileOrName(pattern.cast<std::string>())
                                                        : pattern.cast<knit::Pattern>();
-    knit::BaseMesh b = py::isinstance<py::str>(mesh) ? knit::loadMeshFileOrName(mesh.cast<std::string>(), options.meshOptions)
-                                                     : mesh.cast<knit::BaseMesh>();
+    knit::BaseMesh b = py::isinstance<py::str>(mesh)
+                           ? knit::loadMeshFileOrName(mesh.cast<std::string>(), options.meshOptions)
+                           : mesh.cast<knit::BaseMesh>();
     py::gil_scoped_release release;
     return std::make_shared<knit::Scene>(knit::buildScene(std::move(p), std::move(b), options));
 }
@@ -93,19 +94,26 @@ py::dict sceneStatsDict(const knit::Scene& scene) {
 }
 
 void registerBinding(py::module_& m) {
-    py::class_<knit::Binding>(m, "Binding", "Per yarn vertex: triangle, barycentrics (b1, b2), height; made once on the rest mesh.")
-        .def_property_readonly("face", [](py::object self) { return viewScalars(self.cast<const knit::Binding&>().face, self); })
-        .def_property_readonly("bary", [](py::object self) { return viewVec2(self.cast<const knit::Binding&>().bary, self); },
-                               "(n, 2) float64: (b1, b2); b0 = 1 - b1 - b2")
-        .def_property_readonly("height", [](py::object self) { return viewScalars(self.cast<const knit::Binding&>().height, self); })
-        .def_property_readonly("offsets", [](py::object self) { return viewScalars(self.cast<const knit::Binding&>().offsets, self); })
-        .def_property_readonly("closed", [](py::object self) { return viewScalars(self.cast<const knit::Binding&>().closed, self); })
+    py::class_<knit::Binding>(m, "Binding",
+                              "Per yarn vertex: triangle, barycentrics (b1, b2), height; made once on the rest mesh.")
+        .def_property_readonly(
+            "face", [](py::object self) { return viewScalars(self.cast<const knit::Binding&>().face, self); })
+        .def_property_readonly(
+            "bary", [](py::object self) { return viewVec2(self.cast<const knit::Binding&>().bary, self); },
+            "(n, 2) float64: (b1, b2); b0 = 1 - b1 - b2")
+        .def_property_readonly(
+            "height", [](py::object self) { return viewScalars(self.cast<const knit::Binding&>().height, self); })
+        .def_property_readonly(
+            "offsets", [](py::object self) { return viewScalars(self.cast<const knit::Binding&>().offsets, self); })
+        .def_property_readonly(
+            "closed", [](py::object self) { return viewScalars(self.cast<const knit::Binding&>().closed, self); })
         .def_property_readonly("vertex_count", &knit::Binding::vertexCount)
         .def_property_readonly("yarn_count", &knit::Binding::yarnCount);
 }
 
 void registerSceneClass(py::module_& m) {
-    py::class_<knit::Scene, ScenePtr>(m, "Scene", "The built pipeline (read-only): pattern, mesh, binding, yarns, plies.")
+    py::class_<knit::Scene, ScenePtr>(m, "Scene",
+                                      "The built pipeline (read-only): pattern, mesh, binding, yarns, plies.")
         .def_property_readonly("pattern", &knit::Scene::pattern, py::return_value_policy::reference_internal)
         .def_property_readonly("mesh", &knit::Scene::mesh, py::return_value_policy::reference_internal)
         .def_property_readonly("binding", &knit::Scene::binding, py::return_value_policy::reference_internal)
@@ -113,37 +121,45 @@ void registerSceneClass(py::module_& m) {
                                "the yarns evaluated on the rest mesh")
         .def_property_readonly("plies", &knit::Scene::plies, py::return_value_policy::reference_internal,
                                "empty unless built with build_plies=True")
-        .def_property_readonly("normals", [](py::object self) { return viewVec3(self.cast<const knit::Scene&>().normals(), self); },
-                               "(n, 3) rest-pose vertex normals of the mesh")
+        .def_property_readonly(
+            "normals", [](py::object self) { return viewVec3(self.cast<const knit::Scene&>().normals(), self); },
+            "(n, 3) rest-pose vertex normals of the mesh")
         .def_property_readonly("yarn_radius", &knit::Scene::yarnRadius, "object space (metres)")
-        .def_property_readonly("ply_radius", [](const knit::Scene& s) { return knit::resolvePlyOptions(s.plyOptions()).plyRadius; })
-        .def_property_readonly("repeats", [](const knit::Scene& s) { return py::make_tuple(s.placement().repeats.x, s.placement().repeats.y); })
+        .def_property_readonly("ply_radius",
+                               [](const knit::Scene& s) { return knit::resolvePlyOptions(s.plyOptions()).plyRadius; })
+        .def_property_readonly(
+            "repeats",
+            [](const knit::Scene& s) { return py::make_tuple(s.placement().repeats.x, s.placement().repeats.y); })
         .def_property_readonly("stats", &sceneStatsDict, "counts and stage times (the `knit build` report's numbers)")
-        .def("evaluate", [](const knit::Scene& s, const py::array& positions) {
-                 const auto p = framePositions(s, positions);
-                 py::gil_scoped_release release;
-                 return evaluatePose(s, p);
-             },
-             "positions"_a,
-             "The yarns on new vertex positions (n, 3) float32/float64 of the scene's mesh (same "
-             "connectivity): normals of the posed mesh, then the binding. Returns Yarns. Raises knit.Error.")
-        .def("evaluate_plies", [](const knit::Scene& s, const py::array& positions, bool restLayout) {
-                 const auto p = framePositions(s, positions);
-                 if (restLayout && s.plies().curves.curveCount() == 0 && s.yarns().curves.pointCount() > 0)
-                     throw knit::Error("evaluate_plies: rest_layout needs a scene built with build_plies=True");
-                 py::gil_scoped_release release;
-                 const knit::MappedYarns yarns = evaluatePose(s, p);
-                 return restLayout ? pliesWithRestLayout(yarns, s.plyOptions(), s.plies())
-                                   : knit::makePlies(yarns, s.plyOptions());
-             },
-             "positions"_a, "rest_layout"_a = true,
-             "The plies on new vertex positions, with the scene's ply options (evaluate, then the ply "
-             "stage). rest_layout=True keeps the rest plies' point counts and offsets (a stretched yarn's "
-             "centreline is re-sampled by arc length to its rest count), for animation caches and meshes; "
-             "False runs make_plies, whose point count follows the yarn length.")
+        .def(
+            "evaluate",
+            [](const knit::Scene& s, const py::array& positions) {
+                const auto p = framePositions(s, positions);
+                py::gil_scoped_release release;
+                return evaluatePose(s, p);
+            },
+            "positions"_a,
+            "The yarns on new vertex positions (n, 3) float32/float64 of the scene's mesh (same "
+            "connectivity): normals of the posed mesh, then the binding. Returns Yarns. Raises knit.Error.")
+        .def(
+            "evaluate_plies",
+            [](const knit::Scene& s, const py::array& positions, bool restLayout) {
+                const auto p = framePositions(s, positions);
+                if (restLayout && s.plies().curves.curveCount() == 0 && s.yarns().curves.pointCount() > 0)
+                    throw knit::Error("evaluate_plies: rest_layout needs a scene built with build_plies=True");
+                py::gil_scoped_release release;
+                const knit::MappedYarns yarns = evaluatePose(s, p);
+                return restLayout ? pliesWithRestLayout(yarns, s.plyOptions(), s.plies())
+                                  : knit::makePlies(yarns, s.plyOptions());
+            },
+            "positions"_a, "rest_layout"_a = true,
+            "The plies on new vertex positions, with the scene's ply options (evaluate, then the ply "
+            "stage). rest_layout=True keeps the rest plies' point counts and offsets (a stretched yarn's "
+            "centreline is re-sampled by arc length to its rest count), for animation caches and meshes; "
+            "False runs make_plies, whose point count follows the yarn length.")
         .def("__repr__", [](const knit::Scene& s) {
-            return "<knit.Scene '" + s.pattern().name + "' on '" + s.mesh().name + "': " +
-                   std::to_string(s.yarns().curves.curveCount()) + " yarns, " +
+            return "<knit.Scene '" + s.pattern().name + "' on '" + s.mesh().name +
+                   "': " + std::to_string(s.yarns().curves.curveCount()) + " yarns, " +
                    std::to_string(s.yarns().curves.pointCount()) + " yarn points>";
         });
 }
@@ -166,22 +182,25 @@ double evaluateSecondsInCpp(const knit::Scene& s, const py::array& positions, in
 void registerScene(py::module_& m) {
     registerBinding(m);
     registerSceneClass(m);
-    m.def("build_scene",
-          [](const py::object& pattern, const py::object& mesh, const py::object& repeats, int plies, double plyPitch,
-             const std::string& twist, double plyRadius, double centerRadius, int samplesPerTurn, bool buildPlies,
-             int resU, int resV, double clampTolerance, bool weld, double weldTolerance) {
-              SceneArgs a{repeats, {plies, plyPitch, twist, plyRadius, centerRadius, samplesPerTurn}, buildPlies,
-                          resU, resV, clampTolerance, weldTolerance, weld};
-              return buildScene(pattern, mesh, a);
-          },
-          "pattern"_a = "stockinette", "mesh"_a = "drape", "repeats"_a = py::none(), "plies"_a = 2,
-          "ply_pitch"_a = 0.0, "twist"_a = "S", "ply_radius"_a = 0.0, "center_radius"_a = 0.0,
-          "samples_per_turn"_a = 12, "build_plies"_a = true, "res_u"_a = 32, "res_v"_a = 32,
-          "clamp_tolerance"_a = 0.01, "weld"_a = true, "weld_tolerance"_a = 0.25,
-          "Runs the pipeline: load pattern -> load mesh -> placement -> UV grid -> tiling -> stitch -> "
-          "binding -> evaluation -> plies. pattern / mesh: a file or built-in name, or a Pattern / Mesh. "
-          "repeats: (U, V) pattern periods across the UV square, None = the pattern's physical size. "
-          "plies: plies per yarn; ply_pitch 0 = 6 yarn radii; twist 'S' or 'Z'. Raises knit.Error.");
+    m.def(
+        "build_scene",
+        [](const py::object& pattern, const py::object& mesh, const py::object& repeats, int plies, double plyPitch,
+           const std::string& twist, double plyRadius, double centerRadius, int samplesPerTurn, bool buildPlies,
+           int resU, int resV, double clampTolerance, bool weld, double weldTolerance) {
+            SceneArgs a{repeats,       {plies, plyPitch, twist, plyRadius, centerRadius, samplesPerTurn},
+                        buildPlies,    resU,
+                        resV,          clampTolerance,
+                        weldTolerance, weld};
+            return buildScene(pattern, mesh, a);
+        },
+        "pattern"_a = "stockinette", "mesh"_a = "drape", "repeats"_a = py::none(), "plies"_a = 2, "ply_pitch"_a = 0.0,
+        "twist"_a = "S", "ply_radius"_a = 0.0, "center_radius"_a = 0.0, "samples_per_turn"_a = 12,
+        "build_plies"_a = true, "res_u"_a = 32, "res_v"_a = 32, "clamp_tolerance"_a = 0.01, "weld"_a = true,
+        "weld_tolerance"_a = 0.25,
+        "Runs the pipeline: load pattern -> load mesh -> placement -> UV grid -> tiling -> stitch -> "
+        "binding -> evaluation -> plies. pattern / mesh: a file or built-in name, or a Pattern / Mesh. "
+        "repeats: (U, V) pattern periods across the UV square, None = the pattern's physical size. "
+        "plies: plies per yarn; ply_pitch 0 = 6 yarn radii; twist 'S' or 'Z'. Raises knit.Error.");
     m.def("_evaluate_seconds_in_cpp", &evaluateSecondsInCpp, "scene"_a, "positions"_a, "repeats"_a = 1,
           "Timing aid: seconds of `repeats` evaluations made in C++ (what Scene.evaluate runs).");
 }

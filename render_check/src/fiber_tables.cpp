@@ -176,9 +176,7 @@ size_t FiberTables::bytes() const {
     return sizeof(float) * (delta.size() + phase.size() + fiberShadow.size() + plyShadow.size());
 }
 
-glm::dvec3 ShadingFrame::toLocal(const glm::dvec3& w) const {
-    return {glm::dot(w, x), glm::dot(w, y), glm::dot(w, z)};
-}
+glm::dvec3 ShadingFrame::toLocal(const glm::dvec3& w) const { return {glm::dot(w, x), glm::dot(w, y), glm::dot(w, z)}; }
 glm::dvec3 ShadingFrame::toWorld(const glm::dvec3& w) const { return w.x * x + w.y * y + w.z * z; }
 
 ShadingFrame plyShadingFrame(const PlySurfacePoint& p, const PlyMaterial& m, const FiberTables& tables) {

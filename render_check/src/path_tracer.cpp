@@ -304,9 +304,11 @@ Image renderImage(const TraceScene& scene, const PlyMaterial& material, const Fi
                         lum += l, lum2 += l * l;
                     }
                     const Rgb m = sum / double(s.spp);
-                    img.rgb[3 * index] = float(m.x), img.rgb[3 * index + 1] = float(m.y), img.rgb[3 * index + 2] = float(m.z);
+                    img.rgb[3 * index] = float(m.x), img.rgb[3 * index + 1] = float(m.y),
+                                img.rgb[3 * index + 2] = float(m.z);
                     const double ml = lum / s.spp;
-                    img.variance[index] = s.spp > 1 ? float(std::max(0.0, (lum2 - s.spp * ml * ml) / (s.spp - 1)) / s.spp) : 0.f;
+                    img.variance[index] =
+                        s.spp > 1 ? float(std::max(0.0, (lum2 - s.spp * ml * ml) / (s.spp - 1)) / s.spp) : 0.f;
                 }
             const int finished = ++done;
             if (s.progress) s.progress(double(finished) / (tx * ty));

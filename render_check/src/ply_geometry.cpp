@@ -21,13 +21,13 @@ size_t PlyGeometry::intersectionBytes() const {
 }
 
 size_t PlyGeometry::shadingBytes() const {
-    return radial.size() * sizeof(glm::vec3) + arc.size() * sizeof(float) +
-           curveOfSegment.size() * sizeof(uint32_t);
+    return radial.size() * sizeof(glm::vec3) + arc.size() * sizeof(float) + curveOfSegment.size() * sizeof(uint32_t);
 }
 
 PlyGeometry buildPlyGeometry(const Plies& plies, const glm::dvec3& origin, double fiberTwist) {
     const Polylines& c = plies.curves;
-    if (c.curveCount() == 0 || c.pointCount() == 0) throw Error("render: the scene has no ply curves (nothing to render)");
+    if (c.curveCount() == 0 || c.pointCount() == 0)
+        throw Error("render: the scene has no ply curves (nothing to render)");
     if (!(plies.plyRadius > 0) || !std::isfinite(plies.plyRadius))
         throw Error("render: ply radius must be positive (got " + std::to_string(plies.plyRadius) + ")");
     if (plies.radial.size() != c.pointCount())
@@ -116,8 +116,9 @@ std::vector<int64_t> segmentCells(const Scene& scene, const PlyGeometry& g) {
     std::vector<int64_t> vertexCell(b.vertexCount());
     for (size_t v = 0; v < b.vertexCount(); ++v) {
         const uint32_t f = b.face[v];
-        if (f >= mesh.faceUvs.size()) throw Error("render: binding vertex " + std::to_string(v) + " names face " +
-                                                  std::to_string(f) + " outside the mesh");
+        if (f >= mesh.faceUvs.size())
+            throw Error("render: binding vertex " + std::to_string(v) + " names face " + std::to_string(f) +
+                        " outside the mesh");
         const glm::uvec3 t = mesh.faceUvs[f];
         const glm::dvec2 w = b.bary[v];
         const glm::dvec2 uv = (1.0 - w.x - w.y) * mesh.uvs[t.x] + w.x * mesh.uvs[t.y] + w.y * mesh.uvs[t.z];
@@ -131,8 +132,9 @@ std::vector<int64_t> segmentCells(const Scene& scene, const PlyGeometry& g) {
     const double far2 = std::pow(4.0 * std::max(scene.yarnRadius(), g.unit * g.radius) + 1e-12, 2);
     for (size_t k = 0; k + 1 < g.curveSegments.size(); ++k) {
         const uint32_t y = scene.plies().yarnOfCurve[k];
-        if (y >= yarns.curves.curveCount()) throw Error("render: ply curve " + std::to_string(k) + " names yarn " +
-                                                        std::to_string(y) + " that does not exist");
+        if (y >= yarns.curves.curveCount())
+            throw Error("render: ply curve " + std::to_string(k) + " names yarn " + std::to_string(y) +
+                        " that does not exist");
         const int64_t y0 = yarns.curves.begin(y), n = yarns.curves.size(y);
         if (n == 0) throw Error("render: yarn " + std::to_string(y) + " has no vertices");
         int64_t last = -1;

@@ -23,16 +23,15 @@ std::string fmt(double v) {
 
 void checkRange(const std::string& where, const char* field, double v, double lo, double hi) {
     if (!std::isfinite(v) || v < lo || v > hi)
-        throw Error(where + ": '" + field + "' = " + fmt(v) + " is out of range [" + fmt(lo) + ", " +
-                    fmt(hi) + "]");
+        throw Error(where + ": '" + field + "' = " + fmt(v) + " is out of range [" + fmt(lo) + ", " + fmt(hi) + "]");
 }
 
 void checkColor(const std::string& where, const char* field, const Rgb& c, double lo, double hi) {
     static const char* names[3] = {"r", "g", "b"};
     for (int k = 0; k < 3; ++k) {
         if (!std::isfinite(c[k]) || c[k] < lo || c[k] > hi)
-            throw Error(where + ": '" + field + "' channel " + names[k] + " = " + fmt(c[k]) +
-                        " is out of range [" + fmt(lo) + ", " + fmt(hi) + "]");
+            throw Error(where + ": '" + field + "' channel " + names[k] + " = " + fmt(c[k]) + " is out of range [" +
+                        fmt(lo) + ", " + fmt(hi) + "]");
     }
 }
 
@@ -79,9 +78,9 @@ void validateMaterial(const PlyMaterial& m, const std::string& where) {
     for (int k = 0; k < 3; ++k) {
         const double spec = std::max(m.kR[k], m.kTT[k]);
         if (spec + m.bodyAlbedo[k] > 1.0 + 1e-12)
-            throw Error(where + ": energy bound violated in channel " + names[k] + ": max(kR, kTT) = " +
-                        fmt(spec) + " plus bodyAlbedo = " + fmt(m.bodyAlbedo[k]) + " is " +
-                        fmt(spec + m.bodyAlbedo[k]) + " > 1 (the BSDF would create energy)");
+            throw Error(where + ": energy bound violated in channel " + names[k] + ": max(kR, kTT) = " + fmt(spec) +
+                        " plus bodyAlbedo = " + fmt(m.bodyAlbedo[k]) + " is " + fmt(spec + m.bodyAlbedo[k]) +
+                        " > 1 (the BSDF would create energy)");
     }
 }
 
@@ -141,7 +140,8 @@ PlyMaterial parseMaterialJson(const std::string& text, const std::string& source
 PlyMaterial loadMaterialFile(const std::string& path, const PlyMaterial& base) {
     // Step 1: a readable regular file (a folder opens as a stream on Linux, then fails to read).
     std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) throw Error("material file '" + path + "': is a directory, not a file");
+    if (std::filesystem::is_directory(path, ec))
+        throw Error("material file '" + path + "': is a directory, not a file");
     const std::filesystem::file_status st = std::filesystem::status(path, ec);
     if (std::filesystem::exists(st) && !std::filesystem::is_regular_file(st))
         throw Error("material file '" + path + "': is not a regular file (a device, FIFO or socket)");
@@ -151,12 +151,13 @@ PlyMaterial loadMaterialFile(const std::string& path, const PlyMaterial& base) {
     return parseMaterialStream(in, "material file '" + path + "'", base);
 }
 
-PlyMaterial applyMaterialOverrides(const std::map<std::string, std::vector<double>>& overrides,
-                                   const PlyMaterial& base, const std::string& where) {
+PlyMaterial applyMaterialOverrides(const std::map<std::string, std::vector<double>>& overrides, const PlyMaterial& base,
+                                   const std::string& where) {
     nlohmann::json j = nlohmann::json::object();
     for (const auto& [key, values] : overrides) {
         if (key == "fiberDetail") j[key] = !values.empty() && values[0] != 0;
-        else if (key == "fiberCount" || key == "tableSize" || key == "aoRays") j[key] = static_cast<long long>(std::lround(values.at(0)));
+        else if (key == "fiberCount" || key == "tableSize" || key == "aoRays")
+            j[key] = static_cast<long long>(std::lround(values.at(0)));
         else if (values.size() == 1) j[key] = values[0];
         else j[key] = values;
     }

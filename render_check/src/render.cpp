@@ -31,8 +31,8 @@ double secondsSince(std::chrono::steady_clock::time_point t) {
 // An image path whose extension is not the format written to it (a .jpg holding PNG bytes).
 void checkImageName(const std::string& path, const char* ext, const char* option, const char* format) {
     if (util::lowerExtension(path) != ext)
-        throw Error(std::string("render: ") + option + " '" + path + "': only " + format + " is written there (use a ." + ext +
-                    " name)");
+        throw Error(std::string("render: ") + option + " '" + path + "': only " + format +
+                    " is written there (use a ." + ext + " name)");
 }
 
 }  // namespace
@@ -67,7 +67,8 @@ RenderResult renderScene(const Scene& scene, const RenderOptions& o) {
         throw Error("render: image size " + std::to_string(o.width) + " x " + std::to_string(o.height) +
                     " is outside 1..16384");
     if (o.maxDepth < 1 || o.maxDepth > 1000) throw Error("render: max depth must be in 1..1000");
-    if (!(o.environment >= 0) || !(o.lightIrradiance >= 0) || !std::isfinite(o.environment) || !std::isfinite(o.lightIrradiance))
+    if (!(o.environment >= 0) || !(o.lightIrradiance >= 0) || !std::isfinite(o.environment) ||
+        !std::isfinite(o.lightIrradiance))
         throw Error("render: environment and light irradiance must be finite and >= 0");
     if (!(o.fovDegrees > 1 && o.fovDegrees < 170)) throw Error("render: field of view must be in (1, 170) degrees");
     if (!(o.baseAlbedo >= 0 && o.baseAlbedo <= 1)) throw Error("render: base albedo must be in [0, 1]");

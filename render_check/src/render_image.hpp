@@ -22,10 +22,10 @@ class TraceScene;  // trace_scene.hpp: the Embree scene to trace
 struct TraceSettings {
     int width = 64, height = 64, spp = 16;
     uint64_t seed = 1;
-    int maxDepth = 16;           // bounces; Russian roulette from depth 3
+    int maxDepth = 16;  // bounces; Russian roulette from depth 3
     Camera camera;
     RectLight light;
-    Rgb environment{0.0};        // constant radiance from every direction
+    Rgb environment{0.0};  // constant radiance from every direction
     Rgb baseAlbedo{0.5};
     std::function<void(double fractionDone)> progress;  // called from worker threads (may be empty)
 };

@@ -18,7 +18,7 @@
 namespace knit {
 namespace {
 
-constexpr int kChunk = 8;        // segments per chunk box (8-bit box per chunk)
+constexpr int kChunk = 8;  // segments per chunk box (8-bit box per chunk)
 
 struct GridRun {
     uint32_t firstSegment;
@@ -29,8 +29,8 @@ struct GridRun {
 };
 
 struct GridCell {
-    float lo[3], hi[3];    // primitive bounds
-    float qo[3], qs[3];    // dequantization: p = qo + q * qs
+    float lo[3], hi[3];  // primitive bounds
+    float qo[3], qs[3];  // dequantization: p = qo + q * qs
     uint32_t firstRun, runCount;
 };
 
@@ -41,8 +41,8 @@ struct GridData {
     std::vector<glm::u8vec3> boxes;  // chunk boxes on the cell's grid coarsened 257x (8 bit)
     float radius = 0;
     size_t bytes() const {
-        return cells.size() * sizeof(GridCell) + runs.size() * sizeof(GridRun) +
-               qpoints.size() * sizeof(glm::u16vec3) + boxes.size() * sizeof(glm::u8vec3);
+        return cells.size() * sizeof(GridCell) + runs.size() * sizeof(GridRun) + qpoints.size() * sizeof(glm::u16vec3) +
+               boxes.size() * sizeof(glm::u8vec3);
     }
 };
 
@@ -138,8 +138,8 @@ bool hitPlySegment(const RayData& r, const glm::vec3& p0, const glm::vec3& p1, c
 }
 
 // Walks one cell; `anyHit` stops at the first hit. Returns true on a hit (closest in tfar).
-bool traverseCell(const GridData& g, const GridCell& cell, const RayData& r, float& tfar, bool anyHit,
-                  glm::vec3& ng, uint32_t& segment, float& u) {
+bool traverseCell(const GridData& g, const GridCell& cell, const RayData& r, float& tfar, bool anyHit, glm::vec3& ng,
+                  uint32_t& segment, float& u) {
     const glm::vec3 qo(cell.qo[0], cell.qo[1], cell.qo[2]), qs(cell.qs[0], cell.qs[1], cell.qs[2]);
     auto point = [&](uint32_t i) { return qo + glm::vec3(g.qpoints[i]) * qs; };
     const glm::vec3 bs = qs * 257.f;  // 8-bit box step
@@ -190,8 +190,8 @@ void gridIntersect(const RTCIntersectFunctionNArguments* args) {
     if (!args->valid[0]) return;
     const GridData& g = *static_cast<const GridData*>(args->geometryUserPtr);
     RTCRayHit* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);  // rtcIntersect1: N == 1
-    const RayData r = rayData(rh->ray.org_x, rh->ray.org_y, rh->ray.org_z, rh->ray.dir_x, rh->ray.dir_y,
-                              rh->ray.dir_z, rh->ray.tnear);
+    const RayData r = rayData(rh->ray.org_x, rh->ray.org_y, rh->ray.org_z, rh->ray.dir_x, rh->ray.dir_y, rh->ray.dir_z,
+                              rh->ray.tnear);
     float tfar = rh->ray.tfar, u = 0;
     glm::vec3 ng;
     uint32_t seg = 0;
@@ -215,7 +215,8 @@ void gridOccluded(const RTCOccludedFunctionNArguments* args) {
     float tfar = ray->tfar, u;
     glm::vec3 ng;
     uint32_t seg;
-    if (traverseCell(g, g.cells[args->primID], r, tfar, true, ng, seg, u)) ray->tfar = -std::numeric_limits<float>::infinity();
+    if (traverseCell(g, g.cells[args->primID], r, tfar, true, ng, seg, u))
+        ray->tfar = -std::numeric_limits<float>::infinity();
 }
 
 // Consecutive segments [first, first + count) of one curve in one cell.
@@ -252,9 +253,11 @@ float segmentExtent(const PlyGeometry& pg, uint32_t s) {
     const glm::vec3 dir = safeNormalize(pointOf(pg, i + 1) - pointOf(pg, i));
     float e = r;
     if (pg.hasLeft(s))
-        e = std::max(e, r / std::max(kMinMitreCos, 0.5f * glm::length(safeNormalize(pointOf(pg, i) - pointOf(pg, i - 1)) + dir)));
+        e = std::max(e, r / std::max(kMinMitreCos,
+                                     0.5f * glm::length(safeNormalize(pointOf(pg, i) - pointOf(pg, i - 1)) + dir)));
     if (pg.hasRight(s))
-        e = std::max(e, r / std::max(kMinMitreCos, 0.5f * glm::length(dir + safeNormalize(pointOf(pg, i + 2) - pointOf(pg, i + 1)))));
+        e = std::max(e, r / std::max(kMinMitreCos,
+                                     0.5f * glm::length(dir + safeNormalize(pointOf(pg, i + 2) - pointOf(pg, i + 1)))));
     return e * 1.001f;
 }
 

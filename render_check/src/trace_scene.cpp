@@ -15,7 +15,9 @@ namespace knit {
 
 EmbreeDevice::EmbreeDevice(const char* config) {
     device_ = rtcNewDevice(config);
-    if (!device_) throw Error("render: cannot create an Embree device (error " + std::to_string(rtcGetDeviceError(nullptr)) + ")");
+    if (!device_)
+        throw Error("render: cannot create an Embree device (error " + std::to_string(rtcGetDeviceError(nullptr)) +
+                    ")");
     rtcSetDeviceMemoryMonitorFunction(device_, &EmbreeDevice::monitor, this);
 }
 
@@ -66,8 +68,8 @@ void TraceScene::attachBaseMesh(RTCDevice device, const BaseMesh& m) {
     RTCGeometry bg = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
     rtcSetSharedGeometryBuffer(bg, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, basePositions_.data(), 0,
                                sizeof(glm::vec3), basePositions_.size() - 1);
-    rtcSetSharedGeometryBuffer(bg, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, baseFaces_.data(), 0,
-                               sizeof(glm::uvec3), baseFaces_.size());
+    rtcSetSharedGeometryBuffer(bg, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, baseFaces_.data(), 0, sizeof(glm::uvec3),
+                               baseFaces_.size());
     rtcCommitGeometry(bg);
     baseGeom_ = rtcAttachGeometry(scene_, bg);
     rtcReleaseGeometry(bg);

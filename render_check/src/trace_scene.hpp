@@ -56,8 +56,8 @@ private:
 
 struct TraceSceneOptions {
     GeometryMode mode = GeometryMode::Curves;
-    int tubeSides = 8;              // tubes mode
-    const BaseMesh* baseMesh = nullptr;  // optional opaque base surface (positions in metres)
+    int tubeSides = 8;                                   // tubes mode
+    const BaseMesh* baseMesh = nullptr;                  // optional opaque base surface (positions in metres)
     const std::vector<int64_t>* segmentCells = nullptr;  // grid mode: cell per segment (required)
 };
 
@@ -65,9 +65,9 @@ struct TraceHit {
     enum Kind : uint8_t { None, Ply, Base };
     Kind kind = None;
     float t = 0;
-    glm::vec3 ng{0.f};        // unit normal: for plies, outward from the segment's centreline
-    uint32_t segment = 0;     // ply segment (Ply) or triangle (Base)
-    float u = 0;              // position along the ply segment in [0, 1]
+    glm::vec3 ng{0.f};     // unit normal: for plies, outward from the segment's centreline
+    uint32_t segment = 0;  // ply segment (Ply) or triangle (Base)
+    float u = 0;           // position along the ply segment in [0, 1]
     uint32_t geomID = RTC_INVALID_GEOMETRY_ID, primID = RTC_INVALID_GEOMETRY_ID;  // Embree primitive
 };
 

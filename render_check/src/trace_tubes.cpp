@@ -70,7 +70,8 @@ TubeData outwardTubes(const PlyGeometry& pg, const TubeMesh& mesh) {
     if (mesh.curveOfVertex.size() != mesh.positions.size() || mesh.normals.size() != mesh.positions.size())
         throw Error("render: sweepTubes returned no curve index or normal per vertex");
     for (glm::uvec3& tri : t.triangles) {
-        const glm::vec3 f = glm::cross(t.positions[tri.y] - t.positions[tri.x], t.positions[tri.z] - t.positions[tri.x]);
+        const glm::vec3 f =
+            glm::cross(t.positions[tri.y] - t.positions[tri.x], t.positions[tri.z] - t.positions[tri.x]);
         if (glm::dot(f, mesh.normals[tri.x] + mesh.normals[tri.y] + mesh.normals[tri.z]) < 0) std::swap(tri.y, tri.z);
     }
     return t;
@@ -110,7 +111,8 @@ void assignSegments(const PlyGeometry& pg, const TubeMesh& mesh, const std::vect
         float bd;
         uint32_t bs;
         if (c == lastCurve) {
-            bs = nearestSegment(pg, cen, std::max(s0, lastSeg > s0 + 4 ? lastSeg - 4 : s0), std::min(s1, lastSeg + 5), bd);
+            bs = nearestSegment(pg, cen, std::max(s0, lastSeg > s0 + 4 ? lastSeg - 4 : s0), std::min(s1, lastSeg + 5),
+                                bd);
             if (bd > 4.f * pg.radius * pg.radius) bs = nearestSegment(pg, cen, s0, s1, bd);
         } else {
             bs = nearestSegment(pg, cen, s0, s1, bd);
@@ -125,7 +127,8 @@ void assignSegments(const PlyGeometry& pg, const TubeMesh& mesh, const std::vect
 void addHemisphere(TubeData& t, uint32_t ring, uint32_t ringSize, uint32_t latitudes, const glm::vec3& centre,
                    const glm::vec3& axis, float radius, uint32_t seg) {
     auto addTriangle = [&](glm::uvec3 tri) {  // wound outward (away from the centre)
-        const glm::vec3 f = glm::cross(t.positions[tri.y] - t.positions[tri.x], t.positions[tri.z] - t.positions[tri.x]);
+        const glm::vec3 f =
+            glm::cross(t.positions[tri.y] - t.positions[tri.x], t.positions[tri.z] - t.positions[tri.x]);
         const glm::vec3 mid = (t.positions[tri.x] + t.positions[tri.y] + t.positions[tri.z]) / 3.f;
         if (glm::dot(f, mid - centre) < 0) std::swap(tri.y, tri.z);
         t.triangles.push_back(tri);
@@ -216,7 +219,8 @@ void tubeEntryFilter(const RTCFilterFunctionNArguments* a) {
             a->valid[i] = 0;
             continue;
         }
-        const glm::vec3 dir(RTCRayN_dir_x(a->ray, a->N, i), RTCRayN_dir_y(a->ray, a->N, i), RTCRayN_dir_z(a->ray, a->N, i));
+        const glm::vec3 dir(RTCRayN_dir_x(a->ray, a->N, i), RTCRayN_dir_y(a->ray, a->N, i),
+                            RTCRayN_dir_z(a->ray, a->N, i));
         const glm::uvec3 tri = tubes.triangles[prim];
         const glm::vec3& v0 = tubes.positions[tri.x];
         const glm::vec3 f = glm::cross(tubes.positions[tri.y] - v0, tubes.positions[tri.z] - v0);

@@ -18,7 +18,8 @@ bool haveBlender() { return std::system("command -v blender > /dev/null 2>&1") =
 TEST(BlenderMeshCache, reproducesEveryFrameOfThePc2Cache) {
     if (!haveBlender()) {
         const char* ci = std::getenv("CI");
-        if (ci && std::string(ci) == "true") FAIL() << "CI=true but blender is not installed (scripts/setup.sh installs it)";
+        if (ci && std::string(ci) == "true")
+            FAIL() << "CI=true but blender is not installed (scripts/setup.sh installs it)";
         GTEST_SKIP() << "blender is not installed: the Mesh Cache check is skipped";
     }
     const fs::path dir = fs::temp_directory_path() / ("knit_blender_cache_" + std::to_string(::getpid()));
@@ -30,9 +31,9 @@ TEST(BlenderMeshCache, reproducesEveryFrameOfThePc2Cache) {
     r = runKnit("animate -q --frames frame_%04d.obj --repeats 3 3 -o f_%04d.obj", dir);
     ASSERT_EQ(r.exitCode, 0) << r.output;
     const std::string script = std::string(KNIT_SOURCE_DIR) + "/tests/cli/blender_mesh_cache.py";
-    r = runShell("blender -b --factory-startup --python-exit-code 1 --python '" + script +
-                     "' -- c.obj c.pc2 1 f_%04d.obj 1 4",
-                 dir);
+    r = runShell(
+        "blender -b --factory-startup --python-exit-code 1 --python '" + script + "' -- c.obj c.pc2 1 f_%04d.obj 1 4",
+        dir);
     EXPECT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("KNIT_MESH_CACHE_MAX_ERROR"), std::string::npos) << r.output;
     fs::remove_all(dir);

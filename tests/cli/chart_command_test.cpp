@@ -34,11 +34,14 @@ TEST(ChartCommand, buildAcceptsAChartFileAndCachesIt) {
     test::TempDir dir;
     dir.write("seed.chart", "k p\np k\n");
     ::setenv("KNIT_CACHE_DIR", dir.file("cache").c_str(), 1);  // the child inherits it
-    const std::string args = "build --pattern seed.chart --mesh plane --repeats 2 2 --mesh-res 4 -q -o y.obj --export yarns";
+    const std::string args =
+        "build --pattern seed.chart --mesh plane --repeats 2 2 --mesh-res 4 -q -o y.obj --export yarns";
     const test::CliRun r = test::runKnit(args, dir.path());
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_TRUE(std::filesystem::exists(dir.file("y.obj")));
-    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.file("cache")), std::filesystem::directory_iterator()), 1);
+    EXPECT_EQ(
+        std::distance(std::filesystem::directory_iterator(dir.file("cache")), std::filesystem::directory_iterator()),
+        1);
     ::unsetenv("KNIT_CACHE_DIR");
 }
 

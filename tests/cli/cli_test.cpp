@@ -62,7 +62,8 @@ TEST_F(Cli, reportHasCountsTimesAndSegmentLengths) {
     EXPECT_EQ(j["counts"]["cells"].get<int>(), 121);
     EXPECT_GT(j["yarn_segments"]["longest_segment_length"].get<double>(), 0);
     EXPECT_GT(j["yarn_segments"]["median_segment_length"].get<double>(), 0);
-    for (const char* k : {"uv_grid", "tiling", "stitch", "binding", "evaluate", "total"}) EXPECT_TRUE(j["seconds"].contains(k)) << k;
+    for (const char* k : {"uv_grid", "tiling", "stitch", "binding", "evaluate", "total"})
+        EXPECT_TRUE(j["seconds"].contains(k)) << k;
 }
 
 TEST_F(Cli, cylinderWithIntegralRepeatsGivesClosedCourses) {
@@ -104,8 +105,10 @@ TEST_F(Cli, gltfBaseMeshGivesTheSameKnitAsItsObj) {
     for (int j = 0; j < n; ++j)
         for (int i = 0; i < n; ++i) {
             const uint32_t a = uint32_t(j * (n + 1) + i), b = a + 1, c = a + uint32_t(n) + 2, d = a + uint32_t(n) + 1;
-            obj << "f " << a + 1 << '/' << a + 1 << ' ' << b + 1 << '/' << b + 1 << ' ' << c + 1 << '/' << c + 1 << "\n";
-            obj << "f " << a + 1 << '/' << a + 1 << ' ' << c + 1 << '/' << c + 1 << ' ' << d + 1 << '/' << d + 1 << "\n";
+            obj << "f " << a + 1 << '/' << a + 1 << ' ' << b + 1 << '/' << b + 1 << ' ' << c + 1 << '/' << c + 1
+                << "\n";
+            obj << "f " << a + 1 << '/' << a + 1 << ' ' << c + 1 << '/' << c + 1 << ' ' << d + 1 << '/' << d + 1
+                << "\n";
             idx.insert(idx.end(), {a, b, c, a, c, d});
         }
     write("grid.obj", obj.str());
@@ -124,13 +127,19 @@ TEST_F(Cli, gltfBaseMeshGivesTheSameKnitAsItsObj) {
         {"nodes", {{{"mesh", 0}}}},
         {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 1}}}, {"indices", 2}}}}}}},
         {"buffers", {{{"byteLength", bin.size()}, {"uri", "grid.bin"}}}},
-        {"bufferViews", {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", uvAt}},
-                         {{"buffer", 0}, {"byteOffset", uvAt}, {"byteLength", idxAt - uvAt}},
-                         {{"buffer", 0}, {"byteOffset", idxAt}, {"byteLength", bin.size() - idxAt}}}},
-        {"accessors", {{{"bufferView", 0}, {"componentType", 5126}, {"type", "VEC3"}, {"count", nv},
-                        {"min", {0, 0, 0}}, {"max", {0.5, 0.5, 0.03125}}},
-                       {{"bufferView", 1}, {"componentType", 5126}, {"type", "VEC2"}, {"count", nv}},
-                       {{"bufferView", 2}, {"componentType", 5125}, {"type", "SCALAR"}, {"count", idx.size()}}}}};
+        {"bufferViews",
+         {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", uvAt}},
+          {{"buffer", 0}, {"byteOffset", uvAt}, {"byteLength", idxAt - uvAt}},
+          {{"buffer", 0}, {"byteOffset", idxAt}, {"byteLength", bin.size() - idxAt}}}},
+        {"accessors",
+         {{{"bufferView", 0},
+           {"componentType", 5126},
+           {"type", "VEC3"},
+           {"count", nv},
+           {"min", {0, 0, 0}},
+           {"max", {0.5, 0.5, 0.03125}}},
+          {{"bufferView", 1}, {"componentType", 5126}, {"type", "VEC2"}, {"count", nv}},
+          {{"bufferView", 2}, {"componentType", 5125}, {"type", "SCALAR"}, {"count", idx.size()}}}}};
     write("grid.gltf", gltf.dump());
     const CliRun a = knit("build -q --mesh grid.obj --repeats 6 6 --export yarns -o from_obj.obj", dir);
     ASSERT_EQ(a.exitCode, 0) << a.output;
@@ -188,7 +197,8 @@ TEST_F(Cli, infoPrintsPatternFacts) {
 
 TEST_F(Cli, everySharedPatternBuildsOnAPlane) {
     for (const char* f : {"stockinette.pyp", "stocktiny.pyp", "basket.pyp", "satin.pyp", "slip_stitch_honeycomb.pyp"}) {
-        const CliRun r = knit(std::string("build -q --mesh plane --repeats 4 4 --pattern ") + shared(f) + " -o out.obj", dir);
+        const CliRun r =
+            knit(std::string("build -q --mesh plane --repeats 4 4 --pattern ") + shared(f) + " -o out.obj", dir);
         EXPECT_EQ(r.exitCode, 0) << f << ": " << r.output;
     }
 }

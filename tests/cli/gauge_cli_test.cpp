@@ -17,8 +17,9 @@ TEST(GaugeCli, buildReportsTheGaugeAchievedForAChart) {
     test::TempDir dir;
     dir.write("seed.chart", "k p\np k\n");
     ::setenv("KNIT_CACHE_DIR", dir.file("cache").c_str(), 1);  // the child inherits it
-    const test::CliRun r = test::runKnit(
-        "build --pattern seed.chart --mesh plane --gauge 4x6/10cm --mesh-res 4 -q -o y.obj --export yarns --report r.json", dir.path());
+    const test::CliRun r = test::runKnit("build --pattern seed.chart --mesh plane --gauge 4x6/10cm --mesh-res 4 -q -o "
+                                         "y.obj --export yarns --report r.json",
+                                         dir.path());
     ::unsetenv("KNIT_CACHE_DIR");
     ASSERT_EQ(r.exitCode, 0) << r.output;
     const nlohmann::json j = nlohmann::json::parse(test::readText(dir.file("r.json")));
@@ -33,10 +34,12 @@ TEST(GaugeCli, buildReportsTheGaugeAchievedForAChart) {
 
 TEST(GaugeCli, gaugeWithRepeatsOrMalformedFailsNamingTheFlags) {
     test::TempDir dir;
-    const test::CliRun both = test::runKnit("build -q --mesh plane --repeats 4 4 --gauge 22x30/10cm -o y.obj --export yarns", dir.path());
+    const test::CliRun both =
+        test::runKnit("build -q --mesh plane --repeats 4 4 --gauge 22x30/10cm -o y.obj --export yarns", dir.path());
     EXPECT_EQ(both.exitCode, 1);
     EXPECT_NE(both.output.find("--gauge and --repeats are mutually exclusive"), std::string::npos) << both.output;
-    const test::CliRun bad = test::runKnit("build -q --mesh plane --gauge 22x30/10ft -o y.obj --export yarns", dir.path());
+    const test::CliRun bad =
+        test::runKnit("build -q --mesh plane --gauge 22x30/10ft -o y.obj --export yarns", dir.path());
     EXPECT_EQ(bad.exitCode, 1);
     EXPECT_NE(bad.output.find("--gauge '22x30/10ft': unknown length unit 'ft'"), std::string::npos) << bad.output;
 }

@@ -44,7 +44,8 @@ protected:
         const RenderRun r = knitIn(dir, kSmall + args);
         EXPECT_EQ(r.exitCode, 1) << args << "\n" << r.output;
         EXPECT_EQ(r.output.find("internal error"), std::string::npos) << r.output;
-        for (const std::string& f : fragments) EXPECT_NE(r.output.find(f), std::string::npos) << "'" << f << "' in: " << r.output;
+        for (const std::string& f : fragments)
+            EXPECT_NE(r.output.find(f), std::string::npos) << "'" << f << "' in: " << r.output;
         std::vector<std::string> left = files();
         std::sort(left.begin(), left.end());
         std::vector<std::string> expected = keep;
@@ -104,7 +105,8 @@ TEST_F(RenderCli, materialFileThatIsAFolderIsNamed) {
 
 TEST_F(RenderCli, malformedMaterialJsonIsNamed) {
     write("mat.json", "{\"kR\": 0.3,\n");
-    expectCleanError("--spp 1 --output o.png --material mat.json", {"mat.json", "invalid JSON", "line 2"}, {"mat.json"});
+    expectCleanError("--spp 1 --output o.png --material mat.json", {"mat.json", "invalid JSON", "line 2"},
+                     {"mat.json"});
     write("mat.json", "[0.3, 0.4]");
     expectCleanError("--spp 1 --output o.png --material mat.json", {"mat.json", "JSON object"}, {"mat.json"});
     write("mat.json", "{\"kR\": \"shiny\"}");
@@ -113,7 +115,8 @@ TEST_F(RenderCli, malformedMaterialJsonIsNamed) {
 
 TEST_F(RenderCli, outOfRangeMaterialValuesAreNamed) {
     write("mat.json", "{\"alphaAlong\": 3}");
-    expectCleanError("--spp 1 --output o.png --material mat.json", {"mat.json", "'alphaAlong'", "out of range"}, {"mat.json"});
+    expectCleanError("--spp 1 --output o.png --material mat.json", {"mat.json", "'alphaAlong'", "out of range"},
+                     {"mat.json"});
     write("mat.json", "{\"bodyAlbedo\": [0.5, -0.1, 0.5]}");
     expectCleanError("--spp 1 --output o.png --material mat.json", {"'bodyAlbedo'", "channel g"}, {"mat.json"});
     write("mat.json", "{\"kR\": 0.8, \"bodyAlbedo\": 0.5}");

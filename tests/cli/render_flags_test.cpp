@@ -17,8 +17,9 @@ TEST(RenderFlags, flagsFillOptionsAndMaterialOverrides) {
     CLI::App app("render");
     RenderOptions o;
     addRenderFlags(app, o);
-    const char* argv[] = {"knit", "--light", "back", "--mode", "grid", "--spp", "4", "--kR", "0.2,0.3,0.4",
-                          "--body-albedo", "0.5", "--no-fiber-detail", "--seed", "9"};
+    const char* argv[] = {"knit",   "--light", "back",        "--mode",        "grid", "--spp",
+                          "4",      "--kR",    "0.2,0.3,0.4", "--body-albedo", "0.5",  "--no-fiber-detail",
+                          "--seed", "9"};
     app.parse(static_cast<int>(std::size(argv)), argv);
     EXPECT_EQ(o.light, LightPlacement::Back);
     EXPECT_EQ(o.mode, GeometryMode::Grid);

@@ -17,8 +17,8 @@ int main(int argc, char** argv) {
         knit::ExportOptions exportOptions;
         exportOptions.path = out;
         const knit::ExportStats stats = knit::exportScene(scene, exportOptions);
-        std::printf("consumer: %zu yarn points, %zu ply points, %zu bytes to %s\n",
-                    scene.yarns().curves.pointCount(), scene.plies().curves.pointCount(), stats.bytes, out.c_str());
+        std::printf("consumer: %zu yarn points, %zu ply points, %zu bytes to %s\n", scene.yarns().curves.pointCount(),
+                    scene.plies().curves.pointCount(), stats.bytes, out.c_str());
         return scene.plies().curves.pointCount() > 0 && stats.bytes > 0 ? 0 : 1;
     } catch (const knit::Error& e) {
         std::fprintf(stderr, "consumer: %s\n", e.what());

@@ -33,7 +33,8 @@ struct ChainCase {
         pieces.push_back(pc);
     }
     ChainResult chain(const std::vector<int64_t>& partner) const {
-        return chainPieces(RestSurface{mesh, normals}, pieces, {loc.data(), height.data(), twist.data()}, partner, {1e-6});
+        return chainPieces(RestSurface{mesh, normals}, pieces, {loc.data(), height.data(), twist.data()}, partner,
+                           {1e-6});
     }
 };
 

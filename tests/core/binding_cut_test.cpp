@@ -94,7 +94,8 @@ TEST(BindingCut, ghostBeyondOpenEndGivesBoundaryEnd) {
 }
 
 TEST(BindingCut, chartChangeSplitsTheYarnAtTheSharedBoundary) {
-    const CutCase c(test::twoChartsSideBySide(), test::uvYarns({{{0.6, 0.5}, {0.8, 0.5}, {1.2, 0.5}, {1.4, 0.5}}}, {0}));
+    const CutCase c(test::twoChartsSideBySide(),
+                    test::uvYarns({{{0.6, 0.5}, {0.8, 0.5}, {1.2, 0.5}, {1.4, 0.5}}}, {0}));
     const CutResult r = c.cut();
     ASSERT_EQ(r.pieces.size(), 2u);
     EXPECT_EQ(r.pieces[0].count, 2u);

@@ -38,7 +38,9 @@ inline UvGrid quarterGrid(const BaseMesh& mesh) {
 }
 
 // A flat mesh's vertex normals: +z everywhere.
-inline std::vector<glm::dvec3> upNormals(const BaseMesh& mesh) { return std::vector<glm::dvec3>(mesh.positions.size(), {0, 0, 1}); }
+inline std::vector<glm::dvec3> upNormals(const BaseMesh& mesh) {
+    return std::vector<glm::dvec3>(mesh.positions.size(), {0, 0, 1});
+}
 
 // A vertex located (Inside) at the given triangle and barycentrics.
 inline LocateResult locatedAt(uint32_t face, glm::dvec3 bary) {

@@ -9,8 +9,9 @@ namespace {
 
 // The unit square of 3 x 2 quads without the top middle quad: a notch u in [1/3, 2/3], v >= 1/2.
 BaseMesh notchedSquare() {
-    BaseMesh m = hard::sheet("notch", 3, 2, [](double s, double t) { return glm::dvec3(s, t, 0.0); },
-                             [](double s, double t) { return glm::dvec2(s, t); });
+    BaseMesh m = hard::sheet(
+        "notch", 3, 2, [](double s, double t) { return glm::dvec3(s, t, 0.0); },
+        [](double s, double t) { return glm::dvec2(s, t); });
     const size_t quad = 1 * 3 + 1;  // (i, j) = (1, 1)
     m.faces.erase(m.faces.begin() + 2 * quad, m.faces.begin() + 2 * quad + 2);
     m.faceUvs.erase(m.faceUvs.begin() + 2 * quad, m.faceUvs.begin() + 2 * quad + 2);

@@ -43,7 +43,8 @@ TEST(BindingWeld, weldTiesGoToTheLowerEndIds) {
 
 TEST(BindingWeld, eachEndWeldsOnceNearestPairsFirst) {
     // 0 -> 1 nearest (0.1), then 2 could take 1 (0.15) but 1 is taken: 2 welds with 3.
-    const WeldResult r = weld({end({0, 0, 0}, kX), end({0.1, 0, 0}, -kX), end({0.25, 0, 0}, kX), end({0.9, 0, 0}, -kX)});
+    const WeldResult r =
+        weld({end({0, 0, 0}, kX), end({0.1, 0, 0}, -kX), end({0.25, 0, 0}, kX), end({0.9, 0, 0}, -kX)});
     EXPECT_EQ(r.partner, (std::vector<int64_t>{1, 0, 3, 2}));
     EXPECT_EQ(r.weldedEnds, 4u);
 }

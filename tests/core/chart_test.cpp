@@ -72,12 +72,14 @@ TEST(Chart, raggedRowNamesLineAndColumn) {
 }
 
 TEST(Chart, unknownTokenNamesLineAndColumn) {
-    EXPECT_EQ(chartError("k k\nk  x\n"), "bad.chart:2:4: unknown stitch 'x' (expected k, p or a cable c1/1f c1/1b c2/2f c2/2b c3/3f c3/3b)");
+    EXPECT_EQ(chartError("k k\nk  x\n"),
+              "bad.chart:2:4: unknown stitch 'x' (expected k, p or a cable c1/1f c1/1b c2/2f c2/2b c3/3f c3/3b)");
     EXPECT_NE(chartError("c4/4f\n").find("bad.chart:1:1: unknown stitch"), std::string::npos);
 }
 
 TEST(Chart, cableOverPurlIsRejected) {
-    EXPECT_EQ(chartError("k k k k\nc2/2pf\n"), "bad.chart:2:1: cable 'c2/2pf' over purl stitches: the stitches a cable crosses are knit stitches");
+    EXPECT_EQ(chartError("k k k k\nc2/2pf\n"),
+              "bad.chart:2:1: cable 'c2/2pf' over purl stitches: the stitches a cable crosses are knit stitches");
 }
 
 TEST(Chart, cableWiderThanTheChart) {
@@ -92,7 +94,8 @@ TEST(Chart, emptyChart) {
 TEST(Chart, badColourBlock) {
     EXPECT_EQ(chartError("k k\n\nA C\nA=#000000\n"), "bad.chart:3:3: colour 'C' is not in the palette");
     EXPECT_EQ(chartError("k k\n\nA A\nA=#00000g\n"), "bad.chart:4:1: palette entry 'A=#00000g' is not LETTER=#rrggbb");
-    EXPECT_EQ(chartError("k k\nk k\n\nA A\nA=#000000\n"), "bad.chart:4:1: colour block has 1 rows, expected 2 (as the stitch block)");
+    EXPECT_EQ(chartError("k k\nk k\n\nA A\nA=#000000\n"),
+              "bad.chart:4:1: colour block has 1 rows, expected 2 (as the stitch block)");
     EXPECT_EQ(chartError("k\n\nA\n\nk\n"), "bad.chart:5:1: a chart has at most two blocks (stitches, then colours)");
 }
 

@@ -39,7 +39,8 @@ void expectCableCross(const std::string& text, int leftMoving, int rightMoving, 
     const StitchLoop &l = cell.loop(cell.height - 1, leftMoving), &r = cell.loop(cell.height - 1, rightMoving);
     ASSERT_LT(l.headShift, 0);
     ASSERT_GT(r.headShift, 0);
-    const std::vector<test::Crossing> c = test::crossingsBetween(cell.pattern, l.first, l.first + l.count, r.first, r.first + r.count, 0);
+    const std::vector<test::Crossing> c =
+        test::crossingsBetween(cell.pattern, l.first, l.first + l.count, r.first, r.first + r.count, 0);
     EXPECT_EQ(c.size(), 4u) << text;  // each leg of one loop over (under) each leg of the other
     for (const test::Crossing& x : c) EXPECT_EQ(x.at.z > x.zb, front) << text;
 }

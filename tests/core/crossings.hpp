@@ -62,8 +62,8 @@ inline bool crossAt(const Segment& a, const Segment& b, glm::dvec3 shift, Crossi
 
 // Crossings between the segments starting in vertex range A and those starting in range B,
 // B moved by iy periods along y (and any of -1, 0, 1 along x), seen in frame f.
-inline std::vector<Crossing> crossingsBetween(const Pattern& p, uint32_t a0, uint32_t a1, uint32_t b0, uint32_t b1, int iy,
-                                              const Frame& f = {}) {
+inline std::vector<Crossing> crossingsBetween(const Pattern& p, uint32_t a0, uint32_t a1, uint32_t b0, uint32_t b1,
+                                              int iy, const Frame& f = {}) {
     const std::vector<Segment> segs = segmentsOf(p, f);
     std::vector<Crossing> out;
     for (const Segment& a : segs) {
@@ -71,10 +71,10 @@ inline std::vector<Crossing> crossingsBetween(const Pattern& p, uint32_t a0, uin
         for (const Segment& b : segs) {
             if (b.v0 < b0 || b.v0 >= b1) continue;
             for (int ix = -1; ix <= 1; ++ix) {
-                    if (b.v0 == a.v0 && ix == 0 && iy == 0) continue;
-                    Crossing c;
-                    if (crossAt(a, b, f(glm::dvec3(ix * p.px, iy * p.py, 0)), c)) out.push_back(c);
-                }
+                if (b.v0 == a.v0 && ix == 0 && iy == 0) continue;
+                Crossing c;
+                if (crossAt(a, b, f(glm::dvec3(ix * p.px, iy * p.py, 0)), c)) out.push_back(c);
+            }
         }
     }
     return out;
@@ -122,7 +122,8 @@ inline Frame stitchFrame(const ChartCell& cell, int row, int column) {
 inline std::vector<Crossing> stitchCrossings(const ChartCell& cell, int row, int column, const Frame& f = {}) {
     const StitchLoop& l = cell.loop(row, column);
     const StitchLoop& below = cell.loop((row + cell.height - 1) % cell.height, l.sourceColumn);
-    std::vector<Crossing> c = crossingsBetween(cell.pattern, l.first, l.first + l.count, below.first, below.first + below.count, row == 0 ? -1 : 0, f);
+    std::vector<Crossing> c = crossingsBetween(cell.pattern, l.first, l.first + l.count, below.first,
+                                               below.first + below.count, row == 0 ? -1 : 0, f);
     std::sort(c.begin(), c.end(), [](const Crossing& x, const Crossing& y) { return x.at.y < y.at.y; });
     return c;
 }
@@ -139,7 +140,8 @@ inline std::string checkStitch(const ChartCell& cell, int row, int column) {
         const bool front = c[i].at.z > c[i].zb;
         const bool upper = i >= 2;
         if (front != (upper == knit))
-            return where + ": crossing " + std::to_string(i) + " (from the bottom) has the new loop " + (front ? "in front" : "behind");
+            return where + ": crossing " + std::to_string(i) + " (from the bottom) has the new loop " +
+                   (front ? "in front" : "behind");
     }
     return "";
 }
@@ -153,16 +155,19 @@ inline std::string checkStitch(const ChartCell& cell, int row, int column) {
 inline std::string checkStitchEnds(const ChartCell& cell, int row, int column) {
     const std::vector<Crossing> c = stitchCrossings(cell, row, column, stitchFrame(cell, row, column));
     const std::string where = "stitch (" + std::to_string(row) + ", " + std::to_string(column) + ")";
-    if (c.size() < 2) return where + ": " + std::to_string(c.size()) + " crossings with the loop below, expected at least 2";
+    if (c.size() < 2)
+        return where + ": " + std::to_string(c.size()) + " crossings with the loop below, expected at least 2";
     const bool knit = cell.loop(row, column).kind == StitchKind::Knit;
-    if ((c.back().at.z > c.back().zb) != knit) return where + ": the new loop's legs are on the wrong side of the head below";
+    if ((c.back().at.z > c.back().zb) != knit)
+        return where + ": the new loop's legs are on the wrong side of the head below";
     return "";
 }
 
 // Stitch (knitRow, knitCol) knit and (purlRow, purlCol) purl: at its highest crossing with the
 // loop below, the knit loop is in front and the purl loop behind. "" or what is wrong.
 inline std::string knitInFrontPurlBehind(const ChartCell& cell, int knitRow, int knitCol, int purlRow, int purlCol) {
-    const std::vector<Crossing> k = stitchCrossings(cell, knitRow, knitCol), p = stitchCrossings(cell, purlRow, purlCol);
+    const std::vector<Crossing> k = stitchCrossings(cell, knitRow, knitCol),
+                                p = stitchCrossings(cell, purlRow, purlCol);
     if (k.size() != 4 || p.size() != 4) return "expected 4 crossings per stitch";
     if (!(k[3].at.z > k[3].zb)) return "the knit loop is not in front of the head below";
     if (!(p[3].at.z < p[3].zb)) return "the purl loop is not behind the head below";

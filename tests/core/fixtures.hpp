@@ -13,12 +13,14 @@
 
 namespace knit::test {
 
-inline std::string sharedPattern(const std::string& file) { return std::string(KNIT_SHARED_DIR) + "/patterns/hylc/" + file; }
+inline std::string sharedPattern(const std::string& file) {
+    return std::string(KNIT_SHARED_DIR) + "/patterns/hylc/" + file;
+}
 
 inline const std::vector<std::string>& sharedPatternFiles() {
-    static const std::vector<std::string> files = {"stockinette.pyp", "stockinette_small.pyp", "stocktiny.pyp",
-                                                   "stocktiniest.pyp", "basket.pyp", "satin.pyp",
-                                                   "slip_stitch_honeycomb.pyp"};
+    static const std::vector<std::string> files = {
+        "stockinette.pyp", "stockinette_small.pyp",    "stocktiny.pyp", "stocktiniest.pyp", "basket.pyp",
+        "satin.pyp",       "slip_stitch_honeycomb.pyp"};
     return files;
 }
 

@@ -58,7 +58,8 @@ TEST(Mapping, planeMapsUvhToXyhUnderAnyTriangulation) {
 }
 
 TEST(Mapping, yarnsOnPlaneEndOnlyAtTheDomainBoundary) {
-    const Scene s = buildScene(generateStockinette(), test::planeMesh(test::Triangulation::Random, 6), yarnsOnly({6, 9}));
+    const Scene s =
+        buildScene(generateStockinette(), test::planeMesh(test::Triangulation::Random, 6), yarnsOnly({6, 9}));
     ASSERT_GT(s.bindStats().openEnds, 0u);
     EXPECT_EQ(s.bindStats().weldedEnds, 0u);
     const Polylines& c = s.yarns().curves;
@@ -117,7 +118,8 @@ TEST(Mapping, mappedYarnsHaveNoLongStepsAcrossTriangleEdgesAndSeams) {
         double longestPattern = 0;
         const PatternAdjacency adj = buildAdjacency(s.pattern());
         for (const PeriodicEdge& e : s.pattern().edges) {
-            const glm::dvec2 d = glm::dvec2(s.pattern().points[e.v1]) + glm::dvec2(e.dx * s.pattern().px, e.dy * s.pattern().py) -
+            const glm::dvec2 d = glm::dvec2(s.pattern().points[e.v1]) +
+                                 glm::dvec2(e.dx * s.pattern().px, e.dy * s.pattern().py) -
                                  glm::dvec2(s.pattern().points[e.v0]);
             longestPattern = std::max(longestPattern, glm::length(d));
         }
@@ -169,9 +171,9 @@ TEST(Mapping, inconsistentUvYarnsAreRejected) {
     bind.yarnRadius = a.yarnRadius();
     ASSERT_NO_THROW(bindYarns(a.mesh(), a.normals(), a.grid(), a.stages().uvYarns, bind));
     std::vector<UvYarns> broken(5, a.stages().uvYarns);
-    broken[0].offsets.back() -= 1;          // last vertex owned by no yarn
+    broken[0].offsets.back() -= 1;                              // last vertex owned by no yarn
     broken[1].offsets.push_back(broken[1].offsets.back() + 3);  // a yarn past the end
-    std::swap(broken[2].offsets[1], broken[2].offsets[2]);       // decreasing
+    std::swap(broken[2].offsets[1], broken[2].offsets[2]);      // decreasing
     broken[3].height.pop_back();
     broken[4].ghosts.pop_back();
     for (size_t k = 0; k < broken.size(); ++k) {

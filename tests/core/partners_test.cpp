@@ -56,8 +56,8 @@ TEST(Partners, endpointWithoutPartnerIsNamed) {
     cell.name = "lonely.json";
     cell.px = cell.py = 1.0;
     cell.radius = 0.01;
-    cell.curves = {{{0.05, 0.5, 0}, {0.5, 0.5, 0}, {0.95, 0.5, 0}},   // a course: partners itself across x
-                   {{0.5, 0.1, 0}, {0.5, 0.3, 0}}};                     // a stub with no partner
+    cell.curves = {{{0.05, 0.5, 0}, {0.5, 0.5, 0}, {0.95, 0.5, 0}},  // a course: partners itself across x
+                   {{0.5, 0.1, 0}, {0.5, 0.3, 0}}};                  // a stub with no partner
     try {
         patternFromCurves(cell);
         FAIL() << "expected an error";

@@ -40,9 +40,12 @@ TEST(Pattern, everySharedPatternLoads) {
         double px, radius;
         size_t n;
     };
-    const Expect expected[] = {{"stockinette.pyp", 0.0150513, 0.001, 100}, {"stockinette_small.pyp", 0.001476, 0.0001, 100},
-                               {"stocktiny.pyp", 0.00144, 0.0002, 13},     {"stocktiniest.pyp", 0.00072, 0.0001, 13},
-                               {"basket.pyp", 0.0107037, 0.001, 80},       {"satin.pyp", 0.0111111, 0.001, 130},
+    const Expect expected[] = {{"stockinette.pyp", 0.0150513, 0.001, 100},
+                               {"stockinette_small.pyp", 0.001476, 0.0001, 100},
+                               {"stocktiny.pyp", 0.00144, 0.0002, 13},
+                               {"stocktiniest.pyp", 0.00072, 0.0001, 13},
+                               {"basket.pyp", 0.0107037, 0.001, 80},
+                               {"satin.pyp", 0.0111111, 0.001, 130},
                                {"slip_stitch_honeycomb.pyp", 0.0109376, 0.001, 182}};
     for (const Expect& e : expected) {
         const Pattern p = loadPyp(test::sharedPattern(e.file));
@@ -169,10 +172,12 @@ TEST(Pattern, gaugeBlockRoundTripsAndDefaultsToOneStitchByOneRow) {
 }
 
 TEST(Pattern, badGaugeBlockFailsWithItsLine) {
-    EXPECT_NE(errorOf(std::string(kTiny) + "*GAUGE\n0 2\n").find("bad.pyp:14: *GAUGE stitches and rows per period must be in 1 .. 1000000"),
+    EXPECT_NE(errorOf(std::string(kTiny) + "*GAUGE\n0 2\n")
+                  .find("bad.pyp:14: *GAUGE stitches and rows per period must be in 1 .. 1000000"),
               std::string::npos)
         << errorOf(std::string(kTiny) + "*GAUGE\n0 2\n");
-    EXPECT_NE(errorOf(std::string(kTiny) + "*GAUGE\n3\n").find("*GAUGE row has 1 values, expected 2"), std::string::npos);
+    EXPECT_NE(errorOf(std::string(kTiny) + "*GAUGE\n3\n").find("*GAUGE row has 1 values, expected 2"),
+              std::string::npos);
 }
 
 }  // namespace

@@ -19,7 +19,8 @@ namespace {
 // Yarn length per fabric area in yarn radii: L r / A over one periodic cell.
 double lengthPerArea(const Pattern& p) {
     double L = 0;
-    for (const PeriodicEdge& e : p.edges) L += glm::length(p.points[e.v1] + glm::dvec3(e.dx * p.px, e.dy * p.py, 0) - p.points[e.v0]);
+    for (const PeriodicEdge& e : p.edges)
+        L += glm::length(p.points[e.v1] + glm::dvec3(e.dx * p.px, e.dy * p.py, 0) - p.points[e.v0]);
     return L * p.radius / (p.px * p.py);
 }
 
@@ -33,9 +34,10 @@ ChartCell relaxedCell(const ChartPattern& cp) {
 void expectRelaxedApartWithCrossings(const std::string& name) {
     {
         const ChartPattern cp = relaxChart(builtinChart(name));
-        std::printf("%-26s %4d iterations %.2f s, min distance %.3f r, L r/A %.3f, period %.2f x %.2f r\n", name.c_str(),
-                    cp.relaxed.iterations, cp.seconds, cp.relaxed.minDistance, lengthPerArea(cp.relaxed.pattern),
-                    cp.relaxed.pattern.px / cp.relaxed.pattern.radius, cp.relaxed.pattern.py / cp.relaxed.pattern.radius);
+        std::printf("%-26s %4d iterations %.2f s, min distance %.3f r, L r/A %.3f, period %.2f x %.2f r\n",
+                    name.c_str(), cp.relaxed.iterations, cp.seconds, cp.relaxed.minDistance,
+                    lengthPerArea(cp.relaxed.pattern), cp.relaxed.pattern.px / cp.relaxed.pattern.radius,
+                    cp.relaxed.pattern.py / cp.relaxed.pattern.radius);
         EXPECT_GE(cp.relaxed.minDistance, 1.9) << name;
         EXPECT_GT(cp.relaxed.closestApproach, 0.2) << name;
         EXPECT_NO_THROW(validatePattern(cp.relaxed.pattern, name));
@@ -46,7 +48,8 @@ void expectRelaxedApartWithCrossings(const std::string& name) {
 }
 
 TEST(Relax, plainBuiltinsRelaxApartAndKeepTheirCrossings) {
-    for (const char* name : {"chart:stockinette", "chart:reverse-stockinette", "chart:garter", "chart:seed", "chart:moss"})
+    for (const char* name :
+         {"chart:stockinette", "chart:reverse-stockinette", "chart:garter", "chart:seed", "chart:moss"})
         expectRelaxedApartWithCrossings(name);
 }
 
@@ -64,7 +67,8 @@ TEST(Relax, ribAlternatesFrontAndBackColumns) {
     auto meanZ = [&](int column) {
         double z = 0;
         for (int r = 0; r < cell.height; ++r)
-            for (uint32_t i = 0; i < cell.loop(r, column).count; ++i) z += cell.pattern.points[cell.loop(r, column).first + i].z;
+            for (uint32_t i = 0; i < cell.loop(r, column).count; ++i)
+                z += cell.pattern.points[cell.loop(r, column).first + i].z;
         return z / (cell.height * double(cell.loop(0, column).count)) / cell.pattern.radius;
     };
     EXPECT_GT(meanZ(0), 1.0);   // the knit column in front
@@ -94,7 +98,8 @@ TEST(Relax, relaxedCellTilesSeamlessly) {
     // start (the relaxed points and period are one consistent state).
     const Pattern p = relaxChart(builtinChart("chart:seed")).relaxed.pattern;
     for (const PeriodicEdge& e : p.edges) {
-        const double l = glm::length(p.points[e.v1] + glm::dvec3(e.dx * p.px, e.dy * p.py, 0) - p.points[e.v0]) / p.radius;
+        const double l =
+            glm::length(p.points[e.v1] + glm::dvec3(e.dx * p.px, e.dy * p.py, 0) - p.points[e.v0]) / p.radius;
         EXPECT_GT(l, 0.5);
         EXPECT_LT(l, 2.5);
     }

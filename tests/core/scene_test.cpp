@@ -29,7 +29,7 @@ TEST(Scene, stagesRunInPipelineOrderAndReportProgress) {
         total = n;
     };
     const Scene s = buildScene(o);
-    const std::vector<std::string> all = {"load_pattern", "load_mesh", "normals", "uv_grid", "tiling",
+    const std::vector<std::string> all = {"load_pattern", "load_mesh", "normals",  "uv_grid", "tiling",
                                           "stitch",       "binding",   "evaluate", "plies"};
     EXPECT_EQ(stageNames(s), all);
     ASSERT_EQ(calls.size(), all.size());
@@ -47,7 +47,8 @@ TEST(Scene, inMemoryInputsWithoutPliesSkipTheLoadAndPlyStages) {
     int total = 0;
     o.progress = [&](const std::string&, int, int n) { total = n; };
     const Scene s = buildScene(generateStockinette(), test::planeMesh(test::Triangulation::Regular, 4), o);
-    EXPECT_EQ(stageNames(s), (std::vector<std::string>{"normals", "uv_grid", "tiling", "stitch", "binding", "evaluate"}));
+    EXPECT_EQ(stageNames(s),
+              (std::vector<std::string>{"normals", "uv_grid", "tiling", "stitch", "binding", "evaluate"}));
     EXPECT_EQ(total, 6);
     EXPECT_EQ(s.plies().curves.curveCount(), 0u);
     // The ply settings carry the scene's yarn radius, unresolved (their consumer resolves them).

@@ -28,7 +28,8 @@ size_t loopsByWinding(const Pattern& p, int a, int b) {
         bool closed = true;
         for (;;) {
             seen[v] = 1;
-            auto it = std::find_if(incident[v].begin(), incident[v].end(), [&](auto& ie) { return !usedEdge[ie.first]; });
+            auto it =
+                std::find_if(incident[v].begin(), incident[v].end(), [&](auto& ie) { return !usedEdge[ie.first]; });
             if (it == incident[v].end()) break;
             const PeriodicEdge& e = p.edges[it->first];
             usedEdge[it->first] = 1;

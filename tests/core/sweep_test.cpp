@@ -233,7 +233,8 @@ TEST(Sweep, subRangeEqualsSliceOfFullSweep) {
         ASSERT_EQ(mid.positions[i], all.positions[first + i]);
         ASSERT_EQ(mid.curveOfVertex[i], 1u);
     }
-    EXPECT_EQ(mid.triangles.front(), all.triangles[tubeTriangleCount(c.size(0), false, o)] - glm::uvec3(uint32_t(first)));
+    EXPECT_EQ(mid.triangles.front(),
+              all.triangles[tubeTriangleCount(c.size(0), false, o)] - glm::uvec3(uint32_t(first)));
 }
 
 TEST(Sweep, resultIsIdenticalForOneAndManyThreads) {

@@ -28,7 +28,8 @@ TEST(Gauge, parsesStitchesRowsAndLengthInEveryUnit) {
 }
 
 TEST(Gauge, malformedGaugesNameTheFlagAndWhatIsWrong) {
-    EXPECT_NE(gaugeError("22x30").find("--gauge '22x30': no '/' before the length"), std::string::npos) << gaugeError("22x30");
+    EXPECT_NE(gaugeError("22x30").find("--gauge '22x30': no '/' before the length"), std::string::npos)
+        << gaugeError("22x30");
     EXPECT_NE(gaugeError("22/10cm").find("no 'x' between stitches and rows"), std::string::npos);
     EXPECT_NE(gaugeError("22x30/10").find("the length has no unit"), std::string::npos);
     EXPECT_NE(gaugeError("22x30/10ft").find("unknown length unit 'ft'"), std::string::npos);

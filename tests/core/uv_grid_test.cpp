@@ -106,7 +106,8 @@ TEST(UvGrid, gridIsSparseAndConservative) {
             const glm::dvec2 p = m.uvs[t.x] + a * (m.uvs[t.y] - m.uvs[t.x]) + b * (m.uvs[t.z] - m.uvs[t.x]);
             const int32_t slot = g.slotOf(g.cellOf(p));
             ASSERT_GE(slot, 0);
-            const auto begin = g.triangles.begin() + g.triOffsets[slot], end = g.triangles.begin() + g.triOffsets[slot + 1];
+            const auto begin = g.triangles.begin() + g.triOffsets[slot],
+                       end = g.triangles.begin() + g.triOffsets[slot + 1];
             ASSERT_NE(std::find(begin, end, uint32_t(f)), end) << "face " << f << " missing from its cell";
         }
 }
@@ -132,7 +133,12 @@ TEST(UvGrid, overlappingChartsAreReportedTouchingOnesAreNot) {
         }
         return m;
     };
-    struct Case { glm::dvec2 shift; double scale; bool overlap; const char* what; };
+    struct Case {
+        glm::dvec2 shift;
+        double scale;
+        bool overlap;
+        const char* what;
+    };
     const Case cases[] = {
         {{1, 0}, 1, false, "sharing an edge"},
         {{1, 1}, 1, false, "sharing a corner"},

@@ -9,7 +9,8 @@ namespace knit::test {
 
 // Exports `c` (constant radius, optional yarn of each curve) with `o`.
 inline ExportStats exportWith(const Polylines& c, double radius, ExportOptions o,
-                              const std::vector<uint32_t>* yarns = nullptr, const std::string& materialExtrasJson = "") {
+                              const std::vector<uint32_t>* yarns = nullptr,
+                              const std::string& materialExtrasJson = "") {
     ExportInput in;
     in.curves = &c;
     in.radius = radius;

@@ -93,17 +93,17 @@ TEST(GltfClients, chunksUpTo65535VerticesGetUnsignedShortIndices) {
     const Polylines c = test::mixedCurves();
     test::exportWith(c, 0.001, test::tubeOptions(dir + "/small.glb", 8));
     const gltf::Document small = test::loadGltf(dir + "/small.glb");
-    EXPECT_EQ(small.root()["accessors"][small.root()["meshes"][0]["primitives"][0]["indices"].get<size_t>()]
-                  ["componentType"],
-              gltf::kUnsignedShort);
+    EXPECT_EQ(
+        small.root()["accessors"][small.root()["meshes"][0]["primitives"][0]["indices"].get<size_t>()]["componentType"],
+        gltf::kUnsignedShort);
     test::expectGltfValid(dir + "/small.glb");
     // 1024 sides: one chunk of more than 65535 vertices keeps UNSIGNED_INT.
     const ExportStats s = test::exportWith(c, 0.001, test::tubeOptions(dir + "/large.glb", 1024));
     ASSERT_GT(s.maxChunkVertices, 65535u);
     const gltf::Document large = test::loadGltf(dir + "/large.glb");
-    EXPECT_EQ(large.root()["accessors"][large.root()["meshes"][0]["primitives"][0]["indices"].get<size_t>()]
-                  ["componentType"],
-              gltf::kUnsignedInt);
+    EXPECT_EQ(
+        large.root()["accessors"][large.root()["meshes"][0]["primitives"][0]["indices"].get<size_t>()]["componentType"],
+        gltf::kUnsignedInt);
 }
 
 TEST(GltfClients, quantizedTexcoordsTimesTheirScaleGiveThePlainTexcoords) {
@@ -118,7 +118,8 @@ TEST(GltfClients, quantizedTexcoordsTimesTheirScaleGiveThePlainTexcoords) {
     const gltf::Primitive pp = plain.primitives(0).at(0), qp = q.primitives(0).at(0);
     const nlohmann::json& scale = q.root()["meshes"][0]["primitives"][0]["extras"]["texcoordScale"];
     ASSERT_EQ(scale.size(), 2u);
-    const std::vector<double> a = test::readAttribute(plain, pp, "TEXCOORD_0"), b = test::readAttribute(q, qp, "TEXCOORD_0");
+    const std::vector<double> a = test::readAttribute(plain, pp, "TEXCOORD_0"),
+                              b = test::readAttribute(q, qp, "TEXCOORD_0");
     ASSERT_EQ(a.size(), b.size());
     for (size_t i = 0; i < a.size(); ++i) {
         const double s = scale[i % 2].get<double>();
@@ -156,12 +157,13 @@ TEST(GltfClients, meshoptNeedsGltfTubesAndIsNoDracoCompanion) {
     };
     ExportOptions obj = test::tubeOptions(dir + "/t.obj", 8);
     obj.meshopt = true;
-    EXPECT_EQ(errorOf(obj), "cannot export '" + obj.path +
-                                "': --meshopt (EXT_meshopt_compression) needs a .glb or .gltf output");
+    EXPECT_EQ(errorOf(obj),
+              "cannot export '" + obj.path + "': --meshopt (EXT_meshopt_compression) needs a .glb or .gltf output");
     ExportOptions curves;
     curves.path = dir + "/c.glb";
     curves.meshopt = true;
-    EXPECT_EQ(errorOf(curves), "cannot export '" + curves.path + "': --meshopt applies to tube meshes only (--export tubes)");
+    EXPECT_EQ(errorOf(curves),
+              "cannot export '" + curves.path + "': --meshopt applies to tube meshes only (--export tubes)");
     ExportOptions both = test::tubeOptions(dir + "/b.glb", 8);
     both.meshopt = both.draco = true;
     EXPECT_EQ(errorOf(both), "cannot export '" + both.path + "': --draco and --meshopt are alternatives; choose one");
@@ -209,7 +211,8 @@ TEST(GltfClients, meshoptViewsDecodeToThePlainExportsBytes) {
             for (size_t f = 0; f < count; f += 3) {
                 bool same = false;
                 for (size_t r = 0; r < 3 && !same; ++r)
-                    same = got[f] == exp[f + r] && got[f + 1] == exp[f + (r + 1) % 3] && got[f + 2] == exp[f + (r + 2) % 3];
+                    same = got[f] == exp[f + r] && got[f + 1] == exp[f + (r + 1) % 3] &&
+                           got[f + 2] == exp[f + (r + 2) % 3];
                 ASSERT_TRUE(same) << "triangle " << f / 3;
             }
         } else {

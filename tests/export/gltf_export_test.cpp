@@ -131,7 +131,8 @@ TEST(GltfExport, materialExtrasTextReachesTheMaterial) {
     ExportOptions o;
     o.path = dir + "/extras.gltf";
     o.what = ExportWhat::Yarns;
-    write(test::mixedCurves(), 0.001, o, nullptr, R"({"generator": "test", "weights": [1, 2.5], "nested": {"on": true}})");
+    write(test::mixedCurves(), 0.001, o, nullptr,
+          R"({"generator": "test", "weights": [1, 2.5], "nested": {"on": true}})");
     test::expectGltfValid(o.path);
     const gltf::Document m = test::loadGltf(o.path);
     const nlohmann::json& extras = m.root().at("materials").at(0).at("extras");

@@ -59,7 +59,8 @@ inline std::vector<double> readAttribute(const gltf::Document& d, const gltf::Pr
 }
 
 // World-space positions of one primitive's POSITION accessor.
-inline std::vector<glm::dvec3> worldPositions(const gltf::Document& d, const gltf::Primitive& p, const glm::dmat4& world) {
+inline std::vector<glm::dvec3> worldPositions(const gltf::Document& d, const gltf::Primitive& p,
+                                              const glm::dmat4& world) {
     const std::vector<double> v = readAttribute(d, p, "POSITION");
     std::vector<glm::dvec3> out(v.size() / 3);
     for (size_t i = 0; i < out.size(); ++i)

@@ -17,10 +17,10 @@
 namespace knit::test {
 
 struct ValidatorReport {
-    bool ran = false;          // false: validator unavailable (the test was skipped or failed)
+    bool ran = false;  // false: validator unavailable (the test was skipped or failed)
     int errors = 0, warnings = 0, infos = 0, hints = 0;
-    nlohmann::json report;     // the full validator report
-    std::string messages;      // errors and warnings, one per line (for failure output)
+    nlohmann::json report;  // the full validator report
+    std::string messages;   // errors and warnings, one per line (for failure output)
     bool hasInfo(const std::string& code) const {
         if (!report.contains("issues") || !report["issues"].contains("messages")) return false;
         for (const auto& m : report["issues"]["messages"])

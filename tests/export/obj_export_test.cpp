@@ -143,7 +143,8 @@ TEST(AtomicWrite, missingFolderIsNamedInError) {
     const std::string dir = test::scratchDir("atomic_missing");
     const std::string path = dir + "/no/such/folder/out.obj";
     try {
-        writeFileAtomically(path, [](std::ostream& out) { out << "x"; }, false);
+        writeFileAtomically(
+            path, [](std::ostream& out) { out << "x"; }, false);
         FAIL() << "expected knit::Error";
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
@@ -155,13 +156,15 @@ TEST(AtomicWrite, missingFolderIsNamedInError) {
 TEST(AtomicWrite, replacesExistingFileOnlyOnSuccess) {
     const std::string dir = test::scratchDir("atomic_replace");
     const std::string path = dir + "/out.txt";
-    writeFileAtomically(path, [](std::ostream& out) { out << "first"; }, false);
+    writeFileAtomically(
+        path, [](std::ostream& out) { out << "first"; }, false);
     EXPECT_EQ(test::readText(path), "first");
     EXPECT_THROW(writeFileAtomically(
                      path, [](std::ostream&) { throw Error("fail"); }, false),
                  Error);
     EXPECT_EQ(test::readText(path), "first");
-    writeFileAtomically(path, [](std::ostream& out) { out << "second"; }, false);
+    writeFileAtomically(
+        path, [](std::ostream& out) { out << "second"; }, false);
     EXPECT_EQ(test::readText(path), "second");
     EXPECT_EQ(test::listDir(dir).size(), 1u);
 }

@@ -46,11 +46,11 @@ TEST(PointCache, pc2HeaderAndLittleEndianFramesPerSpecification) {
     const std::vector<unsigned char> b = test::readBytes(dir.file("a.pc2"));
     ASSERT_EQ(b.size(), 32u + 2 * 3 * 12);
     EXPECT_EQ(std::string(b.begin(), b.begin() + 12), std::string("POINTCACHE2\0", 12));
-    EXPECT_EQ(readU32(b, 12, false), 1u);  // version
-    EXPECT_EQ(readU32(b, 16, false), 3u);  // points
+    EXPECT_EQ(readU32(b, 12, false), 1u);    // version
+    EXPECT_EQ(readU32(b, 16, false), 3u);    // points
     EXPECT_EQ(readF32(b, 20, false), 7.0f);  // start frame
     EXPECT_EQ(readF32(b, 24, false), 1.0f);  // sample rate
-    EXPECT_EQ(readU32(b, 28, false), 2u);  // samples
+    EXPECT_EQ(readU32(b, 28, false), 2u);    // samples
     for (int k = 0; k < 2; ++k)
         for (int p = 0; p < 3; ++p)
             for (int c = 0; c < 3; ++c)
@@ -82,7 +82,9 @@ TEST(PointCache, missingFramesOrWrongCountsLeaveNoCacheAndNoTempFile) {
         temp = w.tempPath();
         EXPECT_TRUE(std::filesystem::exists(temp));
         w.writeFrame(framePoints(0));
-        EXPECT_EQ(test::errorOf([&] { w.writeFrame({{0, 0, 0}}); }),
+        EXPECT_EQ(test::errorOf([&] {
+                      w.writeFrame({{0, 0, 0}});
+                  }),
                   "point cache '" + dir.file("a.pc2") + "': frame 1 has 1 points, the cache 3");
         EXPECT_EQ(test::errorOf([&] { w.commit(); }), "point cache '" + dir.file("a.pc2") + "': 1 of 2 frames written");
     }

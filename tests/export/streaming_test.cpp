@@ -15,7 +15,9 @@ namespace knit {
 namespace {
 
 // Resets VmHWM to the current resident size (Linux >= 4.0); false if unsupported.
-bool resetPeak() { return util::resetPeakResident() && util::peakResidentBytes() <= util::residentBytes() + (1u << 20); }
+bool resetPeak() {
+    return util::resetPeakResident() && util::peakResidentBytes() <= util::residentBytes() + (1u << 20);
+}
 
 TEST(Streaming, peakMemoryGrowsByAboutOneChunkNotTheWholeMesh) {
     const std::string dir = test::scratchDir("streaming");
@@ -40,7 +42,7 @@ TEST(Streaming, peakMemoryGrowsByAboutOneChunkNotTheWholeMesh) {
     // Non-streaming would need >= 1.0 x whole; one chunk plus writer buffers is ~0.05 x here
     // (0.3 leaves room for sanitizer builds' allocator overhead).
     EXPECT_LT(growth, 0.3 * whole) << "peak grew by " << growth / 1e6 << " MB for a " << whole / 1e6
-                                    << " MB mesh: not streaming";
+                                   << " MB mesh: not streaming";
     std::filesystem::remove(o.path);
 }
 

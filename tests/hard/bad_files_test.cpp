@@ -37,7 +37,8 @@ bool loadsOrNamesFile(Kind kind, const std::string& path, std::string* message =
         else validateMesh(loadMeshFileOrName(path));
         return true;
     } catch (const Error& e) {
-        EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << "message does not name the file: " << e.what();
+        EXPECT_NE(std::string(e.what()).find(path), std::string::npos)
+            << "message does not name the file: " << e.what();
         if (message) *message = e.what();
         return false;
     } catch (const std::exception& e) {
@@ -55,10 +56,12 @@ std::string validPyp() {
 const char* kObj = "v 0 0 0\nv 1 0 0\nv 1 1 0.5\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3 4/4\n";
 const char* kPly =
     "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nproperty float u\n"
-    "property float v\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0 0 0\n1 0 0 1 0\n1 1 0.5 1 1\n"
+    "property float v\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0 0 0\n1 0 0 1 0\n1 1 "
+    "0.5 1 1\n"
     "0 1 0 0 1\n4 0 1 2 3\n";
 const char* kOff = "STOFF\n4 1 0\n0 0 0 0 0\n1 0 0 1 0\n1 1 0.5 1 1\n0 1 0 0 1\n4 0 1 2 3\n";
-const char* kJson = R"({"period": [1, 1], "radius": 0.05, "curves": [[[0.0, 0.25, 0], [0.45, 0.25, 0]], [[0.55, 0.25, 0], [0.95, 0.25, 0.01]]]})";
+const char* kJson =
+    R"({"period": [1, 1], "radius": 0.05, "curves": [[[0.0, 0.25, 0], [0.45, 0.25, 0]], [[0.55, 0.25, 0], [0.95, 0.25, 0.01]]]})";
 
 TEST_F(BadFiles, everyTruncationOfEachFormatLoadsOrNamesTheFile) {
     const std::pair<std::string, std::string> files[] = {
@@ -77,9 +80,10 @@ TEST_F(BadFiles, everyTruncationOfEachFormatLoadsOrNamesTheFile) {
 TEST_F(BadFiles, garbageBytesAreRejectedWithTheFileName) {
     std::mt19937 rng(5);
     for (const char* name : {"g.pyp", "g.json", "g.obj", "g.ply", "g.off"}) {
-        const Kind kind = std::string(name).find(".pyp") != std::string::npos || std::string(name).find(".json") != std::string::npos
-                              ? Kind::Pattern
-                              : Kind::Mesh;
+        const Kind kind =
+            std::string(name).find(".pyp") != std::string::npos || std::string(name).find(".json") != std::string::npos
+                ? Kind::Pattern
+                : Kind::Mesh;
         for (int k = 0; k < 20; ++k) {
             std::string junk(1 + rng() % 400, '\0');
             for (char& c : junk) c = char(rng());
@@ -147,7 +151,8 @@ TEST_F(BadFiles, binaryPlyPropertyTypesOpenMeshCannotConvertAreRefused) {
     auto binaryPly = [](const std::string& xType, const std::string& indexType) {
         std::string s = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty " + xType +
                         " x\nproperty float y\nproperty float z\nproperty float u\nproperty float v\nelement face 1\n"
-                        "property list uchar " + indexType + " vertex_indices\nend_header\n";
+                        "property list uchar " +
+                        indexType + " vertex_indices\nend_header\n";
         for (int v = 0; v < 3; ++v) {
             if (xType == "uchar") s.push_back(char(v == 1));
             else if (xType == "int") {
@@ -173,13 +178,15 @@ TEST_F(BadFiles, binaryPlyPropertyTypesOpenMeshCannotConvertAreRefused) {
         return s;
     };
     EXPECT_TRUE(loadsOrNamesFile(Kind::Mesh, write("ok.ply", binaryPly("float", "int"))));
-    for (const auto& [x, index] : {std::pair<std::string, std::string>{"uchar", "int"}, {"int", "int"}, {"float", "float"}}) {
+    for (const auto& [x, index] :
+         {std::pair<std::string, std::string>{"uchar", "int"}, {"int", "int"}, {"float", "float"}}) {
         std::string msg;
         EXPECT_FALSE(loadsOrNamesFile(Kind::Mesh, write("bad.ply", binaryPly(x, index)), &msg)) << x << " " << index;
         EXPECT_NE(msg.find("is not supported"), std::string::npos) << msg;
     }
     // The fuzzer's original input.
-    const std::string found = std::string(KNIT_SOURCE_DIR) + "/tests/fuzz_corpus/ply/timeout-59d571a8a34814063d48c0bfebbefaf90db350f1";
+    const std::string found =
+        std::string(KNIT_SOURCE_DIR) + "/tests/fuzz_corpus/ply/timeout-59d571a8a34814063d48c0bfebbefaf90db350f1";
     const std::string bytes = test::readText(found);
     ASSERT_FALSE(bytes.empty());
     EXPECT_FALSE(loadsOrNamesFile(Kind::Mesh, write("found.ply", bytes)));
@@ -190,7 +197,8 @@ TEST_F(BadFiles, integersBeyondTheirRangeAreRejectedWithoutOverflow) {
     // saturation went unnoticed; an OFF count of ~1e38 was cast to size_t for the message.
     const std::string base = "*pattern\n0.01 0.01 0.001 2\n*Q\n0 0.005 0 0\n0.005 0.005 0 0\n*E\n0 1 0 0\n";
     std::string msg;
-    EXPECT_FALSE(loadsOrNamesFile(Kind::Pattern, write("a.pyp", base + "1 0 9223372036854775807 -9223372036854775807\n"), &msg));
+    EXPECT_FALSE(
+        loadsOrNamesFile(Kind::Pattern, write("a.pyp", base + "1 0 9223372036854775807 -9223372036854775807\n"), &msg));
     EXPECT_NE(msg.find("a.pyp:8: edge offset"), std::string::npos) << msg;
     EXPECT_FALSE(loadsOrNamesFile(Kind::Pattern, write("b.pyp", base + "1 0 99999999999999999999 0\n"), &msg));
     EXPECT_NE(msg.find("b.pyp:8: integer '99999999999999999999' is out of range"), std::string::npos) << msg;
@@ -202,12 +210,14 @@ TEST_F(BadFiles, integersBeyondTheirRangeAreRejectedWithoutOverflow) {
 TEST_F(BadFiles, missingFilesAndDirectoriesAreNamed) {
     for (const char* name : {"missing.pyp", "missing.json", "missing.obj", "missing.ply", "missing.off"}) {
         const std::string path = (dir / name).string();
-        const Kind kind = std::string(name).find(".pyp") != std::string::npos || std::string(name).find(".json") != std::string::npos
-                              ? Kind::Pattern
-                              : Kind::Mesh;
+        const Kind kind =
+            std::string(name).find(".pyp") != std::string::npos || std::string(name).find(".json") != std::string::npos
+                ? Kind::Pattern
+                : Kind::Mesh;
         std::string msg;
         EXPECT_FALSE(loadsOrNamesFile(kind, path, &msg));
-        EXPECT_TRUE(msg.find("does not exist") != std::string::npos || msg.find("no such file") != std::string::npos) << msg;
+        EXPECT_TRUE(msg.find("does not exist") != std::string::npos || msg.find("no such file") != std::string::npos)
+            << msg;
         // A directory where the file is expected.
         fs::create_directories(dir / ("d" + std::string(name)));
         const std::string d = (dir / ("d" + std::string(name))).string();

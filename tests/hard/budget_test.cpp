@@ -37,8 +37,10 @@ TEST(Budget, malformedSizesNameTheOption) {
 }
 
 TEST(Budget, refusalNamesEstimateWhatAndOption) {
-    const std::string m = errorOf([] { MemoryBudget(uint64_t(1) << 30).require(3.0 * (uint64_t(1) << 30), "7 things", "--knob"); });
-    EXPECT_EQ(m, "needs about 3 GiB (estimate) for 7 things, over the memory budget of 1 GiB; lower --knob or raise --max-memory");
+    const std::string m =
+        errorOf([] { MemoryBudget(uint64_t(1) << 30).require(3.0 * (uint64_t(1) << 30), "7 things", "--knob"); });
+    EXPECT_EQ(m, "needs about 3 GiB (estimate) for 7 things, over the memory budget of 1 GiB; lower --knob or raise "
+                 "--max-memory");
     EXPECT_EQ(errorOf([] { MemoryBudget(100).require(100, "x", "y"); }), "");
 }
 

@@ -12,7 +12,8 @@ namespace knit::hard {
 
 // Bound yarn vertices whose mapped point is (size*u, size*v, h) for a plane with uv = (x, y)/size
 // (up to `mirror`ed u): the worst distance, relative to size.
-inline double planeMappingError(const Scene& s, double size, glm::dvec2 uvOrigin = glm::dvec2(0.0), bool mirror = false) {
+inline double planeMappingError(const Scene& s, double size, glm::dvec2 uvOrigin = glm::dvec2(0.0),
+                                bool mirror = false) {
     double worst = 0;
     const Binding& b = s.binding();
     for (size_t i = 0; i < b.vertexCount(); ++i) {
@@ -28,7 +29,8 @@ inline std::vector<HardCase> catalogue() {
     const Pattern stockinette = generateStockinette();
     auto add = [&](std::string name, Pattern pattern, BaseMesh mesh, SceneOptions options, Expect expect = {},
                    std::function<void(const Scene&)> check = {}) {
-        cases.push_back({std::move(name), std::move(pattern), std::move(mesh), std::move(options), expect, std::move(check)});
+        cases.push_back(
+            {std::move(name), std::move(pattern), std::move(mesh), std::move(options), expect, std::move(check)});
     };
 
     // ======================= UV ==============================================================
@@ -51,8 +53,9 @@ inline std::vector<HardCase> catalogue() {
     // never own a point; a yarn steps over the collapsed column's 3D width in one segment.
     {
         const int n = 8;
-        BaseMesh m = sheet("zero-area-uv", n, n, [](double s, double t) { return glm::dvec3(s * 0.1, t * 0.1, 0.0); },
-                           [](double s, double t) { return glm::dvec2(s <= 0.5 ? s : s - 1.0 / 8, t); });
+        BaseMesh m = sheet(
+            "zero-area-uv", n, n, [](double s, double t) { return glm::dvec3(s * 0.1, t * 0.1, 0.0); },
+            [](double s, double t) { return glm::dvec2(s <= 0.5 ? s : s - 1.0 / 8, t); });
         // Merge the UV vertices of column 5 into column 4 (same values): zero-width UV column.
         for (glm::uvec3& f : m.faceUvs)
             for (int k = 0; k < 3; ++k)
@@ -64,20 +67,20 @@ inline std::vector<HardCase> catalogue() {
         m.faceUvs.push_back({uint32_t(m.uvs.size() - 1), uint32_t(m.uvs.size() - 1), uint32_t(m.uvs.size() - 1)});
         Expect e;
         e.extraStep = 0.1 / 8;  // the collapsed column's 3D width
-        add("uvZeroAreaTriangles", stockinette, m, withRepeats(7, 8), e, [](const Scene& s) {
-            EXPECT_EQ(s.grid().degenerateUvFaces, 2u * 8 + 1);
-        });
+        add("uvZeroAreaTriangles", stockinette, m, withRepeats(7, 8), e,
+            [](const Scene& s) { EXPECT_EQ(s.grid().degenerateUvFaces, 2u * 8 + 1); });
     }
 
     // Near-zero-area UV triangles: a column 1e-13 wide in UV (aspect ratio ~1e12) but of normal
     // width in 3D; the UV grid, point location and stretch stay finite.
     {
         const double w = 1e-13;
-        BaseMesh m = sheet("near-zero-area-uv", 8, 8, [](double s, double t) { return glm::dvec3(s * 0.1, t * 0.1, 0.0); },
-                           [w](double s, double t) {
-                               const double u = s <= 0.5 ? s : (s < 0.5 + 1e-9 + 1.0 / 8 ? 0.5 + w : s - 1.0 / 8 + w);
-                               return glm::dvec2(u, t);
-                           });
+        BaseMesh m = sheet(
+            "near-zero-area-uv", 8, 8, [](double s, double t) { return glm::dvec3(s * 0.1, t * 0.1, 0.0); },
+            [w](double s, double t) {
+                const double u = s <= 0.5 ? s : (s < 0.5 + 1e-9 + 1.0 / 8 ? 0.5 + w : s - 1.0 / 8 + w);
+                return glm::dvec2(u, t);
+            });
         Expect e;
         e.boundedSteps = false;  // stretch ~1e12 in the sliver column: the bound says nothing
         add("uvNearZeroAreaTriangles", stockinette, m, withRepeats(7, 8), e, [](const Scene& s) {
@@ -94,8 +97,9 @@ inline std::vector<HardCase> catalogue() {
     // A mirrored chart (u -> -u: clockwise UV triangles): points located exactly, heights along
     // the 3D normal (+z), the knit mirrored in 3D.
     add("uvMirroredChart", stockinette,
-        sheet("mirrored", 8, 8, [](double s, double t) { return glm::dvec3(s * 0.1, t * 0.1, 0.0); },
-              [](double s, double t) { return glm::dvec2(-s, t); }),
+        sheet(
+            "mirrored", 8, 8, [](double s, double t) { return glm::dvec3(s * 0.1, t * 0.1, 0.0); },
+            [](double s, double t) { return glm::dvec2(-s, t); }),
         withRepeats(6, 6), {}, [](const Scene& s) {
             EXPECT_EQ(s.grid().faceOrientation[0], -1);
             EXPECT_LT(planeMappingError(s, 0.1, glm::dvec2(0.0), true), 1e-12);
@@ -107,9 +111,10 @@ inline std::vector<HardCase> catalogue() {
     // with an odd number it does not, and nothing is welded.
     for (const int U : {20, 21}) {
         auto half = [](bool mirrored) {
-            return sheet(mirrored ? "mirrored-half" : "half", 12, 8,
-                         [mirrored](double s, double t) { return onCylinder(0.05, 0.1, mirrored ? 0.5 + s / 2 : s / 2, t); },
-                         [mirrored](double s, double t) { return glm::dvec2(mirrored ? 1.0 - s / 2 : s / 2, t); });
+            return sheet(
+                mirrored ? "mirrored-half" : "half", 12, 8,
+                [mirrored](double s, double t) { return onCylinder(0.05, 0.1, mirrored ? 0.5 + s / 2 : s / 2, t); },
+                [mirrored](double s, double t) { return glm::dvec2(mirrored ? 1.0 - s / 2 : s / 2, t); });
         };
         BaseMesh m = half(false);
         m.name = "two-charts-one-mirrored";
@@ -126,8 +131,9 @@ inline std::vector<HardCase> catalogue() {
     for (const glm::dvec2 origin : {glm::dvec2(-3.3, -2.2), glm::dvec2(1e4 + 0.25, -7e3 - 0.5)}) {
         const bool far = origin.x > 1;
         add(far ? "uvFarFromUvOrigin" : "uvNegativeOutsideUnitSquare", stockinette,
-            sheet("offset-uv", 8, 8, [](double s, double t) { return glm::dvec3(s * 0.1, t * 0.1, 0.0); },
-                  [origin](double s, double t) { return origin + glm::dvec2(s, t); }),
+            sheet(
+                "offset-uv", 8, 8, [](double s, double t) { return glm::dvec3(s * 0.1, t * 0.1, 0.0); },
+                [origin](double s, double t) { return origin + glm::dvec2(s, t); }),
             withRepeats(9, 9), {}, [origin, far](const Scene& s) {
                 EXPECT_LT(planeMappingError(s, 0.1, origin), far ? 1e-10 : 1e-12);
                 EXPECT_LT(s.grid().minCell.y, 0);
@@ -139,8 +145,9 @@ inline std::vector<HardCase> catalogue() {
     {
         BaseMesh m = flatSquare(8, 0.1);
         m.name = "overlapping-charts";
-        append(m, sheet("upper", 8, 8, [](double s, double t) { return glm::dvec3(s * 0.1, t * 0.1, 0.05); },
-                        [](double s, double t) { return glm::dvec2(s, t); }));
+        append(m, sheet(
+                      "upper", 8, 8, [](double s, double t) { return glm::dvec3(s * 0.1, t * 0.1, 0.05); },
+                      [](double s, double t) { return glm::dvec2(s, t); }));
         add("uvOverlappingCharts", stockinette, m, withRepeats(7, 7), {}, [](const Scene& s) {
             EXPECT_EQ(s.grid().overlappingCharts, (std::vector<glm::uvec2>{{0, 1}}));
             const size_t half = s.mesh().faceCount() / 2;
@@ -172,8 +179,9 @@ inline std::vector<HardCase> catalogue() {
         BaseMesh m = flatSquare(8, 0.1);
         m.name = "partly-overlapping-charts";
         for (const double u0 : {0.5, 1.5})
-            append(m, sheet("sheet", 8, 8, [u0](double s, double t) { return glm::dvec3((u0 + s) * 0.1, t * 0.1, 0.05); },
-                            [u0](double s, double t) { return glm::dvec2(u0 + s, t); }));
+            append(m, sheet(
+                          "sheet", 8, 8, [u0](double s, double t) { return glm::dvec3((u0 + s) * 0.1, t * 0.1, 0.05); },
+                          [u0](double s, double t) { return glm::dvec2(u0 + s, t); }));
         weldPositions(m);  // B and C share their edge in 3D
         add("uvPartlyOverlappingCharts", stockinette, m, withRepeats(14, 7), {}, [](const Scene& s) {
             EXPECT_EQ(s.grid().chartCount, 3u);
@@ -196,8 +204,9 @@ inline std::vector<HardCase> catalogue() {
         BaseMesh m;
         m.name = "three-charts";
         for (int k = 0; k < 3; ++k)
-            append(m, sheet("chart", 8, 8, [k](double s, double t) { return onCylinder(0.05, 0.1, (k + s) / 3, t); },
-                            [k, gap](double s, double t) { return glm::dvec2((k + s) / 3 + k * gap, t); }));
+            append(m, sheet(
+                          "chart", 8, 8, [k](double s, double t) { return onCylinder(0.05, 0.1, (k + s) / 3, t); },
+                          [k, gap](double s, double t) { return glm::dvec2((k + s) / 3 + k * gap, t); }));
         weldPositions(m);
         Expect e;
         const bool matching = gap == 3.0 / 24;
@@ -232,8 +241,9 @@ inline std::vector<HardCase> catalogue() {
         Expect e;
         e.allowEmpty = true;
         add("uvIslandSmallerThanOneCell", stockinette,
-            sheet("small-island", 4, 4, [](double s, double t) { return glm::dvec3(s * 0.003, t * 0.003, 0.0); },
-                  [](double s, double t) { return glm::dvec2(0.2 + 0.3 * s, 0.35 + 0.3 * t); }),
+            sheet(
+                "small-island", 4, 4, [](double s, double t) { return glm::dvec3(s * 0.003, t * 0.003, 0.0); },
+                [](double s, double t) { return glm::dvec2(0.2 + 0.3 * s, 0.35 + 0.3 * t); }),
             withRepeats(1, 1), e, [](const Scene& s) {
                 EXPECT_LE(s.grid().cells.size(), 1u);
                 EXPECT_GT(s.bindStats().cutVertices, 0u);
@@ -282,8 +292,9 @@ inline std::vector<HardCase> catalogue() {
             const double W = 1.0 / (4 * (1 + 1e-6));
             return ((i + 1) / 2) * W + (i / 2) * W * 1e-6;
         };
-        BaseMesh m = sheet("slivers", 8, 8, [x](double s, double t) { return glm::dvec3(x(s) * 0.1, t * 0.1, 0.0); },
-                           [x, uvToo](double s, double t) { return glm::dvec2(uvToo ? x(s) : s, t); });
+        BaseMesh m = sheet(
+            "slivers", 8, 8, [x](double s, double t) { return glm::dvec3(x(s) * 0.1, t * 0.1, 0.0); },
+            [x, uvToo](double s, double t) { return glm::dvec2(uvToo ? x(s) : s, t); });
         add(uvToo ? "slivers3dAndUvAspect1e6" : "slivers3dOnlyAspect1e6", stockinette, m, withRepeats(7, 8), {},
             [uvToo](const Scene& s) {
                 if (uvToo) EXPECT_LT(planeMappingError(s, 0.1), 1e-9);
@@ -293,9 +304,12 @@ inline std::vector<HardCase> catalogue() {
     // Zero-area 3D triangles with valid UVs: a column of the sheet collapsed in 3D (positions
     // equal, distinct indices) and a second one welded (faces repeating a position index).
     for (const bool welded : {false, true}) {
-        BaseMesh m = sheet("zero-area-3d", 8, 8,
-                           [](double s, double t) { return glm::dvec3(std::min(s, 0.5) * 0.1 + std::max(0.0, s - 0.625) * 0.1, t * 0.1, 0.0); },
-                           [](double s, double t) { return glm::dvec2(s, t); });
+        BaseMesh m = sheet(
+            "zero-area-3d", 8, 8,
+            [](double s, double t) {
+                return glm::dvec3(std::min(s, 0.5) * 0.1 + std::max(0.0, s - 0.625) * 0.1, t * 0.1, 0.0);
+            },
+            [](double s, double t) { return glm::dvec2(s, t); });
         if (welded) weldPositions(m);
         add(welded ? "zeroArea3dTrianglesWelded" : "zeroArea3dTriangles", stockinette, m, withRepeats(7, 8), {},
             [](const Scene& s) {
@@ -309,9 +323,12 @@ inline std::vector<HardCase> catalogue() {
         m.name = "book";
         for (int k = 0; k < 3; ++k) {
             const double a = 2 * kPi * k / 3 + 0.3;
-            append(m, sheet("page", 6, 6,
-                            [a](double s, double t) { return glm::dvec3(s * 0.05, t * 0.05 * std::cos(a), t * 0.05 * std::sin(a)); },
-                            [k](double s, double t) { return glm::dvec2(s, t + 1.1 * k) / 3.3; }));
+            append(m, sheet(
+                          "page", 6, 6,
+                          [a](double s, double t) {
+                              return glm::dvec3(s * 0.05, t * 0.05 * std::cos(a), t * 0.05 * std::sin(a));
+                          },
+                          [k](double s, double t) { return glm::dvec2(s, t + 1.1 * k) / 3.3; }));
         }
         weldPositions(m);
         add("nonManifoldEdge", stockinette, m, withRepeats(10, 10));
@@ -321,8 +338,10 @@ inline std::vector<HardCase> catalogue() {
     {
         BaseMesh m = flatSquare(4, 0.05);
         m.name = "bowtie";
-        append(m, sheet("other", 4, 4, [](double s, double t) { return glm::dvec3(0.05 + s * 0.05, 0.05 + t * 0.05, 0.01 * s * t); },
-                        [](double s, double t) { return glm::dvec2(1 + s, 1 + t); }));
+        append(m, sheet(
+                      "other", 4, 4,
+                      [](double s, double t) { return glm::dvec3(0.05 + s * 0.05, 0.05 + t * 0.05, 0.01 * s * t); },
+                      [](double s, double t) { return glm::dvec2(1 + s, 1 + t); }));
         weldPositions(m);
         add("nonManifoldVertex", stockinette, m, withRepeats(6, 6));
     }
@@ -348,7 +367,8 @@ inline std::vector<HardCase> catalogue() {
         BaseMesh m = makeDrape({});
         m.name = "flipped-drape";
         for (size_t f = 0; f < m.faces.size(); ++f) {
-            const glm::dvec3 centre = (m.positions[m.faces[f].x] + m.positions[m.faces[f].y] + m.positions[m.faces[f].z]) / 3.0;
+            const glm::dvec3 centre =
+                (m.positions[m.faces[f].x] + m.positions[m.faces[f].y] + m.positions[m.faces[f].z]) / 3.0;
             if (quarter ? (centre.x < 0 && centre.y < 0) : f % 3 == 0) {
                 std::swap(m.faces[f].y, m.faces[f].z);
                 std::swap(m.faceUvs[f].y, m.faceUvs[f].z);
@@ -375,12 +395,14 @@ inline std::vector<HardCase> catalogue() {
             ASSERT_EQ(home.yarns().curves.pointCount(), s.yarns().curves.pointCount());
             double worst = 0;
             for (size_t i = 0; i < home.yarns().curves.pointCount(); ++i)
-                worst = std::max(worst, glm::distance(home.yarns().curves.points[i] + shift, s.yarns().curves.points[i]));
+                worst =
+                    std::max(worst, glm::distance(home.yarns().curves.points[i] + shift, s.yarns().curves.points[i]));
             EXPECT_LT(worst, 1e-9);
             ASSERT_EQ(home.plies().curves.pointCount(), s.plies().curves.pointCount());
             double plyWorst = 0;
             for (size_t i = 0; i < home.plies().curves.pointCount(); ++i)
-                plyWorst = std::max(plyWorst, glm::distance(home.plies().curves.points[i] + shift, s.plies().curves.points[i]));
+                plyWorst = std::max(plyWorst,
+                                    glm::distance(home.plies().curves.points[i] + shift, s.plies().curves.points[i]));
             EXPECT_LT(plyWorst, 1e-8);
         });
     }
@@ -390,17 +412,19 @@ inline std::vector<HardCase> catalogue() {
     for (const double scale : {1e-4, 1e3}) {
         BaseMesh m = makeDrape({});
         for (glm::dvec3& p : m.positions) p *= scale / 0.5;
-        add(scale < 1 ? "tinyScale1em4" : "hugeScale1e3", stockinette, m, withRepeats(10, 10), {}, [scale](const Scene& s) {
-            BaseMesh unit = makeDrape({});
-            for (glm::dvec3& p : unit.positions) p *= 1.0 / 0.5;
-            const Scene u = buildScene(generateStockinette(), unit, withRepeats(10, 10));
-            ASSERT_EQ(u.yarns().curves.pointCount(), s.yarns().curves.pointCount());
-            double worst = 0;
-            for (size_t i = 0; i < u.yarns().curves.pointCount(); ++i)
-                worst = std::max(worst, glm::distance(u.yarns().curves.points[i] * scale, s.yarns().curves.points[i]) / scale);
-            EXPECT_LT(worst, 1e-9);
-            EXPECT_NEAR(s.yarnRadius() / u.yarnRadius(), scale, 1e-12 * scale);
-        });
+        add(scale < 1 ? "tinyScale1em4" : "hugeScale1e3", stockinette, m, withRepeats(10, 10), {},
+            [scale](const Scene& s) {
+                BaseMesh unit = makeDrape({});
+                for (glm::dvec3& p : unit.positions) p *= 1.0 / 0.5;
+                const Scene u = buildScene(generateStockinette(), unit, withRepeats(10, 10));
+                ASSERT_EQ(u.yarns().curves.pointCount(), s.yarns().curves.pointCount());
+                double worst = 0;
+                for (size_t i = 0; i < u.yarns().curves.pointCount(); ++i)
+                    worst = std::max(
+                        worst, glm::distance(u.yarns().curves.points[i] * scale, s.yarns().curves.points[i]) / scale);
+                EXPECT_LT(worst, 1e-9);
+                EXPECT_NEAR(s.yarnRadius() / u.yarnRadius(), scale, 1e-12 * scale);
+            });
     }
     // The same scales at the pattern's physical size: the tiny mesh is smaller than one stitch
     // (a few pieces or nothing); the huge one would need ~1e10 cells and is refused.
@@ -427,9 +451,8 @@ inline std::vector<HardCase> catalogue() {
         mo.radius = 0.0006;
         mo.height = 0.02;
         SceneOptions o = withRepeats(1, 3);
-        add("crumpledOffsetSelfIntersects", stockinette, makeCylinder(mo), o, {}, [](const Scene& s) {
-            EXPECT_GT(foldedOffsetVertices(s), 0u);
-        });
+        add("crumpledOffsetSelfIntersects", stockinette, makeCylinder(mo), o, {},
+            [](const Scene& s) { EXPECT_GT(foldedOffsetVertices(s), 0u); });
         mo.radius = 0.05;
         add("wideCylinderOffsetDoesNotFold", stockinette, makeCylinder(mo), withRepeats(40, 3), {},
             [](const Scene& s) { EXPECT_EQ(foldedOffsetVertices(s), 0u); });
@@ -467,7 +490,8 @@ inline std::vector<HardCase> catalogue() {
             return sum;
         };
         EXPECT_EQ(plain.yarns().curves.curveCount(), s.yarns().curves.curveCount());
-        EXPECT_NEAR(totalLength(s.plies().curves), totalLength(plain.plies().curves), 1e-9 * totalLength(plain.plies().curves));
+        EXPECT_NEAR(totalLength(s.plies().curves), totalLength(plain.plies().curves),
+                    1e-9 * totalLength(plain.plies().curves));
     });
 
     // Closed loops whose length is not a whole number of ply turns (and whose RMF does not

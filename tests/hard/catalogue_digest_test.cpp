@@ -60,7 +60,8 @@ TEST(CatalogueDigest, writesOneLinePerCase) {
             f.vec(b.offsets);
             f.vec(b.closed);
             const BindStats& st = scene->bindStats();
-            for (size_t v : {st.clampedVertices, st.cutVertices, st.boundaryVertices, st.weldedEnds, st.openEnds, st.closedLoops})
+            for (size_t v :
+                 {st.clampedVertices, st.cutVertices, st.boundaryVertices, st.weldedEnds, st.openEnds, st.closedLoops})
                 f.bytes(&v, sizeof v);
         } else {
             f.bytes(error.data(), error.size());

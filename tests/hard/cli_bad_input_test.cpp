@@ -73,7 +73,8 @@ TEST_F(CliBadInput, badInputFilesFailNamingTheFile) {
     expectFailure(std::string("build -q --pattern nan.pyp -o out.obj"), "nan.pyp:2");
     write("absurd.pyp", "*pattern\n0.01 0.01 0.001 999999999999\n*Q\n0 0 0 0\n*E\n");
     expectFailure(std::string("build -q --pattern absurd.pyp -o out.obj"), "absurd.pyp:2");
-    static const char kElf[] = "\x7f" "ELF\x02\x01\x01\0\0\0garbage";
+    static const char kElf[] = "\x7f"
+                               "ELF\x02\x01\x01\0\0\0garbage";
     write("garbage.obj", std::string(kElf, sizeof kElf - 1));
     expectFailure(std::string("build -q --mesh garbage.obj -o out.obj"), "garbage.obj");
     write("trunc.ply", "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\n");
@@ -93,7 +94,8 @@ TEST_F(CliBadInput, badInputFilesFailNamingTheFile) {
 
 TEST_F(CliBadInput, hugeMeshAtPhysicalSizeIsRefusedClearly) {
     // 1 km plane at the pattern's physical size: ~1e10 cells, refused before any work.
-    write("huge.obj", "v 0 0 0\nv 1000 0 0\nv 1000 1000 0\nv 0 1000 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3 4/4\n");
+    write("huge.obj",
+          "v 0 0 0\nv 1000 0 0\nv 1000 1000 0\nv 0 1000 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3 4/4\n");
     expectFailure(std::string("build -q --mesh huge.obj -o out.obj"), "pattern cells");
 }
 
@@ -114,22 +116,27 @@ TEST_F(CliBadInput, inputsThatAreNotRegularFilesAreRefusedWithoutBlocking) {
     expectFailure(std::string("build -q --mesh fifo.obj -o out.obj"), "fifo.obj: is not a regular file");
     expectFailure(std::string("build -q --mesh /dev/zero -o out.obj"), "/dev/zero: is not a regular file");
     write("mtl.obj", "mtllib fifo.obj\nv 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nf 1/1 2/2 3/3\n");
-    expectFailure(std::string("build -q --mesh mtl.obj -o out.obj"), "mtl.obj:1: mtllib 'fifo.obj' is not a regular file");
+    expectFailure(std::string("build -q --mesh mtl.obj -o out.obj"),
+                  "mtl.obj:1: mtllib 'fifo.obj' is not a regular file");
     ASSERT_EQ(::mkfifo((dir / "out.obj").c_str(), 0600), 0);  // an output that is a FIFO is not replaced
     expectFailure(kSmall + std::string("-o out.obj"), "'out.obj': it exists and is not a regular file");
 }
 
 TEST_F(CliBadInput, absurdSearchTolerancesAreRefusedNamingTheOption) {
-    expectFailure(kSmall + std::string("--clamp-tolerance 1e12 -o out.obj"), "--clamp-tolerance) reaches beyond one pattern period");
-    expectFailure(kSmall + std::string("--weld-tolerance 1e300 -o out.obj"), "--weld-tolerance) reaches beyond one pattern period");
+    expectFailure(kSmall + std::string("--clamp-tolerance 1e12 -o out.obj"),
+                  "--clamp-tolerance) reaches beyond one pattern period");
+    expectFailure(kSmall + std::string("--weld-tolerance 1e300 -o out.obj"),
+                  "--weld-tolerance) reaches beyond one pattern period");
 }
 
 TEST_F(CliBadInput, outputsThatOverwriteAnInputOrEachOtherAreRefusedBeforeAnyWork) {
     write("mesh.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nf 1/1 2/2 3/3\n");
     fs::create_directories(dir / "sub");
-    expectFailure(std::string("build -q --mesh mesh.obj --repeats 3 3 -o mesh.obj"), "-o 'mesh.obj' and --mesh 'mesh.obj' name the same file");
+    expectFailure(std::string("build -q --mesh mesh.obj --repeats 3 3 -o mesh.obj"),
+                  "-o 'mesh.obj' and --mesh 'mesh.obj' name the same file");
     expectFailure(std::string("build -q --mesh mesh.obj --repeats 3 3 -o sub/../mesh.obj"), "name the same file");
-    expectFailure(kSmall + std::string("-o out.obj --report out.obj"), "--report 'out.obj' and -o 'out.obj' name the same file");
+    expectFailure(kSmall + std::string("-o out.obj --report out.obj"),
+                  "--report 'out.obj' and -o 'out.obj' name the same file");
     expectFailure(kSmall + std::string("-o out.gltf --report out.bin"), "--report 'out.bin' and the glTF buffer of -o");
     fs::create_symlink("mesh.obj", dir / "link.obj");
     expectFailure(std::string("build -q --mesh mesh.obj --repeats 3 3 -o link.obj"), "name the same file");
@@ -146,9 +153,11 @@ TEST_F(CliBadInput, renderRefusesImageNamesItDoesNotWriteAndCollidingImages) {
 
 TEST_F(CliBadInput, buildAndRenderCheckTheReportPathAlikeBeforeAnyWork) {
     fs::create_directories(dir / "adir");
-    const std::string render = "render -q --mesh plane --mesh-res 4 --repeats 3 3 --width 8 --height 8 --spp 1 --output o.png ";
+    const std::string render =
+        "render -q --mesh plane --mesh-res 4 --repeats 3 3 --width 8 --height 8 --spp 1 --output o.png ";
     for (const std::string& command : {std::string(kSmall) + "-o out.obj ", render}) {
-        expectFailure(command + "--report no/such/r.json", "cannot write report 'no/such/r.json': folder 'no/such' does not exist");
+        expectFailure(command + "--report no/such/r.json",
+                      "cannot write report 'no/such/r.json': folder 'no/such' does not exist");
         expectFailure(command + "--report adir", "cannot write report 'adir': a folder with that name exists");
     }
 }
@@ -170,9 +179,11 @@ TEST_F(CliBadInput, coordinatesBeyondFloatRangeAndByteOrderMarksAreNamed) {
     expectFailure(std::string("build -q --mesh big.obj --repeats 3 3 -o out.obj"),
                   "big.obj:2: '1e39' is beyond the float32 range (3.4e38) of mesh coordinates");
     write("big.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 -5e38 0\n3 0 1 2\n");
-    expectFailure(std::string("build -q --mesh big.off --repeats 3 3 -o out.obj"), "big.off:5: '-5e38' is beyond the float32 range");
+    expectFailure(std::string("build -q --mesh big.off --repeats 3 3 -o out.obj"),
+                  "big.off:5: '-5e38' is beyond the float32 range");
     write("bom.obj", "\xEF\xBB\xBFv 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nf 1/1 2/2 3/3\n");
-    expectFailure(std::string("build -q --mesh bom.obj --repeats 3 3 -o out.obj"), "bom.obj: starts with a UTF-8 byte-order mark");
+    expectFailure(std::string("build -q --mesh bom.obj --repeats 3 3 -o out.obj"),
+                  "bom.obj: starts with a UTF-8 byte-order mark");
     const std::string pyp = "*pattern\n0.01 0.01 0.001 2\n*Q\n0.002 0.005 0 0\n0.008 0.005 0 0\n*E\n0 1 0 0\n1 0 1 0\n";
     write("a.pyp", pyp);
     write("b.pyp", "\xEF\xBB\xBF" + pyp);  // with a BOM
@@ -184,20 +195,27 @@ TEST_F(CliBadInput, coordinatesBeyondFloatRangeAndByteOrderMarksAreNamed) {
 }
 
 TEST_F(CliBadInput, optionErrorsNameTheOptionNotTheInternalField) {
-    expectFailure(kSmall + std::string("--ply-pitch -1 -o out.obj"), "--ply-pitch (PlyOptions.pitch) must be a finite value >= 0");
+    expectFailure(kSmall + std::string("--ply-pitch -1 -o out.obj"),
+                  "--ply-pitch (PlyOptions.pitch) must be a finite value >= 0");
     expectFailure(kSmall + std::string("--ply-radius -1 -o out.obj"), "--ply-radius (PlyOptions.plyRadius)");
-    expectFailure(kSmall + std::string("--samples-per-turn 2 -o out.obj"), "--samples-per-turn (PlyOptions.samplesPerTurn) must be in 3..1024");
-    expectFailure(kSmall + std::string("--clamp-tolerance -1 -o out.obj"), "--clamp-tolerance and --weld-tolerance must be finite and >= 0");
+    expectFailure(kSmall + std::string("--samples-per-turn 2 -o out.obj"),
+                  "--samples-per-turn (PlyOptions.samplesPerTurn) must be in 3..1024");
+    expectFailure(kSmall + std::string("--clamp-tolerance -1 -o out.obj"),
+                  "--clamp-tolerance and --weld-tolerance must be finite and >= 0");
     const CliRun r = knit(kSmall + std::string("--ply-pitch -1 -o out.obj"), dir);
     EXPECT_EQ(r.output.find("binding:"), std::string::npos) << r.output;
 }
 
 TEST_F(CliBadInput, valuesBeyondFloat32AreRefusedNamingTheOption) {
-    expectFailure(kSmall + std::string("--ply-pitch 1e39 -o out.glb"), "the ply pitch 1e+39 is beyond the float32 range (3.4e38); lower --ply-pitch");
+    expectFailure(kSmall + std::string("--ply-pitch 1e39 -o out.glb"),
+                  "the ply pitch 1e+39 is beyond the float32 range (3.4e38); lower --ply-pitch");
     expectFailure(kSmall + std::string("--ply-radius 1e39 -o out.obj"), "lower --ply-radius");
-    write("edge.obj", "v 0 0 0\nv 3.4e38 0 0\nv 3.4e38 3.4e38 0\nv 0 3.4e38 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3 4/4\n");
+    write(
+        "edge.obj",
+        "v 0 0 0\nv 3.4e38 0 0\nv 3.4e38 3.4e38 0\nv 0 3.4e38 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3 4/4\n");
     // Yarns up to 3.4e38 plus the yarn radius pass float32's range in a float32 file; .obj keeps doubles.
-    expectFailure(std::string("build -q --mesh edge.obj --repeats 1 1 --export yarns -o out.bcc"), "a coordinate of the curves");
+    expectFailure(std::string("build -q --mesh edge.obj --repeats 1 1 --export yarns -o out.bcc"),
+                  "a coordinate of the curves");
     const CliRun obj = knit(std::string("build -q --mesh edge.obj --repeats 1 1 --export yarns -o out.obj"), dir);
     EXPECT_EQ(obj.exitCode, 0) << obj.output;
 }

@@ -36,11 +36,12 @@ TEST_F(ExportHard, unwritablePathsThrowNamingThePathAndLeaveNothing) {
     std::ofstream(dir / "afile") << "x";
     fs::create_directories(dir / "adir");
     // With plies built, and without (plies generated while writing: streamed into glTF).
-    for (const Scene& scene : {smallScene(), buildScene(generateStockinette(), flatSquare(4, 0.02), withRepeats(3, 3, false))}) {
+    for (const Scene& scene :
+         {smallScene(), buildScene(generateStockinette(), flatSquare(4, 0.02), withRepeats(3, 3, false))}) {
         for (const char* ext : kExtensions)
             for (const ExportWhat what : {ExportWhat::Yarns, ExportWhat::Plies, ExportWhat::Tubes}) {
-                for (const fs::path& target : {dir / "no" / "such" / (std::string("out") + ext), dir / "afile" / (std::string("out") + ext),
-                                               dir / "adir"}) {
+                for (const fs::path& target : {dir / "no" / "such" / (std::string("out") + ext),
+                                               dir / "afile" / (std::string("out") + ext), dir / "adir"}) {
                     ExportOptions o;
                     o.path = target.string();
                     o.what = what;

@@ -45,7 +45,8 @@ void replay(const std::string& parser, Harness run) {
             continue;
         }
         (outcome == Outcome::Parsed ? parsed : rejected)++;
-        if (f.filename().string().rfind("valid_", 0) == 0) EXPECT_EQ(outcome, Outcome::Parsed) << "a valid seed is rejected";
+        if (f.filename().string().rfind("valid_", 0) == 0)
+            EXPECT_EQ(outcome, Outcome::Parsed) << "a valid seed is rejected";
     }
     EXPECT_GT(parsed, 0u);
     EXPECT_GT(rejected, 0u);

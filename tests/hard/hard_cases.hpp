@@ -84,7 +84,8 @@ using UvFn = std::function<glm::dvec2(double s, double t)>;
 // An nu x nv quad sheet over (s, t) in [0,1]^2: position pos(s, t), uv uv(s, t); quads split
 // (a, b, c), (a, c, d) like the built-in meshes. wrapS: column s = 1 reuses the positions of
 // column s = 0 (a closed surface with a UV seam: two UV columns, one position column).
-inline BaseMesh sheet(const std::string& name, int nu, int nv, const SurfaceFn& pos, const UvFn& uv, bool wrapS = false) {
+inline BaseMesh sheet(const std::string& name, int nu, int nv, const SurfaceFn& pos, const UvFn& uv,
+                      bool wrapS = false) {
     BaseMesh m;
     m.name = name;
     const int cols = wrapS ? nu : nu + 1;
@@ -106,8 +107,9 @@ inline BaseMesh sheet(const std::string& name, int nu, int nv, const SurfaceFn& 
 
 // A flat square of side `size` at z = 0 (x, y = s, t times size), uv = (s, t).
 inline BaseMesh flatSquare(int n = 8, double size = 0.1) {
-    return sheet("square", n, n, [=](double s, double t) { return glm::dvec3(s * size, t * size, 0.0); },
-                 [](double s, double t) { return glm::dvec2(s, t); });
+    return sheet(
+        "square", n, n, [=](double s, double t) { return glm::dvec3(s * size, t * size, 0.0); },
+        [](double s, double t) { return glm::dvec2(s, t); });
 }
 
 // Appends `part` to `into` (its own positions and UVs: a separate chart and component).
@@ -142,7 +144,8 @@ inline glm::dvec3 onCylinder(double radius, double height, double s, double t) {
 // ---- patterns --------------------------------------------------------------------------------
 // Straight courses along x: one course per cell at y = yOffset, `samples` vertices per period
 // starting at x = xOffset, heights 0: frames without curvature.
-inline Pattern straightCourses(double px, double py, double radius, double yOffset, int samples = 4, double xOffset = 0) {
+inline Pattern straightCourses(double px, double py, double radius, double yOffset, int samples = 4,
+                               double xOffset = 0) {
     Pattern p;
     p.name = "straight";
     p.px = px, p.py = py, p.radius = radius;
@@ -225,8 +228,8 @@ inline Pattern ringPattern(double radius = 0.001, double ringRadius = 0.3, int s
     p.radius = radius;
     for (int k = 0; k < samples; ++k) {
         const double a = 2 * kPi * k / samples;
-        p.points.emplace_back(0.5 * p.px + ringRadius * p.px * std::cos(a), 0.5 * p.py + ringRadius * p.py * std::sin(a),
-                              0.8 * radius * std::cos(2 * a));
+        p.points.emplace_back(0.5 * p.px + ringRadius * p.px * std::cos(a),
+                              0.5 * p.py + ringRadius * p.py * std::sin(a), 0.8 * radius * std::cos(2 * a));
         p.twist.push_back(0.0);
     }
     for (int k = 0; k < samples; ++k) p.edges.push_back({uint32_t(k), uint32_t((k + 1) % samples), 0, 0});
@@ -235,15 +238,15 @@ inline Pattern ringPattern(double radius = 0.001, double ringRadius = 0.3, int s
 
 // ---- expectations and the case type ----------------------------------------------------------
 struct Expect {
-    std::string errorHas;          // non-empty: buildScene must throw knit::Error containing it
-    bool boundedSteps = true;      // the UV layout is continuous: steps bounded (see file comment)
-    double extraStep = 0;          // metres added to the step bound (documented jumps, e.g. over a
-                                   // zero-UV-area strip)
-    bool endsOnBoundary = true;    // every open yarn end lies on the UV boundary
-    int closedLoops = -1;          // exact count when >= 0
+    std::string errorHas;        // non-empty: buildScene must throw knit::Error containing it
+    bool boundedSteps = true;    // the UV layout is continuous: steps bounded (see file comment)
+    double extraStep = 0;        // metres added to the step bound (documented jumps, e.g. over a
+                                 // zero-UV-area strip)
+    bool endsOnBoundary = true;  // every open yarn end lies on the UV boundary
+    int closedLoops = -1;        // exact count when >= 0
     int minClosedLoops = 0;
-    int weldedEnds = -1;           // exact count when >= 0
-    bool allowEmpty = false;       // the case may legitimately produce no yarns
+    int weldedEnds = -1;      // exact count when >= 0
+    bool allowEmpty = false;  // the case may legitimately produce no yarns
 };
 
 struct HardCase {
@@ -298,7 +301,8 @@ inline double longestEdgeUv(const Scene& s) {
     const glm::dvec2 toUv(1.0 / (s.placement().repeats.x * p.px), 1.0 / (s.placement().repeats.y * p.py));
     double worst = 0;
     for (const PeriodicEdge& e : p.edges) {
-        const glm::dvec2 d = glm::dvec2(p.points[e.v1]) + glm::dvec2(e.dx * p.px, e.dy * p.py) - glm::dvec2(p.points[e.v0]);
+        const glm::dvec2 d =
+            glm::dvec2(p.points[e.v1]) + glm::dvec2(e.dx * p.px, e.dy * p.py) - glm::dvec2(p.points[e.v0]);
         worst = std::max(worst, glm::length(d * toUv));
     }
     return worst;
@@ -404,7 +408,8 @@ inline void checkInvariants(const std::string& name, const Scene& s, const Scene
     for (double h : b.height) hMax = std::max(hMax, std::abs(h));
     glm::dvec3 lo(INFINITY), hi(-INFINITY);
     for (const glm::uvec3& f : s.mesh().faces)
-        for (int k = 0; k < 3; ++k) lo = glm::min(lo, s.mesh().positions[f[k]]), hi = glm::max(hi, s.mesh().positions[f[k]]);
+        for (int k = 0; k < 3; ++k)
+            lo = glm::min(lo, s.mesh().positions[f[k]]), hi = glm::max(hi, s.mesh().positions[f[k]]);
     const double scale = std::max(glm::length(hi - lo), std::max(glm::length(hi), glm::length(lo)));
     const double slack = hMax + 1e-12 * scale;
     for (size_t i = 0; i < c.pointCount(); ++i) {

@@ -55,7 +55,9 @@ TEST_P(Interrupts, signalDuringAnExportRemovesTheTemporaryFile) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Hard, Interrupts, ::testing::Values(SIGTERM, SIGINT),
-                         [](const ::testing::TestParamInfo<int>& i) { return i.param == SIGTERM ? "SIGTERM" : "SIGINT"; });
+                         [](const ::testing::TestParamInfo<int>& i) {
+                             return i.param == SIGTERM ? "SIGTERM" : "SIGINT";
+                         });
 
 }  // namespace
 #endif  // KNIT_CLI

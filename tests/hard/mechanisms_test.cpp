@@ -29,10 +29,9 @@ TEST(Mechanisms, vertexNormalsOfInconsistentlyWoundMeshEqualTheConsistentOnes) {
 TEST(Mechanisms, uvToMetreScaleIsNotBlownUpByUvSlivers) {
     // A 0.1 m square whose UV has a column 1e-13 wide (3D width 1/8 of the square): metres per
     // unit u stays the mean 3D length of iso-v lines per UV unit (0.1 m over 0.875 UV).
-    const BaseMesh m = sheet("sliver", 8, 8, [](double s, double t) { return glm::dvec3(s * 0.1, t * 0.1, 0.0); },
-                             [](double s, double t) {
-                                 return glm::dvec2(s <= 0.5 ? s : (s < 0.6 ? 0.5 + 1e-13 : s - 1.0 / 8 + 1e-13), t);
-                             });
+    const BaseMesh m = sheet(
+        "sliver", 8, 8, [](double s, double t) { return glm::dvec3(s * 0.1, t * 0.1, 0.0); },
+        [](double s, double t) { return glm::dvec2(s <= 0.5 ? s : (s < 0.6 ? 0.5 + 1e-13 : s - 1.0 / 8 + 1e-13), t); });
     // (Half of the sliver's triangles fall below the degenerate-UV threshold and are skipped,
     // so the result lies between the sliver ignored and the sliver counted in full.)
     const glm::dvec2 k = uvToMetreScale(m);
@@ -77,7 +76,8 @@ TEST(Mechanisms, stepOverAHoleInTheChartIsCut) {
     EXPECT_EQ(s.yarns().curves.curveCount(), 12 + through);
     for (const glm::dvec3& p : s.yarns().curves.points) {
         const glm::dvec2 uv = glm::dvec2(p) / 0.12;
-        EXPECT_FALSE(uv.x > 4.0 / 12 + 1e-9 && uv.x < 8.0 / 12 - 1e-9 && uv.y > 4.0 / 12 && uv.y < 8.0 / 12) << "a yarn point in the hole";
+        EXPECT_FALSE(uv.x > 4.0 / 12 + 1e-9 && uv.x < 8.0 / 12 - 1e-9 && uv.y > 4.0 / 12 && uv.y < 8.0 / 12)
+            << "a yarn point in the hole";
     }
 }
 

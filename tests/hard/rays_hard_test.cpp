@@ -74,7 +74,8 @@ float distanceToCentreline(const PlyGeometry& g, const glm::vec3& p) {
 
 // A hit must be finite, in range, with a unit normal, on the ply surface (radius 1; tubes are
 // polygons inscribed in it).
-void checkHit(GeometryMode m, const PlyGeometry& g, const glm::vec3& org, const glm::vec3& dir, float tfar, const TraceHit& h) {
+void checkHit(GeometryMode m, const PlyGeometry& g, const glm::vec3& org, const glm::vec3& dir, float tfar,
+              const TraceHit& h) {
     SCOPED_TRACE(modeName(m));
     ASSERT_EQ(h.kind, TraceHit::Ply);
     ASSERT_TRUE(std::isfinite(h.t) && h.t >= 0.f && h.t <= tfar) << h.t;
@@ -171,7 +172,7 @@ TEST(HardRays, raysStartingOnThePlySurfaceNeverReenterIt) {
             const glm::vec3 p = org + h.t * glm::vec3(0, 0, -1);
             for (int k = 0; k < 8; ++k) {
                 glm::vec3 w = glm::normalize(glm::vec3(gauss(rng), gauss(rng), gauss(rng)));
-                if (glm::dot(w, h.ng) < 0) w = -w;  // outward
+                if (glm::dot(w, h.ng) < 0) w = -w;                              // outward
                 if (k == 0) w = glm::normalize(h.ng + glm::vec3(0, 0, 1e-4f));  // straight out
                 TraceHit next;
                 ++started;
@@ -207,7 +208,8 @@ TEST(HardRays, sceneFarFromTheOriginTracesLikeTheSameSceneAtTheOrigin) {
         const TraceScene a(device, home.geometry, options(m, home)), c(device, away.geometry, options(m, away));
         int agree = 0, hits = 0;
         for (int i = 0; i < 2000; ++i) {
-            const glm::vec3 org(uni(rng), uni(rng), 5.f), dir = glm::normalize(glm::vec3(uni(rng) * 0.1f, uni(rng) * 0.1f, -1.f));
+            const glm::vec3 org(uni(rng), uni(rng), 5.f),
+                dir = glm::normalize(glm::vec3(uni(rng) * 0.1f, uni(rng) * 0.1f, -1.f));
             TraceHit ha, hc;
             const bool ba = a.intersect(org, dir, 0.f, 1e30f, ha), bc = c.intersect(org, dir, 0.f, 1e30f, hc);
             if (!ba && !bc) {
@@ -230,7 +232,8 @@ TEST(HardRays, raysFromFarAwayStillHitWhatTheyAimAt) {
     for (GeometryMode m : {GeometryMode::Curves, GeometryMode::Grid}) {  // tubes: see below
         const TraceScene ts(device, g, options(m, b));
         for (const float distance : {1e2f, 1e3f, 1e4f, 1e6f}) {
-            for (const glm::vec3 from : {glm::vec3(0, 0, 1), glm::normalize(glm::vec3(0, 1, 1)), glm::normalize(glm::vec3(0.2f, -1, 0.3f))}) {
+            for (const glm::vec3 from :
+                 {glm::vec3(0, 0, 1), glm::normalize(glm::vec3(0, 1, 1)), glm::normalize(glm::vec3(0.2f, -1, 0.3f))}) {
                 const glm::vec3 org = target + distance * from, dir = -from;
                 TraceHit h;
                 ASSERT_TRUE(ts.intersect(org, dir, 0.f, 1e30f, h)) << modeName(m) << " from " << distance;
@@ -269,7 +272,8 @@ TEST(HardRays, gridRaysFromFarAwayHitWhereCurvesDo) {
     const TraceScene ts(device, b.geometry, options(GeometryMode::Grid, b));
     const glm::vec3 target = b.geometry.toScene(b.scene.plies().curves.points[b.scene.plies().curves.pointCount() / 2]);
     for (const float distance : {3e3f, 1e4f, 1e5f})
-        for (const glm::vec3 from : {glm::vec3(0, 0, 1), glm::normalize(glm::vec3(0, 1, 1)), glm::normalize(glm::vec3(0.2f, -1, 0.3f))}) {
+        for (const glm::vec3 from :
+             {glm::vec3(0, 0, 1), glm::normalize(glm::vec3(0, 1, 1)), glm::normalize(glm::vec3(0.2f, -1, 0.3f))}) {
             TraceHit h;
             ASSERT_TRUE(ts.intersect(target + distance * from, -from, 0.f, 1e30f, h)) << distance;
             EXPECT_NEAR(h.t, distance - 1.f, 0.05f + 4e-7f * distance) << distance;

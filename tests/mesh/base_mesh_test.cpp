@@ -85,8 +85,8 @@ TEST(BaseMesh, cylinderUvScaleIsChordPerimeterAndHeight) {
 TEST(BaseMesh, uvScaleIgnoresDegenerateUvTriangles) {
     BaseMesh m = quad(2.0, 0.5);
     m.positions.push_back({9, 9, 9});
-    m.faces.push_back({0, 1, 4});        // big 3D triangle...
-    m.faceUvs.push_back({0, 1, 1});      // ...with a collapsed UV triangle
+    m.faces.push_back({0, 1, 4});    // big 3D triangle...
+    m.faceUvs.push_back({0, 1, 1});  // ...with a collapsed UV triangle
     const glm::dvec2 k = knit::uvToMetreScale(m);
     EXPECT_NEAR(k.x, 2.0, 1e-14);
     EXPECT_NEAR(k.y, 0.5, 1e-14);

@@ -16,7 +16,8 @@ namespace {
 // triangle using it), `uvShift` moves UV 2, `nanZ` makes vertex 1 not finite.
 std::string squareObj(double z, bool extraVertex = false, double uvShift = 0.0, bool nanZ = false) {
     const std::string zs = std::to_string(z);
-    std::string s = "v 0 0 " + zs + "\nv 1 0 " + (nanZ ? std::string("nan") : zs) + "\nv 1 1 " + zs + "\nv 0 1 " + zs + "\n";
+    std::string s =
+        "v 0 0 " + zs + "\nv 1 0 " + (nanZ ? std::string("nan") : zs) + "\nv 1 1 " + zs + "\nv 0 1 " + zs + "\n";
     s += "vt 0 0\nvt 1 0\nvt " + std::to_string(1 + uvShift) + " 1\nvt 0 1\n";
     s += "f 1/1 2/2 3/3\nf 1/1 3/3 4/4\n";
     if (extraVertex) s += "v 2 2 " + zs + "\nf 2/2 5/3 3/3\n";

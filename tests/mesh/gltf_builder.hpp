@@ -15,7 +15,8 @@ inline std::string base64(const std::string& bytes) {
     std::string out;
     size_t i = 0;
     for (; i + 2 < bytes.size(); i += 3) {
-        const uint32_t v = uint32_t(uint8_t(bytes[i])) << 16 | uint32_t(uint8_t(bytes[i + 1])) << 8 | uint8_t(bytes[i + 2]);
+        const uint32_t v =
+            uint32_t(uint8_t(bytes[i])) << 16 | uint32_t(uint8_t(bytes[i + 1])) << 8 | uint8_t(bytes[i + 2]);
         for (int k = 3; k >= 0; --k) out.push_back(t[(v >> (6 * k)) & 63]);
     }
     if (i + 1 == bytes.size()) {
@@ -36,13 +37,17 @@ struct GltfBuilder {
     json doc = {{"asset", {{"version", "2.0"}}}, {"bufferViews", json::array()}, {"accessors", json::array()}};
 
     template <class T>
-    int accessor(const std::vector<T>& values, int componentType, const char* type, size_t count, bool normalized = false,
-                 bool bounds = false) {
+    int accessor(const std::vector<T>& values, int componentType, const char* type, size_t count,
+                 bool normalized = false, bool bounds = false) {
         while (bin.size() % 4) bin.push_back('\0');
         const size_t offset = bin.size();
         bin.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
-        doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", values.size() * sizeof(T)}});
-        json a = {{"bufferView", doc["bufferViews"].size() - 1}, {"componentType", componentType}, {"type", type}, {"count", count}};
+        doc["bufferViews"].push_back(
+            {{"buffer", 0}, {"byteOffset", offset}, {"byteLength", values.size() * sizeof(T)}});
+        json a = {{"bufferView", doc["bufferViews"].size() - 1},
+                  {"componentType", componentType},
+                  {"type", type},
+                  {"count", count}};
         if (normalized) a["normalized"] = true;
         if (bounds) {  // POSITION min / max
             std::vector<double> lo(3, 1e300), hi(3, -1e300);
@@ -58,7 +63,8 @@ struct GltfBuilder {
         return int(doc["accessors"].size()) - 1;
     }
     // A mesh with one primitive; returns the mesh index.
-    int mesh(const std::vector<float>& pos, const std::vector<float>& uv, const std::vector<uint32_t>& idx, int mode = 4) {
+    int mesh(const std::vector<float>& pos, const std::vector<float>& uv, const std::vector<uint32_t>& idx,
+             int mode = 4) {
         json prim = {{"attributes",
                       {{"POSITION", accessor(pos, 5126, "VEC3", pos.size() / 3, false, true)},
                        {"TEXCOORD_0", accessor(uv, 5126, "VEC2", uv.size() / 2)}}},
@@ -70,7 +76,8 @@ struct GltfBuilder {
     // JSON with the buffer embedded as a data URI.
     std::string gltf() const {
         json d = doc;
-        d["buffers"] = json::array({{{"byteLength", bin.size()}, {"uri", "data:application/octet-stream;base64," + base64(bin)}}});
+        d["buffers"] =
+            json::array({{{"byteLength", bin.size()}, {"uri", "data:application/octet-stream;base64," + base64(bin)}}});
         return d.dump();
     }
     // JSON with the buffer in an external file `binName`.

@@ -27,7 +27,8 @@ int lineStrip(GltfBuilder& g, size_t n) {
     std::vector<float> p;
     for (size_t i = 0; i < n; ++i) p.insert(p.end(), {float(i), 0.0f, 0.0f});
     const int pos = g.accessor(p, gltf::kFloat, "VEC3", n);
-    g.doc["meshes"].push_back({{"primitives", json::array({{{"attributes", {{"POSITION", pos}}}, {"mode", gltf::kLineStrip}}})}});
+    g.doc["meshes"].push_back(
+        {{"primitives", json::array({{{"attributes", {{"POSITION", pos}}}, {"mode", gltf::kLineStrip}}})}});
     return int(g.doc["meshes"].size()) - 1;
 }
 
@@ -38,8 +39,12 @@ TEST(GltfDocument, interleavedNormalizedComponentsAreDecodedWithTheViewsStride) 
                                      0x00, 0x80, 0x01, 0x00, 0x80, 0x00, 0, 0};  // 32768, 1 | -128, 0
     g.accessor(bytes, gltf::kUnsignedShort, "VEC2", 2, true);
     g.doc["bufferViews"][0]["byteStride"] = 8;
-    g.doc["accessors"].push_back({{"bufferView", 0}, {"byteOffset", 4}, {"componentType", gltf::kByte}, {"type", "VEC2"},
-                                  {"count", 2}, {"normalized", true}});
+    g.doc["accessors"].push_back({{"bufferView", 0},
+                                  {"byteOffset", 4},
+                                  {"componentType", gltf::kByte},
+                                  {"type", "VEC2"},
+                                  {"count", 2},
+                                  {"normalized", true}});
     const gltf::Document d(g.glb(), "interleaved.glb", "");
     EXPECT_EQ(d.accessor(0, "test").values(), (std::vector<double>{1.0, 0.0, 32768 / 65535.0, 1 / 65535.0}));
     EXPECT_EQ(d.accessor(1, "test").values(), (std::vector<double>{-1.0, 1.0, -1.0, 0.0}));  // -128 clamps to -1
@@ -55,7 +60,8 @@ TEST(GltfDocument, bufferViewBytesStayInsideTheirBuffer) {
     ASSERT_EQ(b.size, 8u);
     EXPECT_EQ(b.data[0], 8);
     EXPECT_EQ(b.data[4], 9);
-    EXPECT_EQ(errorOf([&] { d.bufferView(2, "Draco data"); }), "views.gltf: Draco data: bufferViews[2] lies outside its buffer");
+    EXPECT_EQ(errorOf([&] { d.bufferView(2, "Draco data"); }),
+              "views.gltf: Draco data: bufferViews[2] lies outside its buffer");
 }
 
 TEST(GltfDocument, meshInstancesFollowTheNodeTreeInFileOrderWithWorldTransforms) {
@@ -85,7 +91,9 @@ TEST(GltfDocument, meshInstancesFollowTheNodeTreeInFileOrderWithWorldTransforms)
 TEST(GltfDocument, primitivesGiveModeAttributesIndicesAndExtensions) {
     GltfBuilder g;
     lineStrip(g, 4);
-    g.doc["meshes"][0]["primitives"].push_back({{"attributes", {{"POSITION", 0}}}, {"indices", 0}, {"mode", 4},
+    g.doc["meshes"][0]["primitives"].push_back({{"attributes", {{"POSITION", 0}}},
+                                                {"indices", 0},
+                                                {"mode", 4},
                                                 {"extensions", {{"KHR_draco_mesh_compression", json::object()}}}});
     g.doc["meshes"][0]["name"] = "curves";
     g.doc["extensionsUsed"] = {"KHR_draco_mesh_compression", "KHR_materials_sheen"};
@@ -124,10 +132,14 @@ TEST(GltfDocument, sparseAndViewlessAccessorsAreRefusedNamingTheUse) {
     GltfBuilder g;
     lineStrip(g, 2);
     g.doc["accessors"].push_back({{"componentType", gltf::kFloat}, {"type", "VEC3"}, {"count", 2}});  // Draco style
-    g.doc["accessors"].push_back({{"bufferView", 0}, {"componentType", gltf::kFloat}, {"type", "VEC3"}, {"count", 2},
+    g.doc["accessors"].push_back({{"bufferView", 0},
+                                  {"componentType", gltf::kFloat},
+                                  {"type", "VEC3"},
+                                  {"count", 2},
                                   {"sparse", {{"count", 1}}}});
     const gltf::Document d(g.gltf(), "refused.gltf", "");
-    EXPECT_EQ(errorOf([&] { d.accessor(1, "NORMAL"); }), "refused.gltf: NORMAL: accessors[1] has no data (no bufferView)");
+    EXPECT_EQ(errorOf([&] { d.accessor(1, "NORMAL"); }),
+              "refused.gltf: NORMAL: accessors[1] has no data (no bufferView)");
     EXPECT_EQ(errorOf([&] { d.accessor(2, "NORMAL"); }), "refused.gltf: NORMAL: sparse accessors are not supported");
 }
 

@@ -78,7 +78,7 @@ TEST(GltfMesh, cylinderSeamIsWeldedAndUvsFlipBack) {
                 worstP = std::max(worstP, glm::distance(m.positions[m.faces[f][k]], ref.positions[ref.faces[f][k]]));
                 worstUv = std::max(worstUv, glm::distance(m.uvs[m.faceUvs[f][k]], ref.uvs[ref.faceUvs[f][k]]));
             }
-        EXPECT_LT(worstP, 1e-7);   // float32 in the file
+        EXPECT_LT(worstP, 1e-7);  // float32 in the file
         EXPECT_LT(worstUv, 1e-7);
     }
 }
@@ -104,8 +104,9 @@ TEST(GltfMesh, nodeTransformsAreComposedDownTheTree) {
     // Root: translate (1, 2, 3), rotate 90 degrees about z, scale 2; child: a matrix moving +5 in x.
     const std::string bytes = quadFile([](GltfBuilder& g) {
         const double s = std::sqrt(0.5);
-        g.doc["nodes"] = json::array({{{"translation", {1, 2, 3}}, {"rotation", {0, 0, s, s}}, {"scale", {2, 2, 2}}, {"children", {1}}},
-                                      {{"mesh", 0}, {"matrix", {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 5, 0, 0, 1}}}});
+        g.doc["nodes"] = json::array(
+            {{{"translation", {1, 2, 3}}, {"rotation", {0, 0, s, s}}, {"scale", {2, 2, 2}}, {"children", {1}}},
+             {{"mesh", 0}, {"matrix", {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 5, 0, 0, 1}}}});
     });
     const knit::BaseMesh m = knit::parseGltfMesh(bytes, "t.gltf", "");
     ASSERT_EQ(m.positions.size(), 4u);
@@ -122,10 +123,14 @@ TEST(GltfMesh, stripsFansAndUnindexedTrianglesGiveTheSameQuad) {
     auto area = [](const knit::BaseMesh& m) {
         double a = 0;
         for (const glm::uvec3& f : m.faces)
-            a += 0.5 * glm::length(glm::cross(m.positions[f.y] - m.positions[f.x], m.positions[f.z] - m.positions[f.x]));
+            a +=
+                0.5 * glm::length(glm::cross(m.positions[f.y] - m.positions[f.x], m.positions[f.z] - m.positions[f.x]));
         return a;
     };
-    struct Case { std::vector<uint32_t> idx; int mode; };
+    struct Case {
+        std::vector<uint32_t> idx;
+        int mode;
+    };
     for (const Case& c : {Case{{0, 1, 3, 2}, 5}, Case{{0, 1, 2, 3}, 6}, Case{{}, 4}}) {
         const std::string bytes = quadFile([&](GltfBuilder& g) {
             g.doc["meshes"] = json::array();
@@ -235,27 +240,39 @@ TEST(GltfMesh, badFilesAreRefusedWithAReason) {
     const std::vector<Bad> cases = {
         {"noTexcoord", [](GltfBuilder& g) { g.doc["meshes"][0]["primitives"][0]["attributes"].erase("TEXCOORD_0"); },
          "has no TEXCOORD_0"},
-        {"noPosition", [](GltfBuilder& g) { g.doc["meshes"][0]["primitives"][0]["attributes"].erase("POSITION"); }, "has no POSITION"},
+        {"noPosition", [](GltfBuilder& g) { g.doc["meshes"][0]["primitives"][0]["attributes"].erase("POSITION"); },
+         "has no POSITION"},
         {"indexOutOfRange",
          [](GltfBuilder& g) {
-             g.doc["meshes"][0]["primitives"][0]["indices"] = g.accessor(std::vector<uint32_t>{0, 1, 7}, 5125, "SCALAR", 3);
+             g.doc["meshes"][0]["primitives"][0]["indices"] =
+                 g.accessor(std::vector<uint32_t>{0, 1, 7}, 5125, "SCALAR", 3);
          },
          "index 2 is 7"},
         {"accessorPastItsView", [](GltfBuilder& g) { g.doc["accessors"][1]["count"] = 400; }, ""},
         {"draco",
          [](GltfBuilder& g) {
-             g.doc["meshes"][0]["primitives"][0]["extensions"] = {{"KHR_draco_mesh_compression", {{"bufferView", 0}, {"attributes", json::object()}}}};
+             g.doc["meshes"][0]["primitives"][0]["extensions"] = {
+                 {"KHR_draco_mesh_compression", {{"bufferView", 0}, {"attributes", json::object()}}}};
          },
          "Draco"},
         {"notWholeTriangles",
          [](GltfBuilder& g) {
-             g.doc["meshes"][0]["primitives"][0]["indices"] = g.accessor(std::vector<uint32_t>{0, 1, 2, 3}, 5125, "SCALAR", 4);
+             g.doc["meshes"][0]["primitives"][0]["indices"] =
+                 g.accessor(std::vector<uint32_t>{0, 1, 2, 3}, 5125, "SCALAR", 4);
          },
          "whole triangles"},
-        {"nodeCycle", [](GltfBuilder& g) { g.doc["nodes"] = json::array({{{"mesh", 0}, {"children", {0}}}}); }, "reached twice"},
-        {"onlyLines", [](GltfBuilder& g) { g.doc["meshes"][0]["primitives"][0]["mode"] = 1; }, "no triangle primitives"},
+        {"nodeCycle",
+         [](GltfBuilder& g) {
+             g.doc["nodes"] = json::array({{{"mesh", 0}, {"children", {0}}}});
+         },
+         "reached twice"},
+        {"onlyLines", [](GltfBuilder& g) { g.doc["meshes"][0]["primitives"][0]["mode"] = 1; },
+         "no triangle primitives"},
         {"texcoordCountDiffers",
-         [](GltfBuilder& g) { g.doc["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = g.accessor(std::vector<float>{0, 0, 1, 0}, 5126, "VEC2", 2); },
+         [](GltfBuilder& g) {
+             g.doc["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] =
+                 g.accessor(std::vector<float>{0, 0, 1, 0}, 5126, "VEC2", 2);
+         },
          "TEXCOORD_0 has 2 elements"},
         {"nanPosition",
          [](GltfBuilder& g) {
@@ -274,7 +291,8 @@ TEST(GltfMesh, badFilesAreRefusedWithAReason) {
         }
     // Not glTF at all, truncated GLB, a file with another extension's content.
     const std::string glb = quadFile([](GltfBuilder&) {}, true);
-    for (const std::string& bytes : {std::string("{not json"), glb.substr(0, glb.size() / 2), std::string("glTF"), std::string()}) {
+    for (const std::string& bytes :
+         {std::string("{not json"), glb.substr(0, glb.size() / 2), std::string("glTF"), std::string()}) {
         const std::string e = errorOf([&] { knit::parseGltfMesh(bytes, "bad.glb", ""); });
         EXPECT_NE(e.find("bad.glb"), std::string::npos) << e;
     }

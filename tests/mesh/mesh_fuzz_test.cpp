@@ -38,10 +38,10 @@ std::string mutate(std::string s, std::mt19937& rng) {
     for (int e = 0; e < edits && !s.empty(); ++e) {
         const size_t at = rng() % s.size();
         switch (rng() % 4) {
-            case 0: s[at] = kBytes[rng() % (sizeof(kBytes) - 1)]; break;       // replace
+            case 0: s[at] = kBytes[rng() % (sizeof(kBytes) - 1)]; break;           // replace
             case 1: s.insert(at, 1, kBytes[rng() % (sizeof(kBytes) - 1)]); break;  // insert
-            case 2: s.erase(at, 1 + rng() % 4); break;                          // delete
-            default: s.resize(at); break;                                        // truncate
+            case 2: s.erase(at, 1 + rng() % 4); break;                             // delete
+            default: s.resize(at); break;                                          // truncate
         }
     }
     return s;

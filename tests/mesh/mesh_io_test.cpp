@@ -52,7 +52,8 @@ std::string ringPly(const char* uName = "u", const char* vName = "v") {
       << vName << "\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n";
     for (int j = 0; j < 2; ++j)
         for (int i = 0; i <= 4; ++i)
-            s << kRingXY[i % 4][0] << " " << kRingXY[i % 4][1] << " " << kRingZ[j] << " " << i / 4.0 << " " << j << "\n";
+            s << kRingXY[i % 4][0] << " " << kRingXY[i % 4][1] << " " << kRingZ[j] << " " << i / 4.0 << " " << j
+              << "\n";
     for (int i = 0; i < 4; ++i) s << "4 " << i << " " << i + 1 << " " << 5 + i + 1 << " " << 5 + i << "\n";
     return s.str();
 }
@@ -123,9 +124,10 @@ TEST(MeshIo, plyWithDuplicatedSeamVerticesIsWelded) {
 TEST(MeshIo, plyStAndTextureUvPropertiesAreRead) {
     TempDir dir;
     const BaseMesh ref = knit::loadMesh(dir.write("uv.ply", ringPly("u", "v")));
-    for (auto names : {std::pair<const char*, const char*>{"s", "t"}, {"texture_u", "texture_v"},
-                       {"texture_s", "texture_t"}}) {
-        const BaseMesh m = knit::loadMesh(dir.write(std::string(names.first) + ".ply", ringPly(names.first, names.second)));
+    for (auto names :
+         {std::pair<const char*, const char*>{"s", "t"}, {"texture_u", "texture_v"}, {"texture_s", "texture_t"}}) {
+        const BaseMesh m =
+            knit::loadMesh(dir.write(std::string(names.first) + ".ply", ringPly(names.first, names.second)));
         EXPECT_EQ(m.uvs, ref.uvs) << names.first;
         EXPECT_EQ(m.faceUvs, ref.faceUvs) << names.first;
     }
@@ -155,8 +157,8 @@ TEST(MeshIo, offLoads) {
     TempDir dir;
     // A quad and a triangle, texture coordinates per vertex (STOFF).
     const BaseMesh m = knit::loadMesh(dir.write("m.off", "STOFF\n# comment\n5 2 0\n"
-                                                          "0 0 0 0 0\n1 0 0 1 0\n1 1 0 1 1\n0 1 0 0 1\n2 0.5 0 1 0.5\n"
-                                                          "4 0 1 2 3\n3 1 4 2\n"));
+                                                         "0 0 0 0 0\n1 0 0 1 0\n1 1 0 1 1\n0 1 0 0 1\n2 0.5 0 1 0.5\n"
+                                                         "4 0 1 2 3\n3 1 4 2\n"));
     ASSERT_EQ(m.faces.size(), 3u);
     EXPECT_EQ(m.positions.size(), 5u);
     EXPECT_EQ(m.faces[0], glm::uvec3(0, 1, 2));
@@ -207,7 +209,8 @@ TEST(MeshIo, crlfLineEndingsLoad) {
     EXPECT_EQ(obj.faces.size(), 8u);
     EXPECT_EQ(ply.faces, obj.faces);
     EXPECT_EQ(ply.faceUvs, obj.faceUvs);
-    const BaseMesh off = knit::loadMesh(dir.write("q.off", crlf("STOFF\n3 1 0\n0 0 0 0 0\n1 0 0 1 0\n0 1 0 0 1\n3 0 1 2\n")));
+    const BaseMesh off =
+        knit::loadMesh(dir.write("q.off", crlf("STOFF\n3 1 0\n0 0 0 0 0\n1 0 0 1 0\n0 1 0 0 1\n3 0 1 2\n")));
     EXPECT_EQ(off.uvs[off.faceUvs[0][2]], glm::dvec2(0, 1));
 }
 
@@ -227,8 +230,8 @@ TEST(MeshIo, truncatedOffIsRejected) {
 TEST(MeshIo, polygonIsFanTriangulatedWithMatchingUvs) {
     TempDir dir;
     const BaseMesh m = knit::loadMesh(dir.write("pent.obj", "v 0 0 0\nv 1 0 0\nv 1.5 1 0\nv 0.5 1.5 0\nv -0.5 1 0\n"
-                                                             "vt 0 0\nvt 1 0\nvt 1 0.6\nvt 0.5 1\nvt 0 0.6\n"
-                                                             "f 1/1 2/2 3/3 4/4 5/5\n"));
+                                                            "vt 0 0\nvt 1 0\nvt 1 0.6\nvt 0.5 1\nvt 0 0.6\n"
+                                                            "f 1/1 2/2 3/3 4/4 5/5\n"));
     ASSERT_EQ(m.faces.size(), 3u);
     for (size_t f = 0; f < 3; ++f) {
         EXPECT_EQ(m.faces[f], glm::uvec3(0, f + 1, f + 2));
@@ -242,8 +245,8 @@ TEST(MeshIo, objOppositelyOrientedNeighbourKeepsItsUvs) {
     // corner). Here every corner keeps its own vt and the positions stay shared.
     TempDir dir;
     const BaseMesh m = knit::loadMesh(dir.write("flip.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\n"
-                                                             "vt 0 0\nvt 1 0\nvt 0 1\nvt 1 1\n"
-                                                             "f 1/1 2/2 3/3\nf 2/2 3/3 4/4\n"));
+                                                            "vt 0 0\nvt 1 0\nvt 0 1\nvt 1 1\n"
+                                                            "f 1/1 2/2 3/3\nf 2/2 3/3 4/4\n"));
     ASSERT_EQ(m.positions.size(), 4u);
     ASSERT_EQ(m.faces.size(), 2u);
     for (size_t f = 0; f < 2; ++f)
@@ -291,10 +294,11 @@ TEST(MeshIo, emptyMeshIsRejected) {
     EXPECT_NE(errorOf([&] { knit::loadMesh(empty); }).find("no faces"), std::string::npos);
     const std::string emptyPly = dir.write("empty.ply", "");
     EXPECT_THROW(knit::loadMesh(emptyPly), knit::Error);
-    const std::string noFacePly = dir.write("nf.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n"
-                                                      "property float y\nproperty float z\nproperty float u\n"
-                                                      "property float v\nelement face 0\n"
-                                                      "property list uchar int vertex_indices\nend_header\n0 0 0 0 0\n");
+    const std::string noFacePly =
+        dir.write("nf.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n"
+                            "property float y\nproperty float z\nproperty float u\n"
+                            "property float v\nelement face 0\n"
+                            "property list uchar int vertex_indices\nend_header\n0 0 0 0 0\n");
     EXPECT_NE(errorOf([&] { knit::loadMesh(noFacePly); }).find("no faces"), std::string::npos);
 }
 
@@ -315,8 +319,8 @@ TEST(MeshIo, nanPositionIsRejected) {
               std::string::npos);
     // Binary PLY: the value arrives as inf.
     std::string bin = "ply\nformat binary_big_endian 1.0\nelement vertex 3\nproperty double x\nproperty double y\n"
-          "property double z\nproperty float u\nproperty float v\nelement face 1\n"
-          "property list uchar int vertex_indices\nend_header\n";
+                      "property double z\nproperty float u\nproperty float v\nelement face 1\n"
+                      "property list uchar int vertex_indices\nend_header\n";
     const double pos[3][3] = {{0, 0, 0}, {1, 0, HUGE_VAL}, {0, 1, 0}};
     for (int i = 0; i < 3; ++i) {
         for (double c : pos[i]) putBE(bin, c);

@@ -174,7 +174,7 @@ TEST(ProceduralMesh, drapeLiesOnSphereCapAndFallsOff) {
             EXPECT_NEAR(glm::length(p), R, 1e-12);
             ++onCap;
         } else {
-            EXPECT_LT(p.y, std::sqrt(R * R - a * a));  // below the contact circle
+            EXPECT_LT(p.y, std::sqrt(R * R - a * a));    // below the contact circle
             EXPECT_GE(glm::length(p), R * (1 - 1e-12));  // never inside the sphere
         }
     }

@@ -65,7 +65,7 @@ std::vector<dvec3> wigglyWithHairpin() {
     p.push_back(tip);
     p.push_back(tip - dvec3(0.001, 0, 0));  // exact reversal onto the previous point
     p.push_back(tip - dvec3(0.002, 0.0002, 0));
-    for (int i = 0; i <= 12; ++i) {          // a tight U-turn, resolved by a few points
+    for (int i = 0; i <= 12; ++i) {  // a tight U-turn, resolved by a few points
         const double a = kPi * i / 12;
         p.push_back(tip - dvec3(0.003 + 0.0005 * std::sin(a), 0.0007 - 0.0005 * std::cos(a), 0.0001 * i));
     }
@@ -91,7 +91,8 @@ TEST(Frames, framesDoNotFlip) {
             const Frames f = knit::rotationMinimizingFrames(*c, &seeds);
             expectOrthonormal(f);
             for (size_t i = 0; i + 1 < f.normal.size(); ++i)
-                EXPECT_GT(glm::dot(f.normal[i], f.normal[i + 1]), 0.0) << "flip between points " << i << " and " << i + 1;
+                EXPECT_GT(glm::dot(f.normal[i], f.normal[i + 1]), 0.0)
+                    << "flip between points " << i << " and " << i + 1;
         }
     }
 }
@@ -129,7 +130,8 @@ TEST(Frames, closedLoopFramesClose) {
     knit::FrameOptions open;
     open.closeLoops = false;
     const Frames raw = knit::rotationMinimizingFrames(c, &seeds, open);
-    const dvec3 rawEnd = reflectTransport(c.points[n - 1], raw.tangent[n - 1], raw.normal[n - 1], c.points[0], raw.tangent[0]);
+    const dvec3 rawEnd =
+        reflectTransport(c.points[n - 1], raw.tangent[n - 1], raw.normal[n - 1], c.points[0], raw.tangent[0]);
     const double mismatch = signedAngle(rawEnd, raw.normal[0], raw.tangent[0]);
     ASSERT_GT(std::abs(mismatch), 0.1) << "test curve must have RMF holonomy";
     // ...with it, every segment (the closing one included) turns the frame by the same angle
@@ -160,11 +162,11 @@ TEST(Frames, repeatedPointsGiveFiniteFrames) {
     const dvec3 a(0, 0, 0), b(0.001, 0, 0), c(0.001, 0.001, 0.0005);
     Polylines curves;
     const std::vector<std::vector<dvec3>> shapes{
-        {a, a, b, b, b, c, c},   // repeats inside and at both ends
-        {a, a, a, a},            // all the same point
-        {b},                     // single point
-        {a, b, b, c, a, a},      // closed, repeats across the closing segment
-        {a, b},                  // closed two-point loop (hairpins at both points)
+        {a, a, b, b, b, c, c},  // repeats inside and at both ends
+        {a, a, a, a},           // all the same point
+        {b},                    // single point
+        {a, b, b, c, a, a},     // closed, repeats across the closing segment
+        {a, b},                 // closed two-point loop (hairpins at both points)
     };
     const bool closed[] = {false, false, false, true, true};
     for (size_t i = 0; i < shapes.size(); ++i) curves.addCurve(shapes[i].data(), shapes[i].size(), closed[i]);
@@ -221,7 +223,7 @@ TEST(Frames, surfaceNormalSeedsPhase) {
     c.addCurve(p.data(), p.size(), true);
     std::vector<dvec3> seeds(c.pointCount(), dvec3(9, 9, 9));
     const dvec3 s0(0.3, -0.2, 1.0), s1(-1.0, 0.1, 0.2);
-    seeds[0] = s0;            // only the first point's seed counts
+    seeds[0] = s0;  // only the first point's seed counts
     seeds[p.size()] = s1;
     const Frames f = knit::rotationMinimizingFrames(c, &seeds);
     for (size_t k = 0; k < 2; ++k) {

@@ -216,10 +216,8 @@ TEST(Plies, sAndZTwistHaveOppositeHandedness) {
         const dvec3 a = p.curves.points[0], b = p.curves.points[1];
         EXPECT_LT(a.y, 0.0);  // near side
         EXPECT_GT(b.z - a.z, 0.0);
-        if (twist == Twist::Z)
-            EXPECT_GT(b.x - a.x, 0.0) << "Z twist must slant like '/'";
-        else
-            EXPECT_LT(b.x - a.x, 0.0) << "S twist must slant like '\\'";
+        if (twist == Twist::Z) EXPECT_GT(b.x - a.x, 0.0) << "Z twist must slant like '/'";
+        else EXPECT_LT(b.x - a.x, 0.0) << "S twist must slant like '\\'";
     }
     // (2) Intrinsic handedness: on a straight skew yarn the discrete torsion sign
     // det(d1, d2, d3) of every ply is positive for Z (right-handed), negative for S; and on a
@@ -239,8 +237,7 @@ TEST(Plies, sAndZTwistHaveOppositeHandedness) {
         for (size_t c = 0; c < p.curves.curveCount(); ++c) {
             const dvec3* q = p.curves.points.data() + p.curves.begin(c);
             for (uint32_t j = 0; j + 3 < p.curves.size(c); ++j) {
-                const double det =
-                    glm::dot(q[j + 1] - q[j], glm::cross(q[j + 2] - q[j + 1], q[j + 3] - q[j + 2]));
+                const double det = glm::dot(q[j + 1] - q[j], glm::cross(q[j + 2] - q[j + 1], q[j + 3] - q[j + 2]));
                 EXPECT_GT(sign * det, 0.0) << "ply " << c << " point " << j;
             }
         }
@@ -273,7 +270,11 @@ TEST(Plies, invalidPlyOptionsRejected) {
         {[](PlyOptions& o) { o.samplesPerTurn = 2; }, "samplesPerTurn"},
         {[](PlyOptions& o) { o.samplesPerTurn = 1025; }, "samplesPerTurn"},
         {[](PlyOptions& o) { o.twist = static_cast<Twist>(7); }, "twist"},
-        {[](PlyOptions& o) { o.count = 1; o.centerRadius = 0.002; }, "plyRadius"},
+        {[](PlyOptions& o) {
+             o.count = 1;
+             o.centerRadius = 0.002;
+         },
+         "plyRadius"},
     };
     MappedYarns y;
     addYarn(y, {dvec3(0, 0, 0), dvec3(0.01, 0, 0)}, false);
@@ -282,10 +283,8 @@ TEST(Plies, invalidPlyOptionsRejected) {
         mutate(o);
         for (int call = 0; call < 2; ++call) {
             try {
-                if (call == 0)
-                    knit::resolvePlyOptions(o);
-                else
-                    knit::makePlies(y, o);
+                if (call == 0) knit::resolvePlyOptions(o);
+                else knit::makePlies(y, o);
                 ADD_FAILURE() << "accepted bad option " << name;
             } catch (const knit::Error& e) {
                 EXPECT_NE(std::string(e.what()).find("PlyOptions." + name), std::string::npos) << e.what();
@@ -308,7 +307,7 @@ TEST(Plies, resolvedRadiiMakeTouchingPliesThatFillTheYarn) {
         o.count = n;
         o.yarnRadius = 0.002;
         const PlyOptions r = knit::resolvePlyOptions(o);
-        EXPECT_NEAR(r.centerRadius + r.plyRadius, 0.002, 1e-15) << n;                      // fills the yarn
+        EXPECT_NEAR(r.centerRadius + r.plyRadius, 0.002, 1e-15) << n;                          // fills the yarn
         EXPECT_NEAR(2.0 * r.centerRadius * std::sin(kPi / n), 2.0 * r.plyRadius, 1e-15) << n;  // neighbours touch
         EXPECT_EQ(r.pitch, 6.0 * 0.002);
         const PlyOptions again = knit::resolvePlyOptions(r);  // idempotent
@@ -372,8 +371,9 @@ TEST(Plies, surfaceNormalSeedsPhase) {
     // ...so a rigid motion of the yarn and its surface normals (an animated pose) moves the
     // plies rigidly: the phase does not depend on where the yarn is or how it is turned.
     const double ca = std::cos(0.7), sa = std::sin(0.7);
-    const glm::dmat3 Q = glm::dmat3(dvec3(ca, sa, 0), dvec3(-sa, ca, 0), dvec3(0, 0, 1)) *
-                         glm::dmat3(dvec3(1, 0, 0), dvec3(0, std::cos(1.1), std::sin(1.1)), dvec3(0, -std::sin(1.1), std::cos(1.1)));
+    const glm::dmat3 Q =
+        glm::dmat3(dvec3(ca, sa, 0), dvec3(-sa, ca, 0), dvec3(0, 0, 1)) *
+        glm::dmat3(dvec3(1, 0, 0), dvec3(0, std::cos(1.1), std::sin(1.1)), dvec3(0, -std::sin(1.1), std::cos(1.1)));
     const dvec3 shift(0.3, -0.2, 0.05);
     MappedYarns moved = y;
     for (dvec3& p : moved.curves.points) p = Q * p + shift;
@@ -390,11 +390,11 @@ TEST(Plies, surfaceNormalSeedsPhase) {
 TEST(Plies, degenerateYarnsGiveFinitePliesInYarnMajorOrder) {
     MappedYarns y;
     const dvec3 a(0, 0, 0), b(0.002, 0, 0), c(0.002, 0.002, 0);
-    addYarn(y, {a, a, b, b, c}, false);      // repeated points
-    addYarn(y, {dvec3(1, 1, 1)}, false);     // one point: no plies
-    addYarn(y, {a, b, a, c}, false);         // exact hairpin
-    addYarn(y, {}, true);                    // empty: no plies
-    addYarn(y, {a, b}, true);                // closed two-point loop
+    addYarn(y, {a, a, b, b, c}, false);   // repeated points
+    addYarn(y, {dvec3(1, 1, 1)}, false);  // one point: no plies
+    addYarn(y, {a, b, a, c}, false);      // exact hairpin
+    addYarn(y, {}, true);                 // empty: no plies
+    addYarn(y, {a, b}, true);             // closed two-point loop
     addYarn(y, circle(0.003, 5), true);
     PlyOptions o;
     o.count = 3;

@@ -30,7 +30,7 @@ std::vector<dvec3> wigglyWithHairpin() {
     }
     const dvec3 tip = p.back() + dvec3(0.001, 0, 0);
     p.push_back(tip);
-    p.push_back(tip - dvec3(0.001, 0, 0));             // back onto the previous point: hairpin
+    p.push_back(tip - dvec3(0.001, 0, 0));  // back onto the previous point: hairpin
     p.push_back(tip - dvec3(0.002, 0.0001, 0.0));
     p.push_back(tip - dvec3(0.0021, 0.0009, 0.0001));  // tight turn
     p.push_back(tip - dvec3(0.001, 0.001, 0.0002));

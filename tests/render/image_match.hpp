@@ -35,8 +35,8 @@ inline ImageMatch matchImages(const Image& a, const Image& b, int block = 8) {
 
 inline std::ostream& operator<<(std::ostream& out, const ImageMatch& m) {
     const ImageComparison& c = m.comparison;
-    return out << "chi2 " << c.chiSquare << " over " << c.testedBlocks << " blocks (p " << m.pChiSquare
-               << "), mean z " << c.meanZ << " (p " << m.pMean << "), max block z " << c.maxZ;
+    return out << "chi2 " << c.chiSquare << " over " << c.testedBlocks << " blocks (p " << m.pChiSquare << "), mean z "
+               << c.meanZ << " (p " << m.pMean << "), max block z " << c.maxZ;
 }
 
 }  // namespace knit

@@ -48,10 +48,10 @@ PlyMaterial specularMaterial() {
 
 std::vector<glm::dvec3> incidentDirections() {
     const double s45 = std::sqrt(0.5);
-    return {glm::dvec3(0, 0, 1),                                                     // normal
-            glm::dvec3(s45 * std::cos(0.5), s45 * std::sin(0.5), s45),                // 45 degrees
-            glm::normalize(glm::dvec3(0.8, 0.3, 0.05)),                               // grazing
-            glm::normalize(glm::dvec3(0.3, -0.4, -0.85))};                            // below
+    return {glm::dvec3(0, 0, 1),                                        // normal
+            glm::dvec3(s45 * std::cos(0.5), s45 * std::sin(0.5), s45),  // 45 degrees
+            glm::normalize(glm::dvec3(0.8, 0.3, 0.05)),                 // grazing
+            glm::normalize(glm::dvec3(0.3, -0.4, -0.85))};              // below
 }
 
 // Chi-square test on the equal-area sphere map (cos theta, phi): histogram of sample() against the
@@ -138,8 +138,8 @@ void runChi2(const PlyMaterial& m, double shadow) {
         const Chi2Result r = chi2(bsdf, bsdf, wo, 1000000, seed++);
         EXPECT_EQ(r.misses, 0) << "samples where pdf() is zero, wo.z = " << wo.z;
         EXPECT_LE(r.pdfIntegral, 1.01) << "pdf integrates above one, wo.z = " << wo.z;
-        EXPECT_GT(r.pValue, alpha) << "chi-square rejects sample() vs pdf() for wo = (" << wo.x << ", " << wo.y
-                                   << ", " << wo.z << ")";
+        EXPECT_GT(r.pValue, alpha) << "chi-square rejects sample() vs pdf() for wo = (" << wo.x << ", " << wo.y << ", "
+                                   << wo.z << ")";
     }
 }
 
@@ -185,8 +185,7 @@ TEST(PlyBsdf, whiteFurnaceAlbedoAtMostOne) {
                 if (bs.valid) sum += bs.weight;
             }
             const Rgb albedo = sum / double(n);
-            for (int c = 0; c < 3; ++c)
-                EXPECT_LE(albedo[c], 1.01) << "alpha " << m.alphaAlong << " wo.z " << wo.z;
+            for (int c = 0; c < 3; ++c) EXPECT_LE(albedo[c], 1.01) << "alpha " << m.alphaAlong << " wo.z " << wo.z;
         }
     }
 }

@@ -229,8 +229,8 @@ TEST(TraceGeometry, eachModeReportsItsPrimitivesAndSpawnRules) {
     // What TraceScene takes from a mode: primitive count and bytes for the report, the primitive a
     // spawned ray ignores (only tubes: the facet it leaves) and the inscribed radius transmitted
     // rays start within (the tube polygon's; 1 for the round solids).
-    const Plies plies = handMadePlies({{{0, 0, 0}, {4, 0, 0}, {8, 0.5, 0}, {12, 0, 0}, {16, 0, 0}},
-                                       {{0, 5, 0}, {4, 5, 0}, {8, 5, 0}}});
+    const Plies plies =
+        handMadePlies({{{0, 0, 0}, {4, 0, 0}, {8, 0.5, 0}, {12, 0, 0}, {16, 0, 0}}, {{0, 5, 0}, {4, 5, 0}, {8, 5, 0}}});
     const PlyGeometry g = buildPlyGeometry(plies, glm::dvec3(0.0));
     std::vector<int64_t> cells(g.segmentCount());
     for (size_t s = 0; s < cells.size(); ++s) cells[s] = static_cast<int64_t>(s / 2);  // two per cell

@@ -91,7 +91,8 @@ size_t fileBytes(const std::string& path) {
 }
 
 void writeText(const std::string& path, const std::string& text) {
-    knit::writeFileAtomically(path, [&](std::ostream& out) { out << text; }, true);
+    knit::writeFileAtomically(
+        path, [&](std::ostream& out) { out << text; }, true);
 }
 
 }  // namespace sve

@@ -77,9 +77,8 @@ json measureBaseMesh() {
             knit::BindResult bound;
             const Timing tb = timeRuns([&] { bound = knit::bindYarns(mesh, normals, grid, uv, bo); }, 5, 20, 0.5);
             knit::MappedYarns mapped;
-            const Timing tv = timeRuns([&] {
-                knit::evaluateBinding(bound.binding, mesh.faces, mesh.positions, normals, mapped);
-            }, 3, 7, 0.3);
+            const Timing tv = timeRuns(
+                [&] { knit::evaluateBinding(bound.binding, mesh.faces, mesh.positions, normals, mapped); }, 3, 7, 0.3);
             // Error: mapped point against exact S(u, v) + h n(u, v) at the vertex's (u, v).
             const knit::Binding& b = bound.binding;
             double maxErr = 0, sumSq = 0;

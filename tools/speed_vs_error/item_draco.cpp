@@ -67,7 +67,8 @@ void primitiveData(const knit::gltf::Document& doc, const knit::gltf::Primitive&
     const std::unique_ptr<draco::Mesh> mesh = std::move(decoded).value();
     decodeSeconds += seconds(t0);
     const json& attributes = doc.member(ext, "attributes", json::value_t::object, where);
-    const std::optional<size_t> p = doc.index(attributes, "POSITION", where), n = doc.index(attributes, "NORMAL", where);
+    const std::optional<size_t> p = doc.index(attributes, "POSITION", where),
+                                n = doc.index(attributes, "NORMAL", where);
     const draco::PointAttribute* pa = p ? mesh->GetAttributeByUniqueId(uint32_t(*p)) : nullptr;
     const draco::PointAttribute* na = n ? mesh->GetAttributeByUniqueId(uint32_t(*n)) : nullptr;
     if (!pa || !na) doc.fail(prim.what + ": Draco primitive without POSITION/NORMAL");
@@ -158,7 +159,8 @@ json measureDraco(const knit::Scene& scene, const std::string& work) {
     plain.what = knit::ExportWhat::Tubes;
     plain.path = workFile(work, "plain.glb");
     knit::ExportStats ps;
-    const Timing tp = timeRunsWithSetup([&] { fs::remove(plain.path); }, [&] { ps = knit::exportScene(scene, plain); }, 3, 5, 1.0);
+    const Timing tp =
+        timeRunsWithSetup([&] { fs::remove(plain.path); }, [&] { ps = knit::exportScene(scene, plain); }, 3, 5, 1.0);
     out["sides"] = plain.sides;
     out["plain_bytes"] = fileBytes(plain.path);
     out["plain_export_seconds"] = tp.best;
@@ -171,7 +173,8 @@ json measureDraco(const knit::Scene& scene, const std::string& work) {
         d.draco = true;
         d.dracoBits = bits;
         knit::ExportStats ds;
-        const Timing te = timeRunsWithSetup([&] { fs::remove(d.path); }, [&] { ds = knit::exportScene(scene, d); }, 2, 3, 2.0);
+        const Timing te =
+            timeRunsWithSetup([&] { fs::remove(d.path); }, [&] { ds = knit::exportScene(scene, d); }, 2, 3, 2.0);
         const size_t bytes = fileBytes(d.path);
         double decodeBest = std::numeric_limits<double>::max();
         GlbTubes dec;
@@ -203,9 +206,11 @@ json measureDraco(const knit::Scene& scene, const std::string& work) {
         row["checked_vertices"] = err.checked;
         row["unmatched_vertices"] = err.unmatched;
         out["rows"].push_back(row);
-        std::fprintf(stderr, "  draco %2d bits: max error %.4f R (bound %.4f R), %.1f MB (plain %.1f MB), export %.2f s, decode %.2f s%s\n",
-                     bits, err.maxError / R, bound / R, double(bytes) / 1e6, out["plain_bytes"].get<size_t>() / 1e6, te.best,
-                     decodeBest, err.unmatched ? "  UNMATCHED VERTICES" : "");
+        std::fprintf(stderr,
+                     "  draco %2d bits: max error %.4f R (bound %.4f R), %.1f MB (plain %.1f MB), export %.2f s, "
+                     "decode %.2f s%s\n",
+                     bits, err.maxError / R, bound / R, double(bytes) / 1e6, out["plain_bytes"].get<size_t>() / 1e6,
+                     te.best, decodeBest, err.unmatched ? "  UNMATCHED VERTICES" : "");
     }
     return out;
 }

@@ -98,7 +98,8 @@ json measureGarment(int repeats, const std::string& work) {
             cpu = (i + 1 < cpuMarks.size() ? cpuMarks[i + 1].second : cpuBuilt) - cpuMarks[i].second;
         out["stages"].push_back({{"stage", s.stage}, {"seconds", s.seconds}, {"cpu_seconds", cpu}});
     }
-    out["stages"].push_back({{"stage", "plies_glb"}, {"seconds", exportSeconds}, {"cpu_seconds", cpuTotal - (cpuBuilt - cpu0)}});
+    out["stages"].push_back(
+        {{"stage", "plies_glb"}, {"seconds", exportSeconds}, {"cpu_seconds", cpuTotal - (cpuBuilt - cpu0)}});
     out["total_seconds"] = total;
     out["cpu_seconds"] = cpuTotal;
     out["glb_bytes"] = fileBytes(path);
@@ -108,9 +109,9 @@ json measureGarment(int repeats, const std::string& work) {
     out["peak_bytes"] = peak;
     out["threads"] = std::thread::hardware_concurrency();
     fs::remove(path);
-    std::fprintf(stderr, "  garment: %zu cells, %zu yarn vertices, %zu ply vertices: %.2f s (CPU %.2f s), peak %.2f GB\n",
-                 scene.grid().cells.size(), scene.yarns().curves.pointCount(), es.vertices, total,
-                 cpuTotal, double(peak) / 1e9);
+    std::fprintf(
+        stderr, "  garment: %zu cells, %zu yarn vertices, %zu ply vertices: %.2f s (CPU %.2f s), peak %.2f GB\n",
+        scene.grid().cells.size(), scene.yarns().curves.pointCount(), es.vertices, total, cpuTotal, double(peak) / 1e9);
     out["materialized"] = measureMaterializedGarment(scene, path);
     return out;
 }

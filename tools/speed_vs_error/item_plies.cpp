@@ -81,10 +81,12 @@ PlyDeviation plyDeviation(const knit::Plies& plies, const AnalyticYarn& yarn, co
             for (int j = 0; j < 8; ++j) {
                 const dvec3 q = p0 + (j / 8.0) * (p1 - p0);
                 const double t0 = yarn.guess(q), w = yarn.bracket(len);
-                const double d2 = goldenMin([&](double t) {
-                    const dvec3 e = q - yarn.ply(o, ply, t);
-                    return glm::dot(e, e);
-                }, t0 - w, t0 + w);
+                const double d2 = goldenMin(
+                    [&](double t) {
+                        const dvec3 e = q - yarn.ply(o, ply, t);
+                        return glm::dot(e, e);
+                    },
+                    t0 - w, t0 + w);
                 d.maxDistance = std::max(d.maxDistance, std::sqrt(d2));
             }
         }
@@ -103,7 +105,7 @@ knit::MappedYarns oneYarn(const std::vector<dvec3>& points, bool closed) {
 
 json measurePlies() {
     json out;
-    const double R = 0.001;                      // yarn radius (metres); errors are reported in R
+    const double R = 0.001;  // yarn radius (metres); errors are reported in R
     knit::PlyOptions base;
     base.yarnRadius = R;
     const knit::PlyOptions resolved = knit::resolvePlyOptions(base);
@@ -189,17 +191,20 @@ json measurePlies() {
         for (size_t i = 0; i < spacings.size(); ++i) {
             const PlyDeviation a = plyDeviation(knit::makePlies(straightYarns[i], o), straight, ro);
             const PlyDeviation b = plyDeviation(knit::makePlies(circleYarns[i], o), circle, ro);
-            perSpacing.push_back({{"spacing_R", spacings[i]}, {"straight_R", a.maxDistance / R}, {"circle_R", b.maxDistance / R}});
+            perSpacing.push_back(
+                {{"spacing_R", spacings[i]}, {"straight_R", a.maxDistance / R}, {"circle_R", b.maxDistance / R}});
             ds.maxDistance = std::max(ds.maxDistance, a.maxDistance);
             dc.maxDistance = std::max(dc.maxDistance, b.maxDistance);
         }
         knit::PlyOptions so = o;
         so.yarnRadius = speed.yarnRadius();
         size_t plyVertices = 0;
-        const Timing t = timeRuns([&] {
-            const knit::Plies p = knit::makePlies(speed.yarns(), so);
-            plyVertices = p.curves.pointCount();
-        }, 3, 15, 1.0);
+        const Timing t = timeRuns(
+            [&] {
+                const knit::Plies p = knit::makePlies(speed.yarns(), so);
+                plyVertices = p.curves.pointCount();
+            },
+            3, 15, 1.0);
         const double yarnVertices = double(speedYarns.pointCount());
         json row;
         row["samples_per_turn"] = k;
@@ -207,7 +212,8 @@ json measurePlies() {
         row["circle_max_dev_R"] = dc.maxDistance / R;
         row["max_dev_R"] = std::max(ds.maxDistance, dc.maxDistance) / R;
         row["per_spacing"] = perSpacing;
-        row["ply_points_per_turn"] = double(plyVertices) / ro.count / (speedLength / (ro.pitch / R * speed.yarnRadius()));
+        row["ply_points_per_turn"] =
+            double(plyVertices) / ro.count / (speedLength / (ro.pitch / R * speed.yarnRadius()));
         row["ply_vertices"] = plyVertices;
         row["ply_vertices_per_yarn_vertex"] = double(plyVertices) / yarnVertices;
         row["seconds"] = timingJson(t);

@@ -70,7 +70,8 @@ Hausdorff tubeHausdorff(const knit::TubeMesh& m, const ExactTube& exact, int na,
         for (int j = 0; j < nb; ++j) {
             const double a = exact.torus ? double(i) / na : double(i) / (na - 1);
             const dvec3 p = exact.sample(a, double(j) / nb);
-            h.surfaceToMesh = std::max(h.surfaceToMesh, std::sqrt(tree.squared_distance(CgalK::Point_3(p.x, p.y, p.z))));
+            h.surfaceToMesh =
+                std::max(h.surfaceToMesh, std::sqrt(tree.squared_distance(CgalK::Point_3(p.x, p.y, p.z))));
         }
     return h;
 }
@@ -111,7 +112,8 @@ json measureTubeSides(const knit::Scene& scene, const std::string& work) {
         }
         torusCurve.addCurve(p.data(), p.size(), true);
     }
-    std::vector<dvec3> cylSeed(cylCurve.pointCount(), dvec3(0, 0, 1)), torusSeed(torusCurve.pointCount(), dvec3(0, 0, 1));
+    std::vector<dvec3> cylSeed(cylCurve.pointCount(), dvec3(0, 0, 1)),
+        torusSeed(torusCurve.pointCount(), dvec3(0, 0, 1));
     out["scene"] = sceneSummary(scene);
     out["ply_radius_in_yarn_radii"] = plyToYarn;
     out["torus_rc_in_r"] = torus.rc / r;
@@ -131,7 +133,8 @@ json measureTubeSides(const knit::Scene& scene, const std::string& work) {
         eo.what = knit::ExportWhat::Tubes;
         eo.sides = sides;
         knit::ExportStats es;
-        const Timing t = timeRunsWithSetup([&] { fs::remove(path); }, [&] { es = knit::exportScene(scene, eo); }, 3, 10, 1.5);
+        const Timing t =
+            timeRunsWithSetup([&] { fs::remove(path); }, [&] { es = knit::exportScene(scene, eo); }, 3, 10, 1.5);
         json row;
         row["sides"] = sides;
         row["cylinder_hausdorff_r"] = hc.value() / r;

@@ -7,11 +7,11 @@
 
 namespace sve {
 
-json measurePlies();                                                  // 1: ply resampling density
+json measurePlies();                                                       // 1: ply resampling density
 json measureTubeSides(const knit::Scene& scene, const std::string& work);  // 2: tube sides
 json measureDraco(const knit::Scene& scene, const std::string& work);      // 3: Draco position bits
-json measureBaseMesh();                                               // 4: base-mesh resolution
-json measureRender(const std::string& imageDir);                      // 5: render modes (render_check)
-json measureGarment(int repeats, const std::string& work);            // 6: garment scale
+json measureBaseMesh();                                                    // 4: base-mesh resolution
+json measureRender(const std::string& imageDir);                           // 5: render modes (render_check)
+json measureGarment(int repeats, const std::string& work);                 // 6: garment scale
 
 }  // namespace sve

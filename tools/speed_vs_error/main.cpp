@@ -50,12 +50,14 @@ int runTool(int argc, char** argv) {
     CLI::App* rep = app.add_subcommand("report", "Write the Markdown report, plot data and gnuplot script");
     rep->add_option("--results", ro.results, "Results JSON")->required();
     rep->add_option("--markdown", ro.markdown, "Markdown report to write")->required();
-    rep->add_option("--images", ro.images, "Folder for the SVG plots (the report links them relative to itself)")->required();
+    rep->add_option("--images", ro.images, "Folder for the SVG plots (the report links them relative to itself)")
+        ->required();
     rep->add_option("--data", ro.data, "Folder for plot data and plots.gp")->required();
     CLI11_PARSE(app, argc, argv);
     try {
         if (m->parsed()) {
-            mo.meta = {{"commit", commit}, {"dirty", dirty}, {"date", date}, {"command", command}, {"items", mo.items}, {"nproc", nproc}};
+            mo.meta = {{"commit", commit},   {"dirty", dirty},    {"date", date},
+                       {"command", command}, {"items", mo.items}, {"nproc", nproc}};
             sve::measure(mo);
         } else {
             sve::writeReport(ro);

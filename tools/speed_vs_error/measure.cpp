@@ -19,7 +19,9 @@ namespace sve {
 namespace {
 
 json machine() {
-    return {{"cpu", cpuModel()}, {"hardware_threads", std::thread::hardware_concurrency()}, {"memory_bytes", memTotalBytes()}};
+    return {{"cpu", cpuModel()},
+            {"hardware_threads", std::thread::hardware_concurrency()},
+            {"memory_bytes", memTotalBytes()}};
 }
 
 json defaults() {

@@ -46,7 +46,7 @@ struct Report {
     std::ostringstream md;
     std::ostringstream gp;
     std::string dataDir, imageDir, imageRel;
-    json summary = json::array();  // rows of the summary table
+    json summary = json::array();   // rows of the summary table
     double budgetR = std::nan("");  // faceting error of the default tube (yarn radii), from item 2
     int budgetSides = 0;
 
@@ -81,9 +81,9 @@ struct Report {
     void kneePlot(const std::string& data, const std::string& x, const std::string& title3, const std::string& title4,
                   const std::string& knee, const std::string& kx) {
         gp << "plot " << dat(data) << " using " << x << ":3 with linespoints pt 7 title '" << title3 << "', \\\n  "
-           << dat(data) << " using " << x << ":4 with linespoints pt 5 title '" << title4 << "', \\\n  "
-           << dat(data) << " using " << x << ":(($3>$4?$3:$4)):1 with labels offset 1.5,0.7 notitle, \\\n  "
-           << dat(knee) << " using " << kx << ":2 with points pt 6 ps 3 lw 2 lc rgb 'red' title 'knee'\n";
+           << dat(data) << " using " << x << ":4 with linespoints pt 5 title '" << title4 << "', \\\n  " << dat(data)
+           << " using " << x << ":(($3>$4?$3:$4)):1 with labels offset 1.5,0.7 notitle, \\\n  " << dat(knee)
+           << " using " << kx << ":2 with points pt 6 ps 3 lw 2 lc rgb 'red' title 'knee'\n";
     }
     std::string dat(const std::string& name) const { return "'" + (fs::path(dataDir) / name).string() + "'"; }
     std::string image(const std::string& file, const std::string& alt) const {

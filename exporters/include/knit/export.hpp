@@ -35,24 +35,24 @@ enum class ExportWhat { Yarns, Plies, Tubes };
 enum class TubeSource { Auto, Plies, Yarns };  // Auto: plies when the scene has any, else yarns
 
 struct ExportOptions {
-    std::string path;                    // output file; extension picks the format
+    std::string path;  // output file; extension picks the format
     ExportWhat what = ExportWhat::Plies;
     TubeSource tubesOf = TubeSource::Auto;
 
     // Tube meshes (what = Tubes).
-    int sides = 8;                       // ring vertices (>= 3; +1 seam duplicate for texturing)
-    bool caps = true;                    // close open curve ends
+    int sides = 8;     // ring vertices (>= 3; +1 seam duplicate for texturing)
+    bool caps = true;  // close open curve ends
 
     // glTF / GLB.
-    bool draco = false;                  // KHR_draco_mesh_compression (tubes only)
-    int dracoBits = 16;                  // position quantization bits (1..30; docs/speed-vs-error.md)
-    int dracoNormalBits = 10;            // normal / tangent quantization bits
-    int dracoTexcoordBits = 12;          // TEXCOORD_0 quantization bits
-    int dracoLevel = 7;                  // Draco compression level 0 (fast) .. 10 (small)
-    bool quantize = false;               // KHR_mesh_quantization (int16 positions, normals, uint16 UVs)
-    bool meshopt = false;                // EXT_meshopt_compression of tube views (needs KNIT_WITH_MESHOPT)
-    bool yarnColors = false;             // COLOR_0 per yarn (tubes) from a fixed palette
-    bool prettyJson = false;             // indent the glTF JSON
+    bool draco = false;          // KHR_draco_mesh_compression (tubes only)
+    int dracoBits = 16;          // position quantization bits (1..30; docs/speed-vs-error.md)
+    int dracoNormalBits = 10;    // normal / tangent quantization bits
+    int dracoTexcoordBits = 12;  // TEXCOORD_0 quantization bits
+    int dracoLevel = 7;          // Draco compression level 0 (fast) .. 10 (small)
+    bool quantize = false;       // KHR_mesh_quantization (int16 positions, normals, uint16 UVs)
+    bool meshopt = false;        // EXT_meshopt_compression of tube views (needs KNIT_WITH_MESHOPT)
+    bool yarnColors = false;     // COLOR_0 per yarn (tubes) from a fixed palette
+    bool prettyJson = false;     // indent the glTF JSON
 
     // Chunking: at most this many tube vertices (tubes) or curve points (curves) per chunk;
     // 0 = auto: 1M (2^20), or 256k (2^18) with Draco, whose encoder needs ~0.5 KB per vertex, or
@@ -70,14 +70,14 @@ struct ExportOptions {
 };
 
 struct ExportStats {
-    std::string format;     // "obj", "ply", "bcc", "pbrt", "gltf", "glb"
-    size_t curves = 0;      // curves exported (or swept)
-    size_t vertices = 0;    // curve points, or tube vertices
-    size_t triangles = 0;   // tube triangles (0 for curves)
-    size_t chunks = 0;      // chunks written (glTF nodes; streaming steps for other formats)
+    std::string format;    // "obj", "ply", "bcc", "pbrt", "gltf", "glb"
+    size_t curves = 0;     // curves exported (or swept)
+    size_t vertices = 0;   // curve points, or tube vertices
+    size_t triangles = 0;  // tube triangles (0 for curves)
+    size_t chunks = 0;     // chunks written (glTF nodes; streaming steps for other formats)
     size_t maxChunkVertices = 0;
-    size_t buffers = 0;     // glTF buffers written
-    size_t bytes = 0;       // total bytes of all files written
+    size_t buffers = 0;                // glTF buffers written
+    size_t bytes = 0;                  // total bytes of all files written
     size_t uncompressedMeshBytes = 0;  // tube attribute + index bytes before Draco/quantization
     size_t compressedMeshBytes = 0;    // the same data as written (Draco / quantized)
     size_t peakMemoryBytes = 0;        // process peak resident set (VmHWM) after export
@@ -122,8 +122,7 @@ void validateExportOptions(const ExportOptions& options);
 
 // Writes `path` through a temporary sibling file renamed on success; `write` fills the stream.
 // Throws knit::Error naming the path if it cannot be created or written.
-void writeFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write,
-                         bool binary);
+void writeFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write, bool binary);
 
 // Throws knit::Error unless the folder of `path` (".": no folder part) exists, is a folder and
 // is writable: "cannot write <what> '<path>': folder '<folder>' does not exist" (or "'<folder>' is

@@ -41,7 +41,7 @@ struct FrameRange {
 };
 
 struct FrameFile {
-    int number = 0;    // the frame number (from the file name)
+    int number = 0;  // the frame number (from the file name)
     std::string path;
 };
 
@@ -146,7 +146,7 @@ private:
 
     const Scene& rest_;
     AnimatorOptions options_;
-    PlyGenerator generator_;                // on the rest yarns: options, spacing, ply phases
+    PlyGenerator generator_;  // on the rest yarns: options, spacing, ply phases
     // Resampling layout per yarn (CSR over yarns): kept points and pieces per segment.
     std::vector<uint32_t> keptOffsets_{0}, kept_, pieceOffsets_{0}, pieces_;
     std::vector<uint32_t> centreOffsets_{0};  // resampled points per yarn (CSR)
@@ -163,7 +163,7 @@ private:
 // `restSegment` per yarn vertex, `yarnOfCentre` and `restArc` per centre point, `yarnRadius`.
 double maxYarnStretch(const Polylines& yarns, const std::vector<double>& restSegment);
 double minYarnDistance(const Polylines& centres, const std::vector<uint32_t>& yarnOfCentre,
-                       const std::vector<double>& restArc, const std::vector<double>& restLength,
-                       double yarnRadius, const AnimatorOptions& options, DistanceScratch& scratch);
+                       const std::vector<double>& restArc, const std::vector<double>& restLength, double yarnRadius,
+                       const AnimatorOptions& options, DistanceScratch& scratch);
 
 }  // namespace knit

@@ -61,10 +61,10 @@ BaseMesh parseGltfMesh(const std::string& bytes, const std::string& name, const 
 
 // Built-in procedural meshes; all have UVs in [0,1]^2 and are +Y up (glTF's convention).
 struct ProceduralMeshOptions {
-    int resU = 32, resV = 32;   // quads along u and v
-    double size = 0.5;          // plane / drape: side length (m)
-    double radius = 0.1;        // cylinder / sphere radius (m)
-    double height = 0.3;        // cylinder height (m)
+    int resU = 32, resV = 32;  // quads along u and v
+    double size = 0.5;         // plane / drape: side length (m)
+    double radius = 0.1;       // cylinder / sphere radius (m)
+    double height = 0.3;       // cylinder height (m)
 };
 BaseMesh makePlane(const ProceduralMeshOptions& o = {});     // y = 0, centred: uv = (x/size + 0.5, 0.5 - z/size)
 BaseMesh makeCylinder(const ProceduralMeshOptions& o = {});  // u around (seam at u = 0/1), v along +y
@@ -77,8 +77,7 @@ BaseMesh loadMeshFileOrName(const std::string& fileOrName, const ProceduralMeshO
 
 // Angle-weighted vertex normals on the 3D topology (continuous across UV seams). Vertices
 // without a non-degenerate face get (0, 0, 1).
-std::vector<glm::dvec3> vertexNormals(const std::vector<glm::dvec3>& positions,
-                                      const std::vector<glm::uvec3>& faces);
+std::vector<glm::dvec3> vertexNormals(const std::vector<glm::dvec3>& positions, const std::vector<glm::uvec3>& faces);
 
 // Metres per UV unit: area-weighted ratio of 3D to UV edge lengths, per axis direction
 // (x: along u, y: along v), from triangles with non-degenerate UVs.

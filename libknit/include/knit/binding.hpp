@@ -19,14 +19,14 @@
 namespace knit {
 
 struct BindOptions {
-    double yarnRadius = 0.001;   // object-space yarn radius (metres); tolerances scale with it
+    double yarnRadius = 0.001;  // object-space yarn radius (metres); tolerances scale with it
     // A point outside every triangle but within this UV distance of one (in units of the yarn
     // radius measured in UV) is clamped onto the closest triangle; farther out it is cut.
     double clampTolerance = 0.01;
     // Cut ends whose boundary crossings meet again in object space within this distance
     // (in yarn radii) with agreeing tangents are welded (UV seams, cylinder courses).
     double weldTolerance = 0.25;
-    double weldMinCos = 0.5;     // cosine between the continuing tangents required to weld
+    double weldMinCos = 0.5;  // cosine between the continuing tangents required to weld
     bool weld = true;
 };
 

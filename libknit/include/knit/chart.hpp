@@ -32,9 +32,9 @@ struct ChartCable {
 };
 
 struct Chart {
-    std::string name;             // file name or built-in name, for messages
-    int width = 0, height = 0;    // stitches per row, rows
-    std::vector<StitchKind> kind; // width * height, row-major, row 0 = bottom row
+    std::string name;              // file name or built-in name, for messages
+    int width = 0, height = 0;     // stitches per row, rows
+    std::vector<StitchKind> kind;  // width * height, row-major, row 0 = bottom row
     std::vector<ChartCable> cables;
     // Optional colour layer: one palette letter per stitch (same layout as `kind`); empty = none.
     std::vector<char> colour;

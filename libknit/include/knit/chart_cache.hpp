@@ -20,6 +20,7 @@ std::string chartCacheDir();
 
 // The relaxed pattern of the chart text (parsed with `source` in messages), from the cache or
 // relaxed now and stored. Throws knit::Error for a bad chart.
-Pattern cachedChartPattern(const std::string& chartText, const std::string& source, const ChartPatternOptions& options = {});
+Pattern cachedChartPattern(const std::string& chartText, const std::string& source,
+                           const ChartPatternOptions& options = {});
 
 }  // namespace knit

@@ -10,7 +10,7 @@
 namespace knit {
 
 struct ChartPatternOptions {
-    double radius = 0.001;      // yarn radius (metres)
+    double radius = 0.001;  // yarn radius (metres)
     int samplesPerStitch = 24;
     // The initial cell is a loose construction: the yarn's rest length is this fraction of it,
     // so relaxation pulls the stitches tight until the yarns touch (0.8 gives the HYLC
@@ -20,9 +20,9 @@ struct ChartPatternOptions {
 };
 
 struct ChartPattern {
-    ChartCell cell;        // the initial cell and its stitch record (vertex ranges stay valid)
-    RelaxResult relaxed;   // relaxed.pattern is the result
-    double seconds = 0;    // relaxation wall time
+    ChartCell cell;       // the initial cell and its stitch record (vertex ranges stay valid)
+    RelaxResult relaxed;  // relaxed.pattern is the result
+    double seconds = 0;   // relaxation wall time
 };
 
 // Throws knit::Error for bad options (radius, samples) or an invalid chart cell.

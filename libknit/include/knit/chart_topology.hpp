@@ -29,8 +29,8 @@
 namespace knit {
 
 struct ChartCellOptions {
-    double radius = 0.001;     // yarn radius (metres)
-    int samplesPerStitch = 24; // vertices per loop (>= 8)
+    double radius = 0.001;      // yarn radius (metres)
+    int samplesPerStitch = 24;  // vertices per loop (>= 8)
 };
 
 // The vertices of one loop: course `row`, vertices [first, first + count) of the pattern.
@@ -43,9 +43,9 @@ struct StitchLoop {
 };
 
 struct ChartCell {
-    Pattern pattern;                 // points, twist 0, periodic edges (as in .pyp)
-    int width = 0, height = 0;       // stitches per period (the chart's size)
-    std::vector<StitchLoop> loops;   // row-major, row 0 first
+    Pattern pattern;                             // points, twist 0, periodic edges (as in .pyp)
+    int width = 0, height = 0;                   // stitches per period (the chart's size)
+    std::vector<StitchLoop> loops;               // row-major, row 0 first
     std::vector<std::array<uint8_t, 3>> colour;  // per loop sRGB; empty without a colour layer
 
     const StitchLoop& loop(int row, int column) const { return loops[size_t(row) * size_t(width) + size_t(column)]; }

@@ -12,12 +12,12 @@ namespace knit {
 // one stitch per period, rows spaced h + rowGap apart. The model is scaled so that the yarn
 // radius (in model units `modelRadius`) becomes `radius` metres.
 struct StockinetteParams {
-    double a = 1.5;           // loop width (sideways bulge of the loop legs)
-    double h = 4.0;           // loop height
-    double d = 1.0;           // over/under depth (height above/below the mid-surface)
-    double rowGap = 0.5;      // extra row spacing: period y = h + rowGap
-    double modelRadius = 0.8; // yarn radius in model units (0.8 gives a snug fit)
-    double radius = 0.001;    // yarn radius in metres
+    double a = 1.5;            // loop width (sideways bulge of the loop legs)
+    double h = 4.0;            // loop height
+    double d = 1.0;            // over/under depth (height above/below the mid-surface)
+    double rowGap = 0.5;       // extra row spacing: period y = h + rowGap
+    double modelRadius = 0.8;  // yarn radius in model units (0.8 gives a snug fit)
+    double radius = 0.001;     // yarn radius in metres
     int samplesPerStitch = 24;
 };
 

@@ -21,17 +21,15 @@ namespace knit {
 struct PeriodicEdge {
     uint32_t v0 = 0, v1 = 0;
     int32_t dx = 0, dy = 0;
-    bool operator==(const PeriodicEdge& o) const {
-        return v0 == o.v0 && v1 == o.v1 && dx == o.dx && dy == o.dy;
-    }
+    bool operator==(const PeriodicEdge& o) const { return v0 == o.v0 && v1 == o.v1 && dx == o.dx && dy == o.dy; }
 };
 
 struct Pattern {
-    std::string name;               // file name or generator name, for messages
-    double px = 0, py = 0;          // period (metres)
-    double radius = 0;              // yarn radius (metres)
-    std::vector<glm::dvec3> points; // x, y in the plane, z = height above the mid-surface (metres)
-    std::vector<double> twist;      // per-vertex twist angle t (radians), same size as points
+    std::string name;                // file name or generator name, for messages
+    double px = 0, py = 0;           // period (metres)
+    double radius = 0;               // yarn radius (metres)
+    std::vector<glm::dvec3> points;  // x, y in the plane, z = height above the mid-surface (metres)
+    std::vector<double> twist;       // per-vertex twist angle t (radians), same size as points
     std::vector<PeriodicEdge> edges;
     // Stitch columns and rows in one period (the optional *GAUGE block "stitches rows"; a chart
     // records its size). Files without the block: one period is one stitch column by one row.

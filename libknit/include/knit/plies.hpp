@@ -24,9 +24,9 @@ struct PlyOptions {
     // centreRadius * sin(pi/n).
     double centerRadius = 0.0;
     double plyRadius = 0.0;
-    double pitch = 0.0;         // length of one full ply turn (metres); 0 = 6 yarn radii
+    double pitch = 0.0;  // length of one full ply turn (metres); 0 = 6 yarn radii
     Twist twist = Twist::S;
-    int samplesPerTurn = 12;    // resampling density of the yarn centreline (knee: docs/speed-vs-error.md)
+    int samplesPerTurn = 12;  // resampling density of the yarn centreline (knee: docs/speed-vs-error.md)
 };
 
 struct Plies {
@@ -35,7 +35,7 @@ struct Plies {
     std::vector<uint8_t> plyOfCurve;    // ply index i in [0, count)
     double plyRadius = 0.0;
     double centerRadius = 0.0;
-    double pitch = 0.0;                 // effective pitch of open yarns
+    double pitch = 0.0;  // effective pitch of open yarns
     // Per ply point: the unit radial direction from the yarn centre (the ply's outward normal
     // reference; a renderer derives the ply phase from it).
     std::vector<glm::dvec3> radial;

@@ -20,23 +20,23 @@
 namespace knit {
 
 struct RelaxOptions {
-    double stretch = 200;            // inextensibility weight
-    double bend = 1;                 // bending weight
-    double contact = 400;            // contact penalty weight
-    double contactDistance = 2.05;   // D, in yarn radii (the penalty settles slightly inside D)
-    double restLength = 1.0;         // rest length / input length, per edge
-    bool freePeriod = true;          // the period (px, py) is a variable
+    double stretch = 200;           // inextensibility weight
+    double bend = 1;                // bending weight
+    double contact = 400;           // contact penalty weight
+    double contactDistance = 2.05;  // D, in yarn radii (the penalty settles slightly inside D)
+    double restLength = 1.0;        // rest length / input length, per edge
+    bool freePeriod = true;         // the period (px, py) is a variable
     int maxIterations = 4000;
-    double gradientTolerance = 1e-4; // stop when the largest gradient entry is below this
-    double maxStep = 0.25;           // largest vertex move per step, in yarn radii
+    double gradientTolerance = 1e-4;  // stop when the largest gradient entry is below this
+    double maxStep = 0.25;            // largest vertex move per step, in yarn radii
 };
 
 struct RelaxResult {
-    Pattern pattern;           // the relaxed cell (twist 0), ready for writePyp
+    Pattern pattern;  // the relaxed cell (twist 0), ready for writePyp
     int iterations = 0;
-    bool converged = false;    // the gradient tolerance was reached
+    bool converged = false;  // the gradient tolerance was reached
     double energy = 0;
-    double minDistance = 0;    // smallest distance between distinct non-adjacent segments, in radii
+    double minDistance = 0;  // smallest distance between distinct non-adjacent segments, in radii
     // The smallest pair distance over every accepted step, in radii: above 0 means no yarn
     // passed through another (each step is also capped by the continuous collision bound).
     double closestApproach = 0;

@@ -26,12 +26,12 @@ struct SceneOptions {
     std::string mesh = "drape";           // file (.obj / .ply / .off / .gltf / .glb) or built-in name
     ProceduralMeshOptions meshOptions;    // for built-in meshes
     PlacementOptions placement;
-    BindOptions bind;                     // yarnRadius is set from the pattern and placement
+    BindOptions bind;  // yarnRadius is set from the pattern and placement
     // false: no plies in the Scene; an exporter can still generate them from yarns and
     // plyOptions while writing (knit/export.hpp), which needs far less memory.
     bool buildPlies = true;
-    PlyOptions plies;                     // yarnRadius is set from the pattern and placement
-    ProgressFn progress;                  // optional
+    PlyOptions plies;     // yarnRadius is set from the pattern and placement
+    ProgressFn progress;  // optional
     // Each big stage estimates its memory from its counts first and refuses (knit::Error naming
     // the option that drives it) when over this budget.
     MemoryBudget budget;
@@ -45,10 +45,10 @@ struct StageTime {
 // The intermediate results between the UV grid and the binding, for diagnostics and tests
 // (Scene::stages); exporters and renderers need none of them.
 struct SceneStages {
-    Tiling tiling;                    // tiles over every covered cell
-    std::vector<Tiling> chartTilings; // when UV charts overlap: one tiling per chart, which the
-                                      // yarns come from (empty otherwise)
-    UvYarns uvYarns;                  // the stitched yarns in UV space, before binding
+    Tiling tiling;                     // tiles over every covered cell
+    std::vector<Tiling> chartTilings;  // when UV charts overlap: one tiling per chart, which the
+                                       // yarns come from (empty otherwise)
+    UvYarns uvYarns;                   // the stitched yarns in UV space, before binding
 };
 
 // What a Scene made without the pipeline stages holds (Scene::fromParts): synthetic scenes for
@@ -122,10 +122,10 @@ struct SegmentStats {
 // `knit build` report besides the pattern, mesh and placement (apps/knit/report.cpp).
 struct SceneStats {
     size_t cells = 0;
-    size_t tiles = 0;       // the tiles the yarns come from (all chart tilings when charts overlap)
+    size_t tiles = 0;  // the tiles the yarns come from (all chart tilings when charts overlap)
     size_t yarns = 0;
     size_t tiledYarns = 0;
-    BindStats bind;         // closed loops, open ends, cut / clamped / boundary vertices, welds
+    BindStats bind;  // closed loops, open ends, cut / clamped / boundary vertices, welds
     size_t tiledVertices = 0;
     size_t yarnVertices = 0;
     size_t plyVertices = 0;

@@ -12,8 +12,8 @@
 namespace knit {
 
 struct TubeOptions {
-    int sides = 8;      // vertices per ring (>= 3)
-    bool caps = true;   // close open curve ends
+    int sides = 8;     // vertices per ring (>= 3)
+    bool caps = true;  // close open curve ends
     // Optional frame seed per curve point (indexed like curves.points): the surface normal for
     // yarns, the radial direction for plies. nullptr: frames.hpp's default seed.
     const std::vector<glm::dvec3>* seedNormals = nullptr;
@@ -36,13 +36,13 @@ struct TubeMesh {
 
 // Sweeps curves [firstCurve, lastCurve) of `curves` with constant `radius`. Chunked callers
 // (streaming export) pass sub-ranges.
-TubeMesh sweepTubes(const Polylines& curves, double radius, const TubeOptions& options,
-                    size_t firstCurve, size_t lastCurve, glm::dvec3 origin);
+TubeMesh sweepTubes(const Polylines& curves, double radius, const TubeOptions& options, size_t firstCurve,
+                    size_t lastCurve, glm::dvec3 origin);
 
 // Same, writing into `out` and reusing its storage (streaming export sweeps chunk after chunk
 // into one mesh, so the memory is allocated and touched once, not once per chunk).
-void sweepTubes(const Polylines& curves, double radius, const TubeOptions& options, size_t firstCurve,
-                size_t lastCurve, glm::dvec3 origin, TubeMesh& out);
+void sweepTubes(const Polylines& curves, double radius, const TubeOptions& options, size_t firstCurve, size_t lastCurve,
+                glm::dvec3 origin, TubeMesh& out);
 
 // Layout (see sweep.cpp): every ring stores sides + 1 vertices (the last one duplicates the
 // first position with u = 1, the texture seam); a closed curve of n points gets n + 1 rings (the

@@ -36,8 +36,8 @@ struct UvGrid {
     // at most chartCount pairs). With any, the pipeline tiles and binds each chart on its own
     // (knit/scene.hpp), so every chart gets its knit.
     std::vector<glm::uvec2> overlappingCharts;
-    std::vector<int8_t> faceOrientation;   // +1 counter-clockwise, -1 mirrored, 0 zero-area UV
-    size_t degenerateUvFaces = 0;          // zero-area UV triangles (never own a point)
+    std::vector<int8_t> faceOrientation;  // +1 counter-clockwise, -1 mirrored, 0 zero-area UV
+    size_t degenerateUvFaces = 0;         // zero-area UV triangles (never own a point)
 
     glm::ivec2 cellOf(glm::dvec2 uv) const;
     // -1 when the cell is empty or outside the bounding box.

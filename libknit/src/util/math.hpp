@@ -18,12 +18,9 @@ constexpr double kInvPi = 1.0 / kPi;
 inline glm::dvec3 anyPerpendicular(const glm::dvec3& t) {
     const glm::dvec3 a = glm::abs(t);
     glm::dvec3 axis(0.0);
-    if (a.x <= a.y && a.x <= a.z)
-        axis.x = 1.0;
-    else if (a.y <= a.z)
-        axis.y = 1.0;
-    else
-        axis.z = 1.0;
+    if (a.x <= a.y && a.x <= a.z) axis.x = 1.0;
+    else if (a.y <= a.z) axis.y = 1.0;
+    else axis.z = 1.0;
     return glm::normalize(axis - glm::dot(axis, t) * t);
 }
 

@@ -34,15 +34,15 @@ FiberTableOptions fiberTableOptions(const PlyMaterial& material, int plyCount);
 
 struct FiberTables {
     int size = 0;
-    double ringRadius = 0, fiberRadius = 0;  // in ply radii
+    double ringRadius = 0, fiberRadius = 0;        // in ply radii
     std::vector<float> delta, phase, fiberShadow;  // fiberShadow already remapped (S')
     std::vector<float> plyShadow;                  // remapped, indexed by ply phase
 
     struct Texel {
         double delta = 0, phase = 0, shadow = 1;
     };
-    Texel fiber(double u) const;      // nearest texel for delta/phase, linear for shadow
-    double ply(double u) const;       // linear, wraps
+    Texel fiber(double u) const;  // nearest texel for delta/phase, linear for shadow
+    double ply(double u) const;   // linear, wraps
     size_t bytes() const;
 };
 
@@ -60,7 +60,7 @@ struct PlySurfacePoint {
 
 struct ShadingFrame {
     glm::dvec3 x{1, 0, 0}, y{0, 1, 0}, z{0, 0, 1};  // x = fiber tangent, z = fiber normal
-    double shadow = 1.0;                             // S' for the body lobes
+    double shadow = 1.0;                            // S' for the body lobes
     glm::dvec3 toLocal(const glm::dvec3& w) const;
     glm::dvec3 toWorld(const glm::dvec3& w) const;
 };
@@ -68,7 +68,6 @@ struct ShadingFrame {
 // Fiber tangent t_f (helix of rate tau_f around the ply, at the visible fiber's centre), fiber normal
 // n_f = the ply normal (tangential part removed) rotated about t_f by delta; shadow = fiber S' times
 // ply S'. With material.fiberDetail off the frame is the ply frame and only the ply shadow applies.
-ShadingFrame plyShadingFrame(const PlySurfacePoint& point, const PlyMaterial& material,
-                             const FiberTables& tables);
+ShadingFrame plyShadingFrame(const PlySurfacePoint& point, const PlyMaterial& material, const FiberTables& tables);
 
 }  // namespace knit

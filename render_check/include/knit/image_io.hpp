@@ -21,7 +21,7 @@ void writeExr(const std::string& path, const Image& image);  // linear float32 R
 // standard normal: the most sensitive test for a global brightness difference.
 struct ImageComparison {
     int blocks = 0;
-    int testedBlocks = 0;          // blocks with a non-zero standard error (chi-square dof)
+    int testedBlocks = 0;  // blocks with a non-zero standard error (chi-square dof)
     int outliers = 0;
     double maxZ = 0;
     double chiSquare = 0;          // sum over blocks of z^2

@@ -23,15 +23,15 @@ struct Scene;
 // p(n-1), p0, ..., p(n-1), p0, p1. Consecutive repeated points are dropped.
 struct PlyGeometry {
     glm::dvec3 origin{0.0};
-    double unit = 1.0;                    // metres per scene unit (= the ply radius)
-    float radius = 0;                     // in scene units (1)
-    std::vector<glm::vec4> points;        // (x, y, z, radius), scene units relative to origin
-    std::vector<glm::vec3> radial;        // unit direction from the yarn centre, per point
-    std::vector<float> arc;               // fiber parameter v: arc length along the ply (ply radii), per
-                                          // point; rescaled on closed curves (see buildPlyGeometry)
-    std::vector<uint32_t> segments;       // first point of each segment
-    std::vector<uint8_t> flags;           // per segment: bit 0 left neighbour, bit 1 right neighbour
-    std::vector<uint32_t> curveOfSegment; // source ply curve
+    double unit = 1.0;                       // metres per scene unit (= the ply radius)
+    float radius = 0;                        // in scene units (1)
+    std::vector<glm::vec4> points;           // (x, y, z, radius), scene units relative to origin
+    std::vector<glm::vec3> radial;           // unit direction from the yarn centre, per point
+    std::vector<float> arc;                  // fiber parameter v: arc length along the ply (ply radii), per
+                                             // point; rescaled on closed curves (see buildPlyGeometry)
+    std::vector<uint32_t> segments;          // first point of each segment
+    std::vector<uint8_t> flags;              // per segment: bit 0 left neighbour, bit 1 right neighbour
+    std::vector<uint32_t> curveOfSegment;    // source ply curve
     std::vector<uint32_t> curveSegments{0};  // per source curve: range into segments
 
     size_t segmentCount() const { return segments.size(); }

@@ -13,22 +13,22 @@ namespace knit {
 using Rgb = glm::dvec3;
 
 struct PlyMaterial {
-    double eta = 1.5;           // fiber index of refraction (dielectric Fresnel of R / TT)
-    double alphaAlong = 0.4;    // R roughness along the fiber (local x)
-    double alphaAcross = 0.4;   // R roughness across the fiber (local y)
-    Rgb kR{0.3};                // R weight
-    double alphaTT = 0.9;       // TT roughness (isotropic)
-    Rgb kTT{0.1};               // TT weight
+    double eta = 1.5;                  // fiber index of refraction (dielectric Fresnel of R / TT)
+    double alphaAlong = 0.4;           // R roughness along the fiber (local x)
+    double alphaAcross = 0.4;          // R roughness across the fiber (local y)
+    Rgb kR{0.3};                       // R weight
+    double alphaTT = 0.9;              // TT roughness (isotropic)
+    Rgb kTT{0.1};                      // TT weight
     Rgb bodyAlbedo{0.55, 0.32, 0.18};  // rho_B: body colour (reflection + transmission)
     double reflectFraction = 0.5;      // r: share of the body lobe reflected (1 - r transmitted)
     // Fiber detail (1D tables built at start-up, see fiber_tables.hpp).
-    bool fiberDetail = true;    // perturb the shading frame by the fiber tables
-    int fiberCount = 40;        // fibers on the ring of one ply cross-section
-    double fiberTwist = -1.5;   // tau_f: fiber helix rate, radians per ply radius along the ply
+    bool fiberDetail = true;        // perturb the shading frame by the fiber tables
+    int fiberCount = 40;            // fibers on the ring of one ply cross-section
+    double fiberTwist = -1.5;       // tau_f: fiber helix rate, radians per ply radius along the ply
     double fiberShadowFloor = 0.4;  // thr: S' = S (1 - thr) + thr for the fiber-level shadow
     double plyShadowFloor = 0.3;    // same for the ply-level shadow (plies around the yarn)
-    int tableSize = 1000;       // texels per 1D table
-    int aoRays = 1000;          // 2D rays per texel for the shadow (AO) tables
+    int tableSize = 1000;           // texels per 1D table
+    int aoRays = 1000;              // 2D rays per texel for the shadow (AO) tables
 };
 
 // Throws knit::Error naming the field when a value is out of range or not finite, or when the

@@ -31,11 +31,11 @@ struct RenderOptions {
     GeometryMode mode = GeometryMode::Curves;
     int spp = 16;
     int width = 512, height = 384;
-    std::string output;            // PNG (sRGB); empty = no file
-    std::string exr;               // linear EXR; empty = none
+    std::string output;  // PNG (sRGB); empty = no file
+    std::string exr;     // linear EXR; empty = none
     uint64_t seed = 1;
-    PlyMaterial material;          // base material
-    std::string materialFile;      // JSON material (fields override `material`)
+    PlyMaterial material;      // base material
+    std::string materialFile;  // JSON material (fields override `material`)
     // Explicit per-field overrides applied after the file (field -> 1 or 3 numbers).
     std::map<std::string, std::vector<double>> materialOverrides;
     int maxDepth = 16;
@@ -45,7 +45,7 @@ struct RenderOptions {
     bool baseMesh = false;
     double baseAlbedo = 0.5;
     int tubeSides = 8;
-    bool progress = true;          // progress on stderr for renders of more than ~1e6 samples
+    bool progress = true;  // progress on stderr for renders of more than ~1e6 samples
 };
 
 struct RenderResult {
@@ -53,16 +53,16 @@ struct RenderResult {
     GeometryMode mode = GeometryMode::Curves;
     LightPlacement light = LightPlacement::Front;
     int spp = 0;
-    PlyMaterial material;          // as resolved and validated
+    PlyMaterial material;  // as resolved and validated
     double tableSeconds = 0, buildSeconds = 0, renderSeconds = 0;
     uint64_t rays = 0;
     double raysPerSecond = 0;
     TraceMemory memory;
     size_t tableBytes = 0;
-    int64_t peakMemoryBytes = 0;   // process peak resident set size
+    int64_t peakMemoryBytes = 0;  // process peak resident set size
     size_t segments = 0, primitives = 0;
-    Camera camera;                 // the view used (world space)
-    RectLight areaLight;           // the area light used (world space)
+    Camera camera;        // the view used (world space)
+    RectLight areaLight;  // the area light used (world space)
     std::vector<std::string> written;
 };
 

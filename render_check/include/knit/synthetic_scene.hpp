@@ -11,16 +11,16 @@
 namespace knit {
 
 struct SyntheticSceneOptions {
-    int courses = 4;              // yarns along x, evenly spread over y
-    double size = 0.01;           // side of the square base plane (m), uv = (x, y) / size
-    double yarnRadius = 0.0005;   // m
+    int courses = 4;             // yarns along x, evenly spread over y
+    double size = 0.01;          // side of the square base plane (m), uv = (x, y) / size
+    double yarnRadius = 0.0005;  // m
     int plyCount = 2;
-    double pitch = 0;             // ply turn length; 0 = 6 yarn radii
+    double pitch = 0;  // ply turn length; 0 = 6 yarn radii
     int samplesPerTurn = 16;
-    double waveAmplitude = 0;     // yarn height z = A sin(2 pi x / waveLength + course * pi)
+    double waveAmplitude = 0;  // yarn height z = A sin(2 pi x / waveLength + course * pi)
     double waveLength = 0.005;
-    double cellSize = 0.125;      // UV size of a grid cell
-    glm::dvec3 offset{0.0};       // translation of the whole scene (precision far from the origin)
+    double cellSize = 0.125;  // UV size of a grid cell
+    glm::dvec3 offset{0.0};   // translation of the whole scene (precision far from the origin)
 };
 
 Scene makeSyntheticPlyScene(const SyntheticSceneOptions& options);
