@@ -138,6 +138,7 @@ nlohmann::json animateReport(double bindSeconds, const std::vector<FrameRecord>&
                              const Animator& animator) {
     const bool stats = animator.options().stats;
     std::vector<double> t;
+    t.reserve(frames.size());
     for (const FrameRecord& f : frames) t.push_back(f.seconds);
     std::sort(t.begin(), t.end());
     nlohmann::json report = {{"bindSeconds", bindSeconds},

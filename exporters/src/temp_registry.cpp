@@ -2,10 +2,10 @@
 // temp_registry.hpp). The handler only uses async-signal-safe calls: unlink, sigaction, raise.
 #include "temp_registry.hpp"
 
-#include <signal.h>
 #include <unistd.h>
 
 #include <atomic>
+#include <csignal>
 #include <cstring>
 #include <mutex>
 

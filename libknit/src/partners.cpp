@@ -81,6 +81,7 @@ Pattern patternFromCurves(const CurveCell& cell, const PartnerOptions& options) 
     std::vector<Candidate> candidates;
     const int shifts[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
     std::vector<glm::dvec3> endPoints;
+    endPoints.reserve(ends.size());
     for (const EndRef& e : ends) endPoints.emplace_back(glm::dvec2(p.points[e.vertex]), 0.0);
     // The search radius is bounded by 4 periods (a partner is in a neighbouring cell), so an absurd
     //    tolerance cannot make every pair a candidate.

@@ -256,7 +256,8 @@ RelaxResult relaxYarn(const Pattern& initial, const RelaxOptions& options) {
                                 collisionFreeStep(pb, d, dmin, options.contactDistance + skin)});
         double eNew = e;
         bool accepted = false;
-        for (int k = 0; k < 40 && !accepted; ++k, step *= 0.5) {
+        for (int k = 0; k < 40 && !accepted; ++k) {
+            if (k > 0) step *= 0.5;
             vNew = v + step * d;
             eNew = energy(pb, pairs, vNew, gNew, &dminNew);
             accepted = eNew <= e + 1e-4 * step * d.dot(g);

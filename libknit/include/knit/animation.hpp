@@ -52,7 +52,7 @@ struct FrameFile {
 // and the file. Throws knit::Error (bad pattern, empty folder, no frames in the range).
 class FrameSequence {
 public:
-    FrameSequence(const std::string& patternOrFolder, const FrameRange& range = {});
+    explicit FrameSequence(const std::string& patternOrFolder, const FrameRange& range = {});
 
     size_t size() const { return frames_.size(); }
     const FrameFile& frame(size_t i) const { return frames_[i]; }

@@ -15,7 +15,7 @@
 
 namespace knit {
 
-struct Scene;
+class Scene;
 
 // Per curve the points are stored "expanded" so that every segment is (points[s], points[s+1]) and
 // its neighbours, when they exist, start at points[s-1] / end at points[s+2] (Embree's linear

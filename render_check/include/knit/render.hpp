@@ -20,7 +20,7 @@
 
 namespace knit {
 
-struct Scene;
+class Scene;
 
 // Where the area light is: on the camera side (reflection) or behind the cloth (transmission).
 enum class LightPlacement { Front, Back };
