@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
+#include <limits>
 #include <utility>
 
 #include "knit/error.hpp"
@@ -84,6 +86,7 @@ private:
         detail::checkGridBudget(s_.mesh_, s_.placement_, physicalSize(), options_.budget);
         UvGridOptions gridOptions;
         gridOptions.cellSize = s_.placement_.cellSize();
+        gridOptions.maxEntries = std::numeric_limits<uint64_t>::max();  // bounded by the memory budget above
         s_.grid_ = buildUvGrid(s_.mesh_, gridOptions);
     }
 

@@ -8,6 +8,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "knit/uv_grid.hpp"
+
 namespace knit::detail {
 namespace {
 
@@ -38,6 +40,11 @@ void checkGridBudget(const BaseMesh& mesh, const PatternPlacement& placement, bo
     const glm::dvec2 span = (hi - lo) * placement.repeats + 1.0;
     const double cells = std::floor(span.x + 1) * std::floor(span.y + 1);
     budget.require(cells * kBytesPerCell, count(cells, "pattern cells of the UV grid"), repeatsOption(physicalSize));
+    // Each triangle is listed in every cell it touches: many more entries than cells when the
+    // triangles are far larger than a cell or stacked on each other.
+    const double entries = double(uvGridEntryBound(mesh, placement.cellSize()));
+    budget.require(entries * kBytesPerGridEntry, count(entries, "triangle-cell entries of the UV grid"),
+                   repeatsOption(physicalSize));
 }
 
 void checkTilingBudget(const Pattern& pattern, size_t coveredCells, glm::ivec2 cellSpan, const TileReach& reach,

@@ -13,6 +13,7 @@ namespace knit::detail {
 // Bytes the stages keep per element (their vectors plus the working copies while they run);
 // deliberately generous: an estimate that refuses a bit early beats swapping.
 constexpr double kBytesPerCell = 64;         // UV grid cell, its triangle list share, tile mark
+constexpr double kBytesPerGridEntry = 20;    // (cell, triangle) pair while sorting + its list entry
 constexpr double kBytesPerYarnVertex = 160;  // UV yarns, binding, mapped yarns and normals
 constexpr double kBytesPerPlyPoint = 48;     // ply point and radial direction
 

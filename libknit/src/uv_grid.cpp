@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <sstream>
 
@@ -162,6 +163,21 @@ int32_t UvGrid::slotOf(glm::ivec2 cell) const {
     return cellSlot[size_t(r.y) * size_t(dims.x) + size_t(r.x)];
 }
 
+uint64_t uvGridEntryBound(const BaseMesh& mesh, glm::dvec2 cellSize) {
+    UvGrid cells;
+    cells.cellSize = cellSize;
+    uint64_t total = 0;
+    for (const glm::uvec3& t : mesh.faceUvs) {
+        const glm::dvec2 a = mesh.uvs[t.x], b = mesh.uvs[t.y], c = mesh.uvs[t.z];
+        if (orientationSign(a, b, c) == 0) continue;  // never listed
+        const glm::ivec2 c0 = cells.cellOf(glm::min(a, glm::min(b, c)));
+        const glm::ivec2 c1 = cells.cellOf(glm::max(a, glm::max(b, c)));
+        const uint64_t n = uint64_t(int64_t(c1.x) - c0.x + 1) * uint64_t(int64_t(c1.y) - c0.y + 1);
+        total = n > std::numeric_limits<uint64_t>::max() - total ? std::numeric_limits<uint64_t>::max() : total + n;
+    }
+    return total;
+}
+
 UvGrid buildUvGrid(const BaseMesh& mesh, const UvGridOptions& options) {
     if (!util::positiveFinite(options.cellSize)) throw Error("UV grid: cell size must be positive and finite");
     UvGrid grid;
@@ -194,11 +210,21 @@ UvGrid buildUvGrid(const BaseMesh& mesh, const UvGridOptions& options) {
     }
     grid.minCell = lo;
     grid.dims = hi - lo + 1;
+    const uint64_t entryBound = uvGridEntryBound(mesh, options.cellSize);
+    if (entryBound > options.maxEntries) {
+        std::ostringstream msg;
+        msg << mesh.name << ": its UV triangles would be listed in up to " << entryBound
+            << " pattern cells in total (limit " << options.maxEntries
+            << "): triangles far larger than a pattern cell, or stacked on each other; use fewer repeats or a finer "
+               "mesh";
+        throw Error(msg.str());
+    }
 
     // 2. Conservative triangle-cell overlap: candidate cells from the UV box (cellOf is monotone,
     //    so every point of the triangle maps into this range), then a separating-axis test
     //    against the cell box grown by eps, so rounding can only add cells, never drop one.
     std::vector<std::pair<uint64_t, uint32_t>> cellFace;  // (linear cell, face)
+    cellFace.reserve(entryBound);
     for (size_t f = 0; f < nf; ++f) {
         if (grid.faceOrientation[f] == 0) continue;
         const glm::uvec3 t = mesh.faceUvs[f];

@@ -194,5 +194,47 @@ TEST(UvGrid, absurdRepeatsAreRefused) {
     EXPECT_THROW(buildUvGrid(m, o), Error);
 }
 
+// Found by the OFF fuzzer: a 40 KB file of big UV triangles stacked on each other asked for
+// 10^8 (cell, triangle) entries (gigabytes, minutes) while its cell count was harmless.
+TEST(UvGrid, stackedHugeTrianglesAreRefusedBeforeListingThem) {
+    BaseMesh m;
+    m.name = "stacked.off";
+    m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    m.uvs = {{0, 0}, {1, 0}, {0, 1}};
+    for (int k = 0; k < 1000; ++k) {
+        m.faces.push_back({0, 1, 2});
+        m.faceUvs.push_back({0, 1, 2});
+    }
+    // 100 x 100 cells per triangle's box: the bound counts every face's box.
+    EXPECT_EQ(uvGridEntryBound(m, glm::dvec2(0.01 + 1e-12)), 1000u * 100u * 100u);
+    UvGridOptions o;
+    o.cellSize = glm::dvec2(0.01 + 1e-12);
+    o.maxEntries = 1000u * 100u * 100u - 1;
+    try {
+        buildUvGrid(m, o);
+        FAIL() << "expected a refusal";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("stacked.off"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("10000000"), std::string::npos) << e.what();
+    }
+    o.maxEntries = 1000u * 100u * 100u;  // at the bound it is built, each face in its ~half of the box
+    const UvGrid g = buildUvGrid(m, o);
+    EXPECT_GT(g.triangles.size(), 1000u * 100u * 50u);
+    EXPECT_LE(g.triangles.size(), 1000u * 100u * 100u);
+}
+
+// A zero-area UV triangle is never listed, so it adds nothing to the bound.
+TEST(UvGrid, entryBoundSkipsZeroAreaTriangles) {
+    BaseMesh m = test::planeMesh(test::Triangulation::Regular, 2);
+    const uint64_t before = uvGridEntryBound(m, glm::dvec2(0.25));
+    const uint32_t base = uint32_t(m.uvs.size());
+    m.uvs.push_back({0.0, 0.0});
+    m.uvs.push_back({0.5, 0.5});
+    m.uvs.push_back({1.0, 1.0});
+    m.faces.push_back({0, 1, 2});
+    m.faceUvs.push_back({base, base + 1, base + 2});
+    EXPECT_EQ(uvGridEntryBound(m, glm::dvec2(0.25)), before);
+}
+
 }  // namespace
 }  // namespace knit

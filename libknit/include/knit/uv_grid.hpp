@@ -13,6 +13,10 @@ struct UvGridOptions {
     glm::dvec2 cellSize{1.0 / 32.0};  // UV size of one cell (= one pattern period)
     // Refuse grids whose bounding box holds more cells than this (absurd repeats).
     uint64_t maxCells = uint64_t(1) << 28;
+    // Refuse grids whose triangle lists would hold more (cell, triangle) entries than this:
+    // triangles far larger than a cell, stacked on each other, list each triangle in every cell
+    // of its box (a 40 KB file can ask for 10^8 entries). See uvGridEntryBound.
+    uint64_t maxEntries = uint64_t(1) << 26;
 };
 
 // Cells are indexed (i, j) with cell (i, j) = [i*cu, (i+1)*cu) x [j*cv, (j+1)*cv).
@@ -45,6 +49,11 @@ struct UvGrid {
 };
 
 UvGrid buildUvGrid(const BaseMesh& mesh, const UvGridOptions& options);
+
+// Upper bound of the (cell, triangle) entries buildUvGrid lists for this cell size: the cells
+// of each non-degenerate UV triangle's bounding box, summed (saturates at UINT64_MAX). O(faces),
+// no allocation: the size estimate before the grid is built.
+uint64_t uvGridEntryBound(const BaseMesh& mesh, glm::dvec2 cellSize);
 
 enum class LocateStatus : uint8_t { Inside, Clamped, Outside };
 struct LocateResult {
