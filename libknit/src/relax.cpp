@@ -38,6 +38,7 @@ struct Problem {
     RelaxOptions opt;
     mutable std::vector<PairForce> scratch;  // per-pair forces of the last evaluation
     mutable int evaluations = 0;             // energy evaluations (for RelaxResult)
+    bool exactDistances = false;             // pairs beyond D report their true distance too
 };
 
 glm::dvec3 vertex(const Vec& v, size_t i) { return {v[3 * i], v[3 * i + 1], v[3 * i + 2]}; }
@@ -93,6 +94,15 @@ PairForce pairForce(const Problem& pb, const Pair& pr, const Vec& v) {
     const glm::dvec3 p0 = vertex(v, s.a), p1 = at(v, pb.n, s.b, s.dx, s.dy);
     const glm::dvec3 q0 = at(v, pb.n, t.a, pr.ix, pr.iy), q1 = at(v, pb.n, t.b, t.dx + pr.ix, t.dy + pr.iy);
     PairForce f;
+    // Far pairs (most of the list: it reaches a skin beyond D) end on their bounding spheres; their
+    // distance is then a lower bound above D, which is all the step bound needs.
+    if (!pb.exactDistances) {
+        const double apart = glm::length((p0 + p1) - (q0 + q1)) - glm::length(p1 - p0) - glm::length(q1 - q0);
+        if (apart >= 2 * D) {
+            f.dist = 0.5 * apart;
+            return f;
+        }
+    }
     relax::closestParameters(p0, p1, q0, q1, f.a, f.b);
     const glm::dvec3 d = (p0 + f.a * (p1 - p0)) - (q0 + f.b * (q1 - q0));
     f.dist = glm::length(d);
@@ -152,6 +162,8 @@ Problem setUp(const Pattern& p, const RelaxOptions& opt, Vec& v) {
     }
     if (!(opt.restLength > 0) || !(opt.contactDistance > 0) || opt.maxIterations < 0)
         throw Error("relax: restLength and contactDistance must be positive, maxIterations >= 0");
+    if (!(opt.relativeGradientTolerance >= 0) || !(opt.relativeEnergyTolerance >= 0) || opt.energyWindow < 0)
+        throw Error("relax: relativeGradientTolerance, relativeEnergyTolerance and energyWindow must be >= 0");
     if (p.edges.size() != pb.n) throw Error(p.name + ": relaxation needs closed yarns (every vertex starts one edge)");
     pb.yarns = relax::indexYarns(p, pb.segs);
     for (int32_t len : pb.yarns.length)
@@ -190,13 +202,41 @@ double largestMove(const Problem& pb, const Vec& d) {
     return std::max({m, std::abs(d[Eigen::Index(3 * pb.n)]), std::abs(d[Eigen::Index(3 * pb.n + 1)])});
 }
 
+// How much closer two points of the cell can have come since the pair list was built at `built`,
+// for points that were farther apart than `cutoff` then. The period scales the cell by A =
+// diag(sx, sy, 1) (every periodic image with it) and each vertex moved by at most m away from
+// where A takes it: two points d0 > cutoff apart are now at least min(sx, sy, 1) d0 - 2 m apart.
+// Measured against the scaled cell, a cell that only shrinks or grows (the period settling)
+// does not force rebuilds.
+double driftSince(const Problem& pb, const Vec& built, const Vec& v, double cutoff) {
+    const Eigen::Index px = Eigen::Index(3 * pb.n), py = px + 1;
+    const glm::dvec3 scale(v[px] / built[px], v[py] / built[py], 1.0);
+    double m = 0;
+    for (size_t i = 0; i < pb.n; ++i) m = std::max(m, glm::length(vertex(v, i) - scale * vertex(built, i)));
+    return 2 * m + cutoff * std::max(0.0, 1.0 - std::min(scale.x, scale.y));
+}
+
 // Continuous collision bound: with M = largestMove, a point of a segment moves by at most 3 M in
 // a step (its vertices, plus the period up to twice for an image's end), a point of the other
 // segment of a pair by at most 5 M (its image offset adds up to two periods more), so two
-// segments dmin apart cannot meet while 8 M stays below dmin. Pairs outside the list are
-// farther apart than the cutoff (D + skin), so dmin counts as at most the cutoff.
+// segments dmin apart cannot meet while 8 M stays below dmin. Pairs outside the list were
+// farther apart than the cutoff (D + skin) when it was built and came closer by at most the
+// drift since, so dmin counts as at most cutoff - drift.
 double collisionFreeStep(const Problem& pb, const Vec& d, double dmin, double cutoff) {
     return 0.9 * std::min(dmin, cutoff) / std::max(8.0 * largestMove(pb, d), 1e-300);
+}
+
+// Stop: the largest gradient entry is below the absolute tolerance or below the relative one
+// times its value at the start, or the energy fell by less than relativeEnergyTolerance times
+// the whole decrease so far over the last energyWindow iterations (the stretched, slowly sliding
+// yarn of a large cell otherwise creeps on to the iteration cap).
+bool converged(const RelaxOptions& o, const Vec& g, double gStart, double eStart, const std::vector<double>& history) {
+    const double gNow = g.lpNorm<Eigen::Infinity>();
+    if (gNow < o.gradientTolerance || gNow <= o.relativeGradientTolerance * gStart) return true;
+    const size_t w = size_t(std::max(o.energyWindow, 1));
+    if (history.size() <= w) return false;
+    const double eNow = history.back(), eThen = history[history.size() - 1 - w];
+    return eThen - eNow <= o.relativeEnergyTolerance * (eStart - eNow);
 }
 
 // The L-BFGS two-loop recursion: direction = -H g.
@@ -230,16 +270,19 @@ RelaxResult relaxYarn(const Pattern& initial, const RelaxOptions& options) {
     const Problem pb = setUp(initial, options, v);
     const double skin = 1.0;
     std::vector<Pair> pairs = pairsOf(pb, v, skin);
-    double moved = 0;  // since the pair list was built
+    Vec built = v;     // the state the pair list was built at
+    double drift = 0;  // driftSince(built)
     Vec g, gNew, vNew;
     double dmin = 0, dminNew = 0;  // smallest pair distance now and after the trial step
     double e = energy(pb, pairs, v, g, &dmin);
     std::vector<Vec> S, Y;
     RelaxResult result;
     result.closestApproach = dmin;
+    const double gStart = g.lpNorm<Eigen::Infinity>(), eStart = e;
+    std::vector<double> history;  // energy after each iteration
     int it = 0;
     for (; it < options.maxIterations; ++it) {
-        if (g.lpNorm<Eigen::Infinity>() < options.gradientTolerance) {
+        if (converged(options, g, gStart, eStart, history)) {
             result.converged = true;
             break;
         }
@@ -253,7 +296,7 @@ RelaxResult relaxYarn(const Pattern& initial, const RelaxOptions& options) {
         // Step 3: backtracking line search from a step capped at maxStep per vertex and by the
         // continuous collision bound (no two segments can pass through each other).
         double step = std::min({1.0, options.maxStep / std::max(largestMove(pb, d), 1e-300),
-                                collisionFreeStep(pb, d, dmin, options.contactDistance + skin)});
+                                collisionFreeStep(pb, d, dmin, options.contactDistance + skin - drift)});
         double eNew = e;
         bool accepted = false;
         for (int k = 0; k < 40 && !accepted; ++k) {
@@ -268,7 +311,8 @@ RelaxResult relaxYarn(const Pattern& initial, const RelaxOptions& options) {
             Y.clear();
             continue;
         }
-        // Step 4: memory update; the pair list is rebuilt after moves of half the skin.
+        // Step 4: memory update; the pair list is rebuilt when two points may have come closer by
+        // half the skin since it was built.
         S.push_back(vNew - v);
         Y.push_back(gNew - g);
         if (Y.back().dot(S.back()) <= 1e-300) {
@@ -279,16 +323,18 @@ RelaxResult relaxYarn(const Pattern& initial, const RelaxOptions& options) {
             S.erase(S.begin());
             Y.erase(Y.begin());
         }
-        moved += 2 * largestMove(pb, vNew - v);
         v.swap(vNew);
         g.swap(gNew);
         e = eNew;
+        history.push_back(e);
         dmin = dminNew;
         result.closestApproach = std::min(result.closestApproach, dmin);
-        if (moved > 0.5 * skin) {
+        drift = driftSince(pb, built, v, options.contactDistance + skin);
+        if (drift > 0.5 * skin) {
             pairs = pairsOf(pb, v, skin);
             ++result.pairRebuilds;
-            moved = 0;
+            built = v;
+            drift = 0;
             e = energy(pb, pairs, v, g, &dmin);
         }
     }
@@ -302,7 +348,8 @@ RelaxResult relaxYarn(const Pattern& initial, const RelaxOptions& options) {
 
 double minYarnDistance(const Pattern& pattern) {
     Vec v;
-    const Problem pb = setUp(pattern, RelaxOptions{}, v);
+    Problem pb = setUp(pattern, RelaxOptions{}, v);
+    pb.exactDistances = true;
     const std::vector<Pair> pairs = pairsOf(pb, v, 6.0);
     double m = std::numeric_limits<double>::infinity();
     Vec g;

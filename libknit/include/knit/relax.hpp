@@ -27,14 +27,19 @@ struct RelaxOptions {
     double restLength = 1.0;        // rest length / input length, per edge
     bool freePeriod = true;         // the period (px, py) is a variable
     int maxIterations = 4000;
-    double gradientTolerance = 1e-4;  // stop when the largest gradient entry is below this
-    double maxStep = 0.25;            // largest vertex move per step, in yarn radii
+    double gradientTolerance = 1e-4;          // stop when the largest gradient entry is below this,
+    double relativeGradientTolerance = 1e-6;  // or below this times its value at the start,
+    // or when the energy fell by at most relativeEnergyTolerance x (start energy - energy now)
+    // over the last energyWindow iterations (0 turns this test off).
+    double relativeEnergyTolerance = 1e-6;
+    int energyWindow = 500;
+    double maxStep = 0.25;  // largest vertex move per step, in yarn radii
 };
 
 struct RelaxResult {
     Pattern pattern;  // the relaxed cell (twist 0), ready for writePyp
     int iterations = 0;
-    bool converged = false;  // the gradient tolerance was reached
+    bool converged = false;  // a stop criterion was met (not the iteration cap)
     double energy = 0;
     double minDistance = 0;  // smallest distance between distinct non-adjacent segments, in radii
     // The smallest pair distance over every accepted step, in radii: above 0 means no yarn
