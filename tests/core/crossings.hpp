@@ -4,7 +4,7 @@
 // can check the over/under that chartToCell promises and that relaxation keeps. "Front" is +z
 // of a frame: the pattern's own (flat cells), or a stitch's local one (relaxed cells, where
 // ribs fold and stitches lean, so a stitch's plane tilts far from the pattern's): its normal is
-// the stitch's course x wale, turned towards +z (stitchFrame).
+// the stitch's course x wale (stitchFrame).
 #pragma once
 #include <algorithm>
 #include <cmath>
@@ -82,8 +82,10 @@ inline std::vector<Crossing> crossingsBetween(const Pattern& p, uint32_t a0, uin
 
 // The local frame of stitch (row, column), made of the stitch's own axes: the course (from the
 // loop's first vertex to its last, foot to foot) and the wale (from the centre of the loop below,
-// moved to the image this loop is pulled through, to this loop's centre). n = course x wale,
-// towards +z; e2 = the wale in the plane normal to n. A stitch can turn about the wale, as a rib
+// moved to the image this loop is pulled through, to this loop's centre). n = course x wale
+// (+z for a flat cell: courses run in +x, wales in +y), not flipped towards +z, so a stitch
+// folded by 90 degrees or more, as the purl columns beside a cable do, keeps its own front;
+// e2 = the wale in the plane normal to n. A stitch can turn about the wale, as a rib
 // folds, and lean about the course, as the loops at a knit/purl row change do (the garter-like
 // ridges at basketweave's block corners and below a cable lean by 30-45 degrees): a frame that
 // only turns about the pattern's y axis then sorts the crossings wrongly along the wale.
@@ -100,8 +102,7 @@ inline Frame stitchFrame(const ChartCell& cell, int row, int column) {
     const glm::dvec3 shift(-std::round((cb.x - cl.x) / p.px) * p.px, row == 0 ? -p.py : 0.0, 0);
     const glm::dvec3 wale = glm::normalize(cl - (cb + shift));
     const glm::dvec3 course = p.points[l.first + l.count - 1] - p.points[l.first];
-    glm::dvec3 n = glm::normalize(glm::cross(course, wale));
-    if (n.z < 0) n = -n;
+    const glm::dvec3 n = glm::normalize(glm::cross(course, wale));
     Frame f;
     f.n = n;
     f.e2 = glm::normalize(wale - glm::dot(wale, n) * n);
