@@ -27,6 +27,12 @@ struct PairForce {
     glm::dvec3 gd{0.0};
 };
 
+// A segment in this evaluation: its ends (the first in tile (0, 0)), midpoint and half length.
+struct SegmentNow {
+    glm::dvec3 p0{0.0}, p1{0.0}, mid{0.0};
+    double half = 0;
+};
+
 // The cell in yarn radii: segments, rest lengths, bending stencils and the yarn index.
 struct Problem {
     size_t n = 0;
@@ -37,6 +43,7 @@ struct Problem {
     relax::YarnIndex yarns;
     RelaxOptions opt;
     mutable std::vector<PairForce> scratch;  // per-pair forces of the last evaluation
+    mutable std::vector<SegmentNow> now;     // the segments of the last evaluation
     mutable int evaluations = 0;             // energy evaluations (for RelaxResult)
     bool exactDistances = false;             // pairs beyond D report their true distance too
 };
@@ -90,19 +97,20 @@ double bendEnergy(const Problem& pb, const Vec& v, Vec& g) {
 
 PairForce pairForce(const Problem& pb, const Pair& pr, const Vec& v) {
     const double D = pb.opt.contactDistance;
-    const Seg &s = pb.segs[pr.s], &t = pb.segs[pr.t];
-    const glm::dvec3 p0 = vertex(v, s.a), p1 = at(v, pb.n, s.b, s.dx, s.dy);
-    const glm::dvec3 q0 = at(v, pb.n, t.a, pr.ix, pr.iy), q1 = at(v, pb.n, t.b, t.dx + pr.ix, t.dy + pr.iy);
+    const SegmentNow &s = pb.now[pr.s], &t = pb.now[pr.t];
+    const glm::dvec3 shift(pr.ix * v[Eigen::Index(3 * pb.n)], pr.iy * v[Eigen::Index(3 * pb.n + 1)], 0);
     PairForce f;
-    // Far pairs (most of the list: it reaches a skin beyond D) end on their bounding spheres; their
-    // distance is then a lower bound above D, which is all the step bound needs.
+    // Far pairs (most of the list: it reaches a skin beyond D) end on their bounding spheres, with
+    // D as their distance: a lower bound, which is all the step bound needs.
     if (!pb.exactDistances) {
-        const double apart = glm::length((p0 + p1) - (q0 + q1)) - glm::length(p1 - p0) - glm::length(q1 - q0);
-        if (apart >= 2 * D) {
-            f.dist = 0.5 * apart;
+        const glm::dvec3 apart = s.mid - (t.mid + shift);
+        const double reach = D + s.half + t.half;
+        if (glm::dot(apart, apart) >= reach * reach) {
+            f.dist = D;
             return f;
         }
     }
+    const glm::dvec3 p0 = s.p0, p1 = s.p1, q0 = t.p0 + shift, q1 = t.p1 + shift;
     relax::closestParameters(p0, p1, q0, q1, f.a, f.b);
     const glm::dvec3 d = (p0 + f.a * (p1 - p0)) - (q0 + f.b * (q1 - q0));
     f.dist = glm::length(d);
@@ -115,6 +123,15 @@ PairForce pairForce(const Problem& pb, const Pair& pr, const Vec& v) {
 // The pairs' forces are computed in parallel, each into its own slot, then summed and scattered
 // in pair order: the same arithmetic as a serial loop, so the result does not depend on threads.
 double contactEnergy(const Problem& pb, const std::vector<Pair>& pairs, const Vec& v, Vec& g, double* minDistance) {
+    pb.now.resize(pb.segs.size());
+    for (size_t k = 0; k < pb.segs.size(); ++k) {
+        const Seg& sg = pb.segs[k];
+        SegmentNow& sn = pb.now[k];
+        sn.p0 = vertex(v, sg.a);
+        sn.p1 = at(v, pb.n, sg.b, sg.dx, sg.dy);
+        sn.mid = 0.5 * (sn.p0 + sn.p1);
+        sn.half = 0.5 * glm::length(sn.p1 - sn.p0);
+    }
     std::vector<PairForce>& forces = pb.scratch;
     forces.resize(pairs.size());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, pairs.size(), 1024), [&](const tbb::blocked_range<size_t>& range) {
