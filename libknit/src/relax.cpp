@@ -27,6 +27,12 @@ struct PairForce {
     glm::dvec3 gd{0.0};
 };
 
+// A segment in this evaluation: its ends (the first in tile (0, 0)), midpoint and half length.
+struct SegmentNow {
+    glm::dvec3 p0{0.0}, p1{0.0}, mid{0.0};
+    double half = 0;
+};
+
 // The cell in yarn radii: segments, rest lengths, bending stencils and the yarn index.
 struct Problem {
     size_t n = 0;
@@ -37,7 +43,9 @@ struct Problem {
     relax::YarnIndex yarns;
     RelaxOptions opt;
     mutable std::vector<PairForce> scratch;  // per-pair forces of the last evaluation
+    mutable std::vector<SegmentNow> now;     // the segments of the last evaluation
     mutable int evaluations = 0;             // energy evaluations (for RelaxResult)
+    bool exactDistances = false;             // pairs beyond D report their true distance too
 };
 
 glm::dvec3 vertex(const Vec& v, size_t i) { return {v[3 * i], v[3 * i + 1], v[3 * i + 2]}; }
@@ -89,10 +97,20 @@ double bendEnergy(const Problem& pb, const Vec& v, Vec& g) {
 
 PairForce pairForce(const Problem& pb, const Pair& pr, const Vec& v) {
     const double D = pb.opt.contactDistance;
-    const Seg &s = pb.segs[pr.s], &t = pb.segs[pr.t];
-    const glm::dvec3 p0 = vertex(v, s.a), p1 = at(v, pb.n, s.b, s.dx, s.dy);
-    const glm::dvec3 q0 = at(v, pb.n, t.a, pr.ix, pr.iy), q1 = at(v, pb.n, t.b, t.dx + pr.ix, t.dy + pr.iy);
+    const SegmentNow &s = pb.now[pr.s], &t = pb.now[pr.t];
+    const glm::dvec3 shift(pr.ix * v[Eigen::Index(3 * pb.n)], pr.iy * v[Eigen::Index(3 * pb.n + 1)], 0);
     PairForce f;
+    // Far pairs (most of the list: it reaches a skin beyond D) end on their bounding spheres, with
+    // D as their distance: a lower bound, which is all the step bound needs.
+    if (!pb.exactDistances) {
+        const glm::dvec3 apart = s.mid - (t.mid + shift);
+        const double reach = D + s.half + t.half;
+        if (glm::dot(apart, apart) >= reach * reach) {
+            f.dist = D;
+            return f;
+        }
+    }
+    const glm::dvec3 p0 = s.p0, p1 = s.p1, q0 = t.p0 + shift, q1 = t.p1 + shift;
     relax::closestParameters(p0, p1, q0, q1, f.a, f.b);
     const glm::dvec3 d = (p0 + f.a * (p1 - p0)) - (q0 + f.b * (q1 - q0));
     f.dist = glm::length(d);
@@ -105,6 +123,15 @@ PairForce pairForce(const Problem& pb, const Pair& pr, const Vec& v) {
 // The pairs' forces are computed in parallel, each into its own slot, then summed and scattered
 // in pair order: the same arithmetic as a serial loop, so the result does not depend on threads.
 double contactEnergy(const Problem& pb, const std::vector<Pair>& pairs, const Vec& v, Vec& g, double* minDistance) {
+    pb.now.resize(pb.segs.size());
+    for (size_t k = 0; k < pb.segs.size(); ++k) {
+        const Seg& sg = pb.segs[k];
+        SegmentNow& sn = pb.now[k];
+        sn.p0 = vertex(v, sg.a);
+        sn.p1 = at(v, pb.n, sg.b, sg.dx, sg.dy);
+        sn.mid = 0.5 * (sn.p0 + sn.p1);
+        sn.half = 0.5 * glm::length(sn.p1 - sn.p0);
+    }
     std::vector<PairForce>& forces = pb.scratch;
     forces.resize(pairs.size());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, pairs.size(), 1024), [&](const tbb::blocked_range<size_t>& range) {
@@ -152,6 +179,8 @@ Problem setUp(const Pattern& p, const RelaxOptions& opt, Vec& v) {
     }
     if (!(opt.restLength > 0) || !(opt.contactDistance > 0) || opt.maxIterations < 0)
         throw Error("relax: restLength and contactDistance must be positive, maxIterations >= 0");
+    if (!(opt.relativeGradientTolerance >= 0) || !(opt.relativeEnergyTolerance >= 0) || opt.energyWindow < 0)
+        throw Error("relax: relativeGradientTolerance, relativeEnergyTolerance and energyWindow must be >= 0");
     if (p.edges.size() != pb.n) throw Error(p.name + ": relaxation needs closed yarns (every vertex starts one edge)");
     pb.yarns = relax::indexYarns(p, pb.segs);
     for (int32_t len : pb.yarns.length)
@@ -190,13 +219,41 @@ double largestMove(const Problem& pb, const Vec& d) {
     return std::max({m, std::abs(d[Eigen::Index(3 * pb.n)]), std::abs(d[Eigen::Index(3 * pb.n + 1)])});
 }
 
+// How much closer two points of the cell can have come since the pair list was built at `built`,
+// for points that were farther apart than `cutoff` then. The period scales the cell by A =
+// diag(sx, sy, 1) (every periodic image with it) and each vertex moved by at most m away from
+// where A takes it: two points d0 > cutoff apart are now at least min(sx, sy, 1) d0 - 2 m apart.
+// Measured against the scaled cell, a cell that only shrinks or grows (the period settling)
+// does not force rebuilds.
+double driftSince(const Problem& pb, const Vec& built, const Vec& v, double cutoff) {
+    const Eigen::Index px = Eigen::Index(3 * pb.n), py = px + 1;
+    const glm::dvec3 scale(v[px] / built[px], v[py] / built[py], 1.0);
+    double m = 0;
+    for (size_t i = 0; i < pb.n; ++i) m = std::max(m, glm::length(vertex(v, i) - scale * vertex(built, i)));
+    return 2 * m + cutoff * std::max(0.0, 1.0 - std::min(scale.x, scale.y));
+}
+
 // Continuous collision bound: with M = largestMove, a point of a segment moves by at most 3 M in
 // a step (its vertices, plus the period up to twice for an image's end), a point of the other
 // segment of a pair by at most 5 M (its image offset adds up to two periods more), so two
-// segments dmin apart cannot meet while 8 M stays below dmin. Pairs outside the list are
-// farther apart than the cutoff (D + skin), so dmin counts as at most the cutoff.
+// segments dmin apart cannot meet while 8 M stays below dmin. Pairs outside the list were
+// farther apart than the cutoff (D + skin) when it was built and came closer by at most the
+// drift since, so dmin counts as at most cutoff - drift.
 double collisionFreeStep(const Problem& pb, const Vec& d, double dmin, double cutoff) {
     return 0.9 * std::min(dmin, cutoff) / std::max(8.0 * largestMove(pb, d), 1e-300);
+}
+
+// Stop: the largest gradient entry is below the absolute tolerance or below the relative one
+// times its value at the start, or the energy fell by less than relativeEnergyTolerance times
+// the whole decrease so far over the last energyWindow iterations (the stretched, slowly sliding
+// yarn of a large cell otherwise creeps on to the iteration cap).
+bool converged(const RelaxOptions& o, const Vec& g, double gStart, double eStart, const std::vector<double>& history) {
+    const double gNow = g.lpNorm<Eigen::Infinity>();
+    if (gNow < o.gradientTolerance || gNow <= o.relativeGradientTolerance * gStart) return true;
+    const size_t w = size_t(std::max(o.energyWindow, 1));
+    if (history.size() <= w) return false;
+    const double eNow = history.back(), eThen = history[history.size() - 1 - w];
+    return eThen - eNow <= o.relativeEnergyTolerance * (eStart - eNow);
 }
 
 // The L-BFGS two-loop recursion: direction = -H g.
@@ -230,16 +287,19 @@ RelaxResult relaxYarn(const Pattern& initial, const RelaxOptions& options) {
     const Problem pb = setUp(initial, options, v);
     const double skin = 1.0;
     std::vector<Pair> pairs = pairsOf(pb, v, skin);
-    double moved = 0;  // since the pair list was built
+    Vec built = v;     // the state the pair list was built at
+    double drift = 0;  // driftSince(built)
     Vec g, gNew, vNew;
     double dmin = 0, dminNew = 0;  // smallest pair distance now and after the trial step
     double e = energy(pb, pairs, v, g, &dmin);
     std::vector<Vec> S, Y;
     RelaxResult result;
     result.closestApproach = dmin;
+    const double gStart = g.lpNorm<Eigen::Infinity>(), eStart = e;
+    std::vector<double> history;  // energy after each iteration
     int it = 0;
     for (; it < options.maxIterations; ++it) {
-        if (g.lpNorm<Eigen::Infinity>() < options.gradientTolerance) {
+        if (converged(options, g, gStart, eStart, history)) {
             result.converged = true;
             break;
         }
@@ -253,7 +313,7 @@ RelaxResult relaxYarn(const Pattern& initial, const RelaxOptions& options) {
         // Step 3: backtracking line search from a step capped at maxStep per vertex and by the
         // continuous collision bound (no two segments can pass through each other).
         double step = std::min({1.0, options.maxStep / std::max(largestMove(pb, d), 1e-300),
-                                collisionFreeStep(pb, d, dmin, options.contactDistance + skin)});
+                                collisionFreeStep(pb, d, dmin, options.contactDistance + skin - drift)});
         double eNew = e;
         bool accepted = false;
         for (int k = 0; k < 40 && !accepted; ++k) {
@@ -268,7 +328,8 @@ RelaxResult relaxYarn(const Pattern& initial, const RelaxOptions& options) {
             Y.clear();
             continue;
         }
-        // Step 4: memory update; the pair list is rebuilt after moves of half the skin.
+        // Step 4: memory update; the pair list is rebuilt when two points may have come closer by
+        // half the skin since it was built.
         S.push_back(vNew - v);
         Y.push_back(gNew - g);
         if (Y.back().dot(S.back()) <= 1e-300) {
@@ -279,16 +340,18 @@ RelaxResult relaxYarn(const Pattern& initial, const RelaxOptions& options) {
             S.erase(S.begin());
             Y.erase(Y.begin());
         }
-        moved += 2 * largestMove(pb, vNew - v);
         v.swap(vNew);
         g.swap(gNew);
         e = eNew;
+        history.push_back(e);
         dmin = dminNew;
         result.closestApproach = std::min(result.closestApproach, dmin);
-        if (moved > 0.5 * skin) {
+        drift = driftSince(pb, built, v, options.contactDistance + skin);
+        if (drift > 0.5 * skin) {
             pairs = pairsOf(pb, v, skin);
             ++result.pairRebuilds;
-            moved = 0;
+            built = v;
+            drift = 0;
             e = energy(pb, pairs, v, g, &dmin);
         }
     }
@@ -302,7 +365,8 @@ RelaxResult relaxYarn(const Pattern& initial, const RelaxOptions& options) {
 
 double minYarnDistance(const Pattern& pattern) {
     Vec v;
-    const Problem pb = setUp(pattern, RelaxOptions{}, v);
+    Problem pb = setUp(pattern, RelaxOptions{}, v);
+    pb.exactDistances = true;
     const std::vector<Pair> pairs = pairsOf(pb, v, 6.0);
     double m = std::numeric_limits<double>::infinity();
     Vec g;

@@ -5,8 +5,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <tuple>
 
 #include <glm/geometric.hpp>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include "knit/error.hpp"
 
@@ -104,10 +107,16 @@ void closestParameters(const glm::dvec3& p0, const glm::dvec3& p1, const glm::dv
 
 namespace {
 
+// The spatial hash: cells of one period, each listing the segments whose box reaches it, with the
+// period (ox, oy) the box's part in that cell wraps from.
+struct Entry {
+    uint32_t t = 0;
+    int32_t ox = 0, oy = 0;
+};
 struct Grid {
     int nx = 1, ny = 1;
     double wx = 1, wy = 1;
-    std::vector<std::vector<uint32_t>> cells;
+    std::vector<std::vector<Entry>> cells;
 };
 
 int floorDiv(double v, double p) { return int(std::floor(v / p)); }
@@ -125,52 +134,94 @@ double segmentDistance(const std::vector<glm::dvec3>& x, double px, double py, c
 
 }  // namespace
 
+// A segment's box: its wrapped midpoint +- e (the half length beyond the typical one), as a
+// range of cells, unwrapped.
+struct CellRange {
+    int i0 = 0, i1 = 0, j0 = 0, j1 = 0;
+};
+CellRange cellsOf(const Grid& g, const glm::dvec3& wrappedMid, double e) {
+    return {int(std::floor((wrappedMid.x - e) / g.wx)), int(std::floor((wrappedMid.x + e) / g.wx)),
+            int(std::floor((wrappedMid.y - e) / g.wy)), int(std::floor((wrappedMid.y + e) / g.wy))};
+}
+
 std::vector<Pair> findPairs(const std::vector<glm::dvec3>& x, double px, double py, const std::vector<Seg>& segs,
                             const YarnIndex& yi, double cutoff) {
-    // Step 1: segment midpoints wrapped into the cell, and the largest half length.
+    // Step 1: segment midpoints, their period (fx, fy) and half lengths; the typical half length
+    // (90th percentile): long segments (cable legs) are listed in every cell their box reaches
+    // instead of making every cell as wide as the longest one.
     const size_t m = segs.size();
-    std::vector<glm::dvec3> mid(m);
+    std::vector<glm::dvec3> mid(m), wrapped(m);
+    std::vector<double> half(m);
     std::vector<int> fx(m), fy(m);
-    double half = 0;
     for (size_t i = 0; i < m; ++i) {
         const glm::dvec3 p = x[segs[i].a], q = x[segs[i].b] + glm::dvec3(segs[i].dx * px, segs[i].dy * py, 0);
         mid[i] = 0.5 * (p + q);
-        half = std::max(half, 0.5 * glm::length(q - p));
+        half[i] = 0.5 * glm::length(q - p);
         fx[i] = floorDiv(mid[i].x, px);
         fy[i] = floorDiv(mid[i].y, py);
+        wrapped[i] = mid[i] - glm::dvec3(fx[i] * px, fy[i] * py, 0);
     }
-    // Step 2: the hash; a cell is at least as wide as the farthest midpoint distance of a pair.
-    const double reach = cutoff + 2 * half;
+    std::vector<double> sorted = half;
+    std::nth_element(sorted.begin(), sorted.begin() + std::ptrdiff_t(9 * m / 10), sorted.end());
+    const double typical = m ? sorted[9 * m / 10] : 0.0;
+    auto excess = [&](size_t i) { return std::max(0.0, half[i] - typical); };
+    // Step 2: the hash. Two segments closer than the cutoff have boxes less than a cell apart along
+    // x and y (|mid_s - mid_t| <= cutoff + half_s + half_t), so their cells are neighbours.
+    const double width = cutoff + 2 * typical;
     Grid g;
-    g.nx = std::max(1, int(px / reach));
-    g.ny = std::max(1, int(py / reach));
+    g.nx = std::max(1, int(px / width));
+    g.ny = std::max(1, int(py / width));
     g.wx = px / g.nx;
     g.wy = py / g.ny;
     g.cells.assign(size_t(g.nx) * size_t(g.ny), {});
-    std::vector<int> cx(m), cy(m);
-    for (size_t i = 0; i < m; ++i) {
-        cx[i] = std::clamp(int((mid[i].x - fx[i] * px) / g.wx), 0, g.nx - 1);
-        cy[i] = std::clamp(int((mid[i].y - fy[i] * py) / g.wy), 0, g.ny - 1);
-        g.cells[size_t(cy[i]) * size_t(g.nx) + size_t(cx[i])].push_back(uint32_t(i));
-    }
-    // Step 3: each segment against the 3 x 3 neighbouring cells, with the image they wrap to.
-    std::vector<Pair> pairs;
-    for (size_t s = 0; s < m; ++s)
-        for (int dj = -1; dj <= 1; ++dj)
-            for (int di = -1; di <= 1; ++di) {
-                const int ci = cx[s] + di, cj = cy[s] + dj;
-                const int wrapX = floorDiv(ci, g.nx), wrapY = floorDiv(cj, g.ny);
-                const auto& cell = g.cells[size_t(cj - wrapY * g.ny) * size_t(g.nx) + size_t(ci - wrapX * g.nx)];
-                for (uint32_t t : cell) {
-                    const Pair pr{uint32_t(s), t, wrapX + fx[s] - fx[t], wrapY + fy[s] - fy[t]};
-                    if (t < s || (t == s && (pr.iy < 0 || (pr.iy == 0 && pr.ix <= 0)))) continue;
-                    const glm::dvec3 shift(pr.ix * px, pr.iy * py, 0);
-                    if (glm::length(mid[t] + shift - mid[s]) > reach) continue;
-                    if (nearAlongYarn(yi, segs, pr, 3)) continue;
-                    if (segmentDistance(x, px, py, segs[s], segs[t], shift) > cutoff) continue;
-                    pairs.push_back(pr);
-                }
+    for (size_t t = 0; t < m; ++t) {
+        const CellRange r = cellsOf(g, wrapped[t], excess(t));
+        for (int j = r.j0; j <= r.j1; ++j)
+            for (int i = r.i0; i <= r.i1; ++i) {
+                const int ox = floorDiv(i, g.nx), oy = floorDiv(j, g.ny);
+                g.cells[size_t(j - oy * g.ny) * size_t(g.nx) + size_t(i - ox * g.nx)].push_back({uint32_t(t), ox, oy});
             }
+    }
+    // Step 3: each segment against the cells next to its box, with the image they wrap to; in
+    // parallel, each segment into its own sorted list, joined in segment order (the same list for
+    // any number of threads).
+    std::vector<std::vector<Pair>> found(m);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, m, 64), [&](const tbb::blocked_range<size_t>& range) {
+        std::vector<Pair> candidates;
+        for (size_t s = range.begin(); s != range.end(); ++s) {
+            candidates.clear();
+            const CellRange r = cellsOf(g, wrapped[s], excess(s));
+            for (int cj = r.j0 - 1; cj <= r.j1 + 1; ++cj)
+                for (int ci = r.i0 - 1; ci <= r.i1 + 1; ++ci) {
+                    const int wrapX = floorDiv(ci, g.nx), wrapY = floorDiv(cj, g.ny);
+                    for (const Entry& en :
+                         g.cells[size_t(cj - wrapY * g.ny) * size_t(g.nx) + size_t(ci - wrapX * g.nx)]) {
+                        const Pair pr{uint32_t(s), en.t, wrapX - en.ox + fx[s] - fx[en.t],
+                                      wrapY - en.oy + fy[s] - fy[en.t]};
+                        if (en.t < s || (en.t == s && (pr.iy < 0 || (pr.iy == 0 && pr.ix <= 0)))) continue;
+                        const glm::dvec3 shift(pr.ix * px, pr.iy * py, 0);
+                        if (glm::length(mid[en.t] + shift - mid[s]) > cutoff + half[s] + half[en.t]) continue;
+                        candidates.push_back(pr);
+                    }
+                }
+            // A long segment is listed in several cells: each pair once.
+            std::sort(candidates.begin(), candidates.end(), [](const Pair& a, const Pair& b) {
+                return std::tie(a.t, a.ix, a.iy) < std::tie(b.t, b.ix, b.iy);
+            });
+            for (size_t k = 0; k < candidates.size(); ++k) {
+                const Pair& pr = candidates[k];
+                if (k > 0 && pr.t == candidates[k - 1].t && pr.ix == candidates[k - 1].ix &&
+                    pr.iy == candidates[k - 1].iy)
+                    continue;
+                if (nearAlongYarn(yi, segs, pr, 3)) continue;
+                if (segmentDistance(x, px, py, segs[s], segs[pr.t], glm::dvec3(pr.ix * px, pr.iy * py, 0)) > cutoff)
+                    continue;
+                found[s].push_back(pr);
+            }
+        }
+    });
+    std::vector<Pair> pairs;
+    for (const std::vector<Pair>& f : found) pairs.insert(pairs.end(), f.begin(), f.end());
     return pairs;
 }
 

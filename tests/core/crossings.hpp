@@ -3,8 +3,8 @@
 // passes in front (larger z) there. Independent of how the cell was built, so the chart tests
 // can check the over/under that chartToCell promises and that relaxation keeps. "Front" is +z
 // of a frame: the pattern's own (flat cells), or a stitch's local one (relaxed cells, where
-// ribs fold and a stitch's plane tilts far from the pattern's): its normal is the direction of
-// least spread of the stitch's loop and the loop below about the wale, turned towards +z.
+// ribs fold and stitches lean, so a stitch's plane tilts far from the pattern's): its normal is
+// the stitch's course x wale (stitchFrame).
 #pragma once
 #include <algorithm>
 #include <cmath>
@@ -80,9 +80,15 @@ inline std::vector<Crossing> crossingsBetween(const Pattern& p, uint32_t a0, uin
     return out;
 }
 
-// The local frame of stitch (row, column): a turn about the wale (y) axis, as a rib folds, with
-// n the direction of least spread in (x, z) of its loop and the loop below (that one moved to
-// its nearest image), towards +z; e2 = +y.
+// The local frame of stitch (row, column), made of the stitch's own axes: the course (from the
+// loop's first vertex to its last, foot to foot) and the wale (from the centre of the loop below,
+// moved to the image this loop is pulled through, to this loop's centre). n = course x wale
+// (+z for a flat cell: courses run in +x, wales in +y), not flipped towards +z, so a stitch
+// folded by 90 degrees or more, as the purl columns beside a cable do, keeps its own front;
+// e2 = the wale in the plane normal to n. A stitch can turn about the wale, as a rib
+// folds, and lean about the course, as the loops at a knit/purl row change do (the garter-like
+// ridges at basketweave's block corners and below a cable lean by 30-45 degrees): a frame that
+// only turns about the pattern's y axis then sorts the crossings wrongly along the wale.
 inline Frame stitchFrame(const ChartCell& cell, int row, int column) {
     const Pattern& p = cell.pattern;
     const StitchLoop& l = cell.loop(row, column);
@@ -93,26 +99,13 @@ inline Frame stitchFrame(const ChartCell& cell, int row, int column) {
         return c / double(s.count);
     };
     const glm::dvec3 cl = centre(l), cb = centre(below);
-    const glm::dvec3 shift(-std::round((cb.x - cl.x) / p.px) * p.px, -std::round((cb.y - cl.y) / p.py) * p.py, 0);
-    std::vector<glm::dvec3> pts;
-    for (uint32_t i = 0; i < l.count; ++i) pts.push_back(p.points[l.first + i]);
-    for (uint32_t i = 0; i < below.count; ++i) pts.push_back(p.points[below.first + i] + shift);
-    // Least spread of the (x, z) coordinates: the 2 x 2 covariance's smaller eigenvector.
-    double mx = 0, mz = 0;
-    for (const glm::dvec3& q : pts) mx += q.x, mz += q.z;
-    mx /= double(pts.size());
-    mz /= double(pts.size());
-    double cxx = 0, cxz = 0, czz = 0;
-    for (const glm::dvec3& q : pts) {
-        cxx += (q.x - mx) * (q.x - mx);
-        cxz += (q.x - mx) * (q.z - mz);
-        czz += (q.z - mz) * (q.z - mz);
-    }
-    const double angle = 0.5 * std::atan2(2 * cxz, cxx - czz);  // of the larger eigenvector
-    glm::dvec3 n(-std::sin(angle), 0, std::cos(angle));
+    const glm::dvec3 shift(-std::round((cb.x - cl.x) / p.px) * p.px, row == 0 ? -p.py : 0.0, 0);
+    const glm::dvec3 wale = glm::normalize(cl - (cb + shift));
+    const glm::dvec3 course = p.points[l.first + l.count - 1] - p.points[l.first];
+    const glm::dvec3 n = glm::normalize(glm::cross(course, wale));
     Frame f;
     f.n = n;
-    f.e2 = glm::normalize(glm::dvec3(0, 1, 0) - n.y * n);
+    f.e2 = glm::normalize(wale - glm::dot(wale, n) * n);
     f.e1 = glm::cross(f.e2, n);
     return f;
 }

@@ -7,13 +7,15 @@
 //   * bending: bend * sum_v |x_prev - 2 x_v + x_next|^2 / l^3 (l = mean rest length);
 //   * contact: contact * sum (D - d)^2 over pairs of distinct, non-adjacent segments (any
 //     periodic image) closer than D = contactDistance radii, d their centreline distance;
-//     pairs come from a spatial hash over the periodic images (a Verlet list rebuilt when any
-//     vertex has moved by half the skin).
+//     pairs come from a spatial hash over the periodic images (a Verlet list rebuilt when two
+//     points may have come closer by half the skin, measured against the period-scaled cell).
 // Solver: L-BFGS (Nocedal & Wright, Numerical Optimization, algorithm 7.4, memory 8) with a
 // backtracking Armijo line search, a cap on how far a vertex may move per step, and a continuous
 // collision bound: no step moves two segments by more than 0.9 of their smallest distance, so
-// yarns cannot pass through each other. Contact forces are computed in parallel (TBB), one slot per
-// pair, and summed in pair order: deterministic, the same result for any thread count.
+// yarns cannot pass through each other. It stops on an absolute or relative gradient tolerance,
+// on the energy's decrease over a window relative to its decrease so far, or at the iteration cap.
+// The pair search and the contact forces run in parallel (TBB), one slot per segment or pair,
+// joined and summed in order: deterministic, the same result for any thread count.
 #pragma once
 #include "knit/pattern.hpp"
 
@@ -27,14 +29,19 @@ struct RelaxOptions {
     double restLength = 1.0;        // rest length / input length, per edge
     bool freePeriod = true;         // the period (px, py) is a variable
     int maxIterations = 4000;
-    double gradientTolerance = 1e-4;  // stop when the largest gradient entry is below this
-    double maxStep = 0.25;            // largest vertex move per step, in yarn radii
+    double gradientTolerance = 1e-4;          // stop when the largest gradient entry is below this,
+    double relativeGradientTolerance = 1e-6;  // or below this times its value at the start,
+    // or when the energy fell by at most relativeEnergyTolerance x (start energy - energy now)
+    // over the last energyWindow iterations (0 turns this test off).
+    double relativeEnergyTolerance = 1e-6;
+    int energyWindow = 500;
+    double maxStep = 0.25;  // largest vertex move per step, in yarn radii
 };
 
 struct RelaxResult {
     Pattern pattern;  // the relaxed cell (twist 0), ready for writePyp
     int iterations = 0;
-    bool converged = false;  // the gradient tolerance was reached
+    bool converged = false;  // a stop criterion was met (not the iteration cap)
     double energy = 0;
     double minDistance = 0;  // smallest distance between distinct non-adjacent segments, in radii
     // The smallest pair distance over every accepted step, in radii: above 0 means no yarn
