@@ -13,6 +13,7 @@
 #include "atomic_file.hpp"
 #include "knit/error.hpp"
 #include "util/checks.hpp"
+#include "util/math.hpp"
 #include "util/platform.hpp"
 
 namespace knit {
@@ -41,11 +42,35 @@ void validateSurface(const BaseMesh& mesh, const SurfaceImages& im, const Surfac
 
 // One glTF vertex per distinct (position, uv) pair of the face corners.
 struct SurfaceVertices {
-    std::vector<float> positions, normals, texcoords;  // xyz, xyz, st
+    std::vector<float> positions, normals, tangents, texcoords;  // xyz, xyz, xyzw, st
     std::vector<uint32_t> indices;
     glm::dvec3 origin{0.0};
     float lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
 };
+
+// TANGENT: xyz along increasing u (the normal map's +x), w the sign that makes
+// w cross(NORMAL, TANGENT) point along increasing v (the map's +y, the image's up: glTF's t
+// decreases there), from the triangles' UV gradients accumulated per vertex.
+void addTangents(const BaseMesh& mesh, SurfaceVertices& v) {
+    const size_t n = v.positions.size() / 3;
+    std::vector<glm::dvec3> du(n, glm::dvec3(0.0)), dv(n, glm::dvec3(0.0));
+    for (size_t f = 0; f < mesh.faces.size(); ++f) {
+        const glm::uvec3 p = mesh.faces[f], t = mesh.faceUvs[f];
+        const glm::dvec3 e1 = mesh.positions[p.y] - mesh.positions[p.x], e2 = mesh.positions[p.z] - mesh.positions[p.x];
+        const glm::dvec2 w1 = mesh.uvs[t.y] - mesh.uvs[t.x], w2 = mesh.uvs[t.z] - mesh.uvs[t.x];
+        const double det = w1.x * w2.y - w2.x * w1.y;
+        if (det == 0 || !std::isfinite(det)) continue;
+        const glm::dvec3 gu = (e1 * w2.y - e2 * w1.y) / det, gv = (e2 * w1.x - e1 * w2.x) / det;
+        for (int k = 0; k < 3; ++k) du[v.indices[3 * f + k]] += gu, dv[v.indices[3 * f + k]] += gv;
+    }
+    for (size_t i = 0; i < n; ++i) {
+        const glm::dvec3 normal(v.normals[3 * i], v.normals[3 * i + 1], v.normals[3 * i + 2]);
+        glm::dvec3 t = du[i] - glm::dot(du[i], normal) * normal;
+        t = glm::length(t) > 0 ? glm::normalize(t) : util::anyPerpendicular(normal);
+        const double w = glm::dot(glm::cross(normal, t), dv[i]) < 0 ? -1.0 : 1.0;
+        v.tangents.insert(v.tangents.end(), {float(t.x), float(t.y), float(t.z), float(w)});
+    }
+}
 
 SurfaceVertices surfaceVertices(const BaseMesh& mesh, glm::dvec2 repeats) {
     SurfaceVertices v;
@@ -66,6 +91,7 @@ SurfaceVertices surfaceVertices(const BaseMesh& mesh, glm::dvec2 repeats) {
             v.texcoords.push_back(float(mesh.uvs[t].x * repeats.x));
             v.texcoords.push_back(float(1.0 - mesh.uvs[t].y * repeats.y));
         }
+    addTangents(mesh, v);
     for (int c = 0; c < 3; ++c) {
         v.lo[c] = v.hi[c] = v.positions[size_t(c)];
         for (size_t i = size_t(c); i < v.positions.size(); i += 3)
@@ -147,6 +173,8 @@ void addGeometry(SurfaceModel& m, const SurfaceVertices& v) {
     m.model_.accessors.back().maxValues = {v.hi[0], v.hi[1], v.hi[2]};
     prim.attributes["NORMAL"] = m.addAccessor(v.normals.data(), v.normals.size() * 4, TINYGLTF_COMPONENT_TYPE_FLOAT,
                                               TINYGLTF_TYPE_VEC3, n, TINYGLTF_TARGET_ARRAY_BUFFER);
+    prim.attributes["TANGENT"] = m.addAccessor(v.tangents.data(), v.tangents.size() * 4, TINYGLTF_COMPONENT_TYPE_FLOAT,
+                                               TINYGLTF_TYPE_VEC4, n, TINYGLTF_TARGET_ARRAY_BUFFER);
     prim.attributes["TEXCOORD_0"] =
         m.addAccessor(v.texcoords.data(), v.texcoords.size() * 4, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2, n,
                       TINYGLTF_TARGET_ARRAY_BUFFER);

@@ -3,10 +3,10 @@
 // with the PNG images embedded.
 //
 // What is written: one mesh (POSITION, NORMAL: the base mesh's angle-weighted vertex normals,
-// TEXCOORD_0), one node at the mesh's local origin (float32 positions relative to it, the node
+// TANGENT, TEXCOORD_0), one node at the mesh's local origin (float32 positions relative to it, the node
 // translation in double), one material: baseColorTexture (sRGB albedo, alpha = coverage),
-// normalTexture (tangent space; no TANGENT attribute, so clients derive MikkTSpace tangents
-// along +u), metallic 0, roughness `roughness`, doubleSided (cloth is seen from both sides),
+// normalTexture (tangent space: TANGENT xyz along increasing u, w such that
+// w cross(NORMAL, TANGENT) runs along increasing v, the image's up), metallic 0, roughness `roughness`, doubleSided (cloth is seen from both sides),
 // and one sampler with REPEAT wrapping and mipmaps.
 // Texture repeat: TEXCOORD_0 = (u U, 1 - v V) for the mesh's uv = (u, v) and repeats (U, V) (the
 // pattern's placement): one texture tile is one pattern cell, at the place the ply-level knit
