@@ -88,7 +88,10 @@ int runSurfaceOnly(const BuildCommand& b) {
     const SurfaceBuild s = runSurfaceBuild(resolveScene(b.scene), b.surface, PlyMaterial{}, out);
     if (!b.report.empty()) {
         try {
-            writeReport(b.report, {{"pattern", s.pattern.name}, {"mesh", s.mesh.name}, {"surface", surfaceReport(s)}});
+            writeReport(b.report, {{"pattern", s.pattern.name},
+                                   {"mesh", s.mesh.name},
+                                   {"surface", surfaceReport(s)},
+                                   {"export", surfaceExportReport(s)}});
         } catch (...) {
             std::filesystem::remove(out);
             throw;

@@ -65,4 +65,14 @@ nlohmann::json surfaceReport(const SurfaceBuild& b) {
             {"bytes", b.exported.bytes}};
 }
 
+nlohmann::json surfaceExportReport(const SurfaceBuild& b) {
+    return {{"format", "glb"},
+            {"curves", 0},
+            {"vertices", b.exported.vertices},
+            {"triangles", b.exported.triangles},
+            {"bytes", b.exported.bytes},
+            {"bakeWidth", b.bake.width},
+            {"bakeHeight", b.bake.height}};
+}
+
 }  // namespace knit::cli

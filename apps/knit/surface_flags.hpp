@@ -39,5 +39,8 @@ SurfaceBuild runSurfaceBuild(const SceneOptions& options, const SurfaceFlags& fl
 
 // The `"surface"` object of a report: bake size, coverage, seconds, export counts and bytes.
 nlohmann::json surfaceReport(const SurfaceBuild& build);
+// The `"export"` object of the report, as `knit build` writes for other exports (format, curves,
+// vertices, triangles, bytes) plus the texture size (bakeWidth, bakeHeight).
+nlohmann::json surfaceExportReport(const SurfaceBuild& build);
 
 }  // namespace knit::cli
