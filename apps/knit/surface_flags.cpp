@@ -30,6 +30,7 @@ SurfaceBuild runSurfaceBuild(const SceneOptions& options, const SurfaceFlags& fl
                              const std::string& output) {
     if (flags.bakeSize < 1 || flags.bakeSize > 8192)
         throw Error("--bake-size must be in 1..8192 (got " + std::to_string(flags.bakeSize) + ")");
+    checkSurfaceOutput(output);
     // Step 1: pattern, mesh and placement only: the surface level needs no yarns on the mesh.
     SurfaceBuild b;
     b.pattern = loadPatternFileOrName(options.pattern);

@@ -21,8 +21,7 @@ namespace {
 
 void validateSurface(const BaseMesh& mesh, const SurfaceImages& im, const SurfaceExportOptions& o) {
     const std::string where = "cannot export '" + o.path + "': ";
-    if (util::lowerExtension(o.path) != "glb")
-        throw Error(where + "the surface level (--surface-only) is written as GLB only (use a .glb name)");
+    checkSurfaceOutput(o.path);
     if (mesh.faces.empty() || mesh.faceUvs.size() != mesh.faces.size() || mesh.uvs.empty())
         throw Error(where + "base mesh '" + mesh.name + "' has no triangles with UVs");
     for (size_t f = 0; f < mesh.faces.size(); ++f)
@@ -224,10 +223,16 @@ size_t addMaterial(SurfaceModel& m, const SurfaceImages& im, const SurfaceExport
 
 }  // namespace
 
+void checkSurfaceOutput(const std::string& path) {
+    if (util::lowerExtension(path) != "glb")
+        throw Error("cannot export '" + path +
+                    "': the surface level (--surface-only) is written as GLB only (use a .glb name)");
+    detail::checkOutputFolder(path);
+}
+
 SurfaceExportStats exportSurface(const BaseMesh& mesh, const SurfaceImages& images, const SurfaceExportOptions& o) {
     // Step 1: validate everything before any file exists.
     validateSurface(mesh, images, o);
-    detail::checkOutputFolder(o.path);
     // Step 2: vertices, the material with its PNG textures, one buffer.
     const SurfaceVertices v = surfaceVertices(mesh, o.repeats);
     SurfaceModel m;

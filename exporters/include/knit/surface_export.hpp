@@ -53,7 +53,11 @@ struct SurfaceExportStats {
     size_t bytes = 0;       // file size
 };
 
-// Throws knit::Error naming the path or the option: not .glb, empty mesh or missing UVs,
+// The checks of the output path alone, for callers that fail before the bake: a .glb name in a
+// writable folder (knit::Error naming the path).
+void checkSurfaceOutput(const std::string& path);
+
+// Throws knit::Error naming the path or the option: checkSurfaceOutput, empty mesh or missing UVs,
 // image sizes that do not match, repeats not positive and finite, cutoff outside [0, 1].
 // Writes through a temporary file renamed when complete (no partial file).
 SurfaceExportStats exportSurface(const BaseMesh& mesh, const SurfaceImages& images,
