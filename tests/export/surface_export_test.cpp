@@ -34,6 +34,14 @@ std::string tempGlb(const char* name) {
     return (fs::temp_directory_path() / (std::string("knit_surface_") + std::to_string(::getpid()) + name)).string();
 }
 
+// Options writing to a temporary GLB of that name.
+SurfaceExportOptions toTemp(const char* name, glm::dvec2 repeats = {1, 1}) {
+    SurfaceExportOptions o;
+    o.path = tempGlb(name);
+    o.repeats = repeats;
+    return o;
+}
+
 // The PNG bytes of image `i` of a document, decoded: width, height and pixels.
 std::vector<uint8_t> decodeImage(const gltf::Document& d, size_t i, int& w, int& h, int channels) {
     const size_t view = d.root()["images"][i]["bufferView"].get<size_t>();
@@ -46,10 +54,8 @@ std::vector<uint8_t> decodeImage(const gltf::Document& d, size_t i, int& w, int&
 }
 
 TEST(SurfaceExport, glbPassesTheValidatorWithATexturedRepeatingMaterial) {
-    const std::string path = tempGlb("valid.glb");
-    SurfaceExportOptions o;
-    o.path = path;
-    o.repeats = {3, 2};
+    const SurfaceExportOptions o = toTemp("valid.glb", {3, 2});
+    const std::string& path = o.path;
     const SurfaceImages im = testImages(8, 6);
     const SurfaceExportStats s = exportSurface(makePlane(), im, o);
     EXPECT_EQ(s.bytes, fs::file_size(path));
@@ -76,13 +82,10 @@ TEST(SurfaceExport, glbPassesTheValidatorWithATexturedRepeatingMaterial) {
 
 // TEXCOORD_0 = (u U, 1 - v V): one texture tile per pattern period, glTF's t pointing down.
 TEST(SurfaceExport, texcoordsRepeatTheTextureOncePerPatternPeriod) {
-    const std::string path = tempGlb("repeat.glb");
     const BaseMesh mesh = makePlane();
-    SurfaceExportOptions o;
-    o.path = path;
-    o.repeats = {5, 4};
+    const SurfaceExportOptions o = toTemp("repeat.glb", {5, 4});
     exportSurface(mesh, testImages(4, 4), o);
-    const gltf::Document d = test::loadGltf(path);
+    const gltf::Document d = test::loadGltf(o.path);
     const gltf::Primitive p = d.primitives(0).at(0);
     const std::vector<double> st = test::readAttribute(d, p, "TEXCOORD_0");
     std::set<std::pair<long, long>> expected, got;
@@ -90,27 +93,24 @@ TEST(SurfaceExport, texcoordsRepeatTheTextureOncePerPatternPeriod) {
         expected.insert({std::lround(uv.x * 5 * 1e5), std::lround((1 - uv.y * 4) * 1e5)});
     for (size_t i = 0; i + 1 < st.size(); i += 2) got.insert({std::lround(st[i] * 1e5), std::lround(st[i + 1] * 1e5)});
     EXPECT_EQ(got, expected);
-    fs::remove(path);
+    fs::remove(o.path);
 }
 
 // A position with two UVs (the cylinder's seam) becomes two glTF vertices.
 TEST(SurfaceExport, seamPositionsAreSplitPerUv) {
-    const std::string path = tempGlb("seam.glb");
     const BaseMesh mesh = makeCylinder();
-    SurfaceExportOptions o;
-    o.path = path;
+    const SurfaceExportOptions o = toTemp("seam.glb");
     const SurfaceExportStats s = exportSurface(mesh, testImages(4, 4), o);
     EXPECT_GT(s.vertices, mesh.positions.size());
     EXPECT_EQ(s.triangles, mesh.faces.size());
-    test::expectGltfValid(path);
-    fs::remove(path);
+    test::expectGltfValid(o.path);
+    fs::remove(o.path);
 }
 
 // The plane has u along +x and v along -z with normal +y: TANGENT (1, 0, 0, +1), so
 // w cross(NORMAL, TANGENT) = -z runs along increasing v (the normal map's +y).
 TEST(SurfaceExport, tangentRunsAlongUAndBitangentAlongV) {
-    SurfaceExportOptions o;
-    o.path = tempGlb("tangent.glb");
+    SurfaceExportOptions o = toTemp("tangent.glb");
     exportSurface(makePlane(), testImages(2, 2), o);
     const gltf::Document d = test::loadGltf(o.path);
     const std::vector<double> t = test::readAttribute(d, d.primitives(0).at(0), "TANGENT");
@@ -125,9 +125,8 @@ TEST(SurfaceExport, tangentRunsAlongUAndBitangentAlongV) {
 }
 
 TEST(SurfaceExport, nonGlbNameIsRefusedAndNoFileIsLeft) {
-    const std::string path = tempGlb("surface.gltf");
-    SurfaceExportOptions o;
-    o.path = path;
+    const SurfaceExportOptions o = toTemp("surface.gltf");
+    const std::string& path = o.path;
     const std::string e = test::errorOf([&] { exportSurface(makePlane(), testImages(4, 4), o); });
     EXPECT_NE(e.find(path), std::string::npos) << e;
     EXPECT_NE(e.find("GLB"), std::string::npos) << e;
@@ -135,8 +134,7 @@ TEST(SurfaceExport, nonGlbNameIsRefusedAndNoFileIsLeft) {
 }
 
 TEST(SurfaceExport, imagesNotMatchingTheirSizeAreRefused) {
-    SurfaceExportOptions o;
-    o.path = tempGlb("size.glb");
+    const SurfaceExportOptions o = toTemp("size.glb");
     SurfaceImages im = testImages(4, 4);
     im.normalRgb.pop_back();
     EXPECT_NE(test::errorOf([&] { exportSurface(makePlane(), im, o); }).find("4 x 4"), std::string::npos);
@@ -144,8 +142,7 @@ TEST(SurfaceExport, imagesNotMatchingTheirSizeAreRefused) {
 }
 
 TEST(SurfaceExport, blendModeIsWrittenWhenAsked) {
-    SurfaceExportOptions o;
-    o.path = tempGlb("blend.glb");
+    SurfaceExportOptions o = toTemp("blend.glb");
     o.alphaMode = SurfaceAlpha::Blend;
     exportSurface(makePlane(), testImages(2, 2), o);
     EXPECT_EQ(test::loadGltf(o.path).root()["materials"][0]["alphaMode"], "BLEND");
