@@ -16,7 +16,6 @@
 namespace knit {
 namespace {
 
-using util::kPi;
 using util::kTwoPi;
 
 // The stitched yarns of the tiles around cells (0, 0) to (1, 1) (a cell baked from a shifted origin), in pattern metres, lying in z = 0.

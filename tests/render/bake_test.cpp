@@ -202,6 +202,30 @@ TEST(Bake, heightNormalAndAlbedoStayInRange) {
     EXPECT_EQ(baseColorRgba8(b).size(), 4 * b.coverage.size());
 }
 
+// Image orientation: +x to the right, +y up (row 0 is the top). At a yarn's silhouette the normal
+// turns away from the yarn, against the coverage gradient: sum n . grad(coverage) < 0 per axis
+// (a map flipped in x or y would give a positive sum).
+TEST(Bake, normalsTurnAwayFromTheYarnAtItsSilhouette) {
+    BakeOptions o = smallBake();
+    o.albedoPaths = 0;
+    o.samplesPerAxis = 3;
+    const SurfaceBake b = bakeSurface(generateStockinette(), o);
+    const int w = b.width, h = b.height;
+    auto coverage = [&](int c, int r) { return double(b.coverage[size_t((r + h) % h) * w + size_t((c + w) % w)]); };
+    double alongX = 0, alongY = 0, weight = 0;
+    for (int r = 0; r < h; ++r)
+        for (int c = 0; c < w; ++c) {
+            const size_t p = size_t(r) * w + size_t(c);
+            if (b.coverage[p] == 0.f) continue;
+            const double gx = coverage(c + 1, r) - coverage(c - 1, r), gy = coverage(c, r - 1) - coverage(c, r + 1);
+            alongX += b.normal[3 * p] * gx, alongY += b.normal[3 * p + 1] * gy;
+            weight += std::abs(gx) + std::abs(gy);
+        }
+    ASSERT_GT(weight, 0);
+    EXPECT_LT(alongX / weight, -0.1);
+    EXPECT_LT(alongY / weight, -0.1);
+}
+
 TEST(Bake, sameTexturesForAnyThreadCount) {
     const SurfaceBake a = bakeSurface(generateStockinette(), smallBake());
     const tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
