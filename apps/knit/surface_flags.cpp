@@ -9,8 +9,9 @@ namespace knit::cli {
 
 void addSurfaceFlags(CLI::App& command, SurfaceFlags& flags) {
     command.add_flag("--surface-only", flags.surfaceOnly,
-                     "Write the base mesh with the knit baked into tileable textures (glTF PBR material, .glb) "
-                     "instead of yarns or plies");
+                     "The surface level: the base mesh with the knit baked into tileable textures instead of "
+                     "yarns or plies (build: a glTF PBR material, .glb; render: traced with the baked albedo and "
+                     "coverage)");
     command.add_option("--bake-size", flags.bakeSize, "Baked texture width in pixels per pattern period (1..8192)")
         ->capture_default_str();
 }
@@ -26,11 +27,9 @@ PlyOptions patternPlyOptions(PlyOptions plies, const Pattern& pattern, double sc
 
 }  // namespace
 
-SurfaceBuild runSurfaceBuild(const SceneOptions& options, const SurfaceFlags& flags, const PlyMaterial& material,
-                             const std::string& output) {
+SurfaceBuild bakeSurfaceLevel(const SceneOptions& options, const SurfaceFlags& flags, const PlyMaterial& material) {
     if (flags.bakeSize < 1 || flags.bakeSize > 8192)
         throw Error("--bake-size must be in 1..8192 (got " + std::to_string(flags.bakeSize) + ")");
-    checkSurfaceOutput(output);
     // Step 1: pattern, mesh and placement only: the surface level needs no yarns on the mesh.
     SurfaceBuild b;
     b.pattern = loadPatternFileOrName(options.pattern);
@@ -42,7 +41,14 @@ SurfaceBuild runSurfaceBuild(const SceneOptions& options, const SurfaceFlags& fl
     bo.plies = patternPlyOptions(options.plies, b.pattern, b.placement.scale);
     bo.material = material;
     b.bake = bakeSurface(b.pattern, bo);
-    // Step 3: the base mesh with the baked material, one texture tile per pattern period.
+    return b;
+}
+
+SurfaceBuild runSurfaceBuild(const SceneOptions& options, const SurfaceFlags& flags, const PlyMaterial& material,
+                             const std::string& output) {
+    checkSurfaceOutput(output);
+    SurfaceBuild b = bakeSurfaceLevel(options, flags, material);
+    // The base mesh with the baked material, one texture tile per pattern period.
     SurfaceImages images;
     images.width = b.bake.width, images.height = b.bake.height;
     images.baseColorRgba = baseColorRgba8(b.bake);
@@ -54,16 +60,20 @@ SurfaceBuild runSurfaceBuild(const SceneOptions& options, const SurfaceFlags& fl
     return b;
 }
 
+Scene surfaceScene(const SurfaceBuild& b) {
+    SceneParts parts;
+    parts.mesh = b.mesh;
+    parts.normals = vertexNormals(b.mesh.positions, b.mesh.faces);
+    parts.yarnRadius = b.pattern.radius * b.placement.scale;
+    return Scene::fromParts(std::move(parts));
+}
+
 nlohmann::json surfaceReport(const SurfaceBuild& b) {
     return {{"bakeWidth", b.bake.width},
             {"bakeHeight", b.bake.height},
             {"bakeSeconds", b.bake.seconds},
             {"meanCoverage", b.bake.meanCoverage()},
-            {"repeats", {b.placement.repeats.x, b.placement.repeats.y}},
-            {"vertices", b.exported.vertices},
-            {"triangles", b.exported.triangles},
-            {"imageBytes", b.exported.imageBytes},
-            {"bytes", b.exported.bytes}};
+            {"repeats", {b.placement.repeats.x, b.placement.repeats.y}}};
 }
 
 nlohmann::json surfaceExportReport(const SurfaceBuild& b) {
@@ -72,6 +82,7 @@ nlohmann::json surfaceExportReport(const SurfaceBuild& b) {
             {"vertices", b.exported.vertices},
             {"triangles", b.exported.triangles},
             {"bytes", b.exported.bytes},
+            {"imageBytes", b.exported.imageBytes},
             {"bakeWidth", b.bake.width},
             {"bakeHeight", b.bake.height}};
 }

@@ -19,7 +19,7 @@ struct SurfaceFlags {
     int bakeSize = 256;  // texture width in pixels (one pattern period); height from the aspect
 };
 
-// Registers --surface-only and --bake-size on `command`.
+// Registers --surface-only and --bake-size on `command` (build and render).
 void addSurfaceFlags(CLI::App& command, SurfaceFlags& flags);
 
 struct SurfaceBuild {
@@ -27,20 +27,27 @@ struct SurfaceBuild {
     BaseMesh mesh;
     PatternPlacement placement;
     SurfaceBake bake;
-    SurfaceExportStats exported;
+    SurfaceExportStats exported;  // runSurfaceBuild only
 };
 
-// Loads the pattern and mesh of `options` (no tiling, yarns or plies on the mesh), bakes the
-// pattern with the scene's ply options (converted to pattern units) and `material`, and writes
-// the base mesh with the baked material to `output` (.glb). Throws knit::Error naming the
-// option (--bake-size) or file.
+// Loads the pattern and mesh of `options` (no tiling, yarns or plies on the mesh) and bakes the
+// pattern with the scene's ply options (converted to pattern units) and `material`. Throws
+// knit::Error naming the option (--bake-size) or file.
+SurfaceBuild bakeSurfaceLevel(const SceneOptions& options, const SurfaceFlags& flags, const PlyMaterial& material);
+
+// bakeSurfaceLevel, then the base mesh with the baked material written to `output` (.glb,
+// checked before the bake).
 SurfaceBuild runSurfaceBuild(const SceneOptions& options, const SurfaceFlags& flags, const PlyMaterial& material,
                              const std::string& output);
 
-// The `"surface"` object of a report: bake size, coverage, seconds, export counts and bytes.
+// A scene of the surface level for renderScene (RenderOptions::surface): the base mesh, its
+// normals and the yarn radius on it, no yarns or plies.
+Scene surfaceScene(const SurfaceBuild& build);
+
+// The `"surface"` object of a report: bake size, seconds, mean coverage, texture repeats.
 nlohmann::json surfaceReport(const SurfaceBuild& build);
 // The `"export"` object of the report, as `knit build` writes for other exports (format, curves,
-// vertices, triangles, bytes) plus the texture size (bakeWidth, bakeHeight).
+// vertices, triangles, bytes) plus the texture size (bakeWidth, bakeHeight) and PNG bytes.
 nlohmann::json surfaceExportReport(const SurfaceBuild& build);
 
 }  // namespace knit::cli
