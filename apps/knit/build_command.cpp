@@ -78,6 +78,33 @@ int runBuildOnRestPose(const BuildCommand& b) {
     return 0;
 }
 
+#ifdef KNIT_HAVE_RENDER_CHECK
+// --surface-only: the base mesh with the baked knit material, no yarns or plies.
+int runSurfaceOnly(const BuildCommand& b) {
+    checkReportPath(b.report);
+    const std::string& out = b.exportOptions.path;
+    refuseCollidingPaths({{"--mesh", b.scene.scene.mesh}, {"--pattern", b.scene.scene.pattern}},
+                         {{"-o", out}, {"--report", b.report}});
+    const SurfaceBuild s = runSurfaceBuild(resolveScene(b.scene), b.surface, PlyMaterial{}, out);
+    if (!b.report.empty()) {
+        try {
+            writeReport(b.report, {{"pattern", s.pattern.name},
+                                   {"mesh", s.mesh.name},
+                                   {"surface", surfaceReport(s)},
+                                   {"export", surfaceExportReport(s)}});
+        } catch (...) {
+            std::filesystem::remove(out);
+            throw;
+        }
+    }
+    std::printf(
+        "baked %s at %d x %d (mean coverage %.3f) in %.3f s; wrote %s (%zu vertices, %zu triangles, %zu bytes)\n",
+        s.pattern.name.c_str(), s.bake.width, s.bake.height, s.bake.meanCoverage(), s.bake.seconds, out.c_str(),
+        s.exported.vertices, s.exported.triangles, s.exported.bytes);
+    return 0;
+}
+#endif
+
 }  // namespace
 
 void addBuildCommand(CLI::App& app, BuildCommand& b) {
@@ -91,11 +118,17 @@ void addBuildCommand(CLI::App& app, BuildCommand& b) {
     b.command->add_option(
         "--rest", b.rest,
         "Bind on this rest-pose mesh and evaluate on --mesh (same connectivity): one frame of `knit animate`");
+#ifdef KNIT_HAVE_RENDER_CHECK
+    addSurfaceFlags(*b.command, b.surface);
+#endif
     b.command->footer(kSceneHelp);
 }
 
 int runBuild(const BuildCommand& b) {
     if (!b.rest.empty()) return runBuildOnRestPose(b);
+#ifdef KNIT_HAVE_RENDER_CHECK
+    if (b.surface.surfaceOnly) return runSurfaceOnly(b);
+#endif
     // Step 1: fail before the scene is built: bad export options or an unwritable report folder.
     validateExportOptions(b.exportOptions);
     checkReportPath(b.report);

@@ -7,6 +7,9 @@
 
 #include "knit/export.hpp"
 #include "scene_flags.hpp"
+#ifdef KNIT_HAVE_RENDER_CHECK
+#include "surface_flags.hpp"
+#endif
 
 namespace knit::cli {
 
@@ -16,6 +19,9 @@ struct BuildCommand {
     ExportOptions exportOptions;  // -o defaults to knit-plies.obj
     std::string report;           // --report path; empty = none
     std::string rest;             // --rest: bind on this mesh, evaluate on --mesh (same connectivity)
+#ifdef KNIT_HAVE_RENDER_CHECK
+    SurfaceFlags surface;  // --surface-only --bake-size: the base mesh with the baked knit material
+#endif
 };
 
 // Registers the subcommand and its flags on `app`, bound to `build` (which must outlive parsing).

@@ -7,6 +7,7 @@
 
 #include "knit/render.hpp"
 #include "scene_flags.hpp"
+#include "surface_flags.hpp"
 
 namespace knit::cli {
 
@@ -14,7 +15,8 @@ struct RenderCommand {
     CLI::App* command = nullptr;  // set by addRenderCommand
     SceneFlags scene;
     RenderOptions options;
-    std::string report;  // --report path; empty = none
+    std::string report;    // --report path; empty = none
+    SurfaceFlags surface;  // --surface-only --bake-size: trace the base mesh with the baked knit
 };
 
 // Registers the subcommand and its flags on `app`, bound to `render` (which must outlive parsing).

@@ -75,6 +75,7 @@ float hitLight(const LightGeom& l, const glm::vec3& o, const glm::vec3& d, bool&
 struct Shading {
     ShadingFrame frame;
     bool ply = true;
+    Rgb albedo{0.0};  // base mesh: its diffuse albedo (baked texel at the surface level)
 };
 
 struct Tracer {
@@ -92,6 +93,7 @@ struct Tracer {
         Shading sh;
         if (h.kind == TraceHit::Base) {
             sh.ply = false;
+            sh.albedo = scene.baseAlbedo(h, s.baseAlbedo);
             sh.frame.z = glm::dvec3(h.ng);
             const glm::dvec3 a = std::abs(sh.frame.z.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
             sh.frame.x = glm::normalize(glm::cross(a, sh.frame.z));
@@ -120,7 +122,7 @@ struct Tracer {
         if (!sh.ply) {
             if (wiL.z * woL.z <= 0) return Rgb(0.0);
             pdf = std::abs(wiL.z) / kPi;
-            return s.baseAlbedo * (std::abs(wiL.z) / kPi);
+            return sh.albedo * (std::abs(wiL.z) / kPi);
         }
         pdf = bsdf.pdf(woL, wiL);
         return bsdf.eval(woL, wiL) * std::abs(wiL.z);
@@ -213,7 +215,7 @@ struct Tracer {
                 const double rr = std::sqrt(u1), ph = 2 * kPi * u2;
                 wiL = glm::dvec3(rr * std::cos(ph), rr * std::sin(ph), std::sqrt(std::max(0.0, 1 - u1)));
                 if (woL.z < 0) wiL.z = -wiL.z;
-                weight = s.baseAlbedo;
+                weight = sh.albedo;
                 pdf = std::abs(wiL.z) / kPi;
                 if (!(pdf > 0)) break;
             }

@@ -18,6 +18,7 @@
 #include "render_image.hpp"
 #include "scene_scale.hpp"
 #include "trace_scene.hpp"
+#include "trace_surface.hpp"
 #include "util/math.hpp"
 #include "util/platform.hpp"
 
@@ -75,8 +76,9 @@ RenderResult renderScene(const Scene& scene, const RenderOptions& o) {
     if (mode == GeometryMode::Tubes && o.tubeSides < 3) throw Error("render: tube sides must be >= 3");
     RenderResult res;
     res.material = resolveMaterial(o);
-    if (scene.plies().curves.curveCount() == 0 || scene.plies().curves.pointCount() == 0)
+    if (!o.surface && (scene.plies().curves.curveCount() == 0 || scene.plies().curves.pointCount() == 0))
         throw Error("render: the scene has no ply curves (nothing to render; were plies built?)");
+    if (o.surface && scene.mesh().faces.empty()) throw Error("render: the surface level needs a base mesh");
     if (!o.output.empty()) checkImageName(o.output, "png", "--output", "PNG");
     if (!o.exr.empty()) checkImageName(o.exr, "exr", "--exr", "EXR");
     if (!o.output.empty()) checkWritable(o.output);
@@ -87,9 +89,11 @@ RenderResult renderScene(const Scene& scene, const RenderOptions& o) {
     // Step 2: ply segments relative to the centre of their bounds.
     glm::dvec3 lo(1e300), hi(-1e300);
     for (const glm::dvec3& p : scene.plies().curves.points) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    if (o.surface) detail::surfaceBounds(scene, lo, hi);  // no plies: the mesh and the yarn height
     const glm::dvec3 centre = 0.5 * (lo + hi);
     const double radius = std::max(0.5 * glm::length(hi - lo), 1e-6);
-    const PlyGeometry geometry = buildPlyGeometry(scene.plies(), centre, res.material.fiberTwist);
+    const PlyGeometry geometry = o.surface ? detail::surfaceFrame(scene, centre)
+                                           : buildPlyGeometry(scene.plies(), centre, res.material.fiberTwist);
     res.segments = geometry.segmentCount();
     // Step 3: fiber tables.
     auto t0 = std::chrono::steady_clock::now();
@@ -105,8 +109,10 @@ RenderResult renderScene(const Scene& scene, const RenderOptions& o) {
     TraceSceneOptions so;
     so.mode = mode;
     so.tubeSides = o.tubeSides;
-    so.baseMesh = o.baseMesh ? &scene.mesh() : nullptr;
-    if (mode == GeometryMode::Grid) {
+    so.baseMesh = o.baseMesh || o.surface ? &scene.mesh() : nullptr;
+    const SurfaceTexture texture = detail::surfaceTexture(scene, o);
+    so.baseTexture = o.surface ? &texture : nullptr;
+    if (mode == GeometryMode::Grid && !o.surface) {
         cells = segmentCells(scene, geometry);
         so.segmentCells = &cells;
     }

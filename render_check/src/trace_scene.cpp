@@ -30,20 +30,24 @@ bool EmbreeDevice::monitor(void* user, ssize_t bytes, bool) {
 
 TraceScene::TraceScene(EmbreeDevice& device, const PlyGeometry& plies, const TraceSceneOptions& options)
     : plies_(plies), options_(options) {
-    if (plies.segmentCount() == 0) throw Error("render: the scene has no ply segments (nothing to render)");
-    // Step 1: the plies in the chosen mode (validates the mode's options).
-    geometry_ = makeTraceGeometry(plies, options);
+    const bool surfaceOnly = plies.segmentCount() == 0 && options.baseTexture && options.baseMesh;
+    if (plies.segmentCount() == 0 && !surfaceOnly)
+        throw Error("render: the scene has no ply segments (nothing to render)");
     const int64_t before = device.allocatedBytes();
     RTCDevice dev = device.get();
     scene_ = rtcNewScene(dev);
     rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_MEDIUM);
-    rtcSetSceneFlags(scene_, geometry_->sceneFlags());
-    RTCGeometry geom = geometry_->newGeometry(dev);
-    rtcCommitGeometry(geom);
-    plyGeom_ = rtcAttachGeometry(scene_, geom);
-    rtcReleaseGeometry(geom);
-    memory_.geometryBytes = geometry_->bytes();
-    primitives_ = geometry_->primitiveCount();
+    // Step 1: the plies in the chosen mode (validates the mode's options); none at the surface level.
+    if (!surfaceOnly) {
+        geometry_ = makeTraceGeometry(plies, options);
+        rtcSetSceneFlags(scene_, geometry_->sceneFlags());
+        RTCGeometry geom = geometry_->newGeometry(dev);
+        rtcCommitGeometry(geom);
+        plyGeom_ = rtcAttachGeometry(scene_, geom);
+        rtcReleaseGeometry(geom);
+        memory_.geometryBytes = geometry_->bytes();
+        primitives_ = geometry_->primitiveCount();
+    }
     // Step 2: the optional opaque base mesh.
     if (options.baseMesh && !options.baseMesh->faces.empty()) attachBaseMesh(dev, *options.baseMesh);
     baseOffset_ = 1e-3f * plies.radius;
@@ -70,6 +74,10 @@ void TraceScene::attachBaseMesh(RTCDevice device, const BaseMesh& m) {
                                sizeof(glm::vec3), basePositions_.size() - 1);
     rtcSetSharedGeometryBuffer(bg, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, baseFaces_.data(), 0, sizeof(glm::uvec3),
                                baseFaces_.size());
+    if (options_.baseTexture) {  // the surface level: alpha MASK from the baked coverage
+        surface_.mesh = &m, surface_.texture = options_.baseTexture;
+        setSurfaceFilter(bg, surface_);
+    }
     rtcCommitGeometry(bg);
     baseGeom_ = rtcAttachGeometry(scene_, bg);
     rtcReleaseGeometry(bg);
@@ -100,6 +108,7 @@ bool TraceScene::intersect(const glm::vec3& org, const glm::vec3& dir, float tne
         hit.kind = TraceHit::Base;
         hit.segment = rh.hit.primID;
         hit.ng = ng;
+        hit.u = rh.hit.u, hit.v = rh.hit.v;
         return true;
     }
     hit.kind = TraceHit::Ply;
@@ -112,6 +121,11 @@ bool TraceScene::intersect(const glm::vec3& org, const glm::vec3& dir, float tne
     hit.u = u;
     hit.ng = glm::length(axis) > 0 ? axis : ng;
     return true;
+}
+
+Rgb TraceScene::baseAlbedo(const TraceHit& hit, const Rgb& plain) const {
+    if (!options_.baseTexture || hit.kind != TraceHit::Base) return plain;
+    return options_.baseTexture->albedo(surface_.uvAt(hit.segment, hit.u, hit.v));
 }
 
 uint32_t TraceScene::ignoreOf(const TraceHit* from) const {

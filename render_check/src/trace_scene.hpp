@@ -35,6 +35,7 @@
 #include "knit/base_mesh.hpp"
 #include "knit/ply_geometry.hpp"
 #include "knit/trace_mode.hpp"
+#include "trace_surface.hpp"
 
 namespace knit {
 
@@ -59,6 +60,9 @@ struct TraceSceneOptions {
     int tubeSides = 8;                                   // tubes mode
     const BaseMesh* baseMesh = nullptr;                  // optional opaque base surface (positions in metres)
     const std::vector<int64_t>* segmentCells = nullptr;  // grid mode: cell per segment (required)
+    // Surface level (trace_surface.hpp): the base mesh masked and coloured by a bake; the plies
+    // may then be empty.
+    const SurfaceTexture* baseTexture = nullptr;
 };
 
 struct TraceHit {
@@ -67,7 +71,8 @@ struct TraceHit {
     float t = 0;
     glm::vec3 ng{0.f};     // unit normal: for plies, outward from the segment's centreline
     uint32_t segment = 0;  // ply segment (Ply) or triangle (Base)
-    float u = 0;           // position along the ply segment in [0, 1]
+    float u = 0;           // position along the ply segment in [0, 1]; Base: Embree's barycentric u
+    float v = 0;           // Base: Embree's barycentric v
     uint32_t geomID = RTC_INVALID_GEOMETRY_ID, primID = RTC_INVALID_GEOMETRY_ID;  // Embree primitive
 };
 
@@ -88,6 +93,8 @@ public:
                   const TraceHit* from = nullptr) const;
     // Origin for a ray leaving `hit` at point p in direction dir (offset along +-ng).
     glm::vec3 spawn(const TraceHit& hit, const glm::vec3& p, const glm::vec3& dir) const;
+    // Albedo of a Base hit: the baked texel with a baseTexture, else `plain`.
+    Rgb baseAlbedo(const TraceHit& hit, const Rgb& plain) const;
 
     GeometryMode mode() const { return options_.mode; }
     const PlyGeometry& plies() const { return plies_; }
@@ -107,6 +114,7 @@ private:
     unsigned plyGeom_ = RTC_INVALID_GEOMETRY_ID, baseGeom_ = RTC_INVALID_GEOMETRY_ID;
     std::vector<glm::vec3> basePositions_;  // scene units, padded by one element
     std::vector<glm::uvec3> baseFaces_;
+    SurfaceMesh surface_;  // the MASK filter's data (baseTexture)
     TraceMemory memory_;
     size_t primitives_ = 0;
     float baseOffset_ = 0;

@@ -40,6 +40,8 @@ EXPORTS = [
     ("tubes_quantized_meshopt.glb", ["--export", "tubes", "--quantize", "--meshopt", "--yarn-colors"], True),
     ("cylinder_tubes.glb", ["--mesh", "cylinder", "--export", "tubes", "--quantize", "--meshopt"], True),
     ("cylinder_plies.obj", ["--mesh", "cylinder"], False),
+    # The surface level: the base mesh with the baked knit material (embedded PNG textures).
+    ("surface.glb", ["--surface-only", "--bake-size", "16"], False),
 ]
 
 
@@ -218,7 +220,24 @@ def check_threejs(args, files, reports, checker):
             checker.eq("three.js %s curves vs report" % name, s["lines"], stats["curves"])
         checker.box("three.js " + name, s["min"], s["max"], want["min"], want["max"])
         checker.up("three.js " + name, name, s["min"], s["max"], 1)
+        if "bakeWidth" in stats:
+            check_baked_material("three.js " + name, s, stats, checker)
     return len(gltfs)
+
+
+def check_baked_material(what, s, stats, checker):
+    """The surface level's material: albedo and normal maps of the baked size, repeating
+    (three.js RepeatWrapping = 1000), alpha MASK at 0.5 (alphaTest, not transparent)."""
+    slots = {t["slot"]: t for t in s.get("textures", [])}
+    for slot in ("map", "normalMap"):
+        t = slots.get(slot)
+        if t is None:
+            checker.failures.append("%s: the material has no %s" % (what, slot))
+            continue
+        checker.eq("%s %s size" % (what, slot), [t["width"], t["height"]], [stats["bakeWidth"], stats["bakeHeight"]])
+        checker.eq("%s %s wrap" % (what, slot), [t["wrapS"], t["wrapT"]], [1000, 1000])
+    checker.eq("%s alphaTest" % what, s.get("alphaTest"), 0.5)
+    checker.eq("%s transparent" % what, s.get("transparent"), False)
 
 
 def check_blender(args, files, compressed, checker):

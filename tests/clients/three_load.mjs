@@ -1,14 +1,18 @@
 // three_load.mjs — loads glTF/GLB files with three.js's GLTFLoader under node (Draco through
 // DRACOLoader with the decoder shipped in three's examples/jsm/libs/draco, meshopt through
 // MeshoptDecoder) and prints, per file, what three.js sees as one line "KNIT <json>":
-//   {"file", "meshes", "triangles", "lines", "vertices", "lineVertices", "min": [x,y,z], "max": [x,y,z]}
-// (bounds in world space, after node transforms and dequantization).
+//   {"file", "meshes", "triangles", "lines", "vertices", "lineVertices", "min": [x,y,z], "max": [x,y,z],
+//    "textures": [{"slot", "width", "height", "wrapS", "wrapT"}], "alphaTest", "transparent"}
+// (bounds in world space, after node transforms and dequantization; textures: every texture
+// slot of the meshes' materials, alphaTest / transparent of the first textured material).
 //
 // Usage: node three_load.mjs <node_modules dir holding three> <file.glb|file.gltf> ...
 // Exit status: 0 = every file loaded, 1 = a file failed to load, 2 = usage / three.js missing.
 //
 // The minimal environment node lacks for DRACOLoader: fetch() of local files (the decoder's
 // .js/.wasm), ProgressEvent, and a Worker that runs the decoder's worker script in this thread (a vm context).
+// For embedded textures (GLTFLoader's ImageBitmapLoader): fetch() of blob: URLs and a
+// createImageBitmap() that reads a PNG's size from its header (no pixels: nothing is drawn).
 import fs from 'node:fs';
 import path from 'node:path';
 import vm from 'node:vm';
@@ -34,6 +38,7 @@ const { MeshoptDecoder } = await import(jsm('libs/meshopt_decoder.module.js'));
 const nodeFetch = globalThis.fetch;
 globalThis.fetch = async (input, init) => {
     const url = typeof input === 'string' ? input : input.url;
+    if (url.startsWith('blob:')) return new Response(blobSources.get(url));
     if (/^[a-z]+:\/\//i.test(url) && !url.startsWith('file://')) return nodeFetch(input, init);
     const file = url.startsWith('file://') ? new URL(url) : url;
     return new Response(fs.readFileSync(file));
@@ -45,8 +50,17 @@ globalThis.ProgressEvent ??= class extends Event {
         Object.assign(this, init);
     }
 };
-// Blob URLs hold the worker source; Worker runs it in a vm context sharing WebAssembly.
+// Blob URLs hold the worker source or an embedded image; Worker runs the source in a vm context
+// sharing WebAssembly.
 const blobSources = new Map();
+// GLTFLoader reads URL.createObjectURL through the browser's `self`.
+globalThis.self ??= globalThis;
+// An ImageBitmap stand-in with the PNG's width and height (IHDR: bytes 16..23, big-endian).
+globalThis.createImageBitmap = async (blob) => {
+    const head = new DataView(await blob.slice(0, 24).arrayBuffer());
+    if (head.byteLength < 24 || head.getUint32(0) !== 0x89504e47) throw new Error('embedded image is not a PNG');
+    return { width: head.getUint32(16), height: head.getUint32(20), close() {} };
+};
 const createObjectURL = URL.createObjectURL;
 URL.createObjectURL = (blob) => {
     const url = createObjectURL(blob);
@@ -80,6 +94,17 @@ loader.setDRACOLoader(draco);
 loader.setMeshoptDecoder(MeshoptDecoder);
 
 // Step 3: load each file and summarize what three.js built.
+function describeTextures(s, material) {
+    for (const slot of ['map', 'normalMap', 'aoMap', 'roughnessMap', 'metalnessMap', 'emissiveMap']) {
+        const t = material[slot];
+        if (!t) continue;
+        s.textures ??= [];
+        s.textures.push({ slot, width: t.image.width, height: t.image.height, wrapS: t.wrapS, wrapT: t.wrapT });
+        s.alphaTest ??= material.alphaTest;
+        s.transparent ??= material.transparent;
+    }
+}
+
 function summarize(file, gltf) {
     const s = { file, meshes: 0, triangles: 0, lines: 0, vertices: 0, lineVertices: 0 };
     const box = new THREE.Box3();
@@ -89,6 +114,7 @@ function summarize(file, gltf) {
         const g = o.geometry;
         const n = g.attributes.position.count;
         if (o.isMesh) {
+            describeTextures(s, o.material);
             s.meshes += 1;
             s.vertices += n;
             s.triangles += (g.index ? g.index.count : n) / 3;

@@ -21,6 +21,7 @@
 namespace knit {
 
 class Scene;
+struct SurfaceBake;
 
 // Where the area light is: on the camera side (reflection) or behind the cloth (transmission).
 enum class LightPlacement { Front, Back };
@@ -46,6 +47,12 @@ struct RenderOptions {
     double baseAlbedo = 0.5;
     int tubeSides = 8;
     bool progress = true;  // progress on stderr for renders of more than ~1e6 samples
+    // Surface level (knit/bake.hpp): the base mesh shaded with this bake as the surface GLB shows
+    // it (alpha MASK at 0.5 of the coverage, the baked albedo, one texture tile per pattern
+    // period) instead of the plies, which the scene then need not have. Framed by the mesh's
+    // bounds grown by the yarn radius.
+    const SurfaceBake* surface = nullptr;
+    double surfaceRepeats[2] = {0, 0};  // texture tiles across u and v; 0 = the scene's placement
 };
 
 struct RenderResult {

@@ -1,0 +1,53 @@
+// surface_flags.hpp — the surface level of detail on the command line: `--surface-only` and
+// `--bake-size N` (knit build; a view's surface cells reuse runSurfaceBuild). The base mesh is
+// written with the pattern baked into tileable textures (render_check's knit/bake.hpp) as a glTF
+// PBR material (exporters' knit/surface_export.hpp) instead of yarns or plies.
+#pragma once
+#include <string>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json_fwd.hpp>
+
+#include "knit/bake.hpp"
+#include "knit/scene.hpp"
+#include "knit/surface_export.hpp"
+
+namespace knit::cli {
+
+struct SurfaceFlags {
+    bool surfaceOnly = false;
+    int bakeSize = 256;  // texture width in pixels (one pattern period); height from the aspect
+};
+
+// Registers --surface-only and --bake-size on `command` (build and render).
+void addSurfaceFlags(CLI::App& command, SurfaceFlags& flags);
+
+struct SurfaceBuild {
+    Pattern pattern;
+    BaseMesh mesh;
+    PatternPlacement placement;
+    SurfaceBake bake;
+    SurfaceExportStats exported;  // runSurfaceBuild only
+};
+
+// Loads the pattern and mesh of `options` (no tiling, yarns or plies on the mesh) and bakes the
+// pattern with the scene's ply options (converted to pattern units) and `material`. Throws
+// knit::Error naming the option (--bake-size) or file.
+SurfaceBuild bakeSurfaceLevel(const SceneOptions& options, const SurfaceFlags& flags, const PlyMaterial& material);
+
+// bakeSurfaceLevel, then the base mesh with the baked material written to `output` (.glb,
+// checked before the bake).
+SurfaceBuild runSurfaceBuild(const SceneOptions& options, const SurfaceFlags& flags, const PlyMaterial& material,
+                             const std::string& output);
+
+// A scene of the surface level for renderScene (RenderOptions::surface): the base mesh, its
+// normals and the yarn radius on it, no yarns or plies.
+Scene surfaceScene(const SurfaceBuild& build);
+
+// The `"surface"` object of a report: bake size, seconds, mean coverage, texture repeats.
+nlohmann::json surfaceReport(const SurfaceBuild& build);
+// The `"export"` object of the report, as `knit build` writes for other exports (format, curves,
+// vertices, triangles, bytes) plus the texture size (bakeWidth, bakeHeight) and PNG bytes.
+nlohmann::json surfaceExportReport(const SurfaceBuild& build);
+
+}  // namespace knit::cli
