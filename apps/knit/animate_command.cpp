@@ -18,6 +18,7 @@
 #include "interrupt.hpp"
 #include "knit/cache.hpp"
 #include "knit/error.hpp"
+#include "knit/output_transaction.hpp"
 #include "report.hpp"
 #include "rest_pose.hpp"
 #include "util/platform.hpp"
@@ -234,17 +235,23 @@ int runAnimate(const AnimateCommand& a) {
     ao.stats = !a.noStats;
     const Animator animator(rest, ao);
     const double bindSeconds = since(t0);
-    // Step 3: the frames, streamed into the outputs; then commit.
+    // Step 3: the frames, streamed into staged outputs (existing files stay unchanged until the end).
+    OutputTransaction outputs;
+    ExportOptions staged = a.exportOptions;
+    staged.path = outputs.stage(a.exportOptions.path);
     CacheFormat format;
     std::unique_ptr<FrameSink> sink;
-    if (cacheFormatOf(a.exportOptions.path, format))
-        sink = std::make_unique<CacheSink>(a.exportOptions.path, animator, seq, a.fps);
-    else sink = std::make_unique<FilesSink>(animator, a.exportOptions);
+    if (cacheFormatOf(staged.path, format)) sink = std::make_unique<CacheSink>(staged.path, animator, seq, a.fps);
+    else sink = std::make_unique<FilesSink>(animator, staged);
     StageTotals totals;
-    const std::vector<FrameRecord> frames = runFrames(seq, animator, *sink, totals, a.scene.quiet);
-    sink->commit();
-    // Step 4: the report and the summary.
-    if (!a.report.empty()) writeReport(a.report, animateReport(bindSeconds, frames, totals, animator));
+    const std::vector<FrameRecord> frames =
+        outputs.run([&] { return runFrames(seq, animator, *sink, totals, a.scene.quiet); });
+    outputs.run([&] { sink->commit(); });
+    // Step 4: the report; then every output is committed together; the summary.
+    if (!a.report.empty())
+        outputs.run(
+            [&] { writeReport(outputs.stage(a.report), animateReport(bindSeconds, frames, totals, animator)); });
+    outputs.run([&] { outputs.commit(); });
     std::printf("animated %zu frames (%zu yarn vertices, %zu ply vertices per frame): bind %.3f s, wrote %s\n",
                 frames.size(), rest.yarns().curves.pointCount(), animator.plyPointCount(), bindSeconds,
                 a.exportOptions.path.c_str());

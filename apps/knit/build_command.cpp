@@ -2,7 +2,6 @@
 #include "build_command.hpp"
 
 #include <cstdio>
-#include <filesystem>
 
 #include <nlohmann/json.hpp>
 
@@ -10,6 +9,7 @@
 #include "export_flags.hpp"
 #include "export_report.hpp"
 #include "knit/animation.hpp"
+#include "knit/output_transaction.hpp"
 #include "float_range.hpp"
 #include "path_collisions.hpp"
 #include "report.hpp"
@@ -61,18 +61,18 @@ int runBuildOnRestPose(const BuildCommand& b) {
     checkFrame(rest.mesh(), mesh, "--mesh '" + options.mesh + "'");
     AnimationFrame frame;
     animator.evaluate(mesh.positions, frame);
-    const ExportStats stats = exportScene(frameScene(animator, mesh, frame), b.exportOptions);
+    // The export and the report are committed together: an existing -o stays unchanged if the report fails.
+    OutputTransaction outputs;
+    ExportOptions staged = b.exportOptions;
+    staged.path = outputs.stage(b.exportOptions.path);
+    const ExportStats stats = outputs.run([&] { return exportScene(frameScene(animator, mesh, frame), staged); });
     if (!b.report.empty()) {
         nlohmann::json report = sceneReport(rest, sceneStats(rest));
         report["rest"] = b.rest;
         report["export"] = exportReport(stats);
-        try {
-            writeReport(b.report, report);
-        } catch (...) {
-            std::filesystem::remove(b.exportOptions.path);
-            throw;
-        }
+        outputs.run([&] { writeReport(outputs.stage(b.report), report); });
     }
+    outputs.run([&] { outputs.commit(); });
     std::printf("bound on %s, evaluated on %s: wrote %s (%s, %zu curves, %zu vertices)\n", b.rest.c_str(),
                 options.mesh.c_str(), b.exportOptions.path.c_str(), stats.format.c_str(), stats.curves, stats.vertices);
     return 0;
@@ -110,18 +110,18 @@ int runBuild(const BuildCommand& b) {
     printWarnings(scene);
     refuseValuesBeyondFloat32(scene, b.exportOptions);
     refuseEmptyExport(scene, b.exportOptions);
-    // Step 3: the export, then the report (part of the result: without it the export is removed).
-    const ExportStats stats = exportScene(scene, b.exportOptions);
+    // Step 3: the export, then the report, staged and committed together: an existing -o (or report)
+    // stays unchanged unless both are complete.
+    OutputTransaction outputs;
+    ExportOptions staged = b.exportOptions;
+    staged.path = outputs.stage(b.exportOptions.path);
+    const ExportStats stats = outputs.run([&] { return exportScene(scene, staged); });
     const SceneStats sceneNumbers = sceneStats(scene);  // counts, segment lengths, stage times
     if (!b.report.empty()) {
         const nlohmann::json report = buildReportJson(scene, sceneNumbers, stats, streamed);
-        try {
-            writeReport(b.report, report);
-        } catch (...) {
-            std::filesystem::remove(b.exportOptions.path);
-            throw;
-        }
+        outputs.run([&] { writeReport(outputs.stage(b.report), report); });
     }
+    outputs.run([&] { outputs.commit(); });
     // Step 4: the summary on stdout.
     printSummary(scene, sceneNumbers, stats, b.exportOptions.path, streamed);
     return 0;

@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "knit/output_transaction.hpp"
 #include "path_collisions.hpp"
 #include "render_flags.hpp"
 #include "render_report.hpp"
@@ -25,13 +26,19 @@ int runRender(const RenderCommand& r) {
     refuseCollidingPaths(
         {{"--mesh", r.scene.scene.mesh}, {"--pattern", r.scene.scene.pattern}, {"--material", r.options.materialFile}},
         {{"--output", r.options.output}, {"--exr", r.options.exr}, {"--report", r.report}});
+    // The PNG, the EXR and the report are staged and committed together at the end.
+    OutputTransaction outputs;
     RenderOptions options = r.options;
     options.progress = options.progress && !r.scene.quiet;
+    options.output = outputs.stage(r.options.output);
+    options.exr = outputs.stage(r.options.exr);
     const Scene scene = buildScene(resolveScene(r.scene));
     printWarnings(scene);
-    const RenderResult result = renderScene(scene, options);
+    RenderResult result = outputs.run([&] { return renderScene(scene, options); });
+    for (std::string& path : result.written) path = outputs.finalNames(path);
     const nlohmann::json report = renderReport(result);
-    if (!r.report.empty()) writeReport(r.report, report);
+    if (!r.report.empty()) outputs.run([&] { writeReport(outputs.stage(r.report), report); });
+    outputs.run([&] { outputs.commit(); });
     std::printf("%s\n", report.dump().c_str());
     return 0;
 }

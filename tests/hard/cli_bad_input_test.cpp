@@ -220,5 +220,41 @@ TEST_F(CliBadInput, valuesBeyondFloat32AreRefusedNamingTheOption) {
     EXPECT_EQ(obj.exitCode, 0) << obj.output;
 }
 
+// Outputs committed together (knit/output_transaction.hpp): the second output of a command fails
+// after the first was written (a file-size limit, as a full disk would) and the existing first
+// output stays byte-identical; no new or staged file is left. The limits hold the first file and
+// not the second whether /bin/sh counts ulimit -f in 512- or 1024-byte blocks.
+TEST_F(CliBadInput, failedSecondOutputLeavesTheExistingFirstOutputUnchanged) {
+    const auto runLimited = [&](const std::string& args, int blocks) {
+        const std::string cmd = "cd '" + dir.string() + "' && trap '' XFSZ && ulimit -f " + std::to_string(blocks) +
+                                " && exec '" KNIT_CLI "' " + args + " 2>&1";
+        FILE* pipe = popen(cmd.c_str(), "r");
+        char buf[4096];
+        std::string output;
+        while (size_t n = fread(buf, 1, sizeof buf, pipe)) output.append(buf, n);
+        const int status = pclose(pipe);
+        EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 1) << args << "\n" << output;
+        return output;
+    };
+    // build: the export (400 bytes) fits, the report (1.6 KB) does not.
+    write("y.bcc", "the previous export");
+    const auto before = files(dir);
+    const std::string build =
+        "build -q --mesh plane --mesh-res 2 --repeats 1 1 --export yarns -o y.bcc --report r.json";
+    EXPECT_NE(runLimited(build, 1).find("cannot write 'r.json'"), std::string::npos);
+    EXPECT_EQ(knit::test::readText((dir / "y.bcc").string()), "the previous export");
+    EXPECT_EQ(files(dir), before);
+#ifdef KNIT_HARD_HAVE_RENDER_CHECK
+    // render: the PNG (6 KB) fits, the EXR (21 KB) does not.
+    write("o.png", "the previous PNG");
+    const auto beforeRender = files(dir);
+    const std::string render = "render -q --mesh plane --mesh-res 2 --repeats 2 2 --width 64 --height 64 --spp 1 "
+                               "--output o.png --exr o.exr";
+    EXPECT_NE(runLimited(render, 16).find("'o.exr'"), std::string::npos);
+    EXPECT_EQ(knit::test::readText((dir / "o.png").string()), "the previous PNG");
+    EXPECT_EQ(files(dir), beforeRender);
+#endif
+}
+
 }  // namespace
 #endif  // KNIT_CLI
