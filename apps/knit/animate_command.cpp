@@ -228,7 +228,8 @@ int runAnimate(const AnimateCommand& a) {
     const FrameSequence seq(a.frames, a.range);
     // Step 2: bind once on the rest pose.
     const auto t0 = Clock::now();
-    const Scene rest = bindRestPose(resolveScene(a.scene), a.rest.empty() ? seq.frame(0).path : a.rest);
+    const SceneOptions options = resolveScene(a.scene);
+    const Scene rest = bindRestPose(options, a.rest.empty() ? seq.frame(0).path : a.rest);
     printWarnings(rest);
     AnimatorOptions ao;
     ao.plies = a.exportOptions.what != ExportWhat::Yarns;
@@ -237,8 +238,7 @@ int runAnimate(const AnimateCommand& a) {
     const double bindSeconds = since(t0);
     // Step 3: the frames, streamed into staged outputs (existing files stay unchanged until the end).
     OutputTransaction outputs;
-    ExportOptions staged = a.exportOptions;
-    staged.path = outputs.stage(a.exportOptions.path);
+    const ExportOptions staged = stagedExport(a.exportOptions, options.budget, outputs);
     CacheFormat format;
     std::unique_ptr<FrameSink> sink;
     if (cacheFormatOf(staged.path, format)) sink = std::make_unique<CacheSink>(staged.path, animator, seq, a.fps);

@@ -63,8 +63,7 @@ int runBuildOnRestPose(const BuildCommand& b) {
     animator.evaluate(mesh.positions, frame);
     // The export and the report are committed together: an existing -o stays unchanged if the report fails.
     OutputTransaction outputs;
-    ExportOptions staged = b.exportOptions;
-    staged.path = outputs.stage(b.exportOptions.path);
+    const ExportOptions staged = stagedExport(b.exportOptions, options.budget, outputs);
     const ExportStats stats = outputs.run([&] { return exportScene(frameScene(animator, mesh, frame), staged); });
     if (!b.report.empty()) {
         nlohmann::json report = sceneReport(rest, sceneStats(rest));
@@ -113,8 +112,7 @@ int runBuild(const BuildCommand& b) {
     // Step 3: the export, then the report, staged and committed together: an existing -o (or report)
     // stays unchanged unless both are complete.
     OutputTransaction outputs;
-    ExportOptions staged = b.exportOptions;
-    staged.path = outputs.stage(b.exportOptions.path);
+    const ExportOptions staged = stagedExport(b.exportOptions, options.budget, outputs);
     const ExportStats stats = outputs.run([&] { return exportScene(scene, staged); });
     const SceneStats sceneNumbers = sceneStats(scene);  // counts, segment lengths, stage times
     if (!b.report.empty()) {

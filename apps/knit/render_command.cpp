@@ -32,7 +32,9 @@ int runRender(const RenderCommand& r) {
     options.progress = options.progress && !r.scene.quiet;
     options.output = outputs.stage(r.options.output);
     options.exr = outputs.stage(r.options.exr);
-    const Scene scene = buildScene(resolveScene(r.scene));
+    const SceneOptions sceneOptions = resolveScene(r.scene);
+    options.budget = sceneOptions.budget;  // --max-memory
+    const Scene scene = buildScene(sceneOptions);
     printWarnings(scene);
     RenderResult result = outputs.run([&] { return renderScene(scene, options); });
     for (std::string& path : result.written) path = outputs.finalNames(path);

@@ -109,6 +109,22 @@ TEST_F(CliBadInput, overTheMemoryBudgetIsRefusedNamingOptionAndEstimate) {
     EXPECT_EQ(raised.exitCode, 0) << raised.output;
 }
 
+// The budget reaches every big allocation of every command (--max-memory), and each refusal
+// names the option that drives it; no file is written.
+TEST_F(CliBadInput, bigAllocationsOfEachCommandAreRefusedNamingTheirOption) {
+    expectFailure("generate stockinette --samples 1000000 --max-memory 16M -o p.pyp",
+                  "for 1000000 pattern samples, over the memory budget of 0.016 GiB; lower --samples");
+    expectFailure(
+        kSmall + std::string("--export tubes --sides 1024 --chunk-vertices 100000000 --max-memory 64M -o t.obj"),
+        "lower --sides or --chunk-vertices or raise --max-memory");
+#ifdef KNIT_HARD_HAVE_RENDER_CHECK
+    const std::string render = "render -q --mesh plane --mesh-res 4 --repeats 3 3 --spp 1 --output o.png ";
+    expectFailure(render + "--width 8192 --height 8192 --max-memory 1G", "pixels of the image");
+    expectFailure(render + "--width 8 --height 8 --mode tubes --tube-sides 4096 --max-memory 64M",
+                  "lower --tube-sides");
+#endif
+}
+
 TEST_F(CliBadInput, inputsThatAreNotRegularFilesAreRefusedWithoutBlocking) {
     ASSERT_EQ(::mkfifo((dir / "fifo.pyp").c_str(), 0600), 0);
     ASSERT_EQ(::mkfifo((dir / "fifo.obj").c_str(), 0600), 0);

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "knit/budget.hpp"
 #include "knit/path_tracer.hpp"
 #include "knit/ply_material.hpp"
 #include "knit/trace_mode.hpp"
@@ -46,6 +47,10 @@ struct RenderOptions {
     double baseAlbedo = 0.5;
     int tubeSides = 8;
     bool progress = true;  // progress on stderr for renders of more than ~1e6 samples
+    // The image buffers (--width x --height) and the geometry of the mode (Embree curves,
+    // tubes of tubeSides, grid cells) are estimated before either is allocated and refused over
+    // this budget (the CLI passes --max-memory).
+    MemoryBudget budget;
 };
 
 struct RenderResult {
