@@ -48,6 +48,7 @@
 #include <limits>
 #include <optional>
 #include <sstream>
+#include <utility>
 
 #include <glm/mat3x3.hpp>
 #include <glm/mat4x4.hpp>
@@ -185,21 +186,33 @@ private:
 constexpr double kBytesPerExpandedVertex = 96;
 constexpr double kBytesPerExpandedIndex = 24;
 
+// The vertices and indices one triangle primitive expands to, or nothing when it cannot be read
+// (no POSITION or TEXCOORD_0, Draco, a bad accessor): the collector then reports it in its order.
+std::optional<std::pair<double, double>> expandedCounts(const gltf::Document& doc, const gltf::Primitive& p) {
+    if (p.mode != gltf::kTriangles && p.mode != gltf::kTriangleStrip && p.mode != gltf::kTriangleFan) return {};
+    const std::optional<size_t> pos = doc.attribute(p, "POSITION");
+    if (!pos || !doc.attribute(p, "TEXCOORD_0") || doc.extensions(p).contains("KHR_draco_mesh_compression")) return {};
+    try {
+        const double n = double(doc.accessor(*pos, p.what + " POSITION").count);
+        const std::optional<size_t> idx = doc.indices(p);
+        return std::make_pair(n, idx ? double(doc.accessor(*idx, p.what + " indices").count) : n);
+    } catch (const Error&) {
+        return {};
+    }
+}
+
 // Before anything is expanded: the vertices and indices of every triangle primitive of every
 // instance (one big accessor reused by many primitives or nodes counts each time), against the
-// budget. Primitives without POSITION are left to the collector's message.
+// budget.
 void checkExpansionBudget(const gltf::Document& doc, const MemoryBudget& budget) {
     double vertices = 0, indices = 0, instances = 0;
     doc.forEachMeshInstance([&](const gltf::MeshInstance& instance) {
         doc.forEachPrimitive(instance.mesh, [&](const gltf::Primitive& p) {
-            const std::optional<size_t> pos = doc.attribute(p, "POSITION");
-            if (!pos || (p.mode != gltf::kTriangles && p.mode != gltf::kTriangleStrip && p.mode != gltf::kTriangleFan))
-                return;
-            const double n = double(doc.accessor(*pos, p.what + " POSITION").count);
-            const std::optional<size_t> idx = doc.indices(p);
-            vertices += n;
-            indices += idx ? double(doc.accessor(*idx, p.what + " indices").count) : n;
-            instances += 1;
+            if (const auto counts = expandedCounts(doc, p)) {
+                vertices += counts->first;
+                indices += counts->second;
+                instances += 1;
+            }
         });
     });
     std::ostringstream what;
