@@ -11,6 +11,7 @@
 #include <sys/wait.h>
 
 #include "common/run_knit.hpp"
+#include "mesh/gltf_builder.hpp"
 #include "test_util.hpp"
 
 namespace {
@@ -117,6 +118,18 @@ TEST_F(CliBadInput, bigAllocationsOfEachCommandAreRefusedNamingTheirOption) {
     expectFailure(
         kSmall + std::string("--export tubes --sides 1024 --chunk-vertices 100000000 --max-memory 64M -o t.obj"),
         "lower --sides or --chunk-vertices or raise --max-memory");
+    // A glTF whose one quad mesh is instanced by 100 nodes: 52800 B expanded, over 40 KiB.
+    knit_test::GltfBuilder g;
+    g.mesh({0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}, {0, 1, 1, 1, 1, 0, 0, 0}, {0, 1, 2, 0, 2, 3});
+    g.doc["nodes"] = nlohmann::json::array();
+    g.doc["scenes"] = nlohmann::json::array({{{"nodes", nlohmann::json::array()}}});
+    for (int k = 0; k < 100; ++k) {
+        g.doc["nodes"].push_back({{"mesh", 0}, {"translation", {2.0 * k, 0, 0}}});
+        g.doc["scenes"][0]["nodes"].push_back(k);
+    }
+    write("many.gltf", g.gltf());
+    expectFailure("build -q --mesh many.gltf --repeats 1 1 --max-memory 40K -o o.obj",
+                  "for 400 vertices and 600 indices of 100 primitive instances in 'many.gltf'");
 #ifdef KNIT_HARD_HAVE_RENDER_CHECK
     const std::string render = "render -q --mesh plane --mesh-res 4 --repeats 3 3 --spp 1 --output o.png ";
     expectFailure(render + "--width 8192 --height 8192 --max-memory 1G", "pixels of the image");
