@@ -18,6 +18,7 @@
 #include "interrupt.hpp"
 #include "knit/cache.hpp"
 #include "knit/error.hpp"
+#include "knit/output_transaction.hpp"
 #include "report.hpp"
 #include "rest_pose.hpp"
 #include "util/platform.hpp"
@@ -227,24 +228,30 @@ int runAnimate(const AnimateCommand& a) {
     const FrameSequence seq(a.frames, a.range);
     // Step 2: bind once on the rest pose.
     const auto t0 = Clock::now();
-    const Scene rest = bindRestPose(resolveScene(a.scene), a.rest.empty() ? seq.frame(0).path : a.rest);
+    const SceneOptions options = resolveScene(a.scene);
+    const Scene rest = bindRestPose(options, a.rest.empty() ? seq.frame(0).path : a.rest);
     printWarnings(rest);
     AnimatorOptions ao;
     ao.plies = a.exportOptions.what != ExportWhat::Yarns;
     ao.stats = !a.noStats;
     const Animator animator(rest, ao);
     const double bindSeconds = since(t0);
-    // Step 3: the frames, streamed into the outputs; then commit.
+    // Step 3: the frames, streamed into staged outputs (existing files stay unchanged until the end).
+    OutputTransaction outputs;
+    const ExportOptions staged = stagedExport(a.exportOptions, options.budget, outputs);
     CacheFormat format;
     std::unique_ptr<FrameSink> sink;
-    if (cacheFormatOf(a.exportOptions.path, format))
-        sink = std::make_unique<CacheSink>(a.exportOptions.path, animator, seq, a.fps);
-    else sink = std::make_unique<FilesSink>(animator, a.exportOptions);
+    if (cacheFormatOf(staged.path, format)) sink = std::make_unique<CacheSink>(staged.path, animator, seq, a.fps);
+    else sink = std::make_unique<FilesSink>(animator, staged);
     StageTotals totals;
-    const std::vector<FrameRecord> frames = runFrames(seq, animator, *sink, totals, a.scene.quiet);
-    sink->commit();
-    // Step 4: the report and the summary.
-    if (!a.report.empty()) writeReport(a.report, animateReport(bindSeconds, frames, totals, animator));
+    const std::vector<FrameRecord> frames =
+        outputs.run([&] { return runFrames(seq, animator, *sink, totals, a.scene.quiet); });
+    outputs.run([&] { sink->commit(); });
+    // Step 4: the report; then every output is committed together; the summary.
+    if (!a.report.empty())
+        outputs.run(
+            [&] { writeReport(outputs.stage(a.report), animateReport(bindSeconds, frames, totals, animator)); });
+    outputs.run([&] { outputs.commit(); });
     std::printf("animated %zu frames (%zu yarn vertices, %zu ply vertices per frame): bind %.3f s, wrote %s\n",
                 frames.size(), rest.yarns().curves.pointCount(), animator.plyPointCount(), bindSeconds,
                 a.exportOptions.path.c_str());

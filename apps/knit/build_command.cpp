@@ -2,7 +2,6 @@
 #include "build_command.hpp"
 
 #include <cstdio>
-#include <filesystem>
 
 #include <nlohmann/json.hpp>
 
@@ -10,6 +9,7 @@
 #include "export_flags.hpp"
 #include "export_report.hpp"
 #include "knit/animation.hpp"
+#include "knit/output_transaction.hpp"
 #include "float_range.hpp"
 #include "path_collisions.hpp"
 #include "report.hpp"
@@ -61,18 +61,17 @@ int runBuildOnRestPose(const BuildCommand& b) {
     checkFrame(rest.mesh(), mesh, "--mesh '" + options.mesh + "'");
     AnimationFrame frame;
     animator.evaluate(mesh.positions, frame);
-    const ExportStats stats = exportScene(frameScene(animator, mesh, frame), b.exportOptions);
+    // The export and the report are committed together: an existing -o stays unchanged if the report fails.
+    OutputTransaction outputs;
+    const ExportOptions staged = stagedExport(b.exportOptions, options.budget, outputs);
+    const ExportStats stats = outputs.run([&] { return exportScene(frameScene(animator, mesh, frame), staged); });
     if (!b.report.empty()) {
         nlohmann::json report = sceneReport(rest, sceneStats(rest));
         report["rest"] = b.rest;
         report["export"] = exportReport(stats);
-        try {
-            writeReport(b.report, report);
-        } catch (...) {
-            std::filesystem::remove(b.exportOptions.path);
-            throw;
-        }
+        outputs.run([&] { writeReport(outputs.stage(b.report), report); });
     }
+    outputs.run([&] { outputs.commit(); });
     std::printf("bound on %s, evaluated on %s: wrote %s (%s, %zu curves, %zu vertices)\n", b.rest.c_str(),
                 options.mesh.c_str(), b.exportOptions.path.c_str(), stats.format.c_str(), stats.curves, stats.vertices);
     return 0;
@@ -85,18 +84,18 @@ int runSurfaceOnly(const BuildCommand& b) {
     const std::string& out = b.exportOptions.path;
     refuseCollidingPaths({{"--mesh", b.scene.scene.mesh}, {"--pattern", b.scene.scene.pattern}},
                          {{"-o", out}, {"--report", b.report}});
-    const SurfaceBuild s = runSurfaceBuild(resolveScene(b.scene), b.surface, PlyMaterial{}, out);
+    // The GLB and the report are committed together: an existing -o stays unchanged if the report fails.
+    OutputTransaction outputs;
+    const SurfaceBuild s = outputs.run(
+        [&] { return runSurfaceBuild(resolveScene(b.scene), b.surface, PlyMaterial{}, outputs.stage(out)); });
     if (!b.report.empty()) {
-        try {
-            writeReport(b.report, {{"pattern", s.pattern.name},
-                                   {"mesh", s.mesh.name},
-                                   {"surface", surfaceReport(s)},
-                                   {"export", surfaceExportReport(s)}});
-        } catch (...) {
-            std::filesystem::remove(out);
-            throw;
-        }
+        const nlohmann::json report = {{"pattern", s.pattern.name},
+                                       {"mesh", s.mesh.name},
+                                       {"surface", surfaceReport(s)},
+                                       {"export", surfaceExportReport(s)}};
+        outputs.run([&] { writeReport(outputs.stage(b.report), report); });
     }
+    outputs.run([&] { outputs.commit(); });
     std::printf(
         "baked %s at %d x %d (mean coverage %.3f) in %.3f s; wrote %s (%zu vertices, %zu triangles, %zu bytes)\n",
         s.pattern.name.c_str(), s.bake.width, s.bake.height, s.bake.meanCoverage(), s.bake.seconds, out.c_str(),
@@ -143,18 +142,17 @@ int runBuild(const BuildCommand& b) {
     printWarnings(scene);
     refuseValuesBeyondFloat32(scene, b.exportOptions);
     refuseEmptyExport(scene, b.exportOptions);
-    // Step 3: the export, then the report (part of the result: without it the export is removed).
-    const ExportStats stats = exportScene(scene, b.exportOptions);
+    // Step 3: the export, then the report, staged and committed together: an existing -o (or report)
+    // stays unchanged unless both are complete.
+    OutputTransaction outputs;
+    const ExportOptions staged = stagedExport(b.exportOptions, options.budget, outputs);
+    const ExportStats stats = outputs.run([&] { return exportScene(scene, staged); });
     const SceneStats sceneNumbers = sceneStats(scene);  // counts, segment lengths, stage times
     if (!b.report.empty()) {
         const nlohmann::json report = buildReportJson(scene, sceneNumbers, stats, streamed);
-        try {
-            writeReport(b.report, report);
-        } catch (...) {
-            std::filesystem::remove(b.exportOptions.path);
-            throw;
-        }
+        outputs.run([&] { writeReport(outputs.stage(b.report), report); });
     }
+    outputs.run([&] { outputs.commit(); });
     // Step 4: the summary on stdout.
     printSummary(scene, sceneNumbers, stats, b.exportOptions.path, streamed);
     return 0;

@@ -8,6 +8,7 @@
 #include "knit/chart.hpp"
 #include "knit/chart_pattern.hpp"
 #include "knit/export.hpp"
+#include "knit/output_transaction.hpp"
 #include "knit/pattern.hpp"
 
 namespace knit::cli {
@@ -46,11 +47,15 @@ int runChart(const ChartCommand& c) {
     ChartPatternOptions options;
     options.radius = c.yarnRadius;
     const ChartPattern cp = relaxChart(chart, options);
-    writeFileAtomically(
-        c.output, [&](std::ostream& out) { writePyp(out, cp.relaxed.pattern); }, false);
-    if (!c.report.empty())
+    OutputTransaction outputs;  // the pattern and its report are committed together
+    outputs.run([&] {
         writeFileAtomically(
-            c.report, [&](std::ostream& out) { out << reportOf(chart, cp).dump(2) << '\n'; }, false);
+            outputs.stage(c.output), [&](std::ostream& out) { writePyp(out, cp.relaxed.pattern); }, false);
+        if (!c.report.empty())
+            writeFileAtomically(
+                outputs.stage(c.report), [&](std::ostream& out) { out << reportOf(chart, cp).dump(2) << '\n'; }, false);
+        outputs.commit();
+    });
     std::printf("wrote %s (%d x %d stitches, %zu vertices, min distance %.3f r, %.2f s)\n", c.output.c_str(),
                 chart.width, chart.height, cp.relaxed.pattern.points.size(), cp.relaxed.minDistance, cp.seconds);
     return 0;

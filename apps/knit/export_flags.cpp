@@ -61,4 +61,11 @@ void addExportFlags(CLI::App& command, ExportOptions& options) {
     command.add_flag("--pretty-json", options.prettyJson, "Indent the glTF JSON")->group("Export");
 }
 
+ExportOptions stagedExport(const ExportOptions& flags, const MemoryBudget& budget, OutputTransaction& outputs) {
+    ExportOptions o = flags;
+    o.path = outputs.stage(flags.path);
+    o.budget = budget;
+    return o;
+}
+
 }  // namespace knit::cli

@@ -22,10 +22,14 @@ void addGenerateCommand(CLI::App& app, GenerateCommand& g) {
     g.command->add_option("--model-radius", s.modelRadius, "Yarn radius (model units)")->capture_default_str();
     g.command->add_option("--radius", s.radius, "Yarn radius (metres)")->capture_default_str();
     g.command->add_option("--samples", s.samplesPerStitch, "Samples per stitch")->capture_default_str();
+    g.command->add_option("--max-memory", g.maxMemory,
+                          "Memory budget (8G, 512M, ...; default min(4G, half the physical memory))");
 }
 
 int runGenerate(const GenerateCommand& g) {
-    const Pattern p = generateStockinette(g.stockinette);
+    StockinetteParams params = g.stockinette;
+    if (!g.maxMemory.empty()) params.budget = MemoryBudget(parseMemorySize(g.maxMemory));
+    const Pattern p = generateStockinette(params);
     writeFileAtomically(
         g.output, [&](std::ostream& out) { writePyp(out, p); }, false);
     std::printf("wrote %s (%zu vertices, period %.9g x %.9g m)\n", g.output.c_str(), p.points.size(), p.px, p.py);

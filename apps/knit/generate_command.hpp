@@ -13,6 +13,7 @@ struct GenerateCommand {
     std::string name = "stockinette";
     std::string output;  // .pyp path (required)
     StockinetteParams stockinette;
+    std::string maxMemory;  // empty: MemoryBudget's default
 };
 
 // Registers the subcommand and its flags on `app`, bound to `generate` (which must outlive parsing).

@@ -2,9 +2,11 @@
 #include "render_command.hpp"
 
 #include <cstdio>
+#include <functional>
 
 #include <nlohmann/json.hpp>
 
+#include "knit/output_transaction.hpp"
 #include "path_collisions.hpp"
 #include "render_flags.hpp"
 #include "render_report.hpp"
@@ -13,17 +15,28 @@
 namespace knit::cli {
 namespace {
 
+// The render's images, then its report, staged in `outputs` and committed together; the report
+// is printed on stdout. `extra` fields (e.g. "surface") are added to the report.
+int finishRender(const RenderCommand& r, OutputTransaction& outputs, const std::function<RenderResult()>& render,
+                 const nlohmann::json& extra) {
+    RenderResult result = outputs.run(render);
+    for (std::string& path : result.written) path = outputs.finalNames(path);
+    nlohmann::json report = renderReport(result);
+    for (const auto& [key, value] : extra.items()) report[key] = value;
+    if (!r.report.empty()) outputs.run([&] { writeReport(outputs.stage(r.report), report); });
+    outputs.run([&] { outputs.commit(); });
+    std::printf("%s\n", report.dump().c_str());
+    return 0;
+}
+
 // --surface-only: the pattern baked with the render's material, the base mesh traced with it.
-int runSurfaceRender(const RenderCommand& r, RenderOptions options) {
-    const SurfaceBuild s = bakeSurfaceLevel(resolveScene(r.scene), r.surface, resolveMaterial(options));
+int runSurfaceRender(const RenderCommand& r, const SceneOptions& sceneOptions, RenderOptions options,
+                     OutputTransaction& outputs) {
+    const SurfaceBuild s = bakeSurfaceLevel(sceneOptions, r.surface, resolveMaterial(options));
     const Scene scene = surfaceScene(s);
     options.surface = &s.bake;
     options.surfaceRepeats[0] = s.placement.repeats.x, options.surfaceRepeats[1] = s.placement.repeats.y;
-    nlohmann::json report = renderReport(renderScene(scene, options));
-    report["surface"] = surfaceReport(s);
-    if (!r.report.empty()) writeReport(r.report, report);
-    std::printf("%s\n", report.dump().c_str());
-    return 0;
+    return finishRender(r, outputs, [&] { return renderScene(scene, options); }, {{"surface", surfaceReport(s)}});
 }
 
 }  // namespace
@@ -42,16 +55,19 @@ int runRender(const RenderCommand& r) {
     refuseCollidingPaths(
         {{"--mesh", r.scene.scene.mesh}, {"--pattern", r.scene.scene.pattern}, {"--material", r.options.materialFile}},
         {{"--output", r.options.output}, {"--exr", r.options.exr}, {"--report", r.report}});
+    // The PNG, the EXR and the report are staged and committed together at the end.
+    OutputTransaction outputs;
     RenderOptions options = r.options;
     options.progress = options.progress && !r.scene.quiet;
-    if (r.surface.surfaceOnly) return runSurfaceRender(r, options);
-    const Scene scene = buildScene(resolveScene(r.scene));
+    options.output = outputs.stage(r.options.output);
+    options.exr = outputs.stage(r.options.exr);
+    const SceneOptions sceneOptions = resolveScene(r.scene);
+    options.budget = sceneOptions.budget;  // --max-memory
+    if (r.surface.surfaceOnly) return runSurfaceRender(r, sceneOptions, options, outputs);
+    const Scene scene = buildScene(sceneOptions);
     printWarnings(scene);
-    const RenderResult result = renderScene(scene, options);
-    const nlohmann::json report = renderReport(result);
-    if (!r.report.empty()) writeReport(r.report, report);
-    std::printf("%s\n", report.dump().c_str());
-    return 0;
+    return finishRender(
+        r, outputs, [&] { return renderScene(scene, options); }, nlohmann::json::object());
 }
 
 }  // namespace knit::cli

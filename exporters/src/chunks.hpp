@@ -44,13 +44,18 @@ void forEachTubeChunk(const Polylines& curves, double radius, const TubeOptions&
 // min(2 x threads, 8) tokens exist, so memory stays bounded whatever the core count, and what is
 // consumed does not depend on the thread count. An exception in either stops the pipeline and
 // propagates.
+// The chunks orderedChunks keeps in memory at once: min(2 x threads, 8).
+inline size_t chunksInFlight() {
+    return std::min<size_t>(8, size_t(2 * std::max(1, tbb::this_task_arena::max_concurrency())));
+}
+
 template <class Token, class Produce, class Consume>
 void orderedChunks(size_t count, Produce produce, Consume consume) {
     struct Slot {
         size_t index = 0;
         Token token;
     };
-    const size_t tokens = std::min<size_t>(8, size_t(2 * std::max(1, tbb::this_task_arena::max_concurrency())));
+    const size_t tokens = chunksInFlight();
     std::vector<std::unique_ptr<Slot>> pool;
     tbb::concurrent_queue<Slot*> free;
     for (size_t t = 0; t < tokens; ++t) {

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "atomic_file.hpp"
+#include "export_budget.hpp"
 #include "formats.hpp"
 #include "knit/error.hpp"
 #include "material_extras.hpp"
@@ -175,6 +176,8 @@ ExportStats exportCurves(const ExportInput& input, const ExportOptions& requeste
           << " m";
         job.header = h.str();
     }
+    if (tubes && input.curves)
+        detail::checkTubeExportBudget(*input.curves, job.tube, options, ext == "gltf" || ext == "glb");
     // Step 2: dispatch on the extension.
     if (ext == "obj") detail::exportObj(job);
     else if (ext == "ply") detail::exportPly(job);

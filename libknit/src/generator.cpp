@@ -17,6 +17,10 @@ Pattern generateStockinette(const StockinetteParams& prm) {
         prm.samplesPerStitch < 4)
         throw Error(
             "stockinette generator: radius, modelRadius, h must be positive, h + rowGap > 0 and samplesPerStitch >= 4");
+    // Before allocating: a point, a twist and an edge per sample, and validation's working copies.
+    constexpr double kBytesPerSample = 96;
+    prm.budget.require(double(prm.samplesPerStitch) * kBytesPerSample,
+                       std::to_string(prm.samplesPerStitch) + " pattern samples", "--samples");
     const double s = prm.radius / prm.modelRadius;  // metres per model unit
     Pattern p;
     p.name = "stockinette";

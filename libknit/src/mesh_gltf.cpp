@@ -21,7 +21,9 @@
 //  * The mesh instances of the default scene (gltf::Document::forEachMeshInstance), each with its
 //    node's world transform applied to POSITION; a mirroring transform (negative determinant)
 //    reverses the triangles' winding, as glTF specifies. Instancing can multiply a small file:
-//    more than MeshLoadOptions::maxElements vertices or triangles in total are refused.
+//    more than MeshLoadOptions::maxElements vertices or triangles in total are refused, and the
+//    memory of the expanded elements is estimated from the accessor counts before any is
+//    expanded and checked against MeshLoadOptions::budget.
 //  * TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN primitives (strips and fans are unrolled;
 //    triangles with a repeated index, e.g. strip restarts, are skipped). POINTS and LINES
 //    primitives are not surfaces and are ignored; a file without any triangle is an error.
@@ -45,6 +47,8 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <sstream>
+#include <utility>
 
 #include <glm/mat3x3.hpp>
 #include <glm/mat4x4.hpp>
@@ -177,6 +181,48 @@ private:
     std::vector<int> faceVerts_;
 };
 
+// Bytes per expanded element while collecting and welding (world positions and UVs, the weld's
+// keys; indices, face lists and the welded faces); generous like the scene estimates.
+constexpr double kBytesPerExpandedVertex = 96;
+constexpr double kBytesPerExpandedIndex = 24;
+
+// The vertices and indices one triangle primitive expands to, or nothing when it cannot be read
+// (no POSITION or TEXCOORD_0, Draco, a bad accessor): the collector then reports it in its order.
+std::optional<std::pair<double, double>> expandedCounts(const gltf::Document& doc, const gltf::Primitive& p) {
+    if (p.mode != gltf::kTriangles && p.mode != gltf::kTriangleStrip && p.mode != gltf::kTriangleFan) return {};
+    const std::optional<size_t> pos = doc.attribute(p, "POSITION");
+    if (!pos || !doc.attribute(p, "TEXCOORD_0") || doc.extensions(p).contains("KHR_draco_mesh_compression")) return {};
+    try {
+        const double n = double(doc.accessor(*pos, p.what + " POSITION").count);
+        const std::optional<size_t> idx = doc.indices(p);
+        return std::make_pair(n, idx ? double(doc.accessor(*idx, p.what + " indices").count) : n);
+    } catch (const Error&) {
+        return {};
+    }
+}
+
+// Before anything is expanded: the vertices and indices of every triangle primitive of every
+// instance (one big accessor reused by many primitives or nodes counts each time), against the
+// budget.
+void checkExpansionBudget(const gltf::Document& doc, const MemoryBudget& budget) {
+    double vertices = 0, indices = 0, instances = 0;
+    doc.forEachMeshInstance([&](const gltf::MeshInstance& instance) {
+        doc.forEachPrimitive(instance.mesh, [&](const gltf::Primitive& p) {
+            if (const auto counts = expandedCounts(doc, p)) {
+                vertices += counts->first;
+                indices += counts->second;
+                instances += 1;
+            }
+        });
+    });
+    std::ostringstream what;
+    what.precision(3);
+    what << vertices << " vertices and " << indices << " indices of " << instances << " primitive instances in '"
+         << doc.name() << "'";
+    budget.require(vertices * kBytesPerExpandedVertex + indices * kBytesPerExpandedIndex, what.str(),
+                   "the instancing of the mesh file (its nodes and primitives reusing accessors)");
+}
+
 BaseMesh meshOf(const gltf::Document& doc, const MeshLoadOptions& options) {
     // meshopt-compressed buffer views cannot be read: say so, rather than report their
     // fallback buffer (which has no data) as missing.
@@ -184,6 +230,7 @@ BaseMesh meshOf(const gltf::Document& doc, const MeshLoadOptions& options) {
         if (e == "EXT_meshopt_compression" || e == "KHR_meshopt_compression")
             doc.fail(e +
                      " is not supported (compressed buffer views); export the base mesh without meshopt compression");
+    checkExpansionBudget(doc, options.budget);
     TriangleCollector triangles(doc, options.maxElements);
     doc.forEachMeshInstance([&](const gltf::MeshInstance& instance) { triangles.add(instance); });
     return triangles.weld(options);

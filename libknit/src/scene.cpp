@@ -45,7 +45,9 @@ public:
     void loadInputs() {
         run("load_pattern", [&] { s_.pattern_ = loadPatternFileOrName(options_.pattern); });
         run("load_mesh", [&] {
-            s_.mesh_ = loadMeshFileOrName(options_.mesh, options_.meshOptions);
+            MeshLoadOptions load;
+            load.budget = options_.budget;
+            s_.mesh_ = loadMeshFileOrName(options_.mesh, options_.meshOptions, load);
             validateMesh(s_.mesh_);
         });
     }

@@ -21,6 +21,7 @@
 // Positions are float32 offsets from `origin` (computed in double, then rounded once).
 #include "knit/sweep.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -46,6 +47,23 @@ size_t tubeTriangleCount(uint32_t points, bool closed, const TubeOptions& option
     const size_t segments = closed ? size_t(points) : size_t(points) - 1;
     const size_t caps = (!closed && options.caps) ? 2 * size_t(options.sides) : 0;
     return segments * 2 * size_t(options.sides) + caps;
+}
+
+TubeCounts tubeCounts(const Polylines& curves, const TubeOptions& options) {
+    TubeCounts c;
+    for (size_t k = 0; k < curves.curveCount(); ++k) {
+        const size_t v = tubeVertexCount(curves.size(k), curves.isClosed(k), options);
+        c.vertices += double(v);
+        c.triangles += double(tubeTriangleCount(curves.size(k), curves.isClosed(k), options));
+        c.largestCurveVertices = std::max(c.largestCurveVertices, v);
+    }
+    return c;
+}
+
+double tubeMeshBytes(double vertices, double triangles) {
+    // positions, normals (vec3), tangents (vec4), uvs (vec2), curveOfVertex; uvec3 triangles
+    constexpr double kPerVertex = 12 + 12 + 16 + 8 + 4, kPerTriangle = 12;
+    return vertices * kPerVertex + triangles * kPerTriangle;
 }
 
 namespace {

@@ -15,6 +15,7 @@
 #include "knit/ply_geometry.hpp"
 #include "knit/scene.hpp"
 #include "material_overrides.hpp"
+#include "render_budget.hpp"
 #include "render_image.hpp"
 #include "scene_scale.hpp"
 #include "trace_scene.hpp"
@@ -83,6 +84,7 @@ RenderResult renderScene(const Scene& scene, const RenderOptions& o) {
     if (!o.exr.empty()) checkImageName(o.exr, "exr", "--exr", "EXR");
     if (!o.output.empty()) checkWritable(o.output);
     if (!o.exr.empty()) checkWritable(o.exr);
+    detail::checkRenderBudget(scene.plies(), o);
     res.mode = mode;
     res.light = o.light;
     res.spp = o.spp;

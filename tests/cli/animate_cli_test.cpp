@@ -88,10 +88,11 @@ TEST_F(Animate, badFrameFailsNamingItAndLeavesNoPartialCache) {
 TEST_F(Animate, sigtermMidRunLeavesNoPartialCacheAndNoTempFile) {
     writeWaveSequence(dir, 400, 16);
     const std::vector<std::string> before = files();
-    // Start the run, wait for its temporary cache to appear, then send SIGTERM.
+    // Start the run, wait for its temporary cache to appear (in the outputs' staging folder), then send SIGTERM.
     const std::string script =
         "'" KNIT_CLI "' animate -q --frames frame_%04d.obj --repeats 6 6 -o c.pc2 > log.txt 2>&1 & "
-        "pid=$!; for i in $(seq 1 2000); do ls .c.pc2.*.tmp >/dev/null 2>&1 && break; sleep 0.005; done; "
+        "pid=$!; for i in $(seq 1 2000); do ls .knit-staging.*/.c.pc2.*.tmp >/dev/null 2>&1 && break; sleep 0.005; "
+        "done; "
         "kill -TERM $pid; wait $pid; echo rc=$?";
     const CliRun r = runShell(script, dir);
     EXPECT_NE(r.output.find("rc=1"), std::string::npos) << r.output;

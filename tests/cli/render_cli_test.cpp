@@ -79,7 +79,7 @@ TEST_F(RenderCli, outputThatIsAFolderNamesThePath) {
     const RenderRun r = knitIn(dir, kSmall + "--spp 1 --output taken.png");
     EXPECT_EQ(r.exitCode, 1) << r.output;
     EXPECT_NE(r.output.find("taken.png"), std::string::npos) << r.output;
-    EXPECT_NE(r.output.find("directory"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("a folder with that name exists"), std::string::npos) << r.output;  // as `build` says
     EXPECT_TRUE(fs::is_directory(dir / "taken.png"));
     EXPECT_TRUE(files().empty());
 }

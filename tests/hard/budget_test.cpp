@@ -4,10 +4,18 @@
 
 #include <string>
 
+#include <filesystem>
+
 #include "knit/budget.hpp"
 #include "knit/error.hpp"
+#include "knit/export.hpp"
+#include "knit/generator.hpp"
 #include "knit/scene.hpp"
 #include "scene_refusals.hpp"
+#include "test_util.hpp"
+#ifdef KNIT_HARD_HAVE_RENDER_CHECK
+#include "knit/render.hpp"
+#endif
 
 namespace {
 
@@ -76,5 +84,81 @@ TEST(Budget, sceneWithinTheBudgetIsBuiltUnchanged) {
     const knit::Scene s = knit::buildScene(smallPlane());
     EXPECT_GT(s.yarns().curves.pointCount(), 0u);
 }
+
+TEST(Budget, generatorSampleCountIsRefusedNamingSamples) {
+    knit::StockinetteParams p;
+    p.samplesPerStitch = 1000000;  // 1e6 samples x 96 B = 92 MiB
+    p.budget = MemoryBudget(uint64_t(16) << 20);
+    const std::string m = errorOf([&] { knit::generateStockinette(p); });
+    EXPECT_NE(m.find("for 1000000 pattern samples"), std::string::npos) << m;
+    EXPECT_NE(m.find("lower --samples or raise --max-memory"), std::string::npos) << m;
+    p.samplesPerStitch = 24;
+    EXPECT_EQ(knit::generateStockinette(p).points.size(), 24u);
+}
+
+// One open curve of 200 points as tubes: 200 rings (+2 caps) of sides + 1 vertices.
+struct TubeExport {
+    explicit TubeExport(const std::string& path) {
+        std::vector<glm::dvec3> points;
+        for (int i = 0; i < 200; ++i) points.emplace_back(0.01 * i, 0.0, 0.0);
+        curves.addCurve(points.data(), points.size(), false);
+        input.curves = &curves;
+        input.radius = 0.001;
+        options.path = path;
+        options.what = knit::ExportWhat::Tubes;
+    }
+    knit::Polylines curves;
+    knit::ExportInput input;
+    knit::ExportOptions options;
+};
+
+TEST(Budget, tubesOfManySidesAreRefusedBeforeSweepingNamingSides) {
+    knit::test::TempDir tmp;
+    TubeExport t(tmp.file("t.obj"));
+    t.options.sides = 1024;  // 202 x 1025 vertices x 52 B + 2 x 1024 x 200 triangles x 12 B = 15.7 MB
+    t.options.budget = MemoryBudget(uint64_t(8) << 20);
+    const std::string m = errorOf([&] { knit::exportCurves(t.input, t.options); });
+    EXPECT_NE(m.find("2.07e+05 tube vertices per chunk (1024 sides) x 1 chunk in memory at once"), std::string::npos)
+        << m;
+    EXPECT_NE(m.find("lower --sides or --chunk-vertices or raise --max-memory"), std::string::npos) << m;
+    EXPECT_FALSE(std::filesystem::exists(tmp.file("t.obj")));
+    t.options.sides = 8;
+    EXPECT_GT(knit::exportCurves(t.input, t.options).triangles, 0u);
+}
+
+TEST(Budget, dracoQuantizationBitsCountInTheTubeExportEstimate) {
+    knit::test::TempDir tmp;
+    TubeExport t(tmp.file("t.glb"));
+    t.options.draco = true;
+    t.options.dracoBits = 30;  // Draco's tables: ~200 MB per chunk at 30 bits, at least 2 chunks in flight
+    t.options.budget = MemoryBudget(uint64_t(256) << 20);
+    const std::string m = errorOf([&] { knit::exportCurves(t.input, t.options); });
+    EXPECT_NE(m.find("Draco at 30 bits"), std::string::npos) << m;
+    EXPECT_NE(m.find("lower --draco-bits"), std::string::npos) << m;
+    t.options.dracoBits = 16;
+    EXPECT_GT(knit::exportCurves(t.input, t.options).triangles, 0u);
+}
+
+#ifdef KNIT_HARD_HAVE_RENDER_CHECK
+TEST(Budget, renderImageAndTubeGeometryAreRefusedBeforeAllocating) {
+    const knit::Scene scene = knit::buildScene(smallPlane());
+    knit::RenderOptions o;
+    o.spp = 1;
+    o.progress = false;
+    o.width = o.height = 4096;  // 1.7e7 pixels x 64 B = 1 GiB
+    o.budget = MemoryBudget(uint64_t(256) << 20);
+    std::string m = errorOf([&] { knit::renderScene(scene, o); });
+    EXPECT_NE(m.find("for 1.68e+07 pixels of the image"), std::string::npos) << m;
+    EXPECT_NE(m.find("lower --width / --height"), std::string::npos) << m;
+    o.width = o.height = 16;
+    o.mode = knit::GeometryMode::Tubes;
+    o.tubeSides = 4096;
+    m = errorOf([&] { knit::renderScene(scene, o); });
+    EXPECT_NE(m.find("tube triangles"), std::string::npos) << m;
+    EXPECT_NE(m.find("lower --tube-sides"), std::string::npos) << m;
+    o.tubeSides = 8;
+    EXPECT_EQ(knit::renderScene(scene, o).image.width, 16);
+}
+#endif
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include <sys/wait.h>
 
 #include "common/run_knit.hpp"
+#include "mesh/gltf_builder.hpp"
 #include "test_util.hpp"
 
 namespace {
@@ -107,6 +108,34 @@ TEST_F(CliBadInput, overTheMemoryBudgetIsRefusedNamingOptionAndEstimate) {
     expectFailure(kSmall + std::string("--max-memory 8X -o out.obj"), "--max-memory '8X'");
     const CliRun raised = knit(kSmall + std::string("--max-memory 1G -o out.obj"), dir);
     EXPECT_EQ(raised.exitCode, 0) << raised.output;
+}
+
+// The budget reaches every big allocation of every command (--max-memory), and each refusal
+// names the option that drives it; no file is written.
+TEST_F(CliBadInput, bigAllocationsOfEachCommandAreRefusedNamingTheirOption) {
+    expectFailure("generate stockinette --samples 1000000 --max-memory 16M -o p.pyp",
+                  "for 1000000 pattern samples, over the memory budget of 0.016 GiB; lower --samples");
+    expectFailure(
+        kSmall + std::string("--export tubes --sides 1024 --chunk-vertices 100000000 --max-memory 64M -o t.obj"),
+        "lower --sides or --chunk-vertices or raise --max-memory");
+    // A glTF whose one quad mesh is instanced by 100 nodes: 52800 B expanded, over 40 KiB.
+    knit_test::GltfBuilder g;
+    g.mesh({0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}, {0, 1, 1, 1, 1, 0, 0, 0}, {0, 1, 2, 0, 2, 3});
+    g.doc["nodes"] = nlohmann::json::array();
+    g.doc["scenes"] = nlohmann::json::array({{{"nodes", nlohmann::json::array()}}});
+    for (int k = 0; k < 100; ++k) {
+        g.doc["nodes"].push_back({{"mesh", 0}, {"translation", {2.0 * k, 0, 0}}});
+        g.doc["scenes"][0]["nodes"].push_back(k);
+    }
+    write("many.gltf", g.gltf());
+    expectFailure("build -q --mesh many.gltf --repeats 1 1 --max-memory 40K -o o.obj",
+                  "for 400 vertices and 600 indices of 100 primitive instances in 'many.gltf'");
+#ifdef KNIT_HARD_HAVE_RENDER_CHECK
+    const std::string render = "render -q --mesh plane --mesh-res 4 --repeats 3 3 --spp 1 --output o.png ";
+    expectFailure(render + "--width 8192 --height 8192 --max-memory 1G", "pixels of the image");
+    expectFailure(render + "--width 8 --height 8 --mode tubes --tube-sides 4096 --max-memory 64M",
+                  "lower --tube-sides");
+#endif
 }
 
 TEST_F(CliBadInput, inputsThatAreNotRegularFilesAreRefusedWithoutBlocking) {
@@ -218,6 +247,42 @@ TEST_F(CliBadInput, valuesBeyondFloat32AreRefusedNamingTheOption) {
                   "a coordinate of the curves");
     const CliRun obj = knit(std::string("build -q --mesh edge.obj --repeats 1 1 --export yarns -o out.obj"), dir);
     EXPECT_EQ(obj.exitCode, 0) << obj.output;
+}
+
+// Outputs committed together (knit/output_transaction.hpp): the second output of a command fails
+// after the first was written (a file-size limit, as a full disk would) and the existing first
+// output stays byte-identical; no new or staged file is left. The limits hold the first file and
+// not the second whether /bin/sh counts ulimit -f in 512- or 1024-byte blocks.
+TEST_F(CliBadInput, failedSecondOutputLeavesTheExistingFirstOutputUnchanged) {
+    const auto runLimited = [&](const std::string& args, int blocks) {
+        const std::string cmd = "cd '" + dir.string() + "' && trap '' XFSZ && ulimit -f " + std::to_string(blocks) +
+                                " && exec '" KNIT_CLI "' " + args + " 2>&1";
+        FILE* pipe = popen(cmd.c_str(), "r");
+        char buf[4096];
+        std::string output;
+        while (size_t n = fread(buf, 1, sizeof buf, pipe)) output.append(buf, n);
+        const int status = pclose(pipe);
+        EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 1) << args << "\n" << output;
+        return output;
+    };
+    // build: the export (400 bytes) fits, the report (1.6 KB) does not.
+    write("y.bcc", "the previous export");
+    const auto before = files(dir);
+    const std::string build =
+        "build -q --mesh plane --mesh-res 2 --repeats 1 1 --export yarns -o y.bcc --report r.json";
+    EXPECT_NE(runLimited(build, 1).find("cannot write 'r.json'"), std::string::npos);
+    EXPECT_EQ(knit::test::readText((dir / "y.bcc").string()), "the previous export");
+    EXPECT_EQ(files(dir), before);
+#ifdef KNIT_HARD_HAVE_RENDER_CHECK
+    // render: the PNG (6 KB) fits, the EXR (21 KB) does not.
+    write("o.png", "the previous PNG");
+    const auto beforeRender = files(dir);
+    const std::string render = "render -q --mesh plane --mesh-res 2 --repeats 2 2 --width 64 --height 64 --spp 1 "
+                               "--output o.png --exr o.exr";
+    EXPECT_NE(runLimited(render, 16).find("'o.exr'"), std::string::npos);
+    EXPECT_EQ(knit::test::readText((dir / "o.png").string()), "the previous PNG");
+    EXPECT_EQ(files(dir), beforeRender);
+#endif
 }
 
 }  // namespace

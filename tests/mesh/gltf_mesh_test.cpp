@@ -216,18 +216,37 @@ TEST(GltfMesh, deepNodeChainsDoNotOverflowTheStack) {
 }
 
 // Instancing multiplies a small file; the total is capped by MeshLoadOptions::maxElements.
-TEST(GltfMesh, instancingBeyondTheElementBudgetIsRefused) {
-    const std::string bytes = quadFile([](GltfBuilder& g) {
+// The quad's one mesh (its accessors) instanced by 100 nodes side by side.
+std::string hundredQuadInstances() {
+    return quadFile([](GltfBuilder& g) {
         g.doc["nodes"] = json::array();
         for (int k = 0; k < 100; ++k) g.doc["nodes"].push_back({{"mesh", 0}, {"translation", {2.0 * k, 0, 0}}});
         json roots = json::array();
         for (int k = 0; k < 100; ++k) roots.push_back(k);
         g.doc["scenes"][0]["nodes"] = roots;
     });
+}
+
+TEST(GltfMesh, instancingBeyondTheElementBudgetIsRefused) {
+    const std::string bytes = hundredQuadInstances();
     EXPECT_EQ(knit::parseGltfMesh(bytes, "many.gltf", "").faceCount(), 200u);
     knit::MeshLoadOptions o;
     o.maxElements = 150;
     EXPECT_NE(errorOf([&] { knit::parseGltfMesh(bytes, "many.gltf", "", o); }).find("maxElements"), std::string::npos);
+}
+
+// One accessor reused by many instances: the expanded size (100 x 4 vertices x 96 B + 100 x 6
+// indices x 24 B = 52800 B) is estimated before any is expanded and checked against the budget.
+TEST(GltfMesh, accessorsReusedByManyInstancesAreRefusedOverTheMemoryBudget) {
+    const std::string bytes = hundredQuadInstances();
+    knit::MeshLoadOptions o;
+    o.budget = knit::MemoryBudget(50000);
+    const std::string m = errorOf([&] { knit::parseGltfMesh(bytes, "many.gltf", "", o); });
+    EXPECT_NE(m.find("for 400 vertices and 600 indices of 100 primitive instances in 'many.gltf'"), std::string::npos)
+        << m;
+    EXPECT_NE(m.find("raise --max-memory"), std::string::npos) << m;
+    o.budget = knit::MemoryBudget(60000);
+    EXPECT_EQ(knit::parseGltfMesh(bytes, "many.gltf", "", o).faceCount(), 200u);
 }
 
 // Bad files: knit::Error naming what is wrong, never a crash.

@@ -27,6 +27,7 @@
 #include <ostream>
 #include <string>
 
+#include "knit/budget.hpp"
 #include "knit/scene.hpp"
 
 namespace knit {
@@ -67,6 +68,9 @@ struct ExportOptions {
     // count). The BIN data streams into the GLB after this gap; if the JSON turns out larger,
     // the file is rewritten once with a copy of the BIN data.
     uint64_t glbJsonReserve = 0;
+    // Tube meshes: the chunks in memory at once (swept, encoded, Draco-compressed) are estimated
+    // before the first is swept and refused over this budget (the CLI passes --max-memory).
+    MemoryBudget budget;
 };
 
 struct ExportStats {

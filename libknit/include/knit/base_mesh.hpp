@@ -12,6 +12,8 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "knit/budget.hpp"
+
 namespace knit {
 
 struct BaseMesh {
@@ -42,6 +44,9 @@ struct MeshLoadOptions {
     // glTF: refuse files whose primitives, instanced by the node tree, expand to more vertices
     // or triangles than this (instancing can multiply a small file).
     uint64_t maxElements = uint64_t(1) << 28;
+    // glTF: the memory the expanded vertices and triangles of all instances need, estimated
+    // before any is expanded, must fit this budget (the CLI passes --max-memory).
+    MemoryBudget budget;
 };
 
 // Reads OBJ (with vt), PLY (with per-vertex u,v / s,t / texcoord) or OFF (with texture coords)
@@ -73,7 +78,8 @@ BaseMesh makeDrape(const ProceduralMeshOptions& o = {});     // square sheet dra
 std::vector<std::string> builtinMeshNames();
 BaseMesh builtinMesh(const std::string& name, const ProceduralMeshOptions& o = {});
 // A mesh from a file or a built-in name.
-BaseMesh loadMeshFileOrName(const std::string& fileOrName, const ProceduralMeshOptions& o = {});
+BaseMesh loadMeshFileOrName(const std::string& fileOrName, const ProceduralMeshOptions& o = {},
+                            const MeshLoadOptions& load = {});
 
 // Angle-weighted vertex normals on the 3D topology (continuous across UV seams). Vertices
 // without a non-degenerate face get (0, 0, 1).

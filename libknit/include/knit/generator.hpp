@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "knit/budget.hpp"
 #include "knit/pattern.hpp"
 
 namespace knit {
@@ -19,6 +20,8 @@ struct StockinetteParams {
     double modelRadius = 0.8;  // yarn radius in model units (0.8 gives a snug fit)
     double radius = 0.001;     // yarn radius in metres
     int samplesPerStitch = 24;
+    // The pattern's memory (from samplesPerStitch) is checked against it before allocating.
+    MemoryBudget budget;
 };
 
 Pattern generateStockinette(const StockinetteParams& params = {});

@@ -52,4 +52,13 @@ void sweepTubes(const Polylines& curves, double radius, const TubeOptions& optio
 size_t tubeVertexCount(uint32_t points, bool closed, const TubeOptions& options);
 size_t tubeTriangleCount(uint32_t points, bool closed, const TubeOptions& options);
 
+// Size estimates before sweeping (memory budgets): the vertices and triangles sweepTubes makes
+// for all `curves`, the largest curve's vertices, and the bytes of a TubeMesh of given counts.
+struct TubeCounts {
+    double vertices = 0, triangles = 0;
+    size_t largestCurveVertices = 0;
+};
+TubeCounts tubeCounts(const Polylines& curves, const TubeOptions& options);
+double tubeMeshBytes(double vertices, double triangles);
+
 }  // namespace knit

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "knit/budget.hpp"
 #include "knit/path_tracer.hpp"
 #include "knit/ply_material.hpp"
 #include "knit/trace_mode.hpp"
@@ -53,6 +54,10 @@ struct RenderOptions {
     // bounds grown by the yarn radius.
     const SurfaceBake* surface = nullptr;
     double surfaceRepeats[2] = {0, 0};  // texture tiles across u and v; 0 = the scene's placement
+    // The image buffers (--width x --height) and the geometry of the mode (Embree curves,
+    // tubes of tubeSides, grid cells) are estimated before either is allocated and refused over
+    // this budget (the CLI passes --max-memory).
+    MemoryBudget budget;
 };
 
 struct RenderResult {

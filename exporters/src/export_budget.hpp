@@ -1,0 +1,15 @@
+// export_budget.hpp (internal) — the memory of a tube export, estimated before the first chunk is
+// swept and checked against ExportOptions::budget.
+#pragma once
+#include "knit/export.hpp"
+#include "knit/sweep.hpp"
+
+namespace knit::detail {
+
+// Tube meshes: the largest chunk (options.chunkVertices, or a longer curve's own chunk) times the
+// chunks in memory at once (glTF sweeps and encodes in parallel; other formats one at a time),
+// plus Draco's encoder per chunk. Driven by --sides, --chunk-vertices and --draco-bits.
+// `options.chunkVertices` must be resolved (not 0).
+void checkTubeExportBudget(const Polylines& curves, const TubeOptions& tube, const ExportOptions& options, bool gltf);
+
+}  // namespace knit::detail
