@@ -122,10 +122,11 @@ std::string runStage(Search& s, const Stage& stage) {
     return stopReason(r);
 }
 
-// The coarse factor: the largest f <= requested dividing both sizes that leaves >= 8 x 6 pixels.
+// The coarse factor: the largest f <= requested dividing both sizes that leaves >= 16 x 12 pixels
+// (smaller images hold too little structure for the SSIM window and the loss is mostly noise).
 int coarseFactor(int width, int height, int requested) {
     for (int f = requested; f >= 2; --f)
-        if (width % f == 0 && height % f == 0 && width / f >= 8 && height / f >= 6) return f;
+        if (width % f == 0 && height % f == 0 && width / f >= 16 && height / f >= 12) return f;
     return 1;
 }
 

@@ -88,20 +88,22 @@ ImageLoss imageLoss(const Image& render, const Image& target, const std::vector<
                     " but the target is " + std::to_string(target.width) + " x " + std::to_string(target.height));
     const size_t n = size_t(target.width) * target.height;
     if (!mask.empty() && mask.size() != n) throw Error("fit loss: the mask does not have one weight per pixel");
-    // Step 1: masked L2 on linear radiance, relative to the target's mean squared radiance.
-    double se = 0, tt = 0, weights = 0;
+    // Step 1: masked L2 on linear radiance, per channel relative to the target's mean squared
+    // radiance in that channel (so a dark channel of a coloured yarn counts as much as a bright one).
+    double se[3] = {0, 0, 0}, tt[3] = {0, 0, 0}, weights = 0;
     for (size_t i = 0; i < n; ++i) {
         const double w = mask.empty() ? 1.0 : mask[i];
         for (int c = 0; c < 3; ++c) {
             const double r = options.saturate ? std::min(render.rgb[3 * i + c], 1.f) : render.rgb[3 * i + c];
             const double d = r - target.rgb[3 * i + c];
-            se += w * d * d, tt += w * double(target.rgb[3 * i + c]) * target.rgb[3 * i + c];
+            se[c] += w * d * d, tt[c] += w * double(target.rgb[3 * i + c]) * target.rgb[3 * i + c];
         }
-        weights += 3 * w;
+        weights += w;
     }
     ImageLoss loss;
-    loss.rmse = weights > 0 ? std::sqrt(se / weights) : 0;
-    loss.relativeL2 = se / std::max(tt, 1e-12 * std::max(weights, 1.0));
+    const double floor = 1e-8 * std::max(tt[0] + tt[1] + tt[2], 1e-12);
+    for (int c = 0; c < 3; ++c) loss.relativeL2 += se[c] / std::max(tt[c], floor) / 3;
+    loss.rmse = weights > 0 ? std::sqrt((se[0] + se[1] + se[2]) / (3 * weights)) : 0;
     // Step 2: multi-scale SSIM of the luminance, the range taken from the target.
     Plane a = luminance(render, mask, options.saturate), b = luminance(target, mask, false);
     const double range = std::max(*std::max_element(b.value.begin(), b.value.end()), 1e-6);

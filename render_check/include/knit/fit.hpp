@@ -50,7 +50,8 @@ struct LossOptions {
 };
 
 struct ImageLoss {
-    double relativeL2 = 0;  // mean squared linear-radiance difference / mean squared target radiance
+    double relativeL2 = 0;  // per channel: mean squared linear-radiance difference / mean squared target
+                            // radiance; averaged over the channels
     double rmse = 0;        // root mean squared linear-radiance difference (over pixels and channels)
     double ssim = 1;        // multi-scale SSIM of the luminance (mean over scales), 1 = identical
     double total = 0;       // relativeL2 + ssimWeight (1 - ssim)
