@@ -9,6 +9,7 @@
 
 #include "knit/error.hpp"
 #include "knit/fit.hpp"
+#include "fit_renderer.hpp"
 
 namespace knit {
 namespace {
@@ -26,7 +27,7 @@ struct Stage {
 
 // What the objective needs between NLopt calls.
 struct Search {
-    const Scene* scene = nullptr;
+    FitRenderer* renderer = nullptr;
     const FitOptions* options = nullptr;
     const FitSpace* space = nullptr;
     PlyMaterial base;
@@ -43,11 +44,7 @@ struct Search {
 double elapsed(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 Image render(const Search& s, const PlyMaterial& m, LightPlacement light) {
-    RenderOptions o = s.options->render;
-    o.material = m, o.materialFile.clear(), o.materialOverrides.clear();
-    o.light = light, o.width = s.stage->front.width, o.height = s.stage->front.height, o.spp = s.stage->spp;
-    o.output.clear(), o.exr.clear(), o.progress = false;
-    return renderScene(*s.scene, o).image;
+    return s.renderer->render(m, light, s.stage->front.width, s.stage->front.height, s.stage->spp);
 }
 
 // The loss of x at the current stage: render front and back, compare, keep the best.
@@ -196,8 +193,9 @@ FitResult fitMaterial(const Scene& scene, const FitTarget& front, const FitTarge
             result.warnings.push_back(t->source + " is uniform (a solid colour): no ply material reproduces a cloth's "
                                                   "structure there; the result is the best fit of its mean colour");
     // Step 2: coarse then full-size search, each stage starting at the previous stage's best.
+    FitRenderer renderer(scene, options.render);
     Search s;
-    s.scene = &scene, s.options = &options, s.space = &space, s.base = base, s.result = &result, s.start = start;
+    s.renderer = &renderer, s.options = &options, s.space = &space, s.base = base, s.result = &result, s.start = start;
     s.frontSaturates = front.saturates, s.backSaturates = back.saturates;
     s.bestX = space.vector(base);
     for (Stage& stage : makeStages(front, back, mask, options)) {

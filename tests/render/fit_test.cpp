@@ -12,6 +12,7 @@
 #include "knit/render.hpp"
 #include "knit/scene.hpp"
 #include "knit/synthetic_scene.hpp"
+#include "fit_renderer.hpp"
 
 namespace knit {
 namespace {
@@ -70,6 +71,21 @@ TEST(Fit, recoversBodyAlbedoOfDarkGlossyYarn) {
     glossy.bodyAlbedo = Rgb(0.12, 0.07, 0.05);
     glossy.kR = Rgb(0.7), glossy.kTT = Rgb(0.2), glossy.alphaAlong = glossy.alphaAcross = 0.15;
     expectBodyAlbedoRecovered(glossy, 0.03);
+}
+
+TEST(Fit, rendererReusingTheSceneMatchesRenderSceneExactly) {
+    const Scene scene = smallCloth();
+    RenderOptions o = tinyRender({}, 3);
+    o.mode = GeometryMode::Grid;
+    FitRenderer renderer(scene, o);
+    PlyMaterial other = o.material;
+    other.kR = Rgb(0.4), other.fiberShadowFloor = 0.2, other.fiberTwist = -2.0;  // new tables and geometry
+    for (const PlyMaterial& m : {o.material, other, o.material})
+        for (LightPlacement light : {LightPlacement::Front, LightPlacement::Back}) {
+            RenderOptions ro = o;
+            ro.material = m, ro.light = light;
+            EXPECT_EQ(renderer.render(m, light, 32, 24, 8).rgb, renderScene(scene, ro).image.rgb);
+        }
 }
 
 TEST(Fit, solidColourTargetEndsWithWarningAndBestFit) {
