@@ -11,6 +11,7 @@
 //   600). Reports the time, the renders, the recovered values and the fit's loss over the noise
 //   floor (the loss of the true material rendered with the fit's seed: two seeds of one render).
 #include <benchmark/benchmark.h>
+#ifdef KNIT_HAVE_FIT  // built without the fit (KNIT_WITH_FIT=OFF): an empty benchmark
 
 #include <algorithm>
 #include <cstdio>
@@ -146,5 +147,6 @@ void BM_FitDefaultScene(benchmark::State& state) {
 BENCHMARK(BM_FitDefaultScene)->Arg(0)->Arg(1)->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
 
 }  // namespace
+#endif  // KNIT_HAVE_FIT
 
 BENCHMARK_MAIN();
