@@ -30,7 +30,6 @@ struct Search {
     FitRenderer* renderer = nullptr;
     const FitOptions* options = nullptr;
     const FitSpace* space = nullptr;
-    PlyMaterial base;
     const Stage* stage = nullptr;
     FitResult* result = nullptr;
     Clock::time_point start;
@@ -195,16 +194,17 @@ FitResult fitMaterial(const Scene& scene, const FitTarget& front, const FitTarge
     // Step 2: coarse then full-size search, each stage starting at the previous stage's best.
     FitRenderer renderer(scene, options.render);
     Search s;
-    s.renderer = &renderer, s.options = &options, s.space = &space, s.base = base, s.result = &result, s.start = start;
+    s.renderer = &renderer, s.options = &options, s.space = &space, s.result = &result, s.start = start;
     s.frontSaturates = front.saturates, s.backSaturates = back.saturates;
     s.bestX = space.vector(base);
-    for (Stage& stage : makeStages(front, back, mask, options)) {
+    std::vector<Stage> stages = makeStages(front, back, mask, options);
+    for (Stage& stage : stages) {
         const double left = options.budgetSeconds - elapsed(start);
         stage.seconds = stage.factor > 1 ? std::min(stage.seconds, left) : left;
         result.stopReason = runStage(s, stage);
     }
-    // Step 3: the full stage always evaluates at least its start, so the best has full-size renders.
-    if (result.frontRender.rgb.empty()) throw Error("fit: no full-size evaluation finished within the budget");
+    // Step 3: a budget the coarse stage used up still gets one full-size evaluation of its best.
+    if (result.frontRender.rgb.empty()) evaluate(s, s.bestX);
     // Step 4: a match no material reaches is said, with the best fit kept.
     if (std::min(result.front.ssim, result.back.ssim) < 0.3)
         result.warnings.push_back("poor match: the best fit's SSIM is " + std::to_string(result.front.ssim) +

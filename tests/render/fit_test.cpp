@@ -110,6 +110,21 @@ TEST(Fit, solidColourTargetEndsWithWarningAndBestFit) {
     EXPECT_DOUBLE_EQ(r.loss, best);
 }
 
+TEST(Fit, budgetUsedUpByTheCoarseStageStillEndsWithAFullSizeFit) {
+    const Scene scene = smallCloth();
+    const FitTarget f = target(scene, {}, LightPlacement::Front, "front"),
+                    b = target(scene, {}, LightPlacement::Back, "back");
+    FitOptions o;
+    o.render = tinyRender({}, 1);
+    o.budgetSeconds = 1e-6;
+    const FitResult r = fitMaterial(scene, f, b, {}, o);
+    EXPECT_EQ(r.frontRender.width, 32);
+    EXPECT_EQ(r.backRender.height, 24);
+    ASSERT_FALSE(r.history.empty());
+    EXPECT_EQ(r.history.back().stage, 1);
+    EXPECT_LE(r.renders, 6);  // one coarse evaluation at most, then one full-size one
+}
+
 TEST(Fit, mismatchedImageSizesNameTheBackImage) {
     Image a, b;
     a.width = 32, a.height = 24, a.rgb.assign(3 * 32 * 24, 0.1f);
