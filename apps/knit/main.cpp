@@ -17,6 +17,9 @@
 #ifdef KNIT_HAVE_RENDER_CHECK
 #include "render_command.hpp"
 #endif
+#ifdef KNIT_HAVE_FIT
+#include "fit_command.hpp"
+#endif
 
 namespace {
 
@@ -41,6 +44,10 @@ int runKnit(int argc, char** argv) {
     RenderCommand render;
     addRenderCommand(app, render);
 #endif
+#ifdef KNIT_HAVE_FIT
+    FitCommand fit;
+    addFitCommand(app, fit);
+#endif
 
     try {
         app.parse(argc, argv);
@@ -56,6 +63,9 @@ int runKnit(int argc, char** argv) {
         if (*animate.command) return runAnimate(animate);
 #ifdef KNIT_HAVE_RENDER_CHECK
         if (*render.command) return runRender(render);
+#endif
+#ifdef KNIT_HAVE_FIT
+        if (*fit.command) return runFit(fit);
 #endif
     } catch (const knit::Error& e) {
         std::fprintf(stderr, "knit: error: %s\n", e.what());

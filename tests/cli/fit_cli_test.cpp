@@ -1,0 +1,112 @@
+// `knit fit` end to end on a tiny scene: a fit writes a material `knit render --material` reads and
+// a report with its images; bad photographs, masks and bounds exit 1 naming the file or option
+// and leave no material behind; a uniform target ends with a warning and the best fit (exit 0).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+#include <stb/stb_image_write.h>
+#include <unistd.h>
+
+#include "common/run_knit.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using knit::test::CliRun;
+
+// A scene that builds in a fraction of a second; cheap fiber tables keep each render short.
+const std::string kPlane = "--mesh plane --repeats 2 2 --mesh-res 4 ";
+const std::string kScene = kPlane + "--material cheap.json ";
+const std::string kFit = "fit -q " + kScene + "--spp 2 --max-evaluations 4 ";
+
+class FitCli : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir = fs::temp_directory_path() / ("knit_fit_cli_" + std::to_string(::getpid()) + "_" +
+                                           ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(dir);
+        fs::create_directories(dir);
+        if (run("fit --help").exitCode != 0) GTEST_SKIP() << "knit was built without the fit";
+        std::ofstream(dir / "cheap.json") << R"({"tableSize": 64, "aoRays": 64})";
+        // The targets: the default material rendered front- and back-lit at 32 x 24.
+        for (const char* light : {"front", "back"}) {
+            const CliRun r = run("render -q " + kScene + "--width 32 --height 24 --spp 4 --seed 9 --light " + light +
+                                 " --output " + light + ".png");
+            ASSERT_EQ(r.exitCode, 0) << r.output;
+        }
+    }
+    void TearDown() override { fs::remove_all(dir); }
+    CliRun run(const std::string& args) const { return knit::test::runKnit(args, dir); }
+    void writePng(const std::string& name, int w, int h, unsigned char value) const {
+        const std::vector<unsigned char> px(size_t(3) * w * h, value);
+        ASSERT_TRUE(stbi_write_png((dir / name).c_str(), w, h, 3, px.data(), 3 * w));
+    }
+    // A fit expected to fail: exit 1, every fragment in the message, no material written.
+    void expectCleanError(const std::string& args, const std::vector<std::string>& fragments) const {
+        const CliRun r = run(kFit + args + " -o m.json");
+        EXPECT_EQ(r.exitCode, 1) << args << "\n" << r.output;
+        EXPECT_EQ(r.output.find("internal error"), std::string::npos) << r.output;
+        for (const std::string& f : fragments)
+            EXPECT_NE(r.output.find(f), std::string::npos) << "'" << f << "' in: " << r.output;
+        EXPECT_FALSE(fs::exists(dir / "m.json")) << args;
+    }
+    fs::path dir;
+};
+
+TEST_F(FitCli, fitWritesMaterialThatRenderReadsAndReportWithImages) {
+    const CliRun r = run("fit " + kScene +
+                         "--spp 2 --max-evaluations 4 --front front.png --back back.png -o m.json "
+                         "--report r.json");  // not quiet: progress on stderr
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("evaluation 1"), std::string::npos) << r.output;  // progress on stderr
+    const nlohmann::json report = nlohmann::json::parse(std::ifstream(dir / "r.json"));
+    EXPECT_EQ(report["history"].size(), 4u);
+    EXPECT_EQ(report["renders"], 8);
+    EXPECT_TRUE(report["parameters"].contains("kR"));
+    EXPECT_TRUE(report["parameters"].contains("body-albedo.g"));
+    EXPECT_GT(report["front"]["ssim"].get<double>(), 0.0);
+    for (const char* png : {"r_front.png", "r_back.png", "r_side_by_side.png"}) EXPECT_TRUE(fs::exists(dir / png));
+    const CliRun render =
+        run("render -q " + kPlane + "--width 16 --height 12 --spp 1 --material m.json --output o.png");
+    EXPECT_EQ(render.exitCode, 0) << render.output;
+}
+
+TEST_F(FitCli, mismatchedImageSizesNameBothPhotographs) {
+    writePng("small.png", 16, 12, 100);
+    expectCleanError("--front front.png --back small.png", {"--back 'small.png' is 16 x 12", "front.png", "same size"});
+}
+
+TEST_F(FitCli, unreadableImageNamesTheFile) {
+    std::ofstream(dir / "junk.png") << "not a png";
+    expectCleanError("--front junk.png --back back.png", {"--front 'junk.png'", "cannot read"});
+    expectCleanError("--front front.png --back missing.png", {"--back 'missing.png'", "does not exist"});
+}
+
+TEST_F(FitCli, maskOfTheWrongSizeNamesTheMask) {
+    writePng("mask.png", 16, 12, 255);
+    expectCleanError("--front front.png --back back.png --mask mask.png", {"--mask 'mask.png'", "16 x 12", "32 x 24"});
+}
+
+TEST_F(FitCli, boundsThatBreakEnergyConservationNameTheOption) {
+    expectCleanError(
+        "--front front.png --back back.png --fit kR,body-albedo --bound kR=0:0.9 --bound body-albedo=0.3:1",
+        {"--bound", "energy bound"});
+    expectCleanError("--front front.png --back back.png --bound kR=0:1.5", {"--bound 'kR=0:1.5'", "[0, 1]"});
+    expectCleanError("--front front.png --back back.png --fit kR,shininess", {"--fit", "'shininess'"});
+}
+
+TEST_F(FitCli, solidColourTargetEndsWithWarningAndBestFit) {
+    writePng("grey_f.png", 32, 24, 128);
+    writePng("grey_b.png", 32, 24, 128);
+    const CliRun r = run(kFit + "--front grey_f.png --back grey_b.png -o m.json");
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("warning: --front 'grey_f.png' is uniform"), std::string::npos) << r.output;
+    EXPECT_TRUE(fs::exists(dir / "m.json"));
+}
+
+}  // namespace
