@@ -4,6 +4,8 @@
 // partial cache.
 #include "animate_command.hpp"
 
+#include "animated_glb.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -15,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "export_flags.hpp"
+#include "frame_sink.hpp"
 #include "interrupt.hpp"
 #include "knit/cache.hpp"
 #include "knit/error.hpp"
@@ -39,14 +42,6 @@ std::string framePath(const std::string& pattern, int number) {
     std::snprintf(buf, sizeof buf, pattern.c_str(), number);
     return buf;
 }
-
-// Where the frames go: a point cache with its topology, or one file per frame.
-class FrameSink {
-public:
-    virtual ~FrameSink() = default;
-    virtual void write(int number, const BaseMesh& mesh, const AnimationFrame& frame) = 0;
-    virtual void commit() = 0;
-};
 
 // The points a cache holds: the ply curves, or the yarn centrelines with --export yarns.
 const Polylines& cacheCurves(const AnimationFrame& f, bool plies) { return plies ? f.plies.curves : f.yarns.curves; }
@@ -105,11 +100,17 @@ void checkOutput(const ExportOptions& o) {
         requireWritableFolder(o.path, "point cache");
         return;
     }
+    if (isAnimatedGlb(o.path, hasFramePattern(o.path))) {
+        validateExportOptions(o);
+        checkAnimatedGlbOptions(o);
+        requireWritableFolder(o.path, "animated glTF");
+        return;
+    }
     if (!hasFramePattern(o.path))
         throw Error("-o '" + o.path +
-                    "': give a point cache (out.pc2, out.mdd) or a per-frame pattern such as out_%04d." +
-                    (util::lowerExtension(o.path).empty() ? std::string("glb") : util::lowerExtension(o.path)) +
-                    " (one animated .glb is not supported yet)");
+                    "': give a point cache (out.pc2, out.mdd), one animated out.glb or a per-frame pattern such as "
+                    "out_%04d." +
+                    (util::lowerExtension(o.path).empty() ? std::string("glb") : util::lowerExtension(o.path)));
     validateExportOptions(o);
     requireWritableFolder(o.path);
 }
@@ -205,15 +206,20 @@ void addAnimateCommand(CLI::App& app, AnimateCommand& a) {
     a.command->add_option("--first", a.range.first, "First frame number (default: the smallest found)");
     a.command->add_option("--last", a.range.last, "Last frame number (default: the largest found)");
     a.command->add_option("--step", a.range.step, "Frame number step")->capture_default_str();
-    a.command->add_option("--fps", a.fps, "Frames per second (MDD frame times)")->capture_default_str();
+    a.command->add_option("--fps", a.fps, "Frames per second (MDD frame times, animated .glb frame times)")
+        ->capture_default_str();
+    a.command->add_flag("--linear", a.linear,
+                        "Animated .glb: LINEAR interpolation of the frame weights (a blend) instead of STEP");
     a.command->add_flag(
         "--no-stats", a.noStats,
         "Skip the per-frame maxStretch / minYarnDistance (the distance search costs more than the plies)");
     addSceneFlags(*a.command, a.scene);
     addExportFlags(*a.command, a.exportOptions);
     a.command
-        ->add_option("-o,--output", a.exportOptions.path,
-                     "out.pc2 / out.mdd (+ topology out.obj) or a per-frame pattern out_%04d.glb|.obj|.bcc|.pbrt")
+        ->add_option(
+            "-o,--output", a.exportOptions.path,
+            "out.pc2 / out.mdd (+ topology out.obj), one animated out.glb (morph targets) or a per-frame pattern "
+            "out_%04d.glb|.obj|.bcc|.pbrt")
         ->capture_default_str();
     a.command->add_option("--report", a.report,
                           "Write a JSON report (bind and frame times, per-frame stretch and yarn distance)");
@@ -227,7 +233,8 @@ int runAnimate(const AnimateCommand& a) {
     const FrameSequence seq(a.frames, a.range);
     // Step 2: bind once on the rest pose.
     const auto t0 = Clock::now();
-    const Scene rest = bindRestPose(resolveScene(a.scene), a.rest.empty() ? seq.frame(0).path : a.rest);
+    const SceneOptions sceneOptions = resolveScene(a.scene);
+    const Scene rest = bindRestPose(sceneOptions, a.rest.empty() ? seq.frame(0).path : a.rest);
     printWarnings(rest);
     AnimatorOptions ao;
     ao.plies = a.exportOptions.what != ExportWhat::Yarns;
@@ -239,6 +246,8 @@ int runAnimate(const AnimateCommand& a) {
     std::unique_ptr<FrameSink> sink;
     if (cacheFormatOf(a.exportOptions.path, format))
         sink = std::make_unique<CacheSink>(a.exportOptions.path, animator, seq, a.fps);
+    else if (isAnimatedGlb(a.exportOptions.path, hasFramePattern(a.exportOptions.path)))
+        sink = makeAnimatedGlbSink(animator, seq.size(), a.exportOptions, {a.fps, a.linear}, sceneOptions.budget);
     else sink = std::make_unique<FilesSink>(animator, a.exportOptions);
     StageTotals totals;
     const std::vector<FrameRecord> frames = runFrames(seq, animator, *sink, totals, a.scene.quiet);
