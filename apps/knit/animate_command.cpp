@@ -199,14 +199,18 @@ void addAnimateCommand(CLI::App& app, AnimateCommand& a) {
     a.exportOptions.path = "knit-anim.pc2";
     a.command = app.add_subcommand("animate", "Bind once on the rest pose; evaluate every frame of a mesh sequence");
     a.command
-        ->add_option("--frames", a.frames,
-                     "Mesh sequence: printf pattern (frames/frame_%04d.obj) or folder of numbered meshes")
+        ->add_option(
+            "--frames", a.frames,
+            "Mesh sequence: printf pattern (frames/frame_%04d.obj), folder of numbered meshes, or one glTF/GLB "
+            "with morph-target or skinned animation (sampled at its keyframes, or at --fps)")
         ->required();
     a.command->add_option("--rest", a.rest, "Rest pose mesh that is bound (default: the first frame)");
     a.command->add_option("--first", a.range.first, "First frame number (default: the smallest found)");
     a.command->add_option("--last", a.range.last, "Last frame number (default: the largest found)");
     a.command->add_option("--step", a.range.step, "Frame number step")->capture_default_str();
-    a.command->add_option("--fps", a.fps, "Frames per second (MDD frame times, animated .glb frame times)")
+    a.command
+        ->add_option("--fps", a.fps,
+                     "Frames per second (MDD and animated .glb frame times; glTF input: sample at this rate)")
         ->capture_default_str();
     a.command->add_flag("--linear", a.linear,
                         "Animated .glb: LINEAR interpolation of the frame weights (a blend) instead of STEP");
@@ -230,7 +234,9 @@ int runAnimate(const AnimateCommand& a) {
     // Step 1: fail before long work: outputs, the sequence and its files.
     checkOutput(a.exportOptions);
     if (!a.report.empty()) requireWritableFolder(a.report, "report");
-    const FrameSequence seq(a.frames, a.range);
+    FrameRange range = a.range;
+    if (a.command != nullptr && a.command->count("--fps") > 0) range.fps = a.fps;  // glTF input: sample at --fps
+    const FrameSequence seq(a.frames, range);
     // Step 2: bind once on the rest pose.
     const auto t0 = Clock::now();
     const SceneOptions sceneOptions = resolveScene(a.scene);

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "animate_sequence.hpp"
+#include "common/animated_gltf.hpp"
 #include "common/run_knit.hpp"
 #include "export/gltf_read.hpp"
 #include "export/gltf_validator.hpp"
@@ -141,6 +142,26 @@ TEST_F(Animate, animatedGlbOverTheMemoryBudgetIsRefusedWithItsEstimate) {
     EXPECT_NE(r.output.find("(estimate) for an animated .glb of 3 frames x"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("--step"), std::string::npos) << r.output;
     EXPECT_FALSE(fs::exists(dir / "a.glb"));
+}
+
+TEST_F(Animate, morphAnimatedGltfIsSampledAtFpsAndItsLastFrameIsTheFullTarget) {
+    const std::string gltf = writeMorphQuad(dir.string());
+    const CliRun r = runKnit("animate -q --no-stats --frames morph.gltf --fps 4 --repeats 2 2 -o c.pc2", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    // 5 samples (0 .. 1 s at 4 fps); the quad lifts vertex i by (i + 1) x weight, so the yarns
+    // rise: frame 5 (weight 1) spans at least 2 m more in z than frame 1, frame 3 about half that.
+    auto zSpan = [&](int k) {
+        double lo = 1e9, hi = -1e9;
+        for (const glm::dvec3& p : pc2Frame((dir / "c.pc2").string(), k))
+            lo = std::min(lo, p.z), hi = std::max(hi, p.z);
+        return hi - lo;
+    };
+    const double rise = zSpan(4) - zSpan(0);
+    EXPECT_GT(rise, 2.0);
+    EXPECT_NEAR(zSpan(2) - zSpan(0), 0.5 * rise, 0.15 * rise);  // weight 0.5 at t = 0.5 s
+    const CliRun bad = runKnit("animate -q --frames morph.gltf --last 9 -o c.pc2", dir);
+    EXPECT_EQ(bad.exitCode, 1);
+    EXPECT_NE(bad.output.find("frame 3 is missing: 'morph.gltf' has 2 samples"), std::string::npos) << bad.output;
 }
 
 TEST_F(Animate, unsupportedOutputsAreRefusedBeforeAnyWork) {

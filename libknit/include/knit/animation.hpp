@@ -19,6 +19,7 @@
 // frames and the helices, and the frame statistics; all into buffers reused across frames.
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,9 @@ struct FrameRange {
     int first = -1;
     int last = -1;
     int step = 1;
+    // A single animated glTF / GLB as the sequence: samples per second (0: the animation's
+    // keyframe times). Frame numbers are 1, 2, ... in sample order.
+    double fps = 0;
 };
 
 struct FrameFile {
@@ -45,9 +49,39 @@ struct FrameFile {
     std::string path;
 };
 
+// A glTF / GLB with morph-target and / or skinned animation (src/gltf_animation.cpp), sampled
+// as meshes with the file's constant connectivity and UVs. At a time t: the animation's channels
+// (translation, rotation (slerp), scale, weights; LINEAR, STEP or CUBICSPLINE; clamped outside
+// their keys) set the nodes' transforms and morph weights; each triangle primitive's POSITION
+// plus its weighted morph-target POSITION deltas is skinned (JOINTS_n / WEIGHTS_n, the joints'
+// world matrices times the inverse bind matrices, linear blend) or, without a skin, moved by its
+// node's world transform. The rest pose is the un-animated file (loadMesh). Throws knit::Error
+// naming the file and element (no animation, bad accessors, an out-of-range joint).
+class GltfAnimation {
+public:
+    // Samples: the sorted union of the keyframe times of animation `animation`, or with
+    // fps > 0 the times k / fps from 0 up to its last key.
+    explicit GltfAnimation(const std::string& path, double fps = 0, size_t animation = 0);
+    ~GltfAnimation();
+    GltfAnimation(const GltfAnimation&) = delete;
+    GltfAnimation& operator=(const GltfAnimation&) = delete;
+
+    const std::vector<double>& times() const;
+    // The mesh at times()[i] (welded and UV-mapped like loadMesh of the file).
+    BaseMesh sample(size_t i) const;
+
+private:
+    struct State;
+    std::unique_ptr<State> state_;
+};
+
+// True when `source` names one glTF / GLB file (not a pattern or folder): an animation.
+bool isGltfAnimationSource(const std::string& source);
+
 // The frames of a mesh sequence: a printf pattern with one integer conversion
 // (`frames/frame_%04d.obj`) or a folder of numbered mesh files (.obj .ply .off .gltf .glb; the
-// number is the last run of digits of the file name; one extension per folder). Every number
+// number is the last run of digits of the file name; one extension per folder), or one animated
+// glTF / GLB file (GltfAnimation; frames 1..samples, range.fps). Every number
 // first, first + step, ... up to last must exist: a missing one is an error naming the frame
 // and the file. Throws knit::Error (bad pattern, empty folder, no frames in the range).
 class FrameSequence {
@@ -64,6 +98,7 @@ public:
 
 private:
     std::vector<FrameFile> frames_;
+    std::shared_ptr<const GltfAnimation> animation_;  // one animated glTF: frame k = sample k - 1
 };
 
 // Checks that `frame` has the rest mesh's connectivity and UVs: the same vertex, face and UV
