@@ -11,10 +11,15 @@
 //  * the ply twist phase: theta = +-2 pi s / pitch with s the rest arc length of the resampled
 //    centreline and the rest pitch (closed yarns: a whole number of turns at rest), so the twist
 //    moves with the yarn material when the yarn stretches;
-//  * the frame seed: each yarn's ply frame starts from the surface normal at its first point
-//    on the current frame (continuous in time, history-free) and is transported along the yarn
-//    by rotation-minimizing frames, so a frame's plies do not depend on the frames before it:
-//    frame k equals a single evaluation on mesh k (`knit build --rest REST --mesh FRAME_k`).
+//  * the frame seed: each yarn's first ply frame on the rest pose, with the frame of the
+//    triangle its first point is bound to. Per frame, that triangle's rotation since the rest
+//    pose carries the rest frame along and it is parallel-transported (minimal rotation) onto
+//    the frame's first tangent, then along the yarn by rotation-minimizing frames: plies turn
+//    with the surface and do not flip where the yarn's tangent passes through the surface normal
+//    (the old per-frame seed, the projected surface normal, is undefined there). Transported
+//    from the rest pose, not the previous frame, so a frame's plies do not depend on the frames
+//    before it: frame k equals a single evaluation on mesh k (`knit build --rest REST --mesh
+//    FRAME_k`).
 // Per frame only: vertex normals, the binding evaluation, resampling with the fixed layout, the
 // frames and the helices, and the frame statistics; all into buffers reused across frames.
 #pragma once
@@ -23,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 
 #include "knit/base_mesh.hpp"
@@ -176,8 +182,15 @@ public:
     const Plies& plyTopology() const { return plyTopology_; }
 
 private:
+    // A yarn's first ply frame on the rest pose, with the frame of the triangle it is bound to.
+    struct FrameSeed {
+        glm::dvec3 tangent{0.0}, normal{0.0};
+        glm::dmat3 surface{1.0};
+        bool valid = false;  // false: degenerate triangle (seed with the surface normal)
+    };
+    void bindFrameSeed(size_t y, const std::vector<glm::dvec3>& centre);
     void resample(AnimationFrame& out) const;
-    void sweep(AnimationFrame& out) const;
+    void sweep(const std::vector<glm::dvec3>& positions, AnimationFrame& out) const;
 
     const Scene& rest_;
     AnimatorOptions options_;
@@ -191,6 +204,7 @@ private:
     std::vector<uint32_t> yarnOfCentre_;      // yarn of each resampled point
     std::vector<double> restSegment_;         // rest length of the segment from each yarn vertex (0: none)
     std::vector<size_t> plyOfYarn_;           // first ply point of each yarn
+    std::vector<FrameSeed> restSeeds_;        // per yarn
     Plies plyTopology_;
 };
 
