@@ -82,6 +82,13 @@ std::vector<Channel> readChannels(const gltf::Document& d, size_t a) {
         ch.values = d.accessor(d.asIndex(sampler.value("output", json()), cw), cw + " output").values();
         const size_t perKey = ch.values.size() / std::max<size_t>(ch.times.size(), 1);
         ch.width = ch.interpolation == Interpolation::CubicSpline ? perKey / 3 : perKey;
+        for (size_t k = 0; k < ch.times.size(); ++k)
+            if (!std::isfinite(ch.times[k]) || (k > 0 && !(ch.times[k] > ch.times[k - 1])))
+                d.fail(cw + ": the sampler's input time " + std::to_string(k) +
+                       " is not finite or not after the previous one (key times must increase)");
+        for (size_t k = 0; k < ch.values.size(); ++k)
+            if (!std::isfinite(ch.values[k]))
+                d.fail(cw + ": the sampler's output value " + std::to_string(k) + " is not finite");
         if (ch.times.empty() || ch.width == 0 || perKey * ch.times.size() != ch.values.size())
             d.fail(cw + ": the sampler's output does not match its " + std::to_string(ch.times.size()) + " keys");
         out.push_back(std::move(ch));
@@ -215,8 +222,12 @@ GltfAnimation::GltfAnimation(const std::string& path, double fps, size_t animati
     for (const Channel& c : s.channels) s.times.insert(s.times.end(), c.times.begin(), c.times.end());
     std::sort(s.times.begin(), s.times.end());
     s.times.erase(std::unique(s.times.begin(), s.times.end()), s.times.end());
+    constexpr double kMaxSamples = 1e6;
     if (fps > 0) {
         const double last = s.times.back();
+        if (!std::isfinite(fps) || !(last * fps < kMaxSamples))
+            s.doc.fail("sampling its animation (last key at " + std::to_string(last) + " s) at --fps " +
+                       std::to_string(fps) + " gives more than 1e6 frames; lower --fps");
         s.times.clear();
         for (size_t k = 0; double(k) / fps <= last + 1e-9; ++k) s.times.push_back(double(k) / fps);
     }

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include <glm/geometric.hpp>
+#include <nlohmann/json.hpp>
 
 #include "knit/animation.hpp"
 #include "knit/error.hpp"
@@ -88,6 +89,28 @@ TEST(GltfAnimation, fileWithoutAnimationIsRefusedNamingIt) {
     const std::string e = test::errorOf([&] { GltfAnimation(dir + "/still.gltf"); });
     EXPECT_NE(e.find("still.gltf"), std::string::npos) << e;
     EXPECT_NE(e.find("has no animation 0"), std::string::npos) << e;
+}
+
+TEST(GltfAnimation, keyTimesThatDoNotIncreaseAreRefusedNamingTheChannel) {
+    const std::string path = scratch("times") + "/bad.gltf";  // a translation keyed twice at 1 s
+    GltfText g;
+    nlohmann::json prim = quadPrimitive(g);
+    g.j["meshes"] = {{{"primitives", {prim}}}};
+    g.j["nodes"] = {{{"mesh", 0}}};
+    g.j["scenes"] = {{{"nodes", {0}}}};
+    const int in = g.add(std::vector<float>{1, 1}, 5126, "SCALAR", 2);
+    const int out = g.add(std::vector<float>{0, 0, 0, 1, 1, 1}, 5126, "VEC3", 2);
+    nlohmann::json anim;
+    anim["samplers"] = nlohmann::json::array({{{"input", in}, {"output", out}}});
+    anim["channels"] = nlohmann::json::array({{{"sampler", 0}, {"target", {{"node", 0}, {"path", "translation"}}}}});
+    g.j["animations"] = nlohmann::json::array({anim});
+    test::writeText(path, g.text());
+    const std::string e = test::errorOf([&] { GltfAnimation(path, 0); });
+    EXPECT_NE(e.find("animations[0].channels[0]: the sampler's input time 1 is not finite or not after the previous"),
+              std::string::npos)
+        << e;
+    EXPECT_NE(test::errorOf([&] { GltfAnimation(writeMorphQuad(scratch("fps")), 1e9); }).find("more than 1e6 frames"),
+              std::string::npos);
 }
 
 }  // namespace
