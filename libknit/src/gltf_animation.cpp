@@ -204,7 +204,7 @@ std::vector<size_t> parentsOf(const gltf::Document& d) {
 }  // namespace
 
 struct GltfAnimation::State {
-    explicit State(const std::string& path) : doc(gltf::Document::load(path)) {}
+    explicit State(gltf::Document d) : doc(std::move(d)) {}
     gltf::Document doc;
     std::vector<Channel> channels;
     std::vector<size_t> parent;
@@ -212,7 +212,15 @@ struct GltfAnimation::State {
 };
 
 GltfAnimation::GltfAnimation(const std::string& path, double fps, size_t animation)
-    : state_(std::make_unique<State>(path)) {
+    : GltfAnimation(std::make_unique<State>(gltf::Document::load(path)), fps, animation) {}
+
+std::unique_ptr<GltfAnimation> GltfAnimation::fromBytes(const std::string& bytes, const std::string& name, double fps,
+                                                        size_t animation) {
+    return std::unique_ptr<GltfAnimation>(
+        new GltfAnimation(std::make_unique<State>(gltf::Document(bytes, name, "")), fps, animation));
+}
+
+GltfAnimation::GltfAnimation(std::unique_ptr<State> state, double fps, size_t animation) : state_(std::move(state)) {
     State& s = *state_;
     if (s.doc.member(s.doc.root(), "animations", json::value_t::array, "the file").size() <= animation)
         s.doc.fail("has no animation " + std::to_string(animation) + " (give a mesh sequence or an animated glTF)");
@@ -237,7 +245,7 @@ GltfAnimation::~GltfAnimation() = default;
 
 const std::vector<double>& GltfAnimation::times() const { return state_->times; }
 
-BaseMesh GltfAnimation::sample(size_t i) const {
+BaseMesh GltfAnimation::sample(size_t i, const MeshLoadOptions& options) const {
     const State& s = *state_;
     const gltf::Document& d = s.doc;
     std::vector<glm::dmat4> world;
@@ -309,7 +317,7 @@ BaseMesh GltfAnimation::sample(size_t i) const {
         }
         return out;
     };
-    return detail::gltfMeshOf(d, MeshLoadOptions{}, &poser);
+    return detail::gltfMeshOf(d, options, &poser);
 }
 
 bool isGltfAnimationSource(const std::string& source) {

@@ -68,16 +68,21 @@ public:
     // Samples: the sorted union of the keyframe times of animation `animation`, or with
     // fps > 0 the times k / fps from 0 up to its last key.
     explicit GltfAnimation(const std::string& path, double fps = 0, size_t animation = 0);
+    // The same from a .gltf / .glb held in memory (external files refused: no base folder);
+    // `name` names it in messages.
+    static std::unique_ptr<GltfAnimation> fromBytes(const std::string& bytes, const std::string& name, double fps = 0,
+                                                    size_t animation = 0);
     ~GltfAnimation();
     GltfAnimation(const GltfAnimation&) = delete;
     GltfAnimation& operator=(const GltfAnimation&) = delete;
 
     const std::vector<double>& times() const;
     // The mesh at times()[i] (welded and UV-mapped like loadMesh of the file).
-    BaseMesh sample(size_t i) const;
+    BaseMesh sample(size_t i, const MeshLoadOptions& options = {}) const;
 
 private:
     struct State;
+    GltfAnimation(std::unique_ptr<State> state, double fps, size_t animation);
     std::unique_ptr<State> state_;
 };
 
