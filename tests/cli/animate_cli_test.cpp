@@ -134,6 +134,25 @@ TEST_F(Animate, animatedGlbMorphTargetKEqualsCacheFrameK) {
     EXPECT_FLOAT_EQ(times[3], 0.3f);
 }
 
+TEST_F(Animate, animatedGlbOfTubesHasTrianglesWithNormalTargetsAndIsValid) {
+    writeWaveSequence(dir, 3, 8);
+    const CliRun r =
+        runKnit("animate -q --no-stats --frames frame_%04d.obj --repeats 3 3 --export tubes --linear -o t.glb", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    expectGltfValid((dir / "t.glb").string());
+    const gltf::Document d = loadGltf((dir / "t.glb").string());
+    const gltf::Primitive prim = d.primitives(0).at(0);
+    EXPECT_EQ(prim.mode, 4u);  // TRIANGLES
+    ASSERT_EQ((*prim.object)["targets"].size(), 3u);
+    EXPECT_TRUE((*prim.object)["targets"][2].contains("NORMAL"));
+    // The last frame's tubes moved: the wave lifts them, so its POSITION deltas are not zero.
+    const std::vector<double> delta = readAccessor(d, (*prim.object)["targets"][2]["POSITION"].get<size_t>());
+    double largest = 0;
+    for (double v : delta) largest = std::max(largest, std::abs(v));
+    EXPECT_GT(largest, 1e-3);
+    EXPECT_EQ(d.root()["animations"][0]["samplers"][0]["interpolation"], "LINEAR");
+}
+
 TEST_F(Animate, animatedGlbOverTheMemoryBudgetIsRefusedWithItsEstimate) {
     writeWaveSequence(dir, 3, 8);
     const CliRun r =
