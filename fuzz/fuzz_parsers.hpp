@@ -16,6 +16,7 @@
 #include <string>
 #include <unistd.h>
 
+#include "knit/animation.hpp"
 #include "knit/base_mesh.hpp"
 #include "knit/chart.hpp"
 #include "knit/chart_topology.hpp"
@@ -126,6 +127,21 @@ inline Outcome runGltf(const uint8_t* data, size_t size) {
         MeshLoadOptions options;
         options.maxElements = 1 << 20;  // instancing may not blow a 64 KB input up beyond this
         checkMesh(parseGltfMesh(std::string(reinterpret_cast<const char*>(data), size), "fuzz.gltf", "", options));
+        return Outcome::Parsed;
+    } catch (const Error&) {
+        return Outcome::Rejected;
+    }
+}
+
+// glTF with animation (from memory, external files refused) -> GltfAnimation -> its first
+// four samples (at most 2^20 vertices / triangles each) through checkMesh.
+inline Outcome runGltfAnimation(const uint8_t* data, size_t size) {
+    if (size > kMaxInput) return Outcome::Rejected;
+    try {
+        const auto anim = GltfAnimation::fromBytes(std::string(reinterpret_cast<const char*>(data), size), "fuzz.gltf");
+        MeshLoadOptions options;
+        options.maxElements = 1 << 20;
+        for (size_t i = 0; i < anim->times().size() && i < 4; ++i) checkMesh(anim->sample(i, options));
         return Outcome::Parsed;
     } catch (const Error&) {
         return Outcome::Rejected;

@@ -24,7 +24,7 @@ render=${KNIT_FUZZ_RENDER_CHECK:-ON}
 seed=${KNIT_FUZZ_SEED:-1}
 targets=("$@")
 if [ ${#targets[@]} -eq 0 ]; then
-  targets=(pyp curves_json obj ply off gltf chart)
+  targets=(pyp curves_json obj ply off gltf gltf_animation chart)
   [ "$render" = ON ] && targets+=(material)
 fi
 

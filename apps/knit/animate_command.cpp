@@ -4,6 +4,8 @@
 // partial cache.
 #include "animate_command.hpp"
 
+#include "animated_glb.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -15,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "export_flags.hpp"
+#include "frame_sink.hpp"
 #include "interrupt.hpp"
 #include "knit/cache.hpp"
 #include "knit/error.hpp"
@@ -40,14 +43,6 @@ std::string framePath(const std::string& pattern, int number) {
     std::snprintf(buf, sizeof buf, pattern.c_str(), number);
     return buf;
 }
-
-// Where the frames go: a point cache with its topology, or one file per frame.
-class FrameSink {
-public:
-    virtual ~FrameSink() = default;
-    virtual void write(int number, const BaseMesh& mesh, const AnimationFrame& frame) = 0;
-    virtual void commit() = 0;
-};
 
 // The points a cache holds: the ply curves, or the yarn centrelines with --export yarns.
 const Polylines& cacheCurves(const AnimationFrame& f, bool plies) { return plies ? f.plies.curves : f.yarns.curves; }
@@ -106,11 +101,17 @@ void checkOutput(const ExportOptions& o) {
         requireWritableFolder(o.path, "point cache");
         return;
     }
+    if (isAnimatedGlb(o.path, hasFramePattern(o.path))) {
+        validateExportOptions(o);
+        checkAnimatedGlbOptions(o);
+        requireWritableFolder(o.path, "animated glTF");
+        return;
+    }
     if (!hasFramePattern(o.path))
         throw Error("-o '" + o.path +
-                    "': give a point cache (out.pc2, out.mdd) or a per-frame pattern such as out_%04d." +
-                    (util::lowerExtension(o.path).empty() ? std::string("glb") : util::lowerExtension(o.path)) +
-                    " (one animated .glb is not supported yet)");
+                    "': give a point cache (out.pc2, out.mdd), one animated out.glb or a per-frame pattern such as "
+                    "out_%04d." +
+                    (util::lowerExtension(o.path).empty() ? std::string("glb") : util::lowerExtension(o.path)));
     validateExportOptions(o);
     requireWritableFolder(o.path);
 }
@@ -199,22 +200,31 @@ void addAnimateCommand(CLI::App& app, AnimateCommand& a) {
     a.exportOptions.path = "knit-anim.pc2";
     a.command = app.add_subcommand("animate", "Bind once on the rest pose; evaluate every frame of a mesh sequence");
     a.command
-        ->add_option("--frames", a.frames,
-                     "Mesh sequence: printf pattern (frames/frame_%04d.obj) or folder of numbered meshes")
+        ->add_option(
+            "--frames", a.frames,
+            "Mesh sequence: printf pattern (frames/frame_%04d.obj), folder of numbered meshes, or one glTF/GLB "
+            "with morph-target or skinned animation (sampled at its keyframes, or at --fps)")
         ->required();
     a.command->add_option("--rest", a.rest, "Rest pose mesh that is bound (default: the first frame)");
     a.command->add_option("--first", a.range.first, "First frame number (default: the smallest found)");
     a.command->add_option("--last", a.range.last, "Last frame number (default: the largest found)");
     a.command->add_option("--step", a.range.step, "Frame number step")->capture_default_str();
-    a.command->add_option("--fps", a.fps, "Frames per second (MDD frame times)")->capture_default_str();
+    a.command
+        ->add_option("--fps", a.fps,
+                     "Frames per second (MDD and animated .glb frame times; glTF input: sample at this rate)")
+        ->capture_default_str();
+    a.command->add_flag("--linear", a.linear,
+                        "Animated .glb: LINEAR interpolation of the frame weights (a blend) instead of STEP");
     a.command->add_flag(
         "--no-stats", a.noStats,
         "Skip the per-frame maxStretch / minYarnDistance (the distance search costs more than the plies)");
     addSceneFlags(*a.command, a.scene);
     addExportFlags(*a.command, a.exportOptions);
     a.command
-        ->add_option("-o,--output", a.exportOptions.path,
-                     "out.pc2 / out.mdd (+ topology out.obj) or a per-frame pattern out_%04d.glb|.obj|.bcc|.pbrt")
+        ->add_option(
+            "-o,--output", a.exportOptions.path,
+            "out.pc2 / out.mdd (+ topology out.obj), one animated out.glb (morph targets) or a per-frame pattern "
+            "out_%04d.glb|.obj|.bcc|.pbrt")
         ->capture_default_str();
     a.command->add_option("--report", a.report,
                           "Write a JSON report (bind and frame times, per-frame stretch and yarn distance)");
@@ -225,11 +235,13 @@ int runAnimate(const AnimateCommand& a) {
     // Step 1: fail before long work: outputs, the sequence and its files.
     checkOutput(a.exportOptions);
     if (!a.report.empty()) requireWritableFolder(a.report, "report");
-    const FrameSequence seq(a.frames, a.range);
+    FrameRange range = a.range;
+    if (a.command != nullptr && a.command->count("--fps") > 0) range.fps = a.fps;  // glTF input: sample at --fps
+    const FrameSequence seq(a.frames, range);
     // Step 2: bind once on the rest pose.
     const auto t0 = Clock::now();
-    const SceneOptions options = resolveScene(a.scene);
-    const Scene rest = bindRestPose(options, a.rest.empty() ? seq.frame(0).path : a.rest);
+    const SceneOptions sceneOptions = resolveScene(a.scene);
+    const Scene rest = bindRestPose(sceneOptions, a.rest.empty() ? seq.frame(0).path : a.rest);
     printWarnings(rest);
     AnimatorOptions ao;
     ao.plies = a.exportOptions.what != ExportWhat::Yarns;
@@ -238,10 +250,12 @@ int runAnimate(const AnimateCommand& a) {
     const double bindSeconds = since(t0);
     // Step 3: the frames, streamed into staged outputs (existing files stay unchanged until the end).
     OutputTransaction outputs;
-    const ExportOptions staged = stagedExport(a.exportOptions, options.budget, outputs);
+    const ExportOptions staged = stagedExport(a.exportOptions, sceneOptions.budget, outputs);
     CacheFormat format;
     std::unique_ptr<FrameSink> sink;
     if (cacheFormatOf(staged.path, format)) sink = std::make_unique<CacheSink>(staged.path, animator, seq, a.fps);
+    else if (isAnimatedGlb(staged.path, hasFramePattern(staged.path)))
+        sink = makeAnimatedGlbSink(animator, seq.size(), staged, {a.fps, a.linear}, sceneOptions.budget);
     else sink = std::make_unique<FilesSink>(animator, staged);
     StageTotals totals;
     const std::vector<FrameRecord> frames =

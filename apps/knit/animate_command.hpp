@@ -1,5 +1,5 @@
 // animate_command.hpp — `knit animate`: bind once on the rest pose, evaluate every frame of a
-// mesh sequence, write a point cache (.pc2 / .mdd + topology .obj) or one file per frame.
+// mesh sequence, write a point cache (.pc2 / .mdd + topology .obj), one animated .glb or one file per frame.
 #pragma once
 #include <string>
 
@@ -19,6 +19,7 @@ struct AnimateCommand {
     std::string rest;             // --rest: the rest pose (default: the first frame)
     FrameRange range;             // --first --last --step
     double fps = 24;              // --fps: MDD frame times
+    bool linear = false;          // --linear: animated .glb weights blend (LINEAR) instead of STEP
     bool noStats = false;         // --no-stats: skip maxStretch / minYarnDistance per frame
     std::string report;           // --report path; empty = none
 };

@@ -4,8 +4,20 @@
 // (ResampleLayout), the rest arc length of every resampled point, the rest pitch of every yarn
 // and the rest length of every yarn segment. Per frame (evaluate): vertex normals -> binding
 // evaluation -> resampling with the fixed layouts -> rotation-minimizing frames and helices
-// with the rest phase -> statistics. On the rest pose this gives exactly the plies makePlies
-// makes from the rest scene (same layout, same arc lengths, same seeds).
+// with the rest phase -> statistics.
+//
+// Frame seeds (temporal coherence): at bind time each yarn's first ply frame (tangent T0,
+// normal N0: the surface normal projected, as makePlies seeds it) is recorded with the
+// orthonormal frame of the triangle its first point is bound to. On a frame, that triangle's
+// rotation R from the rest pose carries the rest frame along (R T0, R N0), and R N0 is turned by
+// the minimal rotation from R T0 onto the frame's first tangent (parallel transport) before the
+// rotation-minimizing frames run. So the plies turn with the surface (a rigid motion moves them
+// exactly) and never flip when the yarn's first tangent passes through the surface normal (the
+// projection of the surface normal, which each frame used to be seeded with, is undefined
+// there). The transport starts from the rest pose, not from the previous frame: frames stay
+// history-free, so frame k equals `knit build --rest REST --mesh FRAME_k` (the same Animator),
+// and the transport has no drift accumulated over frames. On the rest pose R = I and the plies
+// equal makePlies' up to rounding (~1e-15 m).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -18,6 +30,7 @@
 
 #include "knit/animation.hpp"
 #include "knit/error.hpp"
+#include "frames_curve.hpp"
 #include "plies_kernel.hpp"
 #include "resample_curve.hpp"
 #include "util/checks.hpp"
@@ -32,6 +45,17 @@ double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock:
 
 // Yarns per parallel task: small enough to balance, large enough to amortize.
 constexpr size_t kYarnGrain = 64;
+
+// The orthonormal frame (first edge, in-plane perpendicular, normal) of triangle f; false when
+// the triangle is degenerate.
+bool triangleFrame(const std::vector<dvec3>& x, const glm::uvec3& f, glm::dmat3& out) {
+    const dvec3 e = x[f.y] - x[f.x], n = glm::cross(e, x[f.z] - x[f.x]);
+    const double le = glm::length(e), ln = glm::length(n);
+    if (!(le > 0.0) || !(ln > 0.0) || !std::isfinite(ln)) return false;
+    const dvec3 e1 = e / le, e3 = n / ln;
+    out = glm::dmat3(e1, glm::cross(e3, e1), e3);
+    return true;
+}
 
 }  // namespace
 
@@ -48,6 +72,7 @@ Animator::Animator(const Scene& rest, const AnimatorOptions& options)
     std::vector<dvec3> centre;
     restPitch_.assign(yarnCount, 0.0);
     restLength_.assign(yarnCount, 0.0);
+    restSeeds_.assign(yarnCount, {});
     for (size_t y = 0; y < yarnCount; ++y) {
         centre.clear();
         const size_t m = resampleCurve(rest.yarns(), y, spacing, centre, nullptr, resampleScratch, &layout);
@@ -64,6 +89,7 @@ Animator::Animator(const Scene& rest, const AnimatorOptions& options)
             continue;
         }
         restPitch_[y] = detail::PlyKernel::arcAndPitch(generator_, y, centre.data(), m, arc);
+        bindFrameSeed(y, centre);
         restArc_.insert(restArc_.end(), arc.begin(), arc.end());
         restLength_[y] = arc[m - 1] + (yarns.isClosed(y) ? glm::length(centre[0] - centre[m - 1]) : 0.0);
     }
@@ -129,7 +155,7 @@ void Animator::evaluate(const std::vector<dvec3>& positions, AnimationFrame& out
 
     // Step 4: frames and helices with the rest twist phase.
     t0 = Clock::now();
-    if (options_.plies) sweep(out);
+    if (options_.plies) sweep(positions, out);
     t.plies = since(t0);
 
     // Step 5: stretch and the closest approach of different yarns.
@@ -161,23 +187,48 @@ void Animator::resample(AnimationFrame& out) const {
     });
 }
 
-void Animator::sweep(AnimationFrame& out) const {
+void Animator::bindFrameSeed(size_t y, const std::vector<dvec3>& centre) {
+    const Scene& rest = rest_;
+    const size_t m = centre.size(), first = rest.yarns().curves.begin(y);
+    std::vector<dvec3> tangent(m), normal(m);
+    const dvec3* surfaceNormal = rest.yarns().normals.empty() ? nullptr : rest.yarns().normals.data() + first;
+    curveFrames(centre.data(), m, rest.yarns().curves.isClosed(y), surfaceNormal, tangent.data(), normal.data());
+    FrameSeed& s = restSeeds_[y];
+    s.tangent = tangent[0];
+    s.normal = normal[0];
+    s.valid = triangleFrame(rest.mesh().positions, rest.mesh().faces[rest.binding().face[first]], s.surface);
+}
+
+void Animator::sweep(const std::vector<dvec3>& positions, AnimationFrame& out) const {
     Plies& p = out.plies;
     if (p.curves.offsets != plyTopology_.curves.offsets) {  // first frame with this buffer
         p = plyTopology_;
         p.curves.points.resize(plyTopology_.curves.offsets.back());
     }
     const size_t yarnCount = restPitch_.size();
+    const std::vector<glm::uvec3>& faces = rest_.mesh().faces;
     tbb::enumerable_thread_specific<PlyScratch> scratches;
     tbb::parallel_for(tbb::blocked_range<size_t>(0, yarnCount, kYarnGrain), [&](const tbb::blocked_range<size_t>& r) {
         PlyScratch& scratch = scratches.local();
         for (size_t y = r.begin(); y < r.end(); ++y) {
             const size_t m = centreOffsets_[y + 1] - centreOffsets_[y];
             if (m < 2) continue;
-            const dvec3* seed = out.yarns.normals.data() + out.yarns.curves.begin(y);
+            // The rest frame carried by the bound triangle's rotation (see the file comment);
+            // a degenerate triangle falls back to the surface normal.
+            const size_t first = out.yarns.curves.begin(y);
+            const FrameSeed& s = restSeeds_[y];
+            glm::dmat3 now;
+            dvec3 seedNormal = out.yarns.normals[first], seedTangent(0.0);
+            const bool carried = s.valid && triangleFrame(positions, faces[rest_.binding().face[first]], now);
+            if (carried) {
+                const glm::dmat3 r = now * glm::transpose(s.surface);
+                seedNormal = r * s.normal;
+                seedTangent = r * s.tangent;
+            }
             detail::PlyKernel::sweepWithPhase(generator_, y, out.centres.points.data() + centreOffsets_[y], m,
-                                              restArc_.data() + centreOffsets_[y], restPitch_[y], seed,
-                                              p.curves.points.data() + plyOfYarn_[y], nullptr, scratch);
+                                              restArc_.data() + centreOffsets_[y], restPitch_[y], &seedNormal,
+                                              p.curves.points.data() + plyOfYarn_[y], nullptr, scratch,
+                                              carried ? &seedTangent : nullptr);
         }
     });
 }

@@ -103,17 +103,27 @@ std::map<int, std::string> filesOfFolder(const std::string& folder) {
 }  // namespace
 
 FrameSequence::FrameSequence(const std::string& source, const FrameRange& range) {
-    // Step 1: the numbered files that exist.
+    // Step 1: the numbered files that exist (or the samples of one animated glTF).
     if (range.step < 1) throw Error("--step must be >= 1, got " + std::to_string(range.step));
     std::error_code ec;
     NamePattern pattern;
     const bool folder = fs::is_directory(source, ec);
-    if (!folder && !splitPattern(source, pattern))
+    std::map<int, std::string> samples;
+    if (isGltfAnimationSource(source)) {
+        try {
+            animation_ = std::make_shared<const GltfAnimation>(source, range.fps);
+        } catch (const Error& e) {
+            throw Error("--frames '" + source + "': " + e.what());
+        }
+        for (size_t k = 0; k < animation_->times().size(); ++k) samples[int(k) + 1] = source;
+    }
+    if (!folder && !animation_ && !splitPattern(source, pattern))
         throw Error("--frames: '" + source +
                     "' is neither a folder nor a file pattern with one integer conversion (e.g. frame_%04d.obj)");
-    if (!folder && !fs::is_directory(pattern.folder, ec))
+    if (!folder && !animation_ && !fs::is_directory(pattern.folder, ec))
         throw Error("--frames: folder '" + pattern.folder + "' of '" + source + "' does not exist");
-    const std::map<int, std::string> found = folder ? filesOfFolder(source) : filesOfPattern(pattern);
+    const std::map<int, std::string> found =
+        animation_ ? samples : (folder ? filesOfFolder(source) : filesOfPattern(pattern));
     if (found.empty() && (range.first < 0 || range.last < 0))
         throw Error("--frames: no numbered mesh files match '" + source + "'");
 
@@ -126,6 +136,9 @@ FrameSequence::FrameSequence(const std::string& source, const FrameRange& range)
     for (long k = first; k <= last; k += range.step) {
         const int number = static_cast<int>(k);
         const auto it = found.find(number);
+        if (it == found.end() && animation_)
+            throw Error("frame " + std::to_string(number) + " is missing: '" + source + "' has " +
+                        std::to_string(found.size()) + " samples (frames 1.." + std::to_string(found.size()) + ")");
         if (it == found.end())
             throw Error(
                 "frame " + std::to_string(number) + " is missing: " +
@@ -137,10 +150,13 @@ FrameSequence::FrameSequence(const std::string& source, const FrameRange& range)
 
 BaseMesh FrameSequence::load(size_t i, const BaseMesh& rest) const {
     const FrameFile& f = frames_.at(i);
-    const std::string name = "frame " + std::to_string(f.number) + " ('" + f.path + "')";
+    std::string name = "frame " + std::to_string(f.number) + " ('" + f.path + "')";
+    if (animation_)
+        name = "frame " + std::to_string(f.number) + " ('" + f.path +
+               "' at t = " + std::to_string(animation_->times()[size_t(f.number - 1)]) + " s)";
     BaseMesh mesh;
     try {
-        mesh = loadMesh(f.path);
+        mesh = animation_ ? animation_->sample(size_t(f.number - 1)) : loadMesh(f.path);
     } catch (const Error& e) {
         throw Error(name + ": " + e.what());
     }

@@ -80,10 +80,19 @@ inline dvec3 transport(const dvec3& x0, const dvec3& t0, const dvec3& r0, const 
     return len > 1e-6 ? r1 / len : util::anyPerpendicular(t1);
 }
 
+// v turned by the smallest rotation taking unit a onto unit b (about a x b); unchanged when a
+// and b are opposite (no unique smallest rotation: the caller's projection decides).
+inline dvec3 minimalRotation(const dvec3& a, const dvec3& b, const dvec3& v) {
+    const dvec3 w = glm::cross(a, b);
+    const double c = glm::dot(a, b);
+    if (1.0 + c < 1e-9) return v;
+    return v + glm::cross(w, v) + glm::cross(w, glm::cross(w, v)) / (1.0 + c);
+}
+
 }  // namespace
 
 void curveFrames(const glm::dvec3* x, size_t n, bool closed, const glm::dvec3* seedNormal, glm::dvec3* T, glm::dvec3* N,
-                 const FrameOptions& options) {
+                 const FrameOptions& options, const glm::dvec3* seedTangent) {
     if (n == 0) return;
 
     // Seed candidate (the surface normal at the first point), if usable.
@@ -152,10 +161,11 @@ void curveFrames(const glm::dvec3* x, size_t n, bool closed, const glm::dvec3* s
         }
     }
 
-    // Step 3: seed normal.
+    // Step 3: seed normal (transported from seedTangent onto T[0] first, when given).
     {
         dvec3 r(0.0);
         double len = 0.0;
+        if (haveSeed && seedTangent) seed = minimalRotation(*seedTangent, T[0], seed);
         if (haveSeed) {
             r = seed - glm::dot(seed, T[0]) * T[0];
             len = glm::length(r);

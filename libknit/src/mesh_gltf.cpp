@@ -41,6 +41,7 @@
 #include "knit/base_mesh.hpp"
 #include "knit/error.hpp"
 #include "gltf_document.hpp"
+#include "mesh_gltf.hpp"
 #include "mesh_weld.hpp"
 
 #include <algorithm>
@@ -60,13 +61,14 @@ namespace {
 // The triangle soup of the default scene's surfaces, in world space, ready for welding.
 class TriangleCollector {
 public:
-    TriangleCollector(const gltf::Document& doc, uint64_t maxElements) : doc_(doc), maxElements_(maxElements) {}
+    TriangleCollector(const gltf::Document& doc, uint64_t maxElements, const detail::GltfPoser* poser)
+        : doc_(doc), maxElements_(maxElements), poser_(poser) {}
 
     // Step 1: every triangle primitive of every mesh instance (other modes are not surfaces).
     void add(const gltf::MeshInstance& instance) {
         doc_.forEachPrimitive(instance.mesh, [&](const gltf::Primitive& p) {
             if (p.mode != gltf::kTriangles && p.mode != gltf::kTriangleStrip && p.mode != gltf::kTriangleFan) return;
-            addPrimitive(p, instance.world);
+            addPrimitive(p, instance);
         });
     }
 
@@ -82,7 +84,8 @@ public:
     }
 
 private:
-    void addPrimitive(const gltf::Primitive& p, const glm::dmat4& world) {
+    void addPrimitive(const gltf::Primitive& p, const gltf::MeshInstance& instance) {
+        const glm::dmat4& world = instance.world;
         if (doc_.extensions(p).contains("KHR_draco_mesh_compression"))
             doc_.fail(p.what + " is Draco-compressed (KHR_draco_mesh_compression), which cannot be read here; "
                                "export the base mesh without Draco");
@@ -98,19 +101,21 @@ private:
             doc_.fail(p.what + ": TEXCOORD_0 has " + std::to_string(T.count) + " elements, POSITION " +
                       std::to_string(P.count));
         const size_t first = points_.size();
-        addVertices(p, P, T, world);
+        addVertices(p, P, T, world, poser_ ? (*poser_)(instance, p, P) : std::vector<glm::dvec3>());
         const std::optional<size_t> indices = doc_.indices(p);
         addTriangles(p, vertexIndices(p, indices, P.count), indices.has_value(), first, world);
     }
 
-    // World positions in double, v flipped (glTF's texture origin is top-left).
+    // World positions in double (`posed`, when given, replaces world * POSITION), v flipped
+    // (glTF's texture origin is top-left).
     void addVertices(const gltf::Primitive& p, const gltf::Accessor& P, const gltf::Accessor& T,
-                     const glm::dmat4& world) {
+                     const glm::dmat4& world, const std::vector<glm::dvec3>& posed) {
         if (points_.size() + P.count > std::min<uint64_t>(maxElements_, uint64_t(std::numeric_limits<int>::max())))
             doc_.fail("more than " + std::to_string(maxElements_) +
                       " vertices in the scene (MeshLoadOptions::maxElements)");
         for (size_t i = 0; i < P.count; ++i) {
-            const glm::dvec4 x = world * glm::dvec4(P.get(i, 0), P.get(i, 1), P.get(i, 2), 1.0);
+            const glm::dvec4 x = posed.empty() ? world * glm::dvec4(P.get(i, 0), P.get(i, 1), P.get(i, 2), 1.0)
+                                               : glm::dvec4(posed[i], 1.0);
             const glm::dvec2 uv(T.get(i, 0), 1.0 - T.get(i, 1));
             if (!std::isfinite(x.x) || !std::isfinite(x.y) || !std::isfinite(x.z))
                 doc_.fail(p.what + ": vertex " + std::to_string(i) + " has a non-finite position");
@@ -175,6 +180,7 @@ private:
 
     const gltf::Document& doc_;
     uint64_t maxElements_;
+    const detail::GltfPoser* poser_;
     std::vector<glm::dvec3> points_;
     std::vector<glm::dvec2> uvs_;
     std::vector<uint32_t> faceStart_{0};
@@ -223,7 +229,9 @@ void checkExpansionBudget(const gltf::Document& doc, const MemoryBudget& budget)
                    "the instancing of the mesh file (its nodes and primitives reusing accessors)");
 }
 
-BaseMesh meshOf(const gltf::Document& doc, const MeshLoadOptions& options) {
+}  // namespace
+
+BaseMesh detail::gltfMeshOf(const gltf::Document& doc, const MeshLoadOptions& options, const GltfPoser* poser) {
     // meshopt-compressed buffer views cannot be read: say so, rather than report their
     // fallback buffer (which has no data) as missing.
     for (const std::string& e : doc.extensionsUsed())
@@ -231,20 +239,18 @@ BaseMesh meshOf(const gltf::Document& doc, const MeshLoadOptions& options) {
             doc.fail(e +
                      " is not supported (compressed buffer views); export the base mesh without meshopt compression");
     checkExpansionBudget(doc, options.budget);
-    TriangleCollector triangles(doc, options.maxElements);
+    TriangleCollector triangles(doc, options.maxElements, poser);
     doc.forEachMeshInstance([&](const gltf::MeshInstance& instance) { triangles.add(instance); });
     return triangles.weld(options);
 }
 
-}  // namespace
-
 BaseMesh parseGltfMesh(const std::string& bytes, const std::string& name, const std::string& baseDir,
                        const MeshLoadOptions& options) {
-    return meshOf(gltf::Document(bytes, name, baseDir), options);
+    return detail::gltfMeshOf(gltf::Document(bytes, name, baseDir), options);
 }
 
 BaseMesh loadGltfMesh(const std::string& path, const MeshLoadOptions& options) {
-    return meshOf(gltf::Document::load(path), options);
+    return detail::gltfMeshOf(gltf::Document::load(path), options);
 }
 
 }  // namespace knit

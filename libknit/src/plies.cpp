@@ -156,7 +156,8 @@ void PlyKernel::sweep(const PlyGenerator& g, size_t y, const dvec3* X, size_t m,
 }
 
 void PlyKernel::sweepWithPhase(const PlyGenerator& g, size_t y, const dvec3* X, size_t m, const double* arc,
-                               double pitch, const dvec3* seed, dvec3* P, dvec3* D, PlyScratch& scratch) {
+                               double pitch, const dvec3* seed, dvec3* P, dvec3* D, PlyScratch& scratch,
+                               const dvec3* seedTangent) {
     const PlyOptions& opt = g.options_;
     const uint32_t n = static_cast<uint32_t>(opt.count);
     const bool closed = g.yarns_.curves.isClosed(y);
@@ -165,7 +166,7 @@ void PlyKernel::sweepWithPhase(const PlyGenerator& g, size_t y, const dvec3* X, 
     // Step 1: rotation-minimizing frames.
     buf.tangent.resize(m);
     buf.normal.resize(m);
-    curveFrames(X, m, closed, seed, buf.tangent.data(), buf.normal.data());
+    curveFrames(X, m, closed, seed, buf.tangent.data(), buf.normal.data(), {}, seedTangent);
     const dvec3* T = buf.tangent.data();
     const dvec3* N = buf.normal.data();
 

@@ -38,10 +38,12 @@ struct PlyKernel {
                               std::vector<double>& arc);
     // ... and the helices with a given arc length per point and pitch (the rest pose's, so the
     // twist phase stays attached to the yarn material on a deformed pose) and frame seed (the
-    // surface normal at the first point, or null), for any pose of yarn `y`.
+    // surface normal at the first point, or null; with seedTangent, a normal carried over from
+    // another pose and transported onto the first tangent, see curveFrames), for any pose of
+    // yarn `y`.
     static void sweepWithPhase(const PlyGenerator& generator, size_t y, const glm::dvec3* centre, size_t m,
                                const double* arc, double pitch, const glm::dvec3* seed, glm::dvec3* points,
-                               glm::dvec3* radial, PlyScratch& scratch);
+                               glm::dvec3* radial, PlyScratch& scratch, const glm::dvec3* seedTangent = nullptr);
 };
 
 }  // namespace detail

@@ -13,7 +13,10 @@
 #include <nlohmann/json.hpp>
 
 #include "animate_sequence.hpp"
+#include "common/animated_gltf.hpp"
 #include "common/run_knit.hpp"
+#include "export/gltf_read.hpp"
+#include "export/gltf_validator.hpp"
 
 namespace fs = std::filesystem;
 
@@ -104,11 +107,91 @@ TEST_F(Animate, sigtermMidRunLeavesNoPartialCacheAndNoTempFile) {
     EXPECT_NE(text.find("interrupted by signal 15"), std::string::npos) << text;
 }
 
+TEST_F(Animate, animatedGlbMorphTargetKEqualsCacheFrameK) {
+    writeWaveSequence(dir, 4, 8);
+    CliRun r = runKnit("animate -q --no-stats --frames frame_%04d.obj --repeats 3 3 --fps 10 -o a.glb", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    r = runKnit("animate -q --no-stats --frames frame_%04d.obj --repeats 3 3 -o c.pc2", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    expectGltfValid((dir / "a.glb").string());
+    const gltf::Document d = loadGltf((dir / "a.glb").string());
+    const gltf::MeshInstance inst = d.meshInstances().at(0);
+    const gltf::Primitive prim = d.primitives(inst.mesh).at(0);
+    EXPECT_EQ(prim.mode, 1u);  // LINES
+    const std::vector<glm::dvec3> base = worldPositions(d, prim, inst.world);
+    ASSERT_EQ((*prim.object)["targets"].size(), 4u);
+    for (int k = 0; k < 4; ++k) {
+        const std::vector<double> delta =
+            readAccessor(d, (*prim.object)["targets"][size_t(k)]["POSITION"].get<size_t>());
+        const std::vector<glm::dvec3> cached = pc2Frame((dir / "c.pc2").string(), k);
+        ASSERT_EQ(cached.size(), base.size());
+        for (size_t i = 0; i < base.size(); ++i) {
+            const glm::dvec3 p = base[i] + glm::dvec3(delta[3 * i], delta[3 * i + 1], delta[3 * i + 2]);
+            ASSERT_LE(glm::length(p - cached[i]), 1e-6) << "frame " << k << " point " << i;
+        }
+    }
+    const std::vector<double> times = readAccessor(d, d.root()["animations"][0]["samplers"][0]["input"].get<size_t>());
+    ASSERT_EQ(times.size(), 4u);
+    EXPECT_FLOAT_EQ(times[3], 0.3f);
+}
+
+TEST_F(Animate, animatedGlbOfTubesHasTrianglesWithNormalTargetsAndIsValid) {
+    writeWaveSequence(dir, 3, 8);
+    const CliRun r =
+        runKnit("animate -q --no-stats --frames frame_%04d.obj --repeats 3 3 --export tubes --linear -o t.glb", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    expectGltfValid((dir / "t.glb").string());
+    const gltf::Document d = loadGltf((dir / "t.glb").string());
+    const gltf::Primitive prim = d.primitives(0).at(0);
+    EXPECT_EQ(prim.mode, 4u);  // TRIANGLES
+    ASSERT_EQ((*prim.object)["targets"].size(), 3u);
+    EXPECT_TRUE((*prim.object)["targets"][2].contains("NORMAL"));
+    // The last frame's tubes moved: the wave lifts them, so its POSITION deltas are not zero.
+    const std::vector<double> delta = readAccessor(d, (*prim.object)["targets"][2]["POSITION"].get<size_t>());
+    double largest = 0;
+    for (double v : delta) largest = std::max(largest, std::abs(v));
+    EXPECT_GT(largest, 1e-3);
+    EXPECT_EQ(d.root()["animations"][0]["samplers"][0]["interpolation"], "LINEAR");
+}
+
+TEST_F(Animate, animatedGlbOverTheMemoryBudgetIsRefusedWithItsEstimate) {
+    writeWaveSequence(dir, 3, 8);
+    const CliRun r =
+        runKnit("animate -q --frames frame_%04d.obj --repeats 3 3 --max-memory 300K --export tubes -o a.glb", dir);
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find("(estimate) for an animated .glb of 3 frames x"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("--step"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir / "a.glb"));
+}
+
+TEST_F(Animate, morphAnimatedGltfIsSampledAtFpsAndItsLastFrameIsTheFullTarget) {
+    const std::string gltf = writeMorphQuad(dir.string());
+    const CliRun r = runKnit("animate -q --no-stats --frames morph.gltf --fps 4 --repeats 2 2 -o c.pc2", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    // 5 samples (0 .. 1 s at 4 fps); the quad lifts vertex i by (i + 1) x weight, so the yarns
+    // rise: frame 5 (weight 1) spans at least 2 m more in z than frame 1, frame 3 about half that.
+    auto zSpan = [&](int k) {
+        double lo = 1e9, hi = -1e9;
+        for (const glm::dvec3& p : pc2Frame((dir / "c.pc2").string(), k))
+            lo = std::min(lo, p.z), hi = std::max(hi, p.z);
+        return hi - lo;
+    };
+    const double rise = zSpan(4) - zSpan(0);
+    EXPECT_GT(rise, 2.0);
+    EXPECT_NEAR(zSpan(2) - zSpan(0), 0.5 * rise, 0.15 * rise);  // weight 0.5 at t = 0.5 s
+    const CliRun bad = runKnit("animate -q --frames morph.gltf --last 9 -o c.pc2", dir);
+    EXPECT_EQ(bad.exitCode, 1);
+    EXPECT_NE(bad.output.find("frame 3 is missing: 'morph.gltf' has 2 samples"), std::string::npos) << bad.output;
+}
+
 TEST_F(Animate, unsupportedOutputsAreRefusedBeforeAnyWork) {
     writeWaveSequence(dir, 2, 4);
-    CliRun r = runKnit("animate -q --frames frame_%04d.obj -o out.glb", dir);
+    CliRun r = runKnit("animate -q --frames frame_%04d.obj --export tubes --draco -o out.glb", dir);
     EXPECT_EQ(r.exitCode, 1);
-    EXPECT_NE(r.output.find("one animated .glb is not supported yet"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("an animated .glb holds plain float morph targets"), std::string::npos) << r.output;
+    r = runKnit("animate -q --frames frame_%04d.obj -o out.gltf", dir);
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.output.find("one animated out.glb"), std::string::npos) << r.output;
     r = runKnit("animate -q --frames frame_%04d.obj --export tubes -o out.pc2", dir);
     EXPECT_EQ(r.exitCode, 1);
     EXPECT_NE(r.output.find("point caches hold curve points"), std::string::npos) << r.output;

@@ -11,17 +11,24 @@
 //  * the ply twist phase: theta = +-2 pi s / pitch with s the rest arc length of the resampled
 //    centreline and the rest pitch (closed yarns: a whole number of turns at rest), so the twist
 //    moves with the yarn material when the yarn stretches;
-//  * the frame seed: each yarn's ply frame starts from the surface normal at its first point
-//    on the current frame (continuous in time, history-free) and is transported along the yarn
-//    by rotation-minimizing frames, so a frame's plies do not depend on the frames before it:
-//    frame k equals a single evaluation on mesh k (`knit build --rest REST --mesh FRAME_k`).
+//  * the frame seed: each yarn's first ply frame on the rest pose, with the frame of the
+//    triangle its first point is bound to. Per frame, that triangle's rotation since the rest
+//    pose carries the rest frame along and it is parallel-transported (minimal rotation) onto
+//    the frame's first tangent, then along the yarn by rotation-minimizing frames: plies turn
+//    with the surface and do not flip where the yarn's tangent passes through the surface normal
+//    (the old per-frame seed, the projected surface normal, is undefined there). Transported
+//    from the rest pose, not the previous frame, so a frame's plies do not depend on the frames
+//    before it: frame k equals a single evaluation on mesh k (`knit build --rest REST --mesh
+//    FRAME_k`).
 // Per frame only: vertex normals, the binding evaluation, resampling with the fixed layout, the
 // frames and the helices, and the frame statistics; all into buffers reused across frames.
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 
 #include "knit/base_mesh.hpp"
@@ -38,6 +45,9 @@ struct FrameRange {
     int first = -1;
     int last = -1;
     int step = 1;
+    // A single animated glTF / GLB as the sequence: samples per second (0: the animation's
+    // keyframe times). Frame numbers are 1, 2, ... in sample order.
+    double fps = 0;
 };
 
 struct FrameFile {
@@ -45,9 +55,44 @@ struct FrameFile {
     std::string path;
 };
 
+// A glTF / GLB with morph-target and / or skinned animation (src/gltf_animation.cpp), sampled
+// as meshes with the file's constant connectivity and UVs. At a time t: the animation's channels
+// (translation, rotation (slerp), scale, weights; LINEAR, STEP or CUBICSPLINE; clamped outside
+// their keys) set the nodes' transforms and morph weights; each triangle primitive's POSITION
+// plus its weighted morph-target POSITION deltas is skinned (JOINTS_n / WEIGHTS_n, the joints'
+// world matrices times the inverse bind matrices, linear blend) or, without a skin, moved by its
+// node's world transform. The rest pose is the un-animated file (loadMesh). Throws knit::Error
+// naming the file and element (no animation, bad accessors, an out-of-range joint).
+class GltfAnimation {
+public:
+    // Samples: the sorted union of the keyframe times of animation `animation`, or with
+    // fps > 0 the times k / fps from 0 up to its last key.
+    explicit GltfAnimation(const std::string& path, double fps = 0, size_t animation = 0);
+    // The same from a .gltf / .glb held in memory (external files refused: no base folder);
+    // `name` names it in messages.
+    static std::unique_ptr<GltfAnimation> fromBytes(const std::string& bytes, const std::string& name, double fps = 0,
+                                                    size_t animation = 0);
+    ~GltfAnimation();
+    GltfAnimation(const GltfAnimation&) = delete;
+    GltfAnimation& operator=(const GltfAnimation&) = delete;
+
+    const std::vector<double>& times() const;
+    // The mesh at times()[i] (welded and UV-mapped like loadMesh of the file).
+    BaseMesh sample(size_t i, const MeshLoadOptions& options = {}) const;
+
+private:
+    struct State;
+    GltfAnimation(std::unique_ptr<State> state, double fps, size_t animation);
+    std::unique_ptr<State> state_;
+};
+
+// True when `source` names one glTF / GLB file (not a pattern or folder): an animation.
+bool isGltfAnimationSource(const std::string& source);
+
 // The frames of a mesh sequence: a printf pattern with one integer conversion
 // (`frames/frame_%04d.obj`) or a folder of numbered mesh files (.obj .ply .off .gltf .glb; the
-// number is the last run of digits of the file name; one extension per folder). Every number
+// number is the last run of digits of the file name; one extension per folder), or one animated
+// glTF / GLB file (GltfAnimation; frames 1..samples, range.fps). Every number
 // first, first + step, ... up to last must exist: a missing one is an error naming the frame
 // and the file. Throws knit::Error (bad pattern, empty folder, no frames in the range).
 class FrameSequence {
@@ -64,6 +109,7 @@ public:
 
 private:
     std::vector<FrameFile> frames_;
+    std::shared_ptr<const GltfAnimation> animation_;  // one animated glTF: frame k = sample k - 1
 };
 
 // Checks that `frame` has the rest mesh's connectivity and UVs: the same vertex, face and UV
@@ -141,8 +187,15 @@ public:
     const Plies& plyTopology() const { return plyTopology_; }
 
 private:
+    // A yarn's first ply frame on the rest pose, with the frame of the triangle it is bound to.
+    struct FrameSeed {
+        glm::dvec3 tangent{0.0}, normal{0.0};
+        glm::dmat3 surface{1.0};
+        bool valid = false;  // false: degenerate triangle (seed with the surface normal)
+    };
+    void bindFrameSeed(size_t y, const std::vector<glm::dvec3>& centre);
     void resample(AnimationFrame& out) const;
-    void sweep(AnimationFrame& out) const;
+    void sweep(const std::vector<glm::dvec3>& positions, AnimationFrame& out) const;
 
     const Scene& rest_;
     AnimatorOptions options_;
@@ -156,6 +209,7 @@ private:
     std::vector<uint32_t> yarnOfCentre_;      // yarn of each resampled point
     std::vector<double> restSegment_;         // rest length of the segment from each yarn vertex (0: none)
     std::vector<size_t> plyOfYarn_;           // first ply point of each yarn
+    std::vector<FrameSeed> restSeeds_;        // per yarn
     Plies plyTopology_;
 };
 
