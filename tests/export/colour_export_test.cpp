@@ -140,25 +140,32 @@ std::string readText(const std::string& path) {
     return s.str();
 }
 
-TEST(ColourExport, plyCurvesDeclareVertexColours) {
-    const std::string dir = test::scratchDir("colour_ply");
-    const ColouredCurves c = colouredCurves();
+// The coloured curves exported as plies to `name` in a scratch folder; the file's bytes.
+std::string exportedCurves(const std::string& name) {
     ExportOptions o;
-    o.path = dir + "/c.ply";
+    o.path = test::scratchDir("colour_" + name) + "/" + name;
     o.what = ExportWhat::Plies;
-    write(c, o);
-    const std::string text = readText(o.path);
+    write(colouredCurves(), o);
+    return readText(o.path);
+}
+
+TEST(ColourExport, plyCurveVerticesCarrySrgbColourBytes) {
+    const std::string text = exportedCurves("c.ply");
     EXPECT_NE(text.find("property uchar red\nproperty uchar green\nproperty uchar blue\n"), std::string::npos);
+    // Vertex records: double x y z, then red green blue.
+    const size_t body = text.find("end_header\n") + 11, record = 3 * 8 + 3;
+    ASSERT_LT(body + 37 * record, text.size());
+    auto rgb = [&](size_t v) {
+        const char* c = text.data() + body + v * record + 24;
+        return glm::ivec3(uint8_t(c[0]), uint8_t(c[1]), uint8_t(c[2]));
+    };
+    EXPECT_EQ(rgb(0), glm::ivec3(255, 0, 0));
+    EXPECT_EQ(rgb(19), glm::ivec3(0, 0, 255));
+    EXPECT_EQ(rgb(20), glm::ivec3(0, 188, 0));  // linear 0.5 is sRGB 0.7354
 }
 
 TEST(ColourExport, pbrtCurvesCarryTheirColourAsReflectance) {
-    const std::string dir = test::scratchDir("colour_pbrt");
-    const ColouredCurves c = colouredCurves();
-    ExportOptions o;
-    o.path = dir + "/c.pbrt";
-    o.what = ExportWhat::Plies;
-    write(c, o);
-    const std::string text = readText(o.path);
+    const std::string text = exportedCurves("c.pbrt");
     EXPECT_NE(text.find("\"rgb reflectance\" [ 1 0 0 ]"), std::string::npos);
     EXPECT_NE(text.find("\"rgb reflectance\" [ 0 0.5 0 ]"), std::string::npos);
 }

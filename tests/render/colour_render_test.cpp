@@ -43,17 +43,17 @@ bool hasRedAndBlueBands(const Image& im) {
     return false;
 }
 
-RenderOptions smallRender() {
+// A small, quick render of the stripe scene.
+Image stripeImage(bool coloured) {
     RenderOptions o;
-    o.width = 48;
-    o.height = 48;
+    o.width = o.height = 48;
     o.spp = 8;
     o.progress = false;
-    return o;
+    return renderScene(stripeScene(coloured), o).image;
 }
 
 TEST(ColourRender, stripeChartRendersRedAndBlueBands) {
-    const Image im = renderScene(stripeScene(true), smallRender()).image;
+    const Image im = stripeImage(true);
     EXPECT_TRUE(hasRedAndBlueBands(im));
     // Both colours cover a good part of the image.
     int red = 0, blue = 0;
@@ -69,7 +69,7 @@ TEST(ColourRender, stripeChartRendersRedAndBlueBands) {
 
 TEST(ColourRender, withoutColoursTheBodyColourIsUniform) {
     // The default body colour is brown (R > B) everywhere: no blue band.
-    EXPECT_FALSE(hasRedAndBlueBands(renderScene(stripeScene(false), smallRender()).image));
+    EXPECT_FALSE(hasRedAndBlueBands(stripeImage(false)));
 }
 
 TEST(ColourRender, yarnBodyAlbedoKeepsTheMaterialsBrightness) {
