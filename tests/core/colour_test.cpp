@@ -32,6 +32,23 @@ std::string pypError(const std::string& text) {
     return "";
 }
 
+std::string chartError(const std::string& text) {
+    try {
+        parseChart(text, "bad.chart");
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+TEST(Colour, badColourRowsAndPaletteEntriesNameLineAndColumn) {
+    EXPECT_EQ(chartError("k k\n\nA\nA=#000000\n"), "bad.chart:3:1: colour row has 1 letters, expected 2");
+    EXPECT_EQ(chartError("k k\n\nA AB\nA=#000000\n"), "bad.chart:3:3: colour 'AB' is not one letter");
+    EXPECT_EQ(chartError("k\n\nA\nA=#000000 A=#ffffff\n"), "bad.chart:4:11: colour 'A' is defined twice");
+    EXPECT_EQ(chartError("k\n\nA\n"), "bad.chart:3:1: colour 'A' is not in the palette");
+    EXPECT_EQ(chartError("k\n\nA\nA=#12345\n"), "bad.chart:4:1: palette entry 'A=#12345' is not LETTER=#rrggbb");
+}
+
 TEST(Colour, stripeChartColoursEveryVertexOfARowWithItsLinearColour) {
     const ChartCell cell = chartToCell(parseChart(kStripes, "stripes.chart"));
     const Pattern& p = cell.pattern;
