@@ -81,6 +81,9 @@ void validateInput(const ExportInput& in, bool tubes) {
     if (in.seedNormals && in.seedNormals->size() != c.points.size())
         throw Error("export: seed normals have " + std::to_string(in.seedNormals->size()) + " entries for " +
                     std::to_string(c.points.size()) + " points");
+    if (in.colours && in.colours->size() != c.points.size())
+        throw Error("export: colours have " + std::to_string(in.colours->size()) + " entries for " +
+                    std::to_string(c.points.size()) + " points");
 }
 
 // A tube-mesh glTF extension flag (--quantize, --meshopt) needs a .glb/.gltf output and tubes.
@@ -157,6 +160,7 @@ ExportStats exportCurves(const ExportInput& input, const ExportOptions& requeste
         all.curves = &plies.curves;
         all.yarnOfCurve = &plies.yarnOfCurve;
         all.seedNormals = &plies.radial;
+        all.colours = plies.colour.empty() ? nullptr : &plies.colour;
         ExportStats stats = exportCurves(all, requested);
         stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         return stats;
@@ -168,6 +172,7 @@ ExportStats exportCurves(const ExportInput& input, const ExportOptions& requeste
     job.tube.sides = options.sides;
     job.tube.caps = options.caps;
     job.tube.seedNormals = input.seedNormals;
+    job.tube.pointColours = input.colours;
     {
         std::ostringstream h;
         const size_t curves =
@@ -231,6 +236,7 @@ ExportStats exportScene(const Scene& scene, const ExportOptions& options) {
         in.radius = p.plyRadius;
         if (p.yarnOfCurve.size() == p.curves.curveCount()) in.yarnOfCurve = &p.yarnOfCurve;
         if (p.radial.size() == p.curves.pointCount()) in.seedNormals = &p.radial;
+        if (!p.colour.empty()) in.colours = &p.colour;
     } else {
         extras["curves"] = "yarns";
         in.curves = &scene.yarns().curves;
@@ -239,6 +245,7 @@ ExportStats exportScene(const Scene& scene, const ExportOptions& options) {
         for (size_t i = 0; i < yarnIds.size(); ++i) yarnIds[i] = static_cast<uint32_t>(i);
         in.yarnOfCurve = &yarnIds;
         if (scene.yarns().normals.size() == scene.yarns().curves.pointCount()) in.seedNormals = &scene.yarns().normals;
+        if (!scene.yarns().colour.empty()) in.colours = &scene.yarns().colour;
     }
     in.materialExtrasJson = extras.dump();
     return exportCurves(in, options);

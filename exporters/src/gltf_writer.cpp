@@ -51,6 +51,7 @@
 #include "knit/error.hpp"
 #include "knit/plies.hpp"
 #include "meshopt_codec.hpp"
+#include "util/math.hpp"
 
 namespace knit::detail {
 
@@ -103,8 +104,11 @@ tinygltf::Value toValue(const nlohmann::json& j) {
     }
 }
 
-// sRGB-encoded value in [0,1] to linear (IEC 61966-2-1).
-double srgbToLinear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
+// A linear colour in [0, 1] as COLOR_0's normalized RGBA8 (opaque).
+glm::u8vec4 linearRgba8(const glm::vec3& c) {
+    auto byte = [](float v) { return uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); };
+    return glm::u8vec4(byte(c.r), byte(c.g), byte(c.b), 255);
+}
 
 // A palette colour per yarn (golden-ratio hue steps in sRGB; deterministic) as linear RGBA8:
 // glTF's COLOR_0 is linear, so the sRGB palette colour is converted before it is stored.
@@ -122,7 +126,7 @@ glm::u8vec4 yarnColour(uint32_t yarn) {
         case 4: r = t, g = p, b = v; break;
         default: r = v, g = p, b = q; break;
     }
-    auto linear8 = [](double c) { return uint8_t(std::lround(srgbToLinear(c) * 255)); };
+    auto linear8 = [](double c) { return uint8_t(std::lround(util::srgbToLinear(c) * 255)); };
     return glm::u8vec4(linear8(r), linear8(g), linear8(b), 255);
 }
 
@@ -221,6 +225,7 @@ struct CurveChunk {
     };
     glm::dvec3 origin{0.0};
     std::vector<glm::vec3> pos;
+    std::vector<glm::u8vec4> colour;  // per entry of pos (COLOR_0); empty without colours
     std::vector<Run> runs;
     size_t points = 0;  // curve points (without the repeated first points)
     Plies generated;    // storage of generated plies
@@ -266,6 +271,7 @@ public:
     // Produces chunk k and converts it: origin = centre of its points' bounding box.
     void fill(size_t k, CurveChunk& chunk) const {
         const Polylines* curves = input_.curves;
+        const std::vector<glm::vec3>* colours = input_.colours;
         size_t first = 0, last = 0;
         if (curves) {
             first = chunks_[k].firstCurve;
@@ -274,11 +280,13 @@ public:
             input_.plies->generate(yarnStart_[k], yarnStart_[k + 1], chunk.generated, chunk.scratch,
                                    false);  // curves only: no radial directions
             curves = &chunk.generated.curves;
+            colours = chunk.generated.colour.empty() ? nullptr : &chunk.generated.colour;
             last = curves->curveCount();
         }
         const Chunk range{first, last, 0, 0};
         chunk.origin = last > first ? chunkOrigin(*curves, range) : glm::dvec3(0.0);
         chunk.pos.clear();
+        chunk.colour.clear();
         chunk.runs.clear();
         chunk.points = 0;
         for (size_t c = first; c < last; ++c) {
@@ -293,8 +301,10 @@ public:
                 lo = glm::min(lo, q);
                 hi = glm::max(hi, q);
                 chunk.pos.push_back(q);
+                if (colours) chunk.colour.push_back(linearRgba8((*colours)[curves->begin(c) + i]));
             }
             if (curves->isClosed(c)) chunk.pos.push_back(chunk.pos[run.first]);
+            if (colours && curves->isClosed(c)) chunk.colour.push_back(chunk.colour[run.first]);
             run.count = uint32_t(chunk.pos.size() - run.first);
             run.lo = lo;
             run.hi = hi;
@@ -532,7 +542,8 @@ public:
         t.indices16.clear();
         if (t.mesh.vertexCount() == 0) return;
         if (job_.options.yarnColors) t.colours = vertexColours(t.mesh);
-        const std::vector<glm::u8vec4>* col = job_.options.yarnColors ? &t.colours : nullptr;
+        else std::transform(t.mesh.colours.begin(), t.mesh.colours.end(), std::back_inserter(t.colours), linearRgba8);
+        const std::vector<glm::u8vec4>* col = t.colours.empty() ? nullptr : &t.colours;
         if (job_.options.draco) {
             DracoSettings settings;
             settings.positionBits = job_.options.dracoBits;
@@ -555,7 +566,7 @@ public:
     void writeTubeChunk(size_t k, const TubeChunk& t) {
         const TubeMesh& mesh = t.mesh;
         if (mesh.vertexCount() == 0) return;
-        const std::vector<glm::u8vec4>* col = job_.options.yarnColors ? &t.colours : nullptr;
+        const std::vector<glm::u8vec4>* col = t.colours.empty() ? nullptr : &t.colours;
         tinygltf::Primitive prim;
         prim.mode = TINYGLTF_MODE_TRIANGLES;
         prim.material = 0;
@@ -696,9 +707,11 @@ private:
         uint32_t longest = 0;
         for (const CurveChunk::Run& r : chunk.runs) longest = std::max(longest, r.count);
         if (radius_.size() < longest) radius_.resize(longest, float(job_.input.radius));
-        sink_.reserve(chunk.pos.size() * 12 + uint64_t(longest) * 4 + 16);
+        sink_.reserve(chunk.pos.size() * 16 + uint64_t(longest) * 4 + 16);
         const int posView = addView(chunk.pos.data(), chunk.pos.size() * 12, 12, kArrayBuffer);
         const int radView = addView(radius_.data(), uint64_t(longest) * 4, 4, kArrayBuffer);
+        const int colView =
+            chunk.colour.empty() ? -1 : addView(chunk.colour.data(), chunk.colour.size() * 4, 4, kArrayBuffer);
         tinygltf::Mesh mesh;
         mesh.name = "curves " + std::to_string(k);
         for (const CurveChunk::Run& r : chunk.runs) {
@@ -712,6 +725,10 @@ private:
             prim.attributes["POSITION"] = pos;
             prim.attributes["_RADIUS"] =
                 addAccessor(radView, 0, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR, r.count, false);
+            if (colView >= 0)
+                prim.attributes["COLOR_0"] =
+                    addAccessor(colView, size_t(r.first) * 4, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_TYPE_VEC4,
+                                r.count, true);
             mesh.primitives.push_back(std::move(prim));
         }
         addChunkMesh(k, chunk.origin, std::move(mesh), {});
@@ -723,8 +740,10 @@ private:
     void addMaterial() {
         tinygltf::Material m;
         m.name = "yarn";
-        m.pbrMetallicRoughness.baseColorFactor = job_.options.yarnColors ? std::vector<double>{1.0, 1.0, 1.0, 1.0}
-                                                                         : std::vector<double>{0.8, 0.78, 0.74, 1.0};
+        // COLOR_0 multiplies the base colour: white when the vertices carry the colour.
+        m.pbrMetallicRoughness.baseColorFactor = job_.options.yarnColors || hasPointColours()
+                                                     ? std::vector<double>{1.0, 1.0, 1.0, 1.0}
+                                                     : std::vector<double>{0.8, 0.78, 0.74, 1.0};
         m.pbrMetallicRoughness.metallicFactor = 0.0;
         m.pbrMetallicRoughness.roughnessFactor = 0.85;
         tinygltf::Value::Object sheen;
@@ -744,9 +763,16 @@ private:
                 extras["texcoordScale"] =
                     "TEXCOORD_0 is normalized uint16; uv = stored * primitive extras.texcoordScale";
         }
+        if (hasPointColours() && !job_.options.yarnColors)
+            extras["color"] = "COLOR_0 is the pattern's yarn colour, linear (the chart's sRGB palette converted)";
         m.extras = toValue(extras);
         model_.materials.push_back(std::move(m));
         model_.extensionsUsed.push_back("KHR_materials_sheen");
+    }
+
+    // The pattern carries yarn colours (given per point, or on the yarns plies are generated from).
+    bool hasPointColours() const {
+        return job_.input.colours || (job_.input.plies && !job_.input.plies->yarns().colour.empty());
     }
 
     std::vector<glm::u8vec4> vertexColours(const TubeMesh& mesh) const {

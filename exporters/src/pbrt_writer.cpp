@@ -9,6 +9,10 @@
 // end tangent equals the chord); closed curves wrap (s = n segments, ending at the first point).
 // Tubes: one `Shape "trianglemesh"` per chunk with P (world space), N, uv and indices.
 // Coordinates are written as shortest round-trip decimal text.
+// Yarn colours (ExportInput::colours): pbrt-v4 has no per-vertex colour on curves or meshes and
+// no per-shape material overrides, so each curve gets its own attribute block with
+// `Material "diffuse" "rgb reflectance"` of the colour at its first point (linear RGB; a colour
+// change within one curve, a duplicate stitch, is not represented). Tube meshes carry none.
 #include <algorithm>
 
 #include "atomic_file.hpp"
@@ -58,7 +62,18 @@ void exportPbrt(const FormatJob& job) {
         const double width = 2.0 * job.input.radius;
         for (size_t c = 0; c < curves.curveCount(); ++c) {
             if (curves.size(c) < 2) continue;
+            if (job.input.colours) {
+                const glm::vec3& k = (*job.input.colours)[curves.begin(c)];
+                t.str("AttributeBegin\n  Material \"diffuse\" \"rgb reflectance\" [ ")
+                    .num(k.r)
+                    .ch(' ')
+                    .num(k.g)
+                    .ch(' ')
+                    .num(k.b)
+                    .str(" ]\n");
+            }
             writeCurve(t, curves, c, width);
+            if (job.input.colours) t.str("AttributeEnd\n");
             ++job.stats.curves;
             job.stats.vertices += curves.size(c);
         }

@@ -3,7 +3,10 @@
 // Curves: element vertex (double x y z), element edge (int vertex1 vertex2): consecutive points,
 // plus last -> first for closed curves. Tubes: element vertex (double x y z in world space,
 // float nx ny nz, float s t), element face (list uchar uint vertex_indices); streamed per chunk.
+// Yarn colours (ExportInput::colours): vertex properties uchar red green blue, sRGB-encoded as PLY
+// readers (Blender, MeshLab) expect.
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <sstream>
 #include <vector>
@@ -12,6 +15,7 @@
 #include "chunks.hpp"
 #include "formats.hpp"
 #include "knit/error.hpp"
+#include "util/math.hpp"
 
 namespace knit::detail {
 
@@ -36,6 +40,14 @@ private:
     std::vector<char> bytes_;
 };
 
+// A linear colour as the three sRGB bytes of a PLY vertex.
+void putColour(Packer& pack, const glm::vec3& c) {
+    for (int k = 0; k < 3; ++k)
+        pack.put(uint8_t(std::lround(util::linearToSrgb(std::clamp(double(c[k]), 0.0, 1.0)) * 255.0)));
+}
+
+const char* kColourProperties = "property uchar red\nproperty uchar green\nproperty uchar blue\n";
+
 bool littleEndianHost() {
     const uint16_t one = 1;
     char b;
@@ -48,6 +60,7 @@ bool littleEndianHost() {
 void exportPly(const FormatJob& job) {
     if (!littleEndianHost()) throw Error("export: PLY writer needs a little-endian host");
     const Polylines& curves = *job.input.curves;
+    const std::vector<glm::vec3>* colours = job.input.colours;
     AtomicFile file(job.options.path, true);
     std::ostream& out = file.stream();
     Packer pack;
@@ -57,13 +70,16 @@ void exportPly(const FormatJob& job) {
         for (size_t c = 0; c < curves.curveCount(); ++c) edges += curves.segmentCount(c);
         std::ostringstream h;
         h << "ply\nformat binary_little_endian 1.0\ncomment " << job.header << "\nelement vertex "
-          << curves.pointCount() << "\nproperty double x\nproperty double y\nproperty double z\nelement edge " << edges
+          << curves.pointCount() << "\nproperty double x\nproperty double y\nproperty double z\n"
+          << (colours ? kColourProperties : "") << "element edge " << edges
           << "\nproperty int vertex1\nproperty int vertex2\nend_header\n";
         out << h.str();
-        for (const glm::dvec3& p : curves.points) {
+        for (size_t i = 0; i < curves.points.size(); ++i) {
+            const glm::dvec3& p = curves.points[i];
             pack.put(p.x);
             pack.put(p.y);
             pack.put(p.z);
+            if (colours) putColour(pack, (*colours)[i]);
             if (pack.size() > (1u << 20)) pack.flushTo(out);
         }
         for (size_t c = 0; c < curves.curveCount(); ++c) {
@@ -92,8 +108,9 @@ void exportPly(const FormatJob& job) {
         std::ostringstream h;
         h << "ply\nformat binary_little_endian 1.0\ncomment " << job.header << "\nelement vertex " << vertices
           << "\nproperty double x\nproperty double y\nproperty double z\nproperty float nx\nproperty float ny\n"
-             "property float nz\nproperty float s\nproperty float t\nelement face "
-          << triangles << "\nproperty list uchar uint vertex_indices\nend_header\n";
+             "property float nz\nproperty float s\nproperty float t\n"
+          << (colours ? kColourProperties : "") << "element face " << triangles
+          << "\nproperty list uchar uint vertex_indices\nend_header\n";
         out << h.str();
         // Vertices of all chunks first, then faces: two sweeps keep memory at one chunk.
         forEachTubeChunk(curves, job.input.radius, job.tube, chunks, [&](size_t, const TubeMesh& m) {
@@ -106,6 +123,7 @@ void exportPly(const FormatJob& job) {
                 pack.put(m.normals[i].z);
                 pack.put(m.uvs[i].x);
                 pack.put(m.uvs[i].y);
+                if (colours) putColour(pack, m.colours[i]);
                 if (pack.size() > (1u << 20)) pack.flushTo(out);
             }
             pack.flushTo(out);

@@ -36,10 +36,11 @@ void validateBindInput(const BaseMesh& mesh, const std::vector<glm::dvec3>& norm
     if (normals.size() != mesh.positions.size()) throw Error("binding: normals do not match the mesh's vertices");
     if (!util::validOffsets(yarns.offsets, yarns.yarnCount(), yarns.vertexCount()) ||
         yarns.height.size() != yarns.vertexCount() || yarns.twist.size() != yarns.vertexCount() ||
+        (!yarns.colour.empty() && yarns.colour.size() != yarns.vertexCount()) ||
         (!yarns.ghosts.empty() && yarns.ghosts.size() != yarns.yarnCount()) ||
         (!yarns.chart.empty() && yarns.chart.size() != yarns.yarnCount()))
-        throw Error(
-            "binding: inconsistent UvYarns (offsets, heights, twists, ghosts or charts do not match the vertices)");
+        throw Error("binding: inconsistent UvYarns (offsets, heights, twists, colours, ghosts or charts do not match "
+                    "the vertices)");
 }
 
 // Every search radius is bounded by one pattern period (a grid cell): a clamp or weld tolerance
@@ -135,6 +136,7 @@ void evaluateBinding(const Binding& binding, const std::vector<glm::uvec3>& face
     out.curves.points.resize(n);
     out.curves.offsets = binding.offsets;
     out.curves.closed = binding.closed;
+    out.colour = binding.colour;  // constant per pose; empty without colours
     out.normals.resize(n);
     glm::dvec3* P = out.curves.points.data();
     glm::dvec3* N = out.normals.data();

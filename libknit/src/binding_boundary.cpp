@@ -84,6 +84,7 @@ std::optional<BoundVertex> boundaryCrossing(const BaseMesh& mesh, const UvGrid& 
     b.bary[(bestEdge % 3 + 1) % 3] = bestS;
     b.height = step.hp + bestT * (step.hq - step.hp);
     b.twist = step.tp + bestT * (step.tq - step.tp);
+    b.origin = 0;  // set by the caller, which knows the yarn vertex
     return b;
 }
 

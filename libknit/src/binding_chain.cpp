@@ -120,7 +120,8 @@ private:
 void fillBinding(const std::vector<Segment>& segments, size_t vertexCount, const std::vector<Piece>& pieces,
                  const PieceVertices& vertices, Binding& out) {
     tbb::parallel_invoke([&] { out.face.resize(vertexCount); }, [&] { out.bary.resize(vertexCount); },
-                         [&] { out.height.resize(vertexCount); }, [&] { out.twist.resize(vertexCount); });
+                         [&] { out.height.resize(vertexCount); }, [&] { out.twist.resize(vertexCount); },
+                         [&] { out.colour.resize(vertices.colour ? vertexCount : 0); });
     tbb::parallel_for(tbb::blocked_range<size_t>(0, segments.size(), 16), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t k = r.begin(); k != r.end(); ++k) {
             const Segment& g = segments[k];
@@ -133,6 +134,7 @@ void fillBinding(const std::vector<Segment>& segments, size_t vertexCount, const
                 out.bary[o] = glm::dvec2(v.bary.y, v.bary.z);
                 out.height[o] = v.height;
                 out.twist[o] = v.twist;
+                if (vertices.colour) out.colour[o] = vertices.colour[v.origin];
             }
         }
     });

@@ -87,7 +87,10 @@ private:
         const size_t p = b_ + i;
         const UvStep step{yarns_.uv[p], to.uv, yarns_.height[p], to.height, yarns_.twist[p], to.twist};
         std::optional<BoundVertex> x = boundaryCrossing(mesh_, grid_, chart(i), step);
-        if (x) ++out_.boundaryVertices;
+        if (x) {
+            x->origin = uint32_t(p);
+            ++out_.boundaryVertices;
+        }
         return x;
     }
     // Starts a piece at vertex i; entered from a cut (`fromCut`), it gets a head on the boundary.

@@ -35,7 +35,10 @@ struct LocatedYarns {
 
     bool located(size_t i) const { return loc[i].status != LocateStatus::Outside; }
     // The located vertices as pieces read them (heights and twists from `yarns`).
-    PieceVertices vertices(const UvYarns& yarns) const { return {loc.get(), yarns.height.data(), yarns.twist.data()}; }
+    PieceVertices vertices(const UvYarns& yarns) const {
+        return {loc.get(), yarns.height.data(), yarns.twist.data(),
+                yarns.colour.empty() ? nullptr : yarns.colour.data()};
+    }
 };
 
 // Yarns in parallel, each walked in order with the previous vertex's triangle as the hint

@@ -14,11 +14,13 @@
 
 namespace knit::detail {
 
-// One vertex of the binding: a triangle, barycentrics (b0, b1, b2), height and twist.
+// One vertex of the binding: a triangle, barycentrics (b0, b1, b2), height and twist, and the
+// yarn vertex whose colour it carries (itself; a boundary crossing: the vertex it leaves from).
 struct BoundVertex {
     uint32_t face;
     glm::dvec3 bary;
     double height, twist;
+    uint32_t origin;
 };
 
 // A maximal run of located vertices of one yarn (yarn-local indices start, start+1, ... modulo
@@ -33,14 +35,15 @@ struct Piece {
 };
 
 // The located yarn vertices the pieces index into: per yarn vertex its location (not Outside
-// for any vertex a piece covers), height and twist.
+// for any vertex a piece covers), height, twist and colour (null without colours).
 struct PieceVertices {
     const LocateResult* loc = nullptr;
     const double* height = nullptr;
     const double* twist = nullptr;
+    const glm::vec3* colour = nullptr;
 
     BoundVertex vertex(size_t i) const {
-        return BoundVertex{loc[i].point.face, loc[i].point.bary, height[i], twist[i]};
+        return BoundVertex{loc[i].point.face, loc[i].point.bary, height[i], twist[i], uint32_t(i)};
     }
 
     // Vertex k of a piece, in piece order (head, the run, tail).

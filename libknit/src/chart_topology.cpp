@@ -153,11 +153,16 @@ ChartCell chartToCell(const Chart& chart, const ChartCellOptions& options) {
         for (uint32_t i = 0; i + 1 < perCourse; ++i) p.edges.push_back({first + i, first + i + 1, 0, 0});
         p.edges.push_back({first + perCourse - 1, first, 1, 0});
     }
-    // Step 5: the colour layer, per loop.
+    // Step 5: the colour layer, per loop (sRGB) and per vertex of the loop (linear).
     if (!chart.colour.empty())
-        for (const StitchLoop& l : cell.loops)
-            cell.colour.push_back(
-                chart.palette.at(chart.colour[size_t(l.row) * size_t(chart.width) + size_t(l.column)]));
+        for (const StitchLoop& l : cell.loops) {
+            const std::array<uint8_t, 3> srgb =
+                chart.palette.at(chart.colour[size_t(l.row) * size_t(chart.width) + size_t(l.column)]);
+            cell.colour.push_back(srgb);
+            glm::vec3 linear(0.f);
+            for (int k = 0; k < 3; ++k) linear[k] = float(util::srgbToLinear(srgb[size_t(k)] / 255.0));
+            p.colour.insert(p.colour.end(), l.count, linear);
+        }
     validatePattern(p, p.name);
     return cell;
 }

@@ -12,6 +12,7 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
+#include <glm/vector_relational.hpp>
 
 #include "knit/error.hpp"
 #include "util/checks.hpp"
@@ -104,6 +105,27 @@ void requireColumns(const Row& row, size_t n, const std::string& block, const st
              "*" + block + " row has " + std::to_string(row.tokens.size()) + " values, expected " + std::to_string(n));
 }
 
+// The *RGB block: one row "r g b" (linear, in [0, 1]) per vertex.
+std::vector<glm::vec3> readColours(const Block& block, size_t n, const std::string& source) {
+    if (block.rows.size() != n)
+        fail(source, block.line,
+             "*RGB has " + std::to_string(block.rows.size()) + " rows but *pattern declares " + std::to_string(n) +
+                 " vertices");
+    std::vector<glm::vec3> colour;
+    colour.reserve(n);
+    for (const Row& r : block.rows) {
+        requireColumns(r, 3, "RGB", source);
+        glm::vec3 c(0.f);
+        for (int k = 0; k < 3; ++k) {
+            const double v = parseNumber(r.tokens[size_t(k)], source, r.line);
+            if (!(v >= 0.0 && v <= 1.0)) fail(source, r.line, "*RGB colour components must be in [0, 1]");
+            c[k] = float(v);
+        }
+        colour.push_back(c);
+    }
+    return colour;
+}
+
 }  // namespace
 
 Pattern parsePyp(std::istream& in, const std::string& source) {
@@ -177,9 +199,12 @@ Pattern parsePyp(std::istream& in, const std::string& source) {
         p.rowsPerPeriod = int(rows);
     }
 
+    // *RGB (optional): linear yarn colour per vertex.
+    if (const Block* c = findBlock(blocks, "RGB")) p.colour = readColours(*c, size_t(n), source);
+
     // Everything else: kept verbatim (numbers only).
     for (const Block& b : blocks) {
-        if (b.name == "pattern" || b.name == "Q" || b.name == "E" || b.name == "GAUGE") continue;
+        if (b.name == "pattern" || b.name == "Q" || b.name == "E" || b.name == "GAUGE" || b.name == "RGB") continue;
         auto& rows = p.extraBlocks[b.name];
         for (const Row& r : b.rows) {
             std::vector<double> values;
@@ -225,6 +250,10 @@ void writePyp(std::ostream& out, const Pattern& p) {
     for (const PeriodicEdge& e : p.edges) out << e.v0 << ' ' << e.v1 << ' ' << e.dx << ' ' << e.dy << '\n';
     if (p.stitchesPerPeriod != 1 || p.rowsPerPeriod != 1)
         out << "\n*GAUGE # stitches rows per period\n" << p.stitchesPerPeriod << ' ' << p.rowsPerPeriod << '\n';
+    if (!p.colour.empty()) {
+        out << "\n*RGB # linear yarn colour per vertex: r g b\n";
+        for (const glm::vec3& c : p.colour) out << c.r << ' ' << c.g << ' ' << c.b << '\n';
+    }
     for (const auto& [name, rows] : p.extraBlocks) {
         out << "\n*" << name << '\n';
         for (const auto& row : rows) {
@@ -241,6 +270,10 @@ void validatePattern(const Pattern& p, const std::string& source) {
     if (p.points.empty()) bad("pattern has no vertices");
     if (p.twist.size() != p.points.size()) bad("twist count differs from vertex count");
     if (p.stitchesPerPeriod < 1 || p.rowsPerPeriod < 1) bad("stitches and rows per period must be at least 1");
+    if (!p.colour.empty() && p.colour.size() != p.points.size()) bad("colour count differs from vertex count");
+    for (const glm::vec3& c : p.colour)
+        if (!(glm::all(glm::greaterThanEqual(c, glm::vec3(0.f))) && glm::all(glm::lessThanEqual(c, glm::vec3(1.f)))))
+            bad("a vertex colour is outside [0, 1]");
     for (size_t i = 0; i < p.points.size(); ++i)
         if (!util::finite(p.points[i]) || !util::finite(p.twist[i]))
             bad("vertex " + std::to_string(i) + " has a non-finite coordinate");

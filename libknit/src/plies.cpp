@@ -130,8 +130,20 @@ PlyScratch::Buffers& PlyKernel::buffers(PlyScratch& scratch) {
     return *scratch.buffers_;
 }
 
-size_t PlyKernel::centreline(const PlyGenerator& g, size_t y, std::vector<dvec3>& centre, PlyScratch& scratch) {
-    return resampleCurve(g.yarns_, y, g.spacing_, centre, nullptr, buffers(scratch).resample);
+size_t PlyKernel::centreline(const PlyGenerator& g, size_t y, std::vector<dvec3>& centre, PlyScratch& scratch,
+                             std::vector<glm::vec3>* colour) {
+    PlyScratch::Buffers& buf = buffers(scratch);
+    const std::vector<glm::vec3>& in = g.yarns_.colour;
+    const bool withColour = colour && !in.empty();
+    const size_t m =
+        resampleCurve(g.yarns_, y, g.spacing_, centre, nullptr, buf.resample, withColour ? &buf.layout : nullptr);
+    if (withColour)
+        resampleColours(in.data() + g.yarns_.curves.begin(y), g.yarns_.curves.isClosed(y), buf.layout, *colour);
+    return m;
+}
+
+void PlyKernel::plyColours(const glm::vec3* colour, size_t m, uint32_t count, glm::vec3* out) {
+    for (uint32_t i = 0; i < count; ++i) std::copy(colour, colour + m, out + i * m);
 }
 
 double PlyKernel::arcAndPitch(const PlyGenerator& g, size_t y, const dvec3* X, size_t m, std::vector<double>& arc) {
@@ -204,15 +216,18 @@ void PlyGenerator::generate(size_t first, size_t last, Plies& out, PlyScratch& s
     out.yarnOfCurve.clear();
     out.plyOfCurve.clear();
     out.radial.clear();
+    out.colour.clear();
     out.plyRadius = options_.plyRadius;
     out.centerRadius = options_.centerRadius;
     out.pitch = options_.pitch;
 
     std::vector<dvec3>& centre = detail::PlyKernel::buffers(scratch).centre;
+    std::vector<glm::vec3>& colour = detail::PlyKernel::buffers(scratch).colour;
     for (size_t y = first; y < last; ++y) {
-        // Step 2: resample the centreline.
+        // Step 2: resample the centreline (and its colours).
         centre.clear();
-        const size_t m = detail::PlyKernel::centreline(*this, y, centre, scratch);
+        colour.clear();
+        const size_t m = detail::PlyKernel::centreline(*this, y, centre, scratch, &colour);
         if (m < 2) continue;  // degenerate yarn: no plies
         // Step 3: n curves of m points (yarn-major, ply-minor) swept around it.
         const size_t base = out.curves.points.size();
@@ -226,6 +241,10 @@ void PlyGenerator::generate(size_t first, size_t last, Plies& out, PlyScratch& s
         }
         detail::PlyKernel::sweep(*this, y, centre.data(), m, out.curves.points.data() + base,
                                  withRadial ? out.radial.data() + base : nullptr, scratch);
+        if (!colour.empty()) {
+            out.colour.resize(base + n * m);
+            detail::PlyKernel::plyColours(colour.data(), m, n, out.colour.data() + base);
+        }
     }
 }
 
@@ -259,12 +278,13 @@ Plies makePlies(const PlyGenerator& generator) {
     // Step 2: resample the centrelines batch by batch, in parallel (their sizes fix the layout).
     const size_t batches = batchStart.size() - 1;
     std::vector<std::vector<dvec3>> centres(batches);
+    std::vector<std::vector<glm::vec3>> colours(batches);  // empty without colours
     std::vector<size_t> samples(C.curveCount(), 0);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, batches, 1), [&](const tbb::blocked_range<size_t>& r) {
         PlyScratch scratch;
         for (size_t k = r.begin(); k < r.end(); ++k)
             for (size_t y = batchStart[k]; y < batchStart[k + 1]; ++y)
-                samples[y] = detail::PlyKernel::centreline(generator, y, centres[k], scratch);
+                samples[y] = detail::PlyKernel::centreline(generator, y, centres[k], scratch, &colours[k]);
     });
 
     // Step 3: layout, yarn-major and ply-minor (yarns with < 2 samples get no plies).
@@ -289,19 +309,26 @@ Plies makePlies(const PlyGenerator& generator) {
     }
 
     // Step 4: sweep every yarn's plies straight into place, in parallel.
-    tbb::parallel_invoke([&] { out.curves.points.resize(total); }, [&] { out.radial.resize(total); });
+    const bool withColour = !generator.yarns().colour.empty();
+    tbb::parallel_invoke([&] { out.curves.points.resize(total); }, [&] { out.radial.resize(total); },
+                         [&] { out.colour.resize(withColour ? total : 0); });
     tbb::parallel_for(tbb::blocked_range<size_t>(0, batches, 1), [&](const tbb::blocked_range<size_t>& r) {
         PlyScratch scratch;
         for (size_t k = r.begin(); k < r.end(); ++k) {
             const dvec3* X = centres[k].data();
+            const glm::vec3* colour = colours[k].data();
             for (size_t y = batchStart[k]; y < batchStart[k + 1]; ++y) {
                 const size_t m = samples[y];
-                if (m >= 2)
+                if (m >= 2) {
                     detail::PlyKernel::sweep(generator, y, X, m, out.curves.points.data() + firstPoint[y],
                                              out.radial.data() + firstPoint[y], scratch);
+                    if (withColour) detail::PlyKernel::plyColours(colour, m, n, out.colour.data() + firstPoint[y]);
+                }
                 X += m;
+                if (withColour) colour += m;
             }
             std::vector<dvec3>().swap(centres[k]);  // release memory early
+            std::vector<glm::vec3>().swap(colours[k]);
         }
     });
     return out;

@@ -14,7 +14,9 @@ namespace knit {
 
 struct PlyScratch::Buffers {
     ResampleScratch resample;
+    ResampleLayout layout;  // of the last centreline with colours
     std::vector<glm::dvec3> centre, tangent, normal;
+    std::vector<glm::vec3> colour;  // per centre point, when the yarns have colours
     std::vector<double> arc;
 };
 
@@ -23,10 +25,14 @@ namespace detail {
 struct PlyKernel {
     // The buffers of `scratch`, allocated on first use.
     static PlyScratch::Buffers& buffers(PlyScratch& scratch);
-    // The resampled centreline of yarn `y`, appended to `centre`; returns its point count (< 2
-    // means no plies).
+    // The resampled centreline of yarn `y`, appended to `centre`, and its colours appended to
+    // `colour` (when not null and the yarns have colours); returns its point count (< 2 means no
+    // plies).
     static size_t centreline(const PlyGenerator& generator, size_t y, std::vector<glm::dvec3>& centre,
-                             PlyScratch& scratch);
+                             PlyScratch& scratch, std::vector<glm::vec3>* colour = nullptr);
+    // The centre colours (m per yarn) repeated for each of the `count` plies: ply i's point j
+    // goes to out[i * m + j].
+    static void plyColours(const glm::vec3* colour, size_t m, uint32_t count, glm::vec3* out);
     // The `count` plies of yarn `y` swept around its m-point centreline: ply i's point j goes to
     // points[i * m + j] (and its unit radial direction to radial[i * m + j] unless radial is null).
     static void sweep(const PlyGenerator& generator, size_t y, const glm::dvec3* centre, size_t m, glm::dvec3* points,

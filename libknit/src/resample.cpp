@@ -221,6 +221,21 @@ size_t resampleCurve(const MappedYarns& yarns, size_t c, double spacing, std::ve
     return outPoints.size() - start;
 }
 
+size_t resampleColours(const glm::vec3* in, bool closed, const ResampleLayout& layout, std::vector<glm::vec3>& out) {
+    const size_t n = layout.kept.size(), start = out.size();
+    if (n < 2) {
+        for (const uint32_t k : layout.kept) out.push_back(in[k]);
+        return n;
+    }
+    for (size_t s = 0; s < layout.pieces.size(); ++s) {
+        const glm::vec3 a = in[layout.kept[s]], b = in[layout.kept[s + 1 == n ? 0 : s + 1]];
+        const uint32_t k = layout.pieces[s];
+        for (uint32_t j = 0; j < k; ++j) out.push_back(2 * j <= k ? a : b);
+    }
+    if (!closed) out.push_back(in[layout.kept[n - 1]]);
+    return out.size() - start;
+}
+
 size_t resampleCurveWithLayout(const Polylines& curves, size_t c, const uint32_t* kept, size_t keptCount,
                                const uint32_t* pieces, dvec3* out, ResampleScratch& scratch) {
     const bool closed = curves.isClosed(c);
@@ -294,6 +309,7 @@ std::vector<size_t> curveChunks(const Polylines& in) {
 struct CurveBuffer {
     std::vector<dvec3> points;
     std::vector<dvec3> normals;
+    std::vector<glm::vec3> colour;
     std::vector<uint32_t> sizes;  // points per curve in this chunk
 };
 
@@ -310,6 +326,9 @@ void validateResampleInput(const MappedYarns& yarns, const ResampleOptions& opti
     const bool withNormals = !yarns.normals.empty();
     if (withNormals && yarns.normals.size() != in.pointCount())
         throw Error("resampleYarns: MappedYarns.normals has " + std::to_string(yarns.normals.size()) +
+                    " entries but there are " + std::to_string(in.pointCount()) + " points");
+    if (!yarns.colour.empty() && yarns.colour.size() != in.pointCount())
+        throw Error("resampleYarns: MappedYarns.colour has " + std::to_string(yarns.colour.size()) +
                     " entries but there are " + std::to_string(in.pointCount()) + " points");
 
     // First non-finite point or normal of each chunk (in parallel), then the first overall.
@@ -338,7 +357,7 @@ MappedYarns resampleYarns(const MappedYarns& yarns, const ResampleOptions& optio
     // Step 1: validate options and input first: the loops below never throw.
     validateResampleInput(yarns, options);
     const Polylines& in = yarns.curves;
-    const bool withNormals = !yarns.normals.empty();
+    const bool withNormals = !yarns.normals.empty(), withColour = !yarns.colour.empty();
 
     // Step 2: fixed chunks of consecutive curves and a lower bound of their output size.
     const std::vector<size_t> chunkStart = curveChunks(in);
@@ -360,14 +379,18 @@ MappedYarns resampleYarns(const MappedYarns& yarns, const ResampleOptions& optio
     std::vector<CurveBuffer> buffers(chunks);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, chunks, 1), [&](const tbb::blocked_range<size_t>& r) {
         ResampleScratch scratch;
+        ResampleLayout layout;
         for (size_t k = r.begin(); k < r.end(); ++k) {
             CurveBuffer& buf = buffers[k];
             const size_t reserve = 16 + estimate[k] + estimate[k] / 4;  // curved pieces need a few more
             buf.points.reserve(reserve);
             if (withNormals) buf.normals.reserve(reserve);
-            for (size_t c = chunkStart[k]; c < chunkStart[k + 1]; ++c)
-                buf.sizes.push_back(static_cast<uint32_t>(resampleCurve(
-                    yarns, c, options.spacing, buf.points, withNormals ? &buf.normals : nullptr, scratch)));
+            for (size_t c = chunkStart[k]; c < chunkStart[k + 1]; ++c) {
+                buf.sizes.push_back(static_cast<uint32_t>(resampleCurve(yarns, c, options.spacing, buf.points,
+                                                                        withNormals ? &buf.normals : nullptr, scratch,
+                                                                        withColour ? &layout : nullptr)));
+                if (withColour) resampleColours(yarns.colour.data() + in.begin(c), in.isClosed(c), layout, buf.colour);
+            }
         }
     });
 
@@ -385,14 +408,18 @@ MappedYarns resampleYarns(const MappedYarns& yarns, const ResampleOptions& optio
     tbb::parallel_invoke([&] { out.curves.points.resize(pointStart[chunks]); },
                          [&] {
                              if (withNormals) out.normals.resize(pointStart[chunks]);
-                         });
+                         },
+                         [&] { out.colour.resize(withColour ? pointStart[chunks] : 0); });
     tbb::parallel_for(tbb::blocked_range<size_t>(0, chunks, 1), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t k = r.begin(); k < r.end(); ++k) {
             std::copy(buffers[k].points.begin(), buffers[k].points.end(), out.curves.points.begin() + pointStart[k]);
             if (withNormals)
                 std::copy(buffers[k].normals.begin(), buffers[k].normals.end(), out.normals.begin() + pointStart[k]);
+            if (withColour)
+                std::copy(buffers[k].colour.begin(), buffers[k].colour.end(), out.colour.begin() + pointStart[k]);
             std::vector<dvec3>().swap(buffers[k].points);  // release memory early
             std::vector<dvec3>().swap(buffers[k].normals);
+            std::vector<glm::vec3>().swap(buffers[k].colour);
         }
     });
     return out;

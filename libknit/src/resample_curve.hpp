@@ -38,6 +38,11 @@ struct ResampleLayout {
 size_t resampleCurve(const MappedYarns& yarns, size_t c, double spacing, std::vector<glm::dvec3>& points,
                      std::vector<glm::dvec3>* normals, ResampleScratch& scratch, ResampleLayout* layout = nullptr);
 
+// The per-point colours `in` (curve `c`'s first point at in[0]) of a curve resampled with
+// `layout`, appended to `out`: a kept point keeps its colour, an inserted point takes the colour
+// of the nearer end of its piece (colours change between stitches, never blend). Returns the
+// number appended (what resampleCurve appended to its points).
+size_t resampleColours(const glm::vec3* in, bool closed, const ResampleLayout& layout, std::vector<glm::vec3>& out);
 // Resamples curve `c` of `curves` (a deformed pose of the curve a layout was recorded on) with
 // that layout's kept points and piece counts, writing sum(pieces) + (open ? 1 : 0) points (or the
 // 0 / 1 kept points of a degenerate curve) to `out`. On the recording pose it gives

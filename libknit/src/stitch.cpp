@@ -129,14 +129,16 @@ UvYarns stitchYarns(const Pattern& pattern, const PatternAdjacency& adj, const T
     }
     // 3. Per-vertex data of every walked id, in parallel.
     const size_t count = out.source.size();
+    const bool coloured = !pattern.colour.empty();
     tbb::parallel_invoke([&] { out.uv.resize(count); }, [&] { out.height.resize(count); },
-                         [&] { out.twist.resize(count); });
+                         [&] { out.twist.resize(count); }, [&] { out.colour.resize(coloured ? count : 0); });
     tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 16384), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t i = r.begin(); i != r.end(); ++i) {
             const uint32_t id = out.source[i], k = id / n, v = id % n;
             out.uv[i] = uvOf(tiling.tiles[k], v);
             out.height[i] = pattern.points[v].z * placement.scale;
             out.twist[i] = pattern.twist[v];
+            if (coloured) out.colour[i] = pattern.colour[v];
         }
     });
     return out;
@@ -151,6 +153,7 @@ void appendChartYarns(UvYarns& yarns, const UvYarns& more, uint32_t chart) {
     yarns.uv.insert(yarns.uv.end(), more.uv.begin(), more.uv.end());
     yarns.height.insert(yarns.height.end(), more.height.begin(), more.height.end());
     yarns.twist.insert(yarns.twist.end(), more.twist.begin(), more.twist.end());
+    yarns.colour.insert(yarns.colour.end(), more.colour.begin(), more.colour.end());
     yarns.source.insert(yarns.source.end(), more.source.begin(), more.source.end());
     for (size_t y = 0; y < more.yarnCount(); ++y) {
         yarns.offsets.push_back(uint32_t(base + more.offsets[y + 1]));

@@ -106,6 +106,7 @@ void sweepTubes(const Polylines& curves, double radius, const TubeOptions& optio
         mesh.uvs.clear();
         mesh.triangles.clear();
         mesh.curveOfVertex.clear();
+        mesh.colours.clear();
         return;
     }
     const int sides = options.sides;
@@ -125,6 +126,7 @@ void sweepTubes(const Polylines& curves, double radius, const TubeOptions& optio
     mesh.tangents.resize(nv);
     mesh.uvs.resize(nv);
     mesh.curveOfVertex.resize(nv);
+    mesh.colours.resize(options.pointColours ? nv : 0);
     mesh.triangles.resize(nt);
 
     // Step 2: the ring angle table (the seam column reuses angle 0 exactly).
@@ -194,6 +196,9 @@ void sweepTubes(const Polylines& curves, double radius, const TubeOptions& optio
                         uv[j] = glm::vec2(uA[j], v);
                         cv[j] = curveId;
                     }
+                    if (options.pointColours)
+                        std::fill_n(mesh.colours.data() + base, ringSize,
+                                    (*options.pointColours)[curves.begin(c) + i % n]);
                 }
                 // Side triangles between consecutive rings: (a, b, c), (b, d, c), outward.
                 glm::uvec3* tri = mesh.triangles.data() + slot.triangle;
@@ -219,6 +224,9 @@ void sweepTubes(const Polylines& curves, double radius, const TubeOptions& optio
                     mesh.tangents[centre] = tf;
                     mesh.uvs[centre] = glm::vec2(0.5f, 0.5f);
                     mesh.curveOfVertex[centre] = curveId;
+                    if (options.pointColours)
+                        std::fill_n(mesh.colours.data() + centre, size_t(sides) + 1,
+                                    (*options.pointColours)[curves.begin(c) + (end == 0 ? 0 : n - 1)]);
                     for (int j = 0; j < sides; ++j) {
                         const uint32_t vtx = centre + 1 + uint32_t(j);
                         const glm::vec3 d = cosA[j] * Nf + sinA[j] * Bf;

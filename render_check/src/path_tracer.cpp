@@ -76,6 +76,7 @@ struct Shading {
     ShadingFrame frame;
     bool ply = true;
     Rgb albedo{0.0};  // base mesh: its diffuse albedo (baked texel at the surface level)
+    Rgb body{0.0};  // the ply's body albedo (the material's, or its yarn colour's)
 };
 
 struct Tracer {
@@ -109,6 +110,8 @@ struct Tracer {
         sp.radial = glm::dvec3((1 - u) * g.radial[j] + u * g.radial[j + 1]);
         sp.v = (1 - u) * g.arc[j] + u * g.arc[j + 1];
         sh.frame = plyShadingFrame(sp, material, tables);
+        // A yarn colour (nearer end of the segment: colours change between stitches) tints the body.
+        sh.body = g.colour.empty() ? material.bodyAlbedo : yarnBodyAlbedo(material, g.colour[u < 0.5f ? j : j + 1]);
         return sh;
     }
 
@@ -160,7 +163,7 @@ struct Tracer {
             const glm::dvec3 wo = -glm::dvec3(d);
             const glm::dvec3 woL = sh.frame.toLocal(wo);
             if ((glm::dot(-d, h.ng) > 0) != (woL.z > 0)) break;
-            const PlyBsdf bsdf(material, sh.frame.shadow);
+            const PlyBsdf bsdf(material, sh.frame.shadow, sh.body);
             // Step 3: next-event estimation to the area light.
             if (light.on) {
                 const glm::vec3 y = light.corner + float(rng.uniform()) * light.eu + float(rng.uniform()) * light.ev;

@@ -87,8 +87,11 @@ glm::dvec3 ggxSampleVisibleNormal(const glm::dvec3& w, double ax, double ay, glm
     return glm::normalize(glm::dvec3(ax * nh.x, ay * nh.y, std::max(1e-9, nh.z)));
 }
 
-PlyBsdf::PlyBsdf(const PlyMaterial& material, double shadow) : m_(material) {
+PlyBsdf::PlyBsdf(const PlyMaterial& material, double shadow) : PlyBsdf(material, shadow, material.bodyAlbedo) {}
+
+PlyBsdf::PlyBsdf(const PlyMaterial& material, double shadow, const Rgb& bodyAlbedo) : m_(material) {
     const double s = std::clamp(shadow, 0.0, 1.0);
+    m_.bodyAlbedo = bodyAlbedo;
     bodyR_ = m_.bodyAlbedo * (m_.reflectFraction * s * kInvPi);
     bodyT_ = m_.bodyAlbedo * ((1.0 - m_.reflectFraction) * s * kInvPi);
 }

@@ -21,7 +21,8 @@ size_t PlyGeometry::intersectionBytes() const {
 }
 
 size_t PlyGeometry::shadingBytes() const {
-    return radial.size() * sizeof(glm::vec3) + arc.size() * sizeof(float) + curveOfSegment.size() * sizeof(uint32_t);
+    return (radial.size() + colour.size()) * sizeof(glm::vec3) + arc.size() * sizeof(float) +
+           curveOfSegment.size() * sizeof(uint32_t);
 }
 
 PlyGeometry buildPlyGeometry(const Plies& plies, const glm::dvec3& origin, double fiberTwist) {
@@ -32,6 +33,9 @@ PlyGeometry buildPlyGeometry(const Plies& plies, const glm::dvec3& origin, doubl
         throw Error("render: ply radius must be positive (got " + std::to_string(plies.plyRadius) + ")");
     if (plies.radial.size() != c.pointCount())
         throw Error("render: plies have " + std::to_string(plies.radial.size()) + " radial directions for " +
+                    std::to_string(c.pointCount()) + " points");
+    if (!plies.colour.empty() && plies.colour.size() != c.pointCount())
+        throw Error("render: plies have " + std::to_string(plies.colour.size()) + " colours for " +
                     std::to_string(c.pointCount()) + " points");
     PlyGeometry g;
     g.origin = origin;
@@ -74,6 +78,7 @@ PlyGeometry buildPlyGeometry(const Plies& plies, const glm::dvec3& origin, doubl
             const glm::vec3 q = g.toScene(c.points[idx[i]]);
             g.points.emplace_back(q.x, q.y, q.z, g.radius);
             g.radial.emplace_back(glm::vec3(plies.radial[idx[i]]));
+            if (!plies.colour.empty()) g.colour.push_back(plies.colour[idx[i]]);
             g.arc.push_back(static_cast<float>(a));
         };
         // Step 3: expanded points and segments with neighbour flags.

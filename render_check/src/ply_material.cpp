@@ -2,6 +2,7 @@
 // errors, and the per-field overrides of the render options.
 #include "knit/ply_material.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -182,6 +183,11 @@ std::string materialJsonText(const PlyMaterial& m) {
                               {"tableSize", m.tableSize},
                               {"aoRays", m.aoRays}};
     return j.dump();
+}
+
+Rgb yarnBodyAlbedo(const PlyMaterial& material, const glm::vec3& colour) {
+    const double brightest = std::max({material.bodyAlbedo.x, material.bodyAlbedo.y, material.bodyAlbedo.z});
+    return Rgb(colour) * brightest;
 }
 
 }  // namespace knit

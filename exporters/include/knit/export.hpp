@@ -110,6 +110,9 @@ struct ExportInput {
     double radius = 0;
     const std::vector<uint32_t>* yarnOfCurve = nullptr;
     const std::vector<glm::dvec3>* seedNormals = nullptr;  // per point, tube frame seed (optional)
+    // Per point, the linear yarn colour (optional; a pattern with colours): COLOR_0 in glTF (tubes
+    // and curves, unless --yarn-colors), vertex colours in PLY, per-curve colours in pbrt.
+    const std::vector<glm::vec3>* colours = nullptr;
     // glTF material extras as JSON object text, e.g. {"generator":"libknit"} (empty: none; the
     // exporter adds radius and tube fields). Anything but a JSON object is a knit::Error.
     std::string materialExtrasJson;

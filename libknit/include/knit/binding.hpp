@@ -35,6 +35,7 @@ struct Binding {
     std::vector<glm::dvec2> bary;  // (b1, b2); b0 = 1 - b1 - b2
     std::vector<double> height;
     std::vector<double> twist;
+    std::vector<glm::vec3> colour;  // linear yarn colour per vertex; empty without colours
     std::vector<uint32_t> offsets{0};
     std::vector<uint8_t> closed;
 
@@ -65,6 +66,7 @@ BindResult bindYarns(const BaseMesh& mesh, const std::vector<glm::dvec3>& normal
 struct MappedYarns {
     Polylines curves;
     std::vector<glm::dvec3> normals;
+    std::vector<glm::vec3> colour;  // linear yarn colour per point; empty without colours
 };
 
 // The hot loop: a flat gather over the binding. `positions`/`normals` are per mesh vertex

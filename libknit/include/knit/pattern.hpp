@@ -34,6 +34,9 @@ struct Pattern {
     // Stitch columns and rows in one period (the optional *GAUGE block "stitches rows"; a chart
     // records its size). Files without the block: one period is one stitch column by one row.
     int stitchesPerPeriod = 1, rowsPerPeriod = 1;
+    // Optional per-vertex yarn colour, linear RGB in [0, 1] (the optional *RGB block "r g b", one
+    // row per vertex; a chart's colour layer). Empty: no colour, and nothing downstream carries any.
+    std::vector<glm::vec3> colour;
     // Optional simulation blocks (*RL, *RK, *RT, *RefD1, *RefT, ...), kept verbatim by name.
     std::map<std::string, std::vector<std::vector<double>>> extraBlocks;
 };

@@ -39,6 +39,9 @@ struct Plies {
     // Per ply point: the unit radial direction from the yarn centre (the ply's outward normal
     // reference; a renderer derives the ply phase from it).
     std::vector<glm::dvec3> radial;
+    // Per ply point: the linear yarn colour at that arc position of its yarn; empty when the
+    // yarns have no colours.
+    std::vector<glm::vec3> colour;
 };
 
 // Resolved option values (auto radii / pitch filled in); throws knit::Error on invalid options.

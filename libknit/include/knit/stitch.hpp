@@ -5,6 +5,7 @@
 #include <vector>
 
 #include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
 
 #include "knit/pattern.hpp"
 #include "knit/tiling.hpp"
@@ -23,9 +24,10 @@ struct GhostVertex {
 // Yarns in UV space. Yarn y owns vertices [offsets[y], offsets[y+1]); closed[y] marks loops.
 struct UvYarns {
     std::vector<glm::dvec2> uv;
-    std::vector<double> height;    // metres in object space (pattern z * placement.scale)
-    std::vector<double> twist;     // pattern twist angle t
-    std::vector<uint32_t> source;  // tiled vertex id = tileSlot * patternVertexCount + local
+    std::vector<double> height;     // metres in object space (pattern z * placement.scale)
+    std::vector<double> twist;      // pattern twist angle t
+    std::vector<uint32_t> source;   // tiled vertex id = tileSlot * patternVertexCount + local
+    std::vector<glm::vec3> colour;  // linear yarn colour per vertex; empty when the pattern has none
     std::vector<uint32_t> offsets{0};
     std::vector<uint8_t> closed;
     std::vector<std::array<GhostVertex, 2>> ghosts;  // per yarn: beyond its first / last vertex

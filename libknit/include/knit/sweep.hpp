@@ -17,6 +17,9 @@ struct TubeOptions {
     // Optional frame seed per curve point (indexed like curves.points): the surface normal for
     // yarns, the radial direction for plies. nullptr: frames.hpp's default seed.
     const std::vector<glm::dvec3>* seedNormals = nullptr;
+    // Optional linear colour per curve point (indexed like curves.points): each ring (and cap)
+    // takes its point's colour into TubeMesh::colours. nullptr: no colours.
+    const std::vector<glm::vec3>* pointColours = nullptr;
 };
 
 // One ring of `sides` vertices per curve point, oriented by rotation-minimizing frames (rings
@@ -30,6 +33,7 @@ struct TubeMesh {
     std::vector<glm::vec2> uvs;        // u: around (0..1), v: along, in radius units
     std::vector<glm::uvec3> triangles;
     std::vector<uint32_t> curveOfVertex;
+    std::vector<glm::vec3> colours;  // linear, per vertex; empty without TubeOptions::pointColours
 
     size_t vertexCount() const { return positions.size(); }
 };

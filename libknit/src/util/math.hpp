@@ -24,4 +24,9 @@ inline glm::dvec3 anyPerpendicular(const glm::dvec3& t) {
     return glm::normalize(axis - glm::dot(axis, t) * t);
 }
 
+// An sRGB-encoded component in [0, 1] to linear light (IEC 61966-2-1).
+inline double srgbToLinear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
+// Linear light in [0, 1] to its sRGB encoding (the inverse of srgbToLinear).
+inline double linearToSrgb(double c) { return c <= 0.0031308 ? c * 12.92 : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055; }
+
 }  // namespace knit::util

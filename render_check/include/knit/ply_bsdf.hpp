@@ -37,6 +37,9 @@ public:
     enum Lobe { R = 0, TT = 1, BodyR = 2, BodyT = 3 };
     // `shadow` is the self-shadowing factor S' in [0, 1]; it scales the body lobes only.
     explicit PlyBsdf(const PlyMaterial& material, double shadow = 1.0);
+    // The same with the body albedo rho_B of this ply instead of the material's (a yarn colour,
+    // see yarnBodyAlbedo).
+    PlyBsdf(const PlyMaterial& material, double shadow, const Rgb& bodyAlbedo);
 
     Rgb eval(const glm::dvec3& wo, const glm::dvec3& wi) const;
     double pdf(const glm::dvec3& wo, const glm::dvec3& wi) const;

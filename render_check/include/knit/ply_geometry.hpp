@@ -27,6 +27,7 @@ struct PlyGeometry {
     float radius = 0;                        // in scene units (1)
     std::vector<glm::vec4> points;           // (x, y, z, radius), scene units relative to origin
     std::vector<glm::vec3> radial;           // unit direction from the yarn centre, per point
+    std::vector<glm::vec3> colour;           // linear yarn colour per point; empty without colours
     std::vector<float> arc;                  // fiber parameter v: arc length along the ply (ply radii), per
                                              // point; rescaled on closed curves (see buildPlyGeometry)
     std::vector<uint32_t> segments;          // first point of each segment

@@ -31,6 +31,10 @@ struct PlyMaterial {
     int aoRays = 1000;              // 2D rays per texel for the shadow (AO) tables
 };
 
+// The body albedo of a ply whose yarn has a colour (a pattern with colours, linear RGB in
+// [0, 1]): the yarn colour at the material's body brightness, colour * max_k bodyAlbedo[k]. It
+// keeps the energy bound of a valid material (every channel is at most the brightest one).
+Rgb yarnBodyAlbedo(const PlyMaterial& material, const glm::vec3& colour);
 // Throws knit::Error naming the field when a value is out of range or not finite, or when the
 // energy bound max(kR, kTT) + bodyAlbedo <= 1 fails in some channel (then albedo may exceed 1).
 // `where` prefixes the message (e.g. a file name).
