@@ -158,6 +158,9 @@ private:
                 const MappedYarns& source = s_.detail_ ? s_.detail_->pieces.plies : s_.yarns_;
                 detail::checkPlyBudget(source, s_.plyOptions_, options_.budget);
                 s_.plies_ = makePlies(source, s_.plyOptions_);
+                // With a view: each ply names the yarn its piece comes from (cells, colours).
+                if (s_.detail_)
+                    for (uint32_t& y : s_.plies_.yarnOfCurve) y = s_.detail_->pieces.plyPieceYarn[y];
             });
     }
 
@@ -192,6 +195,7 @@ Scene Scene::fromParts(SceneParts parts) {
     s.bound_.binding = std::move(parts.binding);
     s.yarns_ = std::move(parts.yarns);
     s.plies_ = std::move(parts.plies);
+    s.detail_ = std::move(parts.detail);
     s.plyOptions_.yarnRadius = parts.yarnRadius;
     return s;
 }

@@ -94,13 +94,13 @@ double pixelFootprint(const View& v, double depth) {
 
 FramedBounds framedBounds(const BaseMesh& mesh, double margin) {
     FramedBounds f;
-    // Step 1: bounds of the positions grown by the margin.
+    // Step 1: the sphere around the positions' bounds, grown by the margin (every point within
+    // `margin` of the mesh lies inside it).
     glm::dvec3 lo(1e300), hi(-1e300);
     for (const glm::dvec3& p : mesh.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
     if (mesh.positions.empty()) lo = hi = glm::dvec3(0.0);
-    lo -= glm::dvec3(margin), hi += glm::dvec3(margin);
     f.centre = 0.5 * (lo + hi);
-    f.radius = std::max(0.5 * glm::length(hi - lo), 1e-6);
+    f.radius = std::max(0.5 * glm::length(hi - lo) + margin, 1e-6);
     // Step 2: the cloth's front, the area-weighted mean normal; a closed mesh has none (its normals
     // cancel up to rounding): the shortest axis of the bounds instead.
     glm::dvec3 normal(0.0);
@@ -114,7 +114,7 @@ FramedBounds framedBounds(const BaseMesh& mesh, double margin) {
     if (glm::length(normal) > 1e-3 * normalLengths && normalLengths > 0) {
         f.normal = glm::normalize(normal);
     } else {
-        const glm::dvec3 ext = hi - lo;
+        const glm::dvec3 ext = hi - lo + 2.0 * margin;
         const int axis = ext.x <= ext.y && ext.x <= ext.z ? 0 : (ext.y <= ext.z ? 1 : 2);
         f.normal = glm::dvec3(0.0);
         f.normal[axis] = 1.0;

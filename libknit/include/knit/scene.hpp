@@ -74,6 +74,7 @@ struct SceneParts {
     Binding binding;                  // of `yarns` on `mesh`
     MappedYarns yarns;
     Plies plies;
+    std::optional<SceneDetail> detail;  // a view's levels and pieces (of these yarns)
 };
 
 // The result of the pipeline: read-only, made by buildScene (or Scene::fromParts).

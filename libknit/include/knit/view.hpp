@@ -47,15 +47,16 @@ std::array<Plane, 5> frustumPlanes(const View& view);
 // The world size of one pixel at `depth` metres in front of the eye (constant when orthographic).
 double pixelFootprint(const View& view, double depth);
 
-// The default camera (the one `knit render` uses without --eye): looks at the bounding sphere of
-// the mesh grown by `margin` (the yarns' height above the surface plus their radius) along the
+// The default camera (the one `knit render` uses without --eye): looks at the sphere around the
+// mesh's bounding box grown by `margin` (the yarns' height above the surface plus their radius) along the
 // mesh's area-weighted mean normal (the cloth's front); for a closed mesh (mean normal below 1e-3
 // of the summed normal lengths) along the shortest axis of the bounds. Image up is +y unless the
 // cloth faces +-y, then -z. The sphere fills the vertical field of view of `settings`, whose
 // field of view and image size are kept.
 View frameMesh(const BaseMesh& mesh, double margin, const View& settings);
 
-// The centre and radius of the mesh's bounds grown by `margin` (what frameMesh frames).
+// The centre and radius of the sphere around the mesh's bounds grown by `margin`, and the camera
+// frame of the default view (what frameMesh frames).
 struct FramedBounds {
     glm::dvec3 centre{0.0};
     double radius = 0;
