@@ -7,6 +7,7 @@
 
 #include "knit/export.hpp"
 #include "scene_flags.hpp"
+#include "view_flags.hpp"
 
 namespace knit::cli {
 
@@ -16,6 +17,7 @@ struct BuildCommand {
     ExportOptions exportOptions;  // -o defaults to knit-plies.obj
     std::string report;           // --report path; empty = none
     std::string rest;             // --rest: bind on this mesh, evaluate on --mesh (same connectivity)
+    ViewFlags view;               // --eye --target --up --fov --width --height --detail (default full)
 };
 
 // Registers the subcommand and its flags on `app`, bound to `build` (which must outlive parsing).

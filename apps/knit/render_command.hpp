@@ -7,6 +7,7 @@
 
 #include "knit/render.hpp"
 #include "scene_flags.hpp"
+#include "view_flags.hpp"
 
 namespace knit::cli {
 
@@ -14,6 +15,7 @@ struct RenderCommand {
     CLI::App* command = nullptr;  // set by addRenderCommand
     SceneFlags scene;
     RenderOptions options;
+    ViewFlags view;      // --fov --width --height fill options
     std::string report;  // --report path; empty = none
 };
 

@@ -196,6 +196,7 @@ Scene Scene::fromParts(SceneParts parts) {
     s.yarns_ = std::move(parts.yarns);
     s.plies_ = std::move(parts.plies);
     s.detail_ = std::move(parts.detail);
+    if (parts.plyOptions) s.plyOptions_ = *parts.plyOptions;
     s.plyOptions_.yarnRadius = parts.yarnRadius;
     return s;
 }

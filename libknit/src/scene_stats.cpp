@@ -37,6 +37,8 @@ size_t tileCount(const SceneStages& stages) {
 constexpr size_t kCurvePointBytes = 16;  // float32 xyz + radius
 constexpr size_t kTriangleBytes = 12, kSurfaceVertexBytes = 32;
 
+}  // namespace
+
 // The levels of a scene: with a view, from its cell levels and pieces; else every cell is at the
 // ply level with all yarns and plies.
 LevelStats levelStats(const Scene& s) {
@@ -66,8 +68,6 @@ LevelStats levelStats(const Scene& s) {
     st.surface.bytes = d.pieces.surfaceFaces.size() * kTriangleBytes + used.size() * kSurfaceVertexBytes;
     return st;
 }
-
-}  // namespace
 
 SceneStats sceneStats(const Scene& s) {
     SceneStats st;

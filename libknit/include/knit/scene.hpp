@@ -74,7 +74,8 @@ struct SceneParts {
     Binding binding;                  // of `yarns` on `mesh`
     MappedYarns yarns;
     Plies plies;
-    std::optional<SceneDetail> detail;  // a view's levels and pieces (of these yarns)
+    std::optional<SceneDetail> detail;     // a view's levels and pieces (of these yarns)
+    std::optional<PlyOptions> plyOptions;  // none: the defaults with yarnRadius
 };
 
 // The result of the pipeline: read-only, made by buildScene (or Scene::fromParts).
@@ -83,7 +84,7 @@ public:
     // An empty scene (no mesh, no yarns), to assign a built one to later.
     Scene() = default;
     // A scene from parts made without the pipeline: no pattern, placement, stages, bind
-    // statistics or timings; plyOptions are the defaults with the parts' yarn radius.
+    // statistics or timings; plyOptions are the parts' or the defaults with the parts' yarn radius.
     static Scene fromParts(SceneParts parts);
 
     const Pattern& pattern() const { return pattern_; }
@@ -167,5 +168,7 @@ struct SceneStats {
 };
 
 SceneStats sceneStats(const Scene& scene);
+// The levels part of sceneStats alone (cheap: no segment statistics).
+LevelStats levelStats(const Scene& scene);
 
 }  // namespace knit
