@@ -10,6 +10,7 @@
 #include "export_flags.hpp"
 #include "export_report.hpp"
 #include "knit/animation.hpp"
+#include "knit/error.hpp"
 #include "float_range.hpp"
 #include "path_collisions.hpp"
 #include "report.hpp"
@@ -78,6 +79,8 @@ void printSummary(const Scene& s, const SceneStats& st, const ExportStats& e, co
 
 // --rest: bound on the rest mesh, evaluated on --mesh (what `knit animate` writes for that frame).
 int runBuildOnRestPose(const BuildCommand& b) {
+    if (b.view.detail == Detail::View)
+        throw Error("--detail view does not apply to --rest (an animation frame is built at full detail)");
     validateExportOptions(b.exportOptions);
     if (!b.report.empty()) requireWritableFolder(b.report, "report");
     const SceneOptions options = resolveScene(b.scene);

@@ -56,6 +56,13 @@ TEST_F(ViewCli, badViewsNameTheOptionAndWriteNothing) {
     }
 }
 
+TEST_F(ViewCli, detailViewIsRefusedForARestPoseFrame) {
+    const knit::test::CliRun b = run("build" + kScene + "--rest plane -o out.obj --detail view");
+    EXPECT_EQ(b.exitCode, 1) << b.output;
+    EXPECT_NE(b.output.find("--detail view does not apply to --rest"), std::string::npos) << b.output;
+    EXPECT_FALSE(fs::exists(dir / "out.obj"));
+}
+
 TEST_F(ViewCli, buildReportsCameraAndLevelsAndViewKeepsLessThanFull) {
     ASSERT_EQ(run("build" + kScene + "-o full.obj --report full.json").exitCode, 0);
     const std::string close = "--detail view --eye 0.1 0.15 0.1 --target 0.1 0 0.1 --up 0 0 -1 --width 64 --height 48";
