@@ -10,6 +10,7 @@
 #include "export_report.hpp"
 #include "knit/animation.hpp"
 #include "knit/output_transaction.hpp"
+#include "knit/error.hpp"
 #include "float_range.hpp"
 #include "path_collisions.hpp"
 #include "report.hpp"
@@ -18,9 +19,39 @@
 namespace knit::cli {
 namespace {
 
-// The scene report plus the export; streamed plies are counted by the export.
-nlohmann::json buildReportJson(const Scene& scene, const SceneStats& numbers, const ExportStats& stats, bool streamed) {
+// The camera of the report: the scene's view, else the given one, else the default framing.
+View reportView(const Scene& scene, const BuildCommand& b) {
+    if (scene.detail()) return scene.detail()->view;
+    if (const std::optional<View> given = givenView(b.view, b.view.image)) return *given;
+    View settings;
+    settings.fovDegrees = b.view.image.fovDegrees, settings.width = b.view.image.width;
+    settings.height = b.view.image.height;
+    return frameMesh(scene.mesh(), yarnMargin(scene.binding(), scene.yarnRadius()), settings);
+}
+
+// What a scene built for a view exports: the yarn pieces of its ply-level cells and their plies
+// (the yarn and surface levels are not exported yet).
+Scene plyLevelScene(const Scene& s) {
+    SceneParts parts;
+    parts.mesh = s.mesh();
+    parts.normals = s.normals();
+    parts.yarnRadius = s.yarnRadius();
+    parts.grid = s.grid();
+    parts.yarns = s.detail()->pieces.plies;
+    parts.plies = s.plies();
+    parts.plyOptions = s.plyOptions();
+    return Scene::fromParts(std::move(parts));
+}
+
+// The scene report plus the export, the camera and the levels; streamed plies are counted by the
+// export.
+nlohmann::json buildReportJson(const Scene& scene, const SceneStats& numbers, const ExportStats& stats, bool streamed,
+                               const View& view) {
     nlohmann::json report = sceneReport(scene, numbers);
+    LevelStats levels = numbers.levels;
+    if (streamed) levels.plies.plyVertices = stats.vertices, levels.plies.bytes = 16 * stats.vertices;
+    report["camera"] = cameraJson(view);
+    report["levels"] = levelsJson(levels);
     if (streamed) {
         const PlyOptions o = resolvePlyOptions(scene.plyOptions());
         report["vertices"]["ply"] = stats.vertices;
@@ -48,6 +79,8 @@ void printSummary(const Scene& s, const SceneStats& st, const ExportStats& e, co
 
 // --rest: bound on the rest mesh, evaluated on --mesh (what `knit animate` writes for that frame).
 int runBuildOnRestPose(const BuildCommand& b) {
+    if (b.view.detail == Detail::View)
+        throw Error("--detail view does not apply to --rest (an animation frame is built at full detail)");
     validateExportOptions(b.exportOptions);
     if (!b.report.empty()) requireWritableFolder(b.report, "report");
     const SceneOptions options = resolveScene(b.scene);
@@ -120,6 +153,7 @@ void addBuildCommand(CLI::App& app, BuildCommand& b) {
 #ifdef KNIT_HAVE_RENDER_CHECK
     addSurfaceFlags(*b.command, b.surface);
 #endif
+    addViewFlags(*b.command, b.view, b.view.image.fovDegrees, b.view.image.width, b.view.image.height, Detail::Full);
     b.command->footer(kSceneHelp);
 }
 
@@ -131,6 +165,7 @@ int runBuild(const BuildCommand& b) {
     // Step 1: fail before the scene is built: bad export options or an unwritable report folder.
     validateExportOptions(b.exportOptions);
     checkReportPath(b.report);
+    givenView(b.view, b.view.image);  // a bad camera fails here (knit::Error naming the option)
     const std::string& out = b.exportOptions.path;
     refuseCollidingPaths({{"--mesh", b.scene.scene.mesh}, {"--pattern", b.scene.scene.pattern}},
                          {{"-o", out}, {"the glTF buffer of -o", gltfBufferOf(out)}, {"--report", b.report}});
@@ -138,23 +173,26 @@ int runBuild(const BuildCommand& b) {
     SceneOptions options = resolveScene(b.scene);
     const bool streamed = streamsPlies(b.exportOptions);
     options.buildPlies = b.exportOptions.what != ExportWhat::Yarns && !streamed;
-    const Scene scene = buildScene(options);
-    printWarnings(scene);
-    refuseValuesBeyondFloat32(scene, b.exportOptions);
-    refuseEmptyExport(scene, b.exportOptions);
+    options.detail = detailOptions(b.view, b.view.image, false, true);
+    const Scene built = buildScene(options);
+    const Scene scene = built.detail() ? plyLevelScene(built) : Scene();
+    const Scene& exported = built.detail() ? scene : built;
+    printWarnings(built);
+    refuseValuesBeyondFloat32(exported, b.exportOptions);
+    refuseEmptyExport(exported, b.exportOptions);
     // Step 3: the export, then the report, staged and committed together: an existing -o (or report)
     // stays unchanged unless both are complete.
     OutputTransaction outputs;
     const ExportOptions staged = stagedExport(b.exportOptions, options.budget, outputs);
-    const ExportStats stats = outputs.run([&] { return exportScene(scene, staged); });
-    const SceneStats sceneNumbers = sceneStats(scene);  // counts, segment lengths, stage times
+    const ExportStats stats = outputs.run([&] { return exportScene(exported, staged); });
+    const SceneStats sceneNumbers = sceneStats(built);  // counts, segment lengths, stage times
     if (!b.report.empty()) {
-        const nlohmann::json report = buildReportJson(scene, sceneNumbers, stats, streamed);
+        const nlohmann::json report = buildReportJson(built, sceneNumbers, stats, streamed, reportView(built, b));
         outputs.run([&] { writeReport(outputs.stage(b.report), report); });
     }
     outputs.run([&] { outputs.commit(); });
     // Step 4: the summary on stdout.
-    printSummary(scene, sceneNumbers, stats, b.exportOptions.path, streamed);
+    printSummary(built, sceneNumbers, stats, b.exportOptions.path, streamed);
     return 0;
 }
 

@@ -10,6 +10,7 @@
 #ifdef KNIT_HAVE_RENDER_CHECK
 #include "surface_flags.hpp"
 #endif
+#include "view_flags.hpp"
 
 namespace knit::cli {
 
@@ -22,6 +23,7 @@ struct BuildCommand {
 #ifdef KNIT_HAVE_RENDER_CHECK
     SurfaceFlags surface;  // --surface-only --bake-size: the base mesh with the baked knit material
 #endif
+    ViewFlags view;  // --eye --target --up --fov --width --height --detail (default full)
 };
 
 // Registers the subcommand and its flags on `app`, bound to `build` (which must outlive parsing).

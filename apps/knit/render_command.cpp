@@ -22,6 +22,7 @@ int finishRender(const RenderCommand& r, OutputTransaction& outputs, const std::
     RenderResult result = outputs.run(render);
     for (std::string& path : result.written) path = outputs.finalNames(path);
     nlohmann::json report = renderReport(result);
+    report["camera"] = cameraJson(result.view);
     for (const auto& [key, value] : extra.items()) report[key] = value;
     if (!r.report.empty()) outputs.run([&] { writeReport(outputs.stage(r.report), report); });
     outputs.run([&] { outputs.commit(); });
@@ -45,6 +46,7 @@ void addRenderCommand(CLI::App& app, RenderCommand& r) {
     r.command = app.add_subcommand("render", "Path-trace the knit on its base mesh (front- or back-lit)");
     addSceneFlags(*r.command, r.scene);
     addRenderFlags(*r.command, r.options);
+    addViewFlags(*r.command, r.view, r.options.fovDegrees, r.options.width, r.options.height, Detail::View);
     r.command->add_option("--report", r.report, "Write a JSON report (time, rays/s, memory)");
     addSurfaceFlags(*r.command, r.surface);
     r.command->footer(kSceneHelp);
@@ -55,19 +57,25 @@ int runRender(const RenderCommand& r) {
     refuseCollidingPaths(
         {{"--mesh", r.scene.scene.mesh}, {"--pattern", r.scene.scene.pattern}, {"--material", r.options.materialFile}},
         {{"--output", r.options.output}, {"--exr", r.options.exr}, {"--report", r.report}});
-    // The PNG, the EXR and the report are staged and committed together at the end.
+    // Step 1: the camera (validated before any work); the PNG, the EXR and the report are staged
+    // and committed together at the end.
     OutputTransaction outputs;
     RenderOptions options = r.options;
     options.progress = options.progress && !r.scene.quiet;
+    const ImageSize image{options.fovDegrees, options.width, options.height};
+    options.view = givenView(r.view, image);
     options.output = outputs.stage(r.options.output);
     options.exr = outputs.stage(r.options.exr);
-    const SceneOptions sceneOptions = resolveScene(r.scene);
+    SceneOptions sceneOptions = resolveScene(r.scene);
     options.budget = sceneOptions.budget;  // --max-memory
     if (r.surface.surfaceOnly) return runSurfaceRender(r, sceneOptions, options, outputs);
+    // Step 2: the detail the view asks for, the scene, the render and the report (with the levels).
+    sceneOptions.detail =
+        detailOptions(r.view, image, options.light == LightPlacement::Back, options.mode == GeometryMode::Curves);
     const Scene scene = buildScene(sceneOptions);
     printWarnings(scene);
-    return finishRender(
-        r, outputs, [&] { return renderScene(scene, options); }, nlohmann::json::object());
+    return finishRender(r, outputs, [&] { return renderScene(scene, options); },
+                        {{"levels", levelsJson(levelStats(scene))}});
 }
 
 }  // namespace knit::cli

@@ -8,6 +8,7 @@
 #include "knit/render.hpp"
 #include "scene_flags.hpp"
 #include "surface_flags.hpp"
+#include "view_flags.hpp"
 
 namespace knit::cli {
 
@@ -15,6 +16,7 @@ struct RenderCommand {
     CLI::App* command = nullptr;  // set by addRenderCommand
     SceneFlags scene;
     RenderOptions options;
+    ViewFlags view;        // --fov --width --height fill options
     std::string report;    // --report path; empty = none
     SurfaceFlags surface;  // --surface-only --bake-size: trace the base mesh with the baked knit
 };

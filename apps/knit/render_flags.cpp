@@ -14,8 +14,6 @@ void addRenderFlags(CLI::App& app, RenderOptions& o) {
                   {"curves", GeometryMode::Curves}, {"tubes", GeometryMode::Tubes}, {"grid", GeometryMode::Grid}},
               "Geometry: curves (Embree round curves), tubes (swept meshes), grid (two-stage cells)");
     app.add_option("--spp", o.spp, "Samples per pixel (>= 1)");
-    app.add_option("--width", o.width, "Image width in pixels");
-    app.add_option("--height", o.height, "Image height in pixels");
     app.add_option("--output", o.output, "PNG image (sRGB)");
     app.add_option("--exr", o.exr, "Linear EXR image");
     app.add_option("--seed", o.seed, "Random seed (images are deterministic for a seed)");
@@ -48,7 +46,6 @@ void addRenderFlags(CLI::App& app, RenderOptions& o) {
     app.add_option("--max-depth", o.maxDepth, "Maximum path length (bounces)");
     app.add_option("--env", o.environment, "Constant environment radiance");
     app.add_option("--light-irradiance", o.lightIrradiance, "Irradiance of the area light at the cloth centre");
-    app.add_option("--fov", o.fovDegrees, "Vertical field of view (degrees)");
     app.add_flag("--base-mesh", o.baseMesh, "Also render the base mesh (opaque, diffuse)");
     app.add_option("--tube-sides", o.tubeSides, "Sides of the swept tubes (tubes mode)");
 }

@@ -31,7 +31,7 @@ std::vector<std::vector<glm::ivec2>> cellsPerChart(const UvGrid& grid) {
     return cells;
 }
 
-int stageCount(const SceneOptions& options) { return options.buildPlies ? 9 : 8; }
+int stageCount(const SceneOptions& options) { return (options.buildPlies ? 9 : 8) + (options.detail ? 1 : 0); }
 
 }  // namespace
 
@@ -65,6 +65,7 @@ public:
         run("binding", [&] { bind(); });
         run("evaluate",
             [&] { evaluateBinding(s_.bound_.binding, s_.mesh_.faces, s_.mesh_.positions, s_.normals_, s_.yarns_); });
+        if (options_.detail) run("detail", [&] { levelsOfDetail(*options_.detail); });
         plies();
         return std::move(s_);
     }
@@ -134,7 +135,24 @@ private:
         s_.bound_ = bindYarns(s_.mesh_, s_.normals_, s_.grid_, s_.stages_.uvYarns, o);
     }
 
-    // Step: the ply settings with the scene's yarn radius; the plies when asked for.
+    // Step: the view (given, or framing the mesh grown by the yarns' margin), the level of every
+    // cell and the yarns cut into pieces per level.
+    void levelsOfDetail(const DetailOptions& o) {
+        SceneDetail d;
+        d.margin = yarnMargin(s_.bound_.binding, s_.yarnRadius_);
+        d.view = o.view ? *o.view : frameMesh(s_.mesh_, d.margin, o.viewSettings);
+        PlyOptions po = options_.plies;
+        po.yarnRadius = s_.yarnRadius_;
+        DetailInputs in;
+        in.mesh = &s_.mesh_, in.grid = &s_.grid_, in.margin = d.margin;
+        in.yarnRadius = s_.yarnRadius_, in.plyRadius = resolvePlyOptions(po).plyRadius;
+        d.levels = classifyCells(in, d.view, o);
+        d.pieces = splitByLevel(s_.yarns_, s_.bound_.binding, s_.mesh_, s_.grid_, d.levels);
+        s_.detail_ = std::move(d);
+    }
+
+    // Step: the ply settings with the scene's yarn radius; the plies when asked for (of the
+    // ply-level pieces only with a view).
     void plies() {
         PlyOptions o = options_.plies;
         o.yarnRadius = s_.yarnRadius_;
@@ -142,8 +160,12 @@ private:
         if (options_.buildPlies)
             run("plies", [&] {
                 s_.plyOptions_ = resolvePlyOptions(o);
-                detail::checkPlyBudget(s_.yarns_, s_.plyOptions_, options_.budget);
-                s_.plies_ = makePlies(s_.yarns_, s_.plyOptions_);
+                const MappedYarns& source = s_.detail_ ? s_.detail_->pieces.plies : s_.yarns_;
+                detail::checkPlyBudget(source, s_.plyOptions_, options_.budget);
+                s_.plies_ = makePlies(source, s_.plyOptions_);
+                // With a view: each ply names the yarn its piece comes from (cells, colours).
+                if (s_.detail_)
+                    for (uint32_t& y : s_.plies_.yarnOfCurve) y = s_.detail_->pieces.plyPieceYarn[y];
             });
     }
 
@@ -178,6 +200,8 @@ Scene Scene::fromParts(SceneParts parts) {
     s.bound_.binding = std::move(parts.binding);
     s.yarns_ = std::move(parts.yarns);
     s.plies_ = std::move(parts.plies);
+    s.detail_ = std::move(parts.detail);
+    if (parts.plyOptions) s.plyOptions_ = *parts.plyOptions;
     s.plyOptions_.yarnRadius = parts.yarnRadius;
     return s;
 }

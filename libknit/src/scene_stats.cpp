@@ -34,7 +34,40 @@ size_t tileCount(const SceneStages& stages) {
     return count;
 }
 
+constexpr size_t kCurvePointBytes = 16;  // float32 xyz + radius
+constexpr size_t kTriangleBytes = 12, kSurfaceVertexBytes = 32;
+
 }  // namespace
+
+// The levels of a scene: with a view, from its cell levels and pieces; else every cell is at the
+// ply level with all yarns and plies.
+LevelStats levelStats(const Scene& s) {
+    LevelStats st;
+    const size_t plyVertices = s.plies().curves.pointCount();
+    if (!s.detail()) {
+        st.plies = {s.grid().cells.size(), s.yarns().curves.pointCount(), plyVertices, plyVertices * kCurvePointBytes};
+        return st;
+    }
+    const SceneDetail& d = *s.detail();
+    for (DetailLevel l : d.levels.level) {
+        if (l == DetailLevel::Plies) ++st.plies.cells;
+        if (l == DetailLevel::Yarns) ++st.yarns.cells;
+        if (l == DetailLevel::Surface) ++st.surface.cells;
+        if (l == DetailLevel::Culled) ++st.culledCells;
+    }
+    st.plies.yarnVertices = d.pieces.plies.curves.pointCount();
+    st.plies.plyVertices = plyVertices;
+    st.plies.bytes = plyVertices * kCurvePointBytes;
+    st.yarns.yarnVertices = d.pieces.yarns.curves.pointCount();
+    st.yarns.bytes = st.yarns.yarnVertices * kCurvePointBytes;
+    std::vector<uint32_t> used;
+    for (uint32_t f : d.pieces.surfaceFaces)
+        for (int c = 0; c < 3; ++c) used.push_back(s.mesh().faces[f][c]);
+    std::sort(used.begin(), used.end());
+    used.erase(std::unique(used.begin(), used.end()), used.end());
+    st.surface.bytes = d.pieces.surfaceFaces.size() * kTriangleBytes + used.size() * kSurfaceVertexBytes;
+    return st;
+}
 
 SceneStats sceneStats(const Scene& s) {
     SceneStats st;
@@ -51,7 +84,9 @@ SceneStats sceneStats(const Scene& s) {
     // Step 3: segment lengths of the yarns, and of the plies when there are any.
     st.yarnSegments = segmentStats(s.yarns().curves);
     if (s.plies().curves.curveCount() > 0) st.plySegments = segmentStats(s.plies().curves);
-    // Step 4: wall time per stage and in all.
+    // Step 4: cells, vertices and bytes per level of detail.
+    st.levels = levelStats(s);
+    // Step 5: wall time per stage and in all.
     st.stageTimes = s.timings();
     for (const StageTime& t : s.timings()) st.totalSeconds += t.seconds;
     return st;

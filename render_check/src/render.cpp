@@ -17,6 +17,8 @@
 #include "material_overrides.hpp"
 #include "render_budget.hpp"
 #include "render_image.hpp"
+#include "detail_geometry.hpp"
+#include "render_view.hpp"
 #include "scene_scale.hpp"
 #include "trace_scene.hpp"
 #include "trace_surface.hpp"
@@ -77,9 +79,11 @@ RenderResult renderScene(const Scene& scene, const RenderOptions& o) {
     if (mode == GeometryMode::Tubes && o.tubeSides < 3) throw Error("render: tube sides must be >= 3");
     RenderResult res;
     res.material = resolveMaterial(o);
-    if (!o.surface && (scene.plies().curves.curveCount() == 0 || scene.plies().curves.pointCount() == 0))
+    if (!o.surface && !scene.detail() &&
+        (scene.plies().curves.curveCount() == 0 || scene.plies().curves.pointCount() == 0))
         throw Error("render: the scene has no ply curves (nothing to render; were plies built?)");
     if (o.surface && scene.mesh().faces.empty()) throw Error("render: the surface level needs a base mesh");
+    const View view = renderView(scene, o);
     if (!o.output.empty()) checkImageName(o.output, "png", "--output", "PNG");
     if (!o.exr.empty()) checkImageName(o.exr, "exr", "--exr", "EXR");
     if (!o.output.empty()) checkWritable(o.output);
@@ -88,15 +92,18 @@ RenderResult renderScene(const Scene& scene, const RenderOptions& o) {
     res.mode = mode;
     res.light = o.light;
     res.spp = o.spp;
-    // Step 2: ply segments relative to the centre of their bounds.
-    glm::dvec3 lo(1e300), hi(-1e300);
-    for (const glm::dvec3& p : scene.plies().curves.points) lo = glm::min(lo, p), hi = glm::max(hi, p);
-    if (o.surface) detail::surfaceBounds(scene, lo, hi);  // no plies: the mesh and the yarn height
-    const glm::dvec3 centre = 0.5 * (lo + hi);
-    const double radius = std::max(0.5 * glm::length(hi - lo), 1e-6);
-    const PlyGeometry geometry = o.surface ? detail::surfaceFrame(scene, centre)
-                                           : buildPlyGeometry(scene.plies(), centre, res.material.fiberTwist);
+    // Step 2: ply segments (and a view's yarn-level curves) relative to the centre of the framed
+    // bounds; a view's surface-level triangles (or, with --surface-only, the whole base mesh).
+    const glm::dvec3 centre = framedBounds(scene.mesh(), detail::sceneMargin(scene)).centre;
+    const PlyGeometry geometry =
+        o.surface ? detail::surfaceFrame(scene, centre)
+                  : detail::renderCurves(scene, centre, res.material.fiberTwist, mode == GeometryMode::Curves);
     res.segments = geometry.segmentCount();
+    const BaseMesh surface = detail::surfaceMesh(scene);
+    res.surfaceTriangles = surface.faces.size();
+    const BaseMesh* base = o.baseMesh || o.surface ? &scene.mesh() : (surface.faces.empty() ? nullptr : &surface);
+    if (geometry.segmentCount() == 0 && base == nullptr)
+        throw Error("render: the view sees none of the cloth (every cell is culled; check --eye and --target)");
     // Step 3: fiber tables.
     auto t0 = std::chrono::steady_clock::now();
     int plyCount = 1;
@@ -111,7 +118,7 @@ RenderResult renderScene(const Scene& scene, const RenderOptions& o) {
     TraceSceneOptions so;
     so.mode = mode;
     so.tubeSides = o.tubeSides;
-    so.baseMesh = o.baseMesh || o.surface ? &scene.mesh() : nullptr;
+    so.baseMesh = base;
     const SurfaceTexture texture = detail::surfaceTexture(scene, o);
     so.baseTexture = o.surface ? &texture : nullptr;
     if (mode == GeometryMode::Grid && !o.surface) {
@@ -122,53 +129,14 @@ RenderResult renderScene(const Scene& scene, const RenderOptions& o) {
     res.buildSeconds = secondsSince(t0);
     res.memory = traceScene.memory();
     res.primitives = traceScene.primitiveCount();
-    // Step 5: view. Cloth front = area-weighted mean normal of the base mesh.
-    // A closed mesh has no front (its normals cancel up to rounding): look along the shortest
-    // axis of the plies' bounds instead.
-    glm::dvec3 normal(0.0);
-    double normalLengths = 0;
-    const std::vector<glm::dvec3>& positions = scene.mesh().positions;
-    for (const glm::uvec3& f : scene.mesh().faces)
-        if (f.x < positions.size() && f.y < positions.size() && f.z < positions.size()) {
-            const glm::dvec3 n = glm::cross(positions[f.y] - positions[f.x], positions[f.z] - positions[f.x]);
-            normal += n, normalLengths += glm::length(n);
-        }
-    if (glm::length(normal) > 1e-3 * normalLengths && normalLengths > 0) {
-        normal = glm::normalize(normal);
-    } else {
-        const glm::dvec3 ext = hi - lo;
-        const int axis = ext.x <= ext.y && ext.x <= ext.z ? 0 : (ext.y <= ext.z ? 1 : 2);
-        normal = glm::dvec3(0.0);
-        normal[axis] = 1.0;
-    }
-    // Image up: +y (glTF's up) unless the cloth faces +-y (lies flat); then -z, glTF's forward, so
-    // a flat +Y-up cloth is framed as the same cloth standing in the xy plane would be.
-    const glm::dvec3 helper = std::abs(normal.y) < 0.9 ? glm::dvec3(0, 1, 0) : glm::dvec3(0, 0, -1);
-    const glm::dvec3 right = glm::normalize(glm::cross(helper, normal)), up = glm::cross(normal, right);
+    // Step 5: camera and light (both from the base mesh grown by the yarns' margin).
     TraceSettings ts;
     ts.width = o.width, ts.height = o.height, ts.spp = o.spp, ts.seed = o.seed, ts.maxDepth = o.maxDepth;
-    const double dist = radius / std::sin(o.fovDegrees * util::kPi / 360.0);
-    ts.camera.eye = centre + dist * normal;
-    ts.camera.target = centre;
-    ts.camera.up = up;
-    ts.camera.fovYDegrees = o.fovDegrees;
+    ts.camera = detail::cameraOf(view);
     ts.environment = Rgb(o.environment);
-    ts.baseAlbedo = Rgb(o.baseAlbedo);
-    // Front: a light of the cloth's radius up and to the right of the camera. Back: a lightbox
-    // larger than the cloth behind it, so transmission shows everywhere.
-    const bool front = o.light == LightPlacement::Front;
-    const double lightSize = front ? radius : 3.0 * radius, lightDist = 2.5 * radius;
-    const glm::dvec3 dir = front ? glm::normalize(normal + 0.4 * right + 0.4 * up) : -normal;
-    const glm::dvec3 lc = centre + lightDist * dir;
-    // Light facing the centre: edges perpendicular to dir, cross(edgeU, edgeV) = -dir.
-    const glm::dvec3 lh = std::abs(dir.y) < 0.9 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0);
-    const glm::dvec3 eu = glm::normalize(glm::cross(dir, lh)) * lightSize;
-    const glm::dvec3 ev = glm::normalize(glm::cross(eu, dir)) * lightSize;
-    ts.light.corner = lc - 0.5 * eu - 0.5 * ev;
-    ts.light.edgeU = eu;
-    ts.light.edgeV = ev;
-    // Irradiance at the centre ~ L A / d^2 (light facing it): choose L for the requested irradiance.
-    ts.light.radiance = Rgb(o.lightIrradiance * lightDist * lightDist / (lightSize * lightSize));
+    // The surface level (no --base-mesh) is the cloth itself: its body colour.
+    ts.baseAlbedo = o.baseMesh ? Rgb(o.baseAlbedo) : res.material.bodyAlbedo;
+    ts.light = detail::defaultLight(scene, o.light, o.lightIrradiance);
     // Step 6: render, with progress on stderr for long renders.
     std::mutex progressMutex;
     int lastDecile = 0;
@@ -183,6 +151,7 @@ RenderResult renderScene(const Scene& scene, const RenderOptions& o) {
         };
     }
     res.camera = ts.camera;
+    res.view = view;
     res.areaLight = ts.light;
     TraceStats stats;
     res.image = renderImage(traceScene, res.material, tables, ts, &stats);

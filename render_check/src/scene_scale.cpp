@@ -16,10 +16,23 @@ void scalePoints(std::vector<glm::dvec3>& points, const glm::dvec3& centre, doub
     for (glm::dvec3& p : points) p = (p - centre) * scale;
 }
 
+// A view's levels and pieces scaled like the scene (directions, levels and cells unchanged).
+SceneDetail scaledDetail(SceneDetail d, const glm::dvec3& centre, double s) {
+    d.view.eye = (d.view.eye - centre) * s;
+    d.view.target = (d.view.target - centre) * s;
+    d.view.orthoHeight *= s;
+    d.margin *= s;
+    scalePoints(d.pieces.plies.curves.points, centre, s);
+    scalePoints(d.pieces.yarns.curves.points, centre, s);
+    return d;
+}
+
 }  // namespace
 
 std::optional<Scene> sceneAtTracingScale(const Scene& scene) {
-    const std::vector<glm::dvec3>& points = scene.plies().curves.points;
+    // A view may leave no plies: its base mesh decides then.
+    const bool meshOnly = scene.plies().curves.points.empty() && scene.detail();
+    const std::vector<glm::dvec3>& points = meshOnly ? scene.mesh().positions : scene.plies().curves.points;
     if (points.empty()) return std::nullopt;
     // Step 1: the plies' bounds; their radius decides whether to scale.
     glm::dvec3 lo(points[0]), hi(points[0]);
@@ -47,6 +60,7 @@ std::optional<Scene> sceneAtTracingScale(const Scene& scene) {
     parts.plies.plyRadius *= s;
     parts.plies.centerRadius *= s;
     parts.plies.pitch *= s;
+    if (scene.detail()) parts.detail = scaledDetail(*scene.detail(), centre, s);
     return Scene::fromParts(std::move(parts));
 }
 

@@ -30,15 +30,15 @@ bool EmbreeDevice::monitor(void* user, ssize_t bytes, bool) {
 
 TraceScene::TraceScene(EmbreeDevice& device, const PlyGeometry& plies, const TraceSceneOptions& options)
     : plies_(plies), options_(options) {
-    const bool surfaceOnly = plies.segmentCount() == 0 && options.baseTexture && options.baseMesh;
-    if (plies.segmentCount() == 0 && !surfaceOnly)
-        throw Error("render: the scene has no ply segments (nothing to render)");
+    // A view may leave no curves (every visible cell at the surface level): the base mesh alone.
+    const bool hasBase = options.baseMesh && !options.baseMesh->faces.empty();
+    if (plies.segmentCount() == 0 && !hasBase) throw Error("render: the scene has no ply segments (nothing to render)");
     const int64_t before = device.allocatedBytes();
     RTCDevice dev = device.get();
     scene_ = rtcNewScene(dev);
     rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_MEDIUM);
-    // Step 1: the plies in the chosen mode (validates the mode's options); none at the surface level.
-    if (!surfaceOnly) {
+    // Step 1: the plies in the chosen mode (validates the mode's options).
+    if (plies.segmentCount() > 0) {
         geometry_ = makeTraceGeometry(plies, options);
         rtcSetSceneFlags(scene_, geometry_->sceneFlags());
         RTCGeometry geom = geometry_->newGeometry(dev);
@@ -49,7 +49,7 @@ TraceScene::TraceScene(EmbreeDevice& device, const PlyGeometry& plies, const Tra
         primitives_ = geometry_->primitiveCount();
     }
     // Step 2: the optional opaque base mesh.
-    if (options.baseMesh && !options.baseMesh->faces.empty()) attachBaseMesh(dev, *options.baseMesh);
+    if (hasBase) attachBaseMesh(dev, *options.baseMesh);
     baseOffset_ = 1e-3f * plies.radius;
     // Step 3: build the BVH and measure what Embree allocated for it.
     rtcCommitScene(scene_);

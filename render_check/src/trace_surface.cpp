@@ -54,11 +54,6 @@ void setSurfaceFilter(RTCGeometry geometry, const SurfaceMesh& surface) {
 
 namespace detail {
 
-void surfaceBounds(const Scene& scene, glm::dvec3& lo, glm::dvec3& hi) {
-    for (const glm::dvec3& p : scene.mesh().positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
-    lo -= glm::dvec3(scene.yarnRadius()), hi += glm::dvec3(scene.yarnRadius());
-}
-
 PlyGeometry surfaceFrame(const Scene& scene, const glm::dvec3& centre) {
     PlyGeometry g;
     g.origin = centre;

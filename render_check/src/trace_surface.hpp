@@ -44,8 +44,6 @@ void setSurfaceFilter(RTCGeometry geometry, const SurfaceMesh& surface);
 
 namespace detail {
 // renderScene's steps at the surface level (RenderOptions::surface):
-// the bounds of the base mesh grown by the yarn radius (the knit's height above the surface),
-void surfaceBounds(const Scene& scene, glm::dvec3& lo, glm::dvec3& hi);
 // a ply geometry without plies that sets the scene units (yarn radii around `centre`),
 PlyGeometry surfaceFrame(const Scene& scene, const glm::dvec3& centre);
 // and the texture of the bake (repeats: the options', else the scene's placement).

@@ -52,7 +52,9 @@ void expectModesMatch(const Scene& scene) {
     ASSERT_GT(luminance(images[0].mean()), 0.01);
     for (int k = 1; k < 3; ++k) {
         const ImageMatch m = matchImages(images[0], images[k]);
-        EXPECT_GT(m.comparison.testedBlocks, 20);
+        // The default camera frames the base mesh grown by the yarns' margin: the cloth covers
+        // 16 of the 48 blocks of these scenes (plane and cylinder).
+        EXPECT_GE(m.comparison.testedBlocks, 14);
         EXPECT_TRUE(m.within(kAlpha)) << (k == 1 ? "grid" : "tubes") << " vs curves: " << m;
     }
 }

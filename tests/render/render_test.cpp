@@ -246,8 +246,10 @@ TEST(Render, backLitImageShowsTransmittedLight) {
         double sum = 0;
         int pixels = 0;
         bright = 0;
+        // The middle 40% in x (the default camera frames the base mesh grown by the yarns' margin,
+        // so the light is seen past the cloth's left and right edges beyond 0.3 and 0.7).
         for (int y = o.height / 4; y < 3 * o.height / 4; ++y)
-            for (int x = o.width / 4; x < 3 * o.width / 4; ++x, ++pixels) {
+            for (int x = 3 * o.width / 10; x < 7 * o.width / 10; ++x, ++pixels) {
                 bright += im.pixel(x, y).y > 0;
                 sum += luminance(im.pixel(x, y));
             }
@@ -255,7 +257,7 @@ TEST(Render, backLitImageShowsTransmittedLight) {
     };
     int bright = 0;
     const double litMean = centre(lit.image, bright);
-    EXPECT_GT(bright, 0.95 * (o.width / 2) * (o.height / 2));
+    EXPECT_GT(bright, 0.95 * (7 * o.width / 10 - 3 * o.width / 10) * (o.height / 2));
     // Without transmission lobes the back-lit cloth is much darker.
     o.material.kTT = Rgb(0.0);
     o.material.reflectFraction = 1.0;

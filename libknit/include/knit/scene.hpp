@@ -9,6 +9,7 @@
 #include "knit/base_mesh.hpp"
 #include "knit/budget.hpp"
 #include "knit/binding.hpp"
+#include "knit/detail.hpp"
 #include "knit/generator.hpp"
 #include "knit/pattern.hpp"
 #include "knit/plies.hpp"
@@ -35,6 +36,18 @@ struct SceneOptions {
     // Each big stage estimates its memory from its counts first and refuses (knit::Error naming
     // the option that drives it) when over this budget.
     MemoryBudget budget;
+    // Level of detail for a view (knit/detail.hpp): plies only for the pieces of yarn in ply-level
+    // cells; none: the whole scene at full ply detail.
+    std::optional<DetailOptions> detail;
+};
+
+// What SceneOptions::detail made: the view used, the level of every cell and the yarn pieces per
+// level (Scene::plies() holds the plies of the ply-level pieces only).
+struct SceneDetail {
+    View view;
+    double margin = 0;  // the yarns' greatest height plus their radius (yarnMargin)
+    CellLevels levels;
+    LevelPieces pieces;
 };
 
 struct StageTime {
@@ -61,6 +74,8 @@ struct SceneParts {
     Binding binding;                  // of `yarns` on `mesh`
     MappedYarns yarns;
     Plies plies;
+    std::optional<SceneDetail> detail;     // a view's levels and pieces (of these yarns)
+    std::optional<PlyOptions> plyOptions;  // none: the defaults with yarnRadius
 };
 
 // The result of the pipeline: read-only, made by buildScene (or Scene::fromParts).
@@ -69,7 +84,7 @@ public:
     // An empty scene (no mesh, no yarns), to assign a built one to later.
     Scene() = default;
     // A scene from parts made without the pipeline: no pattern, placement, stages, bind
-    // statistics or timings; plyOptions are the defaults with the parts' yarn radius.
+    // statistics or timings; plyOptions are the parts' or the defaults with the parts' yarn radius.
     static Scene fromParts(SceneParts parts);
 
     const Pattern& pattern() const { return pattern_; }
@@ -87,6 +102,8 @@ public:
     const std::vector<StageTime>& timings() const { return timings_; }  // wall time per stage
     // Intermediate results (tiling, UV yarns) for diagnostics and tests.
     const SceneStages& stages() const { return stages_; }
+    // The view and levels when built with SceneOptions::detail; empty for the full scene.
+    const std::optional<SceneDetail>& detail() const { return detail_; }
 
 private:
     friend class SceneBuilder;  // scene.cpp: runs the stages of buildScene into a Scene
@@ -103,6 +120,7 @@ private:
     Plies plies_;
     PlyOptions plyOptions_;
     std::vector<StageTime> timings_;
+    std::optional<SceneDetail> detail_;
 };
 
 // Runs: load pattern -> load mesh -> normals -> placement -> UV grid -> tiling -> stitch ->
@@ -118,6 +136,19 @@ struct SegmentStats {
     double longestLength = 0;  // 0 without segments
 };
 
+// Per level of detail (plies, yarns, surface): the cells and what is generated for them.
+struct LevelStats {
+    struct Level {
+        size_t cells = 0;
+        size_t yarnVertices = 0;
+        size_t plyVertices = 0;
+        size_t bytes = 0;  // float32 geometry: 16 bytes per curve point (xyz, radius); surface
+                           // triangles 12 bytes each plus 32 per vertex (position, normal, uv)
+    };
+    Level plies, yarns, surface;
+    size_t culledCells = 0;
+};
+
 // Counts, vertices per level, segment statistics and stage times of a scene: the numbers of the
 // `knit build` report besides the pattern, mesh and placement (apps/knit/report.cpp).
 struct SceneStats {
@@ -131,10 +162,13 @@ struct SceneStats {
     size_t plyVertices = 0;
     SegmentStats yarnSegments;
     std::optional<SegmentStats> plySegments;  // when the scene holds plies
-    std::vector<StageTime> stageTimes;        // Scene::timings
-    double totalSeconds = 0;                  // their sum
+    LevelStats levels;
+    std::vector<StageTime> stageTimes;  // Scene::timings
+    double totalSeconds = 0;            // their sum
 };
 
 SceneStats sceneStats(const Scene& scene);
+// The levels part of sceneStats alone (cheap: no segment statistics).
+LevelStats levelStats(const Scene& scene);
 
 }  // namespace knit

@@ -1,9 +1,16 @@
 // knit/render.hpp — `knit render`: render a Scene's plies with the ply BSDF, front-lit or back-lit,
 // in one of three geometry modes, and report time, rays/s and memory.
 //
-// View: the camera looks at the plies' bounding sphere along the base mesh's mean normal (the
-// cloth's front); for a closed or nearly closed mesh (mean normal below 1e-3 of the mean normal
-// length, e.g. a cylinder or sphere) along the shortest axis of the plies' bounding box instead. `front` puts the rectangular light on the camera side (up and to the right),
+// View: the scene's own when it was built for one (SceneOptions::detail), else RenderOptions::view,
+// else the default camera (knit::frameMesh): it looks at the bounding sphere of the base mesh grown
+// by the yarns' height and radius along the mesh's mean normal (the cloth's front); for a closed or
+// nearly closed mesh (mean normal below 1e-3 of the mean normal length, e.g. a cylinder or sphere)
+// along the shortest axis of those bounds instead. Camera and light come from the base mesh, never
+// from generated geometry, so every level of detail frames and lights a scene identically.
+// A scene built for a view renders the plies of its ply-level cells, the yarn curves of its
+// yarn-level cells (curves mode; the ply BSDF on a curve of the yarn radius) and the base-mesh
+// triangles of its surface-level cells as an opaque diffuse surface of the material's body colour
+// (not yet the baked knit texture). `front` puts the rectangular light on the camera side (up and to the right),
 // `back` puts it behind the cloth facing the camera, so the image shows transmitted light.
 // The base mesh is the cloth's mid-surface: it lies inside the yarns and would hide the back
 // plies and block transmission, so it is NOT rendered unless `baseMesh` is set (then as an
@@ -11,6 +18,7 @@
 #pragma once
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -18,6 +26,7 @@
 #include "knit/path_tracer.hpp"
 #include "knit/ply_material.hpp"
 #include "knit/trace_mode.hpp"
+#include "knit/view.hpp"
 
 namespace knit {
 
@@ -44,6 +53,9 @@ struct RenderOptions {
     double environment = 0.05;     // constant environment radiance
     double lightIrradiance = 3.0;  // irradiance the light gives at the cloth centre (W/m^2-ish units)
     double fovDegrees = 30;
+    // Eye, target and up of the camera (its field of view and image size are the fields above);
+    // none: the default camera. Ignored for a scene built for a view (it renders that view).
+    std::optional<View> view;
     bool baseMesh = false;
     double baseAlbedo = 0.5;
     int tubeSides = 8;
@@ -73,8 +85,10 @@ struct RenderResult {
     size_t tableBytes = 0;
     int64_t peakMemoryBytes = 0;  // process peak resident set size
     size_t segments = 0, primitives = 0;
-    Camera camera;        // the view used (world space)
-    RectLight areaLight;  // the area light used (world space)
+    Camera camera;                // the view used (world space)
+    View view;                    // the same as a knit::View
+    size_t surfaceTriangles = 0;  // base-mesh triangles of the surface level (scene built for a view)
+    RectLight areaLight;          // the area light used (world space)
     std::vector<std::string> written;
 };
 
@@ -82,6 +96,10 @@ struct RenderResult {
 // (knit::Error: bad material, spp < 1, bad size, unknown light/mode, empty scene, unwritable
 // output path), builds the tables and the Embree scene, renders and writes the images.
 RenderResult renderScene(const Scene& scene, const RenderOptions& options);
+
+// The view renderScene renders the scene with (see the file comment); knit::Error naming the
+// option for a bad view.
+View renderView(const Scene& scene, const RenderOptions& options);
 
 // Resolved + validated material of the options (used by renderScene).
 PlyMaterial resolveMaterial(const RenderOptions& options);

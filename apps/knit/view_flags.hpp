@@ -1,0 +1,51 @@
+// view_flags.hpp — the view flags `knit build` and `knit render` share (--eye --target --up --fov
+// --width --height --detail), how they become a knit::View and DetailOptions, and the "camera"
+// and "levels" parts of both reports.
+#pragma once
+#include <optional>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "knit/scene.hpp"
+
+namespace knit::cli {
+
+// The image the view is for (--fov --width --height).
+struct ImageSize {
+    double fovDegrees = 30;
+    int width = 512, height = 384;
+};
+
+// full: the whole scene at ply detail (today's output); view: only what the view needs.
+enum class Detail { Full, View };
+
+struct ViewFlags {
+    std::vector<double> eye, target, up;  // empty, or X Y Z
+    Detail detail = Detail::Full;
+    ImageSize image;  // build's --fov --width --height (render binds them to its RenderOptions)
+};
+
+// Registers --eye --target --up --detail (default `defaultDetail`) and --fov --width --height
+// bound to the three given fields.
+void addViewFlags(CLI::App& command, ViewFlags& flags, double& fovDegrees, int& width, int& height,
+                  Detail defaultDetail);
+
+// The camera the flags give (none without --eye), with the image fields; validated (knit::Error
+// naming the option). --up defaults to +y (glTF's up).
+std::optional<View> givenView(const ViewFlags& flags, const ImageSize& image);
+
+// With --detail view: the detail options for the given camera (or the default framing at the
+// image's size). `backLit` keeps back faces; `yarnCurves` false gives yarn-level cells plies
+// (renderers that draw yarn curves in curves mode only).
+std::optional<DetailOptions> detailOptions(const ViewFlags& flags, const ImageSize& image, bool backLit,
+                                           bool yarnCurves);
+
+// "camera": {"eye", "target", "up", "fovDegrees"}.
+nlohmann::json cameraJson(const View& view);
+// "levels": {"plies", "yarns", "surface"} with cells, yarnVertices, plyVertices, bytes; the
+// surface level is the plain base mesh until the texture bake lands ("textured": false).
+nlohmann::json levelsJson(const LevelStats& levels);
+
+}  // namespace knit::cli

@@ -1,0 +1,87 @@
+// knit/detail.hpp — level of detail per UV cell for a view: which cells are culled, which get
+// plies, which keep only the yarn curve and which are left to the base-mesh surface; and the
+// mapped yarns cut into pieces per level (crack-free: neighbouring pieces share their end point).
+//
+// The UV cell (tile i, j of UvGrid::cells) is the unit: cell identities do not depend on the view,
+// so levels of one view can be passed to the next (hysteresis) and cached cells reused.
+#pragma once
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include <glm/vec2.hpp>
+
+#include "knit/base_mesh.hpp"
+#include "knit/binding.hpp"
+#include "knit/uv_grid.hpp"
+#include "knit/view.hpp"
+
+namespace knit {
+
+// Ordered from least to most geometry.
+enum class DetailLevel : uint8_t { Culled, Surface, Yarns, Plies };
+const char* detailLevelName(DetailLevel level);  // "culled" | "surface" | "yarns" | "plies"
+
+// A level is entered when the projected radius reaches `enter` pixels and kept while it stays at
+// or above `leave` (< enter): a camera that moves a little does not flip cells at the threshold.
+struct Hysteresis {
+    double enter = 1.0;
+    double leave = 0.8;
+};
+
+// Per cell of the grid (same order as UvGrid::cells).
+struct CellLevels {
+    std::vector<glm::ivec2> cells;   // the cell ids (tile i, j)
+    std::vector<DetailLevel> level;  // per cell
+    std::vector<double> plyPixels;   // projected ply radius in pixels at the cell's nearest point
+};
+
+struct DetailOptions {
+    std::optional<View> view;  // none: frameMesh(mesh, margin, viewSettings), the default camera
+    View viewSettings;         // field of view and image size when framing
+    // Back-lit renders see light through the cloth: back-facing cells are kept.
+    bool backLit = false;
+    // Cull cells whose every triangle faces away. Only where the mesh is closed: on an open mesh
+    // the back of the cloth is what is seen from behind.
+    bool cullBackFaces = true;
+    // Frustum margin beyond the yarns' height and radius, in yarn radii (shadows cast into the view).
+    double shadowMargin = 4.0;
+    Hysteresis plyPixels;   // ply radius in pixels for the ply level
+    Hysteresis yarnPixels;  // yarn radius in pixels for the yarn level
+    // false: cells of the yarn level get plies (for consumers that cannot draw yarn curves).
+    bool yarnLevel = true;
+    // The levels of a previous view of the same grid (hysteresis); nullptr: none.
+    const CellLevels* previous = nullptr;
+};
+
+// What the classification needs to know of the scene (all object-space metres).
+struct DetailInputs {
+    const BaseMesh* mesh = nullptr;
+    const UvGrid* grid = nullptr;
+    double margin = 0;  // the yarns' greatest height above or below the surface plus their radius
+    double yarnRadius = 0;
+    double plyRadius = 0;
+};
+
+// The margin of DetailInputs: max |height| of the binding plus the yarn radius.
+double yarnMargin(const Binding& binding, double yarnRadius);
+
+// Culls and picks a level for every cell of the grid (view validated: knit::Error naming the
+// option). Culled: the cell's triangles, grown by margin + shadowMargin yarn radii, lie outside one
+// frustum plane; or (cullBackFaces, not backLit, closed mesh) every triangle faces away from the eye.
+CellLevels classifyCells(const DetailInputs& in, const View& view, const DetailOptions& options);
+
+// The mapped yarns cut per level: each run of vertices in cells of one level is a piece; where two
+// runs meet, both pieces end at the same point, where the yarn leaves the cell of the last vertex
+// of the first run (linear in the segment). Culled runs are dropped; a yarn all in one level is
+// kept whole (closed loops stay closed).
+struct LevelPieces {
+    MappedYarns plies;                                  // pieces of ply-level cells (plies are generated for these)
+    MappedYarns yarns;                                  // pieces of yarn-level cells (drawn as yarn curves)
+    std::vector<uint32_t> surfaceFaces;                 // base-mesh triangles touching a surface-level cell, ascending
+    std::vector<uint32_t> plyPieceYarn, yarnPieceYarn;  // source yarn of each piece
+};
+LevelPieces splitByLevel(const MappedYarns& yarns, const Binding& binding, const BaseMesh& mesh, const UvGrid& grid,
+                         const CellLevels& levels);
+
+}  // namespace knit

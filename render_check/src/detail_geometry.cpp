@@ -1,0 +1,78 @@
+// The curves and the surface a scene built for a view renders (see detail_geometry.hpp).
+#include "detail_geometry.hpp"
+
+#include "knit/error.hpp"
+#include "knit/scene.hpp"
+
+namespace knit::detail {
+namespace {
+
+// The yarn-level pieces as one-ply "plies" of the yarn radius; their radial reference is the
+// surface normal (the yarn's outward side).
+Plies yarnCurves(const MappedYarns& pieces, double yarnRadius) {
+    Plies p;
+    p.curves = pieces.curves;
+    p.yarnOfCurve.resize(p.curves.curveCount());
+    for (size_t c = 0; c < p.yarnOfCurve.size(); ++c) p.yarnOfCurve[c] = uint32_t(c);
+    p.plyOfCurve.assign(p.curves.curveCount(), 0);
+    p.plyRadius = yarnRadius;
+    p.radial = pieces.normals;
+    return p;
+}
+
+// Appends `more` to `g`, converted to g's scene units (its points keep their own radius).
+void append(PlyGeometry& g, const PlyGeometry& more) {
+    const float scale = float(more.unit / g.unit);
+    const uint32_t pointBase = uint32_t(g.points.size()), segmentBase = uint32_t(g.segments.size());
+    const uint32_t curveBase = uint32_t(g.curveSegments.size() - 1);
+    for (const glm::vec4& p : more.points) g.points.push_back(p * scale);
+    g.radial.insert(g.radial.end(), more.radial.begin(), more.radial.end());
+    for (float a : more.arc) g.arc.push_back(a * scale);
+    for (uint32_t s : more.segments) g.segments.push_back(s + pointBase);
+    g.flags.insert(g.flags.end(), more.flags.begin(), more.flags.end());
+    for (uint32_t c : more.curveOfSegment) g.curveOfSegment.push_back(c + curveBase);
+    for (size_t c = 1; c < more.curveSegments.size(); ++c)
+        g.curveSegments.push_back(more.curveSegments[c] + segmentBase);
+}
+
+PlyGeometry emptyGeometry(const glm::dvec3& origin, double unit) {
+    PlyGeometry g;
+    g.origin = origin;
+    g.unit = unit;
+    g.radius = 1.0f;
+    return g;
+}
+
+}  // namespace
+
+PlyGeometry renderCurves(const Scene& scene, const glm::dvec3& origin, double fiberTwist, bool curvesMode) {
+    const bool plies = scene.plies().curves.pointCount() > 0;
+    const MappedYarns* yarnLevel = scene.detail() ? &scene.detail()->pieces.yarns : nullptr;
+    const bool yarns = yarnLevel != nullptr && yarnLevel->curves.pointCount() > 0;
+    if (!yarns)
+        return plies ? buildPlyGeometry(scene.plies(), origin, fiberTwist)
+                     : emptyGeometry(origin, resolvePlyOptions(scene.plyOptions()).plyRadius);
+    if (!curvesMode)
+        throw Error("render: the yarn level is drawn as round curves only (--mode curves); build the scene with "
+                    "DetailOptions::yarnLevel = false for tubes or grid");
+    PlyGeometry y = buildPlyGeometry(yarnCurves(*yarnLevel, scene.yarnRadius()), origin, fiberTwist);
+    if (!plies) return y;
+    PlyGeometry g = buildPlyGeometry(scene.plies(), origin, fiberTwist);
+    append(g, y);
+    return g;
+}
+
+BaseMesh surfaceMesh(const Scene& scene) {
+    BaseMesh m;
+    m.name = scene.mesh().name + " (surface level)";
+    if (!scene.detail()) return m;
+    m.positions = scene.mesh().positions;
+    m.uvs = scene.mesh().uvs;
+    for (uint32_t f : scene.detail()->pieces.surfaceFaces) {
+        m.faces.push_back(scene.mesh().faces[f]);
+        m.faceUvs.push_back(scene.mesh().faceUvs[f]);
+    }
+    return m;
+}
+
+}  // namespace knit::detail

@@ -1,0 +1,22 @@
+// detail_geometry.hpp (internal) — what renderScene traces for a scene built for a view
+// (knit/detail.hpp): the ply level's plies and the yarn level's yarn curves in one PlyGeometry,
+// and the surface level's base-mesh triangles. A scene without a view gives its plies alone.
+#pragma once
+#include "knit/base_mesh.hpp"
+#include "knit/ply_geometry.hpp"
+
+namespace knit {
+class Scene;
+}
+
+namespace knit::detail {
+
+// The plies, plus (scene built for a view) the yarn-level pieces as single curves of the yarn
+// radius, in the plies' scene units (per-point radius; curves mode only: knit::Error otherwise).
+// Empty (no segments) when neither level has any curve.
+PlyGeometry renderCurves(const Scene& scene, const glm::dvec3& origin, double fiberTwist, bool curvesMode);
+
+// The base-mesh triangles of the surface-level cells (all positions kept; no faces without a view).
+BaseMesh surfaceMesh(const Scene& scene);
+
+}  // namespace knit::detail

@@ -1,0 +1,96 @@
+// The view flags of `knit build` and `knit render` end to end: bad views are refused naming the
+// option (exit 1, no output file), the camera and the levels are in both reports, and
+// `--detail view` keeps fewer ply vertices than `--detail full` for a close view.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <unistd.h>
+
+#include <nlohmann/json.hpp>
+
+#include "common/run_knit.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kScene = " -q --mesh plane --repeats 4 4 --mesh-res 4 ";
+
+class ViewCli : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir = fs::temp_directory_path() / ("knit_view_cli_" + std::to_string(::getpid()) + "_" +
+                                           ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(dir);
+        fs::create_directories(dir);
+    }
+    void TearDown() override { fs::remove_all(dir); }
+    knit::test::CliRun run(const std::string& args) const { return knit::test::runKnit(args, dir); }
+    nlohmann::json report(const std::string& name) const { return nlohmann::json::parse(std::ifstream(dir / name)); }
+    bool hasRender() const { return run("render --help").exitCode == 0; }
+    fs::path dir;
+};
+
+TEST_F(ViewCli, badViewsNameTheOptionAndWriteNothing) {
+    const std::pair<const char*, const char*> cases[] = {
+        {"--eye 0 1 0 --target 0 1 0", "--eye and --target must differ"},
+        {"--eye 0 1 0 --target 0 0 0 --up 0 -3 0", "--up"},
+        {"--eye 0 1 0.2 --target 0 0 0 --fov 0", "--fov"},
+        {"--eye 0 1 0.2 --target 0 0 0 --fov 180", "--fov"},
+        {"--eye nan 1 0 --target 0 0 0", "--eye"},
+        {"--eye 0 1 0.2 --target 0 inf 0", "--target"},
+        {"--eye 0 1 0.2 --target 0 0 0 --width 0", "--width"},
+    };
+    for (const auto& [flags, message] : cases) {
+        const knit::test::CliRun b = run("build" + kScene + "-o out.obj " + flags);
+        EXPECT_EQ(b.exitCode, 1) << flags << "\n" << b.output;
+        EXPECT_NE(b.output.find(message), std::string::npos) << flags << "\n" << b.output;
+        EXPECT_FALSE(fs::exists(dir / "out.obj")) << flags;
+        if (!hasRender()) continue;
+        const knit::test::CliRun r = run("render" + kScene + "--spp 1 --output out.png " + std::string(flags));
+        EXPECT_EQ(r.exitCode, 1) << flags << "\n" << r.output;
+        EXPECT_NE(r.output.find(message), std::string::npos) << flags << "\n" << r.output;
+        EXPECT_FALSE(fs::exists(dir / "out.png")) << flags;
+    }
+}
+
+TEST_F(ViewCli, detailViewIsRefusedForARestPoseFrame) {
+    const knit::test::CliRun b = run("build" + kScene + "--rest plane -o out.obj --detail view");
+    EXPECT_EQ(b.exitCode, 1) << b.output;
+    EXPECT_NE(b.output.find("--detail view does not apply to --rest"), std::string::npos) << b.output;
+    EXPECT_FALSE(fs::exists(dir / "out.obj"));
+}
+
+TEST_F(ViewCli, buildReportsCameraAndLevelsAndViewKeepsLessThanFull) {
+    ASSERT_EQ(run("build" + kScene + "-o full.obj --report full.json").exitCode, 0);
+    const std::string close = "--detail view --eye 0.1 0.15 0.1 --target 0.1 0 0.1 --up 0 0 -1 --width 64 --height 48";
+    ASSERT_EQ(run("build" + kScene + "-o view.obj --report view.json " + close).exitCode, 0);
+    const nlohmann::json full = report("full.json"), view = report("view.json");
+    EXPECT_EQ(view["camera"]["eye"], nlohmann::json({0.1, 0.15, 0.1}));
+    EXPECT_EQ(view["camera"]["fovDegrees"], 30.0);
+    EXPECT_EQ(full["levels"]["plies"]["cells"], full["counts"]["cells"]);
+    EXPECT_EQ(full["levels"]["plies"]["plyVertices"], full["vertices"]["ply"]);
+    EXPECT_GT(view["levels"]["culledCells"].get<int>(), 0);
+    EXPECT_LT(view["levels"]["plies"]["plyVertices"].get<size_t>(),
+              full["levels"]["plies"]["plyVertices"].get<size_t>());
+    EXPECT_LT(fs::file_size(dir / "view.obj"), fs::file_size(dir / "full.obj"));
+    EXPECT_EQ(view["levels"]["surface"]["textured"], false);
+}
+
+TEST_F(ViewCli, renderReportsTheDefaultCameraAndItsLevels) {
+    if (!hasRender()) GTEST_SKIP() << "knit was built without render_check";
+    ASSERT_EQ(run("render" + kScene + "--spp 1 --width 16 --height 12 --report r.json").exitCode, 0);
+    const nlohmann::json r = report("r.json");
+    ASSERT_TRUE(r.contains("camera"));
+    EXPECT_EQ(r["camera"]["target"], nlohmann::json({0.0, 0.0, 0.0}));  // the plane is centred
+    EXPECT_GT(r["camera"]["eye"][1].get<double>(), 0.0);                // in front (+y) of it
+    const size_t cells = r["levels"]["plies"]["cells"].get<size_t>() + r["levels"]["yarns"]["cells"].get<size_t>() +
+                         r["levels"]["surface"]["cells"].get<size_t>() + r["levels"]["culledCells"].get<size_t>();
+    EXPECT_GT(cells, 0u);
+    EXPECT_TRUE(r.contains("seconds"));
+    EXPECT_TRUE(r.contains("peakMemoryBytes"));
+}
+
+}  // namespace
