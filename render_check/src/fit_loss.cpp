@@ -11,13 +11,13 @@ namespace knit {
 namespace {
 
 // A single-channel image with per-pixel weights (the mask).
-struct Plane {
+struct LumaPlane {
     int width = 0, height = 0;
     std::vector<double> value, weight;
 };
 
-Plane luminance(const Image& im, const std::vector<float>& mask, bool saturate) {
-    Plane p;
+LumaPlane luminance(const Image& im, const std::vector<float>& mask, bool saturate) {
+    LumaPlane p;
     p.width = im.width, p.height = im.height;
     const size_t n = size_t(im.width) * im.height;
     p.value.resize(n);
@@ -31,8 +31,8 @@ Plane luminance(const Image& im, const std::vector<float>& mask, bool saturate) 
 }
 
 // Halves the plane (2 x 2 averages; an odd last row/column is dropped).
-Plane halve(const Plane& p) {
-    Plane h;
+LumaPlane halve(const LumaPlane& p) {
+    LumaPlane h;
     h.width = p.width / 2, h.height = p.height / 2;
     h.value.resize(size_t(h.width) * h.height);
     h.weight.resize(h.value.size());
@@ -51,7 +51,7 @@ Plane halve(const Plane& p) {
 // Mean SSIM of two planes of the same size: local statistics in a 7 x 7 Gaussian window
 // (sigma 1.5, clamped at the border), averaged with the mask weight of the centre pixel.
 // `range` is the dynamic range L of the constants C1 = (0.01 L)^2, C2 = (0.03 L)^2.
-double meanSsim(const Plane& a, const Plane& b, double range) {
+double meanSsim(const LumaPlane& a, const LumaPlane& b, double range) {
     std::array<double, 7> g{};
     for (int k = -3; k <= 3; ++k) g[size_t(k + 3)] = std::exp(-k * k / (2 * 1.5 * 1.5));
     const double c1 = (0.01 * range) * (0.01 * range), c2 = (0.03 * range) * (0.03 * range);
@@ -105,7 +105,7 @@ ImageLoss imageLoss(const Image& render, const Image& target, const std::vector<
     for (int c = 0; c < 3; ++c) loss.relativeL2 += se[c] / std::max(tt[c], floor) / 3;
     loss.rmse = weights > 0 ? std::sqrt((se[0] + se[1] + se[2]) / (3 * weights)) : 0;
     // Step 2: multi-scale SSIM of the luminance, the range taken from the target.
-    Plane a = luminance(render, mask, options.saturate), b = luminance(target, mask, false);
+    LumaPlane a = luminance(render, mask, options.saturate), b = luminance(target, mask, false);
     const double range = std::max(*std::max_element(b.value.begin(), b.value.end()), 1e-6);
     double ssim = 0;
     int scales = 0;
