@@ -185,6 +185,33 @@ TEST_F(Cli, overlappingUvChartsAreReported) {
     EXPECT_TRUE(nlohmann::json::parse(pin)["mesh"]["overlapping_uv_charts"].empty());
 }
 
+// A UV chart folded over itself: its folded layer gets no yarns where it lies over the rest of
+// the chart, so the user is warned with the count and an example (stderr and report).
+TEST_F(Cli, uvChartFoldedOverItselfIsWarnedWithCountAndExample) {
+    // A strip of four 0.1 m quads whose last quad's UVs fold back over the third (u 0.75 -> 0.5).
+    write("folded.obj",
+          "v 0 0 0\nv 0.1 0 0\nv 0.2 0 0\nv 0.3 0 0\nv 0.4 0 0\n"
+          "v 0 0.1 0\nv 0.1 0.1 0\nv 0.2 0.1 0\nv 0.3 0.1 0\nv 0.4 0.1 0\n"
+          "vt 0 0\nvt 0.25 0\nvt 0.5 0\nvt 0.75 0\nvt 0.5 0\nvt 0 1\nvt 0.25 1\nvt 0.5 1\nvt 0.75 1\nvt 0.5 1\n"
+          "f 1/1 2/2 7/7 6/6\nf 2/2 3/3 8/8 7/7\nf 3/3 4/4 9/9 8/8\nf 4/4 5/5 10/10 9/9\n");
+    const CliRun r = knit("build -q --mesh folded.obj --repeats 8 2 --export yarns -o y.obj --report r.json", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("warning: folded.obj: 2 triangles fold their UV chart over itself (e.g. triangle 6 at "
+                            "uv 0.75, 0)"),
+              std::string::npos)
+        << r.output;
+    std::ifstream in(dir / "r.json");
+    const nlohmann::json j = nlohmann::json::parse(in);
+    EXPECT_EQ(j["mesh"]["folded_uv_faces"].get<int>(), 2);
+    EXPECT_EQ(j["mesh"]["folded_uv_face_example"].get<int>(), 6);
+    // An unfolded mesh: no warning, zero folded faces.
+    const CliRun p = knit("build -q --mesh plane --repeats 4 4 --export yarns -o p.obj --report p.json", dir);
+    ASSERT_EQ(p.exitCode, 0) << p.output;
+    EXPECT_EQ(p.output.find("warning:"), std::string::npos) << p.output;
+    std::ifstream pin(dir / "p.json");
+    EXPECT_EQ(nlohmann::json::parse(pin)["mesh"]["folded_uv_faces"].get<int>(), 0);
+}
+
 TEST_F(Cli, infoPrintsPatternFacts) {
     const CliRun r = knit("info " + shared("stockinette.pyp"), dir);
     ASSERT_EQ(r.exitCode, 0) << r.output;

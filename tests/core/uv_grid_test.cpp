@@ -196,3 +196,42 @@ TEST(UvGrid, absurdRepeatsAreRefused) {
 
 }  // namespace
 }  // namespace knit
+
+namespace knit {
+namespace {
+
+// The 8 x 8 plane with its UVs folded back at u = 0.75: the last two columns are mirrored onto
+// the two before them (u -> 1.5 - u), so the chart covers [0.5, 0.75] twice.
+BaseMesh planeFoldedAtThreeQuarters() {
+    BaseMesh m = test::planeMesh(test::Triangulation::Regular, 8);
+    for (glm::dvec2& uv : m.uvs)
+        if (uv.x > 0.75) uv.x = 1.5 - uv.x;
+    return m;
+}
+
+TEST(UvGrid, chartFoldedOverItselfReportsItsSmallerSide) {
+    const UvGrid g = gridFor(planeFoldedAtThreeQuarters(), 0.1);
+    EXPECT_EQ(g.chartCount, 1u);
+    EXPECT_EQ(g.foldedUvFaces, 2u * 8 * 2);    // two columns of 8 quads
+    EXPECT_EQ(g.foldedUvFaceExample, 2u * 6);  // quad (6, 0), the first beyond the fold
+}
+
+TEST(UvGrid, windingAndMirroringAreNoFold) {
+    // Every third face wound the other way (3D and UV alike), a whole chart mirrored, a random
+    // triangulation: the same UV region once each, so no fold.
+    BaseMesh rewound = test::planeMesh(test::Triangulation::Regular, 8);
+    for (size_t f = 0; f < rewound.faces.size(); f += 3) {
+        std::swap(rewound.faces[f].y, rewound.faces[f].z);
+        std::swap(rewound.faceUvs[f].y, rewound.faceUvs[f].z);
+    }
+    BaseMesh mirrored = test::planeMesh(test::Triangulation::Regular, 8);
+    for (glm::dvec2& uv : mirrored.uvs) uv.x = 1 - uv.x;
+    for (const BaseMesh& m : {rewound, mirrored, test::planeMesh(test::Triangulation::Random, 8)}) {
+        const UvGrid g = gridFor(m, 0.1);
+        EXPECT_EQ(g.foldedUvFaces, 0u);
+        EXPECT_EQ(g.foldedUvFaceExample, UINT32_MAX);
+    }
+}
+
+}  // namespace
+}  // namespace knit
