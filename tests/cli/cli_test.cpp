@@ -212,6 +212,29 @@ TEST_F(Cli, uvChartFoldedOverItselfIsWarnedWithCountAndExample) {
     EXPECT_EQ(nlohmann::json::parse(pin)["mesh"]["folded_uv_faces"].get<int>(), 0);
 }
 
+// Bad option values are reported by the option's name and the real cause, never by a library
+// struct field or function name.
+TEST_F(Cli, badOptionValuesAreNamedByTheirOptionNotByLibraryInternals) {
+    const std::string base = "build -q --mesh plane --repeats 2 2 -o out.obj ";
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {"--ply-pitch -1",
+         "knit: error: --ply-pitch must be a finite length >= 0 in metres (0 = 6 yarn radii), got -1"},
+        {"--ply-center-radius -0.5",
+         "knit: error: --ply-center-radius must be a finite length >= 0 in metres (0 = touching plies filling the "
+         "yarn), got -0.5"},
+        {"--samples-per-turn 2", "knit: error: --samples-per-turn must be in 3..1024, got 2"},
+        {"--plies 1 --ply-center-radius 1", "knit: error: --ply-radius: cannot derive it for one ply"},
+    };
+    for (const auto& [flags, expected] : cases) {
+        const CliRun r = knit(base + flags, dir);
+        EXPECT_EQ(r.exitCode, 1) << flags;
+        EXPECT_NE(r.output.find(expected), std::string::npos) << flags << "\n" << r.output;
+        for (const char* internal : {"PlyOptions", "ResampleOptions", "resampleYarns", "rotationMinimizingFrames"})
+            EXPECT_EQ(r.output.find(internal), std::string::npos) << flags << "\n" << r.output;
+        EXPECT_FALSE(fs::exists(dir / "out.obj")) << flags;
+    }
+}
+
 TEST_F(Cli, infoPrintsPatternFacts) {
     const CliRun r = knit("info " + shared("stockinette.pyp"), dir);
     ASSERT_EQ(r.exitCode, 0) << r.output;

@@ -132,7 +132,7 @@ TEST(Animator, frameWithAnotherVertexCountOrNaNIsRefused) {
     EXPECT_NE(test::errorOf([&] { animator.evaluate(p, f); }).find("vertices but the rest mesh"), std::string::npos);
     p = s.mesh().positions;
     p[5].y = std::nan("");
-    EXPECT_EQ(test::errorOf([&] { animator.evaluate(p, f); }), "Animator: vertex 5 is not finite");
+    EXPECT_EQ(test::errorOf([&] { animator.evaluate(p, f); }), "the animation frame's vertex 5 is not finite");
 }
 
 }  // namespace
