@@ -100,6 +100,7 @@ inline void checkMesh(const BaseMesh& m) {
     UvGridOptions o;
     o.cellSize = glm::dvec2(1.0 / 8);
     o.maxCells = 1 << 16;
+    o.maxTriangleCells = 1 << 22;  // 64 MB of (cell, triangle) entries, within the 2 GB limit
     const UvGrid grid = buildUvGrid(m, o);
     locatePoint(m, grid, glm::dvec2(0.5), 1e-3);
 }

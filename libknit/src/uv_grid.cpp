@@ -154,6 +154,24 @@ detail::UvEdgeLink edgeLink(const BaseMesh& mesh, uint32_t he, uint32_t hg) {
     return {he / 3, hg / 3, se != 0 && se == sg};
 }
 
+// The (triangle, cell) candidate pairs, counted from each triangle's UV box, must stay within
+// `limit` before step 2 allocates one entry per pair.
+void requireTriangleCellsWithin(const BaseMesh& mesh, const UvGrid& grid, uint64_t limit) {
+    uint64_t pairs = 0;
+    for (size_t f = 0; f < mesh.faces.size() && pairs <= limit; ++f) {
+        if (grid.faceOrientation[f] == 0) continue;
+        const glm::uvec3 t = mesh.faceUvs[f];
+        const glm::dvec2 a = mesh.uvs[t.x], b = mesh.uvs[t.y], c = mesh.uvs[t.z];
+        const glm::ivec2 c0 = grid.cellOf(glm::min(a, glm::min(b, c))), c1 = grid.cellOf(glm::max(a, glm::max(b, c)));
+        pairs += uint64_t(c1.x - c0.x + 1) * uint64_t(c1.y - c0.y + 1);
+    }
+    if (pairs <= limit) return;
+    std::ostringstream msg;
+    msg << mesh.name << ": the UV triangles together span more than " << limit
+        << " pattern cells (many triangles that are large compared with one pattern period); lower --repeats";
+    throw Error(msg.str());
+}
+
 }  // namespace
 
 glm::ivec2 UvGrid::cellOf(glm::dvec2 uv) const {
@@ -173,7 +191,9 @@ int32_t UvGrid::slotOf(glm::ivec2 cell) const {
 }
 
 UvGrid buildUvGrid(const BaseMesh& mesh, const UvGridOptions& options) {
-    if (!util::positiveFinite(options.cellSize)) throw Error("UV grid: cell size must be positive and finite");
+    if (!util::positiveFinite(options.cellSize))
+        throw Error(
+            "UV grid: the pattern period in UV (from --repeats or the physical size) must be positive and finite");
     UvGrid grid;
     grid.cellSize = options.cellSize;
     const size_t nf = mesh.faces.size();
@@ -208,6 +228,7 @@ UvGrid buildUvGrid(const BaseMesh& mesh, const UvGridOptions& options) {
     // 2. Conservative triangle-cell overlap: candidate cells from the UV box (cellOf is monotone,
     //    so every point of the triangle maps into this range), then a separating-axis test
     //    against the cell box grown by eps, so rounding can only add cells, never drop one.
+    requireTriangleCellsWithin(mesh, grid, options.maxTriangleCells);
     std::vector<std::pair<uint64_t, uint32_t>> cellFace;  // (linear cell, face)
     for (size_t f = 0; f < nf; ++f) {
         if (grid.faceOrientation[f] == 0) continue;

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "fixtures.hpp"
+#include "test_util.hpp"
 #include "knit/error.hpp"
 #include "knit/uv_grid.hpp"
 
@@ -231,6 +232,33 @@ TEST(UvGrid, windingAndMirroringAreNoFold) {
         EXPECT_EQ(g.foldedUvFaces, 0u);
         EXPECT_EQ(g.foldedUvFaceExample, UINT32_MAX);
     }
+}
+
+}  // namespace
+}  // namespace knit
+
+namespace knit {
+namespace {
+
+// Thousands of copies of a triangle spanning the whole UV range (a 40 KB OFF file): each touches
+// ~30000 cells, so the triangle-cell lists would need gigabytes. Refused before allocating.
+TEST(UvGrid, manyTrianglesSpanningTheWholeUvRangeAreRefusedBeforeAllocating) {
+    BaseMesh m;
+    m.name = "big-triangles.off";
+    m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    m.uvs = {{0, 0}, {31.9, 0}, {0, 31.9}};  // 256 x 256 cells of 1/8
+    m.faces.assign(5000, glm::uvec3(0, 1, 2));
+    m.faceUvs = m.faces;
+    UvGridOptions o;
+    o.cellSize = glm::dvec2(1.0 / 8);
+    o.maxCells = 1 << 16;
+    const std::string e = test::errorOf([&] { buildUvGrid(m, o); });
+    EXPECT_NE(e.find("big-triangles.off: the UV triangles together span more than 134217728 pattern cells"),
+              std::string::npos)
+        << e;
+    m.faces.resize(10);  // ten of them fit
+    m.faceUvs = m.faces;
+    EXPECT_GT(buildUvGrid(m, o).cells.size(), 30000u);
 }
 
 }  // namespace

@@ -13,6 +13,10 @@ struct UvGridOptions {
     glm::dvec2 cellSize{1.0 / 32.0};  // UV size of one cell (= one pattern period)
     // Refuse grids whose bounding box holds more cells than this (absurd repeats).
     uint64_t maxCells = uint64_t(1) << 28;
+    // Refuse meshes whose triangles together touch more (triangle, cell) pairs than this (counted
+    // from each triangle's UV box before anything is allocated; 16 bytes each): a few thousand
+    // triangles each spanning the whole UV range would otherwise need gigabytes.
+    uint64_t maxTriangleCells = uint64_t(1) << 27;
 };
 
 // Cells are indexed (i, j) with cell (i, j) = [i*cu, (i+1)*cu) x [j*cv, (j+1)*cv).
