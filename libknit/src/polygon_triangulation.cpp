@@ -43,11 +43,16 @@ std::vector<Point> projected(const std::vector<glm::dvec3>& p, const glm::dvec3&
     return q;
 }
 
-bool hasReflexCorner(const std::vector<Point>& q) {
+// Whether some corner turns right (strict: a reflex corner) / every corner turns left.
+bool someCornerTurns(const std::vector<Point>& q, CGAL::Orientation turn) {
     const size_t n = q.size();
     for (size_t i = 0; i < n; ++i)
-        if (CGAL::orientation(q[(i + n - 1) % n], q[i], q[(i + 1) % n]) == CGAL::RIGHT_TURN) return true;
+        if (CGAL::orientation(q[(i + n - 1) % n], q[i], q[(i + 1) % n]) == turn) return true;
     return false;
+}
+bool hasReflexCorner(const std::vector<Point>& q) { return someCornerTurns(q, CGAL::RIGHT_TURN); }
+bool allCornersTurnLeft(const std::vector<Point>& q) {
+    return !someCornerTurns(q, CGAL::RIGHT_TURN) && !someCornerTurns(q, CGAL::COLLINEAR);
 }
 
 // Marks the faces inside the polygon: those reached from the infinite face only across polygon
@@ -102,14 +107,16 @@ PolygonTriangles triangulatePolygon(const std::vector<glm::dvec3>& corners) {
         out.problem = "has no area (its corners are collinear, or it crosses itself so that its parts cancel)";
         return out;
     }
-    // Step 2: project; refuse polygons that cross or touch themselves.
+    // Step 2: project; refuse polygons that cross or touch themselves. (A quad turning strictly
+    // left at every corner winds once, so it is convex and simple: the common case skips the sweep.)
     const std::vector<Point> q = projected(corners, normal);
-    if (!CGAL::Polygon_2<K>(q.begin(), q.end()).is_simple()) {
+    const bool convexQuad = n == 4 && allCornersTurnLeft(q);
+    if (!convexQuad && !CGAL::Polygon_2<K>(q.begin(), q.end()).is_simple()) {
         out.problem = "crosses or touches itself (seen along its normal)";
         return out;
     }
     // Step 3: a convex polygon keeps the fan; a concave one is triangulated inside its outline.
-    if (!hasReflexCorner(q)) {
+    if (convexQuad || !hasReflexCorner(q)) {
         for (uint32_t k = 1; k + 1 < n; ++k) out.triangles.push_back({0, k, k + 1});
         return out;
     }
