@@ -77,12 +77,21 @@ void printSummary(const Scene& s, const SceneStats& st, const ExportStats& e, co
                 e.vertices, st.totalSeconds + e.seconds);
 }
 
+// Fails before any scene is built: bad export options, an unwritable report folder, or an output
+// that is one of the inputs (--mesh, --pattern, --rest) or another output.
+void checkOutputs(const BuildCommand& b) {
+    validateExportOptions(b.exportOptions);
+    checkReportPath(b.report);
+    const std::string& out = b.exportOptions.path;
+    refuseCollidingPaths({{"--mesh", b.scene.scene.mesh}, {"--pattern", b.scene.scene.pattern}, {"--rest", b.rest}},
+                         {{"-o", out}, {"the glTF buffer of -o", gltfBufferOf(out)}, {"--report", b.report}});
+}
+
 // --rest: bound on the rest mesh, evaluated on --mesh (what `knit animate` writes for that frame).
 int runBuildOnRestPose(const BuildCommand& b) {
     if (b.view.detail == Detail::View)
         throw Error("--detail view does not apply to --rest (an animation frame is built at full detail)");
-    validateExportOptions(b.exportOptions);
-    if (!b.report.empty()) requireWritableFolder(b.report, "report");
+    checkOutputs(b);
     const SceneOptions options = resolveScene(b.scene);
     const Scene rest = bindRestPose(options, b.rest);
     printWarnings(rest);
@@ -162,13 +171,9 @@ int runBuild(const BuildCommand& b) {
 #ifdef KNIT_HAVE_RENDER_CHECK
     if (b.surface.surfaceOnly) return runSurfaceOnly(b);
 #endif
-    // Step 1: fail before the scene is built: bad export options or an unwritable report folder.
-    validateExportOptions(b.exportOptions);
-    checkReportPath(b.report);
+    // Step 1: fail before the scene is built (options, report folder, colliding paths, camera).
+    checkOutputs(b);
     givenView(b.view, b.view.image);  // a bad camera fails here (knit::Error naming the option)
-    const std::string& out = b.exportOptions.path;
-    refuseCollidingPaths({{"--mesh", b.scene.scene.mesh}, {"--pattern", b.scene.scene.pattern}},
-                         {{"-o", out}, {"the glTF buffer of -o", gltfBufferOf(out)}, {"--report", b.report}});
     // Step 2: the scene; glTF / GLB ply curves are generated while writing, so it is built without them.
     SceneOptions options = resolveScene(b.scene);
     const bool streamed = streamsPlies(b.exportOptions);

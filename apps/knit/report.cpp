@@ -60,9 +60,11 @@ nlohmann::json sceneReport(const Scene& s, const SceneStats& st) {
                  {"faces", m.faces.size()},
                  {"degenerate_uv_faces", s.grid().degenerateUvFaces},
                  {"uv_charts", s.grid().chartCount},
+                 {"folded_uv_faces", s.grid().foldedUvFaces},
                  {"overlapping_uv_charts", nlohmann::json::array()}};
     for (const glm::uvec2& pair : s.grid().overlappingCharts)
         j["mesh"]["overlapping_uv_charts"].push_back({pair.x, pair.y});
+    if (s.grid().foldedUvFaces > 0) j["mesh"]["folded_uv_face_example"] = s.grid().foldedUvFaceExample;
     j["placement"] = {{"repeats", {s.placement().repeats.x, s.placement().repeats.y}},
                       {"scale", s.placement().scale},
                       {"yarn_radius", s.yarnRadius()},
@@ -96,7 +98,20 @@ nlohmann::json sceneReport(const Scene& s, const SceneStats& st) {
     return j;
 }
 
+// A chart folded over itself: the folded layer gets no yarns of its own where it lies over the
+// rest of the chart (see UvGrid::foldedUvFaces).
+void printFoldWarning(const Scene& s) {
+    const UvGrid& g = s.grid();
+    if (g.foldedUvFaces == 0) return;
+    const glm::dvec2 uv = s.mesh().uvs[s.mesh().faceUvs[g.foldedUvFaceExample].x];
+    std::fprintf(stderr,
+                 "knit: warning: %s: %zu triangles fold their UV chart over itself (e.g. triangle %u at uv %.4g, "
+                 "%.4g): where the fold covers the chart twice, only one layer gets yarns; unfold the UV layout\n",
+                 s.mesh().name.c_str(), g.foldedUvFaces, g.foldedUvFaceExample, uv.x, uv.y);
+}
+
 void printWarnings(const Scene& s) {
+    printFoldWarning(s);
     if (s.grid().overlappingCharts.empty()) return;
     std::string pairs;
     const size_t shown = std::min<size_t>(s.grid().overlappingCharts.size(), 8);

@@ -76,10 +76,10 @@ void validateInput(const ExportInput& in, bool tubes) {
     if (!util::positiveFinite(in.radius))
         throw Error("export: radius must be a positive number, got " + std::to_string(in.radius));
     if (in.yarnOfCurve && in.yarnOfCurve->size() != c.curveCount())
-        throw Error("export: yarnOfCurve has " + std::to_string(in.yarnOfCurve->size()) + " entries for " +
+        throw Error("export: " + std::to_string(in.yarnOfCurve->size()) + " yarn indices for " +
                     std::to_string(c.curveCount()) + " curves");
     if (in.seedNormals && in.seedNormals->size() != c.points.size())
-        throw Error("export: seed normals have " + std::to_string(in.seedNormals->size()) + " entries for " +
+        throw Error("export: " + std::to_string(in.seedNormals->size()) + " surface normals for " +
                     std::to_string(c.points.size()) + " points");
     if (in.colours && in.colours->size() != c.points.size())
         throw Error("export: colours have " + std::to_string(in.colours->size()) + " entries for " +
@@ -136,7 +136,7 @@ void validateExportOptions(const ExportOptions& o) {
     if (o.chunkVertices != 0 && o.chunkVertices < 16)
         throw Error("export: --chunk-vertices must be 0 (auto) or at least 16, got " + std::to_string(o.chunkVertices));
     if (o.maxBufferBytes < 1024 || o.maxBufferBytes > 0xFFFFFFF0ull)
-        throw Error("export: maxBufferBytes must be in [1024, 4294967280]");
+        throw Error("export: the glTF buffer size limit must be in [1024, 4294967280] bytes");
 }
 
 ExportStats exportCurves(const ExportInput& input, const ExportOptions& requested) {

@@ -23,7 +23,8 @@ void requireMeshopt() {}
 
 MeshoptView encodeMeshoptAttributes(const void* data, size_t count, size_t stride) {
     if (stride == 0 || stride % 4 != 0 || stride > 256)
-        throw Error("meshopt: attribute stride " + std::to_string(stride) + " is not a multiple of 4 in [4, 256]");
+        throw Error("glTF meshopt compression: attribute stride " + std::to_string(stride) +
+                    " is not a multiple of 4 in [4, 256]");
     MeshoptView v;
     v.count = count;
     v.stride = stride;
@@ -31,14 +32,14 @@ MeshoptView encodeMeshoptAttributes(const void* data, size_t count, size_t strid
     meshopt_encodeVertexVersion(0);
     v.bytes.resize(meshopt_encodeVertexBufferBound(count, stride));
     const size_t n = meshopt_encodeVertexBuffer(v.bytes.data(), v.bytes.size(), data, count, stride);
-    if (n == 0) throw Error("meshopt: the vertex codec failed");
+    if (n == 0) throw Error("glTF meshopt compression: the vertex codec failed");
     v.bytes.resize(n);
     return v;
 }
 
 MeshoptView encodeMeshoptTriangles(const void* indices, size_t count, size_t indexSize) {
     if (count % 3 != 0 || (indexSize != 2 && indexSize != 4))
-        throw Error("meshopt: triangle indices need a multiple of 3 indices of 2 or 4 bytes");
+        throw Error("glTF meshopt compression: triangle indices need a multiple of 3 indices of 2 or 4 bytes");
     MeshoptView v;
     v.count = count;
     v.stride = indexSize;
@@ -52,7 +53,7 @@ MeshoptView encodeMeshoptTriangles(const void* indices, size_t count, size_t ind
     };
     const size_t n =
         indexSize == 2 ? encode(static_cast<const uint16_t*>(indices)) : encode(static_cast<const uint32_t*>(indices));
-    if (n == 0) throw Error("meshopt: the index codec failed");
+    if (n == 0) throw Error("glTF meshopt compression: the index codec failed");
     v.bytes.resize(n);
     return v;
 }

@@ -81,7 +81,7 @@ Animator::Animator(const Scene& rest, const AnimatorOptions& options)
         pieces_.insert(pieces_.end(), layout.pieces.begin(), layout.pieces.end());
         pieceOffsets_.push_back(static_cast<uint32_t>(pieces_.size()));
         if (centreOffsets_.back() + m > UINT32_MAX)
-            throw Error("Animator: more than 2^32-1 resampled centreline points; increase the ply pitch");
+            throw Error("more than 2^32-1 resampled yarn points; raise --ply-pitch");
         centreOffsets_.push_back(static_cast<uint32_t>(centreOffsets_.back() + m));
         yarnOfCentre_.insert(yarnOfCentre_.end(), m, static_cast<uint32_t>(y));
         if (m < 2) {
@@ -132,10 +132,11 @@ Animator::Animator(const Scene& rest, const AnimatorOptions& options)
 void Animator::evaluate(const std::vector<dvec3>& positions, AnimationFrame& out, AnimationStageTimes* times) const {
     const BaseMesh& mesh = rest_.mesh();
     if (positions.size() != mesh.positions.size())
-        throw Error("Animator: the frame has " + std::to_string(positions.size()) + " vertices but the rest mesh " +
+        throw Error("the animation frame has " + std::to_string(positions.size()) + " vertices but the rest mesh " +
                     std::to_string(mesh.positions.size()));
     for (size_t i = 0; i < positions.size(); ++i)
-        if (!util::finite(positions[i])) throw Error("Animator: vertex " + std::to_string(i) + " is not finite");
+        if (!util::finite(positions[i]))
+            throw Error("the animation frame's vertex " + std::to_string(i) + " is not finite");
     AnimationStageTimes t;
 
     // Step 1: the frame's vertex normals.

@@ -33,14 +33,16 @@ void validateBindInput(const BaseMesh& mesh, const std::vector<glm::dvec3>& norm
         throw Error(
             "--clamp-tolerance and --weld-tolerance must be finite and >= 0, and the yarn radius (the pattern's radius "
             "times its placement scale) positive");
-    if (normals.size() != mesh.positions.size()) throw Error("binding: normals do not match the mesh's vertices");
+    if (normals.size() != mesh.positions.size())
+        throw Error("binding the yarns: " + std::to_string(normals.size()) + " vertex normals for " +
+                    std::to_string(mesh.positions.size()) + " mesh vertices");
     if (!util::validOffsets(yarns.offsets, yarns.yarnCount(), yarns.vertexCount()) ||
         yarns.height.size() != yarns.vertexCount() || yarns.twist.size() != yarns.vertexCount() ||
         (!yarns.colour.empty() && yarns.colour.size() != yarns.vertexCount()) ||
         (!yarns.ghosts.empty() && yarns.ghosts.size() != yarns.yarnCount()) ||
         (!yarns.chart.empty() && yarns.chart.size() != yarns.yarnCount()))
-        throw Error("binding: inconsistent UvYarns (offsets, heights, twists, colours, ghosts or charts do not match "
-                    "the vertices)");
+        throw Error(
+            "binding the yarns: their offsets, heights, twists, colours, ghosts or charts do not match their vertices");
 }
 
 // Every search radius is bounded by one pattern period (a grid cell): a clamp or weld tolerance

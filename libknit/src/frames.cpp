@@ -201,15 +201,15 @@ Frames rotationMinimizingFrames(const Polylines& curves, const std::vector<glm::
                                 const FrameOptions& options) {
     // Validate first: the per-curve loops do not throw.
     if (!util::validOffsets(curves.offsets, curves.curveCount(), curves.pointCount()))
-        throw Error("rotationMinimizingFrames: inconsistent Polylines (offsets do not match points/closed)");
+        throw Error("ply frames: the curve offsets do not match the curve points");
     if (seedNormals && seedNormals->size() != curves.pointCount())
-        throw Error("rotationMinimizingFrames: seedNormals has " + std::to_string(seedNormals->size()) +
-                    " entries but there are " + std::to_string(curves.pointCount()) + " points");
+        throw Error("ply frames: " + std::to_string(seedNormals->size()) + " surface normals for " +
+                    std::to_string(curves.pointCount()) + " curve points");
     for (size_t c = 0; c < curves.curveCount(); ++c)
         for (uint32_t i = curves.begin(c); i < curves.end(c); ++i)
             if (!util::finite(curves.points[i]))
-                throw Error("rotationMinimizingFrames: curve " + std::to_string(c) + " point " +
-                            std::to_string(i - curves.begin(c)) + " is not finite");
+                throw Error("ply frames: curve " + std::to_string(c) + " point " + std::to_string(i - curves.begin(c)) +
+                            " is not finite");
 
     Frames frames;
     frames.tangent.resize(curves.pointCount());

@@ -10,6 +10,8 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
+#include <sstream>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -18,6 +20,13 @@ namespace knit::gltf {
 namespace {
 
 namespace fs = std::filesystem;
+
+// A number as a message shows it ("1e+39").
+std::string numberText(double v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+}
 using nlohmann::json;
 
 constexpr uint32_t kJsonChunk = 0x4E4F534A, kBinChunk = 0x004E4942;
@@ -224,6 +233,9 @@ std::vector<double> Document::numbers(const json& obj, const char* key, size_t n
         if (!x.is_number()) fail(where + "." + key + " must be an array of " + std::to_string(n) + " numbers");
         out.push_back(x.get<double>());
         if (!std::isfinite(out.back())) fail(where + "." + key + " is not finite");
+        if (std::abs(out.back()) > double(std::numeric_limits<float>::max()))
+            fail(where + "." + key + " holds " + numberText(out.back()) +
+                 ", beyond the float32 range (3.4e38) of glTF numbers");
     }
     return out;
 }
@@ -376,6 +388,7 @@ void Document::visitTree(size_t root, std::vector<char>& reached,
         reached[i] = 1;
         const std::string where = "nodes[" + std::to_string(i) + "]";
         const glm::dmat4 world = parent * localTransform(i);
+        requireFloatWorld(world, i);
         if (const auto mesh = index(n, "mesh", where)) visit(MeshInstance{*mesh, i, world});
         const json& children = member(n, "children", json::value_t::array, where);
         for (auto it = children.rbegin(); it != children.rend(); ++it)
@@ -383,9 +396,26 @@ void Document::visitTree(size_t root, std::vector<char>& reached,
     }
 }
 
+// The node's transform composed with its parents' must stay a float32 matrix (what a glTF viewer
+// computes): a product of large scales (1e20 x 1e20) or translations overflows it.
+void Document::requireFloatWorld(const glm::dmat4& world, size_t i) const {
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+            if (!(std::abs(world[c][r]) <= double(std::numeric_limits<float>::max())))
+                fail(nodeName(i) + ": its transform times its parents' reaches " + numberText(world[c][r]) +
+                     ", beyond the float32 range (3.4e38) of glTF; lower the scale or translation of this node or "
+                     "its parents");
+}
+
+std::string Document::nodeName(size_t i) const {
+    const json& n = element("nodes", i, "the scene");
+    const std::string name = n.contains("name") && n["name"].is_string() ? n["name"].get<std::string>() : "";
+    return "nodes[" + std::to_string(i) + "]" + (name.empty() ? "" : " ('" + name + "')");
+}
+
 glm::dmat4 Document::localTransform(size_t i) const {
     const json& n = element("nodes", i, "the scene");
-    const std::string where = "nodes[" + std::to_string(i) + "]";
+    const std::string where = nodeName(i);
     glm::dmat4 m(1.0);
     if (const std::vector<double> v = numbers(n, "matrix", 16, where); !v.empty()) {
         for (int c = 0; c < 4; ++c)

@@ -107,7 +107,7 @@ public:
     std::optional<size_t> index(const nlohmann::json& obj, const char* key, const std::string& where) const;
     // The object root()[array][i]; `what` names its use in the message when it does not exist.
     const nlohmann::json& element(const char* array, size_t i, const std::string& what) const;
-    // obj[key] as exactly n finite numbers (empty when absent).
+    // obj[key] as exactly n finite numbers within the float32 range (empty when absent).
     std::vector<double> numbers(const nlohmann::json& obj, const char* key, size_t n, const std::string& where) const;
     // The names listed in extensionsUsed / extensionsRequired.
     std::vector<std::string> extensionsUsed() const;
@@ -124,6 +124,8 @@ public:
     void forEachMeshInstance(const std::function<void(const MeshInstance&)>& visit) const;
     std::vector<MeshInstance> meshInstances() const;
     glm::dmat4 localTransform(size_t node) const;
+    void requireFloatWorld(const glm::dmat4& world, size_t node) const;
+    std::string nodeName(size_t node) const;  // "nodes[3] ('sleeve')" for messages
     // The primitives of mesh `mesh`, in order.
     void forEachPrimitive(size_t mesh, const std::function<void(const Primitive&)>& visit) const;
     std::vector<Primitive> primitives(size_t mesh) const;

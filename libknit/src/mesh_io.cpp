@@ -34,7 +34,9 @@
 //    on garbage, so the text is checked line by line first (see scanOff) and OpenMesh parses a
 //    cleaned copy from a string stream. Binary OFF is rejected.
 //  * OpenMesh keeps texture coordinates as float32 for every format.
-//  * Faces are fan-triangulated (v0, vi, vi+1). Positions that are exactly equal (-0 == +0) are
+//  * Faces are triangulated inside their outline (polygon_triangulation.hpp: convex ones as the
+//    fan (v0, vi, vi+1), concave ones by a constrained Delaunay triangulation in their best-fit
+//    plane; a polygon without area or crossing itself is refused naming it). Positions that are exactly equal (-0 == +0) are
 //    welded when MeshLoadOptions::weldEqualPositions is set, so PLY/OFF files that duplicate
 //    vertices along UV seams get the same 3D topology as the OBJ. Vertices no face references
 //    are dropped. A UV vertex is one distinct (position, uv) pair, numbered in first-use order.
@@ -590,7 +592,7 @@ std::string countText(double count) {
 // face per line ("k i1 .. ik [colour]", 0 <= i < vertices). OpenMesh parses a cleaned copy
 // (comments and blank lines removed, keyword on its own line). Binary OFF is rejected: it
 // cannot be checked this way and OpenMesh trusts its counts.
-void scanOff(const std::string& path, std::string& cleaned) {
+void scanOff(const std::string& path, std::string& cleaned, std::vector<size_t>& faceLines) {
     std::ifstream in(path, std::ios::binary);
     if (!in) fail(path, "cannot open for reading");
     std::string line, keyword, tok;
@@ -637,6 +639,7 @@ void scanOff(const std::string& path, std::string& cleaned) {
             // on: OpenMesh misreads float colours as more corners. libknit does not use colours.
             std::ostringstream face;
             for (size_t i = 0; i <= size_t(k); ++i) face << (i ? " " : "") << uint64_t(values[i]);
+            faceLines.push_back(lineNo);
             ++dataLine;
             out << face.str() << "\n";
             return;
@@ -670,7 +673,7 @@ bool customVertexScalar(OpenMesh::ArrayKernel& k, const std::string& name, size_
     return false;
 }
 
-// Fan-triangulated, welded BaseMesh from what the reader recorded.
+// Triangulated, welded BaseMesh from what the reader recorded.
 BaseMesh buildMesh(const std::string& path, const RecordingImporter& rec, const std::vector<glm::dvec3>& points,
                    const std::vector<glm::dvec2>& vertexUv, bool cornerUvs, const std::vector<size_t>* faceLines,
                    const MeshLoadOptions& options) {
@@ -706,13 +709,13 @@ BaseMesh buildMesh(const std::string& path, const RecordingImporter& rec, const 
         if (cornerUvs && (rec.faceCornerUvMismatch[f] || !rec.faceHasCornerUv[f]))
             fail(path, faceName(f) + ": texture coordinates missing or not one per corner");
     }
-    // Weld and fan-triangulate.
+    // Weld and triangulate (a polygon that cannot be is named with its line).
     return detail::weldPolygons(
         path, points, rec.faceStart, rec.faceVerts,
         [&](uint32_t c) {
             return cornerUvs ? glm::dvec2(rec.cornerUv[c][0], rec.cornerUv[c][1]) : vertexUv[size_t(rec.faceVerts[c])];
         },
-        options);
+        options, faceName);
 }
 
 std::mutex& openMeshReaderMutex() {
@@ -742,9 +745,10 @@ BaseMesh loadMesh(const std::string& path, const MeshLoadOptions& options) {
     ObjScan obj;
     PlyHeader ply;
     std::string offText;
+    std::vector<size_t> offFaceLines;
     if (ext == "obj") obj = scanObj(path);
     else if (ext == "ply") ply = scanPly(path);
-    else scanOff(path, offText);
+    else scanOff(path, offText, offFaceLines);
 
     // Parse with OpenMesh into the recording importer.
     RecordingImporter rec;
@@ -798,7 +802,9 @@ BaseMesh loadMesh(const std::string& path, const MeshLoadOptions& options) {
     } else {
         fail(path, "no texture coordinates (an STOFF header with x y z u v per vertex); libknit needs UVs");
     }
-    BaseMesh mesh = buildMesh(path, rec, points, vertexUv, cornerUvs, ext == "obj" ? &obj.faceLines : nullptr, options);
+    const std::vector<size_t>* faceLines = ext == "obj" ? &obj.faceLines : ext == "off" ? &offFaceLines : nullptr;
+    if (faceLines && faceLines->size() != rec.n_faces()) faceLines = nullptr;
+    BaseMesh mesh = buildMesh(path, rec, points, vertexUv, cornerUvs, faceLines, options);
     validateMesh(mesh);
     return mesh;
 }

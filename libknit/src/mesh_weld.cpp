@@ -1,5 +1,7 @@
 // mesh_weld.cpp — polygons with per-corner UVs to a welded BaseMesh (see mesh_weld.hpp).
 #include "mesh_weld.hpp"
+#include "knit/error.hpp"
+#include "polygon_triangulation.hpp"
 
 #include <array>
 #include <unordered_map>
@@ -21,7 +23,8 @@ using Key3Map = std::unordered_map<std::array<double, 3>, uint32_t, Key3Hash>;
 
 BaseMesh weldPolygons(const std::string& name, const std::vector<glm::dvec3>& points,
                       const std::vector<uint32_t>& faceStart, const std::vector<int>& faceVerts,
-                      const std::function<glm::dvec2(uint32_t corner)>& uvOfCorner, const MeshLoadOptions& options) {
+                      const std::function<glm::dvec2(uint32_t corner)>& uvOfCorner, const MeshLoadOptions& options,
+                      const std::function<std::string(size_t face)>& faceName) {
     const size_t nv = points.size(), nf = faceStart.size() - 1;
     // Step 1: weld (or just compact) the referenced positions, in input order.
     std::vector<char> used(nv, 0);
@@ -42,7 +45,7 @@ BaseMesh weldPolygons(const std::string& name, const std::vector<glm::dvec3>& po
             mesh.positions.push_back(p);
         }
     }
-    // Step 2: UV vertices, one per distinct (welded position, uv), in first-use order; fan-triangulate.
+    // Step 2: UV vertices, one per distinct (welded position, uv), in first-use order; triangulate.
     Key3Map uvIndex;
     auto uvOf = [&](uint32_t pos, glm::dvec2 uv) {
         uv += glm::dvec2(0.0);
@@ -52,6 +55,7 @@ BaseMesh weldPolygons(const std::string& name, const std::vector<glm::dvec3>& po
         return it->second;
     };
     std::vector<uint32_t> P, U;
+    std::vector<glm::dvec3> corners;
     for (size_t f = 0; f < nf; ++f) {
         const uint32_t b = faceStart[f], e = faceStart[f + 1];
         P.resize(e - b);
@@ -61,9 +65,15 @@ BaseMesh weldPolygons(const std::string& name, const std::vector<glm::dvec3>& po
             P[c - b] = v;
             U[c - b] = uvOf(v, uvOfCorner(c));
         }
-        for (uint32_t k = 1; k + 1 < e - b; ++k) {
-            mesh.faces.emplace_back(P[0], P[k], P[k + 1]);
-            mesh.faceUvs.emplace_back(U[0], U[k], U[k + 1]);
+        corners.resize(P.size());
+        for (size_t k = 0; k < P.size(); ++k) corners[k] = mesh.positions[P[k]];
+        const PolygonTriangles split = triangulatePolygon(corners);
+        if (!split.problem.empty())
+            throw Error(name + ": " + (faceName ? faceName(f) : "face " + std::to_string(f)) + " " + split.problem +
+                        "; split it into triangles or simple polygons");
+        for (const std::array<uint32_t, 3>& t : split.triangles) {
+            mesh.faces.emplace_back(P[t[0]], P[t[1]], P[t[2]]);
+            mesh.faceUvs.emplace_back(U[t[0]], U[t[1]], U[t[2]]);
         }
     }
     return mesh;

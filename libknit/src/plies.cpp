@@ -59,11 +59,11 @@ std::string num(double v) {
     return buf;
 }
 
-// Messages name the command-line option and the PlyOptions field it sets.
-void requireNonNegativeFinite(double v, const char* option, const char* name, const char* meaning) {
+// Messages name the command-line option that sets the value (API users: the PlyOptions field
+// of the same name).
+void requireNonNegativeFinite(double v, const char* option, const char* meaning) {
     if (!std::isfinite(v) || v < 0.0)
-        throw Error(std::string(option) + " (PlyOptions." + name + ") must be a finite value >= 0 (" + meaning +
-                    "), got " + num(v));
+        throw Error(std::string(option) + " must be a finite length >= 0 in metres (" + meaning + "), got " + num(v));
 }
 
 }  // namespace
@@ -71,21 +71,18 @@ void requireNonNegativeFinite(double v, const char* option, const char* name, co
 PlyOptions resolvePlyOptions(const PlyOptions& options) {
     PlyOptions o = options;
     // Validate.
-    if (o.count < 1 || o.count > 16)
-        throw Error("--plies (PlyOptions.count) must be in 1..16, got " + std::to_string(o.count));
+    if (o.count < 1 || o.count > 16) throw Error("--plies must be in 1..16, got " + std::to_string(o.count));
     if (!util::positiveFinite(o.yarnRadius))
-        throw Error("the yarn radius (the pattern's radius times its placement scale; PlyOptions.yarnRadius) must be a "
-                    "positive finite length, got " +
-                    num(o.yarnRadius));
-    requireNonNegativeFinite(o.centerRadius, "--ply-center-radius", "centerRadius",
-                             "0 = touching plies filling the yarn");
-    requireNonNegativeFinite(o.plyRadius, "--ply-radius", "plyRadius", "0 = touching plies filling the yarn");
-    requireNonNegativeFinite(o.pitch, "--ply-pitch", "pitch", "0 = 6 yarn radii");
+        throw Error("the yarn radius " + num(o.yarnRadius) +
+                    " m must be a positive finite length (it is the pattern's radius times its placement scale: "
+                    "check the pattern file's radius and --repeats)");
+    requireNonNegativeFinite(o.centerRadius, "--ply-center-radius", "0 = touching plies filling the yarn");
+    requireNonNegativeFinite(o.plyRadius, "--ply-radius", "0 = touching plies filling the yarn");
+    requireNonNegativeFinite(o.pitch, "--ply-pitch", "0 = 6 yarn radii");
     if (o.samplesPerTurn < 3 || o.samplesPerTurn > 1024)
-        throw Error("--samples-per-turn (PlyOptions.samplesPerTurn) must be in 3..1024, got " +
-                    std::to_string(o.samplesPerTurn));
+        throw Error("--samples-per-turn must be in 3..1024, got " + std::to_string(o.samplesPerTurn));
     if (o.twist != Twist::S && o.twist != Twist::Z)
-        throw Error("--twist (PlyOptions.twist) must be S or Z, got " + std::to_string(static_cast<int>(o.twist)));
+        throw Error("--twist must be S or Z, got " + std::to_string(static_cast<int>(o.twist)));
     // Fill defaults: touching plies that fill the yarn.
     const double n = static_cast<double>(o.count);
     const double sinPiN = o.count == 1 ? 0.0 : std::sin(util::kPi / n);
@@ -93,9 +90,8 @@ PlyOptions resolvePlyOptions(const PlyOptions& options) {
     if (o.plyRadius == 0.0) {
         o.plyRadius = o.count == 1 ? o.yarnRadius - o.centerRadius : o.centerRadius * sinPiN;
         if (!(o.plyRadius > 0.0))
-            throw Error("--ply-radius (PlyOptions.plyRadius): cannot derive it for one ply with --ply-center-radius " +
-                        num(o.centerRadius) + " >= the yarn radius " + num(o.yarnRadius) +
-                        "; set --ply-radius explicitly");
+            throw Error("--ply-radius: cannot derive it for one ply with --ply-center-radius " + num(o.centerRadius) +
+                        " >= the yarn radius " + num(o.yarnRadius) + "; set --ply-radius explicitly");
     }
     if (o.pitch == 0.0) o.pitch = 6.0 * o.yarnRadius;
     return o;

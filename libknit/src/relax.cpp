@@ -178,9 +178,10 @@ Problem setUp(const Pattern& p, const RelaxOptions& opt, Vec& v) {
         pb.segs[e.v0] = {e.v0, e.v1, e.dx, e.dy};
     }
     if (!(opt.restLength > 0) || !(opt.contactDistance > 0) || opt.maxIterations < 0)
-        throw Error("relax: restLength and contactDistance must be positive, maxIterations >= 0");
+        throw Error(
+            "yarn relaxation: the rest length and the contact distance must be positive and the iteration count >= 0");
     if (!(opt.relativeGradientTolerance >= 0) || !(opt.relativeEnergyTolerance >= 0) || opt.energyWindow < 0)
-        throw Error("relax: relativeGradientTolerance, relativeEnergyTolerance and energyWindow must be >= 0");
+        throw Error("yarn relaxation: the relative gradient and energy tolerances and the energy window must be >= 0");
     if (p.edges.size() != pb.n) throw Error(p.name + ": relaxation needs closed yarns (every vertex starts one edge)");
     pb.yarns = relax::indexYarns(p, pb.segs);
     for (int32_t len : pb.yarns.length)

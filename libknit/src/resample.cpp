@@ -317,19 +317,19 @@ struct CurveBuffer {
 
 void validateResampleInput(const MappedYarns& yarns, const ResampleOptions& options) {
     if (!util::positiveFinite(options.spacing))
-        throw Error("the resampling step (--ply-pitch / --samples-per-turn; ResampleOptions.spacing) must be a "
-                    "positive finite length (got " +
-                    std::to_string(options.spacing) + ")");
+        throw Error("the ply sample spacing (--ply-pitch / --samples-per-turn) must be a positive finite length, "
+                    "got " +
+                    std::to_string(options.spacing));
     const Polylines& in = yarns.curves;
     if (!util::validOffsets(in.offsets, in.curveCount(), in.pointCount()))
-        throw Error("resampleYarns: inconsistent Polylines (offsets do not match points/closed)");
+        throw Error("resampling the yarns: their curve offsets do not match their points");
     const bool withNormals = !yarns.normals.empty();
     if (withNormals && yarns.normals.size() != in.pointCount())
-        throw Error("resampleYarns: MappedYarns.normals has " + std::to_string(yarns.normals.size()) +
-                    " entries but there are " + std::to_string(in.pointCount()) + " points");
+        throw Error("resampling the yarns: " + std::to_string(yarns.normals.size()) + " normals for " +
+                    std::to_string(in.pointCount()) + " yarn points");
     if (!yarns.colour.empty() && yarns.colour.size() != in.pointCount())
-        throw Error("resampleYarns: MappedYarns.colour has " + std::to_string(yarns.colour.size()) +
-                    " entries but there are " + std::to_string(in.pointCount()) + " points");
+        throw Error("resampling the yarns: " + std::to_string(yarns.colour.size()) + " colours for " +
+                    std::to_string(in.pointCount()) + " yarn points");
 
     // First non-finite point or normal of each chunk (in parallel), then the first overall.
     const std::vector<size_t> chunkStart = curveChunks(in);
@@ -348,7 +348,7 @@ void validateResampleInput(const MappedYarns& yarns, const ResampleOptions& opti
         const size_t c =
             static_cast<size_t>(std::upper_bound(in.offsets.begin(), in.offsets.end(), i) - in.offsets.begin()) - 1;
         const bool point = !util::finite(in.points[i]);
-        throw Error("resampleYarns: curve " + std::to_string(c) + (point ? " point " : " normal ") +
+        throw Error("resampling the yarns: yarn " + std::to_string(c) + (point ? " point " : " normal ") +
                     std::to_string(i - in.begin(c)) + " is not finite");
     }
 }

@@ -147,7 +147,7 @@ UvYarns stitchYarns(const Pattern& pattern, const PatternAdjacency& adj, const T
 void appendChartYarns(UvYarns& yarns, const UvYarns& more, uint32_t chart) {
     const size_t base = yarns.vertexCount();
     if (base + more.vertexCount() > UINT32_MAX)
-        throw Error("stitch: more than 2^32-1 tiled vertices over all UV charts");
+        throw Error("more than 2^32-1 pattern vertices tiled over all UV charts; lower --repeats");
     yarns.chart.resize(yarns.yarnCount(), UINT32_MAX);  // earlier yarns without a chart: any
     yarns.ghosts.resize(yarns.yarnCount());
     yarns.uv.insert(yarns.uv.end(), more.uv.begin(), more.uv.end());

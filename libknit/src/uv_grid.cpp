@@ -15,6 +15,7 @@
 
 #include "knit/error.hpp"
 #include "util/checks.hpp"
+#include "uv_folds.hpp"
 
 namespace knit {
 namespace {
@@ -145,6 +146,15 @@ std::vector<glm::uvec2> overlappingChartPairs(const BaseMesh& mesh, const UvGrid
     return pairs;
 }
 
+// Two faces sharing the UV edge of half-edges he and hg: folded when their third corners lie on
+// the same side of the edge (exact), whatever the faces' winding.
+detail::UvEdgeLink edgeLink(const BaseMesh& mesh, uint32_t he, uint32_t hg) {
+    auto corner = [&](uint32_t h, uint32_t step) { return mesh.uvs[mesh.faceUvs[h / 3][(h % 3 + step) % 3]]; };
+    const glm::dvec2 a = corner(he, 0), b = corner(he, 1);
+    const int se = filteredOrientation(a, b, corner(he, 2)), sg = filteredOrientation(a, b, corner(hg, 2));
+    return {he / 3, hg / 3, se != 0 && se == sg};
+}
+
 }  // namespace
 
 glm::ivec2 UvGrid::cellOf(glm::dvec2 uv) const {
@@ -179,7 +189,9 @@ uint64_t uvGridEntryBound(const BaseMesh& mesh, glm::dvec2 cellSize) {
 }
 
 UvGrid buildUvGrid(const BaseMesh& mesh, const UvGridOptions& options) {
-    if (!util::positiveFinite(options.cellSize)) throw Error("UV grid: cell size must be positive and finite");
+    if (!util::positiveFinite(options.cellSize))
+        throw Error(
+            "UV grid: the pattern period in UV (from --repeats or the physical size) must be positive and finite");
     UvGrid grid;
     grid.cellSize = options.cellSize;
     const size_t nf = mesh.faces.size();
@@ -269,10 +281,12 @@ UvGrid buildUvGrid(const BaseMesh& mesh, const UvGridOptions& options) {
     std::sort(edges.begin(), edges.end());
     UnionFind charts(nf);
     std::vector<std::pair<uint64_t, uint32_t>> cellEdge;  // (linear cell, boundary half-edge)
+    std::vector<detail::UvEdgeLink> links;                // manifold UV edges, for fold detection
     for (size_t i = 0; i < edges.size();) {
         size_t j = i;
         while (j < edges.size() && edges[j].first == edges[i].first) ++j;
         for (size_t k = i + 1; k < j; ++k) charts.unite(edges[i].second / 3, edges[k].second / 3);
+        if (j - i == 2) links.push_back(edgeLink(mesh, edges[i].second, edges[i + 1].second));
         if (j - i == 1) {
             const uint32_t he = edges[i].second, f = he / 3, k = he % 3;
             const glm::uvec3 t = mesh.faceUvs[f];
@@ -301,6 +315,12 @@ UvGrid buildUvGrid(const BaseMesh& mesh, const UvGridOptions& options) {
         grid.chartOfFace[f] = id;
     }
     grid.overlappingCharts = overlappingChartPairs(mesh, grid);
+
+    // 4. Charts that fold over themselves (reported, see UvGrid::foldedUvFaces).
+    const detail::UvFolds folds =
+        detail::findUvFolds(mesh, grid.chartOfFace, grid.chartCount, grid.faceOrientation, links);
+    grid.foldedUvFaces = folds.faces;
+    grid.foldedUvFaceExample = folds.example;
     return grid;
 }
 

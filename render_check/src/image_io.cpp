@@ -79,8 +79,8 @@ void writeExr(const std::string& path, const Image& im) {
 }
 
 ImageComparison compareImages(const Image& a, const Image& b, int block, double zLimit) {
-    if (a.width != b.width || a.height != b.height) throw Error("compareImages: images differ in size");
-    if (block < 1) throw Error("compareImages: block size must be at least 1");
+    if (a.width != b.width || a.height != b.height) throw Error("comparing images: they differ in size");
+    if (block < 1) throw Error("comparing images: the block size must be at least 1");
     ImageComparison c;
     double sumAbs = 0, sum2 = 0;
     const int n = a.width * a.height;

@@ -116,7 +116,7 @@ std::vector<int64_t> segmentCells(const Scene& scene, const PlyGeometry& g) {
     if (b.vertexCount() == 0 || b.vertexCount() != yarns.curves.pointCount() || b.offsets != yarns.curves.offsets)
         throw Error("render: grid mode needs the binding of the scene's yarns (binding and mapped yarns differ)");
     if (scene.plies().yarnOfCurve.size() != scene.plies().curves.curveCount())
-        throw Error("render: grid mode needs yarnOfCurve for every ply curve");
+        throw Error("render: grid mode needs the yarn of every ply curve");
     // Step 1: UV cell of every yarn vertex from its binding.
     std::vector<int64_t> vertexCell(b.vertexCount());
     for (size_t v = 0; v < b.vertexCount(); ++v) {

@@ -13,7 +13,8 @@ namespace knit {
 
 Scene makeSyntheticPlyScene(const SyntheticSceneOptions& o) {
     if (o.courses < 1 || !(o.size > 0) || !(o.yarnRadius > 0) || o.plyCount < 1 || o.samplesPerTurn < 3)
-        throw Error("synthetic scene: invalid options");
+        throw Error(
+            "synthetic scene: courses and plies must be >= 1, the size and the yarn radius > 0, samples per turn >= 3");
     using util::kPi;
     SceneParts s;
     // Step 1: base plane [0, size]^2 with uv = (x, y) / size, two triangles.

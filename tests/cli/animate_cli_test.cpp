@@ -88,6 +88,23 @@ TEST_F(Animate, badFrameFailsNamingItAndLeavesNoPartialCache) {
     EXPECT_EQ(files(), before);  // no cache, no topology, no temporary file
 }
 
+TEST_F(Animate, buildRestRefusesOutputsThatAreTheRestMesh) {
+    writeWaveSequence(dir, 2, 8);
+    std::ifstream restIn(dir / "frame_0001.obj");
+    const std::string rest((std::istreambuf_iterator<char>(restIn)), std::istreambuf_iterator<char>());
+    fs::create_directories(dir / "sub");
+    // -o through "sub/.." and --report by another spelling: refused by file identity.
+    for (const std::string& outputs :
+         {std::string("-o sub/../frame_0001.obj"), std::string("-o b.obj --report ./frame_0001.obj")}) {
+        const CliRun r = runKnit("build -q --rest frame_0001.obj --mesh frame_0002.obj --repeats 3 3 " + outputs, dir);
+        EXPECT_EQ(r.exitCode, 1) << outputs << "\n" << r.output;
+        EXPECT_NE(r.output.find("and --rest 'frame_0001.obj' name the same file"), std::string::npos) << r.output;
+        std::ifstream after(dir / "frame_0001.obj");
+        EXPECT_EQ(std::string((std::istreambuf_iterator<char>(after)), std::istreambuf_iterator<char>()), rest);
+        EXPECT_FALSE(fs::exists(dir / "b.obj"));
+    }
+}
+
 TEST_F(Animate, sigtermMidRunLeavesNoPartialCacheAndNoTempFile) {
     writeWaveSequence(dir, 400, 16);
     const std::vector<std::string> before = files();

@@ -185,6 +185,56 @@ TEST_F(Cli, overlappingUvChartsAreReported) {
     EXPECT_TRUE(nlohmann::json::parse(pin)["mesh"]["overlapping_uv_charts"].empty());
 }
 
+// A UV chart folded over itself: its folded layer gets no yarns where it lies over the rest of
+// the chart, so the user is warned with the count and an example (stderr and report).
+TEST_F(Cli, uvChartFoldedOverItselfIsWarnedWithCountAndExample) {
+    // A strip of four 0.1 m quads whose last quad's UVs fold back over the third (u 0.75 -> 0.5).
+    write("folded.obj",
+          "v 0 0 0\nv 0.1 0 0\nv 0.2 0 0\nv 0.3 0 0\nv 0.4 0 0\n"
+          "v 0 0.1 0\nv 0.1 0.1 0\nv 0.2 0.1 0\nv 0.3 0.1 0\nv 0.4 0.1 0\n"
+          "vt 0 0\nvt 0.25 0\nvt 0.5 0\nvt 0.75 0\nvt 0.5 0\nvt 0 1\nvt 0.25 1\nvt 0.5 1\nvt 0.75 1\nvt 0.5 1\n"
+          "f 1/1 2/2 7/7 6/6\nf 2/2 3/3 8/8 7/7\nf 3/3 4/4 9/9 8/8\nf 4/4 5/5 10/10 9/9\n");
+    const CliRun r = knit("build -q --mesh folded.obj --repeats 8 2 --export yarns -o y.obj --report r.json", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("warning: folded.obj: 2 triangles fold their UV chart over itself (e.g. triangle 6 at "
+                            "uv 0.75, 0)"),
+              std::string::npos)
+        << r.output;
+    std::ifstream in(dir / "r.json");
+    const nlohmann::json j = nlohmann::json::parse(in);
+    EXPECT_EQ(j["mesh"]["folded_uv_faces"].get<int>(), 2);
+    EXPECT_EQ(j["mesh"]["folded_uv_face_example"].get<int>(), 6);
+    // An unfolded mesh: no warning, zero folded faces.
+    const CliRun p = knit("build -q --mesh plane --repeats 4 4 --export yarns -o p.obj --report p.json", dir);
+    ASSERT_EQ(p.exitCode, 0) << p.output;
+    EXPECT_EQ(p.output.find("warning:"), std::string::npos) << p.output;
+    std::ifstream pin(dir / "p.json");
+    EXPECT_EQ(nlohmann::json::parse(pin)["mesh"]["folded_uv_faces"].get<int>(), 0);
+}
+
+// Bad option values are reported by the option's name and the real cause, never by a library
+// struct field or function name.
+TEST_F(Cli, badOptionValuesAreNamedByTheirOptionNotByLibraryInternals) {
+    const std::string base = "build -q --mesh plane --repeats 2 2 -o out.obj ";
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {"--ply-pitch -1",
+         "knit: error: --ply-pitch must be a finite length >= 0 in metres (0 = 6 yarn radii), got -1"},
+        {"--ply-center-radius -0.5",
+         "knit: error: --ply-center-radius must be a finite length >= 0 in metres (0 = touching plies filling the "
+         "yarn), got -0.5"},
+        {"--samples-per-turn 2", "knit: error: --samples-per-turn must be in 3..1024, got 2"},
+        {"--plies 1 --ply-center-radius 1", "knit: error: --ply-radius: cannot derive it for one ply"},
+    };
+    for (const auto& [flags, expected] : cases) {
+        const CliRun r = knit(base + flags, dir);
+        EXPECT_EQ(r.exitCode, 1) << flags;
+        EXPECT_NE(r.output.find(expected), std::string::npos) << flags << "\n" << r.output;
+        for (const char* internal : {"PlyOptions", "ResampleOptions", "resampleYarns", "rotationMinimizingFrames"})
+            EXPECT_EQ(r.output.find(internal), std::string::npos) << flags << "\n" << r.output;
+        EXPECT_FALSE(fs::exists(dir / "out.obj")) << flags;
+    }
+}
+
 TEST_F(Cli, infoPrintsPatternFacts) {
     const CliRun r = knit("info " + shared("stockinette.pyp"), dir);
     ASSERT_EQ(r.exitCode, 0) << r.output;

@@ -134,7 +134,7 @@ TEST(Animator, frameWithAnotherVertexCountOrNaNIsRefused) {
     EXPECT_NE(test::errorOf([&] { animator.evaluate(p, f); }).find("vertices but the rest mesh"), std::string::npos);
     p = s.mesh().positions;
     p[5].y = std::nan("");
-    EXPECT_EQ(test::errorOf([&] { animator.evaluate(p, f); }), "Animator: vertex 5 is not finite");
+    EXPECT_EQ(test::errorOf([&] { animator.evaluate(p, f); }), "the animation frame's vertex 5 is not finite");
 }
 
 // The first tangent turns in the xz plane through the surface normal z (phi = 90 degrees): the

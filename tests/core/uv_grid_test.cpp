@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "fixtures.hpp"
+#include "test_util.hpp"
 #include "knit/error.hpp"
 #include "knit/uv_grid.hpp"
 
@@ -234,6 +235,72 @@ TEST(UvGrid, entryBoundSkipsZeroAreaTriangles) {
     m.faces.push_back({0, 1, 2});
     m.faceUvs.push_back({base, base + 1, base + 2});
     EXPECT_EQ(uvGridEntryBound(m, glm::dvec2(0.25)), before);
+}
+
+}  // namespace
+}  // namespace knit
+
+namespace knit {
+namespace {
+
+// The 8 x 8 plane with its UVs folded back at u = 0.75: the last two columns are mirrored onto
+// the two before them (u -> 1.5 - u), so the chart covers [0.5, 0.75] twice.
+BaseMesh planeFoldedAtThreeQuarters() {
+    BaseMesh m = test::planeMesh(test::Triangulation::Regular, 8);
+    for (glm::dvec2& uv : m.uvs)
+        if (uv.x > 0.75) uv.x = 1.5 - uv.x;
+    return m;
+}
+
+TEST(UvGrid, chartFoldedOverItselfReportsItsSmallerSide) {
+    const UvGrid g = gridFor(planeFoldedAtThreeQuarters(), 0.1);
+    EXPECT_EQ(g.chartCount, 1u);
+    EXPECT_EQ(g.foldedUvFaces, 2u * 8 * 2);    // two columns of 8 quads
+    EXPECT_EQ(g.foldedUvFaceExample, 2u * 6);  // quad (6, 0), the first beyond the fold
+}
+
+TEST(UvGrid, windingAndMirroringAreNoFold) {
+    // Every third face wound the other way (3D and UV alike), a whole chart mirrored, a random
+    // triangulation: the same UV region once each, so no fold.
+    BaseMesh rewound = test::planeMesh(test::Triangulation::Regular, 8);
+    for (size_t f = 0; f < rewound.faces.size(); f += 3) {
+        std::swap(rewound.faces[f].y, rewound.faces[f].z);
+        std::swap(rewound.faceUvs[f].y, rewound.faceUvs[f].z);
+    }
+    BaseMesh mirrored = test::planeMesh(test::Triangulation::Regular, 8);
+    for (glm::dvec2& uv : mirrored.uvs) uv.x = 1 - uv.x;
+    for (const BaseMesh& m : {rewound, mirrored, test::planeMesh(test::Triangulation::Random, 8)}) {
+        const UvGrid g = gridFor(m, 0.1);
+        EXPECT_EQ(g.foldedUvFaces, 0u);
+        EXPECT_EQ(g.foldedUvFaceExample, UINT32_MAX);
+    }
+}
+
+}  // namespace
+}  // namespace knit
+
+namespace knit {
+namespace {
+
+// Thousands of copies of a triangle spanning the whole UV range (a 40 KB OFF file): each touches
+// ~30000 cells, so the triangle-cell lists would need gigabytes. Refused before allocating.
+TEST(UvGrid, manyTrianglesSpanningTheWholeUvRangeAreRefusedBeforeAllocating) {
+    BaseMesh m;
+    m.name = "big-triangles.off";
+    m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    m.uvs = {{0, 0}, {31.9, 0}, {0, 31.9}};  // 256 x 256 cells of 1/8
+    m.faces.assign(5000, glm::uvec3(0, 1, 2));
+    m.faceUvs = m.faces;
+    UvGridOptions o;
+    o.cellSize = glm::dvec2(1.0 / 8);
+    o.maxCells = 1 << 16;
+    const std::string e = test::errorOf([&] { buildUvGrid(m, o); });
+    EXPECT_NE(e.find("big-triangles.off: its UV triangles would be listed in up to 327680000 pattern cells"),
+              std::string::npos)
+        << e;
+    m.faces.resize(10);  // ten of them fit
+    m.faceUvs = m.faces;
+    EXPECT_GT(buildUvGrid(m, o).cells.size(), 30000u);
 }
 
 }  // namespace

@@ -136,9 +136,10 @@ TEST(ExportErrors, materialExtrasThatAreNotAJsonObjectAreRefused) {
     const std::string dir = test::scratchDir("err_extras");
     ExportOptions o;
     o.path = dir + "/x.glb";
-    EXPECT_EQ(errorOf(test::mixedCurves(), o, 0.001, "[1, 2]"), "export: materialExtrasJson must be a JSON object");
+    EXPECT_EQ(errorOf(test::mixedCurves(), o, 0.001, "[1, 2]"),
+              "export: the glTF material extras must be a JSON object");
     const std::string e = errorOf(test::mixedCurves(), o, 0.001, "{\"generator\": ");
-    EXPECT_TRUE(contains(e, "export: materialExtrasJson is not valid JSON: ")) << e;
+    EXPECT_TRUE(contains(e, "export: the glTF material extras are not valid JSON: ")) << e;
     EXPECT_TRUE(test::listDir(dir).empty());
 }
 
@@ -260,7 +261,7 @@ TEST(ExportScene, pliesOfASceneBuiltWithoutPliesAreGeneratedWhileWriting) {
         exportScene(broken, o);
         FAIL() << "expected knit::Error";
     } catch (const Error& e) {
-        EXPECT_TRUE(contains(e.what(), "samplesPerTurn")) << e.what();
+        EXPECT_TRUE(contains(e.what(), "--samples-per-turn")) << e.what();
     }
     EXPECT_FALSE(std::filesystem::exists(o.path));
     o.what = ExportWhat::Tubes;  // auto: the yarns of a scene without plies

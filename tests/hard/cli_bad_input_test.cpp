@@ -225,10 +225,10 @@ TEST_F(CliBadInput, coordinatesBeyondFloatRangeAndByteOrderMarksAreNamed) {
 
 TEST_F(CliBadInput, optionErrorsNameTheOptionNotTheInternalField) {
     expectFailure(kSmall + std::string("--ply-pitch -1 -o out.obj"),
-                  "--ply-pitch (PlyOptions.pitch) must be a finite value >= 0");
-    expectFailure(kSmall + std::string("--ply-radius -1 -o out.obj"), "--ply-radius (PlyOptions.plyRadius)");
+                  "--ply-pitch must be a finite length >= 0 in metres (0 = 6 yarn radii), got -1");
+    expectFailure(kSmall + std::string("--ply-radius -1 -o out.obj"), "--ply-radius must be a finite length >= 0");
     expectFailure(kSmall + std::string("--samples-per-turn 2 -o out.obj"),
-                  "--samples-per-turn (PlyOptions.samplesPerTurn) must be in 3..1024");
+                  "--samples-per-turn must be in 3..1024, got 2");
     expectFailure(kSmall + std::string("--clamp-tolerance -1 -o out.obj"),
                   "--clamp-tolerance and --weld-tolerance must be finite and >= 0");
     const CliRun r = knit(kSmall + std::string("--ply-pitch -1 -o out.obj"), dir);

@@ -299,6 +299,17 @@ TEST(GltfMesh, badFilesAreRefusedWithAReason) {
                  g.accessor(std::vector<float>{0, 0, 0, 1, 0, 0, 1, std::nanf(""), 0, 0, 1, 0}, 5126, "VEC3", 4);
          },
          "non-finite position"},
+        {"nodeTranslationBeyondFloat32",
+         [](GltfBuilder& g) {
+             g.doc["nodes"] = json::array({{{"mesh", 0}, {"name", "arm"}, {"translation", {1e39, 0, 0}}}});
+         },
+         "nodes[0] ('arm').translation holds 1e+39, beyond the float32 range (3.4e38)"},
+        {"nodeScalesWhoseProductPassesFloat32",
+         [](GltfBuilder& g) {
+             g.doc["nodes"] = json::array({{{"scale", {1e20, 1e20, 1e20}}, {"children", {1}}},
+                                           {{"mesh", 0}, {"name", "hand"}, {"scale", {1e20, 1e20, 1e20}}}});
+         },
+         "nodes[1] ('hand'): its transform times its parents' reaches 1e+40"},
     };
     for (const Bad& c : cases)
         for (const bool binary : {false, true}) {

@@ -375,3 +375,81 @@ TEST(MeshIo, unknownExtensionIsRejected) {
     const std::string p = dir.write("mesh.stl", "solid x\nendsolid x\n");
     EXPECT_NE(errorOf([&] { knit::loadMesh(p); }).find("unknown mesh file extension '.stl'"), std::string::npos);
 }
+
+namespace {
+
+// The L-shaped hexagon [0,2]x[0,1] U [0,1]x[0,2] (area 3), listed from the corner after the
+// reflex one: its fan from the first corner covers the notch (1,2]x(1,2].
+const double kLShape[6][2] = {{1, 2}, {0, 2}, {0, 0}, {2, 0}, {2, 1}, {1, 1}};
+
+bool insideLShape(glm::dvec2 p) {
+    const double e = 1e-12;
+    const bool lower = p.x >= -e && p.x <= 2 + e && p.y >= -e && p.y <= 1 + e;
+    const bool left = p.x >= -e && p.x <= 1 + e && p.y >= -e && p.y <= 2 + e;
+    return lower || left;
+}
+
+// Signed area (counter-clockwise positive, seen from +z) of every triangle; fails the test if a
+// sample point of one lies outside the L.
+std::vector<double> lShapeTriangleAreas(const BaseMesh& m) {
+    std::vector<double> areas;
+    for (const glm::uvec3& f : m.faces) {
+        const glm::dvec2 a(m.positions[f.x]), b(m.positions[f.y]), c(m.positions[f.z]);
+        areas.push_back(0.5 * ((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x)));
+        for (int i = 0; i <= 8; ++i)
+            for (int j = 0; i + j <= 8; ++j) {
+                const glm::dvec2 p = a + (b - a) * (i / 8.0) + (c - a) * (j / 8.0);
+                EXPECT_TRUE(insideLShape(p)) << "triangle sample (" << p.x << ", " << p.y << ") outside the L";
+            }
+    }
+    return areas;
+}
+
+std::string lShapeObj() {
+    std::ostringstream s;
+    for (const auto& c : kLShape) s << "v " << c[0] << " " << c[1] << " 0\n";
+    for (const auto& c : kLShape) s << "vt " << c[0] / 2 << " " << c[1] / 2 << "\n";
+    s << "f 1/1 2/2 3/3 4/4 5/5 6/6\n";
+    return s.str();
+}
+
+}  // namespace
+
+TEST(MeshIo, concaveLShapedHexagonIsTriangulatedInsideItsOutline) {
+    TempDir dir;
+    for (const std::string& name : {std::string("l.obj"), std::string("l.off")}) {
+        std::string text = lShapeObj();
+        if (name == "l.off") {
+            std::ostringstream s;
+            s << "STOFF\n6 1 0\n";
+            for (const auto& c : kLShape) s << c[0] << " " << c[1] << " 0 " << c[0] / 2 << " " << c[1] / 2 << "\n";
+            s << "6 0 1 2 3 4 5\n";
+            text = s.str();
+        }
+        const BaseMesh m = knit::loadMesh(dir.write(name, text));
+        ASSERT_EQ(m.faces.size(), 4u) << name;
+        const std::vector<double> areas = lShapeTriangleAreas(m);
+        double total = 0;
+        for (double a : areas) {
+            EXPECT_GT(a, 0) << name << ": a triangle is wound against the polygon";
+            total += a;
+        }
+        EXPECT_NEAR(total, 3.0, 1e-12) << name;
+        // Each corner keeps its own UV (uv = position / 2).
+        for (size_t f = 0; f < m.faces.size(); ++f)
+            for (int k = 0; k < 3; ++k) EXPECT_EQ(m.uvs[m.faceUvs[f][k]], glm::dvec2(m.positions[m.faces[f][k]]) / 2.0);
+    }
+}
+
+TEST(MeshIo, selfCrossingAndAreaLessPolygonsAreRefusedNamingFaceAndLine) {
+    TempDir dir;
+    const std::string head = "v 0 0 0\nv 3 0 0\nv 3 2 0\nv 1 -1 0\nv 0 2 0\nvt 0 0\nvt 1 0\nvt 1 1\n";
+    // Edge (3,2)-(1,-1) crosses edge (0,0)-(3,0).
+    const std::string crossing =
+        errorOf([&] { knit::loadMesh(dir.write("cross.obj", head + "f 1/1 2/2 3/3\nf 1/1 2/2 3/3 4/1 5/3\n")); });
+    EXPECT_NE(crossing.find("cross.obj: face 1 (line 10) crosses or touches itself"), std::string::npos) << crossing;
+    const std::string flat = errorOf([&] {
+        knit::loadMesh(dir.write("flat.off", "STOFF\n4 1 0\n0 0 0 0 0\n1 0 0 0 0\n2 0 0 0 0\n3 0 0 0 0\n4 0 1 2 3\n"));
+    });
+    EXPECT_NE(flat.find("flat.off: face 0 (line 7) has no area"), std::string::npos) << flat;
+}

@@ -258,23 +258,23 @@ TEST(Plies, sAndZTwistHaveOppositeHandedness) {
 
 TEST(Plies, invalidPlyOptionsRejected) {
     const std::vector<std::pair<std::function<void(PlyOptions&)>, std::string>> cases{
-        {[](PlyOptions& o) { o.count = 0; }, "count"},
-        {[](PlyOptions& o) { o.count = 17; }, "count"},
-        {[](PlyOptions& o) { o.yarnRadius = 0.0; }, "yarnRadius"},
-        {[](PlyOptions& o) { o.yarnRadius = -0.001; }, "yarnRadius"},
-        {[](PlyOptions& o) { o.yarnRadius = std::numeric_limits<double>::quiet_NaN(); }, "yarnRadius"},
-        {[](PlyOptions& o) { o.centerRadius = -0.001; }, "centerRadius"},
-        {[](PlyOptions& o) { o.plyRadius = std::numeric_limits<double>::infinity(); }, "plyRadius"},
-        {[](PlyOptions& o) { o.pitch = -0.01; }, "pitch"},
-        {[](PlyOptions& o) { o.pitch = std::numeric_limits<double>::quiet_NaN(); }, "pitch"},
-        {[](PlyOptions& o) { o.samplesPerTurn = 2; }, "samplesPerTurn"},
-        {[](PlyOptions& o) { o.samplesPerTurn = 1025; }, "samplesPerTurn"},
-        {[](PlyOptions& o) { o.twist = static_cast<Twist>(7); }, "twist"},
+        {[](PlyOptions& o) { o.count = 0; }, "--plies"},
+        {[](PlyOptions& o) { o.count = 17; }, "--plies"},
+        {[](PlyOptions& o) { o.yarnRadius = 0.0; }, "the yarn radius"},
+        {[](PlyOptions& o) { o.yarnRadius = -0.001; }, "the yarn radius"},
+        {[](PlyOptions& o) { o.yarnRadius = std::numeric_limits<double>::quiet_NaN(); }, "the yarn radius"},
+        {[](PlyOptions& o) { o.centerRadius = -0.001; }, "--ply-center-radius"},
+        {[](PlyOptions& o) { o.plyRadius = std::numeric_limits<double>::infinity(); }, "--ply-radius"},
+        {[](PlyOptions& o) { o.pitch = -0.01; }, "--ply-pitch"},
+        {[](PlyOptions& o) { o.pitch = std::numeric_limits<double>::quiet_NaN(); }, "--ply-pitch"},
+        {[](PlyOptions& o) { o.samplesPerTurn = 2; }, "--samples-per-turn"},
+        {[](PlyOptions& o) { o.samplesPerTurn = 1025; }, "--samples-per-turn"},
+        {[](PlyOptions& o) { o.twist = static_cast<Twist>(7); }, "--twist"},
         {[](PlyOptions& o) {
              o.count = 1;
              o.centerRadius = 0.002;
          },
-         "plyRadius"},
+         "--ply-radius"},
     };
     MappedYarns y;
     addYarn(y, {dvec3(0, 0, 0), dvec3(0.01, 0, 0)}, false);
@@ -287,7 +287,7 @@ TEST(Plies, invalidPlyOptionsRejected) {
                 else knit::makePlies(y, o);
                 ADD_FAILURE() << "accepted bad option " << name;
             } catch (const knit::Error& e) {
-                EXPECT_NE(std::string(e.what()).find("PlyOptions." + name), std::string::npos) << e.what();
+                EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
             }
         }
     }
@@ -485,7 +485,7 @@ TEST(Plies, generatorRejectsBadYarnsBeforeGenerating) {
         knit::PlyGenerator gen(y, o);
         FAIL() << "expected knit::Error";
     } catch (const knit::Error& e) {
-        EXPECT_NE(std::string(e.what()).find("curve 0 point 5"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("yarn 0 point 5"), std::string::npos) << e.what();
     }
     o.samplesPerTurn = 2;
     EXPECT_THROW(knit::PlyGenerator(MappedYarns{}, o), knit::Error);

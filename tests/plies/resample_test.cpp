@@ -205,7 +205,7 @@ TEST(Resample, invalidResampleInputRejected) {
         knit::resampleYarns(bad, o);
         FAIL() << "non-finite point accepted";
     } catch (const knit::Error& e) {
-        EXPECT_NE(std::string(e.what()).find("curve 0 point 1"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("yarn 0 point 1"), std::string::npos) << e.what();
     }
     MappedYarns wrongNormals = y;
     wrongNormals.normals.pop_back();

@@ -42,6 +42,13 @@ struct UvGrid {
     std::vector<glm::uvec2> overlappingCharts;
     std::vector<int8_t> faceOrientation;  // +1 counter-clockwise, -1 mirrored, 0 zero-area UV
     size_t degenerateUvFaces = 0;         // zero-area UV triangles (never own a point)
+    // Triangles on the folded-over side of a chart that folds over itself in UV: across a fold
+    // edge both triangles lie on the same side of it, so the chart covers that UV region twice
+    // and a point there is bound to whichever layer holds the lowest triangle (the other layer
+    // gets no yarns there). The side of the chart with the smaller UV area counts as folded.
+    // Independent of 3D winding (a face wound the other way is no fold). Reported, not refused.
+    size_t foldedUvFaces = 0;
+    uint32_t foldedUvFaceExample = UINT32_MAX;  // lowest folded triangle, UINT32_MAX when none
 
     glm::ivec2 cellOf(glm::dvec2 uv) const;
     // -1 when the cell is empty or outside the bounding box.
