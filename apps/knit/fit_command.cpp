@@ -64,8 +64,8 @@ void addFitCommand(CLI::App& app, FitCommand& f) {
     addSceneFlags(*f.command, f.scene);
     addRenderFlags(*f.command, f.fit.render);
     // The photographs fix the image size and both lights are rendered: those render flags go.
-    for (const char* flag : {"--light", "--width", "--height", "--output", "--exr"})
-        f.command->remove_option(f.command->get_option(flag));
+    // (--width / --height are view flags, which fit does not add.)
+    for (const char* flag : {"--light", "--output", "--exr"}) f.command->remove_option(f.command->get_option(flag));
     f.command->add_option("--front", f.front, "Front-lit photograph (PNG sRGB or EXR linear)")->required();
     f.command->add_option("--back", f.back, "Back-lit photograph, same size")->required();
     f.command->add_option("-o,--output", f.output, "Fitted material JSON (knit render --material reads it)")

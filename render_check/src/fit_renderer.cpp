@@ -7,7 +7,9 @@
 
 #include <glm/common.hpp>
 
+#include "knit/view.hpp"
 #include "render_image.hpp"
+#include "render_view.hpp"
 #include "scene_scale.hpp"
 #include "trace_scene.hpp"
 
@@ -34,10 +36,9 @@ FitRenderer::FitRenderer(const Scene& scene, const RenderOptions& options) : opt
         const RenderResult r = renderScene(*scene_, o);
         views_[light] = {r.camera, r.areaLight};
     }
-    // Step 3: the ply bounds centre (the geometry's origin) and the ply count (the tables').
-    glm::dvec3 lo(1e300), hi(-1e300);
-    for (const glm::dvec3& p : scene_->plies().curves.points) lo = glm::min(lo, p), hi = glm::max(hi, p);
-    centre_ = 0.5 * (lo + hi);
+    // Step 3: the geometry's origin (renderScene's: the centre of the framed mesh bounds) and the
+    // ply count (the tables').
+    centre_ = framedBounds(scene_->mesh(), detail::sceneMargin(*scene_)).centre;
     for (uint8_t p : scene_->plies().plyOfCurve) plyCount_ = std::max(plyCount_, int(p) + 1);
     device_ = std::make_unique<EmbreeDevice>();
 }

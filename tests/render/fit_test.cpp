@@ -24,10 +24,10 @@ Scene smallCloth() {
     return makeSyntheticPlyScene(o);
 }
 
-// 32 x 24, 8 spp, small fiber tables: a render takes milliseconds.
+// 32 x 24, 16 spp, small fiber tables: a render takes milliseconds.
 RenderOptions tinyRender(const PlyMaterial& m, uint64_t seed) {
     RenderOptions o;
-    o.width = 32, o.height = 24, o.spp = 8, o.seed = seed, o.progress = false;
+    o.width = 32, o.height = 24, o.spp = 16, o.seed = seed, o.progress = false;
     o.material = m;
     o.material.tableSize = 64, o.material.aoRays = 64;
     return o;
@@ -35,6 +35,7 @@ RenderOptions tinyRender(const PlyMaterial& m, uint64_t seed) {
 
 FitTarget target(const Scene& scene, const PlyMaterial& m, LightPlacement light, const char* name) {
     RenderOptions o = tinyRender(m, 11);  // another seed than the fit's: the targets carry their own noise
+    o.spp = 64;                           // but less of it, as a photograph would
     o.light = light;
     return {renderScene(scene, o).image, name, false};
 }
@@ -48,7 +49,7 @@ FitResult expectBodyAlbedoRecovered(const PlyMaterial& truth, double tolerance) 
     FitOptions o;
     o.render = tinyRender(start, 1);
     o.parameters = parseFitList("body-albedo");
-    o.maxEvaluations = 40;
+    o.maxEvaluations = 80;
     const FitResult r = fitMaterial(scene, target(scene, truth, LightPlacement::Front, "front"),
                                     target(scene, truth, LightPlacement::Back, "back"), {}, o);
     for (int c = 0; c < 3; ++c)
@@ -76,7 +77,6 @@ TEST(Fit, recoversBodyAlbedoOfDarkGlossyYarn) {
 TEST(Fit, rendererReusingTheSceneMatchesRenderSceneExactly) {
     const Scene scene = smallCloth();
     RenderOptions o = tinyRender({}, 3);
-    o.mode = GeometryMode::Grid;
     FitRenderer renderer(scene, o);
     PlyMaterial other = o.material;
     other.kR = Rgb(0.4), other.fiberShadowFloor = 0.2, other.fiberTwist = -2.0;  // new tables and geometry
@@ -84,7 +84,7 @@ TEST(Fit, rendererReusingTheSceneMatchesRenderSceneExactly) {
         for (LightPlacement light : {LightPlacement::Front, LightPlacement::Back}) {
             RenderOptions ro = o;
             ro.material = m, ro.light = light;
-            EXPECT_EQ(renderer.render(m, light, 32, 24, 8).rgb, renderScene(scene, ro).image.rgb);
+            EXPECT_EQ(renderer.render(m, light, 32, 24, 16).rgb, renderScene(scene, ro).image.rgb);
         }
 }
 
