@@ -112,7 +112,8 @@ private:
                      const glm::dmat4& world, const std::vector<glm::dvec3>& posed) {
         if (points_.size() + P.count > std::min<uint64_t>(maxElements_, uint64_t(std::numeric_limits<int>::max())))
             doc_.fail("more than " + std::to_string(maxElements_) +
-                      " vertices in the scene (MeshLoadOptions::maxElements)");
+                      " vertices once its nodes' instances are placed; the file is refused "
+                      "before they are generated");
         for (size_t i = 0; i < P.count; ++i) {
             const glm::dvec4 x = posed.empty() ? world * glm::dvec4(P.get(i, 0), P.get(i, 1), P.get(i, 2), 1.0)
                                                : glm::dvec4(posed[i], 1.0);
@@ -164,7 +165,8 @@ private:
         const size_t triangles = p.mode == gltf::kTriangles ? idx.size() / 3 : (idx.size() >= 3 ? idx.size() - 2 : 0);
         if (faceStart_.size() - 1 + triangles > maxElements_)
             doc_.fail("more than " + std::to_string(maxElements_) +
-                      " triangles in the scene (MeshLoadOptions::maxElements)");
+                      " triangles once its nodes' instances are placed; the file is refused "
+                      "before they are generated");
         if (p.mode == gltf::kTriangles) {
             if (idx.size() % 3 != 0)
                 doc_.fail(p.what + ": " + std::to_string(idx.size()) + (indexed ? " indices" : " vertices") +
