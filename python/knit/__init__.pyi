@@ -109,7 +109,8 @@ def build_scene(pattern: Union[str, Pattern] = "stockinette", mesh: Union[str, M
                 repeats: Optional[Tuple[float, float]] = None, plies: int = 2, ply_pitch: float = 0.0,
                 twist: str = "S", ply_radius: float = 0.0, center_radius: float = 0.0,
                 samples_per_turn: int = 12, build_plies: bool = True, res_u: int = 32, res_v: int = 32,
-                clamp_tolerance: float = 0.01, weld: bool = True, weld_tolerance: float = 0.25) -> Scene: ...
+                clamp_tolerance: float = 0.01, weld: bool = True, weld_tolerance: float = 0.25,
+                max_memory: str = "") -> Scene: ...
 def make_plies(yarns: Yarns, yarn_radius: float, count: int = 2, pitch: float = 0.0, twist: str = "S",
                ply_radius: float = 0.0, center_radius: float = 0.0, samples_per_turn: int = 12) -> Plies: ...
 def export_scene(scene: Scene, path: str, what: str = "plies", sides: int = 8, caps: bool = True,

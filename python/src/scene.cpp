@@ -27,6 +27,7 @@ struct SceneArgs {
     int resU = 32, resV = 32;
     double clampTolerance = 0.01, weldTolerance = 0.25;
     bool weld = true;
+    std::string maxMemory;  // "" = the default budget, else as --max-memory ("8G")
 };
 
 knit::SceneOptions toSceneOptions(const SceneArgs& a) {
@@ -41,6 +42,7 @@ knit::SceneOptions toSceneOptions(const SceneArgs& a) {
     o.bind.weldTolerance = a.weldTolerance;
     o.bind.weld = a.weld;
     o.buildPlies = a.buildPlies;
+    if (!a.maxMemory.empty()) o.budget = knit::MemoryBudget(knit::parseMemorySize(a.maxMemory));
     o.plies = toPlyOptions(a.plies, o.plies.yarnRadius);  // the pipeline sets yarnRadius
     return o;
 }
@@ -186,21 +188,24 @@ void registerScene(py::module_& m) {
         "build_scene",
         [](const py::object& pattern, const py::object& mesh, const py::object& repeats, int plies, double plyPitch,
            const std::string& twist, double plyRadius, double centerRadius, int samplesPerTurn, bool buildPlies,
-           int resU, int resV, double clampTolerance, bool weld, double weldTolerance) {
+           int resU, int resV, double clampTolerance, bool weld, double weldTolerance, const std::string& maxMemory) {
             SceneArgs a{repeats,       {plies, plyPitch, twist, plyRadius, centerRadius, samplesPerTurn},
                         buildPlies,    resU,
                         resV,          clampTolerance,
-                        weldTolerance, weld};
+                        weldTolerance, weld,
+                        maxMemory};
             return buildScene(pattern, mesh, a);
         },
         "pattern"_a = "stockinette", "mesh"_a = "drape", "repeats"_a = py::none(), "plies"_a = 2, "ply_pitch"_a = 0.0,
         "twist"_a = "S", "ply_radius"_a = 0.0, "center_radius"_a = 0.0, "samples_per_turn"_a = 12,
         "build_plies"_a = true, "res_u"_a = 32, "res_v"_a = 32, "clamp_tolerance"_a = 0.01, "weld"_a = true,
-        "weld_tolerance"_a = 0.25,
+        "weld_tolerance"_a = 0.25, "max_memory"_a = "",
         "Runs the pipeline: load pattern -> load mesh -> placement -> UV grid -> tiling -> stitch -> "
         "binding -> evaluation -> plies. pattern / mesh: a file or built-in name, or a Pattern / Mesh. "
         "repeats: (U, V) pattern periods across the UV square, None = the pattern's physical size. "
-        "plies: plies per yarn; ply_pitch 0 = 6 yarn radii; twist 'S' or 'Z'. Raises knit.Error.");
+        "plies: plies per yarn; ply_pitch 0 = 6 yarn radii; twist 'S' or 'Z'. max_memory: the memory budget "
+        "as a size ('8G', '512M'; '' = min(4 GiB, half the physical memory)), as --max-memory: a step whose "
+        "estimated size is over it raises knit.Error before allocating. Raises knit.Error.");
     m.def("_evaluate_seconds_in_cpp", &evaluateSecondsInCpp, "scene"_a, "positions"_a, "repeats"_a = 1,
           "Timing aid: seconds of `repeats` evaluations made in C++ (what Scene.evaluate runs).");
 }

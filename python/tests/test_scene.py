@@ -109,3 +109,14 @@ def test_evaluate_plies_rest_layout_needs_plies():
     scene = knit.build_scene("stockinette", "plane", repeats=(2, 2), build_plies=False)
     with pytest.raises(knit.Error, match="build_plies=True"):
         scene.evaluate_plies(scene.mesh.positions)
+
+
+def test_max_memory_refuses_a_scene_over_the_budget_before_building_it():
+    with pytest.raises(knit.Error, match="memory budget of"):
+        knit.build_scene("stockinette", "drape", repeats=(64, 64), max_memory="1M")
+    assert knit.build_scene("stockinette", "plane", repeats=(2, 2), max_memory="1G").yarns.point_count > 0
+
+
+def test_max_memory_that_is_not_a_size_is_refused():
+    with pytest.raises(knit.Error, match="max-memory"):
+        knit.build_scene("stockinette", "plane", repeats=(2, 2), max_memory="lots")
