@@ -1,5 +1,6 @@
 // animated_glb.cpp — the animated .glb sink of `knit animate`: the first frame's curves (LINES)
-// or tubes (TRIANGLES) as the topology, then one morph target per frame.
+// or tubes (TRIANGLES) as the topology (with the chart's colours as COLOR_0), then one morph
+// target per frame.
 #include "animated_glb.hpp"
 
 #include <string>
@@ -18,6 +19,7 @@ struct GlbContent {
     bool tubes = false;
     double radius = 0;
     TubeOptions tube;
+    const std::vector<glm::vec3>* colours = nullptr;  // per curve point (the chart's), or none
 };
 
 GlbContent contentOf(const Animator& animator, const ExportOptions& o) {
@@ -27,6 +29,10 @@ GlbContent contentOf(const Animator& animator, const ExportOptions& o) {
     c.radius = c.plies ? animator.plyOptions().plyRadius : animator.rest().yarnRadius();
     c.tube.sides = o.sides;
     c.tube.caps = o.caps;
+    // The chart's colours: per ply point of the constant ply layout, or per rest yarn point.
+    const std::vector<glm::vec3>& colours = c.plies ? animator.plyTopology().colour : animator.rest().yarns().colour;
+    if (!colours.empty()) c.colours = &colours;
+    c.tube.pointColours = c.colours;
     return c;
 }
 
@@ -84,7 +90,9 @@ private:
             t.positions = curves.points;
             t.indices = segmentIndices(curves.offsets, curves.closed);
             t.radius = content_.radius;
+            if (content_.colours) t.colours = *content_.colours;
         }
+        if (content_.tubes) t.colours = tubes_.colours;
         return t;
     }
 

@@ -17,6 +17,9 @@ Scene frameScene(const Animator& animator, const BaseMesh& frameMesh, const Anim
     parts.grid = animator.rest().grid();
     parts.binding = animator.rest().binding();
     parts.yarns = frame.yarns;
+    // The chart's colours stay with their stitches: the yarn points keep the rest layout (the
+    // plies carry theirs from the animator's ply layout).
+    if (parts.yarns.colour.empty()) parts.yarns.colour = animator.rest().yarns().colour;
     if (animator.options().plies) parts.plies = frame.plies;
     return Scene::fromParts(std::move(parts));
 }

@@ -19,7 +19,7 @@
 namespace knit {
 namespace {
 
-constexpr int kFloat = 5126, kUnsignedShort = 5123, kUnsignedInt = 5125;
+constexpr int kFloat = 5126, kUnsignedByte = 5121, kUnsignedShort = 5123, kUnsignedInt = 5125;
 constexpr int kArrayBuffer = 34962, kElementArrayBuffer = 34963;
 constexpr int kModeLines = 1, kModeTriangles = 4;
 constexpr double kGlbLimit = 4294967295.0;  // GLB lengths are uint32
@@ -111,6 +111,9 @@ MorphGlbWriter::MorphGlbWriter(const std::string& path, MorphTopology base, size
                     " vertices, over the 4 GiB a GLB holds; use fewer frames (--step, --last) or a point cache (.pc2)");
     if (base.triangles && base.normals.size() != n)
         throw Error("cannot write animated glTF '" + path + "': triangles need one normal per vertex");
+    if (!base.colours.empty() && base.colours.size() != n)
+        throw Error("cannot write animated glTF '" + path + "': " + std::to_string(base.colours.size()) +
+                    " colours for " + std::to_string(n) + " vertices");
     state_ = std::make_unique<State>(path, std::move(base));
     State& s = *state_;
     s.options = options;
@@ -137,6 +140,15 @@ MorphGlbWriter::MorphGlbWriter(const std::string& path, MorphTopology base, size
                       "SCALAR");
     } else {
         s.addAccessor(s.addView(idx.data(), idx.size() * 4, kElementArrayBuffer), kUnsignedInt, idx.size(), "SCALAR");
+    }
+    // Step 4: COLOR_0 (accessor 3), the colours as normalized RGBA8, opaque; not morphed.
+    if (!s.topology.colours.empty()) {
+        std::vector<uint8_t> rgba(4 * n, 255);
+        for (size_t i = 0; i < n; ++i)
+            for (int k = 0; k < 3; ++k)
+                rgba[4 * i + k] = uint8_t(std::lround(255.0f * std::clamp(s.topology.colours[i][k], 0.0f, 1.0f)));
+        s.addAccessor(s.addView(rgba.data(), rgba.size(), kArrayBuffer), kUnsignedByte, n, "VEC4");
+        s.accessors[3]["normalized"] = true;
     }
 }
 
@@ -181,6 +193,7 @@ void MorphGlbWriter::commit() {
     // Step 2: the JSON.
     nlohmann::json attributes = {{"POSITION", 0}};
     attributes[s.topology.triangles ? "NORMAL" : "_RADIUS"] = 1;
+    if (!s.topology.colours.empty()) attributes["COLOR_0"] = 3;
     nlohmann::json extras = detail::parseMaterialExtras(s.options.extrasJson);
     if (extras.empty()) extras = {{"generator", "libknit"}};
     nlohmann::json j = {

@@ -70,12 +70,15 @@ Animator::Animator(const Scene& rest, const AnimatorOptions& options)
     ResampleScratch resampleScratch;
     std::vector<double> arc;
     std::vector<dvec3> centre;
+    std::vector<glm::vec3> centreColour;  // per resampled point, when the yarns have colours
     restPitch_.assign(yarnCount, 0.0);
     restLength_.assign(yarnCount, 0.0);
     restSeeds_.assign(yarnCount, {});
     for (size_t y = 0; y < yarnCount; ++y) {
         centre.clear();
         const size_t m = resampleCurve(rest.yarns(), y, spacing, centre, nullptr, resampleScratch, &layout);
+        if (!rest.yarns().colour.empty())  // the chart's colours, as makePlies gives them
+            resampleColours(rest.yarns().colour.data() + yarns.begin(y), yarns.isClosed(y), layout, centreColour);
         kept_.insert(kept_.end(), layout.kept.begin(), layout.kept.end());
         keptOffsets_.push_back(static_cast<uint32_t>(kept_.size()));
         pieces_.insert(pieces_.end(), layout.pieces.begin(), layout.pieces.end());
@@ -111,6 +114,9 @@ Animator::Animator(const Scene& rest, const AnimatorOptions& options)
             plyTopology_.curves.closed.push_back(yarns.closed[y]);
             plyTopology_.yarnOfCurve.push_back(static_cast<uint32_t>(y));
             plyTopology_.plyOfCurve.push_back(static_cast<uint8_t>(i));
+            if (!centreColour.empty())
+                plyTopology_.colour.insert(plyTopology_.colour.end(), centreColour.begin() + centreOffsets_[y],
+                                           centreColour.begin() + centreOffsets_[y + 1]);
         }
     }
     plyOfYarn_[yarnCount] = total;

@@ -168,7 +168,35 @@ TEST_F(Animate, animatedGlbOfTubesHasTrianglesWithNormalTargetsAndIsValid) {
     double largest = 0;
     for (double v : delta) largest = std::max(largest, std::abs(v));
     EXPECT_GT(largest, 1e-3);
+    EXPECT_FALSE(d.attribute(prim, "COLOR_0").has_value());  // the built-in stockinette has no colours
     EXPECT_EQ(d.root()["animations"][0]["samplers"][0]["interpolation"], "LINEAR");
+}
+
+// A chart with a colour layer: the animated GLB (ply lines and yarn tubes) carries the chart's
+// colours as COLOR_0, one per vertex, both stripes present (red #d62828, blue #1d3557).
+TEST_F(Animate, animatedGlbCarriesTheChartsColoursAsColor0) {
+    writeWaveSequence(dir, 2, 8);
+    std::ofstream(dir / "stripes.chart") << "k k\nk k\n\nB B\nA A\nA=#d62828 B=#1d3557\n";
+    for (const std::string args : {"-o lines.glb", "--export tubes --tubes-of yarns -o tubes.glb"}) {
+        const std::string out = args.substr(args.rfind(' ') + 1);
+        const CliRun r = runKnit(
+            "animate -q --no-stats --pattern stripes.chart --frames frame_%04d.obj --repeats 3 3 " + args, dir);
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+        expectGltfValid((dir / out).string());
+        const gltf::Document d = loadGltf((dir / out).string());
+        const gltf::Primitive prim = d.primitives(0).at(0);
+        const std::vector<double> rgba = readAttribute(d, prim, "COLOR_0");
+        const std::vector<double> xyz = readAttribute(d, prim, "POSITION");
+        ASSERT_EQ(rgba.size() / 4, xyz.size() / 3) << out;
+        size_t red = 0, blue = 0;
+        for (size_t i = 0; i < rgba.size(); i += 4) {
+            red += rgba[i] > 0.5 && rgba[i + 2] < 0.1;
+            blue += rgba[i + 2] > rgba[i] && rgba[i] < 0.05;
+        }
+        EXPECT_GT(red, 0u) << out;
+        EXPECT_GT(blue, 0u) << out;
+        EXPECT_EQ(red + blue, rgba.size() / 4) << out;  // every vertex has one of the two
+    }
 }
 
 TEST_F(Animate, animatedGlbOverTheMemoryBudgetIsRefusedWithItsEstimate) {

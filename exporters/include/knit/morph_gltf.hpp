@@ -37,6 +37,7 @@ struct MorphTopology {
     std::vector<glm::vec3> normals;     // triangles only: the first frame's unit normals
     std::vector<uint32_t> indices;      // 2 per segment, or 3 per triangle
     double radius = 0;                  // lines: the curves' radius (the _RADIUS attribute)
+    std::vector<glm::vec3> colours;     // linear colour per vertex (COLOR_0, RGBA8); empty: none
 };
 
 // The size of the GLB (bytes, before writing) for `vertices` vertices, `indices` indices and
