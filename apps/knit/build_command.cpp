@@ -51,7 +51,7 @@ nlohmann::json buildReportJson(const Scene& scene, const SceneStats& numbers, co
     LevelStats levels = numbers.levels;
     if (streamed) levels.plies.plyVertices = stats.vertices, levels.plies.bytes = 16 * stats.vertices;
     report["camera"] = cameraJson(view);
-    report["levels"] = levelsJson(levels);
+    report["levels"] = levelsJson(levels, false);  // build exports the ply level only
     if (streamed) {
         const PlyOptions o = resolvePlyOptions(scene.plyOptions());
         report["vertices"]["ply"] = stats.vertices;

@@ -16,14 +16,15 @@ namespace knit::cli {
 namespace {
 
 // The render's images, then its report, staged in `outputs` and committed together; the report
-// is printed on stdout. `extra` fields (e.g. "surface") are added to the report.
+// is printed on stdout. The fields `extra` gives for the result (e.g. "surface") are added to it.
 int finishRender(const RenderCommand& r, OutputTransaction& outputs, const std::function<RenderResult()>& render,
-                 const nlohmann::json& extra) {
+                 const std::function<nlohmann::json(const RenderResult&)>& extra) {
     RenderResult result = outputs.run(render);
     for (std::string& path : result.written) path = outputs.finalNames(path);
     nlohmann::json report = renderReport(result);
     report["camera"] = cameraJson(result.view);
-    for (const auto& [key, value] : extra.items()) report[key] = value;
+    const nlohmann::json more = extra(result);  // held: items() refers to it
+    for (const auto& [key, value] : more.items()) report[key] = value;
     if (!r.report.empty()) outputs.run([&] { writeReport(outputs.stage(r.report), report); });
     outputs.run([&] { outputs.commit(); });
     std::printf("%s\n", report.dump().c_str());
@@ -37,7 +38,8 @@ int runSurfaceRender(const RenderCommand& r, const SceneOptions& sceneOptions, R
     const Scene scene = surfaceScene(s);
     options.surface = &s.bake;
     options.surfaceRepeats[0] = s.placement.repeats.x, options.surfaceRepeats[1] = s.placement.repeats.y;
-    return finishRender(r, outputs, [&] { return renderScene(scene, options); }, {{"surface", surfaceReport(s)}});
+    return finishRender(r, outputs, [&] { return renderScene(scene, options); },
+                        [&](const RenderResult&) { return nlohmann::json{{"surface", surfaceReport(s)}}; });
 }
 
 }  // namespace
@@ -67,15 +69,19 @@ int runRender(const RenderCommand& r) {
     options.output = outputs.stage(r.options.output);
     options.exr = outputs.stage(r.options.exr);
     SceneOptions sceneOptions = resolveScene(r.scene);
-    options.budget = sceneOptions.budget;  // --max-memory
+    options.budget = sceneOptions.budget;       // --max-memory
+    options.viewBakeSize = r.surface.bakeSize;  // the surface level of --detail view, as --surface-only
     if (r.surface.surfaceOnly) return runSurfaceRender(r, sceneOptions, options, outputs);
     // Step 2: the detail the view asks for, the scene, the render and the report (with the levels).
     sceneOptions.detail =
         detailOptions(r.view, image, options.light == LightPlacement::Back, options.mode == GeometryMode::Curves);
     const Scene scene = buildScene(sceneOptions);
     printWarnings(scene);
-    return finishRender(r, outputs, [&] { return renderScene(scene, options); },
-                        {{"levels", levelsJson(levelStats(scene))}});
+    return finishRender(
+        r, outputs, [&] { return renderScene(scene, options); },
+        [&](const RenderResult& result) {
+            return nlohmann::json{{"levels", levelsJson(levelStats(scene), result.surfaceTextured)}};
+        });
 }
 
 }  // namespace knit::cli

@@ -16,17 +16,6 @@ void addSurfaceFlags(CLI::App& command, SurfaceFlags& flags) {
         ->capture_default_str();
 }
 
-namespace {
-
-// Ply lengths given in object-space metres, in the pattern's own units (the bake's space).
-PlyOptions patternPlyOptions(PlyOptions plies, const Pattern& pattern, double scale) {
-    plies.yarnRadius = pattern.radius;
-    plies.pitch /= scale, plies.centerRadius /= scale, plies.plyRadius /= scale;
-    return plies;
-}
-
-}  // namespace
-
 SurfaceBuild bakeSurfaceLevel(const SceneOptions& options, const SurfaceFlags& flags, const PlyMaterial& material) {
     if (flags.bakeSize < 1 || flags.bakeSize > 8192)
         throw Error("--bake-size must be in 1..8192 (got " + std::to_string(flags.bakeSize) + ")");

@@ -61,9 +61,9 @@ nlohmann::json cameraJson(const View& v) {
             {"fovDegrees", v.fovDegrees}};
 }
 
-nlohmann::json levelsJson(const LevelStats& l) {
+nlohmann::json levelsJson(const LevelStats& l, bool surfaceTextured) {
     nlohmann::json surface = levelJson(l.surface);
-    surface["textured"] = false;
+    surface["textured"] = surfaceTextured;
     return {{"plies", levelJson(l.plies)},
             {"yarns", levelJson(l.yarns)},
             {"surface", surface},

@@ -45,7 +45,8 @@ std::optional<DetailOptions> detailOptions(const ViewFlags& flags, const ImageSi
 // "camera": {"eye", "target", "up", "fovDegrees"}.
 nlohmann::json cameraJson(const View& view);
 // "levels": {"plies", "yarns", "surface"} with cells, yarnVertices, plyVertices, bytes; the
-// surface level is the plain base mesh until the texture bake lands ("textured": false).
-nlohmann::json levelsJson(const LevelStats& levels);
+// surface's "textured" says whether its base mesh was drawn with the baked pattern (render) or
+// not at all / plain (build exports the ply level only).
+nlohmann::json levelsJson(const LevelStats& levels, bool surfaceTextured);
 
 }  // namespace knit::cli

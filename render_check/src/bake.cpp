@@ -232,4 +232,10 @@ std::vector<uint8_t> heightGray8(const SurfaceBake& bake) {
     return out;
 }
 
+PlyOptions patternPlyOptions(PlyOptions plies, const Pattern& pattern, double scale) {
+    plies.yarnRadius = pattern.radius;
+    plies.pitch /= scale, plies.centerRadius /= scale, plies.plyRadius /= scale;
+    return plies;
+}
+
 }  // namespace knit

@@ -12,6 +12,7 @@
 #include "knit/error.hpp"
 #include "knit/fiber_tables.hpp"
 #include "knit/image_io.hpp"
+#include "knit/bake.hpp"
 #include "knit/ply_geometry.hpp"
 #include "knit/scene.hpp"
 #include "material_overrides.hpp"
@@ -104,6 +105,20 @@ RenderResult renderScene(const Scene& scene, const RenderOptions& o) {
     const BaseMesh* base = o.baseMesh || o.surface ? &scene.mesh() : (surface.faces.empty() ? nullptr : &surface);
     if (geometry.segmentCount() == 0 && base == nullptr)
         throw Error("render: the view sees none of the cloth (every cell is culled; check --eye and --target)");
+    // A view's surface level: the pattern baked with the render's material, as --surface-only.
+    SurfaceBake viewBake;
+    SurfaceTexture viewTexture;
+    if (!o.surface && !o.baseMesh && !surface.faces.empty()) {
+        BakeOptions bo;
+        bo.width = o.viewBakeSize;
+        bo.plies = patternPlyOptions(scene.plyOptions(), scene.pattern(), scene.placement().scale);
+        bo.material = res.material;
+        viewBake = bakeSurface(scene.pattern(), bo);
+        viewTexture.bake = &viewBake;
+        viewTexture.repeats = scene.placement().repeats;
+        res.surfaceTextured = true;
+        res.bakeSeconds = viewBake.seconds;
+    }
     // Step 3: fiber tables.
     auto t0 = std::chrono::steady_clock::now();
     int plyCount = 1;
@@ -120,7 +135,7 @@ RenderResult renderScene(const Scene& scene, const RenderOptions& o) {
     so.tubeSides = o.tubeSides;
     so.baseMesh = base;
     const SurfaceTexture texture = detail::surfaceTexture(scene, o);
-    so.baseTexture = o.surface ? &texture : nullptr;
+    so.baseTexture = o.surface ? &texture : res.surfaceTextured ? &viewTexture : nullptr;
     if (mode == GeometryMode::Grid && !o.surface) {
         cells = segmentCells(scene, geometry);
         so.segmentCells = &cells;

@@ -93,4 +93,24 @@ TEST_F(ViewCli, renderReportsTheDefaultCameraAndItsLevels) {
     EXPECT_TRUE(r.contains("peakMemoryBytes"));
 }
 
+// A far view draws the cloth as its surface level: the base mesh with the pattern baked with
+// the render's material (textured, the bake timed in the report), not the plain body colour; its
+// mean radiance stays near the full-detail render's (the plain surface was 65% brighter on the
+// garment, docs/views.md).
+TEST_F(ViewCli, farViewRendersTheBakedSurfaceNearTheFullImage) {
+    if (!hasRender()) GTEST_SKIP() << "knit was built without render_check";
+    const std::string scene = " -q --mesh plane --repeats 40 40 --mesh-res 8 --spp 16 --width 48 --height 36 ";
+    ASSERT_EQ(run("render" + scene + "--report view.json").exitCode, 0);
+    ASSERT_EQ(run("render" + scene + "--detail full --report full.json").exitCode, 0);
+    const nlohmann::json view = report("view.json"), full = report("full.json");
+    ASSERT_GT(view["levels"]["surface"]["cells"].get<size_t>(), 0u);
+    EXPECT_EQ(view["levels"]["surface"]["textured"], true);
+    EXPECT_GT(view["bakeSeconds"].get<double>(), 0.0);
+    EXPECT_EQ(full["bakeSeconds"], 0.0);
+    for (int c = 0; c < 3; ++c) {
+        const double v = view["meanRadiance"][c].get<double>(), f = full["meanRadiance"][c].get<double>();
+        EXPECT_NEAR(v / f, 1.0, 0.15) << "channel " << c << ": view " << v << ", full " << f;
+    }
+}
+
 }  // namespace

@@ -63,6 +63,10 @@ struct SurfaceBake {
 // maxBounces 1..64, origin in [0, 1)) or the pattern / material / ply problem. Deterministic for any thread count.
 SurfaceBake bakeSurface(const Pattern& pattern, const BakeOptions& options);
 
+// Ply options given in object-space metres (a scene's, placed at `scale` pattern units to the
+// metre) as the bake needs them: in the pattern's own units, the yarn radius the pattern's.
+PlyOptions patternPlyOptions(PlyOptions plies, const Pattern& pattern, double scale);
+
 // 8-bit images of a bake, row-major from the top (PNG-ready):
 // base colour RGBA (sRGB albedo, alpha = coverage), normal RGB ((n + 1) / 2), height grey.
 std::vector<uint8_t> baseColorRgba8(const SurfaceBake& bake);

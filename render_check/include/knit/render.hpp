@@ -9,8 +9,8 @@
 // from generated geometry, so every level of detail frames and lights a scene identically.
 // A scene built for a view renders the plies of its ply-level cells, the yarn curves of its
 // yarn-level cells (curves mode; the ply BSDF on a curve of the yarn radius) and the base-mesh
-// triangles of its surface-level cells as an opaque diffuse surface of the material's body colour
-// (not yet the baked knit texture). `front` puts the rectangular light on the camera side (up and to the right),
+// triangles of its surface-level cells shaded with the pattern baked with the render's material
+// (knit/bake.hpp: coverage as an alpha mask, baked albedo; RenderOptions::viewBakeSize). `front` puts the rectangular light on the camera side (up and to the right),
 // `back` puts it behind the cloth facing the camera, so the image shows transmitted light.
 // The base mesh is the cloth's mid-surface: it lies inside the yarns and would hide the back
 // plies and block transmission, so it is NOT rendered unless `baseMesh` is set (then as an
@@ -66,6 +66,9 @@ struct RenderOptions {
     // bounds grown by the yarn radius.
     const SurfaceBake* surface = nullptr;
     double surfaceRepeats[2] = {0, 0};  // texture tiles across u and v; 0 = the scene's placement
+    // A scene built for a view (--detail view) draws its surface-level cells as the base mesh
+    // with the pattern baked at this width (pixels per pattern period) with the render's material.
+    int viewBakeSize = 128;
     // The image buffers (--width x --height) and the geometry of the mode (Embree curves,
     // tubes of tubeSides, grid cells) are estimated before either is allocated and refused over
     // this budget (the CLI passes --max-memory).
@@ -85,10 +88,12 @@ struct RenderResult {
     size_t tableBytes = 0;
     int64_t peakMemoryBytes = 0;  // process peak resident set size
     size_t segments = 0, primitives = 0;
-    Camera camera;                // the view used (world space)
-    View view;                    // the same as a knit::View
-    size_t surfaceTriangles = 0;  // base-mesh triangles of the surface level (scene built for a view)
-    RectLight areaLight;          // the area light used (world space)
+    Camera camera;                 // the view used (world space)
+    View view;                     // the same as a knit::View
+    size_t surfaceTriangles = 0;   // base-mesh triangles of the surface level (scene built for a view)
+    bool surfaceTextured = false;  // those triangles were shaded with a bake of the pattern
+    double bakeSeconds = 0;        // time of that bake
+    RectLight areaLight;           // the area light used (world space)
     std::vector<std::string> written;
 };
 
