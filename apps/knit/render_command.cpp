@@ -38,8 +38,11 @@ int runSurfaceRender(const RenderCommand& r, const SceneOptions& sceneOptions, R
     const Scene scene = surfaceScene(s);
     options.surface = &s.bake;
     options.surfaceRepeats[0] = s.placement.repeats.x, options.surfaceRepeats[1] = s.placement.repeats.y;
-    return finishRender(r, outputs, [&] { return renderScene(scene, options); },
-                        [&](const RenderResult&) { return nlohmann::json{{"surface", surfaceReport(s)}}; });
+    return finishRender(
+        r, outputs, [&] { return renderScene(scene, options); },
+        [&](const RenderResult&) {
+            return nlohmann::json{{"surface", surfaceReport(s)}};
+        });
 }
 
 }  // namespace

@@ -76,7 +76,7 @@ struct Shading {
     ShadingFrame frame;
     bool ply = true;
     Rgb albedo{0.0};  // base mesh: its diffuse albedo (baked texel at the surface level)
-    Rgb body{0.0};  // the ply's body albedo (the material's, or its yarn colour's)
+    Rgb body{0.0};    // the ply's body albedo (the material's, or its yarn colour's)
 };
 
 struct Tracer {

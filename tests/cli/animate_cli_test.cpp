@@ -179,8 +179,8 @@ TEST_F(Animate, animatedGlbCarriesTheChartsColoursAsColor0) {
     std::ofstream(dir / "stripes.chart") << "k k\nk k\n\nB B\nA A\nA=#d62828 B=#1d3557\n";
     for (const std::string args : {"-o lines.glb", "--export tubes --tubes-of yarns -o tubes.glb"}) {
         const std::string out = args.substr(args.rfind(' ') + 1);
-        const CliRun r = runKnit(
-            "animate -q --no-stats --pattern stripes.chart --frames frame_%04d.obj --repeats 3 3 " + args, dir);
+        const CliRun r =
+            runKnit("animate -q --no-stats --pattern stripes.chart --frames frame_%04d.obj --repeats 3 3 " + args, dir);
         ASSERT_EQ(r.exitCode, 0) << r.output;
         expectGltfValid((dir / out).string());
         const gltf::Document d = loadGltf((dir / out).string());

@@ -232,7 +232,8 @@ TEST(GltfMesh, instancingBeyondTheElementBudgetIsRefused) {
     EXPECT_EQ(knit::parseGltfMesh(bytes, "many.gltf", "").faceCount(), 200u);
     knit::MeshLoadOptions o;
     o.maxElements = 150;
-    EXPECT_NE(errorOf([&] { knit::parseGltfMesh(bytes, "many.gltf", "", o); }).find("more than 150 vertices"), std::string::npos);
+    EXPECT_NE(errorOf([&] { knit::parseGltfMesh(bytes, "many.gltf", "", o); }).find("more than 150 vertices"),
+              std::string::npos);
 }
 
 // One accessor reused by many instances: the expanded size (100 x 4 vertices x 96 B + 100 x 6
