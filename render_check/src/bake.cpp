@@ -60,6 +60,7 @@ struct PixelSum {
     double height = 0;
     glm::dvec3 normal{0.0};
     Rgb albedo{0.0};
+    Rgb transmittance{0.0};
     int albedoSamples = 0;
 };
 
@@ -78,7 +79,7 @@ public:
         ++sum.hits;
         sum.height += plies_.toWorld(p).z;
         sum.normal += glm::dvec3(h.ng);
-        for (int k = 0; k < o_.albedoPaths; ++k) sum.albedo += skyRadiance(h, p, rng), ++sum.albedoSamples;
+        for (int k = 0; k < o_.albedoPaths; ++k) skyPath(h, p, rng, sum), ++sum.albedoSamples;
     }
 
     double top_ = 0;  // ray origins' height (metres), above every yarn
@@ -95,27 +96,31 @@ private:
         return plyShadingFrame(sp, material_, tables_);
     }
 
-    // Radiance sent straight up from hit h under a uniform white sky above the cloth (z > 0),
-    // black below: BSDF-sampled path of at most maxBounces bounces.
-    Rgb skyRadiance(TraceHit h, glm::vec3 p, Random& rng) const {
+    // One BSDF-sampled path (at most maxBounces bounces) of the radiance hit h sends straight up,
+    // under a uniform white sky: the path's weight goes to the albedo when it escapes upwards (the
+    // sky above the cloth, z > 0) and to the transmittance when it escapes downwards (the sky
+    // below). The two skies are lit separately, so each is the estimate under its own sky alone.
+    void skyPath(TraceHit h, glm::vec3 p, Random& rng, PixelSum& sum) const {
         Rgb beta(1.0);
         glm::vec3 d(0, 0, -1);
         for (int bounce = 0; bounce < o_.maxBounces; ++bounce) {
             const ShadingFrame frame = frameAt(h);
             const glm::dvec3 woL = frame.toLocal(-glm::dvec3(d));
-            if ((glm::dot(-d, h.ng) > 0) != (woL.z > 0)) return Rgb(0.0);
+            if ((glm::dot(-d, h.ng) > 0) != (woL.z > 0)) return;
             const PlyBsdf bsdf(material_, frame.shadow);
             const BsdfSample bs = bsdf.sample(woL, rng.uniform(), glm::dvec2(rng.uniform(), rng.uniform()));
-            if (!bs.valid) return Rgb(0.0);
+            if (!bs.valid) return;
             const glm::vec3 wi = glm::normalize(glm::vec3(frame.toWorld(bs.wi)));
-            if ((glm::dot(wi, h.ng) > 0) != (bs.wi.z > 0)) return Rgb(0.0);
+            if ((glm::dot(wi, h.ng) > 0) != (bs.wi.z > 0)) return;
             beta *= bs.weight;
             const glm::vec3 o = scene_.spawn(h, p, wi);
             TraceHit next;
-            if (!scene_.intersect(o, wi, 0.f, kInf, next, &h)) return wi.z > 0 ? beta : Rgb(0.0);
+            if (!scene_.intersect(o, wi, 0.f, kInf, next, &h)) {
+                (wi.z > 0 ? sum.albedo : sum.transmittance) += beta;
+                return;
+            }
             p = o + next.t * wi, d = wi, h = next;
         }
-        return Rgb(0.0);
     }
 
     const TraceScene& scene_;
@@ -131,23 +136,27 @@ void storePixel(SurfaceBake& bake, size_t pixel, const PixelSum& s, int samples)
     const double h = (s.height / s.hits - bake.heightMin) / (bake.heightMax - bake.heightMin);
     bake.heights[pixel] = float(std::clamp(h, 0.0, 1.0));
     const glm::dvec3 n = glm::length(s.normal) > 0 ? glm::normalize(s.normal) : glm::dvec3(0, 0, 1);
-    const Rgb a = s.albedoSamples > 0 ? glm::clamp(s.albedo / double(s.albedoSamples), 0.0, 1.0) : Rgb(0.0);
-    for (int c = 0; c < 3; ++c) bake.normal[3 * pixel + c] = float(n[c]), bake.albedo[3 * pixel + c] = float(a[c]);
+    const double paths = std::max(1, s.albedoSamples);
+    const Rgb a = glm::clamp(s.albedo / paths, 0.0, 1.0), t = glm::clamp(s.transmittance / paths, 0.0, 1.0);
+    for (int c = 0; c < 3; ++c) {
+        bake.normal[3 * pixel + c] = float(n[c]), bake.albedo[3 * pixel + c] = float(a[c]);
+        bake.transmittance[3 * pixel + c] = float(t[c]);
+    }
 }
 
-// Pixels without any hit take the coverage-weighted mean colour, so filtering across a hole
-// edge does not darken the yarn's border.
-void fillUncovered(SurfaceBake& bake) {
+// Pixels without any hit take the coverage-weighted mean colour (of `rgb`: the albedo or the
+// transmittance), so filtering across a hole edge does not darken the yarn's border.
+void fillUncovered(const std::vector<float>& coverage, std::vector<float>& rgb) {
     Rgb sum(0.0);
     double weight = 0;
-    const size_t n = bake.coverage.size();
+    const size_t n = coverage.size();
     for (size_t i = 0; i < n; ++i)
-        for (int c = 0; c < 3; ++c) sum[c] += bake.coverage[i] * bake.albedo[3 * i + c];
-    for (size_t i = 0; i < n; ++i) weight += bake.coverage[i];
+        for (int c = 0; c < 3; ++c) sum[c] += coverage[i] * rgb[3 * i + c];
+    for (size_t i = 0; i < n; ++i) weight += coverage[i];
     const Rgb mean = weight > 0 ? sum / weight : Rgb(0.0);
     for (size_t i = 0; i < n; ++i)
-        if (bake.coverage[i] == 0.f)
-            for (int c = 0; c < 3; ++c) bake.albedo[3 * i + c] = float(mean[c]);
+        if (coverage[i] == 0.f)
+            for (int c = 0; c < 3; ++c) rgb[3 * i + c] = float(mean[c]);
 }
 
 }  // namespace
@@ -185,6 +194,7 @@ SurfaceBake bakeSurface(const Pattern& pattern, const BakeOptions& o) {
     // Step 3: per pixel, s x s stratified rays at periodic positions (pixel centres (i + 0.5) / N).
     const size_t pixels = size_t(bake.width) * size_t(bake.height);
     bake.albedo.assign(3 * pixels, 0.f), bake.normal.assign(3 * pixels, 0.f), bake.heights.assign(pixels, 0.f);
+    bake.transmittance.assign(3 * pixels, 0.f);
     bake.coverage.assign(pixels, 0.f);
     for (size_t i = 0; i < pixels; ++i) bake.normal[3 * i + 2] = 1.f;
     const int s = o.samplesPerAxis;
@@ -201,7 +211,8 @@ SurfaceBake bakeSurface(const Pattern& pattern, const BakeOptions& o) {
             storePixel(bake, pixel, sum, s * s);
         }
     });
-    fillUncovered(bake);
+    fillUncovered(bake.coverage, bake.albedo);
+    fillUncovered(bake.coverage, bake.transmittance);
     bake.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return bake;
 }

@@ -75,8 +75,10 @@ float hitLight(const LightGeom& l, const glm::vec3& o, const glm::vec3& d, bool&
 struct Shading {
     ShadingFrame frame;
     bool ply = true;
-    Rgb albedo{0.0};  // base mesh: its diffuse albedo (baked texel at the surface level)
-    Rgb body{0.0};    // the ply's body albedo (the material's, or its yarn colour's)
+    Rgb albedo{0.0};           // base mesh: its diffuse albedo (baked texel at the surface level)
+    Rgb transmit{0.0};         // base mesh: diffuse transmittance (baked; black without a bake)
+    double reflectChance = 1;  // base mesh: probability of sampling the reflection side
+    Rgb body{0.0};             // the ply's body albedo (the material's, or its yarn colour's)
 };
 
 struct Tracer {
@@ -95,6 +97,9 @@ struct Tracer {
         if (h.kind == TraceHit::Base) {
             sh.ply = false;
             sh.albedo = scene.baseAlbedo(h, s.baseAlbedo);
+            sh.transmit = scene.baseTransmittance(h);
+            const double r = luminance(sh.albedo), t = luminance(sh.transmit);
+            if (t > 0) sh.reflectChance = r / (r + t);
             sh.frame.z = glm::dvec3(h.ng);
             const glm::dvec3 a = std::abs(sh.frame.z.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
             sh.frame.x = glm::normalize(glm::cross(a, sh.frame.z));
@@ -122,10 +127,12 @@ struct Tracer {
         pdf = 0;
         const glm::dvec3 wiL = sh.frame.toLocal(wi);
         if ((glm::dot(glm::vec3(wi), ng) > 0) != (wiL.z > 0)) return Rgb(0.0);
-        if (!sh.ply) {
-            if (wiL.z * woL.z <= 0) return Rgb(0.0);
-            pdf = std::abs(wiL.z) / kPi;
-            return sh.albedo * (std::abs(wiL.z) / kPi);
+        if (!sh.ply) {  // two-sided Lambertian reflection plus diffuse transmission
+            if (wiL.z == 0 || woL.z == 0) return Rgb(0.0);
+            const double c = std::abs(wiL.z) / kPi;
+            const bool reflect = wiL.z * woL.z > 0;
+            pdf = (reflect ? sh.reflectChance : 1 - sh.reflectChance) * c;
+            return (reflect ? sh.albedo : sh.transmit) * c;
         }
         pdf = bsdf.pdf(woL, wiL);
         return bsdf.eval(woL, wiL) * std::abs(wiL.z);
@@ -214,12 +221,16 @@ struct Tracer {
                 if (!bs.valid) break;
                 wiL = bs.wi, weight = bs.weight, pdf = bs.pdf;
             } else {
+                // The side by reflectChance (no extra random number without transmission), then
+                // a cosine-weighted direction on it.
+                const bool reflect = sh.reflectChance >= 1 || rng.uniform() < sh.reflectChance;
                 const double u1 = rng.uniform(), u2 = rng.uniform();
                 const double rr = std::sqrt(u1), ph = 2 * kPi * u2;
                 wiL = glm::dvec3(rr * std::cos(ph), rr * std::sin(ph), std::sqrt(std::max(0.0, 1 - u1)));
-                if (woL.z < 0) wiL.z = -wiL.z;
-                weight = sh.albedo;
-                pdf = std::abs(wiL.z) / kPi;
+                if ((woL.z < 0) == reflect) wiL.z = -wiL.z;
+                const double chance = reflect ? sh.reflectChance : 1 - sh.reflectChance;
+                weight = (reflect ? sh.albedo : sh.transmit) / chance;
+                pdf = chance * std::abs(wiL.z) / kPi;
                 if (!(pdf > 0)) break;
             }
             const glm::vec3 wi = glm::normalize(glm::vec3(sh.frame.toWorld(wiL)));

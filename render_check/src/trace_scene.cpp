@@ -128,6 +128,11 @@ Rgb TraceScene::baseAlbedo(const TraceHit& hit, const Rgb& plain) const {
     return options_.baseTexture->albedo(surface_.uvAt(hit.segment, hit.u, hit.v));
 }
 
+Rgb TraceScene::baseTransmittance(const TraceHit& hit) const {
+    if (!options_.baseTexture || hit.kind != TraceHit::Base) return Rgb(0.0);
+    return options_.baseTexture->transmittance(surface_.uvAt(hit.segment, hit.u, hit.v));
+}
+
 uint32_t TraceScene::ignoreOf(const TraceHit* from) const {
     return from && from->kind == TraceHit::Ply ? geometry_->ignoredPrimitive(*from) : RTC_INVALID_GEOMETRY_ID;
 }

@@ -95,6 +95,8 @@ public:
     glm::vec3 spawn(const TraceHit& hit, const glm::vec3& p, const glm::vec3& dir) const;
     // Albedo of a Base hit: the baked texel with a baseTexture, else `plain`.
     Rgb baseAlbedo(const TraceHit& hit, const Rgb& plain) const;
+    // Diffuse transmittance of a Base hit: the baked texel with a baseTexture, else black.
+    Rgb baseTransmittance(const TraceHit& hit) const;
 
     GeometryMode mode() const { return options_.mode; }
     const PlyGeometry& plies() const { return plies_; }

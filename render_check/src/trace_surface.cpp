@@ -39,6 +39,12 @@ Rgb SurfaceTexture::albedo(glm::dvec2 uv) const {
     return Rgb(bake->albedo[3 * i], bake->albedo[3 * i + 1], bake->albedo[3 * i + 2]);
 }
 
+Rgb SurfaceTexture::transmittance(glm::dvec2 uv) const {
+    if (bake->transmittance.empty()) return Rgb(0.0);
+    const size_t i = texel(uv);
+    return Rgb(bake->transmittance[3 * i], bake->transmittance[3 * i + 1], bake->transmittance[3 * i + 2]);
+}
+
 float SurfaceTexture::coverage(glm::dvec2 uv) const { return bake->coverage[texel(uv)]; }
 
 glm::dvec2 SurfaceMesh::uvAt(uint32_t face, float u, float v) const {

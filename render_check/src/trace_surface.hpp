@@ -26,6 +26,7 @@ struct SurfaceTexture {
     // Texel (row-major from the top) at the mesh's uv.
     size_t texel(glm::dvec2 uv) const;
     Rgb albedo(glm::dvec2 uv) const;
+    Rgb transmittance(glm::dvec2 uv) const;  // black when the bake has none
     float coverage(glm::dvec2 uv) const;
 };
 

@@ -209,6 +209,33 @@ TEST(Bake, heightNormalAndAlbedoStayInRange) {
     EXPECT_EQ(baseColorRgba8(b).size(), 4 * b.coverage.size());
 }
 
+// The transmittance (light from a white sky below that comes up through the yarn) is in [0, 1],
+// keeps the body colour's order, and with the albedo no more than the light that came in (the
+// mean over the covered pixels; the BSDF conserves energy).
+TEST(Bake, transmittanceIsTheLightThroughTheYarnAndConservesEnergy) {
+    BakeOptions o = smallBake();
+    o.albedoPaths = 8;
+    const SurfaceBake b = bakeSurface(generateStockinette(), o);
+    ASSERT_EQ(b.transmittance.size(), b.albedo.size());
+    Rgb t(0.0), sum(0.0);
+    double covered = 0;
+    for (size_t i = 0; i < b.coverage.size(); ++i) {
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_GE(b.transmittance[3 * i + c], 0.f);
+            EXPECT_LE(b.transmittance[3 * i + c], 1.f);
+            t[c] += b.coverage[i] * b.transmittance[3 * i + c];
+            sum[c] += b.coverage[i] * (b.albedo[3 * i + c] + b.transmittance[3 * i + c]);
+        }
+        covered += b.coverage[i];
+    }
+    ASSERT_GT(covered, 0);
+    t /= covered, sum /= covered;
+    EXPECT_GT(t.r, 0.01) << "the reddish body lets red light through";
+    EXPECT_GT(t.r, t.g);
+    EXPECT_GT(t.g, t.b);
+    for (int c = 0; c < 3; ++c) EXPECT_LT(sum[c], 1.0) << "channel " << c;
+}
+
 // Image orientation: +x to the right, +y up (row 0 is the top). At a yarn's silhouette the normal
 // turns away from the yarn, against the coverage gradient: sum n . grad(coverage) < 0 per axis
 // (a map flipped in x or y would give a positive sum).

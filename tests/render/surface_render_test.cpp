@@ -1,5 +1,5 @@
 // The surface level in the tracer: the base mesh shaded with a bake (RenderOptions::surface):
-// the texture's orientation and repeat, the alpha MASK, the albedo.
+// the texture's orientation and repeat, the alpha MASK, the albedo, the transmittance.
 #include <gtest/gtest.h>
 
 #include "knit/bake.hpp"
@@ -82,6 +82,32 @@ TEST(SurfaceRender, radianceScalesWithTheBakedAlbedo) {
     const double a = renderScene(scene, o).image.mean().g;
     o.surface = &bright;
     const double b = renderScene(scene, o).image.mean().g;
+    ASSERT_GT(a, 0);
+    EXPECT_NEAR(b / a, 2.0, 1e-3);
+}
+
+// Back-lit, no environment: the side the camera sees is lit only through the surface, so the
+// plane's pixels (the middle of the frame; the lightbox shows around it) are the baked
+// transmittance's: black without it, linear in it (black albedo: every path transmits, the same
+// paths for both).
+TEST(SurfaceRender, backLightComesThroughTheBakedTransmittance) {
+    const Scene scene = planeScene();
+    SurfaceBake bake = quadrants({Rgb(0.0), Rgb(0.0), Rgb(0.0), Rgb(0.0)}, {1, 1, 1, 1});
+    RenderOptions o = surfaceRender(bake);
+    o.environment = 0;
+    o.light = LightPlacement::Back;
+    auto plane = [&] {
+        const Image im = renderScene(scene, o).image;
+        double g = 0;
+        for (int y = 9; y <= 14; ++y)
+            for (int x = 9; x <= 14; ++x) g += im.pixel(x, y).g;
+        return g / 36;
+    };
+    EXPECT_EQ(plane(), 0.0) << "no transmittance baked: no light through";
+    bake.transmittance.assign(12, 0.2f);
+    const double a = plane();
+    bake.transmittance.assign(12, 0.4f);
+    const double b = plane();
     ASSERT_GT(a, 0);
     EXPECT_NEAR(b / a, 2.0, 1e-3);
 }

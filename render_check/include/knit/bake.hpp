@@ -18,6 +18,9 @@
 //   uniform white sky over the cloth (radiance 1 from every direction with z > 0, black below:
 //   the body under the garment), path traced with the ply BSDF. A Lambertian surface of albedo a
 //   sends exactly a there, so it is the diffuse colour the base mesh needs under even light.
+//   The same paths give the transmittance: the radiance sent straight up under a white sky below
+//   the cloth alone (the light that comes through the yarns, not through the holes), which the
+//   renderer's surface level uses as diffuse transmission (back light, an environment behind).
 // - Normals are tangent space: x along +u (pattern x), y along +v (pattern y), z out of the cloth.
 #pragma once
 #include <cstdint>
@@ -48,6 +51,7 @@ struct SurfaceBake {
     int width = 0, height = 0;            // N x M pixels, row-major from the top
     std::vector<float> albedo;            // linear RGB, 3 per pixel, averaged over the hits (straight
                                           // colour: pixels without any hit take the mean of the others)
+    std::vector<float> transmittance;     // linear RGB, 3 per pixel, as albedo (light through the yarn)
     std::vector<float> normal;            // unit tangent-space normal, 3 per pixel ((0, 0, 1) without hit)
     std::vector<float> heights;           // first-hit height in [0, 1] over [heightMin, heightMax] (0 without hit)
     std::vector<float> coverage;          // fraction of the sub-pixel rays that hit yarn, [0, 1]
