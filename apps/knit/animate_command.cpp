@@ -16,12 +16,15 @@
 
 #include <nlohmann/json.hpp>
 
+#include "empty_result.hpp"
 #include "export_flags.hpp"
+#include "float_range.hpp"
 #include "frame_sink.hpp"
 #include "interrupt.hpp"
 #include "knit/cache.hpp"
 #include "knit/error.hpp"
 #include "knit/output_transaction.hpp"
+#include "path_collisions.hpp"
 #include "report.hpp"
 #include "rest_pose.hpp"
 #include "util/platform.hpp"
@@ -114,6 +117,31 @@ void checkOutput(const ExportOptions& o) {
                     (util::lowerExtension(o.path).empty() ? std::string("glb") : util::lowerExtension(o.path)));
     validateExportOptions(o);
     requireWritableFolder(o.path);
+}
+
+// Step: outputs that would overwrite an input (a frame, --frames, --rest, --pattern) or each
+// other (-o, the cache's topology .obj, --report), by file identity. Per-frame outputs are
+// checked against the input frame of the same number and the other inputs.
+void refuseAnimateCollisions(const AnimateCommand& a, const FrameSequence& seq) {
+    const std::string& out = a.exportOptions.path;
+    const std::vector<NamedPath> inputs = {
+        {"--frames", a.frames}, {"--rest", a.rest}, {"--pattern", a.scene.scene.pattern}};
+    CacheFormat format;
+    const std::string topology =
+        cacheFormatOf(out, format) ? std::filesystem::path(out).replace_extension(".obj").string() : std::string();
+    if (!hasFramePattern(out)) {
+        std::vector<NamedPath> frames = inputs;
+        for (const FrameFile& f : seq.frames()) frames.push_back({"frame " + std::to_string(f.number), f.path});
+        refuseCollidingPaths(frames,
+                             {{"-o", out}, {"the point cache's topology file", topology}, {"--report", a.report}});
+        return;
+    }
+    for (const FrameFile& f : seq.frames()) {
+        std::vector<NamedPath> in = inputs;
+        in.push_back({"frame " + std::to_string(f.number), f.path});
+        refuseCollidingPaths(
+            in, {{"--report", a.report}, {"-o (frame " + std::to_string(f.number) + ")", framePath(out, f.number)}});
+    }
 }
 
 struct FrameRecord {
@@ -234,15 +262,19 @@ void addAnimateCommand(CLI::App& app, AnimateCommand& a) {
 int runAnimate(const AnimateCommand& a) {
     // Step 1: fail before long work: outputs, the sequence and its files.
     checkOutput(a.exportOptions);
-    if (!a.report.empty()) requireWritableFolder(a.report, "report");
+    checkReportPath(a.report);
     FrameRange range = a.range;
     if (a.command != nullptr && a.command->count("--fps") > 0) range.fps = a.fps;  // glTF input: sample at --fps
     const FrameSequence seq(a.frames, range);
+    refuseAnimateCollisions(a, seq);
     // Step 2: bind once on the rest pose.
     const auto t0 = Clock::now();
     const SceneOptions sceneOptions = resolveScene(a.scene);
     const Scene rest = bindRestPose(sceneOptions, a.rest.empty() ? seq.frame(0).path : a.rest);
     printWarnings(rest);
+    // The rest pose decides what every frame holds: refuse an empty or out-of-range output now.
+    refuseValuesBeyondFloat32(rest, a.exportOptions);
+    refuseEmptyExport(rest, a.exportOptions);
     AnimatorOptions ao;
     ao.plies = a.exportOptions.what != ExportWhat::Yarns;
     ao.stats = !a.noStats;

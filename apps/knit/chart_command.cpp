@@ -10,6 +10,8 @@
 #include "knit/export.hpp"
 #include "knit/output_transaction.hpp"
 #include "knit/pattern.hpp"
+#include "path_collisions.hpp"
+#include "report.hpp"
 
 namespace knit::cli {
 
@@ -43,7 +45,14 @@ nlohmann::json reportOf(const Chart& chart, const ChartPattern& cp) {
 }  // namespace
 
 int runChart(const ChartCommand& c) {
-    const Chart chart = c.chart.rfind("chart:", 0) == 0 ? builtinChart(c.chart) : loadChart(c.chart);
+    // Step 1: fail before relaxing: a report path that cannot be written, an output that is the
+    // chart itself or the other output.
+    checkReportPath(c.report);
+    const bool builtin = c.chart.rfind("chart:", 0) == 0;
+    refuseCollidingPaths({{"the chart", builtin ? std::string() : c.chart}},
+                         {{"-o", c.output}, {"--report", c.report}});
+    // Step 2: parse and relax; step 3: write the cell and its report together.
+    const Chart chart = builtin ? builtinChart(c.chart) : loadChart(c.chart);
     ChartPatternOptions options;
     options.radius = c.yarnRadius;
     const ChartPattern cp = relaxChart(chart, options);

@@ -24,7 +24,7 @@ void require(double value, const std::string& what, const std::string& fix, cons
 
 bool float32Format(const std::string& path) {
     const std::string ext = util::lowerExtension(path);
-    return ext == "bcc" || ext == "gltf" || ext == "glb" || ext == "pbrt";
+    return ext == "bcc" || ext == "gltf" || ext == "glb" || ext == "pbrt" || ext == "pc2" || ext == "mdd";
 }
 
 }  // namespace

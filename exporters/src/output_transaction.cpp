@@ -88,6 +88,16 @@ const OutputTransaction::Folder& OutputTransaction::folderFor(const std::string&
 std::string OutputTransaction::stage(const std::string& finalPath) {
     if (finalPath.empty()) return finalPath;
     detail::checkOutputFolder(finalPath);
+    // Two outputs of one command onto one file: the later rename would replace the earlier file.
+    std::error_code ec;
+    std::string identity = fs::weakly_canonical(fs::absolute(finalPath), ec).string();
+    if (ec) identity = finalPath;
+    for (const auto& [given, known] : staged_)
+        if (known == identity)
+            throw Error("'" + finalPath + "' is named for two outputs of this command" +
+                        (given != finalPath ? " (also as '" + given + "')" : std::string()) +
+                        "; give each output its own path");
+    staged_.emplace_back(finalPath, std::move(identity));
     const fs::path p(finalPath);
     return join(folderFor(p.parent_path().string()).staging, p.filename().string());
 }
@@ -98,6 +108,7 @@ void OutputTransaction::commit() {
         for (Move& m : plannedMoves(f.staging, f.final)) moves.push_back(std::move(m));
     renameAll(moves);
     removeStaging();  // now only the hard links to the replaced files
+    staged_.clear();
 }
 
 std::string OutputTransaction::finalNames(std::string text) const {

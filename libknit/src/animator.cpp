@@ -108,8 +108,7 @@ Animator::Animator(const Scene& rest, const AnimatorOptions& options)
         for (uint32_t i = 0; i < n; ++i) {
             total += m;
             if (total > UINT32_MAX)
-                throw Error(
-                    "makePlies: more than 2^32-1 ply points; increase PlyOptions.pitch or reduce samplesPerTurn");
+                throw Error("more than 2^32-1 ply points per frame; raise --ply-pitch or lower --samples-per-turn");
             plyTopology_.curves.offsets.push_back(static_cast<uint32_t>(total));
             plyTopology_.curves.closed.push_back(yarns.closed[y]);
             plyTopology_.yarnOfCurve.push_back(static_cast<uint32_t>(y));

@@ -5,7 +5,10 @@
 #include <fstream>
 #include <sstream>
 
+#include <sys/stat.h>
+
 #include "knit/error.hpp"
+#include "special_file.hpp"
 
 namespace knit {
 namespace {
@@ -222,13 +225,24 @@ Chart parseChart(const std::string& text, const std::string& source) {
     return chart;
 }
 
-Chart loadChart(const std::string& path) {
+std::string readChartText(const std::string& path) {
+    // Step 1: what the path names (a FIFO or a device would block or never end).
+    struct stat st {};
+    if (stat(path.c_str(), &st) != 0) throw Error(path + ": cannot open chart file (does not exist)");
+    if (S_ISDIR(st.st_mode)) throw Error(path + ": is a directory, expected a chart file");
+    if (detail::isSpecialFile(path)) throw Error(path + ": " + detail::notRegularFile());
+    // Step 2: its size before reading it whole (a chart is one period: a few hundred stitches).
+    if (uint64_t(st.st_size) > kMaxChartFileBytes)
+        throw Error(path + ": a chart file holds at most " + std::to_string(kMaxChartFileBytes >> 20) +
+                    " MiB of text; this one has " + std::to_string(uint64_t(st.st_size)) + " bytes");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw Error(path + ": cannot open chart file");
     std::ostringstream text;
     text << in.rdbuf();
-    return parseChart(text.str(), path);
+    return text.str();
 }
+
+Chart loadChart(const std::string& path) { return parseChart(readChartText(path), path); }
 
 namespace {
 

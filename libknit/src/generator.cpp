@@ -2,10 +2,9 @@
 #include "knit/generator.hpp"
 
 #include <cmath>
-#include <fstream>
-#include <sstream>
 #include <sys/stat.h>
 
+#include "knit/chart.hpp"
 #include "knit/chart_cache.hpp"
 #include "knit/error.hpp"
 #include "util/math.hpp"
@@ -62,11 +61,7 @@ Pattern loadPatternFileOrName(const std::string& fileOrName) {
     // Charts: built-in (chart:NAME) or a .chart/.txt file, relaxed on first use and cached.
     if (fileOrName.rfind("chart:", 0) == 0) return cachedChartPattern(builtinChartText(fileOrName), fileOrName);
     if (endsWith(fileOrName, ".chart") || endsWith(fileOrName, ".txt")) {
-        std::ifstream in(fileOrName, std::ios::binary);
-        if (!in) throw Error(fileOrName + ": cannot open chart file");
-        std::ostringstream text;
-        text << in.rdbuf();
-        return cachedChartPattern(text.str(), fileOrName);
+        return cachedChartPattern(readChartText(fileOrName), fileOrName);
     }
     if (endsWith(fileOrName, ".json")) return patternFromCurves(loadCurvesJson(fileOrName));
     if (endsWith(fileOrName, ".pyp") || exists) return loadPyp(fileOrName);

@@ -53,8 +53,8 @@ PlyGeometry renderCurves(const Scene& scene, const glm::dvec3& origin, double fi
         return plies ? buildPlyGeometry(scene.plies(), origin, fiberTwist)
                      : emptyGeometry(origin, resolvePlyOptions(scene.plyOptions()).plyRadius);
     if (!curvesMode)
-        throw Error("render: the yarn level is drawn as round curves only (--mode curves); build the scene with "
-                    "DetailOptions::yarnLevel = false for tubes or grid");
+        throw Error("the yarn level of --detail view is drawn as round curves only: render it with --mode curves, "
+                    "or use --detail full with --mode tubes or grid");
     PlyGeometry y = buildPlyGeometry(yarnCurves(*yarnLevel, scene.yarnRadius()), origin, fiberTwist);
     if (!plies) return y;
     PlyGeometry g = buildPlyGeometry(scene.plies(), origin, fiberTwist);

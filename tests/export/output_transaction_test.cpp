@@ -114,4 +114,20 @@ TEST(OutputTransaction, finalPathThatIsAFolderIsRefusedWhenStaged) {
               std::string::npos);
 }
 
+// Two outputs of one command onto one file, by the same or another name of it: the second
+// rename would silently replace the first output, so the second stage() refuses.
+TEST(OutputTransaction, oneFileStagedTwiceIsRefusedUnderEitherName) {
+    knit::test::TempDir tmp;
+    fs::create_directories(tmp.path() / "sub");
+    OutputTransaction outputs;
+    outputs.stage(tmp.file("out.obj"));
+    EXPECT_NE(errorOf([&] { outputs.stage(tmp.file("out.obj")); }).find("is named for two outputs"), std::string::npos);
+    const std::string other = tmp.file("sub/../out.obj");
+    const std::string m = errorOf([&] { outputs.stage(other); });
+    EXPECT_NE(m.find("'" + other + "' is named for two outputs of this command (also as '" + tmp.file("out.obj")),
+              std::string::npos)
+        << m;
+    EXPECT_NE(outputs.stage(tmp.file("other.obj")), "");  // another file is fine
+}
+
 }  // namespace

@@ -45,6 +45,8 @@ protected:
 };
 
 const char* kSmall = "build -q --mesh plane --mesh-res 4 --repeats 3 3 ";
+// One UV-mapped triangle: the smallest mesh file (and animation frame).
+const std::string kTriangleObj = "v 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nf 1/1 2/2 3/3\n";
 
 TEST_F(CliBadInput, unwritableOutputsFailWithoutFiles) {
     write("afile", "x");
@@ -171,6 +173,50 @@ TEST_F(CliBadInput, outputsThatOverwriteAnInputOrEachOtherAreRefusedBeforeAnyWor
     fs::create_symlink("mesh.obj", dir / "link.obj");
     expectFailure(std::string("build -q --mesh mesh.obj --repeats 3 3 -o link.obj"), "name the same file");
     EXPECT_EQ(fs::file_size(dir / "mesh.obj"), 59u);  // the input is untouched
+}
+
+// `knit chart` and `knit animate` check their outputs as build does: the chart file, the frames,
+// --rest and each other, by file identity, before any relaxation or binding.
+TEST_F(CliBadInput, chartAndAnimateOutputsThatOverwriteAnInputOrEachOtherAreRefused) {
+    write("c.chart", "k k\nk k\n");
+    expectFailure("chart c.chart -o c.chart", "-o 'c.chart' and the chart 'c.chart' name the same file");
+    expectFailure("chart chart:seed -o p.pyp --report p.pyp", "--report 'p.pyp' and -o 'p.pyp' name the same file");
+    write("f_0001.obj", kTriangleObj);
+    write("f_0002.obj", kTriangleObj);
+    const std::string animate = "animate -q --repeats 3 3 --frames f_%04d.obj ";
+    expectFailure(animate + "-o f_%04d.obj", "-o (frame 1) 'f_0001.obj' and frame 1 ");
+    expectFailure(animate + "-o c.pc2 --report c.pc2", "--report 'c.pc2' and -o 'c.pc2' name the same file");
+    expectFailure(animate + "-o c.pc2 --report c.obj",
+                  "--report 'c.obj' and the point cache's topology file 'c.obj' name the same file");
+    expectFailure(animate + "--rest f_0001.obj -o f_0002.obj.pc2 --report f_0002.obj", "name the same file");
+    EXPECT_EQ(fs::file_size(dir / "f_0001.obj"), kTriangleObj.size());  // the inputs are untouched
+    EXPECT_EQ(fs::file_size(dir / "c.chart"), 8u);
+}
+
+TEST_F(CliBadInput, chartFilesThatAreNotRegularOrTooLargeAreRefusedWithoutBlocking) {
+    ASSERT_EQ(::mkfifo((dir / "fifo.chart").c_str(), 0600), 0);
+    expectFailure("chart fifo.chart -o p.pyp", "fifo.chart: is not a regular file");
+    expectFailure(std::string(kSmall) + "--pattern fifo.chart -o out.obj", "fifo.chart: is not a regular file");
+    fs::create_directories(dir / "folder.chart");
+    expectFailure("chart folder.chart -o p.pyp", "folder.chart: is a directory");
+    write("big.chart", std::string(size_t(1) << 21, 'k'));
+    expectFailure("chart big.chart -o p.pyp", "big.chart: a chart file holds at most 1 MiB");
+    expectFailure("chart missing.chart -o p.pyp", "missing.chart: cannot open chart file (does not exist)");
+}
+
+TEST_F(CliBadInput, aMissingGltfMeshIsReportedAsMissing) {
+    expectFailure("build -q --mesh missing.glb --repeats 3 3 -o out.obj", "missing.glb");
+    const CliRun r = knit("build -q --mesh missing.glb --repeats 3 3 -o out.obj", dir);
+    EXPECT_EQ(r.output.find("nor a built-in mesh"), std::string::npos) << r.output;
+}
+
+// A chart and an animation that make no curves are refused as build refuses them: exit != 0,
+// the cause, no file.
+TEST_F(CliBadInput, animateRefusesAnEmptyResultSayingWhy) {
+    write("f_0001.obj", kTriangleObj);
+    write("f_0002.obj", kTriangleObj);
+    expectFailure("animate -q --repeats 3 3 --ply-pitch 1e30 --frames f_%04d.obj -o c.pc2",
+                  "nothing to export: every yarn is shorter than one ply sample");
 }
 
 #ifdef KNIT_HARD_HAVE_RENDER_CHECK

@@ -25,7 +25,8 @@ public:
     OutputTransaction& operator=(const OutputTransaction&) = delete;
 
     // Where to write `finalPath` now ("" stays ""). Checks the final path first (its folder exists
-    // and is writable, it is not a folder or a device): knit::Error naming it.
+    // and is writable, it is not a folder or a device, it was not staged before under this or
+    // another name of the same file): knit::Error naming it.
     std::string stage(const std::string& finalPath);
 
     // Renames every file in the staging folders onto its final folder; throws knit::Error naming
@@ -56,6 +57,7 @@ private:
     void removeStaging();
 
     std::vector<Folder> folders_;
+    std::vector<std::pair<std::string, std::string>> staged_;  // final path as given, its canonical form
 };
 
 }  // namespace knit

@@ -51,6 +51,10 @@ struct Chart {
 // an empty chart, and a bad colour block or palette.
 Chart parseChart(const std::string& text, const std::string& source);
 Chart loadChart(const std::string& path);
+// The text of a chart file, refused (knit::Error naming the path) when it does not exist, is a
+// folder, a device or FIFO, or is larger than kMaxChartFileBytes.
+constexpr uint64_t kMaxChartFileBytes = uint64_t(1) << 20;
+std::string readChartText(const std::string& path);
 
 // Built-in charts ("chart:stockinette", ...): names with the `chart:` prefix.
 std::vector<std::string> builtinChartNames();
