@@ -250,13 +250,13 @@ BaseMesh builtinMesh(const std::string& name, const ProceduralMeshOptions& o) {
 }
 
 // A string is a file when it names an existing path (a directory is passed on to loadMesh, which
-// rejects it) or ends in a mesh extension (.obj/.ply/.off, any case: a missing file is then
-// reported as missing); anything else is a built-in name.
+// rejects it) or ends in a mesh extension (.obj/.ply/.off/.gltf/.glb, any case: a missing file is
+// then reported as missing); anything else is a built-in name.
 BaseMesh loadMeshFileOrName(const std::string& fileOrName, const ProceduralMeshOptions& o,
                             const MeshLoadOptions& load) {
     std::error_code ec;
     const std::string ext = util::lowerExtension(fileOrName);
-    const bool meshExt = ext == "obj" || ext == "ply" || ext == "off";
+    const bool meshExt = ext == "obj" || ext == "ply" || ext == "off" || ext == "gltf" || ext == "glb";
     if (meshExt || std::filesystem::exists(fileOrName, ec)) return loadMesh(fileOrName, load);
     const auto names = builtinMeshNames();
     if (std::find(names.begin(), names.end(), fileOrName) == names.end()) {
