@@ -3,7 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <array>
 #include <cstdio>
+#include <set>
+#include <sstream>
 
 #include <glm/geometric.hpp>
 
@@ -98,19 +101,60 @@ TEST(Relax, plainChartsKeepAllFourCrossingsOfEveryStitch) {
     }
 }
 
-TEST(Relax, relaxedCellTilesSeamlessly) {
-    // Every periodic edge is as long as its neighbours: the course's end meets the next tile's
-    // start (the relaxed points and period are one consistent state).
-    const Pattern p = relaxChart(builtinChart("chart:seed")).relaxed.pattern;
-    for (const PeriodicEdge& e : p.edges) {
-        const double l =
-            glm::length(p.points[e.v1] + glm::dvec3(e.dx * p.px, e.dy * p.py, 0) - p.points[e.v0]) / p.radius;
-        EXPECT_GT(l, 0.5);
-        EXPECT_LT(l, 2.5);
+// Every built-in chart's relaxed cell tiles seamlessly: (1) the .pyp file holds the cell, so each
+// course's end meets the next tile's start within 1e-6 r after the round trip through the file;
+// (2) cut at its periodic edges and re-joined by the partner search (what tiling does), the
+// cell's yarn is joined exactly as relaxed: the same edges with the same tile offsets; (3) the
+// seam edges are as long as the yarn's other edges (no seam pulled tight or left slack).
+void expectTilesSeamlessly(const std::string& name) {
+    const Pattern p = relaxChart(builtinChart(name)).relaxed.pattern;
+    // (1) The file round trip.
+    std::stringstream file;
+    writePyp(file, p);
+    const Pattern back = parsePyp(file, name);
+    ASSERT_EQ(back.points.size(), p.points.size()) << name;
+    ASSERT_EQ(back.edges.size(), p.edges.size()) << name;
+    EXPECT_NEAR(back.px, p.px, 1e-6 * p.radius) << name;
+    EXPECT_NEAR(back.py, p.py, 1e-6 * p.radius) << name;
+    auto seamEnd = [](const Pattern& q, const PeriodicEdge& e) {  // the end's partner start, shifted
+        return q.points[e.v1] + glm::dvec3(e.dx * q.px, e.dy * q.py, 0);
+    };
+    for (size_t i = 0; i < p.edges.size(); ++i) {
+        const PeriodicEdge& e = p.edges[i];
+        if (e.dx == 0 && e.dy == 0) continue;
+        EXPECT_LT(glm::length(seamEnd(back, back.edges[i]) - seamEnd(p, e)), 1e-6 * p.radius) << name << " edge " << i;
+        EXPECT_LT(glm::length(back.points[e.v0] - p.points[e.v0]), 1e-6 * p.radius) << name << " edge " << i;
     }
-    // The split at the periodic edges and the partner search give back the same edges.
-    const Pattern back = patternFromCurves(splitAtPeriodicEdges(p));
-    EXPECT_EQ(back.edges.size(), p.edges.size());
+    // (2) Cut and re-joined: the same periodic edges (as unordered vertex pairs with their offset).
+    auto keyed = [](const Pattern& q) {
+        std::set<std::array<long, 4>> keys;
+        for (const PeriodicEdge& e : q.edges) {
+            const bool flip = e.v0 > e.v1;
+            keys.insert({long(flip ? e.v1 : e.v0), long(flip ? e.v0 : e.v1), long(flip ? -e.dx : e.dx),
+                         long(flip ? -e.dy : e.dy)});
+        }
+        return keys;
+    };
+    std::vector<uint32_t> original;
+    const CurveCell cut = splitAtPeriodicEdges(p, &original);
+    Pattern joined = patternFromCurves(cut);
+    for (PeriodicEdge& e : joined.edges) e.v0 = original[e.v0], e.v1 = original[e.v1];
+    EXPECT_EQ(keyed(joined), keyed(p)) << name;
+    // (3) Seam edges against the yarn's other edges.
+    double lo = 1e300, hi = 0, seamLo = 1e300, seamHi = 0;
+    for (const PeriodicEdge& e : p.edges) {
+        const double l = glm::length(seamEnd(p, e) - p.points[e.v0]) / p.radius;
+        const bool seam = e.dx != 0 || e.dy != 0;
+        (seam ? seamLo : lo) = std::min(seam ? seamLo : lo, l);
+        (seam ? seamHi : hi) = std::max(seam ? seamHi : hi, l);
+    }
+    std::printf("%-26s seam edges %.4f..%.4f r, other edges %.4f..%.4f r\n", name.c_str(), seamLo, seamHi, lo, hi);
+    EXPECT_GE(seamLo, 0.9 * lo) << name;
+    EXPECT_LE(seamHi, 1.1 * hi) << name;
+}
+
+TEST(Relax, everyBuiltinChartTilesSeamlessly) {
+    for (const std::string& name : builtinChartNames()) expectTilesSeamlessly(name);
 }
 
 TEST(Relax, stockinetteYarnLengthPerAreaIsNearTheHylcStockinette) {
