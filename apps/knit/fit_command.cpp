@@ -3,6 +3,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 
 #include <nlohmann/json.hpp>
 
@@ -63,9 +64,12 @@ void addFitCommand(CLI::App& app, FitCommand& f) {
     f.command = app.add_subcommand("fit", "Fit the ply material to a front-lit and a back-lit photograph");
     addSceneFlags(*f.command, f.scene);
     addRenderFlags(*f.command, f.fit.render);
-    // The photographs fix the image size and both lights are rendered: those render flags go.
-    // (--width / --height are view flags, which fit does not add.)
-    for (const char* flag : {"--light", "--output", "--exr"}) f.command->remove_option(f.command->get_option(flag));
+    // The camera as render takes it (--eye --target --up --fov). The photographs fix the image
+    // size, both lights are rendered and every ply is traced (the fit compares what the
+    // photographs show at full detail): those flags go.
+    addViewFlags(*f.command, f.view, f.fit.render.fovDegrees, f.viewWidth, f.viewHeight, Detail::Full);
+    for (const char* flag : {"--light", "--output", "--exr", "--width", "--height", "--detail"})
+        f.command->remove_option(f.command->get_option(flag));
     f.command->add_option("--front", f.front, "Front-lit photograph (PNG sRGB or EXR linear)")->required();
     f.command->add_option("--back", f.back, "Back-lit photograph, same size")->required();
     f.command->add_option("-o,--output", f.output, "Fitted material JSON (knit render --material reads it)")
@@ -94,6 +98,9 @@ int runFit(const FitCommand& f) {
                          {{"-o", f.output}, {"--report", f.report}});
     const FitTarget front = readFitTarget(f.front, "--front"), back = readFitTarget(f.back, "--back");
     checkFitTargets(front, back, {});
+    // The camera of the photographs (none: render's default framing), checked before the scene.
+    const std::optional<View> camera =
+        givenView(f.view, {f.fit.render.fovDegrees, front.image.width, front.image.height});
     const std::vector<float> mask =
         f.mask.empty() ? std::vector<float>{} : readMask(f.mask, "--mask", front.image.width, front.image.height);
     // Step 2: the free fields and their bounds.
@@ -101,6 +108,7 @@ int runFit(const FitCommand& f) {
     options.parameters = parseFitList(f.fitList, "--fit");
     for (const std::string& b : f.bounds) applyFitBound(options.parameters, b, "--bound");
     options.render.progress = false;
+    options.render.view = camera;
     const std::vector<std::string> labels = FitSpace(options.parameters, resolveMaterial(options.render)).labels();
     if (!f.scene.quiet) options.progress = [labels](const FitIteration& it) { printIteration(it, labels); };
     // Step 3: the scene, the fit, the outputs.

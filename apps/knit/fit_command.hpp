@@ -9,6 +9,7 @@
 
 #include "knit/fit.hpp"
 #include "scene_flags.hpp"
+#include "view_flags.hpp"
 
 namespace knit::cli {
 
@@ -19,8 +20,10 @@ struct FitCommand {
     std::string front, back, mask;  // photographs (PNG sRGB / EXR linear) and optional mask
     std::string output;             // -o: material JSON
     std::string fitList = "kR,kTT,body-albedo";
-    std::vector<std::string> bounds;  // --bound NAME=LO:HI
-    std::string report;               // --report path; empty = none
+    std::vector<std::string> bounds;    // --bound NAME=LO:HI
+    std::string report;                 // --report path; empty = none
+    ViewFlags view;                     // --eye --target --up (--fov is the render's)
+    int viewWidth = 0, viewHeight = 0;  // unused: the photographs fix the image size
 };
 
 // Registers the subcommand: the scene flags and the render flags of `knit render` (without the

@@ -3,6 +3,8 @@
 // and leave no material behind; a uniform target ends with a warning and the best fit (exit 0).
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <vector>
@@ -110,3 +112,38 @@ TEST_F(FitCli, solidColourTargetEndsWithWarningAndBestFit) {
 }
 
 }  // namespace
+
+// The camera flags reach the fit's renders: targets rendered from a closer, oblique camera are
+// matched far better with that camera than with the default framing; a bad camera is named.
+TEST_F(FitCli, fitRendersFromTheCameraOfThePhotographs) {
+    ASSERT_EQ(run("render -q " + kScene + "--width 8 --height 6 --spp 1 --output d.png --report d.json").exitCode, 0);
+    const nlohmann::json framing = nlohmann::json::parse(std::ifstream(dir / "d.json"))["camera"];
+    std::string eye, target, up;
+    for (int k = 0; k < 3; ++k) {
+        up += std::to_string(framing["up"][k].get<double>()) + " ";
+        const double t = framing["target"][k].get<double>(), e = framing["eye"][k].get<double>();
+        const double offset = (k == 0 ? 0.3 : 0.0) * std::abs(e - t);  // halfway in, turned sideways
+        target += std::to_string(t) + " ";
+        eye += std::to_string(t + 0.5 * (e - t) + offset) + " ";
+    }
+    const std::string camera = "--eye " + eye + "--target " + target + "--up " + up;
+    for (const char* light : {"front", "back"}) {
+        const CliRun r = run("render -q " + kScene + camera + "--width 32 --height 24 --spp 4 --seed 9 --light " +
+                             light + " --output cam_" + light + ".png");
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+    }
+    auto fitLoss = [&](const std::string& flags, const std::string& report) {
+        const CliRun r = run(kFit + flags + "--front cam_front.png --back cam_back.png -o m.json --report " + report);
+        EXPECT_EQ(r.exitCode, 0) << r.output;
+        return nlohmann::json::parse(std::ifstream(dir / report))["loss"].get<double>();
+    };
+    const double withCamera = fitLoss(camera, "with.json"), framed = fitLoss("", "framed.json");
+    EXPECT_LT(withCamera, 0.5 * framed) << "the fit did not render from --eye/--target";
+    std::printf("fit loss with the photographs' camera %.4g, with the default framing %.4g\n", withCamera, framed);
+    fs::remove(dir / "m.json");
+    expectCleanError("--front cam_front.png --back cam_back.png --eye 0 0 0 --target 0 0 0",
+                     {"--eye and --target must differ"});
+    const CliRun sized = run(kFit + "--front cam_front.png --back cam_back.png --width 16 -o m.json");
+    EXPECT_NE(sized.exitCode, 0) << "the photographs fix the image size";
+    EXPECT_NE(sized.output.find("--width"), std::string::npos) << sized.output;
+}
