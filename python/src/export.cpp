@@ -1,5 +1,6 @@
 // python/src/export.cpp — export_scene: a built scene to a file (format by extension).
 #include "bindings.hpp"
+#include "knit/budget.hpp"
 #include "knit/error.hpp"
 #include "knit/export.hpp"
 
@@ -28,7 +29,7 @@ void registerExport(py::module_& m) {
     m.def(
         "export_scene",
         [](const knit::Scene& scene, const std::string& path, const std::string& what, int sides, bool caps, bool draco,
-           bool quantize, bool yarnColors) {
+           bool quantize, bool meshopt, bool yarnColors, const std::string& maxMemory) {
             knit::ExportOptions o;
             o.path = path;
             o.what = exportWhat(what);
@@ -36,7 +37,9 @@ void registerExport(py::module_& m) {
             o.caps = caps;
             o.draco = draco;
             o.quantize = quantize;
+            o.meshopt = meshopt;
             o.yarnColors = yarnColors;
+            if (!maxMemory.empty()) o.budget = knit::MemoryBudget(knit::parseMemorySize(maxMemory));
             knit::ExportStats stats;
             {
                 py::gil_scoped_release release;
@@ -45,9 +48,13 @@ void registerExport(py::module_& m) {
             return statsDict(stats);
         },
         "scene"_a, "path"_a, "what"_a = "plies", "sides"_a = 8, "caps"_a = true, "draco"_a = false,
-        "quantize"_a = false, "yarn_colors"_a = false,
+        "quantize"_a = false, "meshopt"_a = false, "yarn_colors"_a = false, "max_memory"_a = "",
         "Writes the scene's yarns, plies or tube meshes; the format follows the extension of path "
-        "(.obj .ply .bcc .pbrt .gltf .glb), written atomically. Returns the export's counts. Raises knit.Error.");
+        "(.obj .ply .bcc .pbrt .gltf .glb), written atomically. draco / quantize / meshopt: glTF "
+        "compression as knit build's --draco / --quantize / --meshopt (meshopt: tubes only). max_memory: "
+        "the memory budget as a size ('8G'; '' = min(4 GiB, half the physical memory)), as --max-memory: "
+        "an export whose estimated size is over it raises knit.Error before writing. Returns the export's "
+        "counts. Raises knit.Error.");
 }
 
 }  // namespace knitpy

@@ -34,3 +34,19 @@ def test_export_unknown_extension_raises_and_writes_nothing(scene, tmp_path):
 def test_export_unknown_what_names_the_argument(scene, tmp_path):
     with pytest.raises(knit.Error, match="what: expected"):
         knit.export_scene(scene, str(tmp_path / "x.obj"), what="ropes")
+
+
+def test_export_meshopt_tubes_are_smaller_than_plain_ones(scene, tmp_path):
+    plain = knit.export_scene(scene, str(tmp_path / "plain.glb"), what="tubes")
+    packed = knit.export_scene(scene, str(tmp_path / "packed.glb"), what="tubes", quantize=True, meshopt=True)
+    assert packed["vertices"] == plain["vertices"]
+    assert packed["bytes"] < 0.5 * plain["bytes"]
+
+
+def test_export_over_the_memory_budget_raises_and_writes_nothing(scene, tmp_path):
+    path = tmp_path / "t.glb"
+    with pytest.raises(knit.Error, match="max-memory"):
+        knit.export_scene(scene, str(path), what="tubes", max_memory="1K")
+    assert not path.exists()
+    with pytest.raises(knit.Error, match="max-memory"):
+        knit.export_scene(scene, str(tmp_path / "x.obj"), max_memory="lots")
