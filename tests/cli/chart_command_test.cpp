@@ -21,6 +21,26 @@ TEST(ChartCommand, writesARelaxedCellAndAReport) {
     EXPECT_NE(test::readText(dir.file("r.json")).find("\"min_distance_radii\""), std::string::npos);
 }
 
+// --yarn-radius sets the cell's radius, and the cell scales with it: the relaxation works in
+// yarn radii (its stop tests are not exactly scale-free: measured 1.4e-4 r on the period and
+// 0.011 r on the points between radius r and 3r).
+TEST(ChartCommand, yarnRadiusScalesTheRelaxedCell) {
+    test::TempDir dir;
+    ASSERT_EQ(test::runKnit("chart chart:seed -o a.pyp", dir.path()).exitCode, 0);
+    const Pattern a = loadPyp(dir.file("a.pyp"));
+    const double r = 3 * a.radius;
+    const test::CliRun run = test::runKnit("chart chart:seed -o b.pyp --yarn-radius " + std::to_string(r), dir.path());
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    const Pattern b = loadPyp(dir.file("b.pyp"));
+    EXPECT_NEAR(b.radius, r, 1e-12);
+    EXPECT_NEAR(b.px / b.radius, a.px / a.radius, 0.01);
+    EXPECT_NEAR(b.py / b.radius, a.py / a.radius, 0.01);
+    ASSERT_EQ(b.points.size(), a.points.size());
+    for (size_t i = 0; i < a.points.size(); ++i) EXPECT_NEAR(b.points[i].z / b.radius, a.points[i].z / a.radius, 0.05);
+    EXPECT_NE(test::runKnit("chart chart:seed -o c.pyp --yarn-radius -1", dir.path()).exitCode, 0);
+    EXPECT_FALSE(std::filesystem::exists(dir.file("c.pyp")));
+}
+
 TEST(ChartCommand, badChartFailsWithLineAndColumn) {
     test::TempDir dir;
     dir.write("bad.chart", "k k\nk q\n");
