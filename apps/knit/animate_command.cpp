@@ -120,16 +120,17 @@ void checkOutput(const ExportOptions& o) {
 }
 
 // Step: outputs that would overwrite an input (a frame, --frames, --rest, --pattern) or each
-// other (-o, the cache's topology .obj, --report), by file identity. Per-frame outputs are
-// checked against the input frame of the same number and the other inputs.
+// other (-o, the cache's topology .obj, a .gltf's buffer, --report), by file identity. The
+// output kind is picked as runAnimate picks its sink; per-frame outputs are checked against the
+// input frame of the same number and the other inputs.
 void refuseAnimateCollisions(const AnimateCommand& a, const FrameSequence& seq) {
     const std::string& out = a.exportOptions.path;
     const std::vector<NamedPath> inputs = {
         {"--frames", a.frames}, {"--rest", a.rest}, {"--pattern", a.scene.scene.pattern}};
     CacheFormat format;
-    const std::string topology =
-        cacheFormatOf(out, format) ? std::filesystem::path(out).replace_extension(".obj").string() : std::string();
-    if (!hasFramePattern(out)) {
+    const bool cache = cacheFormatOf(out, format);
+    if (cache || !hasFramePattern(out)) {  // a point cache and its topology, or one animated .glb
+        const std::string topology = cache ? std::filesystem::path(out).replace_extension(".obj").string() : "";
         std::vector<NamedPath> frames = inputs;
         for (const FrameFile& f : seq.frames()) frames.push_back({"frame " + std::to_string(f.number), f.path});
         refuseCollidingPaths(frames,
@@ -137,10 +138,12 @@ void refuseAnimateCollisions(const AnimateCommand& a, const FrameSequence& seq) 
         return;
     }
     for (const FrameFile& f : seq.frames()) {
+        const std::string frame = "frame " + std::to_string(f.number), file = framePath(out, f.number);
         std::vector<NamedPath> in = inputs;
-        in.push_back({"frame " + std::to_string(f.number), f.path});
-        refuseCollidingPaths(
-            in, {{"--report", a.report}, {"-o (frame " + std::to_string(f.number) + ")", framePath(out, f.number)}});
+        in.push_back({frame, f.path});
+        refuseCollidingPaths(in, {{"-o (" + frame + ")", file},
+                                  {"the glTF buffer of -o (" + frame + ")", gltfBufferOf(file)},
+                                  {"--report", a.report}});
     }
 }
 
@@ -272,7 +275,8 @@ int runAnimate(const AnimateCommand& a) {
     const SceneOptions sceneOptions = resolveScene(a.scene);
     const Scene rest = bindRestPose(sceneOptions, a.rest.empty() ? seq.frame(0).path : a.rest);
     printWarnings(rest);
-    // The rest pose decides what every frame holds: refuse an empty or out-of-range output now.
+    // The rest pose sets every frame's curves, radii and ply pitch: refuse an empty output or
+    // radii beyond float32 now (each frame's coordinates are range-checked as its mesh is read).
     refuseValuesBeyondFloat32(rest, a.exportOptions);
     refuseEmptyExport(rest, a.exportOptions);
     AnimatorOptions ao;

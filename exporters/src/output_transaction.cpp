@@ -88,18 +88,22 @@ const OutputTransaction::Folder& OutputTransaction::folderFor(const std::string&
 std::string OutputTransaction::stage(const std::string& finalPath) {
     if (finalPath.empty()) return finalPath;
     detail::checkOutputFolder(finalPath);
-    // Two outputs of one command onto one file: the later rename would replace the earlier file.
-    std::error_code ec;
-    std::string identity = fs::weakly_canonical(fs::absolute(finalPath), ec).string();
-    if (ec) identity = finalPath;
+    // Two outputs of one command onto one name in one folder: the later rename would replace the
+    // earlier file. The folder is resolved (symlinks, ".."), the name is not: rename() replaces
+    // a symlink itself, not its target.
+    const fs::path p(finalPath);
+    std::error_code absoluteError, canonicalError;
+    const fs::path absolute = fs::absolute(p.parent_path().empty() ? "." : p.parent_path(), absoluteError);
+    const fs::path folder = fs::weakly_canonical(absolute, canonicalError);
+    const std::string identity = absoluteError || canonicalError ? finalPath : (folder / p.filename()).string();
     for (const auto& [given, known] : staged_)
         if (known == identity)
             throw Error("'" + finalPath + "' is named for two outputs of this command" +
                         (given != finalPath ? " (also as '" + given + "')" : std::string()) +
                         "; give each output its own path");
-    staged_.emplace_back(finalPath, std::move(identity));
-    const fs::path p(finalPath);
-    return join(folderFor(p.parent_path().string()).staging, p.filename().string());
+    std::string staged = join(folderFor(p.parent_path().string()).staging, p.filename().string());
+    staged_.emplace_back(finalPath, identity);
+    return staged;
 }
 
 void OutputTransaction::commit() {

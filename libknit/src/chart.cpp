@@ -2,6 +2,8 @@
 #include "knit/chart.hpp"
 
 #include <cctype>
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 
@@ -228,7 +230,9 @@ Chart parseChart(const std::string& text, const std::string& source) {
 std::string readChartText(const std::string& path) {
     // Step 1: what the path names (a FIFO or a device would block or never end).
     struct stat st {};
-    if (stat(path.c_str(), &st) != 0) throw Error(path + ": cannot open chart file (does not exist)");
+    if (stat(path.c_str(), &st) != 0)
+        throw Error(path + ": cannot open chart file (" +
+                    (errno == ENOENT ? std::string("does not exist") : std::string(std::strerror(errno))) + ")");
     if (S_ISDIR(st.st_mode)) throw Error(path + ": is a directory, expected a chart file");
     if (detail::isSpecialFile(path)) throw Error(path + ": " + detail::notRegularFile());
     // Step 2: its size before reading it whole (a chart is one period: a few hundred stitches).

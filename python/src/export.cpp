@@ -29,7 +29,7 @@ void registerExport(py::module_& m) {
     m.def(
         "export_scene",
         [](const knit::Scene& scene, const std::string& path, const std::string& what, int sides, bool caps, bool draco,
-           bool quantize, bool meshopt, bool yarnColors, const std::string& maxMemory) {
+           bool quantize, bool yarnColors, bool meshopt, const std::string& maxMemory) {
             knit::ExportOptions o;
             o.path = path;
             o.what = exportWhat(what);
@@ -48,7 +48,7 @@ void registerExport(py::module_& m) {
             return statsDict(stats);
         },
         "scene"_a, "path"_a, "what"_a = "plies", "sides"_a = 8, "caps"_a = true, "draco"_a = false,
-        "quantize"_a = false, "meshopt"_a = false, "yarn_colors"_a = false, "max_memory"_a = "",
+        "quantize"_a = false, "yarn_colors"_a = false, "meshopt"_a = false, "max_memory"_a = "",
         "Writes the scene's yarns, plies or tube meshes; the format follows the extension of path "
         "(.obj .ply .bcc .pbrt .gltf .glb), written atomically. draco / quantize / meshopt: glTF "
         "compression as knit build's --draco / --quantize / --meshopt (meshopt: tubes only). max_memory: "

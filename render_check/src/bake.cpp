@@ -136,8 +136,15 @@ void storePixel(SurfaceBake& bake, size_t pixel, const PixelSum& s, int samples)
     const double h = (s.height / s.hits - bake.heightMin) / (bake.heightMax - bake.heightMin);
     bake.heights[pixel] = float(std::clamp(h, 0.0, 1.0));
     const glm::dvec3 n = glm::length(s.normal) > 0 ? glm::normalize(s.normal) : glm::dvec3(0, 0, 1);
+    // Reflected plus transmitted light stays at most the light that came in, per channel (a few
+    // paths' BSDF weights may add up beyond it): the surface level then conserves energy.
     const double paths = std::max(1, s.albedoSamples);
-    const Rgb a = glm::clamp(s.albedo / paths, 0.0, 1.0), t = glm::clamp(s.transmittance / paths, 0.0, 1.0);
+    Rgb a = glm::clamp(s.albedo / paths, 0.0, 1.0), t = glm::clamp(s.transmittance / paths, 0.0, 1.0);
+    for (int c = 0; c < 3; ++c)
+        if (a[c] + t[c] > 1) {
+            const double scale = 1 / (a[c] + t[c]);
+            a[c] *= scale, t[c] *= scale;
+        }
     for (int c = 0; c < 3; ++c) {
         bake.normal[3 * pixel + c] = float(n[c]), bake.albedo[3 * pixel + c] = float(a[c]);
         bake.transmittance[3 * pixel + c] = float(t[c]);

@@ -101,8 +101,9 @@ TEST(Relax, plainChartsKeepAllFourCrossingsOfEveryStitch) {
     }
 }
 
-// Every built-in chart's relaxed cell tiles seamlessly: (1) the .pyp file holds the cell, so each
-// course's end meets the next tile's start within 1e-6 r after the round trip through the file;
+// Every built-in chart's relaxed cell tiles seamlessly: (1) the .pyp file holds the relaxed cell:
+// after the round trip through the file, every seam point and its partner across the period
+// (the next tile's start) are where relaxation put them, within 1e-6 r;
 // (2) cut at its periodic edges and re-joined by the partner search (what tiling does), the
 // cell's yarn is joined exactly as relaxed: the same edges with the same tile offsets; (3) the
 // seam edges are as long as the yarn's other edges (no seam pulled tight or left slack).
@@ -148,6 +149,7 @@ void expectTilesSeamlessly(const std::string& name) {
         (seam ? seamLo : lo) = std::min(seam ? seamLo : lo, l);
         (seam ? seamHi : hi) = std::max(seam ? seamHi : hi, l);
     }
+    ASSERT_LT(seamLo, 1e300) << name << " has no seam edge: its yarn does not cross the period";
     std::printf("%-26s seam edges %.4f..%.4f r, other edges %.4f..%.4f r\n", name.c_str(), seamLo, seamHi, lo, hi);
     EXPECT_GE(seamLo, 0.9 * lo) << name;
     EXPECT_LE(seamHi, 1.1 * hi) << name;

@@ -189,6 +189,8 @@ TEST_F(CliBadInput, chartAndAnimateOutputsThatOverwriteAnInputOrEachOtherAreRefu
     expectFailure(animate + "-o c.pc2 --report c.obj",
                   "--report 'c.obj' and the point cache's topology file 'c.obj' name the same file");
     expectFailure(animate + "--rest f_0001.obj -o f_0002.obj.pc2 --report f_0002.obj", "name the same file");
+    expectFailure(animate + "-o o_%04d.gltf --report o_0002.bin",
+                  "--report 'o_0002.bin' and the glTF buffer of -o (frame 2) 'o_0002.bin' name the same file");
     EXPECT_EQ(fs::file_size(dir / "f_0001.obj"), kTriangleObj.size());  // the inputs are untouched
     EXPECT_EQ(fs::file_size(dir / "c.chart"), 8u);
 }
