@@ -251,10 +251,4 @@ ExportStats exportScene(const Scene& scene, const ExportOptions& options) {
     return exportCurves(in, options);
 }
 
-void writeFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write, bool binary) {
-    detail::AtomicFile file(path, binary);  // throws naming the path (missing / unwritable folder)
-    write(file.stream());                   // an exception here removes the temporary file
-    file.commit();
-}
-
 }  // namespace knit

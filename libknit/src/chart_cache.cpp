@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "knit/error.hpp"
+#include "knit/output_file.hpp"
 
 namespace knit {
 namespace {
@@ -63,13 +64,12 @@ Pattern cachedChartPattern(const std::string& chartText, const std::string& sour
     if (!path.empty()) {
         std::error_code ec;
         std::filesystem::create_directories(dir, ec);
-        const std::string tmp = path + ".tmp" + std::to_string(::getpid());
-        {
-            std::ofstream out(tmp, std::ios::binary);
-            writePyp(out, p);
-            if (!out) ec = std::make_error_code(std::errc::io_error);
+        try {
+            writeFileAtomically(
+                path, [&](std::ostream& out) { writePyp(out, p); }, true);
+        } catch (const Error&) {
+            // a read-only or full cache folder: the pattern is still returned
         }
-        if (ec || std::rename(tmp.c_str(), path.c_str()) != 0) std::remove(tmp.c_str());
     }
     return p;
 }

@@ -11,25 +11,13 @@
 #include <stb/stb_image_write.h>
 #include <tinyexr.h>
 
+#include "atomic_file.hpp"
 #include "knit/error.hpp"
+#include "knit/output_file.hpp"
 #include "knit/ply_bsdf.hpp"
 
 namespace knit {
 namespace {
-
-std::string tempPath(const std::string& path) {
-    std::random_device rd;
-    return path + ".tmp" + std::to_string(rd() % 1000000);
-}
-
-void commit(const std::string& tmp, const std::string& path) {
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) {
-        std::remove(tmp.c_str());
-        throw Error("cannot write image '" + path + "': " + ec.message());
-    }
-}
 
 float toSrgb(float v) {
     v = std::clamp(v, 0.f, 1.f);
@@ -45,37 +33,40 @@ void checkImage(const Image& im, const std::string& path) {
 
 void checkWritable(const std::string& path) {
     if (path.empty()) throw Error("image path is empty");
-    if (std::filesystem::is_directory(path)) throw Error("cannot write image '" + path + "': it is a directory");
-    const std::string tmp = tempPath(path);
-    std::FILE* f = std::fopen(tmp.c_str(), "wb");
-    if (!f) throw Error("cannot write image '" + path + "': the folder does not exist or is not writable");
-    std::fclose(f);
-    std::remove(tmp.c_str());
+    detail::checkOutputFolder(path);  // the check every output of the project gets
 }
 
+// Both writers go through the project's atomic output file (a temporary sibling renamed when
+// complete, removed on failure or SIGINT / SIGTERM).
 void writePng(const std::string& path, const Image& im) {
     checkImage(im, path);
     std::vector<unsigned char> px(im.rgb.size());
     for (size_t i = 0; i < px.size(); ++i) px[i] = static_cast<unsigned char>(std::lround(toSrgb(im.rgb[i]) * 255.f));
-    const std::string tmp = tempPath(path);
-    if (!stbi_write_png(tmp.c_str(), im.width, im.height, 3, px.data(), im.width * 3)) {
-        std::remove(tmp.c_str());
-        throw Error("cannot write image '" + path + "': PNG encoding or file creation failed");
-    }
-    commit(tmp, path);
+    std::vector<unsigned char> png;
+    const auto append = [](void* context, void* data, int size) {
+        auto* out = static_cast<std::vector<unsigned char>*>(context);
+        out->insert(out->end(), static_cast<unsigned char*>(data), static_cast<unsigned char*>(data) + size);
+    };
+    if (!stbi_write_png_to_func(append, &png, im.width, im.height, 3, px.data(), im.width * 3))
+        throw Error("cannot write image '" + path + "': PNG encoding failed");
+    writeFileAtomically(
+        path,
+        [&](std::ostream& out) { out.write(reinterpret_cast<const char*>(png.data()), std::streamsize(png.size())); },
+        true);
 }
 
 void writeExr(const std::string& path, const Image& im) {
     checkImage(im, path);
-    const std::string tmp = tempPath(path);
+    // tinyexr writes to a file name: the atomic file's temporary sibling, renamed when complete.
+    detail::AtomicFile file(path, true);
+    file.close();
     const char* err = nullptr;
-    if (SaveEXR(im.rgb.data(), im.width, im.height, 3, 0, tmp.c_str(), &err) < 0) {
+    if (SaveEXR(im.rgb.data(), im.width, im.height, 3, 0, file.tempPath().c_str(), &err) < 0) {
         const std::string msg = err ? err : "unknown error";
         if (err) FreeEXRErrorMessage(err);
-        std::remove(tmp.c_str());
         throw Error("cannot write image '" + path + "': " + msg);
     }
-    commit(tmp, path);
+    file.commit();
 }
 
 ImageComparison compareImages(const Image& a, const Image& b, int block, double zLimit) {

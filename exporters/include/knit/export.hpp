@@ -28,6 +28,7 @@
 #include <string>
 
 #include "knit/budget.hpp"
+#include "knit/output_file.hpp"
 #include "knit/scene.hpp"
 
 namespace knit {
@@ -126,15 +127,5 @@ bool streamsPlies(const ExportOptions& options);
 // Checks the options against each other and the extension; throws knit::Error naming the
 // conflict (e.g. --draco with curves, --draco with --quantize, Draco for a non-glTF format).
 void validateExportOptions(const ExportOptions& options);
-
-// Writes `path` through a temporary sibling file renamed on success; `write` fills the stream.
-// Throws knit::Error naming the path if it cannot be created or written.
-void writeFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write, bool binary);
-
-// Throws knit::Error unless the folder of `path` (".": no folder part) exists, is a folder and
-// is writable: "cannot write <what> '<path>': folder '<folder>' does not exist" (or "'<folder>' is
-// not a folder", "folder '<folder>' is not writable"); with an empty `what`, "cannot write '<path>': ...".
-// The exporters check every output with it; callers use it to fail before long work.
-void requireWritableFolder(const std::string& path, const std::string& what = "");
 
 }  // namespace knit

@@ -12,7 +12,7 @@
 #include <system_error>
 
 #include "knit/error.hpp"
-#include "knit/export.hpp"
+#include "knit/output_file.hpp"
 #include "temp_registry.hpp"
 
 namespace knit::detail {
@@ -135,6 +135,12 @@ void appendFile(std::ostream& out, const std::string& from, uint64_t offset, uin
 
 namespace knit {
 namespace fs = std::filesystem;
+
+void writeFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write, bool binary) {
+    detail::AtomicFile file(path, binary);  // throws naming the path (missing / unwritable folder)
+    write(file.stream());                   // an exception here removes the temporary file
+    file.commit();
+}
 
 void requireWritableFolder(const std::string& path, const std::string& what) {
     const std::string folder = detail::folderOf(path);
