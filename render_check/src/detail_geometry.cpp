@@ -1,14 +1,19 @@
 // The curves and the surface a scene built for a view renders (see detail_geometry.hpp).
 #include "detail_geometry.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 #include "knit/error.hpp"
+#include "knit/plies.hpp"
 #include "knit/scene.hpp"
+#include "util/math.hpp"
 
 namespace knit::detail {
 namespace {
 
-// The yarn-level pieces as one-ply "plies" of the yarn radius; their radial reference is the
-// surface normal (the yarn's outward side).
+// The yarn-level pieces as one-ply "plies" of that radius; their radial reference is the surface
+// normal (the yarn's outward side).
 Plies yarnCurves(const MappedYarns& pieces, double yarnRadius) {
     Plies p;
     p.curves = pieces.curves;
@@ -45,6 +50,20 @@ PlyGeometry emptyGeometry(const glm::dvec3& origin, double unit) {
 
 }  // namespace
 
+// (The full yarn radius made the yarn level 15% too bright on the garment close-up: a round yarn
+// covers more than its twisted plies; docs/views.md.)
+double yarnLevelRadius(const PlyOptions& resolved) {
+    const int n = resolved.count, steps = 720;
+    double mean = 0;
+    for (int k = 0; k < steps; ++k) {
+        const double theta = util::kPi * (k + 0.5) / steps;
+        double widest = 0;
+        for (int i = 0; i < n; ++i) widest = std::max(widest, std::abs(std::cos(theta + util::kTwoPi * i / n)));
+        mean += widest / steps;
+    }
+    return resolved.plyRadius + resolved.centerRadius * mean;
+}
+
 PlyGeometry renderCurves(const Scene& scene, const glm::dvec3& origin, double fiberTwist, bool curvesMode) {
     const bool plies = scene.plies().curves.pointCount() > 0;
     const MappedYarns* yarnLevel = scene.detail() ? &scene.detail()->pieces.yarns : nullptr;
@@ -55,7 +74,8 @@ PlyGeometry renderCurves(const Scene& scene, const glm::dvec3& origin, double fi
     if (!curvesMode)
         throw Error("the yarn level of --detail view is drawn as round curves only: render it with --mode curves, "
                     "or use --detail full with --mode tubes or grid");
-    PlyGeometry y = buildPlyGeometry(yarnCurves(*yarnLevel, scene.yarnRadius()), origin, fiberTwist);
+    const double radius = yarnLevelRadius(resolvePlyOptions(scene.plyOptions()));
+    PlyGeometry y = buildPlyGeometry(yarnCurves(*yarnLevel, radius), origin, fiberTwist);
     if (!plies) return y;
     PlyGeometry g = buildPlyGeometry(scene.plies(), origin, fiberTwist);
     append(g, y);

@@ -3,6 +3,7 @@
 // and the surface level's base-mesh triangles. A scene without a view gives its plies alone.
 #pragma once
 #include "knit/base_mesh.hpp"
+#include "knit/plies.hpp"
 #include "knit/ply_geometry.hpp"
 
 namespace knit {
@@ -11,8 +12,14 @@ class Scene;
 
 namespace knit::detail {
 
-// The plies, plus (scene built for a view) the yarn-level pieces as single curves of the yarn
-// radius, in the plies' scene units (per-point radius; curves mode only: knit::Error otherwise).
+// The radius of a yarn-level curve for these (resolved) ply options: the ply bundle's mean
+// projected half-width across the yarn, rp + Rc E[max_i |cos(theta + 2 pi i / n)|] over the
+// twist phase theta, so a yarn covers as much of the image as its plies (0.818 of the yarn
+// radius for 2 touching plies, the whole radius for one).
+double yarnLevelRadius(const PlyOptions& resolved);
+
+// The plies, plus (scene built for a view) the yarn-level pieces as single curves of
+// yarnLevelRadius, in the plies' scene units (per-point radius; curves mode only: knit::Error otherwise).
 // Empty (no segments) when neither level has any curve.
 PlyGeometry renderCurves(const Scene& scene, const glm::dvec3& origin, double fiberTwist, bool curvesMode);
 
