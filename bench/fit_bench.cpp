@@ -5,9 +5,10 @@
 //   KNIT_FIT_FIELDS free (default kR,kTT,body-albedo; docs/fitting.md also runs all nine); the fit
 //   is restarted from KNIT_FIT_RESTARTS (default 5) random starts and the spread (max - min) of
 //   each recovered field says whether the two images determine it.
-// * BM_FitDefaultScene/<material>: the scene `knit render` renders by default (stockinette on the
-//   drape), targets rendered at 160 x 120 with a known material (0: light wool, 1: dark glossy)
-//   and seed 101, fitted (kR, kTT, body albedo; seed 1) within KNIT_FIT_BUDGET seconds (default
+// * BM_FitDefaultScene/material:<m>/closeUp:<c>: the scene `knit render` renders by default
+//   (stockinette on the drape), framed as render frames it (closeUp:0) or seen from 6 cm above
+//   the top of the drape, where plies span pixels (closeUp:1), targets rendered at 160 x 120 with
+//   a known material (0: light wool, 1: dark glossy) and seed 101, fitted (kR, kTT, body albedo; seed 1) within KNIT_FIT_BUDGET seconds (default
 //   600). Reports the time, the renders, the recovered values and the fit's loss over the noise
 //   floor (the loss of the true material rendered with the fit's seed: two seeds of one render).
 #include <benchmark/benchmark.h>
@@ -111,11 +112,21 @@ void BM_FitIdentifiability(benchmark::State& state) {
 }
 BENCHMARK(BM_FitIdentifiability)->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
 
+// The close-up of BM_FitDefaultScene/<material>/1: 6 cm above the top of the drape, where a ply
+// spans a few pixels of 160 x 120 (knit fit --eye 0.01 0.2267 0 --target 0 0.1667 0 --up 0 0 -1).
+View closeUp(const RenderOptions& ro) {
+    View v;
+    v.eye = glm::dvec3(0.01, 0.2267, 0.0), v.target = glm::dvec3(0.0, 0.1667, 0.0), v.up = glm::dvec3(0, 0, -1);
+    v.fovDegrees = ro.fovDegrees, v.width = ro.width, v.height = ro.height;
+    return v;
+}
+
 void BM_FitDefaultScene(benchmark::State& state) {
     const Scene scene = buildScene(SceneOptions{});
     const PlyMaterial truth = state.range(0) == 0 ? lightWool() : darkGlossy();
     RenderOptions ro;
     ro.width = 160, ro.height = 120, ro.spp = int(envOr("KNIT_FIT_SPP", 16));
+    if (state.range(1) == 1) ro.view = closeUp(ro);
     const FitTarget f = renderTarget(scene, ro, truth, LightPlacement::Front);
     const FitTarget b = renderTarget(scene, ro, truth, LightPlacement::Back);
     FitOptions fit;
@@ -144,7 +155,12 @@ void BM_FitDefaultScene(benchmark::State& state) {
     state.counters["back_rmse"] = r.back.rmse;
     for (size_t i = 0; i < t.size(); ++i) state.counters["err_" + r.labels[i]] = r.values[i] - t[i];
 }
-BENCHMARK(BM_FitDefaultScene)->Arg(0)->Arg(1)->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
+BENCHMARK(BM_FitDefaultScene)
+    ->ArgsProduct({{0, 1}, {0, 1}})
+    ->ArgNames({"material", "closeUp"})
+    ->Iterations(1)
+    ->Unit(benchmark::kSecond)
+    ->UseRealTime();
 
 }  // namespace
 #endif  // KNIT_HAVE_FIT
