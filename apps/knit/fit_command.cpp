@@ -30,7 +30,8 @@ nlohmann::json lossJson(const ImageLoss& l) {
 }
 
 // The report and, next to it, the fitted renders and the side-by-side image.
-void writeFitReport(const std::string& path, const FitResult& r, const Image& front, const Image& back) {
+void writeFitReport(const std::string& path, const FitResult& r, const Image& front, const Image& back,
+                    const Scene& scene) {
     const std::filesystem::path p(path);
     const std::string stem = (p.parent_path() / p.stem()).string();
     const std::string frontPng = stem + "_front.png", backPng = stem + "_back.png",
@@ -48,14 +49,31 @@ void writeFitReport(const std::string& path, const FitResult& r, const Image& fr
                            {"values", it.values}});
     nlohmann::json params = nlohmann::json::object();
     for (size_t i = 0; i < r.labels.size(); ++i) params[r.labels[i]] = r.values[i];
-    const nlohmann::json report = {
+    nlohmann::json report = {
         {"parameters", params},     {"material", nlohmann::json::parse(materialJsonText(r.material))},
         {"loss", r.loss},           {"front", lossJson(r.front)},
         {"back", lossJson(r.back)}, {"seconds", r.seconds},
         {"renders", r.renders},     {"stopReason", r.stopReason},
         {"warnings", r.warnings},   {"images", {frontPng, backPng, sidePng}},
         {"history", history}};
+    report["detail"] = scene.detail() ? "view" : "full";
+    if (scene.detail()) report["levels"] = levelsJson(levelStats(scene), false);  // what the fit traced
     writeReport(path, report);
+}
+
+// The scene the fit renders. With --detail view only the cells the camera sees are built (frustum
+// culling with the shadow margin; back faces kept, since the back-lit photograph sees light come
+// through the cloth), every one of them at the ply level: the fit compares plies with what the
+// photographs show, and a surface-level bake would depend on the material being fitted.
+SceneOptions fitSceneOptions(const FitCommand& f, int width, int height) {
+    SceneOptions options = resolveScene(f.scene);
+    std::optional<DetailOptions> detail =
+        detailOptions(f.view, {f.fit.render.fovDegrees, width, height}, /*backLit=*/true, /*yarnCurves=*/false);
+    if (detail) {
+        detail->plyPixels = {0.0, 0.0};  // every visible cell at the ply level
+        options.detail = detail;
+    }
+    return options;
 }
 
 }  // namespace
@@ -64,11 +82,10 @@ void addFitCommand(CLI::App& app, FitCommand& f) {
     f.command = app.add_subcommand("fit", "Fit the ply material to a front-lit and a back-lit photograph");
     addSceneFlags(*f.command, f.scene);
     addRenderFlags(*f.command, f.fit.render);
-    // The camera as render takes it (--eye --target --up --fov). The photographs fix the image
-    // size, both lights are rendered and every ply is traced (the fit compares what the
-    // photographs show at full detail): those flags go.
-    addViewFlags(*f.command, f.view, f.fit.render.fovDegrees, f.viewWidth, f.viewHeight, Detail::Full);
-    for (const char* flag : {"--light", "--output", "--exr", "--width", "--height", "--detail"})
+    // The camera as render takes it (--eye --target --up --fov) and --detail (default view, as
+    // render's). The photographs fix the image size and both lights are rendered: those flags go.
+    addViewFlags(*f.command, f.view, f.fit.render.fovDegrees, f.viewWidth, f.viewHeight, Detail::View);
+    for (const char* flag : {"--light", "--output", "--exr", "--width", "--height"})
         f.command->remove_option(f.command->get_option(flag));
     f.command->add_option("--front", f.front, "Front-lit photograph (PNG sRGB or EXR linear)")->required();
     f.command->add_option("--back", f.back, "Back-lit photograph, same size")->required();
@@ -112,12 +129,12 @@ int runFit(const FitCommand& f) {
     const std::vector<std::string> labels = FitSpace(options.parameters, resolveMaterial(options.render)).labels();
     if (!f.scene.quiet) options.progress = [labels](const FitIteration& it) { printIteration(it, labels); };
     // Step 3: the scene, the fit, the outputs.
-    const Scene scene = buildScene(resolveScene(f.scene));
+    const Scene scene = buildScene(fitSceneOptions(f, front.image.width, front.image.height));
     printWarnings(scene);
     const FitResult result = fitMaterial(scene, front, back, mask, options);
     for (const std::string& w : result.warnings) std::fprintf(stderr, "knit fit: warning: %s\n", w.c_str());
     writeReport(f.output, nlohmann::json::parse(materialJsonText(result.material)));
-    if (!f.report.empty()) writeFitReport(f.report, result, front.image, back.image);
+    if (!f.report.empty()) writeFitReport(f.report, result, front.image, back.image, scene);
     std::fprintf(stderr, "fit: %s after %d renders in %.1f s; loss %.4g (front SSIM %.3f, back SSIM %.3f)\n",
                  result.stopReason.c_str(), result.renders, result.seconds, result.loss, result.front.ssim,
                  result.back.ssim);

@@ -139,6 +139,16 @@ TEST_F(FitCli, fitRendersFromTheCameraOfThePhotographs) {
     };
     const double withCamera = fitLoss(camera, "with.json"), framed = fitLoss("", "framed.json");
     EXPECT_LT(withCamera, 0.5 * framed) << "the fit did not render from --eye/--target";
+    // --detail view (the default) builds only the cells the camera sees (here all four: culling
+    // itself is tested in tests/core/detail_test.cpp), all at the ply level; --detail full fits
+    // as well.
+    const nlohmann::json with = nlohmann::json::parse(std::ifstream(dir / "with.json"));
+    EXPECT_EQ(with["detail"], "view");
+    EXPECT_GT(with["levels"]["plies"]["cells"].get<int>(), 0);
+    EXPECT_EQ(with["levels"]["yarns"]["cells"].get<int>(), 0);
+    EXPECT_EQ(with["levels"]["surface"]["cells"].get<int>(), 0);
+    const double full = fitLoss(camera + "--detail full ", "full.json");
+    EXPECT_NEAR(full, withCamera, 0.1 * withCamera);
     std::printf("fit loss with the photographs' camera %.4g, with the default framing %.4g\n", withCamera, framed);
     fs::remove(dir / "m.json");
     expectCleanError("--front cam_front.png --back cam_back.png --eye 0 0 0 --target 0 0 0",
