@@ -91,6 +91,12 @@ std::vector<Channel> readChannels(const gltf::Document& d, size_t a) {
                 d.fail(cw + ": the sampler's output value " + std::to_string(k) + " is not finite");
         if (ch.times.empty() || ch.width == 0 || perKey * ch.times.size() != ch.values.size())
             d.fail(cw + ": the sampler's output does not match its " + std::to_string(ch.times.size()) + " keys");
+        // A transform path has a fixed width (weights: one per morph target, any count).
+        const size_t width = ch.path == Path::Rotation ? 4 : ch.path == Path::Weights ? ch.width : 3;
+        if (ch.width != width || (ch.interpolation == Interpolation::CubicSpline && perKey != 3 * width))
+            d.fail(cw + ": a " + target.value("path", std::string()) + " channel needs " + std::to_string(width) +
+                   " numbers per key, but its sampler's output has " + std::to_string(perKey) + " per key (" +
+                   std::to_string(ch.values.size()) + " numbers for " + std::to_string(ch.times.size()) + " keys)");
         out.push_back(std::move(ch));
     }
     if (out.empty()) d.fail(where + " has no channel that targets a node");

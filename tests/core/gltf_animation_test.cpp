@@ -91,6 +91,30 @@ TEST(GltfAnimation, fileWithoutAnimationIsRefusedNamingIt) {
     EXPECT_NE(e.find("has no animation 0"), std::string::npos) << e;
 }
 
+// A rotation keyed twice with one quaternion in its output: 4 numbers for 2 keys would pass as
+// 2 numbers per key; the path's width (4) refuses it before any sample reads past the values
+// (the fuzzer's heap overflow, tests/fuzz_corpus/gltf_animation/rotation_output_too_short.gltf).
+TEST(GltfAnimation, channelOutputsOfTheWrongWidthForTheirPathAreRefused) {
+    const std::string path = scratch("width") + "/bad.gltf";
+    GltfText g;
+    nlohmann::json prim = quadPrimitive(g);
+    g.j["meshes"] = {{{"primitives", {prim}}}};
+    g.j["nodes"] = {{{"mesh", 0}}};
+    g.j["scenes"] = {{{"nodes", {0}}}};
+    const int in = g.add(std::vector<float>{0, 1}, 5126, "SCALAR", 2);
+    const int out = g.add(std::vector<float>{0, 0, 0, 1}, 5126, "VEC4", 1);
+    nlohmann::json anim;
+    anim["samplers"] = nlohmann::json::array({{{"input", in}, {"output", out}}});
+    anim["channels"] = nlohmann::json::array({{{"sampler", 0}, {"target", {{"node", 0}, {"path", "rotation"}}}}});
+    g.j["animations"] = nlohmann::json::array({anim});
+    test::writeText(path, g.text());
+    const std::string e = test::errorOf([&] { GltfAnimation(path, 0).sample(1); });
+    EXPECT_NE(e.find("animations[0].channels[0]: a rotation channel needs 4 numbers per key, but its sampler's "
+                     "output has 2 per key"),
+              std::string::npos)
+        << e;
+}
+
 TEST(GltfAnimation, keyTimesThatDoNotIncreaseAreRefusedNamingTheChannel) {
     const std::string path = scratch("times") + "/bad.gltf";  // a translation keyed twice at 1 s
     GltfText g;
