@@ -78,6 +78,24 @@ TEST_F(FitCli, fitWritesMaterialThatRenderReadsAndReportWithImages) {
     EXPECT_EQ(render.exitCode, 0) << render.output;
 }
 
+// EXR photographs are linear radiance, compared unclipped: targets rendered to EXR fit as well as
+// the PNG ones (the same renders), and the report's loss is finite.
+TEST_F(FitCli, exrPhotographsAreReadAsLinearRadiance) {
+    for (const char* light : {"front", "back"}) {
+        const CliRun r = run("render -q " + kScene + "--width 32 --height 24 --spp 4 --seed 9 --light " + light +
+                             " --output " + light + "2.png --exr " + light + ".exr");
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+    }
+    const CliRun r = run(kFit + "--front front.exr --back back.exr -o m.json --report exr.json");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const nlohmann::json report = nlohmann::json::parse(std::ifstream(dir / "exr.json"));
+    EXPECT_GT(report["front"]["ssim"].get<double>(), 0.5);
+    EXPECT_TRUE(std::isfinite(report["loss"].get<double>()));
+    std::ofstream(dir / "junk.exr") << "not an exr";
+    fs::remove(dir / "m.json");
+    expectCleanError("--front junk.exr --back back.exr", {"--front 'junk.exr'"});
+}
+
 TEST_F(FitCli, mismatchedImageSizesNameBothPhotographs) {
     writePng("small.png", 16, 12, 100);
     expectCleanError("--front front.png --back small.png", {"--back 'small.png' is 16 x 12", "front.png", "same size"});
