@@ -91,23 +91,31 @@ TEST(GltfAnimation, fileWithoutAnimationIsRefusedNamingIt) {
     EXPECT_NE(e.find("has no animation 0"), std::string::npos) << e;
 }
 
-// A rotation keyed twice with one quaternion in its output: 4 numbers for 2 keys would pass as
-// 2 numbers per key; the path's width (4) refuses it before any sample reads past the values
-// (the fuzzer's heap overflow, tests/fuzz_corpus/gltf_animation/rotation_output_too_short.gltf).
-TEST(GltfAnimation, channelOutputsOfTheWrongWidthForTheirPathAreRefused) {
-    const std::string path = scratch("width") + "/bad.gltf";
+// A still quad whose node has one animation channel (`path`) of the given key times and output.
+std::string writeOneChannelQuad(const std::string& file, const std::vector<float>& times,
+                                const std::vector<float>& output, const char* type, size_t outputCount,
+                                const char* path) {
     GltfText g;
     nlohmann::json prim = quadPrimitive(g);
     g.j["meshes"] = {{{"primitives", {prim}}}};
     g.j["nodes"] = {{{"mesh", 0}}};
     g.j["scenes"] = {{{"nodes", {0}}}};
-    const int in = g.add(std::vector<float>{0, 1}, 5126, "SCALAR", 2);
-    const int out = g.add(std::vector<float>{0, 0, 0, 1}, 5126, "VEC4", 1);
+    const int in = g.add(times, 5126, "SCALAR", times.size());
+    const int out = g.add(output, 5126, type, outputCount);
     nlohmann::json anim;
     anim["samplers"] = nlohmann::json::array({{{"input", in}, {"output", out}}});
-    anim["channels"] = nlohmann::json::array({{{"sampler", 0}, {"target", {{"node", 0}, {"path", "rotation"}}}}});
+    anim["channels"] = nlohmann::json::array({{{"sampler", 0}, {"target", {{"node", 0}, {"path", path}}}}});
     g.j["animations"] = nlohmann::json::array({anim});
-    test::writeText(path, g.text());
+    test::writeText(file, g.text());
+    return file;
+}
+
+// A rotation keyed twice with one quaternion in its output: 4 numbers for 2 keys would pass as
+// 2 numbers per key; the path's width (4) refuses it before any sample reads past the values
+// (the fuzzer's heap overflow, tests/fuzz_corpus/gltf_animation/rotation_output_too_short.gltf).
+TEST(GltfAnimation, channelOutputsOfTheWrongWidthForTheirPathAreRefused) {
+    const std::string path =
+        writeOneChannelQuad(scratch("width") + "/bad.gltf", {0, 1}, {0, 0, 0, 1}, "VEC4", 1, "rotation");
     const std::string e = test::errorOf([&] { GltfAnimation(path, 0).sample(1); });
     EXPECT_NE(e.find("animations[0].channels[0]: a rotation channel needs 4 numbers per key, but its sampler's "
                      "output has 2 per key"),
@@ -116,19 +124,9 @@ TEST(GltfAnimation, channelOutputsOfTheWrongWidthForTheirPathAreRefused) {
 }
 
 TEST(GltfAnimation, keyTimesThatDoNotIncreaseAreRefusedNamingTheChannel) {
-    const std::string path = scratch("times") + "/bad.gltf";  // a translation keyed twice at 1 s
-    GltfText g;
-    nlohmann::json prim = quadPrimitive(g);
-    g.j["meshes"] = {{{"primitives", {prim}}}};
-    g.j["nodes"] = {{{"mesh", 0}}};
-    g.j["scenes"] = {{{"nodes", {0}}}};
-    const int in = g.add(std::vector<float>{1, 1}, 5126, "SCALAR", 2);
-    const int out = g.add(std::vector<float>{0, 0, 0, 1, 1, 1}, 5126, "VEC3", 2);
-    nlohmann::json anim;
-    anim["samplers"] = nlohmann::json::array({{{"input", in}, {"output", out}}});
-    anim["channels"] = nlohmann::json::array({{{"sampler", 0}, {"target", {{"node", 0}, {"path", "translation"}}}}});
-    g.j["animations"] = nlohmann::json::array({anim});
-    test::writeText(path, g.text());
+    // A translation keyed twice at 1 s.
+    const std::string path =
+        writeOneChannelQuad(scratch("times") + "/bad.gltf", {1, 1}, {0, 0, 0, 1, 1, 1}, "VEC3", 2, "translation");
     const std::string e = test::errorOf([&] { GltfAnimation(path, 0); });
     EXPECT_NE(e.find("animations[0].channels[0]: the sampler's input time 1 is not finite or not after the previous"),
               std::string::npos)
