@@ -47,14 +47,18 @@ std::string framePath(const std::string& pattern, int number) {
     return buf;
 }
 
+// The constant topology written beside a point cache: same stem, .obj.
+std::string topologyPathOf(const std::string& cache) {
+    return std::filesystem::path(cache).replace_extension(".obj").string();
+}
+
 // The points a cache holds: the ply curves, or the yarn centrelines with --export yarns.
 const Polylines& cacheCurves(const AnimationFrame& f, bool plies) { return plies ? f.plies.curves : f.yarns.curves; }
 
 class CacheSink : public FrameSink {
 public:
     CacheSink(const std::string& path, const Animator& animator, const FrameSequence& seq, double fps)
-        : topologyPath_(std::filesystem::path(path).replace_extension(".obj").string()),
-          plies_(animator.options().plies) {
+        : topologyPath_(topologyPathOf(path)), plies_(animator.options().plies) {
         CacheInfo info;
         info.points = plies_ ? animator.plyPointCount() : animator.rest().yarns().curves.pointCount();
         info.frames = seq.size();
@@ -130,7 +134,7 @@ void refuseAnimateCollisions(const AnimateCommand& a, const FrameSequence& seq) 
     CacheFormat format;
     const bool cache = cacheFormatOf(out, format);
     if (cache || !hasFramePattern(out)) {  // a point cache and its topology, or one animated .glb
-        const std::string topology = cache ? std::filesystem::path(out).replace_extension(".obj").string() : "";
+        const std::string topology = cache ? topologyPathOf(out) : "";
         std::vector<NamedPath> frames = inputs;
         for (const FrameFile& f : seq.frames()) frames.push_back({"frame " + std::to_string(f.number), f.path});
         refuseCollidingPaths(frames,

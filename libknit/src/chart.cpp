@@ -2,12 +2,8 @@
 #include "knit/chart.hpp"
 
 #include <cctype>
-#include <cerrno>
-#include <cstring>
 #include <fstream>
 #include <sstream>
-
-#include <sys/stat.h>
 
 #include "knit/error.hpp"
 #include "special_file.hpp"
@@ -228,17 +224,12 @@ Chart parseChart(const std::string& text, const std::string& source) {
 }
 
 std::string readChartText(const std::string& path) {
-    // Step 1: what the path names (a FIFO or a device would block or never end).
-    struct stat st {};
-    if (stat(path.c_str(), &st) != 0)
-        throw Error(path + ": cannot open chart file (" +
-                    (errno == ENOENT ? std::string("does not exist") : std::string(std::strerror(errno))) + ")");
-    if (S_ISDIR(st.st_mode)) throw Error(path + ": is a directory, expected a chart file");
-    if (detail::isSpecialFile(path)) throw Error(path + ": " + detail::notRegularFile());
-    // Step 2: its size before reading it whole (a chart is one period: a few hundred stitches).
-    if (uint64_t(st.st_size) > kMaxChartFileBytes)
+    // Step 1: what the path names (a FIFO or a device would block or never end), and its size
+    // before reading it whole (a chart is one period: a few hundred stitches).
+    const uint64_t bytes = detail::requireInputFile(path, "chart file", "chart file");
+    if (bytes > kMaxChartFileBytes)
         throw Error(path + ": a chart file holds at most " + std::to_string(kMaxChartFileBytes >> 20) +
-                    " MiB of text; this one has " + std::to_string(uint64_t(st.st_size)) + " bytes");
+                    " MiB of text; this one has " + std::to_string(bytes) + " bytes");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw Error(path + ": cannot open chart file");
     std::ostringstream text;

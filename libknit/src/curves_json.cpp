@@ -2,7 +2,6 @@
 #include <cmath>
 #include <fstream>
 #include <sstream>
-#include <sys/stat.h>
 
 #include <nlohmann/json.hpp>
 
@@ -64,10 +63,7 @@ CurveCell parseCurvesJson(const std::string& text, const std::string& source) {
 }
 
 CurveCell loadCurvesJson(const std::string& path) {
-    struct stat st {};
-    if (stat(path.c_str(), &st) != 0) throw Error(path + ": cannot open curves file (does not exist)");
-    if (S_ISDIR(st.st_mode)) throw Error(path + ": is a directory, expected a JSON curves file");
-    if (detail::isSpecialFile(path)) throw Error(path + ": " + detail::notRegularFile());
+    detail::requireInputFile(path, "curves file", "JSON curves file");
     std::ifstream in(path);
     if (!in) throw Error(path + ": cannot open curves file");
     std::stringstream ss;

@@ -7,7 +7,6 @@
 #include <fstream>
 #include <iomanip>
 #include <sstream>
-#include <sys/stat.h>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -229,10 +228,7 @@ Pattern parsePyp(std::istream& in, const std::string& source) {
 }
 
 Pattern loadPyp(const std::string& path) {
-    struct stat st {};
-    if (stat(path.c_str(), &st) != 0) throw Error(path + ": cannot open pattern file (does not exist)");
-    if (S_ISDIR(st.st_mode)) throw Error(path + ": is a directory, expected a .pyp pattern file");
-    if (detail::isSpecialFile(path)) throw Error(path + ": " + detail::notRegularFile());
+    detail::requireInputFile(path, "pattern file", ".pyp pattern file");
     std::ifstream in(path);
     if (!in) throw Error(path + ": cannot open pattern file");
     return parsePyp(in, path);
