@@ -7,6 +7,14 @@
 // neighbouring points of one yarn do not. Distances are between resampled centreline points
 // (spacing pitch / samplesPerTurn, half a yarn radius by default), so they overestimate the
 // distance between the continuous centrelines by at most half that spacing.
+//
+// The search (minYarnDistance): the previous frame's closest pair, measured on this frame, bounds
+// the answer, so a grid of cells that size finds every closer pair (frames change little, and
+// the cost grows with the cube of the cell size). Points are packed in float relative to the
+// frame's first point (distance rounding ~1e-7 of the garment's extent; the pair found is
+// measured again in double) with their yarn and rest arc length, so the inner loop reads only
+// contiguous memory; cells are hashed in blocks of 8 x 8 x 8 so most neighbours of a cell are
+// next to it in the table.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -28,22 +36,6 @@ struct Cell {
     int64_t x, y, z;
 };
 
-// Bucket of an integer cell (hash of its three coordinates, masked to the table size).
-uint32_t bucketOf(int64_t x, int64_t y, int64_t z, uint32_t mask) {
-    const uint64_t h = static_cast<uint64_t>(x) * 73856093ull ^ static_cast<uint64_t>(y) * 19349663ull ^
-                       static_cast<uint64_t>(z) * 83492791ull;
-    return static_cast<uint32_t>((h ^ (h >> 29)) & mask);
-}
-
-// Whether points i and j (of the same or different yarns) count as different yarns.
-bool different(uint32_t i, uint32_t j, const std::vector<uint32_t>& yarnOf, const std::vector<double>& arc,
-               const std::vector<double>& length, bool closed, double separation) {
-    if (yarnOf[i] != yarnOf[j]) return true;
-    double along = std::abs(arc[i] - arc[j]);
-    if (closed) along = std::min(along, length[yarnOf[i]] - along);
-    return along > separation;
-}
-
 }  // namespace
 
 double maxYarnStretch(const Polylines& yarns, const std::vector<double>& restSegment) {
@@ -64,77 +56,113 @@ double maxYarnStretch(const Polylines& yarns, const std::vector<double>& restSeg
 
 namespace {
 
-// The smallest distance between different-yarn points closer than `cell` (+infinity when
-// there is none): a hash of cells of that size, each point checked against its 27 cells.
-double closestWithin(const Polylines& centres, const std::vector<uint32_t>& yarnOf, const std::vector<double>& arc,
-                     const std::vector<double>& length, double separation, double cell, DistanceScratch& scratch) {
+// A point of the search in float, relative to the frame's first point (so a garment far from
+// the origin keeps its precision), with its index into the centrelines.
+using Packed = DistanceScratch::Point;
+
+// Whether two points count as different yarns: distinct yarns, or farther apart along the rest
+// yarn than `separation` (the short way round a closed yarn, whose rest length is `loop`).
+bool different(const Packed& a, const Packed& b, const Polylines& centres, const std::vector<double>& loop,
+               double separation) {
+    if (a.yarn != b.yarn) return true;
+    double along = std::abs(double(a.arc) - double(b.arc));
+    if (along > separation && centres.isClosed(a.yarn)) along = std::min(along, loop[a.yarn] - along);
+    return along > separation;
+}
+
+// The closest qualifying pair found: squared float distance and the two centreline points.
+struct Closest {
+    float d2;
+    uint32_t i, j;
+};
+
+// Cells are grouped in blocks of 4 x 4 x 4 that are hashed together, so the neighbours of a cell
+// are mostly in its own block: adjacent in the table and in memory (a hash per cell scatters
+// them, and the search then waits on memory).
+uint32_t bucketOf(const Cell& c, uint32_t blockMask) {
+    const uint64_t h = static_cast<uint64_t>(c.x >> 3) * 73856093ull ^ static_cast<uint64_t>(c.y >> 3) * 19349663ull ^
+                       static_cast<uint64_t>(c.z >> 3) * 83492791ull;
+    const uint32_t block = static_cast<uint32_t>((h ^ (h >> 29)) & blockMask);
+    return block << 9 | static_cast<uint32_t>(c.x & 7) | static_cast<uint32_t>(c.y & 7) << 3 |
+           static_cast<uint32_t>(c.z & 7) << 6;
+}
+
+// The closest pair of qualifying points closer than `cell` ({+inf, 0, 0} when there is none):
+// a hash of cells of that size, each pair checked once by a half stencil.
+Closest closestWithin(const Polylines& centres, const std::vector<uint32_t>& yarnOf, const std::vector<double>& arc,
+                      const std::vector<double>& length, double separation, double cell, DistanceScratch& scratch) {
     const size_t n = centres.pointCount();
     const dvec3* p = centres.points.data();
+    const dvec3 origin = p[0];
     const double inv = 1.0 / cell;
-    auto cellOf = [&](const dvec3& q) {
-        return Cell{static_cast<int64_t>(std::floor(q.x * inv)), static_cast<int64_t>(std::floor(q.y * inv)),
-                    static_cast<int64_t>(std::floor(q.z * inv))};
+    const auto pack = [&](size_t i) {
+        const dvec3 d = p[i] - origin;
+        return Packed{static_cast<float>(d.x),
+                      static_cast<float>(d.y),
+                      static_cast<float>(d.z),
+                      static_cast<uint32_t>(i),
+                      yarnOf[i],
+                      static_cast<float>(arc[i])};
+    };
+    // Cells of the packed (float) coordinates the distances are computed from.
+    const auto cellOf = [&](const Packed& a) {
+        return Cell{static_cast<int64_t>(std::floor(a.x * inv)), static_cast<int64_t>(std::floor(a.y * inv)),
+                    static_cast<int64_t>(std::floor(a.z * inv))};
     };
 
-    // Step 1: a hash table of at least n buckets, filled by counting sort (CSR), with the
-    // points copied in bucket order (neighbours are then read from contiguous memory).
-    uint32_t buckets = 1;
-    while (buckets < n) buckets <<= 1;
-    const uint32_t mask = buckets - 1;
+    // Step 1: a table of at least 2n buckets (blocks of 64), filled by counting sort (CSR), with
+    // the points packed in bucket order (neighbours are then read from contiguous memory).
+    uint32_t blocks = 1;
+    while (size_t(blocks) * 512 < 4 * n) blocks <<= 1;
+    const uint32_t blockMask = blocks - 1;
+    const size_t buckets = size_t(blocks) * 512;
     scratch.keys.resize(n);
-    scratch.bucketStart.assign(size_t(buckets) + 1, 0);
-    scratch.items.resize(n);
-    scratch.sorted.resize(n);
+    scratch.bucketStart.assign(buckets + 1, 0);
+    scratch.packed.resize(n);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1 << 14), [&](const tbb::blocked_range<size_t>& r) {
-        for (size_t i = r.begin(); i < r.end(); ++i) {
-            const Cell c = cellOf(p[i]);
-            scratch.keys[i] = bucketOf(c.x, c.y, c.z, mask);
-        }
+        for (size_t i = r.begin(); i < r.end(); ++i) scratch.keys[i] = bucketOf(cellOf(pack(i)), blockMask);
     });
-    for (size_t i = 0; i < n; ++i) ++scratch.bucketStart[scratch.keys[i] + 1];
-    for (size_t b = 0; b < buckets; ++b) scratch.bucketStart[b + 1] += scratch.bucketStart[b];
+    uint32_t* start = scratch.bucketStart.data();
+    for (size_t i = 0; i < n; ++i) ++start[scratch.keys[i] + 1];
+    for (size_t b = 0; b < buckets; ++b) start[b + 1] += start[b];
     // Filling advances each bucket's start to its end (the next bucket's start): shift back.
-    for (size_t i = 0; i < n; ++i) scratch.items[scratch.bucketStart[scratch.keys[i]]++] = static_cast<uint32_t>(i);
-    for (size_t b = buckets; b > 0; --b) scratch.bucketStart[b] = scratch.bucketStart[b - 1];
-    scratch.bucketStart[0] = 0;
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1 << 14), [&](const tbb::blocked_range<size_t>& r) {
-        for (size_t k = r.begin(); k < r.end(); ++k) scratch.sorted[k] = p[scratch.items[k]];
-    });
+    for (size_t i = 0; i < n; ++i) scratch.packed[start[scratch.keys[i]]++] = pack(i);
+    for (size_t b = buckets; b > 0; --b) start[b] = start[b - 1];
+    start[0] = 0;
 
     // Step 2: per point (in bucket order, so consecutive points share their neighbouring
     // cells), the nearest qualifying point closer than `cell`: each pair once, by a half
     // stencil (the later points of the own bucket and every point of the 13 cells after it).
-    const uint32_t* start = scratch.bucketStart.data();
-    const uint32_t* items = scratch.items.data();
-    const dvec3* q = scratch.sorted.data();
-    tbb::combinable<double> best([&] { return cell * cell; });
+    const Packed* q = scratch.packed.data();
+    const float cell2 = static_cast<float>(cell * cell);
+    tbb::combinable<Closest> best([&] { return Closest{cell2, 0, 0}; });
     tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t>& r) {
-        double& b2 = best.local();
+        Closest& b = best.local();
         Cell last{INT64_MIN, 0, 0};
         uint32_t own = 0, forward[13];
         const auto visit = [&](size_t k, uint32_t from, uint32_t to) {
-            const uint32_t i = items[k];
+            const Packed a = q[k];
             for (uint32_t kk = from; kk < to; ++kk) {
-                const dvec3 d = q[kk] - q[k];
-                const double d2 = glm::dot(d, d);
-                if (d2 < b2 && different(i, items[kk], yarnOf, arc, length, centres.isClosed(yarnOf[i]), separation))
-                    b2 = d2;
+                const float dx = q[kk].x - a.x, dy = q[kk].y - a.y, dz = q[kk].z - a.z;
+                const float d2 = dx * dx + dy * dy + dz * dz;
+                if (d2 < b.d2 && different(a, q[kk], centres, length, separation)) b = Closest{d2, a.item, q[kk].item};
             }
         };
         for (size_t k = r.begin(); k < r.end(); ++k) {
             const Cell c = cellOf(q[k]);
             if (c.x != last.x || c.y != last.y || c.z != last.z) {
-                own = bucketOf(c.x, c.y, c.z, mask);
+                own = bucketOf(c, blockMask);
                 for (int m = 14; m < 27; ++m)  // (dx, dy, dz) after (0, 0, 0) in z-major order
-                    forward[m - 14] = bucketOf(c.x + m % 3 - 1, c.y + m / 3 % 3 - 1, c.z + m / 9 - 1, mask);
+                    forward[m - 14] = bucketOf(Cell{c.x + m % 3 - 1, c.y + m / 3 % 3 - 1, c.z + m / 9 - 1}, blockMask);
                 last = c;
             }
             visit(k, static_cast<uint32_t>(k + 1), start[own + 1]);
-            for (const uint32_t b : forward) visit(k, start[b], start[b + 1]);
+            for (const uint32_t f : forward) visit(k, start[f], start[f + 1]);
         }
     });
-    const double d = std::sqrt(best.combine([](double a, double b) { return std::min(a, b); }));
-    return d < cell ? d : std::numeric_limits<double>::infinity();
+    const Closest c = best.combine([](const Closest& a, const Closest& b) { return b.d2 < a.d2 ? b : a; });
+    if (c.d2 < cell2) return c;
+    return Closest{std::numeric_limits<float>::infinity(), 0, 0};
 }
 
 }  // namespace
@@ -144,17 +172,34 @@ double minYarnDistance(const Polylines& centres, const std::vector<uint32_t>& ya
                        DistanceScratch& scratch) {
     const double diameter = 2.0 * yarnRadius;
     const double cutoff = options.distanceCutoff * diameter;
-    if (centres.pointCount() == 0 || !(cutoff > 0.0)) return std::numeric_limits<double>::infinity();
-    // The search cost grows with the cube of the cell size, so start just above the previous
-    // frame's answer (frames change little) and widen up to the cutoff until a pair is found:
-    // any pair closer than the cell size is found, so the first hit is the exact minimum.
-    double cell = scratch.lastDistance > 0.0 ? std::min(cutoff, 1.25 * scratch.lastDistance) : cutoff;
+    const size_t n = centres.pointCount();
+    if (n == 0 || !(cutoff > 0.0)) return std::numeric_limits<double>::infinity();
+    const double separation = options.sameYarnSeparation * diameter;
+    const auto distance = [&](uint32_t i, uint32_t j) { return glm::length(centres.points[i] - centres.points[j]); };
+
+    // Step 1: an upper bound, the previous frame's closest pair on this frame (frames change
+    // little): the search then only needs cells of that size (its cost grows with the cube of
+    // the cell size). Without one, start at one diameter (yarns in contact).
+    const bool previous = scratch.hasPair && scratch.pair[0] < n && scratch.pair[1] < n;
+    const double bound =
+        previous ? distance(scratch.pair[0], scratch.pair[1]) : std::numeric_limits<double>::infinity();
+    double cell = previous ? bound : std::min(cutoff, diameter);
+    cell = std::min(cutoff, std::max(cell, 1e-6 * diameter));  // cell coordinates stay bounded
+
+    // Step 2: every pair closer than the cell size is found, so the first search that finds one
+    // (or that the bound undercuts) has the minimum; otherwise widen up to the cutoff.
     for (;;) {
-        const double d =
-            closestWithin(centres, yarnOf, arc, length, options.sameYarnSeparation * diameter, cell, scratch);
-        if (std::isfinite(d) || cell >= cutoff) {
-            scratch.lastDistance = d;
-            return std::isfinite(d) ? d / diameter : d;
+        const Closest c = closestWithin(centres, yarnOf, arc, length, separation, cell, scratch);
+        if (std::isfinite(c.d2)) {
+            scratch.hasPair = true;
+            scratch.pair = {c.i, c.j};
+            // Rounded in float: take the exact distance, and the bound when it is as close.
+            return std::min(distance(c.i, c.j), bound) / diameter;
+        }
+        if (bound <= cell) return bound / diameter;
+        if (cell >= cutoff) {
+            scratch.hasPair = false;
+            return std::numeric_limits<double>::infinity();
         }
         cell = std::min(cutoff, 2.0 * cell);
     }

@@ -89,11 +89,14 @@ Animator::Animator(const Scene& rest, const AnimatorOptions& options)
         yarnOfCentre_.insert(yarnOfCentre_.end(), m, static_cast<uint32_t>(y));
         if (m < 2) {
             restArc_.insert(restArc_.end(), m, 0.0);
+            restPhase_.insert(restPhase_.end(), m, glm::dvec2(1.0, 0.0));
             continue;
         }
         restPitch_[y] = detail::PlyKernel::arcAndPitch(generator_, y, centre.data(), m, arc);
         bindFrameSeed(y, centre);
         restArc_.insert(restArc_.end(), arc.begin(), arc.end());
+        const double rate = detail::PlyKernel::twistRate(generator_, restPitch_[y]);
+        for (const double s : arc) restPhase_.emplace_back(std::cos(rate * s), std::sin(rate * s));
         restLength_[y] = arc[m - 1] + (yarns.isClosed(y) ? glm::length(centre[0] - centre[m - 1]) : 0.0);
     }
 
@@ -170,8 +173,8 @@ void Animator::evaluate(const std::vector<dvec3>& positions, AnimationFrame& out
         out.stats.maxStretch = maxYarnStretch(out.yarns.curves, restSegment_);
         out.stats.minYarnDistance = minYarnDistance(out.centres, yarnOfCentre_, restArc_, restLength_,
                                                     rest_.yarnRadius(), options_, out.distance);
+        t.stats = since(t0);
     }
-    t.stats = since(t0);
     if (times) *times = t;
 }
 
@@ -231,10 +234,9 @@ void Animator::sweep(const std::vector<dvec3>& positions, AnimationFrame& out) c
                 seedNormal = r * s.normal;
                 seedTangent = r * s.tangent;
             }
-            detail::PlyKernel::sweepWithPhase(generator_, y, out.centres.points.data() + centreOffsets_[y], m,
-                                              restArc_.data() + centreOffsets_[y], restPitch_[y], &seedNormal,
-                                              p.curves.points.data() + plyOfYarn_[y], nullptr, scratch,
-                                              carried ? &seedTangent : nullptr);
+            detail::PlyKernel::sweepWithCosSin(
+                generator_, y, out.centres.points.data() + centreOffsets_[y], m, restPhase_.data() + centreOffsets_[y],
+                &seedNormal, carried ? &seedTangent : nullptr, p.curves.points.data() + plyOfYarn_[y], scratch);
         }
     });
 }

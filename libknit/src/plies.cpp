@@ -163,31 +163,18 @@ void PlyKernel::sweep(const PlyGenerator& g, size_t y, const dvec3* X, size_t m,
     sweepWithPhase(g, y, X, m, buf.arc.data(), pitch, seed, P, D, scratch);
 }
 
-void PlyKernel::sweepWithPhase(const PlyGenerator& g, size_t y, const dvec3* X, size_t m, const double* arc,
-                               double pitch, const dvec3* seed, dvec3* P, dvec3* D, PlyScratch& scratch,
-                               const dvec3* seedTangent) {
-    const PlyOptions& opt = g.options_;
+namespace {
+
+// Step 2 of a sweep: the helices around the framed centreline, with phase offsets 2 pi i / n;
+// `phase(j)` gives (cos theta, sin theta) of point j.
+template <class Phase>
+void helices(const PlyOptions& opt, const dvec3* X, const dvec3* T, const dvec3* N, size_t m, const double* cosPly,
+             const double* sinPly, Phase phase, dvec3* P, dvec3* D) {
     const uint32_t n = static_cast<uint32_t>(opt.count);
-    const bool closed = g.yarns_.curves.isClosed(y);
-    PlyScratch::Buffers& buf = buffers(scratch);
-
-    // Step 1: rotation-minimizing frames.
-    buf.tangent.resize(m);
-    buf.normal.resize(m);
-    curveFrames(X, m, closed, seed, buf.tangent.data(), buf.normal.data(), {}, seedTangent);
-    const dvec3* T = buf.tangent.data();
-    const dvec3* N = buf.normal.data();
-
-    // Step 2: the twist rate from the pitch.
-    const double rate = (opt.twist == Twist::Z ? 1.0 : -1.0) * util::kTwoPi / pitch;  // dtheta/ds
-
-    // Step 3: the helices, with phase offsets 2 pi i / n.
-    const double* cosPly = g.cosPly_;
-    const double* sinPly = g.sinPly_;
     const double R = opt.centerRadius;
     for (size_t j = 0; j < m; ++j) {
-        const double theta = rate * arc[j];
-        const double ct = std::cos(theta), st = std::sin(theta);
+        const glm::dvec2 cs = phase(j);
+        const double ct = cs.x, st = cs.y;
         const dvec3 nj = N[j];
         const dvec3 bj = glm::cross(T[j], nj);
         const dvec3 xj = X[j];
@@ -199,6 +186,43 @@ void PlyKernel::sweepWithPhase(const PlyGenerator& g, size_t y, const dvec3* X, 
             if (D) D[i * m + j] = radial;
         }
     }
+}
+
+}  // namespace
+
+void PlyKernel::frames(const PlyGenerator& g, size_t y, const dvec3* X, size_t m, const dvec3* seed,
+                       const dvec3* seedTangent, PlyScratch::Buffers& buf) {
+    buf.tangent.resize(m);
+    buf.normal.resize(m);
+    curveFrames(X, m, g.yarns_.curves.isClosed(y), seed, buf.tangent.data(), buf.normal.data(), {}, seedTangent);
+}
+
+double PlyKernel::twistRate(const PlyGenerator& g, double pitch) {
+    return (g.options_.twist == Twist::Z ? 1.0 : -1.0) * util::kTwoPi / pitch;  // dtheta/ds
+}
+
+void PlyKernel::sweepWithPhase(const PlyGenerator& g, size_t y, const dvec3* X, size_t m, const double* arc,
+                               double pitch, const dvec3* seed, dvec3* P, dvec3* D, PlyScratch& scratch) {
+    // Step 1: rotation-minimizing frames; step 2: the helices.
+    PlyScratch::Buffers& buf = buffers(scratch);
+    frames(g, y, X, m, seed, nullptr, buf);
+    const double rate = twistRate(g, pitch);
+    helices(
+        g.options_, X, buf.tangent.data(), buf.normal.data(), m, g.cosPly_, g.sinPly_,
+        [&](size_t j) {
+            const double theta = rate * arc[j];
+            return glm::dvec2(std::cos(theta), std::sin(theta));
+        },
+        P, D);
+}
+
+void PlyKernel::sweepWithCosSin(const PlyGenerator& g, size_t y, const dvec3* X, size_t m, const glm::dvec2* phase,
+                                const dvec3* seed, const dvec3* seedTangent, dvec3* P, PlyScratch& scratch) {
+    PlyScratch::Buffers& buf = buffers(scratch);
+    frames(g, y, X, m, seed, seedTangent, buf);
+    helices(
+        g.options_, X, buf.tangent.data(), buf.normal.data(), m, g.cosPly_, g.sinPly_,
+        [&](size_t j) { return phase[j]; }, P, nullptr);
 }
 
 }  // namespace detail

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "knit/plies.hpp"
@@ -42,14 +43,24 @@ struct PlyKernel {
     // turns) ...
     static double arcAndPitch(const PlyGenerator& generator, size_t y, const glm::dvec3* centre, size_t m,
                               std::vector<double>& arc);
-    // ... and the helices with a given arc length per point and pitch (the rest pose's, so the
-    // twist phase stays attached to the yarn material on a deformed pose) and frame seed (the
-    // surface normal at the first point, or null; with seedTangent, a normal carried over from
-    // another pose and transported onto the first tangent, see curveFrames), for any pose of
-    // yarn `y`.
+    // ... and the helices with a given arc length per point and pitch, and frame seed (the
+    // surface normal at the first point, or null).
     static void sweepWithPhase(const PlyGenerator& generator, size_t y, const glm::dvec3* centre, size_t m,
                                const double* arc, double pitch, const glm::dvec3* seed, glm::dvec3* points,
-                               glm::dvec3* radial, PlyScratch& scratch, const glm::dvec3* seedTangent = nullptr);
+                               glm::dvec3* radial, PlyScratch& scratch);
+    // Rotation-minimizing frames of a centreline into buf.tangent / buf.normal (seeds as below).
+    static void frames(const PlyGenerator& generator, size_t y, const glm::dvec3* centre, size_t m,
+                       const glm::dvec3* seed, const glm::dvec3* seedTangent, PlyScratch::Buffers& buf);
+    // dtheta/ds of the helices for a pitch (signed by the twist).
+    static double twistRate(const PlyGenerator& generator, double pitch);
+    // The same helices for any pose of yarn `y` with the twist phase given per point as
+    // (cos theta, sin theta) (animation: computed once from the rest pose, so the phase stays
+    // attached to the yarn material), and the frame seed: the surface normal at the first point,
+    // or null; with seedTangent, a normal carried over from another pose and transported onto
+    // the first tangent (see curveFrames).
+    static void sweepWithCosSin(const PlyGenerator& generator, size_t y, const glm::dvec3* centre, size_t m,
+                                const glm::dvec2* phase, const glm::dvec3* seed, const glm::dvec3* seedTangent,
+                                glm::dvec3* points, PlyScratch& scratch);
 };
 
 }  // namespace detail

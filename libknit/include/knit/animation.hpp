@@ -23,12 +23,14 @@
 // Per frame only: vertex normals, the binding evaluation, resampling with the fixed layout, the
 // frames and the helices, and the frame statistics; all into buffers reused across frames.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include <glm/mat3x3.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "knit/base_mesh.hpp"
@@ -149,9 +151,18 @@ struct AnimationStageTimes {
 
 // Reusable scratch of the yarn distance search.
 struct DistanceScratch {
-    std::vector<uint32_t> bucketStart, items, keys;
-    std::vector<glm::dvec3> sorted;
-    double lastDistance = 0;  // the previous frame's answer (metres): where the next search starts
+    std::vector<uint32_t> bucketStart, keys;
+    struct Point {
+        float x, y, z;  // position relative to the frame's first centre point
+        uint32_t item;  // centre point index
+        uint32_t yarn;  // its yarn
+        float arc;      // its rest arc length along the yarn
+    };
+    std::vector<Point> packed;
+    // The previous frame's closest pair (centreline point indices): its distance on the next
+    // frame bounds the search there.
+    bool hasPair = false;
+    std::array<uint32_t, 2> pair{};
 };
 
 // One evaluated frame: the buffers an Animator fills, reused from frame to frame.
@@ -204,6 +215,7 @@ private:
     std::vector<uint32_t> keptOffsets_{0}, kept_, pieceOffsets_{0}, pieces_;
     std::vector<uint32_t> centreOffsets_{0};  // resampled points per yarn (CSR)
     std::vector<double> restArc_;             // rest arc length per resampled point
+    std::vector<glm::dvec2> restPhase_;       // (cos, sin) of its twist phase, fixed at bind time
     std::vector<double> restPitch_;           // per yarn
     std::vector<double> restLength_;          // per yarn: resampled rest length (closed: with the closing segment)
     std::vector<uint32_t> yarnOfCentre_;      // yarn of each resampled point
