@@ -221,9 +221,13 @@ std::vector<FrameRecord> runFrames(const FrameSequence& seq, const Animator& ani
         sink.write(seq.frame(i).number, mesh, frame);
         totals.write += since(t1);
         records.push_back({seq.frame(i).number, since(t0), frame.stats});
-        if (!quiet)
-            std::fprintf(stderr, "frame %d (%zu/%zu): %.3f s, max stretch %.4g\n", seq.frame(i).number, i + 1,
-                         seq.size(), records.back().seconds, frame.stats.maxStretch);
+        if (!quiet && animator.options().stats)
+            std::fprintf(stderr, "frame %d (%zu/%zu): %.3f s, max stretch %.4g, min yarn distance %.4g\n",
+                         seq.frame(i).number, i + 1, seq.size(), records.back().seconds, frame.stats.maxStretch,
+                         frame.stats.minYarnDistance);
+        else if (!quiet)
+            std::fprintf(stderr, "frame %d (%zu/%zu): %.3f s\n", seq.frame(i).number, i + 1, seq.size(),
+                         records.back().seconds);
     }
     interrupt.check();
     return records;
@@ -252,7 +256,8 @@ void addAnimateCommand(CLI::App& app, AnimateCommand& a) {
                         "Animated .glb: LINEAR interpolation of the frame weights (a blend) instead of STEP");
     a.command->add_flag(
         "--no-stats", a.noStats,
-        "Skip the per-frame maxStretch / minYarnDistance (the distance search costs more than the plies)");
+        "Leave the per-frame maxStretch / minYarnDistance out of --report (they are computed only for a report; "
+        "the distance search costs more than a frame's plies)");
     addSceneFlags(*a.command, a.scene);
     addExportFlags(*a.command, a.exportOptions);
     a.command
@@ -285,7 +290,9 @@ int runAnimate(const AnimateCommand& a) {
     refuseEmptyExport(rest, a.exportOptions);
     AnimatorOptions ao;
     ao.plies = a.exportOptions.what != ExportWhat::Yarns;
-    ao.stats = !a.noStats;
+    // The statistics go into the report only: without one they are not computed (the distance
+    // search costs more than a frame's plies).
+    ao.stats = !a.noStats && !a.report.empty();
     const Animator animator(rest, ao);
     const double bindSeconds = since(t0);
     // Step 3: the frames, streamed into staged outputs (existing files stay unchanged until the end).

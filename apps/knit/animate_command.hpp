@@ -20,7 +20,7 @@ struct AnimateCommand {
     FrameRange range;             // --first --last --step
     double fps = 24;              // --fps: MDD frame times
     bool linear = false;          // --linear: animated .glb weights blend (LINEAR) instead of STEP
-    bool noStats = false;         // --no-stats: skip maxStretch / minYarnDistance per frame
+    bool noStats = false;         // --no-stats: no maxStretch / minYarnDistance in the report
     std::string report;           // --report path; empty = none
 };
 

@@ -63,6 +63,25 @@ TEST_F(Animate, frameKEqualsBuildRestOnFrameK) {
     EXPECT_GT(report["frames"][4]["maxStretch"].get<double>(), 1.0);
     for (const char* key : {"min", "median", "max"}) EXPECT_GT(report["frameSeconds"][key].get<double>(), 0.0);
     EXPECT_GT(report["peakMemoryBytes"].get<double>(), 0.0);
+    EXPECT_TRUE(report["frames"][4]["minYarnDistance"].is_number());
+    EXPECT_GT(report["stageSeconds"]["stats"].get<double>(), 0.0);
+}
+
+// The statistics exist for the report only: --no-stats leaves them out, and a run without a
+// report does not compute them (its progress line has no stretch).
+TEST_F(Animate, statisticsAreComputedForTheReportOnly) {
+    writeWaveSequence(dir, 2, 8);
+    CliRun r = runKnit("animate -q --no-stats --frames frame_%04d.obj --repeats 3 3 -o c.pc2 --report r.json", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const nlohmann::json report = nlohmann::json::parse(std::ifstream(dir / "r.json"));
+    EXPECT_FALSE(report["frames"][1].contains("minYarnDistance"));
+    EXPECT_EQ(report["stageSeconds"]["stats"].get<double>(), 0.0);
+    r = runKnit("animate --frames frame_%04d.obj --repeats 3 3 -o d.pc2", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("frame 2 (2/2)"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("stretch"), std::string::npos) << r.output;
+    r = runKnit("animate --frames frame_%04d.obj --repeats 3 3 -o e.pc2 --report s.json", dir);
+    EXPECT_NE(r.output.find("min yarn distance"), std::string::npos) << r.output;
 }
 
 TEST_F(Animate, pointCacheHoldsEveryFramesPliesAndTheTopology) {
