@@ -185,6 +185,34 @@ std::vector<glm::dvec3> vertexNormals(const std::vector<glm::dvec3>& positions, 
 // its stretch times its 3D area (tests/hard: uvNearZeroAreaTriangles). A size-s plane gives
 // (s, s); a cylinder gives (2πR, height). Throws knit::Error for an invalid mesh (validateMesh)
 // or when no triangle qualifies.
+BaseMesh meshSubset(const BaseMesh& mesh, const std::vector<uint32_t>& faces, const std::string& suffix) {
+    BaseMesh out;
+    out.name = mesh.name + suffix;
+    const bool uvs = mesh.faceUvs.size() == mesh.faces.size();
+    std::vector<uint32_t> position(mesh.positions.size(), UINT32_MAX), uv(mesh.uvs.size(), UINT32_MAX);
+    // Renumbers index i of `from` into `to` on first use.
+    const auto take = [](std::vector<uint32_t>& map, uint32_t i, const auto& from, auto& to) {
+        if (map[i] == UINT32_MAX) {
+            map[i] = static_cast<uint32_t>(to.size());
+            to.push_back(from[i]);
+        }
+        return map[i];
+    };
+    for (const uint32_t f : faces) {
+        if (f >= mesh.faces.size())
+            throw Error("mesh '" + mesh.name + "' has no triangle " + std::to_string(f) + " (it has " +
+                        std::to_string(mesh.faces.size()) + ")");
+        glm::uvec3 p, t;
+        for (int k = 0; k < 3; ++k) {
+            p[k] = take(position, mesh.faces[f][k], mesh.positions, out.positions);
+            if (uvs) t[k] = take(uv, mesh.faceUvs[f][k], mesh.uvs, out.uvs);
+        }
+        out.faces.push_back(p);
+        if (uvs) out.faceUvs.push_back(t);
+    }
+    return out;
+}
+
 glm::dvec2 uvToMetreScale(const BaseMesh& mesh) {
     validateMesh(mesh);
     double sumA = 0.0, sumU = 0.0, sumV = 0.0;

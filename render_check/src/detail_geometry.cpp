@@ -83,16 +83,8 @@ PlyGeometry renderCurves(const Scene& scene, const glm::dvec3& origin, double fi
 }
 
 BaseMesh surfaceMesh(const Scene& scene) {
-    BaseMesh m;
-    m.name = scene.mesh().name + " (surface level)";
-    if (!scene.detail()) return m;
-    m.positions = scene.mesh().positions;
-    m.uvs = scene.mesh().uvs;
-    for (uint32_t f : scene.detail()->pieces.surfaceFaces) {
-        m.faces.push_back(scene.mesh().faces[f]);
-        m.faceUvs.push_back(scene.mesh().faceUvs[f]);
-    }
-    return m;
+    static const std::vector<uint32_t> none;
+    return meshSubset(scene.mesh(), scene.detail() ? scene.detail()->pieces.surfaceFaces : none, " (surface level)");
 }
 
 }  // namespace knit::detail

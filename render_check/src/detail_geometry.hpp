@@ -23,7 +23,8 @@ double yarnLevelRadius(const PlyOptions& resolved);
 // Empty (no segments) when neither level has any curve.
 PlyGeometry renderCurves(const Scene& scene, const glm::dvec3& origin, double fiberTwist, bool curvesMode);
 
-// The base-mesh triangles of the surface-level cells (all positions kept; no faces without a view).
+// The base-mesh triangles of the surface-level cells (meshSubset: only the vertices they use;
+// empty without a view).
 BaseMesh surfaceMesh(const Scene& scene);
 
 }  // namespace knit::detail

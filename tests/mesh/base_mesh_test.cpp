@@ -140,3 +140,33 @@ TEST(BaseMesh, loadMeshFileOrNameTellsFilesFromBuiltins) {
     EXPECT_NE(msg.find("neither a mesh file"), std::string::npos) << msg;
     EXPECT_NE(msg.find("plane, cylinder, sphere, drape"), std::string::npos) << msg;
 }
+
+namespace knit {
+namespace {
+
+// Two of a plane's triangles: only their corners and UVs, renumbered in order of first use, each
+// triangle's corners and UVs where they were.
+TEST(MeshSubset, keepsOnlyTheVerticesAndUvsOfTheChosenTriangles) {
+    ProceduralMeshOptions o;
+    o.resU = o.resV = 3;
+    const BaseMesh plane = makePlane(o);
+    const std::vector<uint32_t> faces{7, 2};
+    const BaseMesh sub = meshSubset(plane, faces, " (part)");
+    EXPECT_EQ(sub.name, plane.name + " (part)");
+    ASSERT_EQ(sub.faces.size(), 2u);
+    ASSERT_EQ(sub.faceUvs.size(), 2u);
+    EXPECT_LE(sub.positions.size(), 6u);
+    EXPECT_LE(sub.uvs.size(), 6u);
+    EXPECT_EQ(sub.faces[0], glm::uvec3(0, 1, 2));  // first use numbers the corners 0, 1, 2
+    for (size_t i = 0; i < faces.size(); ++i)
+        for (int k = 0; k < 3; ++k) {
+            EXPECT_EQ(sub.positions[sub.faces[i][k]], plane.positions[plane.faces[faces[i]][k]]);
+            EXPECT_EQ(sub.uvs[sub.faceUvs[i][k]], plane.uvs[plane.faceUvs[faces[i]][k]]);
+        }
+    EXPECT_NO_THROW(validateMesh(sub));
+    EXPECT_TRUE(meshSubset(plane, {}).faces.empty());
+    EXPECT_THROW(meshSubset(plane, {uint32_t(plane.faces.size())}), Error);
+}
+
+}  // namespace
+}  // namespace knit

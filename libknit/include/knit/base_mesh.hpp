@@ -89,6 +89,11 @@ std::vector<glm::dvec3> vertexNormals(const std::vector<glm::dvec3>& positions, 
 // (x: along u, y: along v), from triangles with non-degenerate UVs.
 glm::dvec2 uvToMetreScale(const BaseMesh& mesh);
 
+// The triangles `faces` (indices into mesh.faces) as a mesh of their own: only the positions and
+// UVs they use, renumbered in order of first use; the name gets `suffix`. Throws knit::Error for
+// a face index out of range.
+BaseMesh meshSubset(const BaseMesh& mesh, const std::vector<uint32_t>& faces, const std::string& suffix = "");
+
 // Checks index ranges, finiteness, that faces exist; throws knit::Error naming the element.
 void validateMesh(const BaseMesh& mesh);
 
