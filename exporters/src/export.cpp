@@ -12,6 +12,7 @@
 #include "formats.hpp"
 #include "knit/error.hpp"
 #include "material_extras.hpp"
+#include "surface_gltf.hpp"
 #include "util/checks.hpp"
 #include "util/csr.hpp"
 #include "util/platform.hpp"
@@ -152,6 +153,14 @@ ExportStats exportCurves(const ExportInput& input, const ExportOptions& requeste
     const bool tubes = options.what == ExportWhat::Tubes;
     validateInput(input, tubes);
     const std::string ext = util::lowerExtension(options.path);
+    if (input.surface) {
+        if (!isGltf(ext))
+            throw Error("cannot export '" + options.path +
+                        "': the view's surface level (base-mesh triangles with the baked knit material) is written "
+                        "to .glb or .gltf only");
+        detail::validateSurfaceData(input.surface->mesh, input.surface->images, input.surface->material,
+                                    "cannot export '" + options.path + "': the surface level: ");
+    }
     if (input.plies && !streamsPlies(options)) {
         // Only glTF curves stream generated plies; the other writers take all curves at once.
         const Plies plies = makePlies(*input.plies);
@@ -195,7 +204,7 @@ ExportStats exportCurves(const ExportInput& input, const ExportOptions& requeste
     return stats;
 }
 
-ExportStats exportScene(const Scene& scene, const ExportOptions& options) {
+ExportStats exportScene(const Scene& scene, const ExportOptions& options, const SurfaceLayer* surface) {
     validateExportOptions(options);
     // Step: choose the curves (yarn centrelines, built plies, or plies generated while writing)
     // and their radius.
@@ -248,6 +257,7 @@ ExportStats exportScene(const Scene& scene, const ExportOptions& options) {
         if (!scene.yarns().colour.empty()) in.colours = &scene.yarns().colour;
     }
     in.materialExtrasJson = extras.dump();
+    in.surface = surface;
     return exportCurves(in, options);
 }
 

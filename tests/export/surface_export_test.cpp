@@ -10,6 +10,8 @@
 #include "export/gltf_validator.hpp"
 #include "knit/base_mesh.hpp"
 #include "knit/error.hpp"
+#include "knit/export.hpp"
+#include "knit/plies.hpp"
 #include "knit/surface_export.hpp"
 #include "test_util.hpp"
 
@@ -147,6 +149,63 @@ TEST(SurfaceExport, blendModeIsWrittenWhenAsked) {
     exportSurface(makePlane(), testImages(2, 2), o);
     EXPECT_EQ(test::loadGltf(o.path).root()["materials"][0]["alphaMode"], "BLEND");
     fs::remove(o.path);
+}
+
+// A view's surface level beside its curves, in one file: the streamed plies as before plus one
+// more node with the textured triangles; .gltf too; other formats refuse it and write nothing.
+TEST(SurfaceExport, surfaceLayerGoesIntoTheCurveGltfBesideThePlies) {
+    SurfaceLayer layer;
+    ProceduralMeshOptions mo;
+    mo.resU = mo.resV = 4;
+    layer.mesh = meshSubset(makePlane(mo), {0, 1, 2, 3, 4});
+    layer.images = testImages(8, 8);
+    layer.material.repeats = {2, 2};
+    MappedYarns yarns;
+    const std::vector<glm::dvec3> row{{0, 0.001, 0}, {0.01, 0.001, 0}, {0.02, 0.001, 0.001}};
+    yarns.curves.addCurve(row.data(), row.size(), false);
+    yarns.normals.assign(row.size(), glm::dvec3(0, 1, 0));
+    PlyOptions po;
+    po.yarnRadius = 0.0005;
+    const PlyGenerator gen(yarns, po);
+    ExportInput in;
+    in.plies = &gen;
+    in.radius = gen.options().plyRadius;
+    in.surface = &layer;
+    for (const char* name : {"layer.glb", "layer.gltf"}) {
+        ExportOptions o;
+        o.path = tempGlb(name);
+        const ExportStats s = exportCurves(in, o);
+        EXPECT_EQ(s.curves, 2u);
+        EXPECT_EQ(s.surfaceTriangles, 5u);
+        EXPECT_EQ(s.surfaceVertices, layer.mesh.positions.size());  // the plane has no UV seam
+        EXPECT_GT(s.imageBytes, 0u);
+        test::expectGltfValid(o.path);
+        const gltf::Document d = test::loadGltf(o.path);
+        const nlohmann::json& j = d.root();
+        ASSERT_EQ(j["materials"].size(), 2u);  // "yarn" and "knit surface"
+        EXPECT_EQ(j["materials"][1]["name"], "knit surface");
+        EXPECT_EQ(j["images"].size(), 2u);
+        size_t lines = 0, triangles = 0;
+        for (const auto& mesh : j["meshes"])
+            for (const auto& prim : mesh["primitives"]) {
+                const int mode = prim.value("mode", 4);
+                if (mode == 3) ++lines;
+                if (mode == 4) {
+                    ++triangles;
+                    EXPECT_EQ(prim["material"], 1);
+                    EXPECT_TRUE(prim["attributes"].contains("TEXCOORD_0"));
+                }
+            }
+        EXPECT_EQ(lines, 2u);
+        EXPECT_EQ(triangles, 1u);
+        EXPECT_EQ(j["nodes"][0]["children"].size(), s.chunks + 1);  // the chunks, then the surface
+        fs::remove(o.path);
+        fs::remove(tempGlb("layer.bin"));
+    }
+    ExportOptions obj;
+    obj.path = tempGlb("layer.obj");
+    EXPECT_NE(test::errorOf([&] { exportCurves(in, obj); }).find("surface level"), std::string::npos);
+    EXPECT_FALSE(fs::exists(obj.path));
 }
 
 }  // namespace

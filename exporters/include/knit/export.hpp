@@ -33,6 +33,8 @@
 
 namespace knit {
 
+struct SurfaceLayer;  // knit/surface_export.hpp
+
 enum class ExportWhat { Yarns, Plies, Tubes };
 enum class TubeSource { Auto, Plies, Yarns };  // Auto: plies when the scene has any, else yarns
 
@@ -86,6 +88,9 @@ struct ExportStats {
     size_t uncompressedMeshBytes = 0;  // tube attribute + index bytes before Draco/quantization
     size_t compressedMeshBytes = 0;    // the same data as written (Draco / quantized)
     size_t peakMemoryBytes = 0;        // process peak resident set (VmHWM) after export
+    // A view's surface level written beside the curves (ExportInput::surface): its triangle
+    // mesh's vertices and triangles and the PNG bytes of its two textures.
+    size_t surfaceVertices = 0, surfaceTriangles = 0, imageBytes = 0;
     double seconds = 0;
 };
 
@@ -98,7 +103,11 @@ struct ExportStats {
 // streamed: generated, converted and written chunk by chunk on all cores, never held all at
 // once (the fast path for garments; docs/speed-vs-error.md). Other formats and tubes generate
 // all plies first (makePlies) and then write them.
-ExportStats exportScene(const Scene& scene, const ExportOptions& options);
+//
+// `surface` (optional): a view's surface level (the base-mesh triangles of its surface-level
+// cells with the baked knit material) written into the same .glb / .gltf as one more mesh under
+// the root node, with its own material and textures; other formats refuse it (knit::Error).
+ExportStats exportScene(const Scene& scene, const ExportOptions& options, const SurfaceLayer* surface = nullptr);
 
 // Lower-level entry: exports the given curves (yarn centrelines or plies) with constant `radius`.
 // `yarnOfCurve` (optional, one entry per curve) selects the COLOR_0 palette entry and is stored;
@@ -117,6 +126,8 @@ struct ExportInput {
     // glTF material extras as JSON object text, e.g. {"generator":"libknit"} (empty: none; the
     // exporter adds radius and tube fields). Anything but a JSON object is a knit::Error.
     std::string materialExtrasJson;
+    // A view's surface level written beside the curves (.glb / .gltf only; see exportScene).
+    const SurfaceLayer* surface = nullptr;
 };
 ExportStats exportCurves(const ExportInput& input, const ExportOptions& options);
 

@@ -53,6 +53,15 @@ struct SurfaceExportStats {
     size_t bytes = 0;       // file size
 };
 
+// A view's surface level as part of a curve or tube glTF export (knit/export.hpp: exportScene's
+// `surface`): the triangles (e.g. meshSubset of the surface-level faces), the baked images and
+// the material options (`material.path` is not used).
+struct SurfaceLayer {
+    BaseMesh mesh;
+    SurfaceImages images;
+    SurfaceExportOptions material;
+};
+
 // The checks of the output path alone, for callers that fail before the bake: a .glb name in a
 // writable folder (knit::Error naming the path).
 void checkSurfaceOutput(const std::string& path);
