@@ -2,6 +2,7 @@
 #include "build_command.hpp"
 
 #include <cstdio>
+#include <memory>
 
 #include <nlohmann/json.hpp>
 
@@ -11,6 +12,8 @@
 #include "knit/animation.hpp"
 #include "knit/output_transaction.hpp"
 #include "knit/error.hpp"
+#include "knit/surface_export.hpp"
+#include "util/platform.hpp"
 #include "float_range.hpp"
 #include "path_collisions.hpp"
 #include "report.hpp"
@@ -29,29 +32,69 @@ View reportView(const Scene& scene, const BuildCommand& b) {
     return frameMesh(scene.mesh(), yarnMargin(scene.binding(), scene.yarnRadius()), settings);
 }
 
-// What a scene built for a view exports: the yarn pieces of its ply-level cells and their plies
-// (the yarn and surface levels are not exported yet).
-Scene plyLevelScene(const Scene& s) {
+// Appends the yarns of `more` to `to` (points, normals and colours; curve offsets shifted).
+void appendYarns(MappedYarns& to, const MappedYarns& more) {
+    const uint32_t base = static_cast<uint32_t>(to.curves.points.size());
+    to.curves.points.insert(to.curves.points.end(), more.curves.points.begin(), more.curves.points.end());
+    for (size_t c = 1; c < more.curves.offsets.size(); ++c) to.curves.offsets.push_back(base + more.curves.offsets[c]);
+    to.curves.closed.insert(to.curves.closed.end(), more.curves.closed.begin(), more.curves.closed.end());
+    to.normals.insert(to.normals.end(), more.normals.begin(), more.normals.end());
+    to.colour.insert(to.colour.end(), more.colour.begin(), more.colour.end());
+}
+
+// What a scene built for a view exports as curves: the yarn pieces of its ply-level cells and of
+// its yarn-level cells, all with plies (files have no yarn-level shading: a yarn-level cell keeps
+// its plies, more than the view needs but nothing lost). Plies are generated per piece.
+Scene curveLevelsScene(const Scene& s) {
     SceneParts parts;
     parts.mesh = s.mesh();
     parts.normals = s.normals();
     parts.yarnRadius = s.yarnRadius();
     parts.grid = s.grid();
     parts.yarns = s.detail()->pieces.plies;
-    parts.plies = s.plies();
+    appendYarns(parts.yarns, s.detail()->pieces.yarns);
     parts.plyOptions = s.plyOptions();
     return Scene::fromParts(std::move(parts));
 }
 
-// The scene report plus the export, the camera and the levels; streamed plies are counted by the
-// export.
+// The view's surface level: the base-mesh triangles of its surface-level cells with the pattern
+// baked as for --surface-only (null when the view has none). Needs a glTF output.
+std::unique_ptr<SurfaceLayer> surfaceLevel(const Scene& built, const SceneOptions& options, const BuildCommand& b) {
+    if (!built.detail() || built.detail()->pieces.surfaceFaces.empty()) return nullptr;
+    const std::vector<uint32_t>& faces = built.detail()->pieces.surfaceFaces;
+    const std::string ext = util::lowerExtension(b.exportOptions.path);
+    if (ext != "glb" && ext != "gltf")
+        throw Error("-o '" + b.exportOptions.path + "': the view has " + std::to_string(faces.size()) +
+                    " base-mesh triangles at the surface level, whose baked knit material needs a .glb or .gltf "
+                    "output (or use --detail full)");
+#ifdef KNIT_HAVE_RENDER_CHECK
+    const SurfaceBuild bake = bakeSurfaceLevel(options, b.surface, PlyMaterial{});
+    auto layer = std::make_unique<SurfaceLayer>();
+    layer->mesh = meshSubset(built.mesh(), faces, " (surface level)");
+    layer->images.width = bake.bake.width, layer->images.height = bake.bake.height;
+    layer->images.baseColorRgba = baseColorRgba8(bake.bake);
+    layer->images.normalRgb = normalRgb8(bake.bake);
+    layer->material.repeats = built.placement().repeats;
+    return layer;
+#else
+    (void)options;
+    throw Error("the view has surface-level cells, but this knit was built without render_check, which bakes their "
+                "material; use --detail full");
+#endif
+}
+
+// The scene report plus the export, the camera and the levels; plies the export generated
+// (streamed, or a view's pieces) are counted by the export.
 nlohmann::json buildReportJson(const Scene& scene, const SceneStats& numbers, const ExportStats& stats, bool streamed,
-                               const View& view) {
+                               const View& view, bool surfaceTextured, bool exportMadePlies) {
     nlohmann::json report = sceneReport(scene, numbers);
     LevelStats levels = numbers.levels;
-    if (streamed) levels.plies.plyVertices = stats.vertices, levels.plies.bytes = 16 * stats.vertices;
+    if (exportMadePlies) levels.plies.plyVertices = stats.vertices, levels.plies.bytes = 16 * stats.vertices;
     report["camera"] = cameraJson(view);
-    report["levels"] = levelsJson(levels, false);  // build exports the ply level only
+    report["levels"] = levelsJson(levels, surfaceTextured);
+    // Files have no yarn-level shading: those cells are written with their plies (curveLevelsScene),
+    // counted with the ply level's plyVertices.
+    if (scene.detail()) report["levels"]["yarns"]["exportedAs"] = "plies";
     if (streamed) {
         const PlyOptions o = resolvePlyOptions(scene.plyOptions());
         report["vertices"]["ply"] = stats.vertices;
@@ -73,8 +116,10 @@ void printSummary(const Scene& s, const SceneStats& st, const ExportStats& e, co
                 "vertices\n",
                 st.cells, st.yarns, st.bind.closedLoops, st.bind.openEnds, st.bind.weldedEnds, st.yarnVertices,
                 streamed ? e.vertices : st.plyVertices);
-    std::printf("wrote %s (%s, %zu curves, %zu vertices) in %.3f s total\n", output.c_str(), e.format.c_str(), e.curves,
-                e.vertices, st.totalSeconds + e.seconds);
+    std::printf("wrote %s (%s, %zu curves, %zu vertices", output.c_str(), e.format.c_str(), e.curves, e.vertices);
+    if (e.surfaceTriangles > 0)
+        std::printf("; surface level: %zu triangles with the baked knit material", e.surfaceTriangles);
+    std::printf(") in %.3f s total\n", st.totalSeconds + e.seconds);
 }
 
 // Fails before any scene is built: bad export options, an unwritable report folder, or an output
@@ -179,20 +224,31 @@ int runBuild(const BuildCommand& b) {
     const bool streamed = streamsPlies(b.exportOptions);
     options.buildPlies = b.exportOptions.what != ExportWhat::Yarns && !streamed;
     options.detail = detailOptions(b.view, b.view.image, false, true);
+    if (options.detail) options.buildPlies = false;  // the export generates the plies of the pieces it writes
     const Scene built = buildScene(options);
-    const Scene scene = built.detail() ? plyLevelScene(built) : Scene();
+    const Scene scene = built.detail() ? curveLevelsScene(built) : Scene();
     const Scene& exported = built.detail() ? scene : built;
     printWarnings(built);
+    const std::unique_ptr<SurfaceLayer> surface = surfaceLevel(built, options, b);
+    if (built.detail() && !surface && exported.yarns().curves.curveCount() == 0)
+        throw Error(
+            "the view sees none of the cloth (every cell is culled): check --eye and --target; no file written");
     refuseValuesBeyondFloat32(exported, b.exportOptions);
-    refuseEmptyExport(exported, b.exportOptions);
+    if (!surface) refuseEmptyExport(exported, b.exportOptions);
     // Step 3: the export, then the report, staged and committed together: an existing -o (or report)
     // stays unchanged unless both are complete.
     OutputTransaction outputs;
     const ExportOptions staged = stagedExport(b.exportOptions, options.budget, outputs);
-    const ExportStats stats = outputs.run([&] { return exportScene(exported, staged); });
+    const ExportStats stats = outputs.run([&] { return exportScene(exported, staged, surface.get()); });
     const SceneStats sceneNumbers = sceneStats(built);  // counts, segment lengths, stage times
     if (!b.report.empty()) {
-        const nlohmann::json report = buildReportJson(built, sceneNumbers, stats, streamed, reportView(built, b));
+        nlohmann::json report =
+            buildReportJson(built, sceneNumbers, stats, streamed, reportView(built, b), surface != nullptr,
+                            streamed || (built.detail() && b.exportOptions.what != ExportWhat::Yarns));
+        if (surface) {
+            report["export"]["surface"]["bakeWidth"] = surface->images.width;
+            report["export"]["surface"]["bakeHeight"] = surface->images.height;
+        }
         outputs.run([&] { writeReport(outputs.stage(b.report), report); });
     }
     outputs.run([&] { outputs.commit(); });

@@ -21,6 +21,9 @@ nlohmann::json exportReport(const ExportStats& s) {
         if (s.compressedMeshBytes > 0)
             j["compressionRatio"] = double(s.uncompressedMeshBytes) / double(s.compressedMeshBytes);
     }
+    if (s.surfaceTriangles > 0)
+        j["surface"] = {
+            {"vertices", s.surfaceVertices}, {"triangles", s.surfaceTriangles}, {"imageBytes", s.imageBytes}};
     return j;
 }
 

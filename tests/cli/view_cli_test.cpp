@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/run_knit.hpp"
+#include "export/gltf_validator.hpp"
 
 namespace fs = std::filesystem;
 
@@ -77,6 +78,59 @@ TEST_F(ViewCli, buildReportsCameraAndLevelsAndViewKeepsLessThanFull) {
               full["levels"]["plies"]["plyVertices"].get<size_t>());
     EXPECT_LT(fs::file_size(dir / "view.obj"), fs::file_size(dir / "full.obj"));
     EXPECT_EQ(view["levels"]["surface"]["textured"], false);
+}
+
+// A far view (8 x 6 pixels: every cell below a pixel) writes the base mesh with the baked material
+// and no curves: a fraction of the full file, valid for the Khronos validator.
+TEST_F(ViewCli, buildFarViewWritesTheTexturedSurfaceLevel) {
+    if (!hasRender()) GTEST_SKIP() << "knit was built without render_check (it bakes the surface level)";
+    const std::string scene = " -q --mesh drape --repeats 4 4 --mesh-res 8 --bake-size 16 ";
+    ASSERT_EQ(run("build" + scene + "-o full.glb").exitCode, 0);
+    const knit::test::CliRun r = run("build" + scene + "--detail view --width 8 --height 6 -o far.glb --report r.json");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const nlohmann::json j = report("r.json");
+    EXPECT_EQ(j["levels"]["surface"]["cells"], j["counts"]["cells"]);
+    EXPECT_EQ(j["levels"]["surface"]["textured"], true);
+    EXPECT_EQ(j["export"]["curves"], 0);
+    EXPECT_EQ(j["export"]["surface"]["triangles"], 128);  // every triangle of the 8 x 8 drape
+    EXPECT_GT(j["export"]["surface"]["imageBytes"].get<size_t>(), 0u);
+    EXPECT_EQ(j["export"]["bytes"].get<size_t>(), fs::file_size(dir / "far.glb"));
+    EXPECT_LT(2 * fs::file_size(dir / "far.glb"), fs::file_size(dir / "full.glb"));
+    knit::test::expectGltfValid((dir / "far.glb").string());
+}
+
+// A grazing view of a plane has all three levels: ply- and yarn-level cells are written as plies,
+// the surface-level triangles with the baked material, all in one valid file.
+TEST_F(ViewCli, buildMixedViewWritesEveryLevelInOneGltf) {
+    if (!hasRender()) GTEST_SKIP() << "knit was built without render_check (it bakes the surface level)";
+    const std::string view = " -q --mesh plane --mesh-res 8 --repeats 20 20 --bake-size 16 --detail view "
+                             "--eye 0.24 0.03 0.24 --target -0.2 0 -0.2 --width 40 --height 40 ";
+    for (const char* out : {"mixed.glb", "mixed.gltf"}) {
+        const knit::test::CliRun r = run("build" + view + "-o " + out + " --report r.json");
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+        const nlohmann::json j = report("r.json");
+        for (const char* level : {"plies", "yarns", "surface"}) EXPECT_GT(j["levels"][level]["cells"], 0) << level;
+        EXPECT_GT(j["levels"]["culledCells"], 0);
+        EXPECT_GT(j["export"]["curves"], 0);
+        EXPECT_GT(j["export"]["surface"]["triangles"], 0);
+        EXPECT_LT(j["export"]["surface"]["triangles"], 128);
+        EXPECT_EQ(j["levels"]["plies"]["plyVertices"], j["export"]["vertices"]);
+        knit::test::expectGltfValid((dir / out).string());
+    }
+    // The same view into a curve format: the surface level cannot go there.
+    const knit::test::CliRun obj = run("build" + view + "-o mixed.obj");
+    EXPECT_EQ(obj.exitCode, 1);
+    EXPECT_NE(obj.output.find("-o 'mixed.obj'"), std::string::npos) << obj.output;
+    EXPECT_NE(obj.output.find(".glb or .gltf"), std::string::npos) << obj.output;
+    EXPECT_FALSE(fs::exists(dir / "mixed.obj"));
+}
+
+TEST_F(ViewCli, buildViewThatSeesNoClothSaysSo) {
+    const knit::test::CliRun r =
+        run("build" + kScene + "--detail view --eye 0 -1 0 --target 0 -2 0 --up 0 0 -1 -o none.glb");
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.output.find("the view sees none of the cloth"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir / "none.glb"));
 }
 
 TEST_F(ViewCli, renderReportsTheDefaultCameraAndItsLevels) {

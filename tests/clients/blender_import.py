@@ -1,6 +1,8 @@
 # blender_import.py — imports exports with Blender's own importers (headless) and prints, per file,
 # what Blender built as one line "KNIT <json>":
-#   {"file", "objects", "vertices", "edges", "faces", "looseEdges", "min": [x,y,z], "max": [x,y,z]}
+#   {"file", "objects", "vertices", "edges", "faces", "looseEdges", "min": [x,y,z], "max": [x,y,z],
+#    "images": [[width, height], ...]}
+# (images: every distinct image texture node of the mesh objects' materials)
 # (bounds in Blender's world space: Z up; the OBJ and glTF importers turn Y-up files to Z-up).
 #
 # Usage: blender -b --factory-startup --python blender_import.py -- FILE.obj|.gltf|.glb|.ply ...
@@ -51,6 +53,17 @@ def summarize(path):
                 lo[k] = min(lo[k], w[k])
                 hi[k] = max(hi[k], w[k])
     s["min"], s["max"] = lo, hi
+    images = {}
+    for obj in bpy.context.scene.objects:
+        if obj.type != "MESH":
+            continue
+        for slot in obj.material_slots:
+            if slot.material is None or not slot.material.use_nodes:
+                continue
+            for node in slot.material.node_tree.nodes:
+                if node.type == "TEX_IMAGE" and node.image is not None:
+                    images[node.image.name] = [node.image.size[0], node.image.size[1]]
+    s["images"] = list(images.values())
     return s
 
 

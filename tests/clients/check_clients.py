@@ -42,6 +42,12 @@ EXPORTS = [
     ("cylinder_plies.obj", ["--mesh", "cylinder"], False),
     # The surface level: the base mesh with the baked knit material (embedded PNG textures).
     ("surface.glb", ["--surface-only", "--bake-size", "16"], False),
+    # A view (`--detail view`): far (every cell at the surface level: the textured base mesh only)
+    # and grazing over a plane (plies of the near cells and the textured surface of the far ones,
+    # in one file).
+    ("view_far.glb", ["--detail", "view", "--width", "8", "--height", "6", "--bake-size", "16"], False),
+    ("view_mixed.glb", ["--mesh", "plane", "--detail", "view", "--eye", "0.24", "0.01", "0.24", "--target", "-0.2",
+                        "0", "-0.2", "--width", "8", "--height", "8", "--bake-size", "16"], False),
 ]
 
 
@@ -213,15 +219,17 @@ def check_threejs(args, files, reports, checker):
         for key in ("vertices", "triangles", "lines", "lineVertices"):
             checker.eq("three.js %s %s" % (name, key), s[key], want[key])
         stats = reports[name]
+        # A view's surface level is counted apart from its curves (export.surface).
+        meshes = stats.get("surface", stats)
         if want["triangles"]:
-            checker.eq("three.js %s vertices vs report" % name, s["vertices"], stats["vertices"])
-            checker.eq("three.js %s triangles vs report" % name, s["triangles"], stats["triangles"])
-        else:
+            checker.eq("three.js %s vertices vs report" % name, s["vertices"], meshes["vertices"])
+            checker.eq("three.js %s triangles vs report" % name, s["triangles"], meshes["triangles"])
+        if not want["triangles"] or "surface" in stats:
             checker.eq("three.js %s curves vs report" % name, s["lines"], stats["curves"])
         checker.box("three.js " + name, s["min"], s["max"], want["min"], want["max"])
         checker.up("three.js " + name, name, s["min"], s["max"], 1)
-        if "bakeWidth" in stats:
-            check_baked_material("three.js " + name, s, stats, checker)
+        if "bakeWidth" in meshes:
+            check_baked_material("three.js " + name, s, meshes, checker)
     return len(gltfs)
 
 
@@ -240,7 +248,7 @@ def check_baked_material(what, s, stats, checker):
     checker.eq("%s transparent" % what, s.get("transparent"), False)
 
 
-def check_blender(args, files, compressed, checker):
+def check_blender(args, files, compressed, reports, checker):
     blender = args.blender or shutil.which("blender")
     if not blender:
         skip_or_fail("blender is not installed")
@@ -251,16 +259,23 @@ def check_blender(args, files, compressed, checker):
     command = [blender, "-b", "--factory-startup", "--python", os.path.join(HERE, "blender_import.py"), "--"]
     for f, name, s in run_client("Blender", command, plain, "KNIT ", checker, env):
         want = declared(f)
-        checker.eq("Blender %s vertices" % name, s["vertices"], want["vertices"] or want.get("lineVertices"))
+        checker.eq("Blender %s vertices" % name, s["vertices"], want["vertices"] + want.get("lineVertices", 0))
         if f.endswith((".obj", ".ply")):
             checker.eq("Blender %s faces" % name, s["faces"], want["triangles"])
             if not want["triangles"]:
                 checker.eq("Blender %s edges (every curve segment)" % name, s["edges"], want["segments"])
         else:
             checker.eq("Blender %s faces" % name, s["faces"], want["triangles"])
-            if want["lines"]:
+            if want["lines"] and not want["triangles"]:
                 checker.eq("Blender %s edges (every curve segment)" % name, s["edges"],
                            want["lineVertices"] - want["lines"])
+            elif want["lines"]:  # curves beside a surface: the curve segments are the loose edges
+                checker.eq("Blender %s loose edges (every curve segment)" % name, s["looseEdges"],
+                           want["lineVertices"] - want["lines"])
+            meshes = reports[name].get("surface", reports[name])
+            if "bakeWidth" in meshes:  # the baked material: its two images, as baked
+                checker.eq("Blender %s material images" % name, sorted(s.get("images", [])),
+                           [[meshes["bakeWidth"], meshes["bakeHeight"]]] * 2)
         lo, hi = want["min"], want["max"]
         up = 1
         if not f.endswith(".ply"):  # Blender's PLY importer keeps the file's axes
@@ -302,7 +317,7 @@ def main():
     if args.client == "threejs":
         n = check_threejs(args, files, reports, checker)
     else:
-        n = check_blender(args, files, compressed, checker)
+        n = check_blender(args, files, compressed, reports, checker)
     for failure in checker.failures:
         print("MISMATCH " + failure)
     print("%s: %d files checked, %d mismatches" % (args.client, n, len(checker.failures)))
