@@ -1,6 +1,6 @@
 // main.cpp — speed_vs_error: the measurement program behind docs/speed-vs-error.md.
 //
-// One program that measures six speed-against-error trade-offs of libknit's settings on the
+// One program that measures seven speed-against-error trade-offs of libknit's settings on the
 // machine it runs on, then writes the report from those numbers only. Run it through
 // scripts/speed-vs-error.sh (builds Release, runs both steps, draws the plots):
 //
@@ -38,7 +38,8 @@ int runTool(int argc, char** argv) {
     CLI::App* m = app.add_subcommand("measure", "Run the measurements and write the results JSON");
     m->add_option("--results", mo.results, "Results JSON to write")->required();
     m->add_option("--work", mo.work, "Scratch folder for exported files (removed after each use)");
-    m->add_option("--items", mo.items, "Items to run, in order (1..6)");
+    m->add_option("--items", mo.items,
+                  "Items to run, in order (1..7; 7, the views of docs/views.md, is not in the default list)");
     m->add_option("--commit", commit, "git commit of the measured tree");
     m->add_option("--dirty", dirty, "1 if the tree had uncommitted changes");
     m->add_option("--date", date, "Date of the run");

@@ -45,11 +45,13 @@ json measureItem(char item, const MeasureOptions& o) {
         case '4': return measureBaseMesh();
 #if KNIT_SVE_HAVE_RENDER
         case '5': return measureRender(o.images);
+        case '7': return measureViews();
 #else
-        case '5': return {{"skipped", "render_check (knit::render_check) was not built"}};
+        case '5':
+        case '7': return {{"skipped", "render_check (knit::render_check) was not built"}};
 #endif
         case '6': return measureGarment(o.garmentRepeats, o.work);
-        default: throw knit::Error(std::string("unknown item '") + item + "' (expected 1..6)");
+        default: throw knit::Error(std::string("unknown item '") + item + "' (expected 1..7)");
     }
 }
 
