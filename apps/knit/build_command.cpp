@@ -1,6 +1,7 @@
 // `knit build`: check the outputs, build the scene, export it, write the report, print a summary.
 #include "build_command.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 
@@ -44,16 +45,25 @@ void appendYarns(MappedYarns& to, const MappedYarns& more) {
 
 // What a scene built for a view exports as curves: the yarn pieces of its ply-level cells and of
 // its yarn-level cells, all with plies (files have no yarn-level shading: a yarn-level cell keeps
-// its plies, more than the view needs but nothing lost). Plies are generated per piece.
-Scene curveLevelsScene(const Scene& s) {
+// its plies, more than the view needs but nothing lost), cut from their yarns' plies so they are
+// the full scene's plies point for point (piecePlies).
+Scene curveLevelsScene(const Scene& s, bool withPlies) {
+    const LevelPieces& pieces = s.detail()->pieces;
     SceneParts parts;
     parts.mesh = s.mesh();
     parts.normals = s.normals();
     parts.yarnRadius = s.yarnRadius();
     parts.grid = s.grid();
-    parts.yarns = s.detail()->pieces.plies;
-    appendYarns(parts.yarns, s.detail()->pieces.yarns);
+    parts.yarns = pieces.plies;
+    appendYarns(parts.yarns, pieces.yarns);
     parts.plyOptions = s.plyOptions();
+    if (withPlies) {
+        std::vector<YarnSpan> spans = pieces.plySpans;
+        spans.insert(spans.end(), pieces.yarnSpans.begin(), pieces.yarnSpans.end());
+        std::stable_sort(spans.begin(), spans.end(),
+                         [](const YarnSpan& a, const YarnSpan& b) { return a.yarn < b.yarn; });
+        parts.plies = piecePlies(s.yarns(), spans, s.plyOptions());
+    }
     return Scene::fromParts(std::move(parts));
 }
 
@@ -226,7 +236,7 @@ int runBuild(const BuildCommand& b) {
     options.detail = detailOptions(b.view, b.view.image, false, true);
     if (options.detail) options.buildPlies = false;  // the export generates the plies of the pieces it writes
     const Scene built = buildScene(options);
-    const Scene scene = built.detail() ? curveLevelsScene(built) : Scene();
+    const Scene scene = built.detail() ? curveLevelsScene(built, b.exportOptions.what != ExportWhat::Yarns) : Scene();
     const Scene& exported = built.detail() ? scene : built;
     printWarnings(built);
     const std::unique_ptr<SurfaceLayer> surface = surfaceLevel(built, options, b);

@@ -49,8 +49,9 @@ double cellExit(const UvGrid& grid, glm::dvec2 a, glm::dvec2 b) {
 
 struct PieceWriter {
     LevelPieces& out;
-    void add(DetailLevel level, uint32_t yarn, const std::vector<glm::dvec3>& pts, const std::vector<glm::dvec3>& nrm,
-             bool closed) {
+    void add(DetailLevel level, const YarnSpan& span, const std::vector<glm::dvec3>& pts,
+             const std::vector<glm::dvec3>& nrm, bool closed) {
+        const uint32_t yarn = span.yarn;
         if (level != DetailLevel::Plies && level != DetailLevel::Yarns) return;
         // A yarn that only touches a cell (its last vertex on the cell's edge) leaves a piece of
         // length zero there: nothing to draw.
@@ -59,16 +60,19 @@ struct PieceWriter {
         m.curves.addCurve(pts.data(), pts.size(), closed);
         m.normals.insert(m.normals.end(), nrm.begin(), nrm.end());
         (level == DetailLevel::Plies ? out.plyPieceYarn : out.yarnPieceYarn).push_back(yarn);
+        (level == DetailLevel::Plies ? out.plySpans : out.yarnSpans).push_back(span);
     }
 };
 
-// The point where the yarn leaves the cell of vertex v on its way to w, and its normal.
-void exitPoint(const MappedYarns& yarns, const std::vector<glm::dvec2>& uv, const UvGrid& grid, uint32_t v, uint32_t w,
-               glm::dvec3& p, glm::dvec3& q) {
+// The point where the yarn leaves the cell of vertex v on its way to w, and its normal; returns
+// its fraction of the way from v to w.
+double exitPoint(const MappedYarns& yarns, const std::vector<glm::dvec2>& uv, const UvGrid& grid, uint32_t v,
+                 uint32_t w, glm::dvec3& p, glm::dvec3& q) {
     const double t = cellExit(grid, uv[v], uv[w]);
     const std::vector<glm::dvec3>& x = yarns.curves.points;
     p = x[v] + t * (x[w] - x[v]);
     q = glm::normalize(yarns.normals[v] + t * (yarns.normals[w] - yarns.normals[v]));
+    return t;
 }
 
 // Step 2: one yarn cut into runs of one level; consecutive runs share the point where the yarn
@@ -82,23 +86,32 @@ void splitYarn(const MappedYarns& yarns, uint32_t y, const std::vector<DetailLev
         std::all_of(level.begin() + b, level.begin() + b + n, [&](DetailLevel l) { return l == level[b]; });
     uint32_t start = 0;
     std::vector<glm::dvec3> pts, nrm;
+    // The span of the run being collected, in vertex units. Unwrapped: vertex start + s sits at
+    // base + start + s, with base = n when the first run begins on the closing segment (start 0).
+    YarnSpan span{y, 0.0, 0.0, false};
+    double base = 0.0;
     if (closed && !uniform) {
         while (level[b + start] == level[b + (start + n - 1) % n]) ++start;
+        if (start == 0) base = double(n);
         pts.resize(1), nrm.resize(1);
-        exitPoint(yarns, uv, grid, b + (start + n - 1) % n, b + start, pts[0], nrm[0]);
+        span.begin =
+            base + double(start) - 1.0 + exitPoint(yarns, uv, grid, b + (start + n - 1) % n, b + start, pts[0], nrm[0]);
     }
     for (uint32_t s = 0; s < n; ++s) {
         const uint32_t v = b + (start + s) % n, w = b + (start + s + 1) % n;
         pts.push_back(c.points[v]), nrm.push_back(yarns.normals[v]);
+        const double at = base + double(start + s);  // unwrapped vertex position of v
         if (!closed && s + 1 == n) {
-            writer.add(level[v], y, pts, nrm, false);
+            span.end = at;
+            writer.add(level[v], span, pts, nrm, false);
         } else if (level[w] == level[v]) {
-            if (s + 1 == n) writer.add(level[v], y, pts, nrm, true);  // a loop all in one level
+            if (s + 1 == n) writer.add(level[v], YarnSpan{y, 0.0, double(n), true}, pts, nrm, true);  // a whole loop
         } else {
             glm::dvec3 p, q;
-            exitPoint(yarns, uv, grid, v, w, p, q);
+            span.end = at + exitPoint(yarns, uv, grid, v, w, p, q);
             pts.push_back(p), nrm.push_back(q);
-            writer.add(level[v], y, pts, nrm, false);
+            writer.add(level[v], span, pts, nrm, false);
+            span.begin = span.end;
             pts.assign(1, p), nrm.assign(1, q);
         }
     }

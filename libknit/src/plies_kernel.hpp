@@ -24,6 +24,8 @@ struct PlyScratch::Buffers {
 namespace detail {
 
 struct PlyKernel {
+    // The resampling spacing of the generator's yarns (pitch / samplesPerTurn).
+    static double spacing(const PlyGenerator& generator) { return generator.spacing_; }
     // The buffers of `scratch`, allocated on first use.
     static PlyScratch::Buffers& buffers(PlyScratch& scratch);
     // The resampled centreline of yarn `y`, appended to `centre`, and its colours appended to

@@ -162,10 +162,10 @@ private:
                 s_.plyOptions_ = resolvePlyOptions(o);
                 const MappedYarns& source = s_.detail_ ? s_.detail_->pieces.plies : s_.yarns_;
                 detail::checkPlyBudget(source, s_.plyOptions_, options_.budget);
-                s_.plies_ = makePlies(source, s_.plyOptions_);
-                // With a view: each ply names the yarn its piece comes from (cells, colours).
-                if (s_.detail_)
-                    for (uint32_t& y : s_.plies_.yarnOfCurve) y = s_.detail_->pieces.plyPieceYarn[y];
+                // With a view: the plies of the ply-level pieces cut from their yarns' plies (the
+                // full scene's plies there, point for point); each names its source yarn.
+                s_.plies_ = s_.detail_ ? piecePlies(s_.yarns_, s_.detail_->pieces.plySpans, s_.plyOptions_)
+                                       : makePlies(source, s_.plyOptions_);
             });
     }
 

@@ -9,6 +9,7 @@
 
 #include "fixtures.hpp"
 #include "knit/detail.hpp"
+#include "knit/plies.hpp"
 #include "knit/scene.hpp"
 
 namespace knit {
@@ -197,9 +198,9 @@ struct PieceCase {
     CellLevels levels;
 };
 
-PieceCase alternatingLevels(bool withDropped) {
+PieceCase alternatingLevels(bool withDropped, const char* mesh = "plane") {
     SceneOptions so;
-    so.mesh = "plane";
+    so.mesh = mesh;
     so.placement.repeats = {6, 6};
     so.buildPlies = false;
     PieceCase pc{buildScene(so), {}};
@@ -297,6 +298,78 @@ TEST(Detail, sceneWithViewGeneratesPliesOnlyForPlyCells) {
     EXPECT_EQ(st.levels.plies.cells + st.levels.yarns.cells + st.levels.surface.cells + st.levels.culledCells,
               near.grid().cells.size());
     EXPECT_EQ(near.yarns().curves.pointCount(), full.yarns().curves.pointCount());  // all yarns kept
+}
+
+// Where `piece` (a ply curve of a view) sits in `whole` (the same yarn's same ply at full
+// detail): the index of whole's point equal to piece's first, when every following point is
+// equal too (cyclically for a closed whole); -1 otherwise.
+long runOffset(const Polylines& whole, size_t w, const Polylines& piece, size_t c) {
+    const uint32_t n = whole.size(w), k = piece.size(c);
+    for (uint32_t o = 0; o < n; ++o) {
+        bool same = true;
+        for (uint32_t i = 0; i < k && same; ++i) {
+            const uint32_t j = o + i;
+            if (j >= n && !whole.isClosed(w)) same = false;
+            else same = whole.points[whole.begin(w) + j % n] == piece.points[piece.begin(c) + i];
+        }
+        if (same) return o;
+    }
+    return -1;
+}
+
+// The plies of ply-level pieces are the full scene's plies point for point (twist phase and frames
+// from the yarn's start, not the piece's), and each piece's plies reach past both ends of its span.
+TEST(Detail, plyLevelPliesAreTheFullScenesPliesPointForPoint) {
+    for (const char* mesh : {"plane", "cylinder"}) {  // open courses; closed loops round the cylinder
+        SCOPED_TRACE(mesh);
+        const PieceCase pc = alternatingLevels(true, mesh);
+        const Scene& s = pc.scene;
+        const LevelPieces pieces = splitByLevel(s.yarns(), s.binding(), s.mesh(), s.grid(), pc.levels);
+        const Plies full = makePlies(s.yarns(), s.plyOptions());
+        const Plies cut = piecePlies(s.yarns(), pieces.plySpans, s.plyOptions());
+        ASSERT_EQ(pieces.plySpans.size(), pieces.plies.curves.curveCount());
+        const uint32_t n = uint32_t(resolvePlyOptions(s.plyOptions()).count);
+        ASSERT_EQ(cut.curves.curveCount(), n * pieces.plySpans.size());
+        std::map<std::pair<uint32_t, uint8_t>, size_t> wholeCurve;  // (yarn, ply) -> full curve
+        for (size_t c = 0; c < full.curves.curveCount(); ++c) wholeCurve[{full.yarnOfCurve[c], full.plyOfCurve[c]}] = c;
+        size_t partial = 0;
+        for (size_t c = 0; c < cut.curves.curveCount(); ++c) {
+            const size_t w = wholeCurve.at({cut.yarnOfCurve[c], cut.plyOfCurve[c]});
+            EXPECT_GE(runOffset(full.curves, w, cut.curves, c), 0)
+                << "ply curve " << c << " is not a run of the full ply";
+            if (cut.curves.size(c) < full.curves.size(w)) ++partial;
+        }
+        EXPECT_GT(partial, 10u);  // most pieces are cut out of longer yarns
+        // Each piece's plies reach past its span: the piece's end points lie within the ply 0 curve's
+        // centreline extent (the centre is the mean of the plies' points at one index).
+        for (size_t k = 0; k < pieces.plySpans.size(); ++k) {
+            const uint32_t c = uint32_t(k * n);
+            const Polylines& p = pieces.plies.curves;
+            auto centre = [&](uint32_t i) {
+                glm::dvec3 m(0.0);
+                for (uint32_t q = 0; q < n; ++q) m += cut.curves.points[cut.curves.begin(c + q) + i];
+                return m / double(n);
+            };
+            const glm::dvec3 a = centre(0), b = centre(cut.curves.size(c) - 1);
+            const glm::dvec3 first = p.points[p.begin(k)], last = p.points[p.end(k) - 1];
+            const glm::dvec3 along = glm::normalize(centre(1) - a),
+                             back = glm::normalize(centre(cut.curves.size(c) - 2) - b);
+            EXPECT_GE(glm::dot(first - a, along), -1e-12) << "piece " << k << " starts before its plies";
+            EXPECT_GE(glm::dot(last - b, back), -1e-12)
+                << "piece " << k << " ends after its plies: span " << pieces.plySpans[k].begin << ".."
+                << pieces.plySpans[k].end << " of yarn " << pieces.plySpans[k].yarn << " ("
+                << s.yarns().curves.size(pieces.plySpans[k].yarn) << " vertices, closed "
+                << int(s.yarns().curves.isClosed(pieces.plySpans[k].yarn)) << "), " << cut.curves.size(c)
+                << " ply points";
+        }
+        if (std::string(mesh) == "cylinder") {  // some pieces run over a closed yarn's first vertex
+            size_t wrapping = 0;
+            for (const YarnSpan& span : pieces.plySpans)
+                wrapping +=
+                    span.end > s.yarns().curves.size(span.yarn) || span.begin >= s.yarns().curves.size(span.yarn);
+            EXPECT_GT(wrapping, 0u);
+        }
+    }
 }
 
 }  // namespace

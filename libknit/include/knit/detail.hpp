@@ -13,6 +13,7 @@
 
 #include "knit/base_mesh.hpp"
 #include "knit/binding.hpp"
+#include "knit/plies.hpp"
 #include "knit/uv_grid.hpp"
 #include "knit/view.hpp"
 
@@ -75,13 +76,32 @@ CellLevels classifyCells(const DetailInputs& in, const View& view, const DetailO
 // runs meet, both pieces end at the same point, where the yarn leaves the cell of the last vertex
 // of the first run (linear in the segment). Culled runs are dropped; a yarn all in one level is
 // kept whole (closed loops stay closed).
+// Where a piece lies on its source yarn: from `begin` to `end` in vertex units of the yarn
+// (vertex k of the yarn is k; k + t is the fraction t of the way to vertex k + 1; on a closed yarn
+// end may exceed the vertex count: the piece wraps past the first vertex); `loop`: the whole
+// closed yarn.
+struct YarnSpan {
+    uint32_t yarn = 0;
+    double begin = 0, end = 0;
+    bool loop = false;
+};
+
 struct LevelPieces {
     MappedYarns plies;                                  // pieces of ply-level cells (plies are generated for these)
     MappedYarns yarns;                                  // pieces of yarn-level cells (drawn as yarn curves)
     std::vector<uint32_t> surfaceFaces;                 // base-mesh triangles touching a surface-level cell, ascending
     std::vector<uint32_t> plyPieceYarn, yarnPieceYarn;  // source yarn of each piece
+    std::vector<YarnSpan> plySpans, yarnSpans;          // where each piece lies on its source yarn
 };
 LevelPieces splitByLevel(const MappedYarns& yarns, const Binding& binding, const BaseMesh& mesh, const UvGrid& grid,
                          const CellLevels& levels);
+
+// The plies of pieces (src/detail_plies.cpp), cut from the plies of their whole source yarns, so
+// they are the plies makePlies(yarns, options) makes, point for point (the twist phase and the
+// frames run from the yarn's start, not the piece's). Each piece's plies reach one resampled
+// point past each end of its span (neighbouring levels overlap; no gap); a `loop` span gives the
+// yarn's closed plies. Pieces must be grouped by yarn in ascending order (as splitByLevel
+// writes them). yarnOfCurve holds the source yarns; radial and colour as makePlies.
+Plies piecePlies(const MappedYarns& yarns, const std::vector<YarnSpan>& spans, const PlyOptions& options);
 
 }  // namespace knit
