@@ -6,9 +6,8 @@ Writes the built-in drape (res x res quads, as `knit build --mesh drape` has it)
 travelling wave as OBJ frames into a temporary folder, then runs, one after the other:
   * `knit animate --frames f_%04d.obj --repeats R R -o c.pc2 --report a.json` with --no-stats,
   * the same with the statistics (maxStretch, minYarnDistance) in the report,
-  * `knit build --rest f_0001.obj --mesh f_0003.obj --repeats R R -o b.pc2`-equivalent: the build
-    writes the same ply points (`-o b.bcc`, the curve format nearest a raw point cache), timed
-    wall-clock around the whole process,
+  * `knit build --rest f_0001.obj --mesh f_0003.obj --repeats R R -o b.bcc`, the same ply points
+    of one frame (BCC: the curve format nearest a raw point cache), timed around the whole process,
 and prints the median frame time of each animate run (from its report: a frame's time includes
 reading its mesh and writing its cache frame) over the build's wall-clock time.
 Not a unit test: numbers depend on the machine and its load; run it on an idle machine.

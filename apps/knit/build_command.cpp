@@ -35,10 +35,7 @@ View reportView(const Scene& scene, const BuildCommand& b) {
 
 // Appends the yarns of `more` to `to` (points, normals and colours; curve offsets shifted).
 void appendYarns(MappedYarns& to, const MappedYarns& more) {
-    const uint32_t base = static_cast<uint32_t>(to.curves.points.size());
-    to.curves.points.insert(to.curves.points.end(), more.curves.points.begin(), more.curves.points.end());
-    for (size_t c = 1; c < more.curves.offsets.size(); ++c) to.curves.offsets.push_back(base + more.curves.offsets[c]);
-    to.curves.closed.insert(to.curves.closed.end(), more.curves.closed.begin(), more.curves.closed.end());
+    to.curves.append(more.curves);
     to.normals.insert(to.normals.end(), more.normals.begin(), more.normals.end());
     to.colour.insert(to.colour.end(), more.colour.begin(), more.colour.end());
 }
@@ -78,12 +75,10 @@ std::unique_ptr<SurfaceLayer> surfaceLevel(const Scene& built, const SceneOption
                     " base-mesh triangles at the surface level, whose baked knit material needs a .glb or .gltf "
                     "output (or use --detail full)");
 #ifdef KNIT_HAVE_RENDER_CHECK
-    const SurfaceBuild bake = bakeSurfaceLevel(options, b.surface, PlyMaterial{});
+    // The scene's own pattern, placement and ply options: nothing is loaded again.
     auto layer = std::make_unique<SurfaceLayer>();
+    layer->images = surfaceImages(bakePattern(built.pattern(), built.placement(), options.plies, b.surface, {}));
     layer->mesh = meshSubset(built.mesh(), faces, " (surface level)");
-    layer->images.width = bake.bake.width, layer->images.height = bake.bake.height;
-    layer->images.baseColorRgba = baseColorRgba8(bake.bake);
-    layer->images.normalRgb = normalRgb8(bake.bake);
     layer->material.repeats = built.placement().repeats;
     return layer;
 #else
@@ -229,6 +224,9 @@ int runBuild(const BuildCommand& b) {
     // Step 1: fail before the scene is built (options, report folder, colliding paths, camera).
     checkOutputs(b);
     givenView(b.view, b.view.image);  // a bad camera fails here (knit::Error naming the option)
+#ifdef KNIT_HAVE_RENDER_CHECK
+    requireBakeSize(b.surface);  // a view's surface level is baked after the scene is built
+#endif
     // Step 2: the scene; glTF / GLB ply curves are generated while writing, so it is built without them.
     SceneOptions options = resolveScene(b.scene);
     const bool streamed = streamsPlies(b.exportOptions);

@@ -16,20 +16,38 @@ void addSurfaceFlags(CLI::App& command, SurfaceFlags& flags) {
         ->capture_default_str();
 }
 
-SurfaceBuild bakeSurfaceLevel(const SceneOptions& options, const SurfaceFlags& flags, const PlyMaterial& material) {
+void requireBakeSize(const SurfaceFlags& flags) {
     if (flags.bakeSize < 1 || flags.bakeSize > 8192)
         throw Error("--bake-size must be in 1..8192 (got " + std::to_string(flags.bakeSize) + ")");
+}
+
+SurfaceBake bakePattern(const Pattern& pattern, const PatternPlacement& placement, const PlyOptions& plies,
+                        const SurfaceFlags& flags, const PlyMaterial& material) {
+    requireBakeSize(flags);
+    BakeOptions bo;
+    bo.width = flags.bakeSize;
+    bo.plies = patternPlyOptions(plies, pattern, placement.scale);
+    bo.material = material;
+    return bakeSurface(pattern, bo);
+}
+
+SurfaceImages surfaceImages(const SurfaceBake& bake) {
+    SurfaceImages images;
+    images.width = bake.width, images.height = bake.height;
+    images.baseColorRgba = baseColorRgba8(bake);
+    images.normalRgb = normalRgb8(bake);
+    return images;
+}
+
+SurfaceBuild bakeSurfaceLevel(const SceneOptions& options, const SurfaceFlags& flags, const PlyMaterial& material) {
+    requireBakeSize(flags);  // before loading anything
     // Step 1: pattern, mesh and placement only: the surface level needs no yarns on the mesh.
     SurfaceBuild b;
     b.pattern = loadPatternFileOrName(options.pattern);
     b.mesh = loadMeshFileOrName(options.mesh, options.meshOptions);
     b.placement = placePattern(b.pattern, b.mesh, options.placement);
     // Step 2: the bake of one pattern cell.
-    BakeOptions bo;
-    bo.width = flags.bakeSize;
-    bo.plies = patternPlyOptions(options.plies, b.pattern, b.placement.scale);
-    bo.material = material;
-    b.bake = bakeSurface(b.pattern, bo);
+    b.bake = bakePattern(b.pattern, b.placement, options.plies, flags, material);
     return b;
 }
 
@@ -38,14 +56,10 @@ SurfaceBuild runSurfaceBuild(const SceneOptions& options, const SurfaceFlags& fl
     checkSurfaceOutput(output);
     SurfaceBuild b = bakeSurfaceLevel(options, flags, material);
     // The base mesh with the baked material, one texture tile per pattern period.
-    SurfaceImages images;
-    images.width = b.bake.width, images.height = b.bake.height;
-    images.baseColorRgba = baseColorRgba8(b.bake);
-    images.normalRgb = normalRgb8(b.bake);
     SurfaceExportOptions eo;
     eo.path = output;
     eo.repeats = b.placement.repeats;
-    b.exported = exportSurface(b.mesh, images, eo);
+    b.exported = exportSurface(b.mesh, surfaceImages(b.bake), eo);
     return b;
 }
 

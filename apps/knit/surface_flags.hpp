@@ -30,9 +30,19 @@ struct SurfaceBuild {
     SurfaceExportStats exported;  // runSurfaceBuild only
 };
 
+// Throws knit::Error naming --bake-size unless it is in 1..8192.
+void requireBakeSize(const SurfaceFlags& flags);
+
+// Bakes one cell of `pattern` placed with `placement`, with the scene's ply options `plies`
+// (converted to pattern units) and `material`. Throws knit::Error naming --bake-size.
+SurfaceBake bakePattern(const Pattern& pattern, const PatternPlacement& placement, const PlyOptions& plies,
+                        const SurfaceFlags& flags, const PlyMaterial& material);
+
+// The baked albedo + coverage and normal maps as the 8-bit images of the glTF material.
+SurfaceImages surfaceImages(const SurfaceBake& bake);
+
 // Loads the pattern and mesh of `options` (no tiling, yarns or plies on the mesh) and bakes the
-// pattern with the scene's ply options (converted to pattern units) and `material`. Throws
-// knit::Error naming the option (--bake-size) or file.
+// pattern (bakePattern). Throws knit::Error naming the option (--bake-size) or file.
 SurfaceBuild bakeSurfaceLevel(const SceneOptions& options, const SurfaceFlags& flags, const PlyMaterial& material);
 
 // bakeSurfaceLevel, then the base mesh with the baked material written to `output` (.glb,

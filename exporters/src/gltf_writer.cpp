@@ -472,9 +472,12 @@ uint64_t jsonReservation(const FormatJob& job, const CurveChunkSource* curves) {
     } else {
         return 4096;
     }
-    const uint64_t extras = job.input.materialExtrasJson.size() + (job.input.surface ? 4096 : 0);
+    const uint64_t extras = job.input.materialExtrasJson.size();
+    // A view's surface level: a node, mesh, material, sampler, two images and textures, seven
+    // views and six accessors: a few KB of JSON.
+    const uint64_t surface = job.input.surface ? 8192 : 0;
     // A curve: a primitive and two accessors (POSITION with min / max, _RADIUS), ~400 bytes.
-    uint64_t bytes = 4096 + 2 * extras + chunks * 2048 + curveCount * 512;
+    uint64_t bytes = 4096 + 2 * extras + surface + chunks * 2048 + curveCount * 512;
     if (job.options.prettyJson) bytes *= 3;
     return (bytes + 3) / 4 * 4;
 }

@@ -57,7 +57,7 @@ double maxYarnStretch(const Polylines& yarns, const std::vector<double>& restSeg
 namespace {
 
 // A point of the search in float, relative to the frame's first point (so a garment far from
-// the origin keeps its precision), with its index into the centrelines.
+// the origin keeps its precision), with its centreline index, yarn and rest arc length.
 using Packed = DistanceScratch::Point;
 
 // Whether two points count as different yarns: distinct yarns, or farther apart along the rest
@@ -76,7 +76,7 @@ struct Closest {
     uint32_t i, j;
 };
 
-// Cells are grouped in blocks of 4 x 4 x 4 that are hashed together, so the neighbours of a cell
+// Cells are grouped in blocks of 8 x 8 x 8 that are hashed together, so the neighbours of a cell
 // are mostly in its own block: adjacent in the table and in memory (a hash per cell scatters
 // them, and the search then waits on memory).
 uint32_t bucketOf(const Cell& c, uint32_t blockMask) {
@@ -110,7 +110,7 @@ Closest closestWithin(const Polylines& centres, const std::vector<uint32_t>& yar
                     static_cast<int64_t>(std::floor(a.z * inv))};
     };
 
-    // Step 1: a table of at least 2n buckets (blocks of 64), filled by counting sort (CSR), with
+    // Step 1: a table of at least 4n buckets (blocks of 512), filled by counting sort (CSR), with
     // the points packed in bucket order (neighbours are then read from contiguous memory).
     uint32_t blocks = 1;
     while (size_t(blocks) * 512 < 4 * n) blocks <<= 1;

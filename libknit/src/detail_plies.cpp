@@ -138,13 +138,9 @@ Plies piecePlies(const MappedYarns& yarns, const std::vector<YarnSpan>& spans, c
     out.centerRadius = g.options().centerRadius;
     out.pitch = g.options().pitch;
     for (Plies& part : parts) {
-        const uint32_t base = static_cast<uint32_t>(out.curves.points.size());
         if (out.curves.points.size() + part.curves.points.size() > UINT32_MAX)
             throw Error("more than 2^32-1 ply points; raise --ply-pitch or lower --samples-per-turn");
-        out.curves.points.insert(out.curves.points.end(), part.curves.points.begin(), part.curves.points.end());
-        for (size_t c = 1; c < part.curves.offsets.size(); ++c)
-            out.curves.offsets.push_back(base + part.curves.offsets[c]);
-        out.curves.closed.insert(out.curves.closed.end(), part.curves.closed.begin(), part.curves.closed.end());
+        out.curves.append(part.curves);
         out.yarnOfCurve.insert(out.yarnOfCurve.end(), part.yarnOfCurve.begin(), part.yarnOfCurve.end());
         out.plyOfCurve.insert(out.plyOfCurve.end(), part.plyOfCurve.begin(), part.plyOfCurve.end());
         out.radial.insert(out.radial.end(), part.radial.begin(), part.radial.end());

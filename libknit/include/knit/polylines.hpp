@@ -32,6 +32,14 @@ struct Polylines {
         closed.push_back(isClosedCurve ? 1 : 0);
         return closed.size() - 1;
     }
+    // Appends every curve of `more` (its offsets shifted past this one's points). The caller keeps
+    // the total under 2^32 points.
+    void append(const Polylines& more) {
+        const uint32_t base = static_cast<uint32_t>(points.size());
+        points.insert(points.end(), more.points.begin(), more.points.end());
+        for (size_t c = 1; c < more.offsets.size(); ++c) offsets.push_back(base + more.offsets[c]);
+        closed.insert(closed.end(), more.closed.begin(), more.closed.end());
+    }
 };
 
 }  // namespace knit
