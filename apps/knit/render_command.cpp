@@ -53,7 +53,7 @@ void addRenderCommand(CLI::App& app, RenderCommand& r) {
     addRenderFlags(*r.command, r.options);
     addViewFlags(*r.command, r.view, r.options.fovDegrees, r.options.width, r.options.height, Detail::View);
     r.command->add_option("--report", r.report, "Write a JSON report (time, rays/s, memory)");
-    addSurfaceFlags(*r.command, r.surface);
+    addSurfaceFlags(*r.command, r.surface, true);
     r.command->footer(kSceneHelp);
 }
 
@@ -74,6 +74,7 @@ int runRender(const RenderCommand& r) {
     SceneOptions sceneOptions = resolveScene(r.scene);
     options.budget = sceneOptions.budget;       // --max-memory
     options.viewBakeSize = r.surface.bakeSize;  // the surface level of --detail view, as --surface-only
+    options.surfaceScatteringPaths = r.surface.scatteringPaths;
     if (r.surface.surfaceOnly) return runSurfaceRender(r, sceneOptions, options, outputs);
     // Step 2: the detail the view asks for, the scene, the render and the report (with the levels).
     sceneOptions.detail =

@@ -7,12 +7,20 @@
 
 namespace knit::cli {
 
-void addSurfaceFlags(CLI::App& command, SurfaceFlags& flags) {
+void addSurfaceFlags(CLI::App& command, SurfaceFlags& flags, bool render) {
     command.add_flag("--surface-only", flags.surfaceOnly,
                      "The surface level: the base mesh with the knit baked into tileable textures instead of "
                      "yarns or plies (build: a glTF PBR material, .glb; render: traced with the baked albedo and "
                      "coverage)");
     command.add_option("--bake-size", flags.bakeSize, "Baked texture width in pixels per pattern period (1..8192)")
+        ->capture_default_str();
+    if (!render) return;
+    flags.scatteringPaths = 16384;
+    command
+        .add_option("--scattering-paths", flags.scatteringPaths,
+                    "Paths per direction bin (96 bins) of the measured scattering the surface level is shaded with "
+                    "(how the plies reflect, transmit and let light through their holes for every light and view "
+                    "direction); 0 = the exported material's Lambertian albedo and coverage mask (0..1048576)")
         ->capture_default_str();
 }
 
@@ -28,6 +36,7 @@ SurfaceBake bakePattern(const Pattern& pattern, const PatternPlacement& placemen
     bo.width = flags.bakeSize;
     bo.plies = patternPlyOptions(plies, pattern, placement.scale);
     bo.material = material;
+    bo.scatteringPaths = flags.scatteringPaths;
     return bakeSurface(pattern, bo);
 }
 

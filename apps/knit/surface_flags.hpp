@@ -17,10 +17,14 @@ namespace knit::cli {
 struct SurfaceFlags {
     bool surfaceOnly = false;
     int bakeSize = 256;  // texture width in pixels (one pattern period); height from the aspect
+    // Paths per direction bin of the scattering table the renderer shades the surface level
+    // with (knit/surface_scattering.hpp); render only (a file carries the baked material).
+    int scatteringPaths = 0;
 };
 
-// Registers --surface-only and --bake-size on `command` (build and render).
-void addSurfaceFlags(CLI::App& command, SurfaceFlags& flags);
+// Registers --surface-only and --bake-size on `command` (build and render); with `render` also
+// --scattering-paths (default 16384).
+void addSurfaceFlags(CLI::App& command, SurfaceFlags& flags, bool render = false);
 
 struct SurfaceBuild {
     Pattern pattern;

@@ -13,6 +13,7 @@
 #include <tbb/parallel_for.h>
 
 #include "bake_plies.hpp"
+#include "bake_scattering.hpp"
 #include "knit/error.hpp"
 #include "knit/fiber_tables.hpp"
 #include "knit/ply_bsdf.hpp"
@@ -24,6 +25,7 @@ namespace knit {
 namespace {
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
+constexpr int kScatteringMargin = 1;  // tiles beyond the texture bake's on every side
 
 void requireRange(int value, int lo, int hi, const char* name) {
     if (value < lo || value > hi)
@@ -36,23 +38,12 @@ void validateBake(const Pattern& pattern, const BakeOptions& o) {
     requireRange(o.samplesPerAxis, 1, 64, "samplesPerAxis");
     requireRange(o.albedoPaths, 0, 1024, "albedoPaths");
     requireRange(o.maxBounces, 1, 64, "maxBounces");
+    requireRange(o.scatteringPaths, 0, 1 << 20, "scatteringPaths (--scattering-paths)");
     for (double v : o.origin)
         if (!(v >= 0 && v < 1)) throw Error("bake: origin must be in [0, 1) periods (got " + std::to_string(v) + ")");
     validatePattern(pattern, pattern.name.empty() ? "bake pattern" : pattern.name);
     validateMaterial(o.material, "bake material");
 }
-
-// Small counter-based random numbers: one stream per (pixel, sample), independent of threads.
-struct Random {
-    uint64_t state;
-    double uniform() {
-        state += 0x9E3779B97F4A7C15ull;
-        uint64_t x = state;
-        x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
-        x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
-        return double((x ^ (x >> 31)) >> 11) * (1.0 / 9007199254740992.0);
-    }
-};
 
 // What one pixel's sub-pixel rays saw.
 struct PixelSum {
@@ -66,67 +57,33 @@ struct PixelSum {
 
 class Baker {
 public:
-    Baker(const TraceScene& scene, const PlyMaterial& material, const FiberTables& tables, const BakeOptions& o)
-        : scene_(scene), plies_(scene.plies()), material_(material), tables_(tables), o_(o) {}
+    Baker(const PlyPaths& paths, const BakeOptions& o) : paths_(paths), plies_(paths.scene().plies()), o_(o) {}
 
     // One stratified sample at pattern point (x, y): first hit straight down, then albedo paths.
-    void sample(double x, double y, Random& rng, PixelSum& sum) const {
+    void sample(double x, double y, BakeRandom& rng, PixelSum& sum) const {
         const glm::vec3 org = plies_.toScene(glm::dvec3(x, y, top_));
         const glm::vec3 down(0, 0, -1);
         TraceHit h;
-        if (!scene_.intersect(org, down, 0.f, kInf, h)) return;
+        if (!paths_.scene().intersect(org, down, 0.f, kInf, h)) return;
         const glm::vec3 p = org + h.t * down;
         ++sum.hits;
         sum.height += plies_.toWorld(p).z;
         sum.normal += glm::dvec3(h.ng);
-        for (int k = 0; k < o_.albedoPaths; ++k) skyPath(h, p, rng, sum), ++sum.albedoSamples;
+        // Under a uniform white sky: a path's weight goes to the albedo when it escapes upwards
+        // (the sky above the cloth, z > 0) and to the transmittance when it escapes downwards
+        // (the sky below). The two skies are lit separately, so each is the estimate under its
+        // own sky alone.
+        for (int k = 0; k < o_.albedoPaths; ++k, ++sum.albedoSamples) {
+            const Escape e = paths_.follow(h, p, down, rng, o_.maxBounces);
+            if (e.escaped) (e.direction.z > 0 ? sum.albedo : sum.transmittance) += e.weight;
+        }
     }
 
     double top_ = 0;  // ray origins' height (metres), above every yarn
 
 private:
-    ShadingFrame frameAt(const TraceHit& h) const {
-        const uint32_t j = plies_.segments[h.segment];
-        const float u = h.u;
-        PlySurfacePoint sp;
-        sp.tangent = glm::dvec3(glm::vec3(plies_.points[j + 1]) - glm::vec3(plies_.points[j]));
-        sp.normal = glm::dvec3(h.ng);
-        sp.radial = glm::dvec3((1 - u) * plies_.radial[j] + u * plies_.radial[j + 1]);
-        sp.v = (1 - u) * plies_.arc[j] + u * plies_.arc[j + 1];
-        return plyShadingFrame(sp, material_, tables_);
-    }
-
-    // One BSDF-sampled path (at most maxBounces bounces) of the radiance hit h sends straight up,
-    // under a uniform white sky: the path's weight goes to the albedo when it escapes upwards (the
-    // sky above the cloth, z > 0) and to the transmittance when it escapes downwards (the sky
-    // below). The two skies are lit separately, so each is the estimate under its own sky alone.
-    void skyPath(TraceHit h, glm::vec3 p, Random& rng, PixelSum& sum) const {
-        Rgb beta(1.0);
-        glm::vec3 d(0, 0, -1);
-        for (int bounce = 0; bounce < o_.maxBounces; ++bounce) {
-            const ShadingFrame frame = frameAt(h);
-            const glm::dvec3 woL = frame.toLocal(-glm::dvec3(d));
-            if ((glm::dot(-d, h.ng) > 0) != (woL.z > 0)) return;
-            const PlyBsdf bsdf(material_, frame.shadow);
-            const BsdfSample bs = bsdf.sample(woL, rng.uniform(), glm::dvec2(rng.uniform(), rng.uniform()));
-            if (!bs.valid) return;
-            const glm::vec3 wi = glm::normalize(glm::vec3(frame.toWorld(bs.wi)));
-            if ((glm::dot(wi, h.ng) > 0) != (bs.wi.z > 0)) return;
-            beta *= bs.weight;
-            const glm::vec3 o = scene_.spawn(h, p, wi);
-            TraceHit next;
-            if (!scene_.intersect(o, wi, 0.f, kInf, next, &h)) {
-                (wi.z > 0 ? sum.albedo : sum.transmittance) += beta;
-                return;
-            }
-            p = o + next.t * wi, d = wi, h = next;
-        }
-    }
-
-    const TraceScene& scene_;
+    const PlyPaths& paths_;
     const PlyGeometry& plies_;
-    const PlyMaterial& material_;
-    const FiberTables& tables_;
     const BakeOptions& o_;
 };
 
@@ -178,7 +135,9 @@ SurfaceBake bakeSurface(const Pattern& pattern, const BakeOptions& o) {
     const auto start = std::chrono::steady_clock::now();
     // Step 1: validate, then the periodic plies around the cell.
     validateBake(pattern, o);
-    const BakePlies bp = bakePlies(pattern, o.plies, o.periodicPitch);
+    // A scattering table needs more tiles around the cell: its oblique rays cross several.
+    const int margin = o.scatteringPaths > 0 ? kScatteringMargin : 0;
+    const BakePlies bp = bakePlies(pattern, o.plies, o.periodicPitch, margin);
     SurfaceBake bake;
     bake.width = o.width;
     bake.height = std::max(1, int(std::lround(o.width * pattern.py / pattern.px)));
@@ -196,8 +155,14 @@ SurfaceBake bakeSurface(const Pattern& pattern, const BakeOptions& o) {
     TraceSceneOptions so;
     so.mode = GeometryMode::Curves;
     const TraceScene scene(device, geometry, so);
-    Baker baker(scene, o.material, tables, o);
-    baker.top_ = bp.zMax + 2 * bp.yarnRadius;
+    PeriodicCloth cloth;
+    cloth.period = glm::dvec2(pattern.px, pattern.py);
+    cloth.centre = (glm::dvec2(o.origin[0], o.origin[1]) + 0.5) * cloth.period;
+    cloth.zTop = bp.zMax + 2 * bp.yarnRadius, cloth.zBottom = bp.zMin - 2 * bp.yarnRadius;
+    cloth.reach = 0.5 + margin;  // within the tiles around the cell
+    const PlyPaths paths(scene, o.material, tables, cloth);
+    Baker baker(paths, o);
+    baker.top_ = cloth.zTop;
     // Step 3: per pixel, s x s stratified rays at periodic positions (pixel centres (i + 0.5) / N).
     const size_t pixels = size_t(bake.width) * size_t(bake.height);
     bake.albedo.assign(3 * pixels, 0.f), bake.normal.assign(3 * pixels, 0.f), bake.heights.assign(pixels, 0.f);
@@ -210,7 +175,7 @@ SurfaceBake bakeSurface(const Pattern& pattern, const BakeOptions& o) {
             const int col = int(pixel % size_t(bake.width)), row = int(pixel / size_t(bake.width));
             PixelSum sum;
             for (int k = 0; k < s * s; ++k) {
-                Random rng{o.seed * 0x100000001B3ull + pixel * 4096 + size_t(k)};
+                BakeRandom rng{o.seed * 0x100000001B3ull + pixel * 4096 + size_t(k)};
                 const double a = (k % s + 0.5) / s, b = (k / s + 0.5) / s;
                 baker.sample((o.origin[0] + (col + a) / bake.width) * pattern.px,
                              (o.origin[1] + 1.0 - (row + b) / bake.height) * pattern.py, rng, sum);
@@ -220,6 +185,17 @@ SurfaceBake bakeSurface(const Pattern& pattern, const BakeOptions& o) {
     });
     fillUncovered(bake.coverage, bake.albedo);
     fillUncovered(bake.coverage, bake.transmittance);
+    // Step 4: the scattering table of the cell seen as a surface (optional).
+    if (o.scatteringPaths > 0) {
+        ScatteringSetup ss;
+        ss.cellMin = glm::dvec2(o.origin[0] * pattern.px, o.origin[1] * pattern.py);
+        ss.cellSize = glm::dvec2(pattern.px, pattern.py);
+        ss.zTop = cloth.zTop, ss.zBottom = cloth.zBottom;
+        ss.pathsPerBin = o.scatteringPaths;
+        ss.maxBounces = std::max(o.maxBounces, 8);
+        ss.seed = o.seed;
+        bake.scattering = measureScattering(paths, ss);
+    }
     bake.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return bake;
 }

@@ -19,9 +19,9 @@ namespace {
 using util::kTwoPi;
 
 // The stitched yarns of the tiles around cells (0, 0) to (1, 1) (a cell baked from a shifted origin), in pattern metres, lying in z = 0.
-MappedYarns flatYarns(const Pattern& pattern) {
+MappedYarns flatYarns(const Pattern& pattern, int margin) {
     const TileReach reach = tileReach(pattern);
-    const Tiling tiling = tilesForRegion(-reach.hi - glm::ivec2(1), -reach.lo + glm::ivec2(2));
+    const Tiling tiling = tilesForRegion(-reach.hi - glm::ivec2(1 + margin), -reach.lo + glm::ivec2(2 + margin));
     PatternPlacement placement;  // one period per unit of uv, pattern size: uv * period = pattern x, y
     const UvYarns uv = stitchYarns(pattern, buildAdjacency(pattern), tiling, placement);
     MappedYarns out;
@@ -121,7 +121,7 @@ void appendPlies(Plies& all, const Plies& more, uint32_t yarn) {
 
 }  // namespace
 
-BakePlies bakePlies(const Pattern& pattern, const PlyOptions& options, bool periodic) {
+BakePlies bakePlies(const Pattern& pattern, const PlyOptions& options, bool periodic, int margin) {
     // Step 1: resolve the ply options at the pattern's yarn radius.
     PlyOptions po = options;
     if (po.yarnRadius == 0.0) po.yarnRadius = pattern.radius;
@@ -132,7 +132,7 @@ BakePlies bakePlies(const Pattern& pattern, const PlyOptions& options, bool peri
     for (const glm::dvec3& p : pattern.points) out.zMin = std::min(out.zMin, p.z), out.zMax = std::max(out.zMax, p.z);
     out.zMin -= po.yarnRadius, out.zMax += po.yarnRadius;
     // Step 2: the flat yarns of the tiles around the cell.
-    const MappedYarns yarns = flatYarns(pattern);
+    const MappedYarns yarns = flatYarns(pattern, margin);
     if (yarns.curves.curveCount() == 0) throw Error("bake: pattern '" + pattern.name + "' has no yarns to bake");
     // Step 3: per yarn, plies whose phase repeats with the period (a few corrections of the pitch:
     // the resampling, and so the frame's rotation over the period, moves slightly with it).

@@ -17,7 +17,8 @@ struct BakePlies {
 
 // Tiles: tileReach(pattern) plus one tile on every side and a second one towards +x and +y (so at
 // least 4 x 4: the cell of any BakeOptions::origin sees its neighbours).
+// `margin` more tiles on every side (oblique rays of the scattering table cross several tiles).
 // options.yarnRadius 0 = pattern.radius. periodicPitch off: every yarn gets options.pitch.
-BakePlies bakePlies(const Pattern& pattern, const PlyOptions& options, bool periodicPitch);
+BakePlies bakePlies(const Pattern& pattern, const PlyOptions& options, bool periodicPitch, int margin = 0);
 
 }  // namespace knit

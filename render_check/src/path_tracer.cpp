@@ -75,10 +75,12 @@ float hitLight(const LightGeom& l, const glm::vec3& o, const glm::vec3& d, bool&
 struct Shading {
     ShadingFrame frame;
     bool ply = true;
-    Rgb albedo{0.0};           // base mesh: its diffuse albedo (baked texel at the surface level)
-    Rgb transmit{0.0};         // base mesh: diffuse transmittance (baked; black without a bake)
-    double reflectChance = 1;  // base mesh: probability of sampling the reflection side
-    Rgb body{0.0};             // the ply's body albedo (the material's, or its yarn colour's)
+    const SurfaceScattering* table = nullptr;  // base mesh with a scattering table: shaded by it
+    Rgb tableScale{1.0};                       // the texel's tint over the probability of the hit
+    Rgb albedo{0.0};                           // base mesh: its diffuse albedo (baked texel at the surface level)
+    Rgb transmit{0.0};                         // base mesh: diffuse transmittance (baked; black without a bake)
+    double reflectChance = 1;                  // base mesh: probability of sampling the reflection side
+    Rgb body{0.0};                             // the ply's body albedo (the material's, or its yarn colour's)
 };
 
 struct Tracer {
@@ -94,6 +96,13 @@ struct Tracer {
 
     Shading shade(const TraceHit& h) const {
         Shading sh;
+        if (h.kind == TraceHit::Base && scene.baseTexture() && scene.baseTexture()->scattering()) {
+            sh.ply = false;
+            sh.table = scene.baseTexture()->scattering();
+            sh.frame = scene.baseFrame(h);
+            sh.albedo = scene.baseTexture()->tint(scene.baseUv(h));
+            return sh;
+        }
         if (h.kind == TraceHit::Base) {
             sh.ply = false;
             sh.albedo = scene.baseAlbedo(h, s.baseAlbedo);
@@ -109,12 +118,7 @@ struct Tracer {
         const PlyGeometry& g = scene.plies();
         const uint32_t j = g.segments[h.segment];
         const float u = h.u;
-        PlySurfacePoint sp;
-        sp.tangent = glm::dvec3(glm::vec3(g.points[j + 1]) - glm::vec3(g.points[j]));
-        sp.normal = glm::dvec3(h.ng);  // centreline normal of the hit (see TraceScene::intersect)
-        sp.radial = glm::dvec3((1 - u) * g.radial[j] + u * g.radial[j + 1]);
-        sp.v = (1 - u) * g.arc[j] + u * g.arc[j + 1];
-        sh.frame = plyShadingFrame(sp, material, tables);
+        sh.frame = plyShadingFrame(scene.plyPoint(h), material, tables);
         // A yarn colour (nearer end of the segment: colours change between stitches) tints the body.
         sh.body = g.colour.empty() ? material.bodyAlbedo : yarnBodyAlbedo(material, g.colour[u < 0.5f ? j : j + 1]);
         return sh;
@@ -127,6 +131,10 @@ struct Tracer {
         pdf = 0;
         const glm::dvec3 wiL = sh.frame.toLocal(wi);
         if ((glm::dot(glm::vec3(wi), ng) > 0) != (wiL.z > 0)) return Rgb(0.0);
+        if (sh.table) {
+            pdf = sh.table->pdf(woL, wiL);
+            return sh.tableScale * sh.table->eval(woL, wiL);
+        }
         if (!sh.ply) {  // two-sided Lambertian reflection plus diffuse transmission
             if (wiL.z == 0 || woL.z == 0) return Rgb(0.0);
             const double c = std::abs(wiL.z) / kPi;
@@ -166,10 +174,13 @@ struct Tracer {
             if (depth >= s.maxDepth) break;
             // Step 2: local frame and BSDF at the hit.
             const glm::vec3 p = o + h.t * d;
-            const Shading sh = shade(h);
+            Shading sh = shade(h);
             const glm::dvec3 wo = -glm::dvec3(d);
             const glm::dvec3 woL = sh.frame.toLocal(wo);
             if ((glm::dot(-d, h.ng) > 0) != (woL.z > 0)) break;
+            // A surface hit happens with probability 1 - pass (the surface filter): its scattering
+            // is the table's over that probability.
+            if (sh.table) sh.tableScale = sh.albedo / std::max(1e-6, 1.0 - sh.table->passAt(woL));
             const PlyBsdf bsdf(material, sh.frame.shadow, sh.body);
             // Step 3: next-event estimation to the area light.
             if (light.on) {
@@ -216,7 +227,12 @@ struct Tracer {
             glm::dvec3 wiL;
             Rgb weight;
             double pdf;
-            if (sh.ply) {
+            if (sh.table) {
+                const double u[4] = {rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform()};
+                wiL = sh.table->sample(woL, u, pdf);
+                if (!(pdf > 0)) break;
+                weight = sh.tableScale * sh.table->eval(woL, wiL) / pdf;
+            } else if (sh.ply) {
                 const BsdfSample bs = bsdf.sample(woL, rng.uniform(), glm::dvec2(rng.uniform(), rng.uniform()));
                 if (!bs.valid) break;
                 wiL = bs.wi, weight = bs.weight, pdf = bs.pdf;

@@ -113,9 +113,9 @@ RenderResult renderScene(const Scene& scene, const RenderOptions& o) {
         bo.width = o.viewBakeSize;
         bo.plies = patternPlyOptions(scene.plyOptions(), scene.pattern(), scene.placement().scale);
         bo.material = res.material;
+        bo.scatteringPaths = o.surfaceScatteringPaths;
         viewBake = bakeSurface(scene.pattern(), bo);
-        viewTexture.bake = &viewBake;
-        viewTexture.repeats = scene.placement().repeats;
+        viewTexture = makeSurfaceTexture(viewBake, scene.placement().repeats);
         res.surfaceTextured = true;
         res.bakeSeconds = viewBake.seconds;
     }

@@ -107,7 +107,11 @@ bool TraceScene::intersect(const glm::vec3& org, const glm::vec3& dir, float tne
     if (rh.hit.geomID == baseGeom_) {
         hit.kind = TraceHit::Base;
         hit.segment = rh.hit.primID;
-        hit.ng = ng;
+        // The counter-clockwise normal (the cloth's front), whatever side Embree's Ng is on.
+        const glm::uvec3 f = baseFaces_[rh.hit.primID];
+        const glm::vec3 ccw =
+            glm::cross(basePositions_[f.y] - basePositions_[f.x], basePositions_[f.z] - basePositions_[f.x]);
+        hit.ng = glm::dot(ccw, ng) < 0 ? -ng : ng;
         hit.u = rh.hit.u, hit.v = rh.hit.v;
         return true;
     }
@@ -121,6 +125,17 @@ bool TraceScene::intersect(const glm::vec3& org, const glm::vec3& dir, float tne
     hit.u = u;
     hit.ng = glm::length(axis) > 0 ? axis : ng;
     return true;
+}
+
+PlySurfacePoint TraceScene::plyPoint(const TraceHit& h) const {
+    const uint32_t j = plies_.segments[h.segment];
+    const float u = h.u;
+    PlySurfacePoint sp;
+    sp.tangent = glm::dvec3(glm::vec3(plies_.points[j + 1]) - glm::vec3(plies_.points[j]));
+    sp.normal = glm::dvec3(h.ng);  // centreline normal of the hit (see intersect)
+    sp.radial = glm::dvec3((1 - u) * plies_.radial[j] + u * plies_.radial[j + 1]);
+    sp.v = (1 - u) * plies_.arc[j] + u * plies_.arc[j + 1];
+    return sp;
 }
 
 Rgb TraceScene::baseAlbedo(const TraceHit& hit, const Rgb& plain) const {
@@ -152,9 +167,20 @@ bool TraceScene::occluded(const glm::vec3& org, const glm::vec3& dir, float tnea
     return ray.tfar < 0;
 }
 
+namespace {
+constexpr float kBaseOffsetPerUnit = 1e-5f;  // ~80 float epsilons per scene unit of |p| + t
+}  // namespace
+
 glm::vec3 TraceScene::spawn(const TraceHit& hit, const glm::vec3& p, const glm::vec3& dir) const {
     const bool outside = glm::dot(dir, hit.ng) > 0;
-    if (hit.kind == TraceHit::Base) return p + (outside ? baseOffset_ : -baseOffset_) * hit.ng;
+    if (hit.kind == TraceHit::Base) {
+        // The hit point's float error grows with its distance from the scene origin and the ray's
+        // length (a garment is thousands of yarn radii across): the offset grows with both, else
+        // spawned rays hit their own triangle again and darken the surface level.
+        const float scale = std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}) + hit.t;
+        const float offset = baseOffset_ + kBaseOffsetPerUnit * scale;
+        return p + (outside ? offset : -offset) * hit.ng;
+    }
     // Offsets are measured from the centreline, not from the computed hit point, so errors of the
     // hit point (Embree's round curves can be off by several percent of the radius) cannot put the
     // origin on the wrong side: outside = beyond max(|p - c|, r), inside = within the inscribed

@@ -33,6 +33,7 @@
 #include <glm/vec3.hpp>
 
 #include "knit/base_mesh.hpp"
+#include "knit/fiber_tables.hpp"
 #include "knit/ply_geometry.hpp"
 #include "knit/trace_mode.hpp"
 #include "trace_surface.hpp"
@@ -69,7 +70,8 @@ struct TraceHit {
     enum Kind : uint8_t { None, Ply, Base };
     Kind kind = None;
     float t = 0;
-    glm::vec3 ng{0.f};     // unit normal: for plies, outward from the segment's centreline
+    glm::vec3 ng{0.f};     // unit normal: for plies, outward from the segment's centreline; for the
+                           // base mesh, its counter-clockwise normal (the front of the cloth)
     uint32_t segment = 0;  // ply segment (Ply) or triangle (Base)
     float u = 0;           // position along the ply segment in [0, 1]; Base: Embree's barycentric u
     float v = 0;           // Base: Embree's barycentric v
@@ -93,10 +95,17 @@ public:
                   const TraceHit* from = nullptr) const;
     // Origin for a ray leaving `hit` at point p in direction dir (offset along +-ng).
     glm::vec3 spawn(const TraceHit& hit, const glm::vec3& p, const glm::vec3& dir) const;
+    // The ply surface point of a Ply hit (tangent, centreline normal, radial, arc), as shading needs it.
+    PlySurfacePoint plyPoint(const TraceHit& hit) const;
     // Albedo of a Base hit: the baked texel with a baseTexture, else `plain`.
     Rgb baseAlbedo(const TraceHit& hit, const Rgb& plain) const;
     // Diffuse transmittance of a Base hit: the baked texel with a baseTexture, else black.
     Rgb baseTransmittance(const TraceHit& hit) const;
+    // The surface level's texture (null without one) and, for a Base hit, its triangle's tangent
+    // space and texture uv.
+    const SurfaceTexture* baseTexture() const { return options_.baseTexture; }
+    ShadingFrame baseFrame(const TraceHit& hit) const { return surface_.frame(hit.segment); }
+    glm::dvec2 baseUv(const TraceHit& hit) const { return surface_.uvAt(hit.segment, hit.u, hit.v); }
 
     GeometryMode mode() const { return options_.mode; }
     const PlyGeometry& plies() const { return plies_; }

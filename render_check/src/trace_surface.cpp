@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -12,13 +13,45 @@
 namespace knit {
 namespace {
 
-void surfaceMaskFilter(const RTCFilterFunctionNArguments* a) {
+uint64_t mix(uint64_t x) {
+    x += 0x9E3779B97F4A7C15ull;
+    x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+    x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+    return x ^ (x >> 31);
+}
+
+uint64_t bitsOf(float f) {
+    uint32_t b;
+    std::memcpy(&b, &f, sizeof b);
+    return b;
+}
+
+// A uniform number in [0, 1) that depends on the ray (origin and direction) and the triangle:
+// each ray decides on its own whether it goes through a hole.
+double rayUniform(const RTCFilterFunctionNArguments* a, unsigned i, uint32_t face) {
+    RTCRayN* r = a->ray;
+    const unsigned n = a->N;
+    uint64_t h = mix(face);
+    for (float f : {RTCRayN_org_x(r, n, i), RTCRayN_org_y(r, n, i), RTCRayN_org_z(r, n, i), RTCRayN_dir_x(r, n, i),
+                    RTCRayN_dir_y(r, n, i), RTCRayN_dir_z(r, n, i)})
+        h = mix(h ^ bitsOf(f));
+    return double(h >> 11) * (1.0 / 9007199254740992.0);
+}
+
+void surfaceFilter(const RTCFilterFunctionNArguments* a) {
     const SurfaceMesh& s = *static_cast<const SurfaceMesh*>(a->geometryUserPtr);
     for (unsigned i = 0; i < a->N; ++i) {
         if (a->valid[i] != -1) continue;
         const uint32_t face = RTCHitN_primID(a->hit, a->N, i);
         const glm::dvec2 uv = s.uvAt(face, RTCHitN_u(a->hit, a->N, i), RTCHitN_v(a->hit, a->N, i));
-        if (s.texture->coverage(uv) < s.texture->alphaCutoff) a->valid[i] = 0;
+        if (!s.texture->scattering()) {  // MASK
+            if (s.texture->coverage(uv) < s.texture->alphaCutoff) a->valid[i] = 0;
+            continue;
+        }
+        const glm::dvec3 toOrigin(-RTCRayN_dir_x(a->ray, a->N, i), -RTCRayN_dir_y(a->ray, a->N, i),
+                                  -RTCRayN_dir_z(a->ray, a->N, i));
+        const double pass = s.texture->passThrough(uv, s.frame(face).toLocal(toOrigin));
+        if (rayUniform(a, i, face) < pass) a->valid[i] = 0;
     }
 }
 
@@ -47,15 +80,67 @@ Rgb SurfaceTexture::transmittance(glm::dvec2 uv) const {
 
 float SurfaceTexture::coverage(glm::dvec2 uv) const { return bake->coverage[texel(uv)]; }
 
+const SurfaceScattering* SurfaceTexture::scattering() const {
+    return bake && !bake->scattering.empty() ? &bake->scattering : nullptr;
+}
+
+Rgb SurfaceTexture::tint(glm::dvec2 uv) const {
+    const Rgb a = albedo(uv);
+    Rgb t(1.0);
+    for (int c = 0; c < 3; ++c)
+        if (meanAlbedo[c] > 0) t[c] = a[c] / meanAlbedo[c];
+    return t;
+}
+
+double SurfaceTexture::passThrough(glm::dvec2 uv, const glm::dvec3& out) const {
+    const double pass = bake->scattering.passAt(out);
+    if (!(meanHoles > 1e-6)) return pass;
+    return std::clamp(pass * (1.0 - coverage(uv)) / meanHoles, 0.0, 1.0);
+}
+
+SurfaceTexture makeSurfaceTexture(const SurfaceBake& bake, glm::dvec2 repeats) {
+    SurfaceTexture t;
+    t.bake = &bake;
+    t.repeats = repeats;
+    Rgb sum(0.0);
+    double weight = 0;
+    for (size_t i = 0; i < bake.coverage.size(); ++i) {
+        sum += double(bake.coverage[i]) * Rgb(bake.albedo[3 * i], bake.albedo[3 * i + 1], bake.albedo[3 * i + 2]);
+        weight += bake.coverage[i];
+    }
+    t.meanAlbedo = weight > 0 ? sum / weight : Rgb(0.0);
+    t.meanHoles = 1.0 - bake.meanCoverage();
+    return t;
+}
+
 glm::dvec2 SurfaceMesh::uvAt(uint32_t face, float u, float v) const {
     const glm::uvec3 t = mesh->faceUvs[face];
     return (1.0 - double(u) - double(v)) * mesh->uvs[t.x] + double(u) * mesh->uvs[t.y] + double(v) * mesh->uvs[t.z];
 }
 
+ShadingFrame SurfaceMesh::frame(uint32_t face) const {
+    const glm::uvec3 f = mesh->faces[face], t = mesh->faceUvs[face];
+    const glm::dvec3 e1 = mesh->positions[f.y] - mesh->positions[f.x], e2 = mesh->positions[f.z] - mesh->positions[f.x];
+    const glm::dvec2 d1 = mesh->uvs[t.y] - mesh->uvs[t.x], d2 = mesh->uvs[t.z] - mesh->uvs[t.x];
+    ShadingFrame fr;
+    const glm::dvec3 n = glm::cross(e1, e2);
+    fr.z = glm::length(n) > 0 ? glm::normalize(n) : glm::dvec3(0, 0, 1);
+    // dP/du and dP/dv from the triangle's edges and their uv differences.
+    const double det = d1.x * d2.y - d2.x * d1.y;
+    const glm::dvec3 dPdu = (e1 * d2.y - e2 * d1.y) / det, dPdv = (e2 * d1.x - e1 * d2.x) / det;
+    glm::dvec3 x = dPdu - glm::dot(dPdu, fr.z) * fr.z;
+    if (!(std::abs(det) > 0) || !(glm::length(x) > 1e-12 * glm::length(dPdu)) || !std::isfinite(x.x))
+        x = glm::cross(std::abs(fr.z.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0), fr.z);
+    fr.x = glm::normalize(x);
+    fr.y = glm::cross(fr.z, fr.x);
+    if (std::abs(det) > 0 && glm::dot(fr.y, dPdv) < 0) fr.y = -fr.y;  // a mirrored uv layout
+    return fr;
+}
+
 void setSurfaceFilter(RTCGeometry geometry, const SurfaceMesh& surface) {
     rtcSetGeometryUserData(geometry, const_cast<SurfaceMesh*>(&surface));
-    rtcSetGeometryIntersectFilterFunction(geometry, surfaceMaskFilter);
-    rtcSetGeometryOccludedFilterFunction(geometry, surfaceMaskFilter);
+    rtcSetGeometryIntersectFilterFunction(geometry, surfaceFilter);
+    rtcSetGeometryOccludedFilterFunction(geometry, surfaceFilter);
 }
 
 namespace detail {
@@ -69,12 +154,10 @@ PlyGeometry surfaceFrame(const Scene& scene, const glm::dvec3& centre) {
 }
 
 SurfaceTexture surfaceTexture(const Scene& scene, const RenderOptions& options) {
-    SurfaceTexture t;
-    t.bake = options.surface;
-    t.repeats = options.surfaceRepeats[0] > 0 && options.surfaceRepeats[1] > 0
-                    ? glm::dvec2(options.surfaceRepeats[0], options.surfaceRepeats[1])
-                    : scene.placement().repeats;
-    return t;
+    if (!options.surface) return SurfaceTexture{};
+    return makeSurfaceTexture(*options.surface, options.surfaceRepeats[0] > 0 && options.surfaceRepeats[1] > 0
+                                                    ? glm::dvec2(options.surfaceRepeats[0], options.surfaceRepeats[1])
+                                                    : scene.placement().repeats);
 }
 
 }  // namespace detail

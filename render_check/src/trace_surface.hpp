@@ -3,7 +3,9 @@
 // texture tile = one pattern period (texture coordinates (u U, 1 - v V), REPEAT), alpha MASK
 // (hits where the baked coverage is below the cutoff are skipped, so the holes between loops let
 // light through), albedo from the baked albedo map (nearest texel). The normal map is not used:
-// the surface shades with the triangle's own normal.
+// the surface shades with the triangle's own normal. A bake with a scattering table
+// (knit/surface_scattering.hpp) is shaded with the table instead, in the triangle's tangent
+// space, and its holes open with the viewing angle (stochastic transparency, not the MASK).
 #pragma once
 #include <cstdint>
 
@@ -11,6 +13,7 @@
 #include <glm/vec2.hpp>
 
 #include "knit/bake.hpp"
+#include "knit/fiber_tables.hpp"
 #include "knit/base_mesh.hpp"
 #include "knit/ply_geometry.hpp"
 #include "knit/ply_material.hpp"
@@ -21,26 +24,45 @@ namespace knit {
 struct SurfaceTexture {
     const SurfaceBake* bake = nullptr;
     glm::dvec2 repeats{1.0, 1.0};  // texture tiles (pattern periods) across u and v in [0, 1]
-    float alphaCutoff = 0.5f;      // MASK, as exported
+    float alphaCutoff = 0.5f;      // MASK, as exported (without a scattering table)
+    Rgb meanAlbedo{0.0};           // coverage-weighted mean of the baked albedo (makeSurfaceTexture)
+    double meanHoles = 0;          // 1 - the bake's mean coverage (makeSurfaceTexture)
 
     // Texel (row-major from the top) at the mesh's uv.
     size_t texel(glm::dvec2 uv) const;
     Rgb albedo(glm::dvec2 uv) const;
     Rgb transmittance(glm::dvec2 uv) const;  // black when the bake has none
     float coverage(glm::dvec2 uv) const;
+    // The bake's scattering table, or null when it has none (then: MASK and Lambertian albedo).
+    const SurfaceScattering* scattering() const;
+    // With a table: the baked albedo relative to its mean (the pattern's colours across the cell;
+    // the table holds the cell's mean), per channel.
+    Rgb tint(glm::dvec2 uv) const;
+    // With a table: the probability that a line seen from `out` (tangent space) crosses the cloth
+    // at uv through a hole: the table's pass fraction for `out`, spread over the cell as the
+    // baked holes (1 - coverage) are.
+    double passThrough(glm::dvec2 uv, const glm::dvec3& out) const;
 };
 
-// What the MASK filter of the base mesh's Embree geometry reads (its user data).
+// The texture of a bake repeated `repeats` times across the mesh's uv range.
+SurfaceTexture makeSurfaceTexture(const SurfaceBake& bake, glm::dvec2 repeats);
+
+// What the surface filter of the base mesh's Embree geometry reads (its user data).
 struct SurfaceMesh {
     const BaseMesh* mesh = nullptr;
     const SurfaceTexture* texture = nullptr;
     // The mesh's uv at a point of triangle `face` with Embree's barycentrics (u, v):
     // (1 - u - v) uv0 + u uv1 + v uv2.
     glm::dvec2 uvAt(uint32_t face, float u, float v) const;
+    // Tangent space of triangle `face` (the bake's: x along +u, y along +v, z its counter-clockwise
+    // normal, the cloth's front); an arbitrary x, y around z where the uv are degenerate.
+    ShadingFrame frame(uint32_t face) const;
 };
 
-// Sets the MASK filter (intersect and occlusion) on a triangle geometry of surface.mesh's faces;
-// `surface` must outlive the geometry.
+// Sets the surface filter (intersect and occlusion) on a triangle geometry of surface.mesh's
+// faces: without a scattering table the MASK (hits below the cutoff are skipped); with one, a hit
+// is skipped with the probability passThrough (a random number hashed from the ray and the
+// triangle: stochastic transparency). `surface` must outlive the geometry.
 void setSurfaceFilter(RTCGeometry geometry, const SurfaceMesh& surface);
 
 namespace detail {

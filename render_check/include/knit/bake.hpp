@@ -29,17 +29,21 @@
 #include "knit/pattern.hpp"
 #include "knit/plies.hpp"
 #include "knit/ply_material.hpp"
+#include "knit/surface_scattering.hpp"
 
 namespace knit {
 
 struct BakeOptions {
-    int width = 256;            // N, pixels along the period px; M = round(N py / px), at least 1
-    int samplesPerAxis = 4;     // s x s stratified sub-pixel samples (coverage, height, normal)
-    int albedoPaths = 1;        // paths per sub-pixel sample that hits yarn (albedo)
-    int maxBounces = 4;         // path length of the albedo estimate
-    PlyOptions plies;           // yarnRadius 0 = the pattern's radius; pitch 0 = 6 yarn radii
-    PlyMaterial material;       // the ply BSDF (validated)
-    uint64_t seed = 1;          // albedo paths; the same seed gives the same textures
+    int width = 256;         // N, pixels along the period px; M = round(N py / px), at least 1
+    int samplesPerAxis = 4;  // s x s stratified sub-pixel samples (coverage, height, normal)
+    int albedoPaths = 1;     // paths per sub-pixel sample that hits yarn (albedo)
+    int maxBounces = 4;      // path length of the albedo estimate
+    PlyOptions plies;        // yarnRadius 0 = the pattern's radius; pitch 0 = 6 yarn radii
+    PlyMaterial material;    // the ply BSDF (validated)
+    uint64_t seed = 1;       // albedo paths; the same seed gives the same textures
+    // Paths per direction bin of SurfaceBake::scattering (12 x 8 bins; 0 = no table). The
+    // renderer's surface level shades with the table when there is one.
+    int scatteringPaths = 0;
     bool periodicPitch = true;  // adjust each yarn's ply pitch so the plies repeat (see above)
     // Where the baked cell starts, in periods (each in [0, 1)): the cell is
     // [origin[0], origin[0] + 1) px x [origin[1], origin[1] + 1) py (the image's bottom-left corner
@@ -58,6 +62,7 @@ struct SurfaceBake {
     double period[2] = {0, 0};            // px, py (metres, pattern space)
     double heightMin = 0, heightMax = 0;  // metres above the mid-surface mapped to height 0 and 1
     std::vector<double> yarnPitch;        // ply pitch used per generated yarn (metres)
+    SurfaceScattering scattering;         // the cell as a surface (BakeOptions::scatteringPaths)
     size_t plySegments = 0;               // traced ply segments (all tiles)
     double seconds = 0;                   // wall time of the bake
     double meanCoverage() const;

@@ -69,6 +69,10 @@ struct RenderOptions {
     // A scene built for a view (--detail view) draws its surface-level cells as the base mesh
     // with the pattern baked at this width (pixels per pattern period) with the render's material.
     int viewBakeSize = 128;
+    // Paths per direction bin of the scattering table of that bake (knit/surface_scattering.hpp):
+    // the surface level is shaded with the measured scattering of the plies, for every light and
+    // view direction; 0 = the Lambertian albedo and the coverage MASK of the exported material.
+    int surfaceScatteringPaths = 16384;
     // The image buffers (--width x --height) and the geometry of the mode (Embree curves,
     // tubes of tubeSides, grid cells) are estimated before either is allocated and refused over
     // this budget (the CLI passes --max-memory).
