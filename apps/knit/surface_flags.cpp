@@ -35,6 +35,8 @@ SurfaceBake bakePattern(const Pattern& pattern, const PatternPlacement& placemen
     BakeOptions bo;
     bo.width = flags.bakeSize;
     bo.plies = patternPlyOptions(plies, pattern, placement.scale);
+    const glm::dvec2 stretch = placementStretch(pattern, placement);
+    bo.stretch[0] = stretch.x, bo.stretch[1] = stretch.y;
     bo.material = material;
     bo.scatteringPaths = flags.scatteringPaths;
     return bakeSurface(pattern, bo);

@@ -41,6 +41,8 @@ void validateBake(const Pattern& pattern, const BakeOptions& o) {
     requireRange(o.scatteringPaths, 0, 1 << 20, "scatteringPaths (--scattering-paths)");
     for (double v : o.origin)
         if (!(v >= 0 && v < 1)) throw Error("bake: origin must be in [0, 1) periods (got " + std::to_string(v) + ")");
+    for (double v : o.stretch)
+        if (!(v > 0 && v < 1e3)) throw Error("bake: stretch must be positive (got " + std::to_string(v) + ")");
     validatePattern(pattern, pattern.name.empty() ? "bake pattern" : pattern.name);
     validateMaterial(o.material, "bake material");
 }
@@ -131,10 +133,21 @@ double SurfaceBake::meanCoverage() const {
     return coverage.empty() ? 0.0 : s / double(coverage.size());
 }
 
-SurfaceBake bakeSurface(const Pattern& pattern, const BakeOptions& o) {
+namespace {
+// The pattern as the placement lays it on the mesh: x and y stretched, heights and radius kept.
+Pattern stretchedPattern(const Pattern& pattern, const double stretch[2]) {
+    Pattern p = pattern;
+    for (glm::dvec3& q : p.points) q.x *= stretch[0], q.y *= stretch[1];
+    p.px *= stretch[0], p.py *= stretch[1];
+    return p;
+}
+}  // namespace
+
+SurfaceBake bakeSurface(const Pattern& original, const BakeOptions& o) {
     const auto start = std::chrono::steady_clock::now();
-    // Step 1: validate, then the periodic plies around the cell.
-    validateBake(pattern, o);
+    // Step 1: validate, then the periodic plies around the cell (of the pattern as placed).
+    validateBake(original, o);
+    const Pattern pattern = stretchedPattern(original, o.stretch);
     // A scattering table needs more tiles around the cell: its oblique rays cross several.
     const int margin = o.scatteringPaths > 0 ? kScatteringMargin : 0;
     const BakePlies bp = bakePlies(pattern, o.plies, o.periodicPitch, margin);
@@ -224,6 +237,13 @@ std::vector<uint8_t> heightGray8(const SurfaceBake& bake) {
     std::vector<uint8_t> out(bake.heights.size());
     for (size_t i = 0; i < bake.heights.size(); ++i) out[i] = toByte(bake.heights[i]);
     return out;
+}
+
+glm::dvec2 placementStretch(const Pattern& pattern, const PatternPlacement& placement) {
+    const double sx = placement.periodMetres.x / pattern.px, sy = placement.periodMetres.y / pattern.py;
+    const double scale = std::sqrt(sx * sy);
+    if (!(scale > 0) || !std::isfinite(scale)) return glm::dvec2(1.0);
+    return glm::dvec2(sx / scale, sy / scale);
 }
 
 PlyOptions patternPlyOptions(PlyOptions plies, const Pattern& pattern, double scale) {

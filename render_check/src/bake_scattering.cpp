@@ -23,6 +23,25 @@ struct BinSum {
     size_t passed = 0;
 };
 
+// |cos theta| at the centre of bin `bin` (z is uniform within a bin: its mean |z|).
+double binCosine(const SurfaceScattering& s, int bin) {
+    const int iz = bin / s.phiBins;
+    return std::abs(-1 + 2 * (iz + 0.5) / s.zBins);
+}
+
+void symmetrize(SurfaceScattering& s) {
+    const int n = s.bins();
+    for (int o = 0; o < n; ++o)
+        for (int i = o + 1; i < n; ++i)
+            for (int c = 0; c < 3; ++c) {
+                float& a = s.table[3 * (size_t(o) * n + i) + c];  // in = i, out = o
+                float& b = s.table[3 * (size_t(i) * n + o) + c];  // in = o, out = i
+                const double ci = binCosine(s, i), co = binCosine(s, o);
+                const double f = 0.5 * (a / ci + b / co);
+                a = float(f * ci), b = float(f * co);
+            }
+}
+
 }  // namespace
 
 double BakeRandom::uniform() {
@@ -127,11 +146,16 @@ SurfaceScattering measureScattering(const PlyPaths& paths, const ScatteringSetup
             const double inv = 1.0 / s.pathsPerBin;
             out.pass[size_t(bin)] = float(sum.passed * inv);
             for (int b = 0; b < n; ++b)
-                for (int c = 0; c < 3; ++c) out.table[3 * (size_t(bin) * n + b) + c] = float(sum.in[size_t(b)][c] * inv);
+                for (int c = 0; c < 3; ++c)
+                    out.table[3 * (size_t(bin) * n + b) + c] = float(sum.in[size_t(b)][c] * inv);
         }
     });
     out.paths = size_t(n) * size_t(s.pathsPerBin);
-    // Step 2: the rows' sampling distributions.
+    // Step 2: reciprocity (the ply BSDF is reciprocal, and so is the cloth's scattering):
+    // f(in, out) = table(out, in) / (|cos in| solid angle) equals f(out, in); the two independent
+    // estimates are averaged, which halves the variance of the table at no cost.
+    symmetrize(out);
+    // Step 3: the rows' sampling distributions.
     out.prepare();
     return out;
 }

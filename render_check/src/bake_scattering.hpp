@@ -31,8 +31,8 @@ struct Escape {
 // sideways is moved back by whole periods and goes on, until it hits yarn or leaves the layer
 // of yarns through its top or bottom plane. So oblique rays see an endless cloth.
 struct PeriodicCloth {
-    glm::dvec2 period{1.0};  // px, py (metres)
-    glm::dvec2 centre{0.0};  // the baked cell's centre (metres)
+    glm::dvec2 period{1.0};        // px, py (metres)
+    glm::dvec2 centre{0.0};        // the baked cell's centre (metres)
     double zTop = 0, zBottom = 0;  // planes above and below every yarn (metres)
     double reach = 0.5;            // horizontal distance (periods) a ray may go from the centre
 };
@@ -43,7 +43,8 @@ public:
              const PeriodicCloth& cloth);
     // The first hit of the ray from org along d in the endless cloth (see PeriodicCloth); p is
     // the hit point, near the baked cell. `from`: the hit the ray leaves.
-    bool intersect(glm::vec3 org, const glm::vec3& d, TraceHit& hit, glm::vec3& p, const TraceHit* from = nullptr) const;
+    bool intersect(glm::vec3 org, const glm::vec3& d, TraceHit& hit, glm::vec3& p,
+                   const TraceHit* from = nullptr) const;
     // A BSDF-sampled path from hit h at point p, reached along direction d: at most maxBounces
     // bounces.
     Escape follow(TraceHit h, glm::vec3 p, glm::vec3 d, BakeRandom& rng, int maxBounces) const;
@@ -53,7 +54,7 @@ private:
     const TraceScene& scene_;
     const PlyMaterial& material_;
     const FiberTables& tables_;
-    glm::vec2 period_, centre_;  // scene units
+    glm::vec2 period_, centre_;    // scene units
     float zTop_, zBottom_, step_;  // scene units; step_: horizontal distance per traced piece
 };
 

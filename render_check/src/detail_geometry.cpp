@@ -76,8 +76,10 @@ PlyGeometry renderCurves(const Scene& scene, const glm::dvec3& origin, double fi
                     "or use --detail full with --mode tubes or grid");
     const double radius = yarnLevelRadius(resolvePlyOptions(scene.plyOptions()));
     PlyGeometry y = buildPlyGeometry(yarnCurves(*yarnLevel, radius), origin, fiberTwist);
+    y.firstBundleSegment = 0;
     if (!plies) return y;
     PlyGeometry g = buildPlyGeometry(scene.plies(), origin, fiberTwist);
+    g.firstBundleSegment = g.segmentCount();
     append(g, y);
     return g;
 }

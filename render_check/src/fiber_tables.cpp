@@ -88,6 +88,36 @@ glm::dvec3 anyPerpendicular(const glm::dvec3& t) {
     return glm::normalize(glm::cross(t, a));
 }
 
+// The ply shadow seen from outside the ring of plies: parallel 2D rays from `directions` angles,
+// `across` offsets over the ring's width each; per first hit, the ply table at the hit's angle
+// from that ply's radial direction. (The twist turns the ring along the yarn: every direction
+// across it is seen.)
+double visiblePlyShadow(const Ring& plies, const FiberTables& t) {
+    const int directions = 64, across = 64;
+    double sum = 0;
+    int hits = 0;
+    for (int i = 0; i < directions; ++i) {
+        const double b = 2.0 * kPi * (i + 0.5) / directions;
+        const glm::dvec2 out(std::cos(b), std::sin(b)), side(-out.y, out.x);
+        for (int j = 0; j < across; ++j) {
+            const glm::dvec2 o = 2.0 * out + (-1.0 + 2.0 * (j + 0.5) / across) * side;
+            int best = -1;
+            double bestT = 1e30;
+            for (size_t k = 0; k < plies.centres.size(); ++k) {
+                const double th = hitCircle(o, -out, plies.centres[k], plies.radius, 0.0);
+                if (th > 0 && th < bestT) bestT = th, best = static_cast<int>(k);
+            }
+            if (best < 0) continue;
+            const glm::dvec2 n = o - bestT * out - plies.centres[best];
+            const glm::dvec2 c = plies.centres[best];
+            const double radialAngle = glm::length(c) > 0 ? std::atan2(c.y, c.x) : 0.0;
+            sum += t.ply(frac((std::atan2(n.y, n.x) - radialAngle) / (2.0 * kPi)));
+            ++hits;
+        }
+    }
+    return hits > 0 ? sum / hits : 1.0;
+}
+
 }  // namespace
 
 FiberTableOptions fiberTableOptions(const PlyMaterial& m, int plyCount) {
@@ -144,6 +174,7 @@ FiberTables buildFiberTables(const FiberTableOptions& o) {
     });
     toShadow(blockedFiber, o.fiberShadowFloor, t.fiberShadow);
     toShadow(blockedPly, o.plyShadowFloor, t.plyShadow);
+    t.visiblePlyShadow = visiblePlyShadow(plies, t);
     return t;
 }
 
@@ -192,7 +223,7 @@ ShadingFrame plyShadingFrame(const PlySurfacePoint& p, const PlyMaterial& m, con
         rad = glm::normalize(rad);
         phi = std::atan2(glm::dot(n, glm::cross(t, rad)), glm::dot(n, rad));
     }
-    const double plyShadow = tables.ply(phi / (2.0 * kPi));
+    const double plyShadow = p.bundle ? tables.visiblePlyShadow : tables.ply(phi / (2.0 * kPi));
     if (!m.fiberDetail || tables.size == 0) {
         f.x = t;
         f.z = n;

@@ -112,6 +112,8 @@ RenderResult renderScene(const Scene& scene, const RenderOptions& o) {
         BakeOptions bo;
         bo.width = o.viewBakeSize;
         bo.plies = patternPlyOptions(scene.plyOptions(), scene.pattern(), scene.placement().scale);
+        const glm::dvec2 stretch = placementStretch(scene.pattern(), scene.placement());
+        bo.stretch[0] = stretch.x, bo.stretch[1] = stretch.y;
         bo.material = res.material;
         bo.scatteringPaths = o.surfaceScatteringPaths;
         viewBake = bakeSurface(scene.pattern(), bo);
@@ -123,6 +125,10 @@ RenderResult renderScene(const Scene& scene, const RenderOptions& o) {
     auto t0 = std::chrono::steady_clock::now();
     int plyCount = 1;
     for (uint8_t p : scene.plies().plyOfCurve) plyCount = std::max(plyCount, int(p) + 1);
+    // Yarn-level curves shade as the bundle of the scene's plies (its crevice shadow), also when
+    // no cell of the view is at the ply level.
+    if (geometry.firstBundleSegment < geometry.segmentCount())
+        plyCount = std::max(plyCount, resolvePlyOptions(scene.plyOptions()).count);
     const FiberTables tables = buildFiberTables(fiberTableOptions(res.material, plyCount));
     res.tableSeconds = secondsSince(t0);
     res.tableBytes = tables.bytes();

@@ -135,6 +135,7 @@ PlySurfacePoint TraceScene::plyPoint(const TraceHit& h) const {
     sp.normal = glm::dvec3(h.ng);  // centreline normal of the hit (see intersect)
     sp.radial = glm::dvec3((1 - u) * plies_.radial[j] + u * plies_.radial[j + 1]);
     sp.v = (1 - u) * plies_.arc[j] + u * plies_.arc[j + 1];
+    sp.bundle = h.segment >= plies_.firstBundleSegment;
     return sp;
 }
 

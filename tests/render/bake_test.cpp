@@ -192,6 +192,37 @@ TEST(Bake, coverageIsTheProjectedAreaOfThePlies) {
     EXPECT_TRUE(std::any_of(b.coverage.begin(), b.coverage.end(), [](float c) { return c > 0 && c < 1; }));
 }
 
+// A placement that stretches the pattern (a square period on the mesh squeezes the stockinette's
+// wide stitch across) is baked as the cell lies on the mesh: the period and the texture's aspect
+// follow the stretch, and the coverage is the brute-force coverage of the stretched pattern's
+// plies, not the unstretched one's.
+TEST(Bake, stretchedPlacementBakesTheCellAsItLiesOnTheMesh) {
+    const Pattern p = generateStockinette();
+    PatternPlacement square;
+    square.periodMetres = {0.01, 0.01};
+    const glm::dvec2 stretch = placementStretch(p, square);
+    EXPECT_NEAR(stretch.x * stretch.y, 1.0, 1e-12) << "area kept";
+    EXPECT_NEAR(stretch.x / stretch.y, p.py / p.px, 1e-12);
+    BakeOptions o = smallBake();
+    o.albedoPaths = 0;
+    o.samplesPerAxis = 4;
+    const double plain = bakeSurface(p, o).meanCoverage();
+    o.stretch[0] = stretch.x, o.stretch[1] = stretch.y;
+    const SurfaceBake b = bakeSurface(p, o);
+    EXPECT_DOUBLE_EQ(b.period[0], stretch.x * p.px);
+    EXPECT_DOUBLE_EQ(b.period[1], stretch.y * p.py);
+    EXPECT_EQ(b.height, b.width) << "a square period gives a square texture";
+    Pattern q = p;
+    for (glm::dvec3& v : q.points) v.x *= stretch.x, v.y *= stretch.y;
+    q.px *= stretch.x, q.py *= stretch.y;
+    const double brute = projectedPlyCoverage(bakePlies(q, o.plies, true), q.px, q.py, 160);
+    std::printf("coverage: stretched %.4f (brute force %.4f), unstretched %.4f\n", b.meanCoverage(), brute, plain);
+    EXPECT_NEAR(b.meanCoverage(), brute, 0.005);
+    EXPECT_GT(std::abs(b.meanCoverage() - plain), 0.02);
+    o.stretch[0] = 0;
+    EXPECT_NE(test::errorOf([&] { bakeSurface(p, o); }).find("stretch"), std::string::npos);
+}
+
 TEST(Bake, heightNormalAndAlbedoStayInRange) {
     const SurfaceBake b = bakeSurface(generateStockinette(), smallBake());
     for (size_t i = 0; i < b.coverage.size(); ++i) {

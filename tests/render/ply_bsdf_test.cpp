@@ -340,6 +340,34 @@ TEST(FiberTables, shadowSpansFloorToOne) {
     EXPECT_NEAR(single.ply(0.3), 1.0, 1e-6);
 }
 
+// A yarn-level curve shows the bundle's ply shadow as seen from outside: darker than the plies'
+// outward sides (1), lighter than the table's mean over the whole ply (which includes the faces
+// the plies turn to each other, hidden from outside); one ply has none. A yarn-level point takes
+// it whatever its phase.
+TEST(FiberTables, visiblePlyShadowIsTheBundleSeenFromOutside) {
+    FiberTableOptions o;
+    o.size = 256, o.aoRays = 256;
+    o.plyCount = 1;
+    EXPECT_NEAR(buildFiberTables(o).visiblePlyShadow, 1.0, 1e-9);
+    for (int plies : {2, 3, 5}) {
+        o.plyCount = plies;
+        const FiberTables t = buildFiberTables(o);
+        double mean = 0;
+        for (float v : t.plyShadow) mean += v / t.plyShadow.size();
+        std::printf("%d plies: visible ply shadow %.4f, table mean %.4f\n", plies, t.visiblePlyShadow, mean);
+        EXPECT_LT(t.visiblePlyShadow, 0.99);
+        EXPECT_GT(t.visiblePlyShadow, mean);
+        PlySurfacePoint p;
+        p.bundle = true;
+        PlyMaterial m;
+        m.fiberDetail = false;
+        for (const glm::dvec3 radial : {glm::dvec3(1, 0, 0), glm::dvec3(-1, 0, 0), glm::dvec3(0, 1, 0)}) {
+            p.radial = radial;
+            EXPECT_DOUBLE_EQ(plyShadingFrame(p, m, t).shadow, t.visiblePlyShadow);
+        }
+    }
+}
+
 TEST(FiberTables, shadingFrameIsOrthonormalAndFollowsTwist) {
     PlyMaterial m;
     const FiberTables t = buildFiberTables(fiberTableOptions(m, 2));

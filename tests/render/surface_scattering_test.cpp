@@ -139,6 +139,12 @@ TEST(SurfaceScattering, bakedTableAgreesWithTheTexturesAndClosesItsHolesAtGrazin
     double grazingPass = 0;
     for (int row = grazing; row < grazing + s.phiBins; ++row) grazingPass += s.pass[size_t(row)] / s.phiBins;
     EXPECT_LT(grazingPass, 0.5 * pass) << "grazing pass " << grazingPass;
+    // Reciprocity: f(in, out) = table(out, in) / |cos in| is symmetric.
+    auto cosine = [&](int bin) { return std::abs(-1 + 2 * (bin / s.phiBins + 0.5) / s.zBins); };
+    for (int o = 0; o < s.bins(); o += 7)
+        for (int i = 0; i < s.bins(); i += 5)
+            EXPECT_NEAR(s.table[3 * (size_t(o) * s.bins() + i)] / cosine(i),
+                        s.table[3 * (size_t(i) * s.bins() + o)] / cosine(o), 1e-5);
     for (int row = 0; row < s.bins(); ++row)
         for (int c = 0; c < 3; ++c) {
             double sum = s.pass[size_t(row)];

@@ -26,8 +26,11 @@
 #include <cstdint>
 #include <vector>
 
+#include <glm/vec2.hpp>
+
 #include "knit/pattern.hpp"
 #include "knit/plies.hpp"
+#include "knit/tiling.hpp"
 #include "knit/ply_material.hpp"
 #include "knit/surface_scattering.hpp"
 
@@ -49,6 +52,10 @@ struct BakeOptions {
     // [origin[0], origin[0] + 1) px x [origin[1], origin[1] + 1) py (the image's bottom-left corner
     // at origin). A shifted origin rolls the texture (same pattern, other seam).
     double origin[2] = {0, 0};
+    // How the placement stretches the pattern along x and y at constant area (placementStretch):
+    // the cell is baked as it lies on the mesh (a square period on the mesh squeezes the
+    // stockinette's wide stitch by 15% across and stretches it along the wale).
+    double stretch[2] = {1, 1};
 };
 
 struct SurfaceBake {
@@ -75,6 +82,10 @@ SurfaceBake bakeSurface(const Pattern& pattern, const BakeOptions& options);
 // Ply options given in object-space metres (a scene's, placed at `scale` pattern units to the
 // metre) as the bake needs them: in the pattern's own units, the yarn radius the pattern's.
 PlyOptions patternPlyOptions(PlyOptions plies, const Pattern& pattern, double scale);
+
+// The placement's per-axis factors over their geometric mean: (sx / scale, sy / scale) with
+// sx = periodMetres.x / px, sy = periodMetres.y / py (knit/tiling.hpp); (1, 1) when unknown.
+glm::dvec2 placementStretch(const Pattern& pattern, const PatternPlacement& placement);
 
 // 8-bit images of a bake, row-major from the top (PNG-ready):
 // base colour RGBA (sRGB albedo, alpha = coverage), normal RGB ((n + 1) / 2), height grey.

@@ -37,6 +37,10 @@ struct FiberTables {
     double ringRadius = 0, fiberRadius = 0;        // in ply radii
     std::vector<float> delta, phase, fiberShadow;  // fiberShadow already remapped (S')
     std::vector<float> plyShadow;                  // remapped, indexed by ply phase
+    // The ply shadow averaged over the bundle of plies as seen from outside (every direction
+    // across the yarn, every point of its projected width): what a yarn-level curve, which has
+    // no plies and so no crevices, shows on average.
+    double visiblePlyShadow = 1;
 
     struct Texel {
         double delta = 0, phase = 0, shadow = 1;
@@ -56,6 +60,7 @@ struct PlySurfacePoint {
     glm::dvec3 normal{1, 0, 0};
     glm::dvec3 radial{1, 0, 0};
     double v = 0;
+    bool bundle = false;  // on a yarn-level curve: the ply shadow is FiberTables::visiblePlyShadow
 };
 
 struct ShadingFrame {

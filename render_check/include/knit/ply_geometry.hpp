@@ -34,6 +34,9 @@ struct PlyGeometry {
     std::vector<uint8_t> flags;              // per segment: bit 0 left neighbour, bit 1 right neighbour
     std::vector<uint32_t> curveOfSegment;    // source ply curve
     std::vector<uint32_t> curveSegments{0};  // per source curve: range into segments
+    // Segments from this index on are yarn-level curves (a view's plies folded into one curve of
+    // the bundle's width: knit/detail.hpp); none by default.
+    size_t firstBundleSegment = SIZE_MAX;
 
     size_t segmentCount() const { return segments.size(); }
     bool hasLeft(size_t s) const { return flags[s] & 1u; }
