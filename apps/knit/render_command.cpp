@@ -72,8 +72,9 @@ int runRender(const RenderCommand& r) {
     options.output = outputs.stage(r.options.output);
     options.exr = outputs.stage(r.options.exr);
     SceneOptions sceneOptions = resolveScene(r.scene);
-    options.budget = sceneOptions.budget;       // --max-memory
-    options.viewBakeSize = r.surface.bakeSize;  // the surface level of --detail view, as --surface-only
+    options.budget = sceneOptions.budget;  // --max-memory
+    // The surface level of --detail view: --bake-size when given, else the width the view needs.
+    options.viewBakeSize = r.surface.bakeSizeGiven() ? r.surface.bakeSize : 0;
     options.surfaceScatteringPaths = r.surface.scatteringPaths;
     if (r.surface.surfaceOnly) return runSurfaceRender(r, sceneOptions, options, outputs);
     // Step 2: the detail the view asks for, the scene, the render and the report (with the levels).

@@ -12,15 +12,22 @@ void addSurfaceFlags(CLI::App& command, SurfaceFlags& flags, bool render) {
                      "The surface level: the base mesh with the knit baked into tileable textures instead of "
                      "yarns or plies (build: a glTF PBR material, .glb; render: traced with the baked albedo and "
                      "coverage)");
-    command.add_option("--bake-size", flags.bakeSize, "Baked texture width in pixels per pattern period (1..8192)")
-        ->capture_default_str();
+    flags.bakeSizeOption =
+        command
+            .add_option("--bake-size", flags.bakeSize,
+                        render ? "Baked texture width in pixels per pattern period (1..8192); --surface-only: default "
+                                 "256; a view's surface level: default 4 texels per pixel where the surface level can "
+                                 "be seen (the yarn level's threshold), 32..256"
+                               : "Baked texture width in pixels per pattern period (1..8192)")
+            ->capture_default_str();
     if (!render) return;
-    flags.scatteringPaths = 16384;
+    flags.scatteringPaths = 6144;
     command
         .add_option("--scattering-paths", flags.scatteringPaths,
-                    "Paths per direction bin (96 bins) of the measured scattering the surface level is shaded with "
-                    "(how the plies reflect, transmit and let light through their holes for every light and view "
-                    "direction); 0 = the exported material's Lambertian albedo and coverage mask (0..1048576)")
+                    "Paths per direction bin, on average (288 bins; most go to the directions the camera and the "
+                    "light need), of the measured scattering the surface level is shaded with (how the plies "
+                    "reflect, transmit and let light through their holes for every light and view direction); "
+                    "0 = the exported material's Lambertian albedo and coverage mask (0..1048576)")
         ->capture_default_str();
 }
 

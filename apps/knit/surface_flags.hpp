@@ -17,13 +17,17 @@ namespace knit::cli {
 struct SurfaceFlags {
     bool surfaceOnly = false;
     int bakeSize = 256;  // texture width in pixels (one pattern period); height from the aspect
+    // Whether --bake-size was given: without it a render's view bakes at the width its surface
+    // level needs (RenderOptions::viewBakeSize = 0), --surface-only at bakeSize.
+    const CLI::Option* bakeSizeOption = nullptr;
+    bool bakeSizeGiven() const { return bakeSizeOption != nullptr && bakeSizeOption->count() > 0; }
     // Paths per direction bin of the scattering table the renderer shades the surface level
     // with (knit/surface_scattering.hpp); render only (a file carries the baked material).
     int scatteringPaths = 0;
 };
 
 // Registers --surface-only and --bake-size on `command` (build and render); with `render` also
-// --scattering-paths (default 16384).
+// --scattering-paths (default 6144).
 void addSurfaceFlags(CLI::App& command, SurfaceFlags& flags, bool render = false);
 
 struct SurfaceBuild {

@@ -205,6 +205,11 @@ SurfaceBake bakeSurface(const Pattern& original, const BakeOptions& o) {
         ss.cellSize = glm::dvec2(pattern.px, pattern.py);
         ss.zTop = cloth.zTop, ss.zBottom = cloth.zBottom;
         ss.pathsPerBin = o.scatteringPaths;
+        ss.side = o.scatteringSide;
+        SurfaceScattering layout;
+        layout.side = ss.side;
+        if (!o.scatteringFocus.empty())
+            ss.pathsOfBin = focusedPaths(layout, ss.pathsPerBin, o.scatteringFocus, o.scatteringFocusShare);
         ss.maxBounces = std::max(o.maxBounces, 8);
         ss.seed = o.seed;
         bake.scattering = measureScattering(paths, ss);

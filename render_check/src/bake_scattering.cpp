@@ -23,21 +23,21 @@ struct BinSum {
     size_t passed = 0;
 };
 
-// |cos theta| at the centre of bin `bin` (z is uniform within a bin: its mean |z|).
-double binCosine(const SurfaceScattering& s, int bin) {
-    const int iz = bin / s.phiBins;
-    return std::abs(-1 + 2 * (iz + 0.5) / s.zBins);
-}
-
-void symmetrize(SurfaceScattering& s) {
+// Reciprocity: f(in, out) = table(out, in) / (|cos in| solid angle) equals f(out, in); the two
+// independent estimates (from the paths of row out and of row in) are averaged, each weighted by
+// its row's path count (the inverse of its variance).
+void symmetrize(SurfaceScattering& s, const std::vector<int>& paths) {
     const int n = s.bins();
+    std::vector<double> cosine(size_t(n), 0.0);
+    for (int b = 0; b < n; ++b) cosine[size_t(b)] = s.binCosine(b);
     for (int o = 0; o < n; ++o)
         for (int i = o + 1; i < n; ++i)
             for (int c = 0; c < 3; ++c) {
                 float& a = s.table[3 * (size_t(o) * n + i) + c];  // in = i, out = o
                 float& b = s.table[3 * (size_t(i) * n + o) + c];  // in = o, out = i
-                const double ci = binCosine(s, i), co = binCosine(s, o);
-                const double f = 0.5 * (a / ci + b / co);
+                const double ci = cosine[size_t(i)], co = cosine[size_t(o)];
+                const double wa = paths[size_t(o)], wb = paths[size_t(i)];
+                const double f = (wa * a / ci + wb * b / co) / (wa + wb);
                 a = float(f * ci), b = float(f * co);
             }
 }
@@ -109,10 +109,34 @@ Escape PlyPaths::follow(TraceHit h, glm::vec3 p, glm::vec3 d, BakeRandom& rng, i
     return e;
 }
 
+std::vector<int> focusedPaths(const SurfaceScattering& layout, int pathsPerBin,
+                              const std::vector<ScatteringFocus>& focus, double share) {
+    const int n = layout.bins();
+    std::vector<double> weight(size_t(n), 0.0);
+    double total = 0;
+    for (const ScatteringFocus& f : focus) {
+        if (!(f.weight > 0) || !std::isfinite(f.weight) || !(glm::length(f.direction) > 0)) continue;
+        int bins[4];
+        double w[4];
+        layout.interpolationCorners(f.direction, bins, w);
+        for (int k = 0; k < 4; ++k) weight[size_t(bins[k])] += f.weight * w[k];
+        total += f.weight;
+    }
+    if (!(total > 0)) share = 0;
+    const double budget = double(pathsPerBin) * n;
+    std::vector<int> paths(static_cast<size_t>(n));
+    for (int b = 0; b < n; ++b)
+        paths[size_t(b)] = std::max(1, int(std::lround((1 - share) * pathsPerBin +
+                                                       (total > 0 ? share * budget * weight[size_t(b)] / total : 0))));
+    return paths;
+}
+
 SurfaceScattering measureScattering(const PlyPaths& paths, const ScatteringSetup& s) {
     SurfaceScattering out;
-    out.zBins = s.zBins, out.phiBins = s.phiBins;
+    out.side = s.side;
     const int n = out.bins();
+    const std::vector<int> pathsOfBin =
+        s.pathsOfBin.empty() ? std::vector<int>(size_t(n), s.pathsPerBin) : s.pathsOfBin;
     out.table.assign(size_t(3) * n * n, 0.f);
     out.pass.assign(size_t(n), 0.f);
     const PlyGeometry& g = paths.scene().plies();
@@ -121,14 +145,13 @@ SurfaceScattering measureScattering(const PlyPaths& paths, const ScatteringSetup
         for (int bin = r.begin(); bin != r.end(); ++bin) {
             BinSum sum;
             sum.in.assign(size_t(n), Rgb(0.0));
-            const int iz = bin / s.phiBins, ip = bin % s.phiBins;
-            for (int k = 0; k < s.pathsPerBin; ++k) {
+            const int count = pathsOfBin[size_t(bin)];
+            for (int k = 0; k < count; ++k) {
                 BakeRandom rng{s.seed * 0x2545F4914F6CDD1Dull + (uint64_t(bin) << 32) + uint64_t(k)};
                 // Step 1a: a direction in the bin and an entry point on its side's plane.
-                const double z = -1 + 2 * (iz + rng.uniform()) / s.zBins;
-                const double phi = util::kTwoPi * (ip + rng.uniform()) / s.phiBins;
-                const double rr = std::sqrt(std::max(0.0, 1 - z * z));
-                const glm::dvec3 outDir(rr * std::cos(phi), rr * std::sin(phi), z);
+                const double u = rng.uniform(), v = rng.uniform();
+                const glm::dvec3 outDir = out.binDirection(bin, u, v);
+                const double z = outDir.z;
                 const glm::dvec3 entry(s.cellMin.x + rng.uniform() * s.cellSize.x,
                                        s.cellMin.y + rng.uniform() * s.cellSize.y, z >= 0 ? s.zTop : s.zBottom);
                 const glm::vec3 org = g.toScene(entry), d = glm::vec3(-outDir);
@@ -143,18 +166,18 @@ SurfaceScattering measureScattering(const PlyPaths& paths, const ScatteringSetup
                 if (e.escaped) sum.in[size_t(out.binOf(glm::dvec3(e.direction)))] += e.weight;
             }
             // Step 1c: averages over the bin's paths.
-            const double inv = 1.0 / s.pathsPerBin;
+            const double inv = 1.0 / count;
             out.pass[size_t(bin)] = float(sum.passed * inv);
             for (int b = 0; b < n; ++b)
                 for (int c = 0; c < 3; ++c)
                     out.table[3 * (size_t(bin) * n + b) + c] = float(sum.in[size_t(b)][c] * inv);
         }
     });
-    out.paths = size_t(n) * size_t(s.pathsPerBin);
-    // Step 2: reciprocity (the ply BSDF is reciprocal, and so is the cloth's scattering):
-    // f(in, out) = table(out, in) / (|cos in| solid angle) equals f(out, in); the two independent
-    // estimates are averaged, which halves the variance of the table at no cost.
-    symmetrize(out);
+    out.paths = 0;
+    for (int c : pathsOfBin) out.paths += size_t(c);
+    // Step 2: reciprocity (the ply BSDF is reciprocal, and so is the cloth's scattering): the
+    // two estimates of each entry are averaged (symmetrize).
+    symmetrize(out, pathsOfBin);
     // Step 3: the rows' sampling distributions.
     out.prepare();
     return out;

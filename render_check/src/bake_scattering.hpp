@@ -6,6 +6,9 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include <vector>
+
+#include "knit/bake.hpp"
 #include "knit/fiber_tables.hpp"
 #include "knit/ply_bsdf.hpp"
 #include "knit/ply_material.hpp"
@@ -61,13 +64,19 @@ private:
 struct ScatteringSetup {
     glm::dvec2 cellMin{0.0}, cellSize{1.0};  // the cell (pattern metres), as the texture bake's
     double zTop = 0, zBottom = 0;            // planes above and below every yarn (metres)
-    int zBins = 12, phiBins = 8;
+    int side = 8;                            // SurfaceScattering::side
     int pathsPerBin = 4096;
+    std::vector<int> pathsOfBin;  // per bin, overriding pathsPerBin (focusedPaths); empty: none
     int maxBounces = 8;
     uint64_t seed = 1;
 };
 
-// Per out bin, pathsPerBin rays along -out with uniform random directions in the bin, entering
+// Paths per bin for `pathsPerBin` on average: (1 - share) of them evenly, `share` by the focus
+// directions' weights on their interpolation corners (every bin gets at least one path).
+std::vector<int> focusedPaths(const SurfaceScattering& layout, int pathsPerBin,
+                              const std::vector<ScatteringFocus>& focus, double share);
+
+// Per out bin, pathsPerBin (or pathsOfBin) rays along -out with uniform random directions in the bin, entering
 // through the plane on out's side at uniform random points of the cell; rays that cross without
 // a hit add to pass, the others are followed and their escape directions binned with their
 // weights. Deterministic for any thread count.

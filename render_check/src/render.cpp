@@ -110,12 +110,16 @@ RenderResult renderScene(const Scene& scene, const RenderOptions& o) {
     SurfaceTexture viewTexture;
     if (!o.surface && !o.baseMesh && !surface.faces.empty()) {
         BakeOptions bo;
-        bo.width = o.viewBakeSize;
+        bo.width = o.viewBakeSize > 0 ? o.viewBakeSize : viewBakeWidth(scene.pattern());
         bo.plies = patternPlyOptions(scene.plyOptions(), scene.pattern(), scene.placement().scale);
         const glm::dvec2 stretch = placementStretch(scene.pattern(), scene.placement());
         bo.stretch[0] = stretch.x, bo.stretch[1] = stretch.y;
         bo.material = res.material;
         bo.scatteringPaths = o.surfaceScatteringPaths;
+        // The table's paths go mostly where this view sees the surface level from and lights it from.
+        const RectLight light = detail::defaultLight(scene, o.light, o.lightIrradiance);
+        bo.scatteringFocus =
+            detail::scatteringFocus(surface, view.eye, glm::dvec3(light.corner + 0.5 * (light.edgeU + light.edgeV)));
         viewBake = bakeSurface(scene.pattern(), bo);
         viewTexture = makeSurfaceTexture(viewBake, scene.placement().repeats);
         res.surfaceTextured = true;
@@ -184,6 +188,12 @@ RenderResult renderScene(const Scene& scene, const RenderOptions& o) {
     if (!o.exr.empty()) writeExr(o.exr, res.image), res.written.push_back(o.exr);
     res.peakMemoryBytes = int64_t(util::peakResidentBytes());
     return res;
+}
+
+int viewBakeWidth(const Pattern& pattern) {
+    if (!(pattern.radius > 0) || !(pattern.px > 0)) return 64;
+    const double texels = 4.0 * std::max(pattern.px, pattern.py) / pattern.radius;
+    return std::clamp(16 * int(std::ceil(texels / 16.0)), 32, 256);
 }
 
 }  // namespace knit

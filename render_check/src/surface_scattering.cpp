@@ -1,5 +1,6 @@
-// SurfaceScattering: bins of equal solid angle, bilinear interpolation between bin centres on one
-// side of the cloth, and importance sampling of a row by its luminance.
+// SurfaceScattering: bins of equal solid angle on a concentric square per side of the cloth,
+// bilinear interpolation between bin centres on one side, and importance sampling of a row by
+// its luminance.
 #include "knit/surface_scattering.hpp"
 
 #include <algorithm>
@@ -11,38 +12,71 @@ namespace knit {
 namespace {
 
 using util::kPi;
-using util::kTwoPi;
 
 constexpr double kUniformShare = 0.15;  // of each row's sampling probability, spread over all bins
+constexpr double kQuarterPi = 0.25 * kPi;
 
 struct Corner {
     int bin = 0;
     double weight = 0;
 };
 
-double azimuth(const glm::dvec3& w) {
-    const double phi = std::atan2(w.y, w.x);
-    return phi < 0 ? phi + kTwoPi : phi;
+// A direction's side of the cloth (1 = front, z >= 0) and its point (a, b) in [-1, 1]^2.
+struct SquarePoint {
+    int side = 1;
+    double a = 0, b = 0;
+};
+
+// Lambert's equal-area projection of the hemisphere to the unit disk, then the inverse of the
+// concentric map (disk to square).
+SquarePoint toSquare(const glm::dvec3& w) {
+    const double len = std::sqrt(w.x * w.x + w.y * w.y + w.z * w.z);
+    SquarePoint p;
+    p.side = w.z >= 0 ? 1 : 0;
+    const double z = std::min(1.0, std::abs(w.z) / len);
+    const double r = std::sqrt(std::max(0.0, 1 - z));  // disk radius
+    if (!(r > 0)) return p;
+    double phi = std::atan2(w.y, w.x);
+    if (phi < -kQuarterPi) phi += 2 * kPi;  // phi in [-pi/4, 7 pi/4)
+    if (phi < kQuarterPi) {
+        p.a = r, p.b = phi / kQuarterPi * r;
+    } else if (phi < 3 * kQuarterPi) {
+        p.b = r, p.a = -(phi - 2 * kQuarterPi) / kQuarterPi * r;
+    } else if (phi < 5 * kQuarterPi) {
+        p.a = -r, p.b = -(phi - 4 * kQuarterPi) / kQuarterPi * r;
+    } else {
+        p.b = -r, p.a = (phi - 6 * kQuarterPi) / kQuarterPi * r;
+    }
+    p.a = std::clamp(p.a, -1.0, 1.0), p.b = std::clamp(p.b, -1.0, 1.0);
+    return p;
 }
 
-// The four bins around w's position between bin centres, on w's side of the cloth (z >= 0 is
-// the front), with their bilinear weights; azimuth wraps around.
+// The concentric map (square to disk), then the disk back to the hemisphere on `side`.
+glm::dvec3 fromSquare(int side, double a, double b) {
+    double r = 0, phi = 0;
+    if (a != 0 || b != 0) {
+        if (std::abs(a) > std::abs(b)) r = a, phi = kQuarterPi * (b / a);
+        else r = b, phi = 2 * kQuarterPi - kQuarterPi * (a / b);
+    }
+    const double r2 = std::min(1.0, r * r), s = std::sqrt(std::max(0.0, 2 - r2));
+    const double z = 1 - r2;
+    return {r * std::cos(phi) * s, r * std::sin(phi) * s, side == 1 ? z : -z};
+}
+
+// The four bins around w's position between bin centres, on w's side of the cloth, with their
+// bilinear weights (clamped at the square's edge, the horizon).
 void corners(const SurfaceScattering& s, const glm::dvec3& w, Corner out[4]) {
-    const double len = std::sqrt(w.x * w.x + w.y * w.y + w.z * w.z);
-    const double z = len > 0 ? w.z / len : 1.0;
-    const int half = s.zBins / 2;
-    const int lo = z >= 0 ? half : 0, hi = z >= 0 ? s.zBins - 1 : half - 1;
-    const double fz = std::clamp(0.5 * (z + 1) * s.zBins - 0.5, double(lo), double(hi));
-    const int iz0 = std::min(int(std::floor(fz)), hi), iz1 = std::min(iz0 + 1, hi);
-    const double tz = fz - iz0;
-    const double fp = azimuth(w) / kTwoPi * s.phiBins - 0.5;
-    const double fl = std::floor(fp);
-    const double tp = fp - fl;
-    const int ip0 = (int(fl) % s.phiBins + s.phiBins) % s.phiBins, ip1 = (ip0 + 1) % s.phiBins;
-    out[0] = {iz0 * s.phiBins + ip0, (1 - tz) * (1 - tp)};
-    out[1] = {iz0 * s.phiBins + ip1, (1 - tz) * tp};
-    out[2] = {iz1 * s.phiBins + ip0, tz * (1 - tp)};
-    out[3] = {iz1 * s.phiBins + ip1, tz * tp};
+    const SquarePoint p = toSquare(w);
+    const int n = s.side, base = p.side * n * n;
+    const double fx = std::clamp(0.5 * (p.a + 1) * n - 0.5, 0.0, double(n - 1));
+    const double fy = std::clamp(0.5 * (p.b + 1) * n - 0.5, 0.0, double(n - 1));
+    const int x0 = std::min(int(fx), n - 1), y0 = std::min(int(fy), n - 1);
+    const int x1 = std::min(x0 + 1, n - 1), y1 = std::min(y0 + 1, n - 1);
+    const double tx = fx - x0, ty = fy - y0;
+    out[0] = {base + y0 * n + x0, (1 - tx) * (1 - ty)};
+    out[1] = {base + y0 * n + x1, tx * (1 - ty)};
+    out[2] = {base + y1 * n + x0, (1 - tx) * ty};
+    out[3] = {base + y1 * n + x1, tx * ty};
 }
 
 double rowProbability(const SurfaceScattering& s, int row, int bin) {
@@ -52,16 +86,43 @@ double rowProbability(const SurfaceScattering& s, int row, int bin) {
 
 }  // namespace
 
-double SurfaceScattering::binSolidAngle() const { return 4 * kPi / bins(); }
+void SurfaceScattering::interpolationCorners(const glm::dvec3& w, int bins[4], double weights[4]) const {
+    Corner c[4];
+    corners(*this, w, c);
+    for (int k = 0; k < 4; ++k) bins[k] = c[k].bin, weights[k] = c[k].weight;
+}
+
+double SurfaceScattering::binSolidAngle() const { return 2 * kPi / (side * side); }
 
 int SurfaceScattering::binOf(const glm::dvec3& w) const {
-    const double len = std::sqrt(w.x * w.x + w.y * w.y + w.z * w.z);
-    const double z = w.z / len;
-    const int half = zBins / 2;
-    int iz = std::clamp(int(0.5 * (z + 1) * zBins), 0, zBins - 1);
-    iz = z >= 0 ? std::max(iz, half) : std::min(iz, half - 1);  // rounding never crosses the cloth
-    const int ip = std::clamp(int(azimuth(w) / kTwoPi * phiBins), 0, phiBins - 1);
-    return iz * phiBins + ip;
+    const SquarePoint p = toSquare(w);
+    const int x = std::clamp(int(0.5 * (p.a + 1) * side), 0, side - 1);
+    const int y = std::clamp(int(0.5 * (p.b + 1) * side), 0, side - 1);
+    return p.side * side * side + y * side + x;
+}
+
+glm::dvec3 SurfaceScattering::binDirection(int bin, double u, double v) const {
+    const int h = bin / (side * side), cell = bin % (side * side);
+    const double a = -1 + 2 * (cell % side + u) / side, b = -1 + 2 * (cell / side + v) / side;
+    glm::dvec3 w = fromSquare(h, a, b);
+    // On the bin's side of the cloth, also on the horizon.
+    w.z = h == 0 ? std::min(w.z, -1e-9) : std::max(w.z, 1e-9);
+    return w;
+}
+
+double SurfaceScattering::binCosine(int bin) const {
+    // |z| = 1 - r^2 with r = max(|a|, |b|) on the concentric square: its mean over the cell.
+    const int cell = bin % (side * side);
+    constexpr int k = 16;
+    double sum = 0;
+    for (int i = 0; i < k; ++i)
+        for (int j = 0; j < k; ++j) {
+            const double a = -1 + 2 * (cell % side + (i + 0.5) / k) / side;
+            const double b = -1 + 2 * (cell / side + (j + 0.5) / k) / side;
+            const double r = std::max(std::abs(a), std::abs(b));
+            sum += 1 - r * r;
+        }
+    return sum / (k * k);
 }
 
 void SurfaceScattering::prepare() {
@@ -129,12 +190,8 @@ glm::dvec3 SurfaceScattering::sample(const glm::dvec3& out, const double u[4], d
     const int n = bins();
     const float* c = cdf.data() + size_t(row) * n;
     const int bin = std::min(int(std::upper_bound(c, c + n, float(u[1])) - c), n - 1);
-    // Step 3: a uniform direction in the bin (uniform in z and azimuth: uniform in solid angle).
-    const int iz = bin / phiBins, ip = bin % phiBins;
-    double z = std::clamp(-1 + 2 * (iz + u[2]) / zBins, -1.0, 1.0);
-    z = iz < zBins / 2 ? std::min(z, -1e-9) : std::max(z, 1e-9);  // on the bin's side of the cloth
-    const double phi = kTwoPi * (ip + u[3]) / phiBins, r = std::sqrt(std::max(0.0, 1 - z * z));
-    const glm::dvec3 in(r * std::cos(phi), r * std::sin(phi), z);
+    // Step 3: a uniform direction in the bin (the map keeps solid angle).
+    const glm::dvec3 in = binDirection(bin, u[2], u[3]);
     pdfOut = pdf(out, in);
     return in;
 }

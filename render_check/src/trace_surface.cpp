@@ -160,6 +160,30 @@ SurfaceTexture surfaceTexture(const Scene& scene, const RenderOptions& options) 
                                                     : scene.placement().repeats);
 }
 
+std::vector<ScatteringFocus> scatteringFocus(const BaseMesh& mesh, const glm::dvec3& eye, const glm::dvec3& light,
+                                             size_t maxTriangles) {
+    std::vector<ScatteringFocus> focus;
+    const size_t faces = mesh.faces.size();
+    if (faces == 0 || mesh.faceUvs.size() != faces) return focus;
+    const size_t stride = std::max<size_t>(1, (faces + maxTriangles - 1) / std::max<size_t>(1, maxTriangles));
+    const SurfaceMesh surface{&mesh, nullptr};
+    focus.reserve(2 * (faces / stride + 1));
+    for (size_t f = 0; f < faces; f += stride) {
+        const glm::uvec3 t = mesh.faces[f];
+        const glm::dvec3 a = mesh.positions[t.x], b = mesh.positions[t.y], c = mesh.positions[t.z];
+        const glm::dvec3 centre = (a + b + c) / 3.0, toEye = eye - centre, toLight = light - centre;
+        const double area = 0.5 * glm::length(glm::cross(b - a, c - a)), d2 = glm::dot(toEye, toEye);
+        if (!(area > 0) || !(d2 > 0) || !(glm::dot(toLight, toLight) > 0)) continue;
+        const ShadingFrame frame = surface.frame(uint32_t(f));
+        const glm::dvec3 out = frame.toLocal(toEye / std::sqrt(d2));
+        const double weight = area * std::abs(out.z) / d2;
+        if (!(weight > 0)) continue;
+        focus.push_back({out, weight});
+        focus.push_back({frame.toLocal(glm::normalize(toLight)), weight});
+    }
+    return focus;
+}
+
 }  // namespace detail
 
 }  // namespace knit

@@ -8,6 +8,7 @@
 // space, and its holes open with the viewing angle (stochastic transparency, not the MASK).
 #pragma once
 #include <cstdint>
+#include <vector>
 
 #include <embree3/rtcore.h>
 #include <glm/vec2.hpp>
@@ -71,6 +72,12 @@ namespace detail {
 PlyGeometry surfaceFrame(const Scene& scene, const glm::dvec3& centre);
 // and the texture of the bake (repeats: the options', else the scene's placement).
 SurfaceTexture surfaceTexture(const Scene& scene, const RenderOptions& options);
+// Where a camera at `eye` sees `mesh` from and a light at `light` lights it from: per triangle
+// (at most `maxTriangles`, evenly strided), the directions to the eye and to the light in the
+// triangle's tangent space (SurfaceMesh::frame), each weighted by the triangle's share of the
+// image (area x |cos| towards the eye / distance^2). For BakeOptions::scatteringFocus.
+std::vector<ScatteringFocus> scatteringFocus(const BaseMesh& mesh, const glm::dvec3& eye, const glm::dvec3& light,
+                                             size_t maxTriangles = 8192);
 }  // namespace detail
 
 }  // namespace knit

@@ -27,6 +27,7 @@
 #include <vector>
 
 #include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
 
 #include "knit/pattern.hpp"
 #include "knit/plies.hpp"
@@ -36,6 +37,13 @@
 
 namespace knit {
 
+// A direction (the cell's tangent space, knit/surface_scattering.hpp) where a render needs the
+// scattering table most, with its weight (e.g. the projected area of the surface seen or lit so).
+struct ScatteringFocus {
+    glm::dvec3 direction{0, 0, 1};
+    double weight = 1;
+};
+
 struct BakeOptions {
     int width = 256;         // N, pixels along the period px; M = round(N py / px), at least 1
     int samplesPerAxis = 4;  // s x s stratified sub-pixel samples (coverage, height, normal)
@@ -44,9 +52,18 @@ struct BakeOptions {
     PlyOptions plies;        // yarnRadius 0 = the pattern's radius; pitch 0 = 6 yarn radii
     PlyMaterial material;    // the ply BSDF (validated)
     uint64_t seed = 1;       // albedo paths; the same seed gives the same textures
-    // Paths per direction bin of SurfaceBake::scattering (12 x 8 bins; 0 = no table). The
+    // Paths per direction bin of SurfaceBake::scattering on average (0 = no table). The
     // renderer's surface level shades with the table when there is one.
     int scatteringPaths = 0;
+    int scatteringSide = 12;  // SurfaceScattering::side: 2 x 12 x 12 bins of ~0.044 sr
+    // Where the table is needed most (a render's camera and light seen from its surface-level
+    // triangles): `scatteringFocusShare` of the paths go to the bins of these directions (split
+    // between each direction's interpolation corners by weight), the rest evenly to every bin.
+    // A table entry is estimated from the paths of its row and, by reciprocity, of its column,
+    // so the entries between the camera's and the light's directions get most of the paths.
+    // Empty: every bin gets scatteringPaths.
+    std::vector<ScatteringFocus> scatteringFocus;
+    double scatteringFocusShare = 0.75;
     bool periodicPitch = true;  // adjust each yarn's ply pitch so the plies repeat (see above)
     // Where the baked cell starts, in periods (each in [0, 1)): the cell is
     // [origin[0], origin[0] + 1) px x [origin[1], origin[1] + 1) py (the image's bottom-left corner

@@ -24,6 +24,7 @@
 
 #include "knit/budget.hpp"
 #include "knit/path_tracer.hpp"
+#include "knit/pattern.hpp"
 #include "knit/ply_material.hpp"
 #include "knit/trace_mode.hpp"
 #include "knit/view.hpp"
@@ -67,17 +68,26 @@ struct RenderOptions {
     const SurfaceBake* surface = nullptr;
     double surfaceRepeats[2] = {0, 0};  // texture tiles across u and v; 0 = the scene's placement
     // A scene built for a view (--detail view) draws its surface-level cells as the base mesh
-    // with the pattern baked at this width (pixels per pattern period) with the render's material.
-    int viewBakeSize = 128;
-    // Paths per direction bin of the scattering table of that bake (knit/surface_scattering.hpp):
-    // the surface level is shaded with the measured scattering of the plies, for every light and
-    // view direction; 0 = the Lambertian albedo and the coverage MASK of the exported material.
-    int surfaceScatteringPaths = 16384;
+    // with the pattern baked at this width (pixels per pattern period) with the render's material;
+    // 0 = viewBakeWidth: what the surface level can need.
+    int viewBakeSize = 0;
+    // Paths per direction bin, on average, of the scattering table of that bake
+    // (knit/surface_scattering.hpp, BakeOptions::scatteringFocus: most go to the directions the
+    // view's camera and light need): the surface level is shaded with the measured scattering of
+    // the plies, for every light and view direction; 0 = the Lambertian albedo and the coverage
+    // MASK of the exported material.
+    int surfaceScatteringPaths = 6144;
     // The image buffers (--width x --height) and the geometry of the mode (Embree curves,
     // tubes of tubeSides, grid cells) are estimated before either is allocated and refused over
     // this budget (the CLI passes --max-memory).
     MemoryBudget budget;
 };
+
+// The bake width a view's surface level needs: a surface-level cell's yarn radius covers less
+// than about a pixel (the yarn level's threshold, 1 pixel by default), so its pattern period spans
+// at most period / yarn radius pixels; 4 texels per such pixel, rounded up to a multiple of 16,
+// within 32..256.
+int viewBakeWidth(const Pattern& pattern);
 
 struct RenderResult {
     Image image;

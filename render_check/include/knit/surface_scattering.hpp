@@ -4,10 +4,13 @@
 //
 // Directions are in the cell's tangent space, as the baked normal map: x = +u (pattern x),
 // y = +v (pattern y), z out of the cloth's front (the side the yarn heights grow towards).
-// The sphere is cut into zBins x phiBins bins of equal solid angle: bin (iz, ip) holds the
-// directions with z = cos(theta) in [-1 + 2 iz / zBins, -1 + 2 (iz + 1) / zBins) and azimuth in
-// [2 pi ip / phiBins, 2 pi (ip + 1) / phiBins); zBins is even, so no bin straddles the cloth.
-//
+// Each side of the cloth (hemisphere) is cut into side x side bins of equal solid angle
+// (2 pi / side^2): the hemisphere is mapped to the unit disk by Lambert's equal-area projection
+// (disk radius sqrt(1 - |z|), same azimuth), the disk to the square [-1, 1]^2 by Shirley and
+// Chiu's concentric map (area-preserving), and the square into a side x side grid. Bin
+// h side^2 + row side + column: h = 0 for the back (z < 0), 1 for the front (z >= 0), so no bin
+// straddles the cloth. Unlike bands of z, no bin meets the normal in a point: the directions near
+// the normal, where a far camera and its light mostly are, are resolved as finely as the others.
 // For light leaving towards `out` (a direction away from the cloth, on either side):
 // - pass(out): the fraction of straight lines along -out that cross the cloth without touching
 //   yarn (the holes, as seen from `out`);
@@ -27,15 +30,20 @@
 namespace knit {
 
 struct SurfaceScattering {
-    int zBins = 0, phiBins = 0;
+    int side = 0;              // bins along each side of a hemisphere's square
     std::vector<float> table;  // bins() x bins() x 3 (linear RGB), row = out bin, column = in bin
     std::vector<float> pass;   // bins()
     size_t paths = 0;          // measured paths (all bins)
 
     bool empty() const { return table.empty(); }
-    int bins() const { return zBins * phiBins; }
+    int bins() const { return 2 * side * side; }
     double binSolidAngle() const;
     int binOf(const glm::dvec3& w) const;  // w need not be normalized (it must not be zero)
+    // A unit direction in bin `bin` from two uniform numbers in [0, 1): uniform in solid angle
+    // over the bin; (0.5, 0.5) is the bin's centre.
+    glm::dvec3 binDirection(int bin, double u, double v) const;
+    // The mean |cos theta| over the bin.
+    double binCosine(int bin) const;
 
     // Tabulates the sampling distributions of the rows (call after filling table and pass).
     void prepare();
@@ -50,6 +58,8 @@ struct SurfaceScattering {
     // weights, a bin of that row by its tabulated luminance (with a uniform floor), a uniform
     // direction in the bin. pdf = 0 when nothing can be sampled.
     glm::dvec3 sample(const glm::dvec3& out, const double u[4], double& pdf) const;
+    // The bins and weights (summing to 1) that eval and passAt interpolate between for `w`.
+    void interpolationCorners(const glm::dvec3& w, int bins[4], double weights[4]) const;
 
     // Tabulated per row after prepare(): the cumulative probability of each bin.
     std::vector<float> cdf;
