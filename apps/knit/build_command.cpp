@@ -30,7 +30,7 @@ View reportView(const Scene& scene, const BuildCommand& b) {
     View settings;
     settings.fovDegrees = b.view.image.fovDegrees, settings.width = b.view.image.width;
     settings.height = b.view.image.height;
-    return frameMesh(scene.mesh(), yarnMargin(scene.binding(), scene.yarnRadius()), settings);
+    return frameMesh(scene.mesh(), scene.yarnMargin(), settings);
 }
 
 // Appends the yarns of `more` to `to` (points, normals and colours; curve offsets shifted).

@@ -120,6 +120,12 @@ double yarnMargin(const Binding& binding, double yarnRadius) {
     return h + yarnRadius;
 }
 
+double yarnMargin(const Pattern& pattern, double scale, double yarnRadius) {
+    double h = 0;
+    for (const glm::dvec3& q : pattern.points) h = std::max(h, std::abs(q.z * scale));
+    return h + yarnRadius;
+}
+
 CellLevels classifyCells(const DetailInputs& in, const View& view, const DetailOptions& o) {
     validateView(view);
     if (in.mesh == nullptr || in.grid == nullptr) throw Error("detail: no mesh or grid to classify");

@@ -31,7 +31,13 @@ std::vector<std::vector<glm::ivec2>> cellsPerChart(const UvGrid& grid) {
     return cells;
 }
 
-int stageCount(const SceneOptions& options) { return (options.buildPlies ? 9 : 8) + (options.detail ? 1 : 0); }
+int stageCount(const SceneOptions& options) { return (options.buildPlies ? 9 : 8) + (options.detail ? 2 : 0); }
+
+bool needsYarns(const CellLevels& levels) {
+    for (DetailLevel l : levels.level)
+        if (l == DetailLevel::Yarns || l == DetailLevel::Plies) return true;
+    return false;
+}
 
 }  // namespace
 
@@ -60,12 +66,19 @@ public:
     Scene finish() {
         run("normals", [&] { s_.normals_ = vertexNormals(s_.mesh_.positions, s_.mesh_.faces); });
         run("uv_grid", [&] { placeAndGrid(); });
-        run("tiling", [&] { tile(); });
-        run("stitch", [&] { stitch(); });
-        run("binding", [&] { bind(); });
-        run("evaluate",
-            [&] { evaluateBinding(s_.bound_.binding, s_.mesh_.faces, s_.mesh_.positions, s_.normals_, s_.yarns_); });
-        if (options_.detail) run("detail", [&] { levelsOfDetail(*options_.detail); });
+        // With a view, the level of every cell comes first (it needs only the mesh, the grid and
+        // the pattern's heights): a view that needs yarns nowhere (every cell culled or at the
+        // surface level, as a far view) builds none.
+        if (options_.detail) run("levels", [&] { levels(*options_.detail); });
+        if (!s_.detail_ || needsYarns(s_.detail_->levels)) {
+            run("tiling", [&] { tile(); });
+            run("stitch", [&] { stitch(); });
+            run("binding", [&] { bind(); });
+            run("evaluate", [&] {
+                evaluateBinding(s_.bound_.binding, s_.mesh_.faces, s_.mesh_.positions, s_.normals_, s_.yarns_);
+            });
+        }
+        if (s_.detail_) run("detail", [&] { pieces(); });
         plies();
         return std::move(s_);
     }
@@ -135,11 +148,11 @@ private:
         s_.bound_ = bindYarns(s_.mesh_, s_.normals_, s_.grid_, s_.stages_.uvYarns, o);
     }
 
-    // Step: the view (given, or framing the mesh grown by the yarns' margin), the level of every
-    // cell and the yarns cut into pieces per level.
-    void levelsOfDetail(const DetailOptions& o) {
+    // Step: the view (given, or framing the mesh grown by the yarns' margin) and the level of
+    // every cell.
+    void levels(const DetailOptions& o) {
         SceneDetail d;
-        d.margin = yarnMargin(s_.bound_.binding, s_.yarnRadius_);
+        d.margin = s_.yarnMargin();
         d.view = o.view ? *o.view : frameMesh(s_.mesh_, d.margin, o.viewSettings);
         PlyOptions po = options_.plies;
         po.yarnRadius = s_.yarnRadius_;
@@ -147,8 +160,14 @@ private:
         in.mesh = &s_.mesh_, in.grid = &s_.grid_, in.margin = d.margin;
         in.yarnRadius = s_.yarnRadius_, in.plyRadius = resolvePlyOptions(po).plyRadius;
         d.levels = classifyCells(in, d.view, o);
-        d.pieces = splitByLevel(s_.yarns_, s_.bound_.binding, s_.mesh_, s_.grid_, d.levels);
         s_.detail_ = std::move(d);
+    }
+
+    // Step: the yarns (none when no cell needs them) cut into pieces per level, and the
+    // surface-level triangles.
+    void pieces() {
+        SceneDetail& d = *s_.detail_;
+        d.pieces = splitByLevel(s_.yarns_, s_.bound_.binding, s_.mesh_, s_.grid_, d.levels);
     }
 
     // Step: the ply settings with the scene's yarn radius; the plies when asked for (of the
@@ -189,6 +208,12 @@ Scene buildScene(Pattern pattern, BaseMesh mesh, const SceneOptions& options) {
     SceneBuilder builder(options, stageCount(options) - 2);
     builder.adoptInputs(std::move(pattern), std::move(mesh));
     return builder.finish();
+}
+
+double Scene::yarnMargin() const {
+    if (!pattern_.points.empty() && placement_.scale > 0)
+        return knit::yarnMargin(pattern_, placement_.scale, yarnRadius_);
+    return knit::yarnMargin(bound_.binding, yarnRadius_);
 }
 
 Scene Scene::fromParts(SceneParts parts) {

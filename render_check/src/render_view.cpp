@@ -13,7 +13,7 @@ namespace detail {
 
 double sceneMargin(const Scene& scene) {
     if (scene.detail()) return scene.detail()->margin;
-    return yarnMargin(scene.binding(), scene.yarnRadius());
+    return scene.yarnMargin();
 }
 
 RectLight defaultLight(const Scene& scene, LightPlacement light, double irradiance) {

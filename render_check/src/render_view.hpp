@@ -7,8 +7,8 @@
 
 namespace knit::detail {
 
-// The yarns' margin of a scene: the scene's own when built for a view, else yarnMargin of its
-// binding (the yarn radius when it has none).
+// The yarns' margin of a scene: the scene's own when built for a view, else Scene::yarnMargin
+// (from the pattern; from the binding for a scene made from parts).
 double sceneMargin(const Scene& scene);
 
 // Front: a light of the framed radius up and to the right of the default camera. Back: a

@@ -3,6 +3,8 @@
 // camera move.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <map>
 #include <random>
 #include <tuple>
@@ -298,6 +300,58 @@ TEST(Detail, sceneWithViewGeneratesPliesOnlyForPlyCells) {
     EXPECT_EQ(st.levels.plies.cells + st.levels.yarns.cells + st.levels.surface.cells + st.levels.culledCells,
               near.grid().cells.size());
     EXPECT_EQ(near.yarns().curves.pointCount(), full.yarns().curves.pointCount());  // all yarns kept
+}
+
+// A view in which every cell is culled or at the surface level (a far view) needs no yarn: the
+// scene skips tiling, stitching, binding and evaluation, and still frames, classifies and lists
+// the surface triangles exactly as when it built every yarn.
+TEST(Detail, viewThatNeedsNoYarnsBuildsNone) {
+    SceneOptions so;
+    so.mesh = "drape";
+    so.meshOptions.resU = so.meshOptions.resV = 16;
+    so.placement.repeats = {60, 60};
+    DetailOptions d;
+    d.viewSettings.width = 32, d.viewSettings.height = 24;  // default framing: a pixel spans stitches
+    so.detail = d;
+    const Scene far = buildScene(so);
+    ASSERT_TRUE(far.detail().has_value());
+    for (DetailLevel l : far.detail()->levels.level) ASSERT_TRUE(l == DetailLevel::Surface || l == DetailLevel::Culled);
+    EXPECT_EQ(far.yarns().curves.curveCount(), 0u);
+    EXPECT_EQ(far.plies().curves.curveCount(), 0u);
+    std::vector<std::string> stages;
+    for (const StageTime& t : far.timings()) stages.push_back(t.stage);
+    for (const char* skipped : {"tiling", "stitch", "binding", "evaluate"})
+        EXPECT_EQ(std::count(stages.begin(), stages.end(), skipped), 0) << skipped;
+    // The scene with every yarn: the same framing, and its yarns cut by the same levels leave no
+    // piece and the same surface triangles.
+    SceneOptions fullOptions = so;
+    fullOptions.detail.reset();
+    fullOptions.buildPlies = false;
+    const Scene full = buildScene(fullOptions);
+    EXPECT_EQ(far.detail()->margin, yarnMargin(full.binding(), full.yarnRadius()));
+    const View framed = frameMesh(full.mesh(), yarnMargin(full.binding(), full.yarnRadius()), d.viewSettings);
+    EXPECT_EQ(far.detail()->view.eye, framed.eye);
+    EXPECT_EQ(far.detail()->view.target, framed.target);
+    const LevelPieces withYarns =
+        splitByLevel(full.yarns(), full.binding(), full.mesh(), full.grid(), far.detail()->levels);
+    EXPECT_EQ(far.detail()->pieces.surfaceFaces, withYarns.surfaceFaces);
+    EXPECT_EQ(withYarns.plies.curves.curveCount() + withYarns.yarns.curves.curveCount(), 0u);
+}
+
+// The margin from the pattern (before any yarn exists) is the binding's, bit for bit, on meshes
+// wider than a tile.
+TEST(Detail, patternMarginIsTheBindingsMargin) {
+    for (const char* mesh : {"plane", "cylinder", "sphere", "drape"}) {
+        SCOPED_TRACE(mesh);
+        SceneOptions so;
+        so.mesh = mesh;
+        so.placement.repeats = {12, 8};
+        so.buildPlies = false;
+        const Scene s = buildScene(so);
+        EXPECT_EQ(s.yarnMargin(), yarnMargin(s.binding(), s.yarnRadius()));
+        EXPECT_EQ(yarnMargin(s.pattern(), s.placement().scale, s.yarnRadius()),
+                  yarnMargin(s.binding(), s.yarnRadius()));
+    }
 }
 
 // Where `piece` (a ply curve of a view) sits in `whole` (the same yarn's same ply at full

@@ -13,6 +13,7 @@
 
 #include "knit/base_mesh.hpp"
 #include "knit/binding.hpp"
+#include "knit/pattern.hpp"
 #include "knit/plies.hpp"
 #include "knit/uv_grid.hpp"
 #include "knit/view.hpp"
@@ -66,6 +67,10 @@ struct DetailInputs {
 
 // The margin of DetailInputs: max |height| of the binding plus the yarn radius.
 double yarnMargin(const Binding& binding, double yarnRadius);
+// The same from the pattern before any yarn exists: max |z| of its points times the placement's
+// scale, plus the yarn radius. Equal to the binding's (bit for bit) when the pattern's highest or
+// lowest point is bound somewhere, which any mesh wider than a tile has; never smaller.
+double yarnMargin(const Pattern& pattern, double scale, double yarnRadius);
 
 // Culls and picks a level for every cell of the grid (view validated: knit::Error naming the
 // option). Culled: the cell's triangles, grown by margin + shadowMargin yarn radii, lie outside one

@@ -45,7 +45,7 @@ struct SceneOptions {
 // level (Scene::plies() holds the plies of the ply-level pieces only).
 struct SceneDetail {
     View view;
-    double margin = 0;  // the yarns' greatest height plus their radius (yarnMargin)
+    double margin = 0;  // the yarns' greatest height plus their radius (Scene::yarnMargin)
     CellLevels levels;
     LevelPieces pieces;
 };
@@ -104,6 +104,11 @@ public:
     const SceneStages& stages() const { return stages_; }
     // The view and levels when built with SceneOptions::detail; empty for the full scene.
     const std::optional<SceneDetail>& detail() const { return detail_; }
+    // The yarns' greatest height above or below the surface plus their radius, which frames the
+    // default camera and light: from the pattern and placement (so a scene built for a view
+    // frames as the full scene does, also when it built no yarns), from the binding for a scene
+    // made from parts.
+    double yarnMargin() const;
 
 private:
     friend class SceneBuilder;  // scene.cpp: runs the stages of buildScene into a Scene
