@@ -64,6 +64,12 @@ double yarnLevelRadius(const PlyOptions& resolved) {
     return resolved.plyRadius + resolved.centerRadius * mean;
 }
 
+double bundleHelix(const PlyOptions& resolved) {
+    if (!(resolved.pitch > 0)) return 0;
+    const double k = util::kTwoPi * resolved.centerRadius / resolved.pitch;
+    return resolved.twist == Twist::S ? -k : k;
+}
+
 PlyGeometry renderCurves(const Scene& scene, const glm::dvec3& origin, double fiberTwist, bool curvesMode) {
     const bool plies = scene.plies().curves.pointCount() > 0;
     const MappedYarns* yarnLevel = scene.detail() ? &scene.detail()->pieces.yarns : nullptr;
@@ -74,12 +80,15 @@ PlyGeometry renderCurves(const Scene& scene, const glm::dvec3& origin, double fi
     if (!curvesMode)
         throw Error("the yarn level of --detail view is drawn as round curves only: render it with --mode curves, "
                     "or use --detail full with --mode tubes or grid");
-    const double radius = yarnLevelRadius(resolvePlyOptions(scene.plyOptions()));
+    const PlyOptions resolved = resolvePlyOptions(scene.plyOptions());
+    const double radius = yarnLevelRadius(resolved);
     PlyGeometry y = buildPlyGeometry(yarnCurves(*yarnLevel, radius), origin, fiberTwist);
     y.firstBundleSegment = 0;
+    y.bundleHelix = bundleHelix(resolved);
     if (!plies) return y;
     PlyGeometry g = buildPlyGeometry(scene.plies(), origin, fiberTwist);
     g.firstBundleSegment = g.segmentCount();
+    g.bundleHelix = y.bundleHelix;
     append(g, y);
     return g;
 }

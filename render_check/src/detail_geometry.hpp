@@ -18,6 +18,10 @@ namespace knit::detail {
 // radius for 2 touching plies, the whole radius for one).
 double yarnLevelRadius(const PlyOptions& resolved);
 
+// PlyGeometry::bundleHelix for these (resolved) ply options: the ply sweep's dtheta/ds times the
+// centre radius (-2 pi Rc / pitch for S twist, +2 pi Rc / pitch for Z), 0 without a pitch.
+double bundleHelix(const PlyOptions& resolved);
+
 // The plies, plus (scene built for a view) the yarn-level pieces as single curves of
 // yarnLevelRadius, in the plies' scene units (per-point radius; curves mode only: knit::Error otherwise).
 // Empty (no segments) when neither level has any curve.

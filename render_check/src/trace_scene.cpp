@@ -136,6 +136,11 @@ PlySurfacePoint TraceScene::plyPoint(const TraceHit& h) const {
     sp.radial = glm::dvec3((1 - u) * plies_.radial[j] + u * plies_.radial[j + 1]);
     sp.v = (1 - u) * plies_.arc[j] + u * plies_.arc[j + 1];
     sp.bundle = h.segment >= plies_.firstBundleSegment;
+    // A yarn-level curve shows its plies' helices, not its own axis (PlyGeometry::bundleHelix).
+    if (sp.bundle && plies_.bundleHelix != 0) {
+        const double len = glm::length(sp.tangent), nn = glm::length(sp.normal);
+        if (len > 0 && nn > 0) sp.tangent += plies_.bundleHelix * glm::cross(sp.tangent, sp.normal / nn);
+    }
     return sp;
 }
 

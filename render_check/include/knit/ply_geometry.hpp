@@ -37,6 +37,10 @@ struct PlyGeometry {
     // Segments from this index on are yarn-level curves (a view's plies folded into one curve of
     // the bundle's width: knit/detail.hpp); none by default.
     size_t firstBundleSegment = SIZE_MAX;
+    // On those curves the visible plies' direction: the plies wind around the yarn as helices,
+    // so where the bundle faces n their tangent is T + bundleHelix (T x n) (bundleHelix = -+2 pi
+    // centre radius / pitch for S / Z twist: the ply sweep's dtheta/ds times its centre radius).
+    double bundleHelix = 0;
 
     size_t segmentCount() const { return segments.size(); }
     bool hasLeft(size_t s) const { return flags[s] & 1u; }
