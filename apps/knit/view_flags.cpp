@@ -1,6 +1,10 @@
 // The view flags of `knit build` and `knit render` (see view_flags.hpp).
 #include "view_flags.hpp"
 
+#include <cmath>
+#include <string>
+#include <utility>
+
 #include "choice.hpp"
 #include "knit/error.hpp"
 
@@ -29,6 +33,14 @@ void addViewFlags(CLI::App& app, ViewFlags& f, double& fovDegrees, int& width, i
               std::string("full: everything at ply detail; view: cull per UV cell and pick plies / yarns / surface "
                           "by projected size (default ") +
                   (defaultDetail == Detail::Full ? "full" : "view") + ")");
+    app.add_option("--ply-pixels", f.plyPixels,
+                   "With --detail view: a cell gets plies where a ply's radius covers this many pixels (kept down to "
+                   "0.8 of it when the camera moves; smaller: more plies, closer to --detail full)")
+        ->capture_default_str();
+    app.add_option("--yarn-pixels", f.yarnPixels,
+                   "With --detail view: a cell below the ply level gets yarn curves where a yarn's radius covers "
+                   "this many pixels, and the textured base mesh below that")
+        ->capture_default_str();
 }
 
 std::optional<View> givenView(const ViewFlags& f, const ImageSize& image) {
@@ -43,6 +55,10 @@ std::optional<View> givenView(const ViewFlags& f, const ImageSize& image) {
 }
 
 std::optional<DetailOptions> detailOptions(const ViewFlags& f, const ImageSize& image, bool backLit, bool yarnCurves) {
+    for (const auto& [name, value] : {std::pair<const char*, double>{"--ply-pixels", f.plyPixels},
+                                      std::pair<const char*, double>{"--yarn-pixels", f.yarnPixels}})
+        if (!(value > 0) || !std::isfinite(value))
+            throw Error(std::string(name) + " must be a positive number of pixels (got " + std::to_string(value) + ")");
     if (f.detail == Detail::Full) return std::nullopt;
     DetailOptions d;
     d.view = givenView(f, image);
@@ -51,6 +67,8 @@ std::optional<DetailOptions> detailOptions(const ViewFlags& f, const ImageSize& 
     validateView(d.view.value_or(d.viewSettings));
     d.backLit = backLit;
     d.yarnLevel = yarnCurves;
+    d.plyPixels = {f.plyPixels, 0.8 * f.plyPixels};
+    d.yarnPixels = {f.yarnPixels, 0.8 * f.yarnPixels};
     return d;
 }
 

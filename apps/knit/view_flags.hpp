@@ -24,11 +24,15 @@ enum class Detail { Full, View };
 struct ViewFlags {
     std::vector<double> eye, target, up;  // empty, or X Y Z
     Detail detail = Detail::Full;
+    // --ply-pixels, --yarn-pixels: the projected radius (pixels) at which a cell gets plies or
+    // yarn curves (DetailOptions' enter thresholds; a cell keeps its level down to 0.8 of them).
+    double plyPixels = DetailOptions{}.plyPixels.enter;
+    double yarnPixels = DetailOptions{}.yarnPixels.enter;
     ImageSize image;  // build's --fov --width --height (render binds them to its RenderOptions)
 };
 
-// Registers --eye --target --up --detail (default `defaultDetail`) and --fov --width --height
-// bound to the three given fields.
+// Registers --eye --target --up --detail (default `defaultDetail`) --ply-pixels --yarn-pixels and
+// --fov --width --height bound to the three given fields.
 void addViewFlags(CLI::App& command, ViewFlags& flags, double& fovDegrees, int& width, int& height,
                   Detail defaultDetail);
 
@@ -37,7 +41,7 @@ void addViewFlags(CLI::App& command, ViewFlags& flags, double& fovDegrees, int& 
 std::optional<View> givenView(const ViewFlags& flags, const ImageSize& image);
 
 // With --detail view: the detail options for the given camera (or the default framing at the
-// image's size). `backLit` keeps back faces; `yarnCurves` false gives yarn-level cells plies
+// image's size) and thresholds (knit::Error naming --ply-pixels / --yarn-pixels unless positive). `backLit` keeps back faces; `yarnCurves` false gives yarn-level cells plies
 // (renderers that draw yarn curves in curves mode only).
 std::optional<DetailOptions> detailOptions(const ViewFlags& flags, const ImageSize& image, bool backLit,
                                            bool yarnCurves);

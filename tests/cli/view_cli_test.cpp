@@ -99,12 +99,13 @@ TEST_F(ViewCli, buildFarViewWritesTheTexturedSurfaceLevel) {
     knit::test::expectGltfValid((dir / "far.glb").string());
 }
 
-// A grazing view of a plane has all three levels: ply- and yarn-level cells are written as plies,
-// the surface-level triangles with the baked material, all in one valid file.
+// A grazing view of a plane has all three levels (with plies from 1 pixel: the default 0.5 leaves
+// two-ply yarns no yarn level): ply- and yarn-level cells are written as plies, the surface-level
+// triangles with the baked material, all in one valid file.
 TEST_F(ViewCli, buildMixedViewWritesEveryLevelInOneGltf) {
     if (!hasRender()) GTEST_SKIP() << "knit was built without render_check (it bakes the surface level)";
     const std::string view = " -q --mesh plane --mesh-res 8 --repeats 20 20 --bake-size 16 --detail view "
-                             "--eye 0.24 0.03 0.24 --target -0.2 0 -0.2 --width 40 --height 40 ";
+                             "--eye 0.24 0.03 0.24 --target -0.2 0 -0.2 --width 40 --height 40 --ply-pixels 1 ";
     for (const char* out : {"mixed.glb", "mixed.gltf"}) {
         const knit::test::CliRun r = run("build" + view + "-o " + out + " --report r.json");
         ASSERT_EQ(r.exitCode, 0) << r.output;
@@ -123,6 +124,28 @@ TEST_F(ViewCli, buildMixedViewWritesEveryLevelInOneGltf) {
     EXPECT_NE(obj.output.find("-o 'mixed.obj'"), std::string::npos) << obj.output;
     EXPECT_NE(obj.output.find(".glb or .gltf"), std::string::npos) << obj.output;
     EXPECT_FALSE(fs::exists(dir / "mixed.obj"));
+}
+
+// --ply-pixels and --yarn-pixels move the levels' thresholds: finer thresholds keep more cells at
+// finer levels; a threshold that is not a positive number is refused, naming the option, before
+// anything is built or written.
+TEST_F(ViewCli, levelThresholdsMoveTheLevelsAndBadOnesNameTheOption) {
+    const std::string view = " -q --mesh plane --mesh-res 8 --repeats 20 20 --detail view --eye 0.24 0.03 0.24 "
+                             "--target -0.2 0 -0.2 --width 40 --height 40 -o v.obj --report r.json ";
+    ASSERT_EQ(run("build" + view + "--ply-pixels 0.05 --yarn-pixels 0.05").exitCode, 0);
+    const nlohmann::json fine = report("r.json");
+    ASSERT_EQ(run("build" + view + "--ply-pixels 0.5 --yarn-pixels 0.1").exitCode, 0);
+    const nlohmann::json coarse = report("r.json");
+    EXPECT_GT(fine["levels"]["plies"]["cells"].get<int>(), coarse["levels"]["plies"]["cells"].get<int>());
+    EXPECT_GT(coarse["levels"]["yarns"]["cells"].get<int>(), 0);
+    for (const char* bad : {"--ply-pixels 0", "--ply-pixels -1", "--yarn-pixels nan", "--yarn-pixels inf"}) {
+        fs::remove(dir / "bad.glb");
+        const knit::test::CliRun r = run("build -q --detail view " + std::string(bad) + " -o bad.glb");
+        EXPECT_EQ(r.exitCode, 1) << bad;
+        const std::string option = std::string(bad).substr(0, std::string(bad).find(' '));
+        EXPECT_NE(r.output.find(option), std::string::npos) << r.output;
+        EXPECT_FALSE(fs::exists(dir / "bad.glb")) << bad;
+    }
 }
 
 TEST_F(ViewCli, buildViewThatSeesNoClothSaysSo) {

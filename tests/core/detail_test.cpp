@@ -149,9 +149,17 @@ View grazingView() {
     return v;
 }
 
+// Both levels entered at 1 pixel, left at 0.8 (the defaults enter the ply level at 0.5).
+DetailOptions onePixel() {
+    DetailOptions o;
+    o.plyPixels = {1.0, 0.8};
+    o.yarnPixels = {1.0, 0.8};
+    return o;
+}
+
 TEST(Detail, levelsFollowProjectedSize) {
     const Cells c = gridOf(test::planeMesh(test::Triangulation::Regular, 16, 1.0), 1.0 / 32);
-    const CellLevels levels = classifyCells(inputsOf(c, 3e-3, 2e-3), grazingView(), DetailOptions{});
+    const CellLevels levels = classifyCells(inputsOf(c, 3e-3, 2e-3), grazingView(), onePixel());
     std::map<DetailLevel, size_t> count;
     for (size_t k = 0; k < levels.level.size(); ++k) {
         ++count[levels.level[k]];
@@ -171,8 +179,8 @@ TEST(Detail, onePercentCameraMoveChangesOnlyCellsNearThresholdsAndDoesNotFlicker
     const View v0 = grazingView();
     View v1 = v0;
     v1.eye += 0.01 * glm::distance(v0.eye, v0.target) * glm::normalize(v0.target - v0.eye);  // 1% closer
-    const CellLevels l0 = classifyCells(in, v0, DetailOptions{});
-    DetailOptions o;
+    const CellLevels l0 = classifyCells(in, v0, onePixel());
+    DetailOptions o = onePixel();
     o.previous = &l0;
     const CellLevels l1 = classifyCells(in, v1, o);
     size_t changed = 0;
