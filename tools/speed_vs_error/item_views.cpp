@@ -4,7 +4,8 @@
 // mid (a grazing view ~6 cm from the cloth) and close (eye 2.3 cm above it). Per camera: one
 // full-detail reference render, then `--detail view` renders with the level thresholds scaled by
 // 0.5, 1 (the default) and 2 (a cell keeps a finer level down to half / twice the projected size),
-// plus the default at a second seed (the noise floor of the view render). Each gives the geometry
+// plus the default at a second seed (the noise floor of the view render), and the full render at a
+// second seed (the noise floor of the comparison: how close another full render comes). Each gives the geometry
 // kept (curve segments traced, surface triangles), wall time of scene + render, peak memory, and
 // the image error against the reference: mean radiance per channel and the RMSE of 4 x 4 block
 // mean luminances, both relative to the reference's mean.
@@ -83,8 +84,9 @@ json viewRender(const knit::Pattern& pattern, const knit::BaseMesh& mesh, const 
     knit::DetailOptions d;
     if (!c.framed) d.view = c.view;
     d.viewSettings.width = 320, d.viewSettings.height = 240;
-    d.plyPixels = {scale * 1.0, scale * 0.8};
-    d.yarnPixels = {scale * 1.0, scale * 0.8};
+    const knit::DetailOptions defaults;
+    d.plyPixels = {scale * defaults.plyPixels.enter, scale * defaults.plyPixels.leave};
+    d.yarnPixels = {scale * defaults.yarnPixels.enter, scale * defaults.yarnPixels.leave};
     so.detail = d;
     const knit::Scene scene = knit::buildScene(pattern, mesh, so);
     const knit::RenderResult r = knit::renderScene(scene, renderOptions(c, seed));
@@ -138,6 +140,11 @@ json measureViews() {
                                    {"eye", {r.view.eye.x, r.view.eye.y, r.view.eye.z}},
                                    {"target", {r.view.target.x, r.view.target.y, r.view.target.z}}};
             std::fprintf(stderr, "  %s full: %.1f s render, %zu segments\n", c.name, seconds(tr), r.segments);
+            // The noise floor: the same full render at another seed against the reference.
+            const json noise = imageError(knit::renderScene(full, renderOptions(c, 2)).image, r.image);
+            out[c.name]["full"]["seed2"] = noise;
+            std::fprintf(stderr, "  %s full seed 2: block RMSE %.1f%%\n", c.name,
+                         100 * noise["block_rmse_relative"].get<double>());
         }
         out["full_peak_bytes"] = knit::util::peakResidentBytes();
     }

@@ -94,6 +94,7 @@ void writeReport(const ReportOptions& o) {
     if (measured("item4")) reportBaseMesh(rep, r["item4"]);
     if (measured("item5")) reportRender(rep, r["item5"]);
     if (measured("item6")) reportGarment(rep, r["item6"]);
+    if (measured("item7")) reportViews(rep, r["item7"]);
     std::swap(body, rep.md);
 
     std::ostringstream& md = rep.md;
@@ -131,7 +132,7 @@ void writeReport(const ReportOptions& o) {
            << str(s["default"]) << " | " << str(s["error"]) << " |\n";
     md << "\nR = yarn radius, r = ply radius. Timings are wall clock, best of the runs recorded in results.json (with "
           "the load average before and after each item).\n\n";
-    for (char item = '1'; item <= '6'; ++item) {
+    for (char item = '1'; item <= '7'; ++item) {
         const std::string key = std::string("item") + item;
         if (!r.contains(key))
             md << "**Item " << item << " was not measured in this run: no numbers are reported for it.**\n\n";

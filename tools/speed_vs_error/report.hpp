@@ -91,12 +91,13 @@ struct Report {
     }
 };
 
-// One section per item (report_settings.cpp: 1-3, report_workloads.cpp: 4-6).
+// One section per item (report_settings.cpp: 1-3, report_workloads.cpp: 4-6, report_views.cpp: 7).
 void reportPlies(Report& rep, const json& j, const json& defaults);
 void reportTubes(Report& rep, const json& j, const json& defaults);
 void reportDraco(Report& rep, const json& j, const json& defaults);
 void reportBaseMesh(Report& rep, const json& j);
 void reportRender(Report& rep, const json& j);
 void reportGarment(Report& rep, const json& j);
+void reportViews(Report& rep, const json& j);  // report_views.cpp: item 7
 
 }  // namespace sve
