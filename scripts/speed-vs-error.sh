@@ -6,21 +6,21 @@
 #
 # Steps: install what is missing with apt-get (the build dependencies and gnuplot, Debian package
 # gnuplot-nox), configure and build the measurement program (tools/speed_vs_error/) in Release,
-# run it (all six items, about 5-10 minutes on 2 cores; the garment item needs ~7 GiB of memory),
+# run it (all seven items, about 10-15 minutes on 2 cores; the garment items need ~10 GiB of memory),
 # write the report and draw the plots. Every number in the report comes from this run; the
 # machine (CPU, threads, memory, load average), the git commit (marked dirty when the tree has
 # uncommitted changes) and the date are recorded in it. The docs are replaced only when
 # everything succeeded.
 #
 # Environment: KNIT_BUILD_DIR (default: build), KNIT_JOBS (default: nproc),
-#              KNIT_SVE_ITEMS (default: 6,1,4,2,3,5; e.g. "1,4" for a quick partial run).
+#              KNIT_SVE_ITEMS (default: 6,7,1,4,2,3,5; e.g. "1,4" for a quick partial run).
 set -euo pipefail
 start=$(date +%s)
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${KNIT_BUILD_DIR:-"$root/build"}
 case "$build" in /*) ;; *) build="$root/$build" ;; esac
 jobs=${KNIT_JOBS:-$(nproc)}
-items=${KNIT_SVE_ITEMS:-6,1,4,2,3,5}
+items=${KNIT_SVE_ITEMS:-6,7,1,4,2,3,5}
 
 # Step 1: dependencies: the project's packages (scripts/setup.sh, idempotent) plus gnuplot.
 extra=()
