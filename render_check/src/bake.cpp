@@ -39,6 +39,10 @@ void validateBake(const Pattern& pattern, const BakeOptions& o) {
     requireRange(o.albedoPaths, 0, 1024, "albedoPaths");
     requireRange(o.maxBounces, 1, 64, "maxBounces");
     requireRange(o.scatteringPaths, 0, 1 << 20, "scatteringPaths (--scattering-paths)");
+    requireRange(o.scatteringSide, 1, 64, "scatteringSide");
+    if (!(o.scatteringFocusShare >= 0 && o.scatteringFocusShare <= 1))
+        throw Error("bake: scatteringFocusShare must be in [0, 1] (got " + std::to_string(o.scatteringFocusShare) +
+                    ")");
     for (double v : o.origin)
         if (!(v >= 0 && v < 1)) throw Error("bake: origin must be in [0, 1) periods (got " + std::to_string(v) + ")");
     for (double v : o.stretch)

@@ -94,13 +94,14 @@ struct Tracer {
     bool env;
     uint64_t* rays;
 
-    Shading shade(const TraceHit& h) const {
+    // o, d: the ray that found h (a camera ray reads the surface level's texture prefiltered).
+    Shading shade(const TraceHit& h, const glm::vec3& o, const glm::vec3& d) const {
         Shading sh;
         if (h.kind == TraceHit::Base && scene.baseTexture() && scene.baseTexture()->scattering()) {
             sh.ply = false;
             sh.table = scene.baseTexture()->scattering();
             sh.frame = scene.baseFrame(h);
-            sh.albedo = scene.baseTexture()->tint(scene.baseUv(h));
+            sh.albedo = scene.baseTexture()->tint(scene.baseUv(h), scene.baseLevel(h, o, d));
             return sh;
         }
         if (h.kind == TraceHit::Base) {
@@ -174,7 +175,7 @@ struct Tracer {
             if (depth >= s.maxDepth) break;
             // Step 2: local frame and BSDF at the hit.
             const glm::vec3 p = o + h.t * d;
-            Shading sh = shade(h);
+            Shading sh = shade(h, o, d);
             const glm::dvec3 wo = -glm::dvec3(d);
             const glm::dvec3 woL = sh.frame.toLocal(wo);
             if ((glm::dot(-d, h.ng) > 0) != (woL.z > 0)) break;

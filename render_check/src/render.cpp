@@ -144,8 +144,13 @@ RenderResult renderScene(const Scene& scene, const RenderOptions& o) {
     so.mode = mode;
     so.tubeSides = o.tubeSides;
     so.baseMesh = base;
-    const SurfaceTexture texture = detail::surfaceTexture(scene, o);
+    SurfaceTexture texture = detail::surfaceTexture(scene, o);
     so.baseTexture = o.surface ? &texture : res.surfaceTextured ? &viewTexture : nullptr;
+    // Camera rays read the surface level's tint and holes prefiltered over their footprint.
+    for (SurfaceTexture* t : {&texture, &viewTexture}) {
+        t->pixelAngle = 2.0 * std::tan(view.fovDegrees * util::kPi / 360.0) / view.height;
+        t->eye = geometry.toScene(view.eye);
+    }
     if (mode == GeometryMode::Grid && !o.surface) {
         cells = segmentCells(scene, geometry);
         so.segmentCells = &cells;

@@ -75,7 +75,7 @@ void TraceScene::attachBaseMesh(RTCDevice device, const BaseMesh& m) {
     rtcSetSharedGeometryBuffer(bg, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, baseFaces_.data(), 0, sizeof(glm::uvec3),
                                baseFaces_.size());
     if (options_.baseTexture) {  // the surface level: alpha MASK from the baked coverage
-        surface_.mesh = &m, surface_.texture = options_.baseTexture;
+        surface_.mesh = &m, surface_.texture = options_.baseTexture, surface_.unit = plies_.unit;
         setSurfaceFilter(bg, surface_);
     }
     rtcCommitGeometry(bg);

@@ -106,6 +106,10 @@ public:
     const SurfaceTexture* baseTexture() const { return options_.baseTexture; }
     ShadingFrame baseFrame(const TraceHit& hit) const { return surface_.frame(hit.segment); }
     glm::dvec2 baseUv(const TraceHit& hit) const { return surface_.uvAt(hit.segment, hit.u, hit.v); }
+    // The texture pyramid level a ray from org along dir sees at its Base hit (SurfaceMesh::level).
+    int baseLevel(const TraceHit& hit, const glm::vec3& org, const glm::vec3& dir) const {
+        return surface_.level(hit.segment, org, dir, hit.t);
+    }
 
     GeometryMode mode() const { return options_.mode; }
     const PlyGeometry& plies() const { return plies_; }

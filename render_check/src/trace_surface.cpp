@@ -50,7 +50,10 @@ void surfaceFilter(const RTCFilterFunctionNArguments* a) {
         }
         const glm::dvec3 toOrigin(-RTCRayN_dir_x(a->ray, a->N, i), -RTCRayN_dir_y(a->ray, a->N, i),
                                   -RTCRayN_dir_z(a->ray, a->N, i));
-        const double pass = s.texture->passThrough(uv, s.frame(face).toLocal(toOrigin));
+        const glm::vec3 org(RTCRayN_org_x(a->ray, a->N, i), RTCRayN_org_y(a->ray, a->N, i),
+                            RTCRayN_org_z(a->ray, a->N, i));
+        const int level = s.level(face, org, -glm::vec3(toOrigin), RTCRayN_tfar(a->ray, a->N, i));
+        const double pass = s.texture->passThrough(uv, s.frame(face).toLocal(toOrigin), level);
         if (rayUniform(a, i, face) < pass) a->valid[i] = 0;
     }
 }
@@ -84,7 +87,52 @@ const SurfaceScattering* SurfaceTexture::scattering() const {
     return bake && !bake->scattering.empty() ? &bake->scattering : nullptr;
 }
 
-Rgb SurfaceTexture::tint(glm::dvec2 uv) const {
+namespace {
+
+// The texel of `level` at uv (its texels cover 2^level x 2^level of level 0's, from the top left).
+size_t levelTexel(const SurfaceTexture& t, const SurfaceTexture::Level& l, int level, glm::dvec2 uv) {
+    const double s = fraction(uv.x * t.repeats.x), r = fraction(1.0 - uv.y * t.repeats.y);
+    const int col = std::clamp(int(s * t.bake->width) >> level, 0, l.width - 1);
+    const int row = std::clamp(int(r * t.bake->height) >> level, 0, l.height - 1);
+    return size_t(row) * size_t(l.width) + size_t(col);
+}
+
+// Level k + 1 of the pyramid from level k: each texel the mean of the 2 x 2 it covers, wrapping
+// around the period where level k has an odd size.
+SurfaceTexture::Level halve(const SurfaceTexture::Level& k) {
+    SurfaceTexture::Level n;
+    n.width = (k.width + 1) / 2, n.height = (k.height + 1) / 2;
+    n.tint.assign(size_t(3) * n.width * n.height, 0.f);
+    n.holes.assign(size_t(n.width) * n.height, 0.f);
+    n.coverage.assign(size_t(n.width) * n.height, 0.f);
+    for (int y = 0; y < n.height; ++y)
+        for (int x = 0; x < n.width; ++x) {
+            const size_t o = size_t(y) * n.width + x;
+            Rgb tint(0.0);
+            double weight = 0;
+            for (int dy = 0; dy < 2; ++dy)
+                for (int dx = 0; dx < 2; ++dx) {
+                    const size_t i = size_t((2 * y + dy) % k.height) * k.width + (2 * x + dx) % k.width;
+                    tint += double(k.coverage[i]) * Rgb(k.tint[3 * i], k.tint[3 * i + 1], k.tint[3 * i + 2]);
+                    weight += k.coverage[i];
+                    n.holes[o] += 0.25f * k.holes[i];
+                    n.coverage[o] += 0.25f * k.coverage[i];
+                }
+            // The tint a hit sees: hits land where the yarn covers, so the covered texels weigh.
+            for (int c = 0; c < 3; ++c) n.tint[3 * o + c] = weight > 0 ? float(tint[c] / weight) : 1.f;
+        }
+    return n;
+}
+
+}  // namespace
+
+Rgb SurfaceTexture::tint(glm::dvec2 uv, int level) const {
+    if (!levels.empty()) {
+        const int k = std::clamp(level, 0, maxLevel());
+        const size_t i = levelTexel(*this, levels[size_t(k)], k, uv);
+        const std::vector<float>& t = levels[size_t(k)].tint;
+        return Rgb(t[3 * i], t[3 * i + 1], t[3 * i + 2]);
+    }
     const Rgb a = albedo(uv);
     Rgb t(1.0);
     for (int c = 0; c < 3; ++c)
@@ -92,9 +140,13 @@ Rgb SurfaceTexture::tint(glm::dvec2 uv) const {
     return t;
 }
 
-double SurfaceTexture::passThrough(glm::dvec2 uv, const glm::dvec3& out) const {
+double SurfaceTexture::passThrough(glm::dvec2 uv, const glm::dvec3& out, int level) const {
     const double pass = bake->scattering.passAt(out);
     if (!(meanHoles > 1e-6)) return pass;
+    if (!levels.empty()) {
+        const int k = std::clamp(level, 0, maxLevel());
+        return std::clamp(pass * levels[size_t(k)].holes[levelTexel(*this, levels[size_t(k)], k, uv)], 0.0, 1.0);
+    }
     return std::clamp(pass * (1.0 - coverage(uv)) / meanHoles, 0.0, 1.0);
 }
 
@@ -110,12 +162,48 @@ SurfaceTexture makeSurfaceTexture(const SurfaceBake& bake, glm::dvec2 repeats) {
     }
     t.meanAlbedo = weight > 0 ? sum / weight : Rgb(0.0);
     t.meanHoles = 1.0 - bake.meanCoverage();
+    // The pyramid of the tint and the holes (only a table reads them).
+    if (!bake.scattering.empty() && bake.width > 0 && bake.height > 0) {
+        SurfaceTexture::Level base;
+        base.width = bake.width, base.height = bake.height;
+        base.tint.resize(3 * bake.coverage.size());
+        base.holes.resize(bake.coverage.size());
+        base.coverage = bake.coverage;
+        for (size_t i = 0; i < bake.coverage.size(); ++i) {
+            for (int c = 0; c < 3; ++c)
+                base.tint[3 * i + c] = t.meanAlbedo[c] > 0 ? float(bake.albedo[3 * i + c] / t.meanAlbedo[c]) : 1.f;
+            base.holes[i] = t.meanHoles > 1e-6 ? float((1.0 - bake.coverage[i]) / t.meanHoles) : 0.f;
+        }
+        t.levels.push_back(std::move(base));
+        while (t.levels.back().width > 1 || t.levels.back().height > 1) t.levels.push_back(halve(t.levels.back()));
+    }
     return t;
 }
 
 glm::dvec2 SurfaceMesh::uvAt(uint32_t face, float u, float v) const {
     const glm::uvec3 t = mesh->faceUvs[face];
     return (1.0 - double(u) - double(v)) * mesh->uvs[t.x] + double(u) * mesh->uvs[t.y] + double(v) * mesh->uvs[t.z];
+}
+
+int SurfaceMesh::level(uint32_t face, const glm::vec3& org, const glm::vec3& dir, float t) const {
+    if (texture == nullptr || !(texture->pixelAngle > 0) || texture->levels.size() < 2) return 0;
+    if (glm::length(org - texture->eye) > 1e-2f * std::max(1.f, glm::length(texture->eye)))
+        return 0;  // not a camera ray
+    // The footprint (metres, foreshortened) over the period's size on this triangle, in texels.
+    const glm::uvec3 f = mesh->faces[face], tu = mesh->faceUvs[face];
+    const glm::dvec3 e1 = mesh->positions[f.y] - mesh->positions[f.x], e2 = mesh->positions[f.z] - mesh->positions[f.x];
+    const glm::dvec2 d1 = mesh->uvs[tu.y] - mesh->uvs[tu.x], d2 = mesh->uvs[tu.z] - mesh->uvs[tu.x];
+    const double det = d1.x * d2.y - d2.x * d1.y;
+    if (!(std::abs(det) > 0)) return 0;
+    const glm::dvec3 dPdu = (e1 * d2.y - e2 * d1.y) / det, dPdv = (e2 * d1.x - e1 * d2.x) / det;
+    const double texelU = glm::length(dPdu) / (texture->repeats.x * texture->bake->width);
+    const double texelV = glm::length(dPdv) / (texture->repeats.y * texture->bake->height);
+    const glm::dvec3 n = glm::normalize(glm::cross(e1, e2));
+    const double cosine = std::max(0.2, std::abs(glm::dot(n, glm::normalize(glm::dvec3(dir)))));
+    const double footprint = double(t) * unit * texture->pixelAngle / cosine;
+    const double texels = footprint / std::max(texelU, texelV);
+    if (!(texels >= 2)) return 0;
+    return std::min(int(std::floor(std::log2(texels))), texture->maxLevel());
 }
 
 ShadingFrame SurfaceMesh::frame(uint32_t face) const {

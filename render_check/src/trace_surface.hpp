@@ -28,6 +28,11 @@ struct SurfaceTexture {
     float alphaCutoff = 0.5f;      // MASK, as exported (without a scattering table)
     Rgb meanAlbedo{0.0};           // coverage-weighted mean of the baked albedo (makeSurfaceTexture)
     double meanHoles = 0;          // 1 - the bake's mean coverage (makeSurfaceTexture)
+    // Camera rays (from `eye`, scene units) see a texel footprint of pixelAngle x distance: with a
+    // table they read the tint and the holes prefiltered over it (a box pyramid, as a client's
+    // mipmaps), which is what the pixel averages anyway, with less noise. 0: never.
+    double pixelAngle = 0;
+    glm::vec3 eye{0.f};
 
     // Texel (row-major from the top) at the mesh's uv.
     size_t texel(glm::dvec2 uv) const;
@@ -37,12 +42,24 @@ struct SurfaceTexture {
     // The bake's scattering table, or null when it has none (then: MASK and Lambertian albedo).
     const SurfaceScattering* scattering() const;
     // With a table: the baked albedo relative to its mean (the pattern's colours across the cell;
-    // the table holds the cell's mean), per channel.
-    Rgb tint(glm::dvec2 uv) const;
+    // the table holds the cell's mean), per channel, averaged over 2^level x 2^level texels.
+    Rgb tint(glm::dvec2 uv, int level = 0) const;
     // With a table: the probability that a line seen from `out` (tangent space) crosses the cloth
     // at uv through a hole: the table's pass fraction for `out`, spread over the cell as the
-    // baked holes (1 - coverage) are.
-    double passThrough(glm::dvec2 uv, const glm::dvec3& out) const;
+    // baked holes (1 - coverage) are, averaged over 2^level x 2^level texels.
+    double passThrough(glm::dvec2 uv, const glm::dvec3& out, int level = 0) const;
+
+    // Box pyramid of the tint (RGB, weighted by the coverage: what a hit sees) and of the holes
+    // relative to their mean, level 0 = the bake's texels, each next level averaging 2 x 2 of the
+    // previous (periodic); makeSurfaceTexture.
+    struct Level {
+        int width = 0, height = 0;
+        std::vector<float> tint;      // 3 per texel
+        std::vector<float> holes;     // (1 - coverage) / meanHoles
+        std::vector<float> coverage;  // the tint's weights
+    };
+    std::vector<Level> levels;
+    int maxLevel() const { return levels.empty() ? 0 : int(levels.size()) - 1; }
 };
 
 // The texture of a bake repeated `repeats` times across the mesh's uv range.
@@ -58,6 +75,10 @@ struct SurfaceMesh {
     // Tangent space of triangle `face` (the bake's: x along +u, y along +v, z its counter-clockwise
     // normal, the cloth's front); an arbitrary x, y around z where the uv are degenerate.
     ShadingFrame frame(uint32_t face) const;
+    double unit = 1;  // metres per scene unit (the renderer's)
+    // The pyramid level a camera ray from texture->eye sees at distance t (scene units) along
+    // `dir` on `face`: log2 of its footprint in texels (foreshortened), 0 for other rays.
+    int level(uint32_t face, const glm::vec3& org, const glm::vec3& dir, float t) const;
 };
 
 // Sets the surface filter (intersect and occlusion) on a triangle geometry of surface.mesh's

@@ -237,6 +237,13 @@ TEST(SurfaceScattering, badPathCountNamesTheOption) {
     BakeOptions o = scatteringBake(-1);
     EXPECT_NE(test::errorOf([&] { bakeSurface(generateStockinette(), o); }).find("--scattering-paths"),
               std::string::npos);
+    o = scatteringBake(16);
+    o.scatteringSide = 0;
+    EXPECT_NE(test::errorOf([&] { bakeSurface(generateStockinette(), o); }).find("scatteringSide"), std::string::npos);
+    o = scatteringBake(16);
+    o.scatteringFocusShare = 1.5;
+    EXPECT_NE(test::errorOf([&] { bakeSurface(generateStockinette(), o); }).find("scatteringFocusShare"),
+              std::string::npos);
 }
 
 // A plane (+y up, u along +x, v along -z) without plies, `yarnRadius` metres to the scene unit.
