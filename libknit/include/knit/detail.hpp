@@ -48,12 +48,17 @@ struct DetailOptions {
     bool cullBackFaces = true;
     // Frustum margin beyond the yarns' height and radius, in yarn radii (shadows cast into the view).
     double shadowMargin = 4.0;
-    // Ply radius in pixels for the ply level: half a pixel (a ply about a pixel wide). At 1 pixel
-    // the yarn level took the garment close-up's cells where plies are 1-2 pixels wide, and their
-    // twist and crevices, which a round yarn curve cannot show, made its 4 x 4 blocks 6.1% off the
-    // full render against 4.2% between two full renders; at 0.5 it is 4.2% (docs/views.md).
-    Hysteresis plyPixels{0.5, 0.4};
-    Hysteresis yarnPixels;  // yarn radius in pixels for the yarn level
+    // Ply radius in pixels for the ply level, and yarn radius in pixels for the yarn level: plies
+    // wherever a yarn is about a pixel wide or more (for two plies, a ply radius of a quarter
+    // pixel is a yarn radius of half a pixel, so the two meet and such yarns go from plies
+    // straight to the surface). Measured on the garment (docs/views.md): with plies only from a
+    // ply radius of 1 pixel, the close-up's yarn-level half (plies 1-2 pixels wide, whose twist
+    // and crevices a round curve cannot show) was 7.5% off in 4 x 4 blocks, where two full
+    // renders differ by 4.2%; the grazing mid view's surface level, where yarns are 1-2 pixels
+    // wide, 7.1% against 4.5%. With these defaults both are within the two full renders'
+    // difference.
+    Hysteresis plyPixels{0.25, 0.2};
+    Hysteresis yarnPixels{0.5, 0.4};
     // false: cells of the yarn level get plies (for consumers that cannot draw yarn curves).
     bool yarnLevel = true;
     // The levels of a previous view of the same grid (hysteresis); nullptr: none.
