@@ -152,7 +152,8 @@ RenderResult renderScene(const Scene& scene, const RenderOptions& o) {
         t->eye = geometry.toScene(view.eye);
     }
     if (mode == GeometryMode::Grid && !o.surface) {
-        cells = segmentCells(scene, geometry);
+        // A view with no curves (all surface: it built no yarns) has no segment to place.
+        if (geometry.segmentCount() > 0) cells = segmentCells(scene, geometry);
         so.segmentCells = &cells;
     }
     const TraceScene traceScene(device, geometry, so);

@@ -58,11 +58,20 @@ TEST(RenderView, farViewRendersOnlyTheSurfaceLevel) {
     // The default framing at 32 x 24: a pixel is ~3 cm of a 0.5 m plane, a yarn ~1 cm wide.
     const Scene s = buildScene(plane(d));
     RenderOptions o = tinyRender();
+    o.surfaceScatteringPaths = 256;  // a coarse table: the same in every mode
     const RenderResult r = renderScene(s, o);
     EXPECT_EQ(r.segments, 0u);
     EXPECT_GT(r.surfaceTriangles, 0u);
     EXPECT_GT(r.image.mean().x, 0.0);
     EXPECT_EQ(s.plies().curves.pointCount(), 0u);
+    // Such a view builds no yarns at all; every mode still draws its surface level.
+    EXPECT_EQ(s.yarns().curves.curveCount(), 0u);
+    for (const GeometryMode mode : {GeometryMode::Tubes, GeometryMode::Grid}) {
+        o.mode = mode;
+        const RenderResult m = renderScene(s, o);
+        EXPECT_EQ(m.segments, 0u);
+        EXPECT_NEAR(m.image.mean().x, r.image.mean().x, 1e-9) << "the same surface in every mode";
+    }
 }
 
 TEST(RenderView, yarnLevelIsDrawnAsCurvesOnly) {
