@@ -70,6 +70,7 @@ public:
         // the pattern's heights): a view that needs yarns nowhere (every cell culled or at the
         // surface level, as a far view) builds none.
         if (options_.detail) run("levels", [&] { levels(*options_.detail); });
+        if (s_.detail_ && !needsYarns(s_.detail_->levels)) total_ -= 4;  // progress: the yarn stages are skipped
         if (!s_.detail_ || needsYarns(s_.detail_->levels)) {
             run("tiling", [&] { tile(); });
             run("stitch", [&] { stitch(); });

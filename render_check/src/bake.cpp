@@ -39,7 +39,7 @@ void validateBake(const Pattern& pattern, const BakeOptions& o) {
     requireRange(o.albedoPaths, 0, 1024, "albedoPaths");
     requireRange(o.maxBounces, 1, 64, "maxBounces");
     requireRange(o.scatteringPaths, 0, 1 << 20, "scatteringPaths (--scattering-paths)");
-    requireRange(o.scatteringSide, 1, 64, "scatteringSide");
+    requireRange(o.scatteringSide, 1, 32, "scatteringSide");  // 2048 bins: a 50 MB table
     if (!(o.scatteringFocusShare >= 0 && o.scatteringFocusShare <= 1))
         throw Error("bake: scatteringFocusShare must be in [0, 1] (got " + std::to_string(o.scatteringFocusShare) +
                     ")");

@@ -10,6 +10,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "knit/error.hpp"
 #include "util/math.hpp"
 
 namespace knit {
@@ -25,7 +26,7 @@ struct BinSum {
 
 // Reciprocity: f(in, out) = table(out, in) / (|cos in| solid angle) equals f(out, in); the two
 // independent estimates (from the paths of row out and of row in) are averaged, each weighted by
-// its row's path count (the inverse of its variance).
+// its row's path count.
 void symmetrize(SurfaceScattering& s, const std::vector<int>& paths) {
     const int n = s.bins();
     std::vector<double> cosine(size_t(n), 0.0);
@@ -36,6 +37,8 @@ void symmetrize(SurfaceScattering& s, const std::vector<int>& paths) {
                 float& a = s.table[3 * (size_t(o) * n + i) + c];  // in = i, out = o
                 float& b = s.table[3 * (size_t(i) * n + o) + c];  // in = o, out = i
                 const double ci = cosine[size_t(i)], co = cosine[size_t(o)];
+                // Weighted by the rows' paths. (Also weighting by the cosine each estimate is divided
+                // by, its variance model, made the far garment view worse: 3.29% -> 3.40%.)
                 const double wa = paths[size_t(o)], wb = paths[size_t(i)];
                 const double f = (wa * a / ci + wb * b / co) / (wa + wb);
                 a = float(f * ci), b = float(f * co);
@@ -125,9 +128,10 @@ std::vector<int> focusedPaths(const SurfaceScattering& layout, int pathsPerBin,
     if (!(total > 0)) share = 0;
     const double budget = double(pathsPerBin) * n;
     std::vector<int> paths(static_cast<size_t>(n));
-    for (int b = 0; b < n; ++b)
-        paths[size_t(b)] = std::max(1, int(std::lround((1 - share) * pathsPerBin +
-                                                       (total > 0 ? share * budget * weight[size_t(b)] / total : 0))));
+    for (int b = 0; b < n; ++b) {
+        const double count = (1 - share) * pathsPerBin + (total > 0 ? share * budget * weight[size_t(b)] / total : 0);
+        paths[size_t(b)] = int(std::clamp(std::round(count), 1.0, double(1 << 30)));  // clamped before the cast
+    }
     return paths;
 }
 
@@ -137,6 +141,8 @@ SurfaceScattering measureScattering(const PlyPaths& paths, const ScatteringSetup
     const int n = out.bins();
     const std::vector<int> pathsOfBin =
         s.pathsOfBin.empty() ? std::vector<int>(size_t(n), s.pathsPerBin) : s.pathsOfBin;
+    if (pathsOfBin.size() != size_t(n) || *std::min_element(pathsOfBin.begin(), pathsOfBin.end()) < 1)
+        throw Error("bake: every direction bin needs at least one scattering path");
     out.table.assign(size_t(3) * n * n, 0.f);
     out.pass.assign(size_t(n), 0.f);
     const PlyGeometry& g = paths.scene().plies();

@@ -40,6 +40,18 @@ void checkImageName(const std::string& path, const char* ext, const char* option
                     " is written there (use a ." + ext + " name)");
 }
 
+// The largest projected yarn radius (pixels) of a view's surface-level cells (0 without any).
+double surfaceYarnPixels(const Scene& scene) {
+    if (!scene.detail()) return 0;
+    const CellLevels& l = scene.detail()->levels;
+    const double plyRadius = resolvePlyOptions(scene.plyOptions()).plyRadius;
+    if (!(plyRadius > 0)) return 0;
+    double ply = 0;
+    for (size_t k = 0; k < l.level.size() && k < l.plyPixels.size(); ++k)
+        if (l.level[k] == DetailLevel::Surface) ply = std::max(ply, l.plyPixels[k]);
+    return ply * scene.yarnRadius() / plyRadius;
+}
+
 }  // namespace
 
 const char* lightPlacementName(LightPlacement light) {
@@ -110,7 +122,7 @@ RenderResult renderScene(const Scene& scene, const RenderOptions& o) {
     SurfaceTexture viewTexture;
     if (!o.surface && !o.baseMesh && !surface.faces.empty()) {
         BakeOptions bo;
-        bo.width = o.viewBakeSize > 0 ? o.viewBakeSize : viewBakeWidth(scene.pattern());
+        bo.width = o.viewBakeSize > 0 ? o.viewBakeSize : viewBakeWidth(scene.pattern(), surfaceYarnPixels(scene));
         bo.plies = patternPlyOptions(scene.plyOptions(), scene.pattern(), scene.placement().scale);
         const glm::dvec2 stretch = placementStretch(scene.pattern(), scene.placement());
         bo.stretch[0] = stretch.x, bo.stretch[1] = stretch.y;
@@ -196,10 +208,10 @@ RenderResult renderScene(const Scene& scene, const RenderOptions& o) {
     return res;
 }
 
-int viewBakeWidth(const Pattern& pattern) {
-    if (!(pattern.radius > 0) || !(pattern.px > 0)) return 64;
-    const double texels = 4.0 * std::max(pattern.px, pattern.py) / pattern.radius;
-    return std::clamp(16 * int(std::ceil(texels / 16.0)), 32, 256);
+int viewBakeWidth(const Pattern& pattern, double yarnPixels) {
+    if (!(pattern.radius > 0) || !(pattern.px > 0) || !(yarnPixels > 0)) return 64;
+    const double texels = std::min(4.0 * pattern.px / pattern.radius * yarnPixels, 256.0);  // N runs along px
+    return std::clamp(16 * int(std::ceil(texels / 16.0)), 64, 256);
 }
 
 }  // namespace knit

@@ -97,29 +97,34 @@ size_t levelTexel(const SurfaceTexture& t, const SurfaceTexture::Level& l, int l
     return size_t(row) * size_t(l.width) + size_t(col);
 }
 
-// Level k + 1 of the pyramid from level k: each texel the mean of the 2 x 2 it covers, wrapping
-// around the period where level k has an odd size.
-SurfaceTexture::Level halve(const SurfaceTexture::Level& k) {
+// Level k of the pyramid from level 0: texel (x, y) averages level 0's texels
+// [x 2^k, (x + 1) 2^k) x [y 2^k, (y + 1) 2^k), clipped to the image (what levelTexel reads), the
+// tint weighted by the coverage.
+SurfaceTexture::Level pyramidLevel(const SurfaceTexture::Level& base, int k) {
     SurfaceTexture::Level n;
-    n.width = (k.width + 1) / 2, n.height = (k.height + 1) / 2;
-    n.tint.assign(size_t(3) * n.width * n.height, 0.f);
+    const int step = 1 << k;
+    n.width = (base.width + step - 1) / step, n.height = (base.height + step - 1) / step;
+    n.tint.assign(size_t(3) * n.width * n.height, 1.f);
     n.holes.assign(size_t(n.width) * n.height, 0.f);
     n.coverage.assign(size_t(n.width) * n.height, 0.f);
     for (int y = 0; y < n.height; ++y)
         for (int x = 0; x < n.width; ++x) {
-            const size_t o = size_t(y) * n.width + x;
             Rgb tint(0.0);
-            double weight = 0;
-            for (int dy = 0; dy < 2; ++dy)
-                for (int dx = 0; dx < 2; ++dx) {
-                    const size_t i = size_t((2 * y + dy) % k.height) * k.width + (2 * x + dx) % k.width;
-                    tint += double(k.coverage[i]) * Rgb(k.tint[3 * i], k.tint[3 * i + 1], k.tint[3 * i + 2]);
-                    weight += k.coverage[i];
-                    n.holes[o] += 0.25f * k.holes[i];
-                    n.coverage[o] += 0.25f * k.coverage[i];
+            double weight = 0, holes = 0, coverage = 0;
+            int count = 0;
+            for (int r = y * step; r < std::min(base.height, (y + 1) * step); ++r)
+                for (int c = x * step; c < std::min(base.width, (x + 1) * step); ++c) {
+                    const size_t i = size_t(r) * base.width + c;
+                    tint +=
+                        double(base.coverage[i]) * Rgb(base.tint[3 * i], base.tint[3 * i + 1], base.tint[3 * i + 2]);
+                    weight += base.coverage[i], holes += base.holes[i], coverage += base.coverage[i];
+                    ++count;
                 }
+            const size_t o = size_t(y) * n.width + x;
             // The tint a hit sees: hits land where the yarn covers, so the covered texels weigh.
-            for (int c = 0; c < 3; ++c) n.tint[3 * o + c] = weight > 0 ? float(tint[c] / weight) : 1.f;
+            if (weight > 0)
+                for (int c = 0; c < 3; ++c) n.tint[3 * o + c] = float(tint[c] / weight);
+            n.holes[o] = float(holes / count), n.coverage[o] = float(coverage / count);
         }
     return n;
 }
@@ -175,7 +180,8 @@ SurfaceTexture makeSurfaceTexture(const SurfaceBake& bake, glm::dvec2 repeats) {
             base.holes[i] = t.meanHoles > 1e-6 ? float((1.0 - bake.coverage[i]) / t.meanHoles) : 0.f;
         }
         t.levels.push_back(std::move(base));
-        while (t.levels.back().width > 1 || t.levels.back().height > 1) t.levels.push_back(halve(t.levels.back()));
+        for (int k = 1; t.levels.back().width > 1 || t.levels.back().height > 1; ++k)
+            t.levels.push_back(pyramidLevel(t.levels.front(), k));
     }
     return t;
 }
@@ -203,7 +209,7 @@ int SurfaceMesh::level(uint32_t face, const glm::vec3& org, const glm::vec3& dir
     const double footprint = double(t) * unit * texture->pixelAngle / cosine;
     const double texels = footprint / std::max(texelU, texelV);
     if (!(texels >= 2)) return 0;
-    return std::min(int(std::floor(std::log2(texels))), texture->maxLevel());
+    return int(std::min(std::floor(std::log2(texels)), double(texture->maxLevel())));  // inf: the top
 }
 
 ShadingFrame SurfaceMesh::frame(uint32_t face) const {

@@ -50,8 +50,8 @@ struct SurfaceTexture {
     double passThrough(glm::dvec2 uv, const glm::dvec3& out, int level = 0) const;
 
     // Box pyramid of the tint (RGB, weighted by the coverage: what a hit sees) and of the holes
-    // relative to their mean, level 0 = the bake's texels, each next level averaging 2 x 2 of the
-    // previous (periodic); makeSurfaceTexture.
+    // relative to their mean, level 0 = the bake's texels, level k averaging the 2^k x 2^k texels
+    // of level 0 it covers (clipped at the image's edge); makeSurfaceTexture.
     struct Level {
         int width = 0, height = 0;
         std::vector<float> tint;      // 3 per texel

@@ -15,6 +15,7 @@
 #include "knit/scene.hpp"
 #include "knit/surface_scattering.hpp"
 #include "test_util.hpp"
+#include "trace_surface.hpp"
 
 namespace knit {
 namespace {
@@ -304,6 +305,31 @@ TEST(SurfaceScattering, furnaceSendsBackWhatTheTableScattersPlusWhatPassesThroug
             std::printf("furnace: pass %.1f, scattered %.1f: %.5f\n", p, keep, v);
             EXPECT_NEAR(v, p + keep * (1 - p), 0.012);
         }
+}
+
+// The prefiltered texture camera rays read (SurfaceTexture::levels): on an odd-sized bake every
+// level averages exactly the texels it covers, so the top level is the cell's mean: the holes
+// relative to their mean are 1 there, and the tint (weighted by the coverage, where hits land) too.
+TEST(SurfaceScattering, prefilteredTextureKeepsTheCellsMeansOnOddSizes) {
+    SurfaceBake bake;
+    bake.width = 5, bake.height = 3;
+    std::mt19937 rng(9);
+    std::uniform_real_distribution<float> u(0.05f, 1.f);
+    for (int i = 0; i < 15; ++i) {
+        bake.coverage.push_back(u(rng));
+        for (int c = 0; c < 3; ++c) bake.albedo.push_back(0.5f * u(rng));
+    }
+    bake.normal.assign(45, 0.f), bake.heights.assign(15, 0.f);
+    bake.scattering = randomTable(3);
+    const SurfaceTexture t = makeSurfaceTexture(bake, {1.0, 1.0});
+    ASSERT_EQ(t.levels.size(), 4u);  // 5 x 3, 3 x 2, 2 x 1, 1 x 1
+    const SurfaceTexture::Level& top = t.levels.back();
+    ASSERT_EQ(top.width * top.height, 1);
+    EXPECT_NEAR(top.holes[0], 1.0, 1e-5);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(top.tint[c], 1.0, 1e-5);
+    // Level 1's last column covers level 0's column 4 alone (clipped, not wrapped).
+    const SurfaceTexture::Level& one = t.levels[1];
+    EXPECT_NEAR(one.holes[2], 0.5 * (t.levels[0].holes[4] + t.levels[0].holes[9]), 1e-6);
 }
 
 // Far from the scene's origin in scene units (a garment is thousands of yarn radii across), rays

@@ -55,7 +55,7 @@ struct BakeOptions {
     // Paths per direction bin of SurfaceBake::scattering on average (0 = no table). The
     // renderer's surface level shades with the table when there is one.
     int scatteringPaths = 0;
-    int scatteringSide = 12;  // SurfaceScattering::side: 2 x 12 x 12 bins of ~0.044 sr
+    int scatteringSide = 12;  // SurfaceScattering::side (1..32): 2 x 12 x 12 bins of ~0.044 sr
     // Where the table is needed most (a render's camera and light seen from its surface-level
     // triangles): `scatteringFocusShare` of the paths go to the bins of these directions (split
     // between each direction's interpolation corners by weight), the rest evenly to every bin.

@@ -83,11 +83,10 @@ struct RenderOptions {
     MemoryBudget budget;
 };
 
-// The bake width a view's surface level needs: a surface-level cell's yarn radius covers less
-// than about a pixel (the yarn level's threshold, 1 pixel by default), so its pattern period spans
-// at most period / yarn radius pixels; 4 texels per such pixel, rounded up to a multiple of 16,
-// within 32..256.
-int viewBakeWidth(const Pattern& pattern);
+// The bake width a view's surface level needs: 4 texels per pixel where its pattern period looks
+// largest, period / yarn radius x `yarnPixels` pixels (the largest projected yarn radius of the
+// view's surface-level cells), rounded up to a multiple of 16, within 64..256.
+int viewBakeWidth(const Pattern& pattern, double yarnPixels);
 
 struct RenderResult {
     Image image;
