@@ -84,7 +84,8 @@ void addFitCommand(CLI::App& app, FitCommand& f) {
     addRenderFlags(*f.command, f.fit.render);
     // The camera as render takes it (--eye --target --up --fov) and --detail (default view, as
     // render's). The photographs fix the image size and both lights are rendered: those flags go.
-    addViewFlags(*f.command, f.view, f.fit.render.fovDegrees, f.viewWidth, f.viewHeight, Detail::View);
+    addViewFlags(*f.command, f.view, f.fit.render.fovDegrees, f.viewWidth, f.viewHeight, Detail::View,
+                 /*levelThresholds=*/false);  // every visible cell at the ply level
     for (const char* flag : {"--light", "--output", "--exr", "--width", "--height"})
         f.command->remove_option(f.command->get_option(flag));
     f.command->add_option("--front", f.front, "Front-lit photograph (PNG sRGB or EXR linear)")->required();

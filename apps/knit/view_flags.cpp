@@ -19,7 +19,8 @@ nlohmann::json levelJson(const LevelStats::Level& l) {
 
 }  // namespace
 
-void addViewFlags(CLI::App& app, ViewFlags& f, double& fovDegrees, int& width, int& height, Detail defaultDetail) {
+void addViewFlags(CLI::App& app, ViewFlags& f, double& fovDegrees, int& width, int& height, Detail defaultDetail,
+                  bool levelThresholds) {
     f.detail = defaultDetail;
     CLI::Option* eye =
         app.add_option("--eye", f.eye, "Camera position X Y Z (metres); without it the default camera")->expected(3);
@@ -33,6 +34,7 @@ void addViewFlags(CLI::App& app, ViewFlags& f, double& fovDegrees, int& width, i
               std::string("full: everything at ply detail; view: cull per UV cell and pick plies / yarns / surface "
                           "by projected size (default ") +
                   (defaultDetail == Detail::Full ? "full" : "view") + ")");
+    if (!levelThresholds) return;
     app.add_option("--ply-pixels", f.plyPixels,
                    "With --detail view: a cell gets plies where a ply's radius covers this many pixels (kept down to "
                    "0.8 of it when the camera moves; smaller: more plies, closer to --detail full)")

@@ -33,8 +33,9 @@ struct ViewFlags {
 
 // Registers --eye --target --up --detail (default `defaultDetail`) --ply-pixels --yarn-pixels and
 // --fov --width --height bound to the three given fields.
+// `levelThresholds` false: no --ply-pixels / --yarn-pixels (a command that picks every level itself).
 void addViewFlags(CLI::App& command, ViewFlags& flags, double& fovDegrees, int& width, int& height,
-                  Detail defaultDetail);
+                  Detail defaultDetail, bool levelThresholds = true);
 
 // The camera the flags give (none without --eye), with the image fields; validated (knit::Error
 // naming the option). --up defaults to +y (glTF's up).
