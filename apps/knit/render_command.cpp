@@ -79,7 +79,7 @@ int runRender(const RenderCommand& r) {
     if (r.surface.surfaceOnly) return runSurfaceRender(r, sceneOptions, options, outputs);
     // Step 2: the detail the view asks for, the scene, the render and the report (with the levels).
     sceneOptions.detail =
-        detailOptions(r.view, image, options.light == LightPlacement::Back, options.mode == GeometryMode::Curves);
+        detailOptions(r.view, image, options.light == LightPlacement::Back, options.mode != GeometryMode::Tubes);
     const Scene scene = buildScene(sceneOptions);
     printWarnings(scene);
     return finishRender(

@@ -135,8 +135,13 @@ std::vector<int64_t> segmentCells(const Scene& scene, const PlyGeometry& g) {
     // that follows the ply along the yarn; a full scan when the window loses it).
     std::vector<int64_t> out(g.segmentCount());
     const double far2 = std::pow(4.0 * std::max(scene.yarnRadius(), g.unit * g.radius) + 1e-12, 2);
+    // The curves are the scene's plies, then (a view's) yarn-level pieces (detail::renderCurves).
+    const size_t plyCurves = scene.plies().curves.curveCount();
+    const std::vector<uint32_t>* pieceYarn = scene.detail() ? &scene.detail()->pieces.yarnPieceYarn : nullptr;
     for (size_t k = 0; k + 1 < g.curveSegments.size(); ++k) {
-        const uint32_t y = scene.plies().yarnOfCurve[k];
+        if (k >= plyCurves && (pieceYarn == nullptr || k - plyCurves >= pieceYarn->size()))
+            throw Error("render: grid mode needs the yarn of every curve (curve " + std::to_string(k) + " has none)");
+        const uint32_t y = k < plyCurves ? scene.plies().yarnOfCurve[k] : (*pieceYarn)[k - plyCurves];
         if (y >= yarns.curves.curveCount())
             throw Error("render: ply curve " + std::to_string(k) + " names yarn " + std::to_string(y) +
                         " that does not exist");

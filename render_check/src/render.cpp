@@ -110,7 +110,7 @@ RenderResult renderScene(const Scene& scene, const RenderOptions& o) {
     const glm::dvec3 centre = framedBounds(scene.mesh(), detail::sceneMargin(scene)).centre;
     const PlyGeometry geometry =
         o.surface ? detail::surfaceFrame(scene, centre)
-                  : detail::renderCurves(scene, centre, res.material.fiberTwist, mode == GeometryMode::Curves);
+                  : detail::renderCurves(scene, centre, res.material.fiberTwist, mode != GeometryMode::Tubes);
     res.segments = geometry.segmentCount();
     const BaseMesh surface = detail::surfaceMesh(scene);
     res.surfaceTriangles = surface.faces.size();

@@ -26,6 +26,7 @@ struct GridRun {
     uint32_t chunkOffset;  // into chunk boxes (2 per chunk: lo, hi)
     uint16_t count;
     uint8_t hasPrev, hasNext;
+    float radius;  // of its curve (scene units): plies 1, a view's yarn-level curves the bundle's
 };
 
 struct GridCell {
@@ -160,7 +161,7 @@ bool traverseCell(const GridData& g, const GridCell& cell, const RayData& r, flo
                 if (joints.hasNext) joints.next = point(p0 + k + 2);
                 glm::vec3 n(0.f);
                 float uu = 0, t = 0;
-                if (hitPlySegment(r, point(p0 + k), point(p0 + k + 1), joints, g.radius, tfar, t, n, uu)) {
+                if (hitPlySegment(r, point(p0 + k), point(p0 + k + 1), joints, run.radius, tfar, t, n, uu)) {
                     tfar = t, ng = n, u = uu, segment = run.firstSegment + k, hit = true;
                     if (anyHit) return true;
                 }
@@ -248,7 +249,7 @@ glm::vec3 pointOf(const PlyGeometry& pg, uint32_t i) { return glm::vec3(pg.point
 // the joint. (From the half bend angle directly, so a joint near the mitre limit is covered
 // whichever way the quantized points of the cell decide it.)
 float segmentExtent(const PlyGeometry& pg, uint32_t s) {
-    const float r = pg.radius;
+    const float r = pg.points[pg.segments[s]].w;  // the curve's radius
     const uint32_t i = pg.segments[s];
     const glm::vec3 dir = safeNormalize(pointOf(pg, i + 1) - pointOf(pg, i));
     float e = r;
@@ -300,6 +301,7 @@ void addRun(GridData& g, const GridCell& cell, const PlyGeometry& pg, const Segm
     gr.count = static_cast<uint16_t>(run.count);
     gr.hasPrev = pg.hasLeft(run.first);
     gr.hasNext = pg.hasRight(run.first + run.count - 1);
+    gr.radius = pg.points[pg.segments[run.first]].w;
     gr.pointOffset = static_cast<uint32_t>(g.qpoints.size());
     gr.chunkOffset = static_cast<uint32_t>(g.boxes.size());
     const uint32_t i0 = pg.segments[run.first];
