@@ -78,8 +78,7 @@ int runRender(const RenderCommand& r) {
     options.surfaceScatteringPaths = r.surface.scatteringPaths;
     if (r.surface.surfaceOnly) return runSurfaceRender(r, sceneOptions, options, outputs);
     // Step 2: the detail the view asks for, the scene, the render and the report (with the levels).
-    sceneOptions.detail =
-        detailOptions(r.view, image, options.light == LightPlacement::Back, options.mode != GeometryMode::Tubes);
+    sceneOptions.detail = detailOptions(r.view, image, options.light == LightPlacement::Back, /*yarnCurves=*/true);
     const Scene scene = buildScene(sceneOptions);
     printWarnings(scene);
     return finishRender(

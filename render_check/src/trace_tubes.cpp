@@ -99,7 +99,7 @@ uint32_t nearestSegment(const PlyGeometry& pg, const glm::vec3& p, uint32_t a, u
 
 // The ply segment of each triangle: nearest segment of its curve to the centroid (window search
 // along the curve, full scan when the window loses it).
-void assignSegments(const PlyGeometry& pg, const TubeMesh& mesh, const std::vector<uint32_t>& sourceCurve,
+void assignSegments(const PlyGeometry& pg, const TubeMesh& mesh, const std::vector<uint32_t>& sourceCurve, float radius,
                     TubeData& t) {
     t.segmentOfTriangle.resize(t.triangles.size());
     uint32_t lastCurve = UINT32_MAX, lastSeg = 0;
@@ -113,7 +113,7 @@ void assignSegments(const PlyGeometry& pg, const TubeMesh& mesh, const std::vect
         if (c == lastCurve) {
             bs = nearestSegment(pg, cen, std::max(s0, lastSeg > s0 + 4 ? lastSeg - 4 : s0), std::min(s1, lastSeg + 5),
                                 bd);
-            if (bd > 4.f * pg.radius * pg.radius) bs = nearestSegment(pg, cen, s0, s1, bd);
+            if (bd > 4.f * radius * radius) bs = nearestSegment(pg, cen, s0, s1, bd);
         } else {
             bs = nearestSegment(pg, cen, s0, s1, bd);
         }
@@ -160,7 +160,7 @@ void addHemisphere(TubeData& t, uint32_t ring, uint32_t ringSize, uint32_t latit
 // Hemispherical caps on open ends, built on the end rings (sweep.hpp layout: an open curve of n
 // points has n rings of sides + 1 vertices, the last repeating the first).
 void addEndCaps(const PlyGeometry& pg, const PlyPolylines& lines, const TubeMesh& mesh, const TubeOptions& to,
-                TubeData& t) {
+                float radius, TubeData& t) {
     const uint32_t ringSize = static_cast<uint32_t>(to.sides) + 1,
                    latitudes = static_cast<uint32_t>(std::max(2, to.sides / 4));
     size_t firstVertex = 0;
@@ -179,27 +179,53 @@ void addEndCaps(const PlyGeometry& pg, const PlyPolylines& lines, const TubeMesh
             const glm::vec3 centre(pg.points[end ? j + 1 : j]);
             const glm::vec3 axis = safeNormalize(end ? glm::vec3(pg.points[j + 1]) - glm::vec3(pg.points[j])
                                                      : glm::vec3(pg.points[j]) - glm::vec3(pg.points[j + 1]));
-            addHemisphere(t, ring, ringSize, latitudes, centre, axis, pg.radius, seg);
+            addHemisphere(t, ring, ringSize, latitudes, centre, axis, radius, seg);
         }
         firstVertex += count;
     }
 }
 
+// The curves of one tube radius (scene units; a curve's points carry its radius).
+PlyPolylines curvesOfRadius(const PlyGeometry& pg, const PlyPolylines& all, float radius) {
+    PlyPolylines out;
+    for (size_t c = 0; c < all.curves.curveCount(); ++c) {
+        const uint32_t k = all.sourceCurve[c];
+        if (pg.points[pg.segments[pg.curveSegments[k]]].w != radius) continue;
+        out.curves.addCurve(all.curves.points.data() + all.curves.begin(c), all.curves.size(c), all.curves.isClosed(c));
+        out.sourceCurve.push_back(k);
+    }
+    return out;
+}
+
 TubeData buildTubes(const PlyGeometry& pg, int sides) {
-    // Step 1: the ply curves as polylines -> sweepTubes, without the exporter's flat end caps
-    // (replaced by hemispheres in step 4: round ends like Embree's round curves and the grid
-    // cells, so the three modes model the same solid).
-    const PlyPolylines lines = plyPolylines(pg);
-    TubeOptions to;
-    to.sides = sides;
-    to.caps = false;
-    const TubeMesh mesh = sweepTubes(lines.curves, pg.unit * pg.radius, to, 0, lines.curves.curveCount(), pg.origin);
-    // Step 2: scene units, outward winding.
-    TubeData t = outwardTubes(pg, mesh);
-    // Step 3: the ply segment of each triangle.
-    assignSegments(pg, mesh, lines.sourceCurve, t);
-    // Step 4: hemispherical caps on open ends.
-    addEndCaps(pg, lines, mesh, to, t);
+    const PlyPolylines all = plyPolylines(pg);
+    std::vector<float> radii;  // the plies', and a view's yarn-level curves' (the bundle's)
+    for (size_t c = 0; c < all.curves.curveCount(); ++c) {
+        const float r = pg.points[pg.segments[pg.curveSegments[all.sourceCurve[c]]]].w;
+        if (std::find(radii.begin(), radii.end(), r) == radii.end()) radii.push_back(r);
+    }
+    TubeData t;
+    for (const float radius : radii) {
+        const PlyPolylines lines = curvesOfRadius(pg, all, radius);
+        // Step 1: the curves as polylines -> sweepTubes, without the exporter's flat end caps
+        // (replaced by hemispheres in step 4: round ends like Embree's round curves and the grid
+        // cells, so the three modes model the same solid).
+        TubeOptions to;
+        to.sides = sides;
+        to.caps = false;
+        const TubeMesh mesh = sweepTubes(lines.curves, pg.unit * radius, to, 0, lines.curves.curveCount(), pg.origin);
+        // Step 2: scene units, outward winding.
+        TubeData g = outwardTubes(pg, mesh);
+        // Step 3: the ply segment of each triangle.
+        assignSegments(pg, mesh, lines.sourceCurve, radius, g);
+        // Step 4: hemispherical caps on open ends.
+        addEndCaps(pg, lines, mesh, to, radius, g);
+        // Step 5: after the tubes of the other radii.
+        const uint32_t base = static_cast<uint32_t>(t.positions.size());
+        t.positions.insert(t.positions.end(), g.positions.begin(), g.positions.end());
+        for (const glm::uvec3& tri : g.triangles) t.triangles.push_back(tri + base);
+        t.segmentOfTriangle.insert(t.segmentOfTriangle.end(), g.segmentOfTriangle.begin(), g.segmentOfTriangle.end());
+    }
     t.positions.emplace_back(0.f);  // padding
     return t;
 }
