@@ -16,8 +16,8 @@ void addSurfaceFlags(CLI::App& command, SurfaceFlags& flags, bool render) {
         command
             .add_option("--bake-size", flags.bakeSize,
                         render ? "Baked texture width in pixels per pattern period (1..8192); --surface-only: default "
-                                 "256; a view's surface level: default 4 texels per pixel where the surface level can "
-                                 "be seen (the yarn level's threshold), 32..256"
+                                 "256; a view's surface level: default 4 texels per pixel where its pattern period "
+                                 "looks largest, 64..256"
                                : "Baked texture width in pixels per pattern period (1..8192)")
             ->capture_default_str();
     if (!render) return;

@@ -42,8 +42,9 @@ void addViewFlags(CLI::App& command, ViewFlags& flags, double& fovDegrees, int& 
 std::optional<View> givenView(const ViewFlags& flags, const ImageSize& image);
 
 // With --detail view: the detail options for the given camera (or the default framing at the
-// image's size) and thresholds (knit::Error naming --ply-pixels / --yarn-pixels unless positive). `backLit` keeps back faces; `yarnCurves` false gives yarn-level cells plies
-// (renderers that draw yarn curves in curves mode only).
+// image's size) and thresholds (knit::Error naming --ply-pixels / --yarn-pixels unless positive).
+// `backLit` keeps back faces; `yarnCurves` false gives yarn-level cells plies (for a consumer that
+// draws every cell with plies).
 std::optional<DetailOptions> detailOptions(const ViewFlags& flags, const ImageSize& image, bool backLit,
                                            bool yarnCurves);
 

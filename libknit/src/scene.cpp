@@ -70,7 +70,6 @@ public:
         // the pattern's heights): a view that needs yarns nowhere (every cell culled or at the
         // surface level, as a far view) builds none.
         if (options_.detail) run("levels", [&] { levels(*options_.detail); });
-        if (s_.detail_ && !needsYarns(s_.detail_->levels)) total_ -= 4;  // progress: the yarn stages are skipped
         if (!s_.detail_ || needsYarns(s_.detail_->levels)) {
             run("tiling", [&] { tile(); });
             run("stitch", [&] { stitch(); });
@@ -78,6 +77,8 @@ public:
             run("evaluate", [&] {
                 evaluateBinding(s_.bound_.binding, s_.mesh_.faces, s_.mesh_.positions, s_.normals_, s_.yarns_);
             });
+        } else {
+            total_ -= 4;  // progress: the four yarn stages are skipped
         }
         if (s_.detail_) run("detail", [&] { pieces(); });
         plies();

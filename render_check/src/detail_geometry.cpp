@@ -70,16 +70,13 @@ double bundleHelix(const PlyOptions& resolved) {
     return resolved.twist == Twist::S ? -k : k;
 }
 
-PlyGeometry renderCurves(const Scene& scene, const glm::dvec3& origin, double fiberTwist, bool yarnLevelCurves) {
+PlyGeometry renderCurves(const Scene& scene, const glm::dvec3& origin, double fiberTwist) {
     const bool plies = scene.plies().curves.pointCount() > 0;
     const MappedYarns* yarnLevel = scene.detail() ? &scene.detail()->pieces.yarns : nullptr;
     const bool yarns = yarnLevel != nullptr && yarnLevel->curves.pointCount() > 0;
     if (!yarns)
         return plies ? buildPlyGeometry(scene.plies(), origin, fiberTwist)
                      : emptyGeometry(origin, resolvePlyOptions(scene.plyOptions()).plyRadius);
-    if (!yarnLevelCurves)
-        throw Error("the yarn level of --detail view is drawn as round curves or grid cells only: render it with "
-                    "--mode curves or grid, or use --detail full with --mode tubes");
     const PlyOptions resolved = resolvePlyOptions(scene.plyOptions());
     const double radius = yarnLevelRadius(resolved);
     PlyGeometry y = buildPlyGeometry(yarnCurves(*yarnLevel, radius), origin, fiberTwist);

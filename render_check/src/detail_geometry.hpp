@@ -23,10 +23,9 @@ double yarnLevelRadius(const PlyOptions& resolved);
 double bundleHelix(const PlyOptions& resolved);
 
 // The plies, plus (scene built for a view) the yarn-level pieces as single curves of
-// yarnLevelRadius, in the plies' scene units (per-point radius; `yarnLevelCurves` false, as for tubes,
-// which have one radius: knit::Error when there are yarn-level pieces).
-// Empty (no segments) when neither level has any curve.
-PlyGeometry renderCurves(const Scene& scene, const glm::dvec3& origin, double fiberTwist, bool yarnLevelCurves);
+// yarnLevelRadius, in the plies' scene units (each point carries its curve's radius: every mode
+// traces both). Empty (no segments) when neither level has any curve.
+PlyGeometry renderCurves(const Scene& scene, const glm::dvec3& origin, double fiberTwist);
 
 // The base-mesh triangles of the surface-level cells (meshSubset: only the vertices they use;
 // empty without a view).

@@ -108,8 +108,8 @@ RenderResult renderScene(const Scene& scene, const RenderOptions& o) {
     // Step 2: ply segments (and a view's yarn-level curves) relative to the centre of the framed
     // bounds; a view's surface-level triangles (or, with --surface-only, the whole base mesh).
     const glm::dvec3 centre = framedBounds(scene.mesh(), detail::sceneMargin(scene)).centre;
-    const PlyGeometry geometry = o.surface ? detail::surfaceFrame(scene, centre)
-                                           : detail::renderCurves(scene, centre, res.material.fiberTwist, true);
+    const PlyGeometry geometry =
+        o.surface ? detail::surfaceFrame(scene, centre) : detail::renderCurves(scene, centre, res.material.fiberTwist);
     res.segments = geometry.segmentCount();
     const BaseMesh surface = detail::surfaceMesh(scene);
     res.surfaceTriangles = surface.faces.size();

@@ -89,6 +89,24 @@ const SurfaceScattering* SurfaceTexture::scattering() const {
 
 namespace {
 
+// A triangle's counter-clockwise normal (not normalized) and dP/du, dP/dv from its edges and
+// their uv differences (det: of the uv edges; dP/du, dP/dv are not finite when it is 0).
+struct UvTangents {
+    glm::dvec3 normal, dPdu, dPdv;
+    double det = 0;
+};
+
+UvTangents uvTangents(const BaseMesh& mesh, uint32_t face) {
+    const glm::uvec3 f = mesh.faces[face], t = mesh.faceUvs[face];
+    const glm::dvec3 e1 = mesh.positions[f.y] - mesh.positions[f.x], e2 = mesh.positions[f.z] - mesh.positions[f.x];
+    const glm::dvec2 d1 = mesh.uvs[t.y] - mesh.uvs[t.x], d2 = mesh.uvs[t.z] - mesh.uvs[t.x];
+    UvTangents d;
+    d.normal = glm::cross(e1, e2);
+    d.det = d1.x * d2.y - d2.x * d1.y;
+    d.dPdu = (e1 * d2.y - e2 * d1.y) / d.det, d.dPdv = (e2 * d1.x - e1 * d2.x) / d.det;
+    return d;
+}
+
 // The texel of `level` at uv (its texels cover 2^level x 2^level of level 0's, from the top left).
 size_t levelTexel(const SurfaceTexture& t, const SurfaceTexture::Level& l, int level, glm::dvec2 uv) {
     const double s = fraction(uv.x * t.repeats.x), r = fraction(1.0 - uv.y * t.repeats.y);
@@ -99,32 +117,30 @@ size_t levelTexel(const SurfaceTexture& t, const SurfaceTexture::Level& l, int l
 
 // Level k of the pyramid from level 0: texel (x, y) averages level 0's texels
 // [x 2^k, (x + 1) 2^k) x [y 2^k, (y + 1) 2^k), clipped to the image (what levelTexel reads), the
-// tint weighted by the coverage.
-SurfaceTexture::Level pyramidLevel(const SurfaceTexture::Level& base, int k) {
+// tint weighted by level 0's `coverage`.
+SurfaceTexture::Level pyramidLevel(const SurfaceTexture::Level& base, const std::vector<float>& coverage, int k) {
     SurfaceTexture::Level n;
     const int step = 1 << k;
     n.width = (base.width + step - 1) / step, n.height = (base.height + step - 1) / step;
     n.tint.assign(size_t(3) * n.width * n.height, 1.f);
     n.holes.assign(size_t(n.width) * n.height, 0.f);
-    n.coverage.assign(size_t(n.width) * n.height, 0.f);
     for (int y = 0; y < n.height; ++y)
         for (int x = 0; x < n.width; ++x) {
             Rgb tint(0.0);
-            double weight = 0, holes = 0, coverage = 0;
+            double weight = 0, holes = 0;
             int count = 0;
             for (int r = y * step; r < std::min(base.height, (y + 1) * step); ++r)
                 for (int c = x * step; c < std::min(base.width, (x + 1) * step); ++c) {
                     const size_t i = size_t(r) * base.width + c;
-                    tint +=
-                        double(base.coverage[i]) * Rgb(base.tint[3 * i], base.tint[3 * i + 1], base.tint[3 * i + 2]);
-                    weight += base.coverage[i], holes += base.holes[i], coverage += base.coverage[i];
+                    tint += double(coverage[i]) * Rgb(base.tint[3 * i], base.tint[3 * i + 1], base.tint[3 * i + 2]);
+                    weight += coverage[i], holes += base.holes[i];
                     ++count;
                 }
             const size_t o = size_t(y) * n.width + x;
             // The tint a hit sees: hits land where the yarn covers, so the covered texels weigh.
             if (weight > 0)
                 for (int c = 0; c < 3; ++c) n.tint[3 * o + c] = float(tint[c] / weight);
-            n.holes[o] = float(holes / count), n.coverage[o] = float(coverage / count);
+            n.holes[o] = float(holes / count);
         }
     return n;
 }
@@ -173,7 +189,6 @@ SurfaceTexture makeSurfaceTexture(const SurfaceBake& bake, glm::dvec2 repeats) {
         base.width = bake.width, base.height = bake.height;
         base.tint.resize(3 * bake.coverage.size());
         base.holes.resize(bake.coverage.size());
-        base.coverage = bake.coverage;
         for (size_t i = 0; i < bake.coverage.size(); ++i) {
             for (int c = 0; c < 3; ++c)
                 base.tint[3 * i + c] = t.meanAlbedo[c] > 0 ? float(bake.albedo[3 * i + c] / t.meanAlbedo[c]) : 1.f;
@@ -181,7 +196,7 @@ SurfaceTexture makeSurfaceTexture(const SurfaceBake& bake, glm::dvec2 repeats) {
         }
         t.levels.push_back(std::move(base));
         for (int k = 1; t.levels.back().width > 1 || t.levels.back().height > 1; ++k)
-            t.levels.push_back(pyramidLevel(t.levels.front(), k));
+            t.levels.push_back(pyramidLevel(t.levels.front(), bake.coverage, k));
     }
     return t;
 }
@@ -196,16 +211,11 @@ int SurfaceMesh::level(uint32_t face, const glm::vec3& org, const glm::vec3& dir
     if (glm::length(org - texture->eye) > 1e-2f * std::max(1.f, glm::length(texture->eye)))
         return 0;  // not a camera ray
     // The footprint (metres, foreshortened) over the period's size on this triangle, in texels.
-    const glm::uvec3 f = mesh->faces[face], tu = mesh->faceUvs[face];
-    const glm::dvec3 e1 = mesh->positions[f.y] - mesh->positions[f.x], e2 = mesh->positions[f.z] - mesh->positions[f.x];
-    const glm::dvec2 d1 = mesh->uvs[tu.y] - mesh->uvs[tu.x], d2 = mesh->uvs[tu.z] - mesh->uvs[tu.x];
-    const double det = d1.x * d2.y - d2.x * d1.y;
-    if (!(std::abs(det) > 0)) return 0;
-    const glm::dvec3 dPdu = (e1 * d2.y - e2 * d1.y) / det, dPdv = (e2 * d1.x - e1 * d2.x) / det;
-    const double texelU = glm::length(dPdu) / (texture->repeats.x * texture->bake->width);
-    const double texelV = glm::length(dPdv) / (texture->repeats.y * texture->bake->height);
-    const glm::dvec3 n = glm::normalize(glm::cross(e1, e2));
-    const double cosine = std::max(0.2, std::abs(glm::dot(n, glm::normalize(glm::dvec3(dir)))));
+    const UvTangents d = uvTangents(*mesh, face);
+    if (!(std::abs(d.det) > 0)) return 0;
+    const double texelU = glm::length(d.dPdu) / (texture->repeats.x * texture->bake->width);
+    const double texelV = glm::length(d.dPdv) / (texture->repeats.y * texture->bake->height);
+    const double cosine = std::max(0.2, std::abs(glm::dot(glm::normalize(d.normal), glm::normalize(glm::dvec3(dir)))));
     const double footprint = double(t) * unit * texture->pixelAngle / cosine;
     const double texels = footprint / std::max(texelU, texelV);
     if (!(texels >= 2)) return 0;
@@ -213,21 +223,15 @@ int SurfaceMesh::level(uint32_t face, const glm::vec3& org, const glm::vec3& dir
 }
 
 ShadingFrame SurfaceMesh::frame(uint32_t face) const {
-    const glm::uvec3 f = mesh->faces[face], t = mesh->faceUvs[face];
-    const glm::dvec3 e1 = mesh->positions[f.y] - mesh->positions[f.x], e2 = mesh->positions[f.z] - mesh->positions[f.x];
-    const glm::dvec2 d1 = mesh->uvs[t.y] - mesh->uvs[t.x], d2 = mesh->uvs[t.z] - mesh->uvs[t.x];
+    const UvTangents d = uvTangents(*mesh, face);
     ShadingFrame fr;
-    const glm::dvec3 n = glm::cross(e1, e2);
-    fr.z = glm::length(n) > 0 ? glm::normalize(n) : glm::dvec3(0, 0, 1);
-    // dP/du and dP/dv from the triangle's edges and their uv differences.
-    const double det = d1.x * d2.y - d2.x * d1.y;
-    const glm::dvec3 dPdu = (e1 * d2.y - e2 * d1.y) / det, dPdv = (e2 * d1.x - e1 * d2.x) / det;
-    glm::dvec3 x = dPdu - glm::dot(dPdu, fr.z) * fr.z;
-    if (!(std::abs(det) > 0) || !(glm::length(x) > 1e-12 * glm::length(dPdu)) || !std::isfinite(x.x))
+    fr.z = glm::length(d.normal) > 0 ? glm::normalize(d.normal) : glm::dvec3(0, 0, 1);
+    glm::dvec3 x = d.dPdu - glm::dot(d.dPdu, fr.z) * fr.z;
+    if (!(std::abs(d.det) > 0) || !(glm::length(x) > 1e-12 * glm::length(d.dPdu)) || !std::isfinite(x.x))
         x = glm::cross(std::abs(fr.z.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0), fr.z);
     fr.x = glm::normalize(x);
     fr.y = glm::cross(fr.z, fr.x);
-    if (std::abs(det) > 0 && glm::dot(fr.y, dPdv) < 0) fr.y = -fr.y;  // a mirrored uv layout
+    if (std::abs(d.det) > 0 && glm::dot(fr.y, d.dPdv) < 0) fr.y = -fr.y;  // a mirrored uv layout
     return fr;
 }
 

@@ -54,9 +54,8 @@ struct SurfaceTexture {
     // of level 0 it covers (clipped at the image's edge); makeSurfaceTexture.
     struct Level {
         int width = 0, height = 0;
-        std::vector<float> tint;      // 3 per texel
-        std::vector<float> holes;     // (1 - coverage) / meanHoles
-        std::vector<float> coverage;  // the tint's weights
+        std::vector<float> tint;   // 3 per texel
+        std::vector<float> holes;  // (1 - coverage) / meanHoles
     };
     std::vector<Level> levels;
     int maxLevel() const { return levels.empty() ? 0 : int(levels.size()) - 1; }
