@@ -59,10 +59,10 @@ nlohmann::json sceneReport(const Scene& s, const SceneStats& st) {
                  {"uvs", m.uvs.size()},
                  {"faces", m.faces.size()},
                  {"degenerate_uv_faces", s.grid().degenerateUvFaces},
-                 {"uv_charts", s.grid().chartCount},
+                 {"uv_charts", s.grid().islandCount},
                  {"folded_uv_faces", s.grid().foldedUvFaces},
                  {"overlapping_uv_charts", nlohmann::json::array()}};
-    for (const glm::uvec2& pair : s.grid().overlappingCharts)
+    for (const glm::uvec2& pair : s.grid().overlappingIslands)
         j["mesh"]["overlapping_uv_charts"].push_back({pair.x, pair.y});
     if (s.grid().foldedUvFaces > 0) j["mesh"]["folded_uv_face_example"] = s.grid().foldedUvFaceExample;
     j["placement"] = {{"repeats", {s.placement().repeats.x, s.placement().repeats.y}},
@@ -112,14 +112,14 @@ void printFoldWarning(const Scene& s) {
 
 void printWarnings(const Scene& s) {
     printFoldWarning(s);
-    if (s.grid().overlappingCharts.empty()) return;
+    if (s.grid().overlappingIslands.empty()) return;
     std::string pairs;
-    const size_t shown = std::min<size_t>(s.grid().overlappingCharts.size(), 8);
+    const size_t shown = std::min<size_t>(s.grid().overlappingIslands.size(), 8);
     for (size_t k = 0; k < shown; ++k)
-        pairs += (pairs.empty() ? "" : ", ") + std::to_string(s.grid().overlappingCharts[k].x) + "/" +
-                 std::to_string(s.grid().overlappingCharts[k].y);
-    if (shown < s.grid().overlappingCharts.size())
-        pairs += " and " + std::to_string(s.grid().overlappingCharts.size() - shown) + " more pairs";
+        pairs += (pairs.empty() ? "" : ", ") + std::to_string(s.grid().overlappingIslands[k].x) + "/" +
+                 std::to_string(s.grid().overlappingIslands[k].y);
+    if (shown < s.grid().overlappingIslands.size())
+        pairs += " and " + std::to_string(s.grid().overlappingIslands.size() - shown) + " more pairs";
     std::fprintf(stderr, "knit: note: %s: UV charts overlap (%s); each chart is tiled and knitted on its own\n",
                  s.mesh().name.c_str(), pairs.c_str());
 }

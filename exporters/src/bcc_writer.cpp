@@ -10,11 +10,11 @@
 #include <limits>
 #include <vector>
 
-#include "atomic_file.hpp"
+#include "io/atomic_file.hpp"
 #include "formats.hpp"
 #include "knit/error.hpp"
 
-namespace knit::detail {
+namespace knit::impl {
 
 static_assert(sizeof(float) == 4, "BCC needs 32-bit floats");
 
@@ -71,4 +71,4 @@ void exportBcc(const FormatJob& job) {
     job.stats.bytes = file.bytesWritten();
 }
 
-}  // namespace knit::detail
+}  // namespace knit::impl

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <string>
 
-#include "atomic_file.hpp"
+#include "io/atomic_file.hpp"
 #include "knit/cache.hpp"
 #include "knit/error.hpp"
 #include "point_cache.hpp"
@@ -22,7 +22,7 @@ bool cacheFormatOf(const std::string& path, CacheFormat& format) {
 
 struct PointCacheWriter::State {
     explicit State(const std::string& path) : file(path, true) {}
-    detail::AtomicFile file;
+    impl::AtomicFile file;
     CacheFormat format = CacheFormat::Pc2;
     CacheInfo info;
     size_t written = 0;
@@ -42,8 +42,8 @@ PointCacheWriter::PointCacheWriter(const std::string& path, const CacheInfo& inf
     state_ = std::make_unique<State>(path);
     state_->format = format;
     state_->info = info;
-    if (format == CacheFormat::Pc2) detail::pc2Header(info, state_->bytes);
-    else detail::mddHeader(info, state_->bytes);
+    if (format == CacheFormat::Pc2) impl::pc2Header(info, state_->bytes);
+    else impl::mddHeader(info, state_->bytes);
     state_->file.stream().write(state_->bytes.data(), static_cast<std::streamsize>(state_->bytes.size()));
 }
 
@@ -58,8 +58,8 @@ void PointCacheWriter::writeFrame(const std::vector<glm::dvec3>& points) {
         throw Error("point cache '" + s.file.path() + "': more than the " + std::to_string(s.info.frames) +
                     " frames of its header");
     s.bytes.clear();
-    if (s.format == CacheFormat::Pc2) detail::pc2Frame(points, s.bytes);
-    else detail::mddFrame(points, s.bytes);
+    if (s.format == CacheFormat::Pc2) impl::pc2Frame(points, s.bytes);
+    else impl::mddFrame(points, s.bytes);
     s.file.stream().write(s.bytes.data(), static_cast<std::streamsize>(s.bytes.size()));
     if (!s.file.stream()) throw Error("cannot write '" + s.file.path() + "': writing failed (disk full or I/O error)");
     ++s.written;
@@ -76,9 +76,9 @@ void PointCacheWriter::commit() {
 const std::string& PointCacheWriter::tempPath() const { return state_->file.tempPath(); }
 
 void writeSegmentObj(const std::string& path, const Polylines& curves, const std::string& header) {
-    detail::AtomicFile file(path, false);
+    impl::AtomicFile file(path, false);
     {
-        detail::TextOut t(file.stream());
+        impl::TextOut t(file.stream());
         t.str("# ").str(header).ch('\n');
         // Step 1: the points in cache order; step 2: one `l i j` per segment (1-based).
         for (const glm::dvec3& p : curves.points) t.str("v ").num(p.x).ch(' ').num(p.y).ch(' ').num(p.z).ch('\n');

@@ -6,7 +6,7 @@
 
 #include <glm/common.hpp>
 
-namespace knit::detail {
+namespace knit::impl {
 
 namespace {
 
@@ -68,4 +68,4 @@ void forEachTubeChunk(const Polylines& curves, double radius, const TubeOptions&
     }
 }
 
-}  // namespace knit::detail
+}  // namespace knit::impl

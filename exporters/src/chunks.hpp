@@ -16,7 +16,7 @@
 #include "knit/polylines.hpp"
 #include "knit/sweep.hpp"
 
-namespace knit::detail {
+namespace knit::impl {
 
 // Consecutive curves [firstCurve, lastCurve) holding `vertices` output vertices.
 struct Chunk {
@@ -84,4 +84,4 @@ void orderedChunks(size_t count, Produce produce, Consume consume) {
                 }));
 }
 
-}  // namespace knit::detail
+}  // namespace knit::impl

@@ -14,7 +14,7 @@
 
 #include "knit/error.hpp"
 
-namespace knit::detail {
+namespace knit::impl {
 
 namespace {
 
@@ -100,4 +100,4 @@ DracoChunk encodeDracoTubes(const TubeMesh& tube, const std::vector<glm::u8vec4>
     return out;
 }
 
-}  // namespace knit::detail
+}  // namespace knit::impl

@@ -10,7 +10,7 @@
 
 #include "knit/sweep.hpp"
 
-namespace knit::detail {
+namespace knit::impl {
 
 struct DracoSettings {
     int positionBits = 14;
@@ -34,4 +34,4 @@ struct DracoChunk {
 DracoChunk encodeDracoTubes(const TubeMesh& mesh, const std::vector<glm::u8vec4>* colors,
                             const DracoSettings& settings);
 
-}  // namespace knit::detail
+}  // namespace knit::impl

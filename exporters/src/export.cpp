@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "atomic_file.hpp"
+#include "io/atomic_file.hpp"
 #include "export_budget.hpp"
 #include "formats.hpp"
 #include "knit/error.hpp"
@@ -58,7 +58,7 @@ void validateOffsets(const Polylines& c) {
 void validateInput(const ExportInput& in, bool tubes) {
     if (!in.curves && !in.plies) throw Error("export: no curves given");
     if (in.curves && in.plies) throw Error("export: both curves and a ply generator given; pass one");
-    detail::parseMaterialExtras(in.materialExtrasJson);  // throws unless empty or a JSON object
+    impl::parseMaterialExtras(in.materialExtrasJson);  // throws unless empty or a JSON object
     if (in.plies) {
         if (!util::positiveFinite(in.radius))
             throw Error("export: radius must be a positive number, got " + std::to_string(in.radius));
@@ -149,7 +149,7 @@ ExportStats exportCurves(const ExportInput& input, const ExportOptions& requeste
         options.chunkVertices = options.draco                         ? size_t(1) << 18
                                 : options.quantize || options.meshopt ? size_t(65535)
                                                                       : size_t(1) << 20;
-    detail::checkOutputFolder(options.path);
+    impl::checkOutputFolder(options.path);
     const bool tubes = options.what == ExportWhat::Tubes;
     validateInput(input, tubes);
     const std::string ext = util::lowerExtension(options.path);
@@ -158,7 +158,7 @@ ExportStats exportCurves(const ExportInput& input, const ExportOptions& requeste
             throw Error("cannot export '" + options.path +
                         "': the view's surface level (base-mesh triangles with the baked knit material) is written "
                         "to .glb or .gltf only");
-        detail::validateSurfaceData(input.surface->mesh, input.surface->images, input.surface->material,
+        impl::validateSurfaceData(input.surface->mesh, input.surface->images, input.surface->material,
                                     "cannot export '" + options.path + "': the surface level: ");
     }
     if (input.plies && !streamsPlies(options)) {
@@ -177,7 +177,7 @@ ExportStats exportCurves(const ExportInput& input, const ExportOptions& requeste
 
     ExportStats stats;
     stats.format = ext;
-    detail::FormatJob job{input, options, TubeOptions{}, tubes, std::string(), stats};
+    impl::FormatJob job{input, options, TubeOptions{}, tubes, std::string(), stats};
     job.tube.sides = options.sides;
     job.tube.caps = options.caps;
     job.tube.seedNormals = input.seedNormals;
@@ -191,13 +191,13 @@ ExportStats exportCurves(const ExportInput& input, const ExportOptions& requeste
         job.header = h.str();
     }
     if (tubes && input.curves)
-        detail::checkTubeExportBudget(*input.curves, job.tube, options, ext == "gltf" || ext == "glb");
+        impl::checkTubeExportBudget(*input.curves, job.tube, options, ext == "gltf" || ext == "glb");
     // Step 2: dispatch on the extension.
-    if (ext == "obj") detail::exportObj(job);
-    else if (ext == "ply") detail::exportPly(job);
-    else if (ext == "bcc") detail::exportBcc(job);
-    else if (ext == "pbrt") detail::exportPbrt(job);
-    else detail::exportGltf(job, ext == "glb");
+    if (ext == "obj") impl::exportObj(job);
+    else if (ext == "ply") impl::exportPly(job);
+    else if (ext == "bcc") impl::exportBcc(job);
+    else if (ext == "pbrt") impl::exportPbrt(job);
+    else impl::exportGltf(job, ext == "glb");
 
     stats.peakMemoryBytes = util::peakResidentBytes();
     stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -7,7 +7,7 @@
 
 #include "chunks.hpp"
 
-namespace knit::detail {
+namespace knit::impl {
 namespace {
 
 // Draco's encoder per chunk: ~0.5 KB per vertex, plus tables that double with each quantization
@@ -41,4 +41,4 @@ void checkTubeExportBudget(const Polylines& curves, const TubeOptions& tube, con
                            options.draco ? "--draco-bits, --sides or --chunk-vertices" : "--sides or --chunk-vertices");
 }
 
-}  // namespace knit::detail
+}  // namespace knit::impl

@@ -4,7 +4,7 @@
 #include "knit/export.hpp"
 #include "knit/sweep.hpp"
 
-namespace knit::detail {
+namespace knit::impl {
 
 // Tube meshes: the largest chunk (options.chunkVertices, or a longer curve's own chunk) times the
 // chunks in memory at once (glTF sweeps and encodes in parallel; other formats one at a time),
@@ -12,4 +12,4 @@ namespace knit::detail {
 // `options.chunkVertices` must be resolved (not 0).
 void checkTubeExportBudget(const Polylines& curves, const TubeOptions& tube, const ExportOptions& options, bool gltf);
 
-}  // namespace knit::detail
+}  // namespace knit::impl

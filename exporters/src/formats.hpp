@@ -5,7 +5,7 @@
 #include "knit/export.hpp"
 #include "knit/sweep.hpp"
 
-namespace knit::detail {
+namespace knit::impl {
 
 // Everything a format writer needs: validated input and options, and the stats to fill
 // (format, curves, vertices, triangles, chunks, bytes, ...; seconds and peak memory are set by
@@ -25,4 +25,4 @@ void exportBcc(const FormatJob& job);
 void exportPbrt(const FormatJob& job);
 void exportGltf(const FormatJob& job, bool binary);
 
-}  // namespace knit::detail
+}  // namespace knit::impl

@@ -9,7 +9,7 @@
 #include <glm/common.hpp>
 #include <nlohmann/json.hpp>
 
-#include "atomic_file.hpp"
+#include "io/atomic_file.hpp"
 #include "knit/budget.hpp"
 #include "knit/error.hpp"
 #include "knit/morph_gltf.hpp"
@@ -99,7 +99,7 @@ MorphGlbWriter::MorphGlbWriter(const std::string& path, MorphTopology base, size
     // Step 1: the path, the counts and the size a GLB can hold.
     if (util::lowerExtension(path) != "glb")
         throw Error("cannot write animated glTF '" + path + "': the extension must be .glb");
-    detail::checkOutputFolder(path);
+    impl::checkOutputFolder(path);
     if (frames == 0) throw Error("cannot write animated glTF '" + path + "': no frames");
     if (!(options.fps > 0 && std::isfinite(options.fps)))
         throw Error("cannot write animated glTF '" + path + "': --fps must be a positive number");
@@ -194,7 +194,7 @@ void MorphGlbWriter::commit() {
     nlohmann::json attributes = {{"POSITION", 0}};
     attributes[s.topology.triangles ? "NORMAL" : "_RADIUS"] = 1;
     if (!s.topology.colours.empty()) attributes["COLOR_0"] = 3;
-    nlohmann::json extras = detail::parseMaterialExtras(s.options.extrasJson);
+    nlohmann::json extras = impl::parseMaterialExtras(s.options.extrasJson);
     if (extras.empty()) extras = {{"generator", "libknit"}};
     nlohmann::json j = {
         {"asset", {{"version", "2.0"}, {"generator", "libknit"}}},
@@ -225,7 +225,7 @@ void MorphGlbWriter::commit() {
     // Step 3: the GLB: header, JSON chunk, BIN chunk, through a temporary file.
     const uint64_t total = 12 + 8 + text.size() + 8 + s.bin.size();
     if (double(total) > kGlbLimit) throw Error("cannot write animated glTF '" + s.path + "': over 4 GiB");
-    detail::AtomicFile file(s.path, true);
+    impl::AtomicFile file(s.path, true);
     auto u32 = [&](uint32_t v) { file.stream().write(reinterpret_cast<const char*>(&v), 4); };
     u32(0x46546C67), u32(2), u32(uint32_t(total));  // "glTF", version, length
     u32(uint32_t(text.size())), u32(0x4E4F534A), file.stream().write(text.data(), std::streamsize(text.size()));

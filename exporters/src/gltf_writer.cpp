@@ -46,7 +46,7 @@
 #include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
-#include "atomic_file.hpp"
+#include "io/atomic_file.hpp"
 #include "chunks.hpp"
 #include "draco_codec.hpp"
 #include "formats.hpp"
@@ -57,7 +57,7 @@
 #include "surface_gltf.hpp"
 #include "util/math.hpp"
 
-namespace knit::detail {
+namespace knit::impl {
 
 namespace {
 
@@ -961,4 +961,4 @@ void exportGltf(const FormatJob& job, bool binary) {
     builder.finish();
 }
 
-}  // namespace knit::detail
+}  // namespace knit::impl

@@ -3,7 +3,7 @@
 
 #include "knit/error.hpp"
 
-namespace knit::detail {
+namespace knit::impl {
 
 nlohmann::json parseMaterialExtras(const std::string& text) {
     if (text.empty()) return nlohmann::json::object();
@@ -17,4 +17,4 @@ nlohmann::json parseMaterialExtras(const std::string& text) {
     return extras;
 }
 
-}  // namespace knit::detail
+}  // namespace knit::impl

@@ -4,11 +4,11 @@
 
 #include <nlohmann/json.hpp>
 
-namespace knit::detail {
+namespace knit::impl {
 
 // The extras text as a JSON object (an empty text: an empty object). Throws knit::Error unless
 // the text is one JSON object: "export: materialExtrasJson is not valid JSON: ..." or
 // "export: materialExtrasJson must be a JSON object".
 nlohmann::json parseMaterialExtras(const std::string& text);
 
-}  // namespace knit::detail
+}  // namespace knit::impl

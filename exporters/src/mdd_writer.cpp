@@ -1,7 +1,7 @@
 // mdd_writer.cpp — MDD point cache bytes (big-endian; layout in knit/cache.hpp).
 #include "point_cache.hpp"
 
-namespace knit::detail {
+namespace knit::impl {
 
 void mddHeader(const CacheInfo& info, std::vector<char>& out) {
     putU32(out, static_cast<uint32_t>(info.frames), true);
@@ -11,4 +11,4 @@ void mddHeader(const CacheInfo& info, std::vector<char>& out) {
 
 void mddFrame(const std::vector<glm::dvec3>& points, std::vector<char>& out) { putPoints(out, points, true); }
 
-}  // namespace knit::detail
+}  // namespace knit::impl

@@ -15,7 +15,7 @@
 #include <meshoptimizer.h>
 #endif
 
-namespace knit::detail {
+namespace knit::impl {
 
 #ifdef KNIT_WITH_MESHOPT
 
@@ -75,4 +75,4 @@ MeshoptView encodeMeshoptTriangles(const void*, size_t, size_t) {
 
 #endif
 
-}  // namespace knit::detail
+}  // namespace knit::impl

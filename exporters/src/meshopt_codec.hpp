@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace knit::detail {
+namespace knit::impl {
 
 // One compressed bufferView: the bytes of the extension's buffer range, and what the extension
 // object records about them (count elements of byteStride bytes, mode ATTRIBUTES or TRIANGLES).
@@ -26,4 +26,4 @@ MeshoptView encodeMeshoptAttributes(const void* data, size_t count, size_t strid
 // (`indexSize`); the decoded view holds them with that stride.
 MeshoptView encodeMeshoptTriangles(const void* indices, size_t count, size_t indexSize);
 
-}  // namespace knit::detail
+}  // namespace knit::impl

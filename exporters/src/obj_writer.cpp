@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <sstream>
 
-#include "atomic_file.hpp"
+#include "io/atomic_file.hpp"
 #include "chunks.hpp"
 #include "formats.hpp"
 #include "text_out.hpp"
@@ -13,7 +13,7 @@ namespace knit {
 
 namespace {
 
-void writeHeaderComment(detail::TextOut& t, const std::string& header) {
+void writeHeaderComment(impl::TextOut& t, const std::string& header) {
     // Each header line becomes an OBJ comment line.
     std::istringstream lines(header);
     std::string line;
@@ -21,16 +21,16 @@ void writeHeaderComment(detail::TextOut& t, const std::string& header) {
 }
 
 // One `l i j` record between 0-based points i and j.
-void writeSegment(detail::TextOut& t, uint32_t i, uint32_t j) {
+void writeSegment(impl::TextOut& t, uint32_t i, uint32_t j) {
     t.str("l ").num(uint64_t(i) + 1).ch(' ').num(uint64_t(j) + 1).ch('\n');
 }
 
 }  // namespace
 
-namespace detail {
+namespace impl {
 
 void writeObjPolylines(std::ostream& out, const Polylines& curves, const std::string& header) {
-    detail::TextOut t(out);
+    impl::TextOut t(out);
     writeHeaderComment(t, header);
     // Step 1: every point as `v x y z` (shortest round-trip text of the double).
     for (const glm::dvec3& p : curves.points) {
@@ -108,5 +108,5 @@ void exportObj(const FormatJob& job) {
     job.stats.bytes = file.bytesWritten();
 }
 
-}  // namespace detail
+}  // namespace impl
 }  // namespace knit

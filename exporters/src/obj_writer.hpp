@@ -7,7 +7,7 @@
 #include "knit/export.hpp"
 #include "knit/sweep.hpp"
 
-namespace knit::detail {
+namespace knit::impl {
 
 // OBJ polylines: one `l` record per curve; a closed curve repeats its first index at the end.
 void writeObjPolylines(std::ostream& out, const Polylines& curves, const std::string& header);
@@ -15,4 +15,4 @@ void writeObjTubeHeader(std::ostream& out, const std::string& header);
 // One chunk of a streamed tube mesh; `vertexBase` = vertices written by earlier chunks.
 void writeObjTubeChunk(std::ostream& out, const TubeMesh& mesh, uint64_t vertexBase);
 
-}  // namespace knit::detail
+}  // namespace knit::impl

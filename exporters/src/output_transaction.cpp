@@ -11,8 +11,8 @@
 #include <filesystem>
 #include <system_error>
 
-#include "atomic_file.hpp"
-#include "temp_registry.hpp"
+#include "io/atomic_file.hpp"
+#include "io/temp_registry.hpp"
 
 namespace knit {
 namespace fs = std::filesystem;
@@ -74,10 +74,10 @@ const OutputTransaction::Folder& OutputTransaction::folderFor(const std::string&
     f.final = finalFolder;
     f.staging = join(finalFolder, ".knit-staging." + std::to_string(::getpid()) + "." +
                                       std::to_string(counter.fetch_add(1)) + ".tmp");
-    f.registrySlot = detail::registerTempFolder(f.staging);  // before it exists: a signal never leaks it
+    f.registrySlot = impl::registerTempFolder(f.staging);  // before it exists: a signal never leaks it
     std::error_code ec;
     if (!fs::create_directory(f.staging, ec) || ec) {
-        detail::unregisterTempFile(f.registrySlot);
+        impl::unregisterTempFile(f.registrySlot);
         throw Error("cannot write into folder '" + (finalFolder.empty() ? std::string(".") : finalFolder) +
                     "': cannot create a temporary folder there (" + ec.message() + ")");
     }
@@ -87,7 +87,7 @@ const OutputTransaction::Folder& OutputTransaction::folderFor(const std::string&
 
 std::string OutputTransaction::stage(const std::string& finalPath) {
     if (finalPath.empty()) return finalPath;
-    detail::checkOutputFolder(finalPath);
+    impl::checkOutputFolder(finalPath);
     // Two outputs of one command onto one name in one folder: the later rename would replace the
     // earlier file. The folder is resolved (symlinks, ".."), the name is not: rename() replaces
     // a symlink itself, not its target.
@@ -128,7 +128,7 @@ void OutputTransaction::removeStaging() {
     for (Folder& f : folders_) {
         std::error_code ec;
         fs::remove_all(f.staging, ec);
-        detail::unregisterTempFile(f.registrySlot);
+        impl::unregisterTempFile(f.registrySlot);
         f.registrySlot = -1;
     }
     folders_.clear();

@@ -15,12 +15,12 @@
 // change within one curve, a duplicate stitch, is not represented). Tube meshes carry none.
 #include <algorithm>
 
-#include "atomic_file.hpp"
+#include "io/atomic_file.hpp"
 #include "chunks.hpp"
 #include "formats.hpp"
 #include "text_out.hpp"
 
-namespace knit::detail {
+namespace knit::impl {
 
 namespace {
 
@@ -104,4 +104,4 @@ void exportPbrt(const FormatJob& job) {
     job.stats.bytes = file.bytesWritten();
 }
 
-}  // namespace knit::detail
+}  // namespace knit::impl

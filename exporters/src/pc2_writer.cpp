@@ -1,7 +1,7 @@
 // pc2_writer.cpp — PC2 point cache bytes (little-endian; layout in knit/cache.hpp).
 #include "point_cache.hpp"
 
-namespace knit::detail {
+namespace knit::impl {
 
 void pc2Header(const CacheInfo& info, std::vector<char>& out) {
     static const char kMagic[12] = {'P', 'O', 'I', 'N', 'T', 'C', 'A', 'C', 'H', 'E', '2', '\0'};
@@ -15,4 +15,4 @@ void pc2Header(const CacheInfo& info, std::vector<char>& out) {
 
 void pc2Frame(const std::vector<glm::dvec3>& points, std::vector<char>& out) { putPoints(out, points, false); }
 
-}  // namespace knit::detail
+}  // namespace knit::impl

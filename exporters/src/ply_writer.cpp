@@ -11,13 +11,13 @@
 #include <sstream>
 #include <vector>
 
-#include "atomic_file.hpp"
+#include "io/atomic_file.hpp"
 #include "chunks.hpp"
 #include "formats.hpp"
 #include "knit/error.hpp"
 #include "util/math.hpp"
 
-namespace knit::detail {
+namespace knit::impl {
 
 namespace {
 
@@ -150,4 +150,4 @@ void exportPly(const FormatJob& job) {
     job.stats.bytes = file.bytesWritten();
 }
 
-}  // namespace knit::detail
+}  // namespace knit::impl

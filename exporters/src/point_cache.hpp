@@ -12,7 +12,7 @@
 
 #include "knit/cache.hpp"
 
-namespace knit::detail {
+namespace knit::impl {
 
 // float32 / int32 bytes in little- or big-endian order, independent of the host.
 inline void putU32(std::vector<char>& out, uint32_t v, bool bigEndian) {
@@ -46,4 +46,4 @@ void pc2Frame(const std::vector<glm::dvec3>& points, std::vector<char>& out);
 void mddHeader(const CacheInfo& info, std::vector<char>& out);
 void mddFrame(const std::vector<glm::dvec3>& points, std::vector<char>& out);
 
-}  // namespace knit::detail
+}  // namespace knit::impl

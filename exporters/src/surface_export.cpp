@@ -3,7 +3,7 @@
 
 #include <tiny_gltf.h>
 
-#include "atomic_file.hpp"
+#include "io/atomic_file.hpp"
 #include "knit/error.hpp"
 #include "surface_gltf.hpp"
 #include "util/platform.hpp"
@@ -14,21 +14,21 @@ void checkSurfaceOutput(const std::string& path) {
     if (util::lowerExtension(path) != "glb")
         throw Error("cannot export '" + path +
                     "': the surface level (--surface-only) is written as GLB only (use a .glb name)");
-    detail::checkOutputFolder(path);
+    impl::checkOutputFolder(path);
 }
 
 SurfaceExportStats exportSurface(const BaseMesh& mesh, const SurfaceImages& images, const SurfaceExportOptions& o) {
     // Step 1: validate everything before any file exists.
     checkSurfaceOutput(o.path);
-    detail::validateSurfaceData(mesh, images, o, "cannot export '" + o.path + "': ");
+    impl::validateSurfaceData(mesh, images, o, "cannot export '" + o.path + "': ");
     // Step 2: vertices, the material with its PNG textures, one buffer.
-    const detail::SurfaceData d = detail::prepareSurface(mesh, images, o);
+    const impl::SurfaceData d = impl::prepareSurface(mesh, images, o);
     tinygltf::Model model;
     model.asset.version = "2.0";
     model.asset.generator = "libknit surface level";
     model.buffers.emplace_back();
     std::vector<unsigned char>& buffer = model.buffers[0].data;
-    const detail::AddView addView = [&](const void* data, size_t bytes, int target) {
+    const impl::AddView addView = [&](const void* data, size_t bytes, int target) {
         while (buffer.size() % 4) buffer.push_back(0);
         tinygltf::BufferView v;
         v.buffer = 0;
@@ -41,7 +41,7 @@ SurfaceExportStats exportSurface(const BaseMesh& mesh, const SurfaceImages& imag
         return int(model.bufferViews.size()) - 1;
     };
     tinygltf::Scene scene;
-    scene.nodes = {detail::addSurface(model, addView, d)};
+    scene.nodes = {impl::addSurface(model, addView, d)};
     model.scenes.push_back(scene);
     model.defaultScene = 0;
     SurfaceExportStats stats;
@@ -49,7 +49,7 @@ SurfaceExportStats exportSurface(const BaseMesh& mesh, const SurfaceImages& imag
     stats.vertices = d.vertexCount();
     stats.triangles = d.indices.size() / 3;
     // Step 3: GLB through a temporary file, renamed when complete.
-    detail::AtomicFile file(o.path, true);
+    impl::AtomicFile file(o.path, true);
     tinygltf::TinyGLTF gltf;
     if (!gltf.WriteGltfSceneToStream(&model, file.stream(), false, true))
         throw Error("cannot export '" + o.path + "': tinygltf failed to write the GLB");

@@ -13,7 +13,7 @@
 #include "util/checks.hpp"
 #include "util/math.hpp"
 
-namespace knit::detail {
+namespace knit::impl {
 namespace {
 
 // TANGENT: xyz along increasing u (the normal map's +x), w the sign that makes
@@ -205,4 +205,4 @@ int addSurface(tinygltf::Model& model, const AddView& addView, const SurfaceData
     return int(model.nodes.size()) - 1;
 }
 
-}  // namespace knit::detail
+}  // namespace knit::impl

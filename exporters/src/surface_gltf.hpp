@@ -16,7 +16,7 @@ namespace tinygltf {
 class Model;
 }
 
-namespace knit::detail {
+namespace knit::impl {
 
 // Throws knit::Error starting with `where` for a mesh without UV triangles, indices out of range,
 // images that do not match their size, or bad material options.
@@ -47,4 +47,4 @@ using AddView = std::function<int(const void* data, size_t bytes, int target)>;
 // node's index; the caller puts it into a scene or under a parent node.
 int addSurface(tinygltf::Model& model, const AddView& addView, const SurfaceData& data);
 
-}  // namespace knit::detail
+}  // namespace knit::impl

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-namespace knit::detail {
+namespace knit::impl {
 
 // Appends numbers as the shortest text that reads back to the same double / float
 // (std::to_chars round-trip guarantee), buffering and flushing to a stream in large blocks.
@@ -57,4 +57,4 @@ private:
     std::string buf_;
 };
 
-}  // namespace knit::detail
+}  // namespace knit::impl

@@ -7,7 +7,7 @@
 #include <tbb/parallel_for.h>
 
 #include "knit/error.hpp"
-#include "plies_kernel.hpp"  // internal: the per-yarn resample and sweep steps
+#include "plies/plies_kernel.hpp"  // internal: the per-yarn resample and sweep steps
 
 namespace knitpy {
 
@@ -66,14 +66,14 @@ knit::Plies pliesWithRestLayout(const knit::MappedYarns& yarns, const knit::PlyO
             const size_t m = layout.points[y];
             if (m < 2) continue;
             centre.clear();
-            knit::detail::PlyKernel::centreline(generator, y, centre, scratch);
+            knit::impl::PlyKernel::centreline(generator, y, centre, scratch);
             const std::vector<glm::dvec3>* line = &centre;
             if (centre.size() != m) {
                 resampleToCount(centre, yarns.curves.isClosed(y), m, fixed);
                 line = &fixed;
             }
             const size_t base = rest.curves.begin(layout.firstCurve[y]);
-            knit::detail::PlyKernel::sweep(generator, y, line->data(), m, out.curves.points.data() + base,
+            knit::impl::PlyKernel::sweep(generator, y, line->data(), m, out.curves.points.data() + base,
                                            out.radial.empty() ? nullptr : out.radial.data() + base, scratch);
         }
     });

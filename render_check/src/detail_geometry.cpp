@@ -9,7 +9,7 @@
 #include "knit/scene.hpp"
 #include "util/math.hpp"
 
-namespace knit::detail {
+namespace knit::impl {
 namespace {
 
 // The yarn-level pieces as one-ply "plies" of that radius; their radial reference is the surface
@@ -95,4 +95,4 @@ BaseMesh surfaceMesh(const Scene& scene) {
     return meshSubset(scene.mesh(), scene.detail() ? scene.detail()->pieces.surfaceFaces : none, " (surface level)");
 }
 
-}  // namespace knit::detail
+}  // namespace knit::impl

@@ -10,7 +10,7 @@ namespace knit {
 class Scene;
 }
 
-namespace knit::detail {
+namespace knit::impl {
 
 // The radius of a yarn-level curve for these (resolved) ply options: the ply bundle's mean
 // projected half-width across the yarn, rp + Rc E[max_i |cos(theta + 2 pi i / n)|] over the
@@ -31,4 +31,4 @@ PlyGeometry renderCurves(const Scene& scene, const glm::dvec3& origin, double fi
 // empty without a view).
 BaseMesh surfaceMesh(const Scene& scene);
 
-}  // namespace knit::detail
+}  // namespace knit::impl

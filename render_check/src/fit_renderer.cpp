@@ -25,7 +25,7 @@ bool sameTables(const FiberTableOptions& a, const FiberTableOptions& b) {
 
 FitRenderer::FitRenderer(const Scene& scene, const RenderOptions& options) : options_(options) {
     // Step 1: the scene as renderScene traces it (scaled copy far from metre size).
-    scaled_ = detail::sceneAtTracingScale(scene);
+    scaled_ = impl::sceneAtTracingScale(scene);
     scene_ = scaled_ ? &*scaled_ : &scene;
     options_.materialFile.clear(), options_.materialOverrides.clear();
     options_.output.clear(), options_.exr.clear(), options_.progress = false;
@@ -38,7 +38,7 @@ FitRenderer::FitRenderer(const Scene& scene, const RenderOptions& options) : opt
     }
     // Step 3: the geometry's origin (renderScene's: the centre of the framed mesh bounds) and the
     // ply count (the tables').
-    centre_ = framedBounds(scene_->mesh(), detail::sceneMargin(*scene_)).centre;
+    centre_ = framedBounds(scene_->mesh(), impl::sceneMargin(*scene_)).centre;
     for (uint8_t p : scene_->plies().plyOfCurve) plyCount_ = std::max(plyCount_, int(p) + 1);
     device_ = std::make_unique<EmbreeDevice>();
 }

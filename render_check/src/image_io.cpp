@@ -11,7 +11,7 @@
 #include <stb/stb_image_write.h>
 #include <tinyexr.h>
 
-#include "atomic_file.hpp"
+#include "io/atomic_file.hpp"
 #include "knit/error.hpp"
 #include "knit/output_file.hpp"
 #include "knit/ply_bsdf.hpp"
@@ -33,7 +33,7 @@ void checkImage(const Image& im, const std::string& path) {
 
 void checkWritable(const std::string& path) {
     if (path.empty()) throw Error("image path is empty");
-    detail::checkOutputFolder(path);  // the check every output of the project gets
+    impl::checkOutputFolder(path);  // the check every output of the project gets
 }
 
 // Both writers go through the project's atomic output file (a temporary sibling renamed when
@@ -58,7 +58,7 @@ void writePng(const std::string& path, const Image& im) {
 void writeExr(const std::string& path, const Image& im) {
     checkImage(im, path);
     // tinyexr writes to a file name: the atomic file's temporary sibling, renamed when complete.
-    detail::AtomicFile file(path, true);
+    impl::AtomicFile file(path, true);
     file.close();
     const char* err = nullptr;
     if (SaveEXR(im.rgb.data(), im.width, im.height, 3, 0, file.tempPath().c_str(), &err) < 0) {

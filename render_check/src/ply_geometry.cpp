@@ -135,7 +135,7 @@ std::vector<int64_t> segmentCells(const Scene& scene, const PlyGeometry& g) {
     // that follows the ply along the yarn; a full scan when the window loses it).
     std::vector<int64_t> out(g.segmentCount());
     const double far2 = std::pow(4.0 * std::max(scene.yarnRadius(), g.unit * g.radius) + 1e-12, 2);
-    // The curves are the scene's plies, then (a view's) yarn-level pieces (detail::renderCurves).
+    // The curves are the scene's plies, then (a view's) yarn-level pieces (impl::renderCurves).
     const size_t plyCurves = scene.plies().curves.curveCount();
     const std::vector<uint32_t>* pieceYarn = scene.detail() ? &scene.detail()->pieces.yarnPieceYarn : nullptr;
     for (size_t k = 0; k + 1 < g.curveSegments.size(); ++k) {

@@ -72,7 +72,7 @@ PlyMaterial resolveMaterial(const RenderOptions& o) {
 
 RenderResult renderScene(const Scene& scene, const RenderOptions& o) {
     // Step 0: a scene far from metre size is traced as a copy at unit size (any scale renders).
-    if (const std::optional<Scene> scaled = detail::sceneAtTracingScale(scene)) return renderScene(*scaled, o);
+    if (const std::optional<Scene> scaled = impl::sceneAtTracingScale(scene)) return renderScene(*scaled, o);
     // Step 1: validate every option before any work.
     if (o.light != LightPlacement::Front && o.light != LightPlacement::Back)
         throw Error("render: unknown light placement " + std::to_string(int(o.light)) + " (expected front or back)");
@@ -101,17 +101,17 @@ RenderResult renderScene(const Scene& scene, const RenderOptions& o) {
     if (!o.exr.empty()) checkImageName(o.exr, "exr", "--exr", "EXR");
     if (!o.output.empty()) checkWritable(o.output);
     if (!o.exr.empty()) checkWritable(o.exr);
-    detail::checkRenderBudget(scene.plies(), o);
+    impl::checkRenderBudget(scene.plies(), o);
     res.mode = mode;
     res.light = o.light;
     res.spp = o.spp;
     // Step 2: ply segments (and a view's yarn-level curves) relative to the centre of the framed
     // bounds; a view's surface-level triangles (or, with --surface-only, the whole base mesh).
-    const glm::dvec3 centre = framedBounds(scene.mesh(), detail::sceneMargin(scene)).centre;
+    const glm::dvec3 centre = framedBounds(scene.mesh(), impl::sceneMargin(scene)).centre;
     const PlyGeometry geometry =
-        o.surface ? detail::surfaceFrame(scene, centre) : detail::renderCurves(scene, centre, res.material.fiberTwist);
+        o.surface ? impl::surfaceFrame(scene, centre) : impl::renderCurves(scene, centre, res.material.fiberTwist);
     res.segments = geometry.segmentCount();
-    const BaseMesh surface = detail::surfaceMesh(scene);
+    const BaseMesh surface = impl::surfaceMesh(scene);
     res.surfaceTriangles = surface.faces.size();
     const BaseMesh* base = o.baseMesh || o.surface ? &scene.mesh() : (surface.faces.empty() ? nullptr : &surface);
     if (geometry.segmentCount() == 0 && base == nullptr)
@@ -128,9 +128,9 @@ RenderResult renderScene(const Scene& scene, const RenderOptions& o) {
         bo.material = res.material;
         bo.scatteringPaths = o.surfaceScatteringPaths;
         // The table's paths go mostly where this view sees the surface level from and lights it from.
-        const RectLight light = detail::defaultLight(scene, o.light, o.lightIrradiance);
+        const RectLight light = impl::defaultLight(scene, o.light, o.lightIrradiance);
         bo.scatteringFocus =
-            detail::scatteringFocus(surface, view.eye, glm::dvec3(light.corner + 0.5 * (light.edgeU + light.edgeV)));
+            impl::scatteringFocus(surface, view.eye, glm::dvec3(light.corner + 0.5 * (light.edgeU + light.edgeV)));
         viewBake = bakeSurface(scene.pattern(), bo);
         viewTexture = makeSurfaceTexture(viewBake, scene.placement().repeats);
         res.surfaceTextured = true;
@@ -155,7 +155,7 @@ RenderResult renderScene(const Scene& scene, const RenderOptions& o) {
     so.mode = mode;
     so.tubeSides = o.tubeSides;
     so.baseMesh = base;
-    SurfaceTexture texture = detail::surfaceTexture(scene, o);
+    SurfaceTexture texture = impl::surfaceTexture(scene, o);
     so.baseTexture = o.surface ? &texture : res.surfaceTextured ? &viewTexture : nullptr;
     // Camera rays read the surface level's tint and holes prefiltered over their footprint.
     for (SurfaceTexture* t : {&texture, &viewTexture}) {
@@ -174,11 +174,11 @@ RenderResult renderScene(const Scene& scene, const RenderOptions& o) {
     // Step 5: camera and light (both from the base mesh grown by the yarns' margin).
     TraceSettings ts;
     ts.width = o.width, ts.height = o.height, ts.spp = o.spp, ts.seed = o.seed, ts.maxDepth = o.maxDepth;
-    ts.camera = detail::cameraOf(view);
+    ts.camera = impl::cameraOf(view);
     ts.environment = Rgb(o.environment);
     // The surface level (no --base-mesh) is the cloth itself: its body colour.
     ts.baseAlbedo = o.baseMesh ? Rgb(o.baseAlbedo) : res.material.bodyAlbedo;
-    ts.light = detail::defaultLight(scene, o.light, o.lightIrradiance);
+    ts.light = impl::defaultLight(scene, o.light, o.lightIrradiance);
     // Step 6: render, with progress on stderr for long renders.
     std::mutex progressMutex;
     int lastDecile = 0;

@@ -5,7 +5,7 @@
 
 #include "knit/sweep.hpp"
 
-namespace knit::detail {
+namespace knit::impl {
 namespace {
 
 // Bytes per element, measured with `knit render --report` (sceneMemoryBytes + the shading data
@@ -48,4 +48,4 @@ void checkRenderBudget(const Plies& plies, const RenderOptions& o) {
     }
 }
 
-}  // namespace knit::detail
+}  // namespace knit::impl

@@ -4,10 +4,10 @@
 #include "knit/plies.hpp"
 #include "knit/render.hpp"
 
-namespace knit::detail {
+namespace knit::impl {
 
 // The image (width x height; driven by --width / --height) and the geometry of the mode over the
 // plies' segments (curves, grid; tubes: triangles of tubeSides, driven by --tube-sides).
 void checkRenderBudget(const Plies& plies, const RenderOptions& options);
 
-}  // namespace knit::detail
+}  // namespace knit::impl

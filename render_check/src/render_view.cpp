@@ -9,7 +9,7 @@
 #include "knit/scene.hpp"
 
 namespace knit {
-namespace detail {
+namespace impl {
 
 double sceneMargin(const Scene& scene) {
     if (scene.detail()) return scene.detail()->margin;
@@ -41,12 +41,12 @@ Camera cameraOf(const View& view) {
     return c;
 }
 
-}  // namespace detail
+}  // namespace impl
 
 View renderView(const Scene& scene, const RenderOptions& o) {
     View v = scene.detail() ? scene.detail()->view : o.view.value_or(View{});
     v.fovDegrees = o.fovDegrees, v.width = o.width, v.height = o.height;
-    if (!scene.detail() && !o.view) v = frameMesh(scene.mesh(), detail::sceneMargin(scene), v);
+    if (!scene.detail() && !o.view) v = frameMesh(scene.mesh(), impl::sceneMargin(scene), v);
     if (v.orthographic) throw Error("render: orthographic views are not rendered (the tracer's camera is a pinhole)");
     validateView(v);
     return v;

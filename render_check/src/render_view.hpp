@@ -5,7 +5,7 @@
 #include "knit/path_tracer.hpp"
 #include "knit/render.hpp"
 
-namespace knit::detail {
+namespace knit::impl {
 
 // The yarns' margin of a scene: the scene's own when built for a view, else Scene::yarnMargin
 // (from the pattern; from the binding for a scene made from parts).
@@ -18,4 +18,4 @@ RectLight defaultLight(const Scene& scene, LightPlacement light, double irradian
 
 Camera cameraOf(const View& view);
 
-}  // namespace knit::detail
+}  // namespace knit::impl

@@ -9,7 +9,7 @@
 #include "knit/error.hpp"
 #include "util/checks.hpp"
 
-namespace knit::detail {
+namespace knit::impl {
 namespace {
 
 void scalePoints(std::vector<glm::dvec3>& points, const glm::dvec3& centre, double scale) {
@@ -64,4 +64,4 @@ std::optional<Scene> sceneAtTracingScale(const Scene& scene) {
     return Scene::fromParts(std::move(parts));
 }
 
-}  // namespace knit::detail
+}  // namespace knit::impl

@@ -6,7 +6,7 @@
 
 #include "knit/scene.hpp"
 
-namespace knit::detail {
+namespace knit::impl {
 
 // The plies' bounding-sphere radius range traced without scaling (metres).
 constexpr double kMinTracedRadius = 1e-3;
@@ -18,4 +18,4 @@ constexpr double kMaxTracedRadius = 1e4;
 // are not finite.
 std::optional<Scene> sceneAtTracingScale(const Scene& scene);
 
-}  // namespace knit::detail
+}  // namespace knit::impl

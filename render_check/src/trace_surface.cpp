@@ -241,7 +241,7 @@ void setSurfaceFilter(RTCGeometry geometry, const SurfaceMesh& surface) {
     rtcSetGeometryOccludedFilterFunction(geometry, surfaceFilter);
 }
 
-namespace detail {
+namespace impl {
 
 PlyGeometry surfaceFrame(const Scene& scene, const glm::dvec3& centre) {
     PlyGeometry g;
@@ -282,6 +282,6 @@ std::vector<ScatteringFocus> scatteringFocus(const BaseMesh& mesh, const glm::dv
     return focus;
 }
 
-}  // namespace detail
+}  // namespace impl
 
 }  // namespace knit

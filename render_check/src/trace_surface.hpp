@@ -86,7 +86,7 @@ struct SurfaceMesh {
 // triangle: stochastic transparency). `surface` must outlive the geometry.
 void setSurfaceFilter(RTCGeometry geometry, const SurfaceMesh& surface);
 
-namespace detail {
+namespace impl {
 // renderScene's steps at the surface level (RenderOptions::surface):
 // a ply geometry without plies that sets the scene units (yarn radii around `centre`),
 PlyGeometry surfaceFrame(const Scene& scene, const glm::dvec3& centre);
@@ -98,6 +98,6 @@ SurfaceTexture surfaceTexture(const Scene& scene, const RenderOptions& options);
 // image (area x |cos| towards the eye / distance^2). For BakeOptions::scatteringFocus.
 std::vector<ScatteringFocus> scatteringFocus(const BaseMesh& mesh, const glm::dvec3& eye, const glm::dvec3& light,
                                              size_t maxTriangles = 8192);
-}  // namespace detail
+}  // namespace impl
 
 }  // namespace knit

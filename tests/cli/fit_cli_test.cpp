@@ -158,7 +158,7 @@ TEST_F(FitCli, fitRendersFromTheCameraOfThePhotographs) {
     const double withCamera = fitLoss(camera, "with.json"), framed = fitLoss("", "framed.json");
     EXPECT_LT(withCamera, 0.5 * framed) << "the fit did not render from --eye/--target";
     // --detail view (the default) builds only the cells the camera sees (here all four: culling
-    // itself is tested in tests/core/detail_test.cpp), all at the ply level; --detail full fits
+    // itself is tested in tests/lod/detail_test.cpp), all at the ply level; --detail full fits
     // as well.
     const nlohmann::json with = nlohmann::json::parse(std::ifstream(dir / "with.json"));
     EXPECT_EQ(with["detail"], "view");

@@ -1,5 +1,5 @@
 // gltf_read.hpp — read back glTF / GLB files written by the exporter with the project's one glTF
-// reader (gltf::Document, libknit/src/gltf_document.hpp: container, buffers, accessors, node
+// reader (gltf::Document, libknit/src/internal/io/gltf_document.hpp: container, buffers, accessors, node
 // tree), plus the checks only a test makes (GLB chunk alignment) and curve comparisons.
 // KHR_draco_mesh_compression primitives are decoded in the tests with the Draco library, on the
 // buffer-view bytes the document gives. The exports are also checked by the Khronos validator
@@ -15,7 +15,7 @@
 #include <glm/vec4.hpp>
 #include <nlohmann/json.hpp>
 
-#include "gltf_document.hpp"
+#include "io/gltf_document.hpp"
 #include "knit/polylines.hpp"
 
 #include "export/test_curves.hpp"

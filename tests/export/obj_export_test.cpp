@@ -53,7 +53,7 @@ TEST(ObjExport, polylinesAreTwoIndexSegmentsAndLoopsEndWithTheClosingSegment) {
     c.addCurve(open, 3, false);
     c.addCurve(loop, 4, true);
     std::ostringstream out;
-    detail::writeObjPolylines(out, c, "two curves\nsecond line");
+    impl::writeObjPolylines(out, c, "two curves\nsecond line");
     const ObjData d = parseObj(out.str());
     ASSERT_EQ(d.v.size(), 7u);
     // Every segment its own `l i j` record (Blender 3.4 keeps only the first segment of longer ones).
@@ -67,7 +67,7 @@ TEST(ObjExport, polylineCoordinatesRoundTripExactly) {
     const glm::dvec3 p[2] = {{0.1, 1.0 / 3.0, -123456.789012345678}, {1e-17, 6.02214076e23, util::kPi}};
     c.addCurve(p, 2, false);
     std::ostringstream out;
-    detail::writeObjPolylines(out, c, "");
+    impl::writeObjPolylines(out, c, "");
     const ObjData d = parseObj(out.str());
     ASSERT_EQ(d.v.size(), 2u);
     for (int i = 0; i < 2; ++i) EXPECT_EQ(d.v[i], p[i]) << "vertex " << i;
@@ -80,7 +80,7 @@ TEST(ObjExport, singlePointCurveWritesNoLineRecord) {
     c.addCurve(&one, 1, false);
     c.addCurve(two, 2, false);
     std::ostringstream out;
-    detail::writeObjPolylines(out, c, "");
+    impl::writeObjPolylines(out, c, "");
     const ObjData d = parseObj(out.str());
     ASSERT_EQ(d.lines.size(), 1u);
     EXPECT_EQ(d.lines[0], (std::vector<long>{2, 3}));

@@ -149,7 +149,7 @@ inline std::vector<HardCase> catalogue() {
                       "upper", 8, 8, [](double s, double t) { return glm::dvec3(s * 0.1, t * 0.1, 0.05); },
                       [](double s, double t) { return glm::dvec2(s, t); }));
         add("uvOverlappingCharts", stockinette, m, withRepeats(7, 7), {}, [](const Scene& s) {
-            EXPECT_EQ(s.grid().overlappingCharts, (std::vector<glm::uvec2>{{0, 1}}));
+            EXPECT_EQ(s.grid().overlappingIslands, (std::vector<glm::uvec2>{{0, 1}}));
             const size_t half = s.mesh().faceCount() / 2;
             size_t lower = 0, upper = 0;
             for (uint32_t f : s.binding().face) (f < half ? lower : upper)++;
@@ -184,16 +184,16 @@ inline std::vector<HardCase> catalogue() {
                           [u0](double s, double t) { return glm::dvec2(u0 + s, t); }));
         weldPositions(m);  // B and C share their edge in 3D
         add("uvPartlyOverlappingCharts", stockinette, m, withRepeats(14, 7), {}, [](const Scene& s) {
-            EXPECT_EQ(s.grid().chartCount, 3u);
-            EXPECT_EQ(s.grid().overlappingCharts, (std::vector<glm::uvec2>{{0, 1}}));
-            std::vector<size_t> perChart(3, 0);
-            for (uint32_t f : s.binding().face) ++perChart[s.grid().chartOfFace[f]];
-            for (int c = 0; c < 3; ++c) EXPECT_GT(perChart[size_t(c)], 0u) << "chart " << c;
+            EXPECT_EQ(s.grid().islandCount, 3u);
+            EXPECT_EQ(s.grid().overlappingIslands, (std::vector<glm::uvec2>{{0, 1}}));
+            std::vector<size_t> perIsland(3, 0);
+            for (uint32_t f : s.binding().face) ++perIsland[s.grid().islandOfFace[f]];
+            for (int c = 0; c < 3; ++c) EXPECT_GT(perIsland[size_t(c)], 0u) << "chart " << c;
             // Courses run on from B into C across their shared 3D edge: welded there.
             EXPECT_GT(s.bindStats().weldedEnds, 0u);
             // Equal UV areas and the same pattern: similar amounts of yarn on each (the two
             // layouts differ only in phase at the borders).
-            EXPECT_LT(double(std::max(perChart[0], perChart[1])) / double(std::min(perChart[0], perChart[1])), 1.1);
+            EXPECT_LT(double(std::max(perIsland[0], perIsland[1])) / double(std::min(perIsland[0], perIsland[1])), 1.1);
         });
     }
 
@@ -215,8 +215,8 @@ inline std::vector<HardCase> catalogue() {
         e.closedLoops = matching ? 7 : 0;
         add(matching ? "uvThreeChartsWholeCellGapsClose" : "uvThreeChartsOtherGapsStayOpen", stockinette, m,
             withRepeats(24, 8), e, [](const Scene& s) {
-                EXPECT_EQ(s.grid().chartCount, 3u);
-                EXPECT_TRUE(s.grid().overlappingCharts.empty());  // side by side: no overlap
+                EXPECT_EQ(s.grid().islandCount, 3u);
+                EXPECT_TRUE(s.grid().overlappingIslands.empty());  // side by side: no overlap
             });
     }
 

@@ -1,4 +1,4 @@
-// gltf::Document, the project's one glTF reader (libknit/src/gltf_document.hpp): what the export
+// gltf::Document, the project's one glTF reader (libknit/src/internal/io/gltf_document.hpp): what the export
 // tests and the speed-vs-error tool use beyond base meshes (tests/mesh/gltf_mesh_test.cpp covers
 // the checks a base mesh meets). Files are assembled with gltf_builder.hpp.
 #include <gtest/gtest.h>
@@ -10,7 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "gltf_document.hpp"
+#include "io/gltf_document.hpp"
 #include "knit/error.hpp"
 #include "mesh/gltf_builder.hpp"
 #include "mesh/mesh_test_util.hpp"

@@ -123,10 +123,10 @@ TEST(RenderView, yarnLevelRadiusIsThePlyBundlesMeanHalfWidth) {
         o.count = n;
         const PlyOptions r = resolvePlyOptions(o);
         const double expected = n == 1 ? 1.0 : r.plyRadius + r.centerRadius * (n == 2 ? 2.0 : 3.0) / 3.14159265358979;
-        EXPECT_NEAR(detail::yarnLevelRadius(r), expected, 1e-5) << n << " plies";
+        EXPECT_NEAR(impl::yarnLevelRadius(r), expected, 1e-5) << n << " plies";
     }
     o.count = 2;
-    EXPECT_NEAR(detail::yarnLevelRadius(resolvePlyOptions(o)), 0.5 + 0.5 * 2 / 3.14159265358979, 1e-5);
+    EXPECT_NEAR(impl::yarnLevelRadius(resolvePlyOptions(o)), 0.5 + 0.5 * 2 / 3.14159265358979, 1e-5);
 }
 
 // Seen from close by, a plane drawn at the yarn level alone is about as bright as the same view

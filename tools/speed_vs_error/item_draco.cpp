@@ -19,7 +19,7 @@
 #include <glm/geometric.hpp>
 #include <glm/mat4x4.hpp>
 
-#include "gltf_document.hpp"
+#include "io/gltf_document.hpp"
 #include "items.hpp"
 #include "knit/export.hpp"
 

@@ -8,8 +8,8 @@
 
 namespace knit {
 
-namespace detail {
-struct PlyKernel;  // the per-yarn steps of PlyGenerator (internal: libknit/src/plies_kernel.hpp)
+namespace impl {
+struct PlyKernel;  // the per-yarn steps of PlyGenerator (internal: libknit/src/plies/plies_kernel.hpp)
 }
 
 // Yarn held vertical: S strands slant like the middle of "S" (a left-handed helix,
@@ -64,7 +64,7 @@ public:
     PlyScratch& operator=(PlyScratch&&) noexcept;
 
 private:
-    friend struct detail::PlyKernel;
+    friend struct impl::PlyKernel;
     struct Buffers;
     std::unique_ptr<Buffers> buffers_;
 };
@@ -91,7 +91,7 @@ public:
     const MappedYarns& yarns() const { return yarns_; }
 
 private:
-    friend struct detail::PlyKernel;
+    friend struct impl::PlyKernel;
     const MappedYarns& yarns_;
     PlyOptions options_;
     double spacing_ = 0;

@@ -59,7 +59,7 @@ struct StageTime {
 // (Scene::stages); exporters and renderers need none of them.
 struct SceneStages {
     Tiling tiling;                     // tiles over every covered cell
-    std::vector<Tiling> chartTilings;  // when UV charts overlap: one tiling per chart, which the
+    std::vector<Tiling> islandTilings;  // when UV islands overlap: one tiling per island, which the
                                        // yarns come from (empty otherwise)
     UvYarns uvYarns;                   // the stitched yarns in UV space, before binding
 };
@@ -158,7 +158,7 @@ struct LevelStats {
 // `knit build` report besides the pattern, mesh and placement (apps/knit/report.cpp).
 struct SceneStats {
     size_t cells = 0;
-    size_t tiles = 0;  // the tiles the yarns come from (all chart tilings when charts overlap)
+    size_t tiles = 0;  // the tiles the yarns come from (all island tilings when islands overlap)
     size_t yarns = 0;
     size_t tiledYarns = 0;
     BindStats bind;  // closed loops, open ends, cut / clamped / boundary vertices, welds

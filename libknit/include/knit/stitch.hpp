@@ -31,9 +31,9 @@ struct UvYarns {
     std::vector<uint32_t> offsets{0};
     std::vector<uint8_t> closed;
     std::vector<std::array<GhostVertex, 2>> ghosts;  // per yarn: beyond its first / last vertex
-    // Per yarn: the only UV chart binding may place it on (empty: any chart). Set when UV charts
-    // overlap and each chart is tiled on its own; `source` then counts within the chart's tiling.
-    std::vector<uint32_t> chart;
+    // Per yarn: the only UV island binding may place it on (empty: any island). Set when UV islands
+    // overlap and each island is tiled on its own; `source` then counts within the island's tiling.
+    std::vector<uint32_t> island;
 
     size_t yarnCount() const { return closed.size(); }
     size_t vertexCount() const { return uv.size(); }
@@ -44,7 +44,7 @@ struct UvYarns {
 UvYarns stitchYarns(const Pattern& pattern, const PatternAdjacency& adjacency, const Tiling& tiling,
                     const PatternPlacement& placement);
 
-// Appends the yarns of `more` (tiled for `chart`) to `yarns`, restricted to that chart.
-void appendChartYarns(UvYarns& yarns, const UvYarns& more, uint32_t chart);
+// Appends the yarns of `more` (tiled for `island`) to `yarns`, restricted to that island.
+void appendIslandYarns(UvYarns& yarns, const UvYarns& more, uint32_t island);
 
 }  // namespace knit

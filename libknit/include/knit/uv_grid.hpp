@@ -31,21 +31,21 @@ struct UvGrid {
     std::vector<uint32_t> triangles;       // triangle ids, ascending per cell
     std::vector<uint32_t> edgeOffsets{0};  // per touched cell: range into boundaryEdges
     std::vector<uint32_t> boundaryEdges;   // UV boundary half-edges (3*face + corner), per cell
-    std::vector<uint32_t> chartOfFace;     // UV chart (connected component) of each face, 0-based
-    // Charts, numbered in the order of their lowest face (a zero-UV-area triangle that shares no
-    // UV edge with another triangle is a chart of its own).
-    uint32_t chartCount = 0;
-    // Pairs (a < b) of charts whose UV triangles overlap (exact test; touching is no overlap).
-    // Every chart that overlaps another is in some pair (not every overlapping pair is listed:
-    // at most chartCount pairs). With any, the pipeline tiles and binds each chart on its own
-    // (knit/scene.hpp), so every chart gets its knit.
-    std::vector<glm::uvec2> overlappingCharts;
+    std::vector<uint32_t> islandOfFace;    // UV island (connected UV island) of each face, 0-based
+    // Islands, numbered in the order of their lowest face (a zero-UV-area triangle that shares no
+    // UV edge with another triangle is an island of its own).
+    uint32_t islandCount = 0;
+    // Pairs (a < b) of islands whose UV triangles overlap (exact test; touching is no overlap).
+    // Every island that overlaps another is in some pair (not every overlapping pair is listed:
+    // at most islandCount pairs). With any, the pipeline tiles and binds each island on its own
+    // (knit/scene.hpp), so every island gets its knit.
+    std::vector<glm::uvec2> overlappingIslands;
     std::vector<int8_t> faceOrientation;  // +1 counter-clockwise, -1 mirrored, 0 zero-area UV
     size_t degenerateUvFaces = 0;         // zero-area UV triangles (never own a point)
-    // Triangles on the folded-over side of a chart that folds over itself in UV: across a fold
-    // edge both triangles lie on the same side of it, so the chart covers that UV region twice
+    // Triangles on the folded-over side of an island that folds over itself in UV: across a fold
+    // edge both triangles lie on the same side of it, so the island covers that UV region twice
     // and a point there is bound to whichever layer holds the lowest triangle (the other layer
-    // gets no yarns there). The side of the chart with the smaller UV area counts as folded.
+    // gets no yarns there). The side of the island with the smaller UV area counts as folded.
     // Independent of 3D winding (a face wound the other way is no fold). Reported, not refused.
     size_t foldedUvFaces = 0;
     uint32_t foldedUvFaceExample = UINT32_MAX;  // lowest folded triangle, UINT32_MAX when none
@@ -74,11 +74,11 @@ struct LocateResult {
 // one owner. A point in no triangle but within `tolerance` (UV units) of one goes to the closest
 // triangle with clamped barycentrics; farther out it is Outside. Coordinates are never nudged.
 // `hint`: a triangle to try first (the previous vertex's along a yarn). A point strictly inside
-// the hint is given to it without scanning the cell: the same owner as the scan unless UV charts
-// overlap, where it keeps a yarn on the chart it is already on.
-// `chart`: only triangles of this chart are considered (kAnyChart: all).
-constexpr uint32_t kAnyChart = UINT32_MAX;
+// the hint is given to it without scanning the cell: the same owner as the scan unless UV islands
+// overlap, where it keeps a yarn on the island it is already on.
+// `island`: only triangles of this island are considered (kAnyIsland: all).
+constexpr uint32_t kAnyIsland = UINT32_MAX;
 LocateResult locatePoint(const BaseMesh& mesh, const UvGrid& grid, glm::dvec2 uv, double tolerance,
-                         uint32_t hint = UINT32_MAX, uint32_t chart = kAnyChart);
+                         uint32_t hint = UINT32_MAX, uint32_t island = kAnyIsland);
 
 }  // namespace knit

@@ -1,0 +1,244 @@
+// animator.cpp — the yarns of one rest binding evaluated on every frame of a sequence.
+//
+// Bind time (constructor): the rest yarns are resampled once, recording each yarn's layout
+// (ResampleLayout), the rest arc length of every resampled point, the rest pitch of every yarn
+// and the rest length of every yarn segment. Per frame (evaluate): vertex normals -> binding
+// evaluation -> resampling with the fixed layouts -> rotation-minimizing frames and helices
+// with the rest phase -> statistics.
+//
+// Frame seeds (temporal coherence): at bind time each yarn's first ply frame (tangent T0,
+// normal N0: the surface normal projected, as makePlies seeds it) is recorded with the
+// orthonormal frame of the triangle its first point is bound to. On a frame, that triangle's
+// rotation R from the rest pose carries the rest frame along (R T0, R N0), and R N0 is turned by
+// the minimal rotation from R T0 onto the frame's first tangent (parallel transport) before the
+// rotation-minimizing frames run. So the plies turn with the surface (a rigid motion moves them
+// exactly) and never flip when the yarn's first tangent passes through the surface normal (the
+// projection of the surface normal, which each frame used to be seeded with, is undefined
+// there). The transport starts from the rest pose, not from the previous frame: frames stay
+// history-free, so frame k equals `knit build --rest REST --mesh FRAME_k` (the same Animator),
+// and the transport has no drift accumulated over frames. On the rest pose R = I and the plies
+// equal makePlies' up to rounding (~1e-15 m).
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+
+#include <glm/geometric.hpp>
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include "knit/animation.hpp"
+#include "knit/error.hpp"
+#include "plies/frames_curve.hpp"
+#include "plies/plies_kernel.hpp"
+#include "plies/resample_curve.hpp"
+#include "util/checks.hpp"
+
+namespace knit {
+namespace {
+
+using glm::dvec3;
+using Clock = std::chrono::steady_clock;
+
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// Yarns per parallel task: small enough to balance, large enough to amortize.
+constexpr size_t kYarnGrain = 64;
+
+// The orthonormal frame (first edge, in-plane perpendicular, normal) of triangle f; false when
+// the triangle is degenerate.
+bool triangleFrame(const std::vector<dvec3>& x, const glm::uvec3& f, glm::dmat3& out) {
+    const dvec3 e = x[f.y] - x[f.x], n = glm::cross(e, x[f.z] - x[f.x]);
+    const double le = glm::length(e), ln = glm::length(n);
+    if (!(le > 0.0) || !(ln > 0.0) || !std::isfinite(ln)) return false;
+    const dvec3 e1 = e / le, e3 = n / ln;
+    out = glm::dmat3(e1, glm::cross(e3, e1), e3);
+    return true;
+}
+
+}  // namespace
+
+Animator::Animator(const Scene& rest, const AnimatorOptions& options)
+    : rest_(rest), options_(options), generator_(rest.yarns(), rest.plyOptions()) {
+    const Polylines& yarns = rest.yarns().curves;
+    const size_t yarnCount = yarns.curveCount();
+    const double spacing = generator_.options().pitch / generator_.options().samplesPerTurn;
+
+    // Step 1: resample the rest yarns, recording each layout and the rest arc lengths / pitches.
+    ResampleLayout layout;
+    ResampleScratch resampleScratch;
+    std::vector<double> arc;
+    std::vector<dvec3> centre;
+    std::vector<glm::vec3> centreColour;  // per resampled point, when the yarns have colours
+    restPitch_.assign(yarnCount, 0.0);
+    restLength_.assign(yarnCount, 0.0);
+    restSeeds_.assign(yarnCount, {});
+    for (size_t y = 0; y < yarnCount; ++y) {
+        centre.clear();
+        const size_t m = resampleCurve(rest.yarns(), y, spacing, centre, nullptr, resampleScratch, &layout);
+        if (!rest.yarns().colour.empty())  // the chart's colours, as makePlies gives them
+            resampleColours(rest.yarns().colour.data() + yarns.begin(y), yarns.isClosed(y), layout, centreColour);
+        kept_.insert(kept_.end(), layout.kept.begin(), layout.kept.end());
+        keptOffsets_.push_back(static_cast<uint32_t>(kept_.size()));
+        pieces_.insert(pieces_.end(), layout.pieces.begin(), layout.pieces.end());
+        pieceOffsets_.push_back(static_cast<uint32_t>(pieces_.size()));
+        if (centreOffsets_.back() + m > UINT32_MAX)
+            throw Error("more than 2^32-1 resampled yarn points; raise --ply-pitch");
+        centreOffsets_.push_back(static_cast<uint32_t>(centreOffsets_.back() + m));
+        yarnOfCentre_.insert(yarnOfCentre_.end(), m, static_cast<uint32_t>(y));
+        if (m < 2) {
+            restArc_.insert(restArc_.end(), m, 0.0);
+            restPhase_.insert(restPhase_.end(), m, glm::dvec2(1.0, 0.0));
+            continue;
+        }
+        restPitch_[y] = impl::PlyKernel::arcAndPitch(generator_, y, centre.data(), m, arc);
+        bindFrameSeed(y, centre);
+        restArc_.insert(restArc_.end(), arc.begin(), arc.end());
+        const double rate = impl::PlyKernel::twistRate(generator_, restPitch_[y]);
+        for (const double s : arc) restPhase_.emplace_back(std::cos(rate * s), std::sin(rate * s));
+        restLength_[y] = arc[m - 1] + (yarns.isClosed(y) ? glm::length(centre[0] - centre[m - 1]) : 0.0);
+    }
+
+    // Step 2: the constant ply layout (yarn-major, ply-minor, as makePlies).
+    const uint32_t n = static_cast<uint32_t>(generator_.options().count);
+    plyOfYarn_.assign(yarnCount + 1, 0);
+    size_t total = 0;
+    for (size_t y = 0; y < yarnCount; ++y) {
+        plyOfYarn_[y] = total;
+        const size_t m = centreOffsets_[y + 1] - centreOffsets_[y];
+        if (m < 2 || !options_.plies) continue;
+        for (uint32_t i = 0; i < n; ++i) {
+            total += m;
+            if (total > UINT32_MAX)
+                throw Error("more than 2^32-1 ply points per frame; raise --ply-pitch or lower --samples-per-turn");
+            plyTopology_.curves.offsets.push_back(static_cast<uint32_t>(total));
+            plyTopology_.curves.closed.push_back(yarns.closed[y]);
+            plyTopology_.yarnOfCurve.push_back(static_cast<uint32_t>(y));
+            plyTopology_.plyOfCurve.push_back(static_cast<uint8_t>(i));
+            if (!centreColour.empty())
+                plyTopology_.colour.insert(plyTopology_.colour.end(), centreColour.begin() + centreOffsets_[y],
+                                           centreColour.begin() + centreOffsets_[y + 1]);
+        }
+    }
+    plyOfYarn_[yarnCount] = total;
+    plyTopology_.plyRadius = generator_.options().plyRadius;
+    plyTopology_.centerRadius = generator_.options().centerRadius;
+    plyTopology_.pitch = generator_.options().pitch;
+
+    // Step 3: rest length of the segment starting at each yarn vertex (the stretch reference).
+    restSegment_.assign(yarns.pointCount(), 0.0);
+    for (size_t y = 0; y < yarnCount; ++y) {
+        const uint32_t b = yarns.begin(y), e = yarns.end(y);
+        for (uint32_t i = b; i < e; ++i) {
+            const uint32_t j = i + 1 < e ? i + 1 : (yarns.isClosed(y) && e - b > 2 ? b : i);
+            restSegment_[i] = glm::length(yarns.points[j] - yarns.points[i]);
+        }
+    }
+}
+
+void Animator::evaluate(const std::vector<dvec3>& positions, AnimationFrame& out, AnimationStageTimes* times) const {
+    const BaseMesh& mesh = rest_.mesh();
+    if (positions.size() != mesh.positions.size())
+        throw Error("the animation frame has " + std::to_string(positions.size()) + " vertices but the rest mesh " +
+                    std::to_string(mesh.positions.size()));
+    for (size_t i = 0; i < positions.size(); ++i)
+        if (!util::finite(positions[i]))
+            throw Error("the animation frame's vertex " + std::to_string(i) + " is not finite");
+    AnimationStageTimes t;
+
+    // Step 1: the frame's vertex normals.
+    auto t0 = Clock::now();
+    out.meshNormals = vertexNormals(positions, mesh.faces);  // same size every frame
+    t.normals = since(t0);
+
+    // Step 2: the binding evaluated on the frame.
+    t0 = Clock::now();
+    evaluateBinding(rest_.binding(), mesh.faces, positions, out.meshNormals, out.yarns);
+    t.evaluate = since(t0);
+
+    // Step 3: the centrelines resampled with the rest layouts.
+    t0 = Clock::now();
+    resample(out);
+    t.resample = since(t0);
+
+    // Step 4: frames and helices with the rest twist phase.
+    t0 = Clock::now();
+    if (options_.plies) sweep(positions, out);
+    t.plies = since(t0);
+
+    // Step 5: stretch and the closest approach of different yarns.
+    t0 = Clock::now();
+    if (options_.stats) {
+        out.stats.maxStretch = maxYarnStretch(out.yarns.curves, restSegment_);
+        out.stats.minYarnDistance = minYarnDistance(out.centres, yarnOfCentre_, restArc_, restLength_,
+                                                    rest_.yarnRadius(), options_, out.distance);
+        t.stats = since(t0);
+    }
+    if (times) *times = t;
+}
+
+void Animator::resample(AnimationFrame& out) const {
+    const size_t yarnCount = restPitch_.size();
+    Polylines& c = out.centres;
+    if (c.offsets != centreOffsets_) {  // first frame with this buffer
+        c.offsets = centreOffsets_;
+        c.closed = rest_.yarns().curves.closed;
+        c.points.resize(centreOffsets_.back());
+    }
+    tbb::enumerable_thread_specific<ResampleScratch> scratches;
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, yarnCount, kYarnGrain), [&](const tbb::blocked_range<size_t>& r) {
+        ResampleScratch& scratch = scratches.local();
+        for (size_t y = r.begin(); y < r.end(); ++y)
+            resampleCurveWithLayout(out.yarns.curves, y, kept_.data() + keptOffsets_[y],
+                                    keptOffsets_[y + 1] - keptOffsets_[y], pieces_.data() + pieceOffsets_[y],
+                                    c.points.data() + centreOffsets_[y], scratch);
+    });
+}
+
+void Animator::bindFrameSeed(size_t y, const std::vector<dvec3>& centre) {
+    const Scene& rest = rest_;
+    const size_t m = centre.size(), first = rest.yarns().curves.begin(y);
+    std::vector<dvec3> tangent(m), normal(m);
+    const dvec3* surfaceNormal = rest.yarns().normals.empty() ? nullptr : rest.yarns().normals.data() + first;
+    curveFrames(centre.data(), m, rest.yarns().curves.isClosed(y), surfaceNormal, tangent.data(), normal.data());
+    FrameSeed& s = restSeeds_[y];
+    s.tangent = tangent[0];
+    s.normal = normal[0];
+    s.valid = triangleFrame(rest.mesh().positions, rest.mesh().faces[rest.binding().face[first]], s.surface);
+}
+
+void Animator::sweep(const std::vector<dvec3>& positions, AnimationFrame& out) const {
+    Plies& p = out.plies;
+    if (p.curves.offsets != plyTopology_.curves.offsets) {  // first frame with this buffer
+        p = plyTopology_;
+        p.curves.points.resize(plyTopology_.curves.offsets.back());
+    }
+    const size_t yarnCount = restPitch_.size();
+    const std::vector<glm::uvec3>& faces = rest_.mesh().faces;
+    tbb::enumerable_thread_specific<PlyScratch> scratches;
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, yarnCount, kYarnGrain), [&](const tbb::blocked_range<size_t>& r) {
+        PlyScratch& scratch = scratches.local();
+        for (size_t y = r.begin(); y < r.end(); ++y) {
+            const size_t m = centreOffsets_[y + 1] - centreOffsets_[y];
+            if (m < 2) continue;
+            // The rest frame carried by the bound triangle's rotation (see the file comment);
+            // a degenerate triangle falls back to the surface normal.
+            const size_t first = out.yarns.curves.begin(y);
+            const FrameSeed& s = restSeeds_[y];
+            glm::dmat3 now;
+            dvec3 seedNormal = out.yarns.normals[first], seedTangent(0.0);
+            const bool carried = s.valid && triangleFrame(positions, faces[rest_.binding().face[first]], now);
+            if (carried) {
+                const glm::dmat3 r = now * glm::transpose(s.surface);
+                seedNormal = r * s.normal;
+                seedTangent = r * s.tangent;
+            }
+            impl::PlyKernel::sweepWithCosSin(
+                generator_, y, out.centres.points.data() + centreOffsets_[y], m, restPhase_.data() + centreOffsets_[y],
+                &seedNormal, carried ? &seedTangent : nullptr, p.curves.points.data() + plyOfYarn_[y], scratch);
+        }
+    });
+}
+
+}  // namespace knit

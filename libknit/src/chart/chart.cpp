@@ -1,0 +1,281 @@
+// Stitch chart parsing (text -> Chart) and the built-in charts.
+#include "knit/chart.hpp"
+
+#include <cctype>
+#include <fstream>
+#include <sstream>
+
+#include "knit/error.hpp"
+#include "io/special_file.hpp"
+
+namespace knit {
+namespace {
+
+struct Token {
+    std::string text;
+    int column = 0;  // 1-based character column
+};
+struct Line {
+    int number = 0;  // 1-based
+    std::vector<Token> tokens;
+};
+using Block = std::vector<Line>;
+
+[[noreturn]] void fail(const std::string& source, int line, int column, const std::string& what) {
+    throw Error(source + ":" + std::to_string(line) + ":" + std::to_string(column) + ": " + what);
+}
+
+std::vector<Token> splitTokens(const std::string& text) {
+    std::vector<Token> tokens;
+    size_t i = 0;
+    while (i < text.size()) {
+        while (i < text.size() && std::isspace(static_cast<unsigned char>(text[i]))) ++i;
+        const size_t start = i;
+        while (i < text.size() && !std::isspace(static_cast<unsigned char>(text[i]))) ++i;
+        if (i > start) tokens.push_back({text.substr(start, i - start), int(start) + 1});
+    }
+    return tokens;
+}
+
+// The text's lines, sorted into data blocks (separated by blank lines) and palette lines
+// (tokens containing '='); comment lines are dropped and do not separate blocks.
+struct Layout {
+    std::vector<Block> blocks;
+    std::vector<Line> palette;
+    int lastLine = 0;
+};
+
+Layout readLayout(const std::string& text) {
+    Layout layout;
+    std::istringstream in(text);
+    bool blockOpen = false;
+    for (std::string raw; std::getline(in, raw);) {
+        Line line{++layout.lastLine, splitTokens(raw)};
+        if (line.tokens.empty()) {
+            blockOpen = false;
+            continue;
+        }
+        if (line.tokens[0].text[0] == '#') continue;
+        if (line.tokens[0].text.find('=') != std::string::npos) {
+            layout.palette.push_back(std::move(line));
+            continue;
+        }
+        if (!blockOpen) layout.blocks.emplace_back();
+        blockOpen = true;
+        layout.blocks.back().push_back(std::move(line));
+    }
+    return layout;
+}
+
+// One parsed stitch token: `span` stitches, a cable when span > 1.
+struct Stitch {
+    StitchKind kind = StitchKind::Knit;
+    int span = 1, right = 0, left = 0;
+    bool front = true;
+};
+
+const char* kKnownTokens = "expected k, p or a cable c1/1f c1/1b c2/2f c2/2b c3/3f c3/3b";
+
+// cN/M[p]{f,b}; returns false for anything else.
+bool parseCable(const std::string& t, Stitch& s, bool& overPurl) {
+    if (t.size() < 5 || t.size() > 6 || t[0] != 'c' || t[2] != '/') return false;
+    if (t[1] < '1' || t[1] > '3' || t[3] < '1' || t[3] > '3') return false;
+    overPurl = t.size() == 6;
+    if (overPurl && t[4] != 'p') return false;
+    const char cross = t.back();
+    if (cross != 'f' && cross != 'b') return false;
+    s.right = t[1] - '0';
+    s.left = t[3] - '0';
+    s.span = s.right + s.left;
+    s.front = cross == 'f';
+    return true;
+}
+
+Stitch parseStitch(const Token& token, const std::string& source, int line) {
+    Stitch s;
+    if (token.text == "k") return s;
+    if (token.text == "p") {
+        s.kind = StitchKind::Purl;
+        return s;
+    }
+    bool overPurl = false;
+    if (!parseCable(token.text, s, overPurl))
+        fail(source, line, token.column, "unknown stitch '" + token.text + "' (" + kKnownTokens + ")");
+    if (overPurl)
+        fail(source, line, token.column,
+             "cable '" + token.text + "' over purl stitches: the stitches a cable crosses are knit stitches");
+    return s;
+}
+
+// The stitch block: every row's stitches and cables, checked for width.
+void readStitches(const Block& block, const std::string& source, Chart& chart) {
+    chart.height = int(block.size());
+    std::vector<std::vector<Stitch>> rows;
+    for (const Line& line : block) {
+        rows.emplace_back();
+        for (const Token& t : line.tokens) rows.back().push_back(parseStitch(t, source, line.number));
+    }
+    auto count = [](const std::vector<Stitch>& row) {
+        int n = 0;
+        for (const Stitch& s : row) n += s.span;
+        return n;
+    };
+    chart.width = count(rows[0]);
+    chart.kind.assign(size_t(chart.width) * size_t(chart.height), StitchKind::Knit);
+    for (size_t i = 0; i < rows.size(); ++i) {
+        const Line& line = block[i];
+        const int row = chart.height - 1 - int(i);  // the bottom row is the last line
+        int column = 0;
+        for (size_t k = 0; k < rows[i].size(); ++k) {
+            const Stitch& s = rows[i][k];
+            if (s.span > chart.width)
+                fail(source, line.number, line.tokens[k].column,
+                     "cable '" + line.tokens[k].text + "' spans " + std::to_string(s.span) +
+                         " stitches but the chart is " + std::to_string(chart.width) + " wide");
+            if (s.span > 1) chart.cables.push_back({row, column, s.right, s.left, s.front});
+            for (int j = 0; j < s.span && column + j < chart.width; ++j)
+                chart.kind[size_t(row) * size_t(chart.width) + size_t(column + j)] = s.kind;
+            column += s.span;
+        }
+        if (column != chart.width)
+            fail(source, line.number, line.tokens.back().column,
+                 "row has " + std::to_string(column) + " stitches, expected " + std::to_string(chart.width) +
+                     " (as the first row, line " + std::to_string(block[0].number) + ")");
+    }
+}
+
+int hexDigit(char c) {
+    if (c >= '0' && c <= '9') return c - '0';
+    if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+    if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+    return -1;
+}
+
+// Palette lines: `A=#rrggbb` entries.
+void readPalette(const std::vector<Line>& lines, const std::string& source, Chart& chart) {
+    for (const Line& line : lines)
+        for (const Token& t : line.tokens) {
+            const std::string& s = t.text;
+            bool ok = s.size() == 9 && std::isalpha(static_cast<unsigned char>(s[0])) && s[1] == '=' && s[2] == '#';
+            std::array<uint8_t, 3> rgb{};
+            for (int c = 0; ok && c < 3; ++c) {
+                const int hi = hexDigit(s[3 + 2 * c]), lo = hexDigit(s[4 + 2 * c]);
+                ok = hi >= 0 && lo >= 0;
+                rgb[size_t(c)] = uint8_t(hi * 16 + lo);
+            }
+            if (!ok) fail(source, line.number, t.column, "palette entry '" + s + "' is not LETTER=#rrggbb");
+            if (chart.palette.count(s[0]))
+                fail(source, line.number, t.column, "colour '" + s.substr(0, 1) + "' is defined twice");
+            chart.palette[s[0]] = rgb;
+        }
+}
+
+// The colour block: one palette letter per stitch, the same size as the stitch block.
+void readColours(const Block& block, const std::string& source, Chart& chart) {
+    if (int(block.size()) != chart.height)
+        fail(source, block[0].number, 1,
+             "colour block has " + std::to_string(block.size()) + " rows, expected " + std::to_string(chart.height) +
+                 " (as the stitch block)");
+    chart.colour.assign(chart.kind.size(), 0);
+    for (size_t i = 0; i < block.size(); ++i) {
+        const Line& line = block[i];
+        if (int(line.tokens.size()) != chart.width)
+            fail(source, line.number, line.tokens.back().column,
+                 "colour row has " + std::to_string(line.tokens.size()) + " letters, expected " +
+                     std::to_string(chart.width));
+        const int row = chart.height - 1 - int(i);
+        for (int c = 0; c < chart.width; ++c) {
+            const Token& t = line.tokens[size_t(c)];
+            if (t.text.size() != 1 || !std::isalpha(static_cast<unsigned char>(t.text[0])))
+                fail(source, line.number, t.column, "colour '" + t.text + "' is not one letter");
+            if (!chart.palette.count(t.text[0]))
+                fail(source, line.number, t.column, "colour '" + t.text + "' is not in the palette");
+            chart.colour[size_t(row) * size_t(chart.width) + size_t(c)] = t.text[0];
+        }
+    }
+}
+
+}  // namespace
+
+int Chart::sourceColumn(int row, int column) const {
+    for (const ChartCable& c : cables) {
+        if (c.row != row || column < c.column || column >= c.column + c.left + c.right) continue;
+        const int j = column - c.column;
+        // Positions [0, right) receive the right-hand stitches, [right, span) the left-hand ones.
+        return j < c.right ? column + c.left : column - c.right;
+    }
+    return column;
+}
+
+Chart parseChart(const std::string& text, const std::string& source) {
+    const Layout layout = readLayout(text);
+    Chart chart;
+    chart.name = source;
+    // Step 1: the stitch block (required).
+    if (layout.blocks.empty())
+        fail(source, layout.lastLine > 0 ? layout.lastLine : 1, 1, "empty chart: no stitch rows");
+    readStitches(layout.blocks[0], source, chart);
+    // Step 2: the optional palette and colour block.
+    readPalette(layout.palette, source, chart);
+    if (layout.blocks.size() > 2)
+        fail(source, layout.blocks[2][0].number, 1, "a chart has at most two blocks (stitches, then colours)");
+    if (layout.blocks.size() == 2) readColours(layout.blocks[1], source, chart);
+    return chart;
+}
+
+std::string readChartText(const std::string& path) {
+    // Step 1: what the path names (a FIFO or a device would block or never end), and its size
+    // before reading it whole (a chart is one period: a few hundred stitches).
+    const uint64_t bytes = impl::requireInputFile(path, "chart file", "chart file");
+    if (bytes > kMaxChartFileBytes)
+        throw Error(path + ": a chart file holds at most " + std::to_string(kMaxChartFileBytes >> 20) +
+                    " MiB of text; this one has " + std::to_string(bytes) + " bytes");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error(path + ": cannot open chart file");
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+Chart loadChart(const std::string& path) { return parseChart(readChartText(path), path); }
+
+namespace {
+
+struct BuiltinChart {
+    const char* name;
+    const char* text;
+};
+
+// Each one period of the fabric, the bottom row last.
+const BuiltinChart kBuiltinCharts[] = {
+    {"chart:stockinette", "k k\nk k\n"},
+    {"chart:reverse-stockinette", "p p\np p\n"},
+    {"chart:garter", "# two-row period: a knit row, then a purl row\np p\nk k\n"},
+    {"chart:rib1x1", "k p\nk p\n"},
+    {"chart:rib2x2", "k k p p\nk k p p\n"},
+    {"chart:seed", "p k\nk p\n"},
+    {"chart:moss", "p k\np k\nk p\nk p\n"},
+    {"chart:basketweave", "p p k k\np p k k\nk k p p\nk k p p\n"},
+    {"chart:cable4", "# a 2/2 front cable between purl ridges\np k k k k p\np k k k k p\np k k k k p\np c2/2f p\n"},
+};
+
+}  // namespace
+
+std::vector<std::string> builtinChartNames() {
+    std::vector<std::string> names;
+    for (const BuiltinChart& c : kBuiltinCharts) names.push_back(c.name);
+    return names;
+}
+
+std::string builtinChartText(const std::string& name) {
+    std::string known;
+    for (const BuiltinChart& c : kBuiltinCharts) {
+        if (name == c.name) return c.text;
+        known += (known.empty() ? "" : ", ") + std::string(c.name);
+    }
+    throw Error("unknown chart '" + name + "' (built-in charts: " + known + ")");
+}
+
+Chart builtinChart(const std::string& name) { return parseChart(builtinChartText(name), name); }
+
+}  // namespace knit

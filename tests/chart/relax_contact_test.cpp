@@ -1,0 +1,71 @@
+// The contact pair search of the relaxation (libknit/src/chart/relax_contact.hpp) against a brute
+// force over every pair of segments and periodic images.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <tuple>
+
+#include <glm/geometric.hpp>
+
+#include "knit/chart.hpp"
+#include "knit/chart_topology.hpp"
+#include "chart/relax_contact.hpp"
+
+namespace knit {
+namespace {
+
+using relax::Pair;
+using relax::Seg;
+
+bool before(const Pair& a, const Pair& b) { return std::tie(a.s, a.t, a.ix, a.iy) < std::tie(b.s, b.t, b.ix, b.iy); }
+
+// Every pair (s < t, or s == t with a positive image) within the cutoff, images up to two periods.
+std::vector<Pair> bruteForcePairs(const std::vector<glm::dvec3>& x, double px, double py, const std::vector<Seg>& segs,
+                                  const relax::YarnIndex& yi, double cutoff) {
+    std::vector<Pair> out;
+    for (uint32_t s = 0; s < segs.size(); ++s)
+        for (uint32_t t = s; t < segs.size(); ++t)
+            for (int iy = -2; iy <= 2; ++iy)
+                for (int ix = -2; ix <= 2; ++ix) {
+                    const Pair pr{s, t, ix, iy};
+                    if (t == s && (iy < 0 || (iy == 0 && ix <= 0))) continue;
+                    if (relax::nearAlongYarn(yi, segs, pr, 3)) continue;
+                    const glm::dvec3 p0 = x[segs[s].a],
+                                     p1 = x[segs[s].b] + glm::dvec3(segs[s].dx * px, segs[s].dy * py, 0);
+                    const glm::dvec3 shift(ix * px, iy * py, 0);
+                    const glm::dvec3 q0 = x[segs[t].a] + shift,
+                                     q1 = x[segs[t].b] + glm::dvec3(segs[t].dx * px, segs[t].dy * py, 0) + shift;
+                    double a = 0, b = 0;
+                    relax::closestParameters(p0, p1, q0, q1, a, b);
+                    if (glm::length((p0 + a * (p1 - p0)) - (q0 + b * (q1 - q0))) <= cutoff) out.push_back(pr);
+                }
+    std::sort(out.begin(), out.end(), before);
+    return out;
+}
+
+// The cable cell's stretched rows have legs several times longer than the other segments: they
+// are listed in every hash cell their box reaches, and each pair is still found exactly once.
+TEST(RelaxContact, pairsMatchBruteForceWithLongCableLegs) {
+    const ChartCell cell = chartToCell(builtinChart("chart:cable4"));
+    const Pattern& p = cell.pattern;
+    std::vector<Seg> segs(p.points.size());
+    for (const PeriodicEdge& e : p.edges) segs[e.v0] = {e.v0, e.v1, e.dx, e.dy};
+    const relax::YarnIndex yi = relax::indexYarns(p, segs);
+    std::vector<glm::dvec3> x;
+    for (const glm::dvec3& q : p.points) x.push_back(q / p.radius);
+    const double px = p.px / p.radius, py = p.py / p.radius, cutoff = 3.05;
+    std::vector<Pair> found = relax::findPairs(x, px, py, segs, yi, cutoff);
+    std::sort(found.begin(), found.end(), before);
+    const std::vector<Pair> expected = bruteForcePairs(x, px, py, segs, yi, cutoff);
+    ASSERT_FALSE(expected.empty());
+    ASSERT_EQ(found.size(), expected.size());
+    for (size_t k = 0; k < found.size(); ++k) {
+        EXPECT_EQ(found[k].s, expected[k].s);
+        EXPECT_EQ(found[k].t, expected[k].t);
+        EXPECT_EQ(found[k].ix, expected[k].ix);
+        EXPECT_EQ(found[k].iy, expected[k].iy);
+    }
+}
+
+}  // namespace
+}  // namespace knit

@@ -1,0 +1,138 @@
+#include <gtest/gtest.h>
+
+#include <numeric>
+
+#include "common/fixtures.hpp"
+#include "knit/generator.hpp"
+#include "knit/stitch.hpp"
+#include "knit/tiling.hpp"
+
+namespace knit {
+namespace {
+
+// Independent loop count of an a x b periodic tiling: every closed component of the pattern on
+// the 1x1 torus winds by w = (wx, wy) cells per turn; its lift to the a x b torus closes after
+// k turns, k the smallest with k*wx = 0 mod a and k*wy = 0 mod b, giving a*b/k loops.
+size_t loopsByWinding(const Pattern& p, int a, int b) {
+    std::vector<std::vector<std::pair<size_t, int>>> incident(p.points.size());  // (edge, +1 out / -1 in)
+    for (size_t e = 0; e < p.edges.size(); ++e) {
+        incident[p.edges[e].v0].push_back({e, +1});
+        incident[p.edges[e].v1].push_back({e, -1});
+    }
+    std::vector<uint8_t> usedEdge(p.edges.size(), 0), seen(p.points.size(), 0);
+    size_t loops = 0;
+    for (uint32_t start = 0; start < p.points.size(); ++start) {
+        if (seen[start] || incident[start].size() != 2) continue;
+        int wx = 0, wy = 0;
+        uint32_t v = start;
+        bool closed = true;
+        for (;;) {
+            seen[v] = 1;
+            auto it =
+                std::find_if(incident[v].begin(), incident[v].end(), [&](auto& ie) { return !usedEdge[ie.first]; });
+            if (it == incident[v].end()) break;
+            const PeriodicEdge& e = p.edges[it->first];
+            usedEdge[it->first] = 1;
+            wx += it->second * e.dx;
+            wy += it->second * e.dy;
+            v = it->second > 0 ? e.v1 : e.v0;
+            if (incident[v].size() != 2) {
+                closed = false;
+                break;
+            }
+        }
+        if (!closed) continue;
+        int k = 1;
+        while (((k * wx) % a + a) % a != 0 || ((k * wy) % b + b) % b != 0) ++k;
+        loops += size_t(a * b / k);
+    }
+    return loops;
+}
+
+UvYarns stitchTorus(const Pattern& p, int a, int b) {
+    PatternPlacement placement;
+    placement.repeats = {double(a), double(b)};
+    return stitchYarns(p, buildAdjacency(p), tilesForRegion({0, 0}, {a - 1, b - 1}, true), placement);
+}
+
+TEST(Stitch, periodicTilingLoopCountMatchesWindingCount) {
+    for (const std::string& file : test::sharedPatternFiles()) {
+        const Pattern p = loadPyp(test::sharedPattern(file));
+        for (auto [a, b] : {std::pair{1, 1}, {6, 8}, {3, 5}, {4, 4}}) {
+            const UvYarns y = stitchTorus(p, a, b);
+            const size_t closed = std::accumulate(y.closed.begin(), y.closed.end(), size_t(0));
+            EXPECT_EQ(closed, loopsByWinding(p, a, b)) << file << " " << a << "x" << b;
+            EXPECT_EQ(closed, y.yarnCount()) << file << ": a torus has no open yarns";
+        }
+    }
+}
+
+TEST(Stitch, stockinetteOnSixByEightTorusHasSixteenLoops) {
+    EXPECT_EQ(stitchTorus(loadPyp(test::sharedPattern("stockinette.pyp")), 6, 8).yarnCount(), 16u);
+}
+
+TEST(Stitch, everyTiledVertexAppearsExactlyOnce) {
+    const Pattern p = loadPyp(test::sharedPattern("slip_stitch_honeycomb.pyp"));
+    const Tiling tiling = tilesForCells(p, {{0, 0}, {1, 0}, {2, 0}, {1, 1}, {5, 5}});
+    PatternPlacement placement;
+    placement.repeats = {8, 8};
+    const UvYarns y = stitchYarns(p, buildAdjacency(p), tiling, placement);
+    std::vector<int> count(tiling.tiles.size() * p.points.size(), 0);
+    for (uint32_t s : y.source) ++count[s];
+    for (size_t i = 0; i < count.size(); ++i) ASSERT_EQ(count[i], 1) << "tiled vertex " << i;
+}
+
+TEST(Stitch, noTiledVertexHasDegreeAboveTwo) {
+    // Each yarn is a path or cycle: consecutive vertices are pattern neighbours, so in the
+    // stitched result every vertex has at most a predecessor and a successor.
+    const Pattern p = loadPyp(test::sharedPattern("satin.pyp"));
+    const PatternAdjacency adj = buildAdjacency(p);
+    const Tiling tiling = tilesForRegion({-1, -2}, {3, 2});
+    PatternPlacement placement;
+    placement.repeats = {4, 4};
+    const UvYarns y = stitchYarns(p, adj, tiling, placement);
+    const uint32_t n = uint32_t(p.points.size());
+    auto adjacent = [&](uint32_t s, uint32_t t) {
+        const glm::ivec2 ts = tiling.tiles[s / n], tt = tiling.tiles[t / n];
+        for (const PatternNeighbor& nb : adj.slots[s % n])
+            if (nb.v == int32_t(t % n) && ts + glm::ivec2(nb.dx, nb.dy) == tt) return true;
+        return false;
+    };
+    for (size_t yi = 0; yi < y.yarnCount(); ++yi) {
+        const uint32_t b = y.offsets[yi], e = y.offsets[yi + 1];
+        for (uint32_t i = b; i + 1 < e; ++i) ASSERT_TRUE(adjacent(y.source[i], y.source[i + 1]));
+        if (y.closed[yi]) ASSERT_TRUE(adjacent(y.source[e - 1], y.source[b]));
+    }
+}
+
+TEST(Stitch, openYarnsEndOnlyAtTheTilingBorder) {
+    const Pattern p = generateStockinette();
+    const Tiling tiling = tilesForRegion({0, 0}, {4, 3});
+    PatternPlacement placement;
+    placement.repeats = {5, 4};
+    const UvYarns y = stitchYarns(p, buildAdjacency(p), tiling, placement);
+    // One course per tile row, entering at tile 0 and leaving at tile 4: 4 open yarns.
+    EXPECT_EQ(y.yarnCount(), 4u);
+    for (size_t yi = 0; yi < y.yarnCount(); ++yi) {
+        EXPECT_FALSE(y.closed[yi]);
+        EXPECT_EQ(y.offsets[yi + 1] - y.offsets[yi], 5u * p.points.size());
+    }
+}
+
+TEST(Stitch, alignmentPutsPatternOriginAtUvZero) {
+    const Pattern p = generateStockinette();
+    PatternPlacement placement;
+    placement.repeats = {4, 2};
+    placement.scale = 0.5;
+    const UvYarns y = stitchYarns(p, buildAdjacency(p), tilesForRegion({2, 1}, {2, 1}), placement);
+    ASSERT_EQ(y.vertexCount(), p.points.size());
+    for (size_t i = 0; i < y.vertexCount(); ++i) {
+        const glm::dvec3 q = p.points[y.source[i] % p.points.size()];
+        EXPECT_DOUBLE_EQ(y.uv[i].x, (q.x + 2 * p.px) / (4 * p.px));
+        EXPECT_DOUBLE_EQ(y.uv[i].y, (q.y + 1 * p.py) / (2 * p.py));
+        EXPECT_DOUBLE_EQ(y.height[i], q.z * 0.5);
+    }
+}
+
+}  // namespace
+}  // namespace knit
