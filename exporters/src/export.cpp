@@ -159,7 +159,7 @@ ExportStats exportCurves(const ExportInput& input, const ExportOptions& requeste
                         "': the view's surface level (base-mesh triangles with the baked knit material) is written "
                         "to .glb or .gltf only");
         impl::validateSurfaceData(input.surface->mesh, input.surface->images, input.surface->material,
-                                    "cannot export '" + options.path + "': the surface level: ");
+                                  "cannot export '" + options.path + "': the surface level: ");
     }
     if (input.plies && !streamsPlies(options)) {
         // Only glTF curves stream generated plies; the other writers take all curves at once.

@@ -58,10 +58,10 @@ struct StageTime {
 // The intermediate results between the UV grid and the binding, for diagnostics and tests
 // (Scene::stages); exporters and renderers need none of them.
 struct SceneStages {
-    Tiling tiling;                     // tiles over every covered cell
+    Tiling tiling;                      // tiles over every covered cell
     std::vector<Tiling> islandTilings;  // when UV islands overlap: one tiling per island, which the
-                                       // yarns come from (empty otherwise)
-    UvYarns uvYarns;                   // the stitched yarns in UV space, before binding
+                                        // yarns come from (empty otherwise)
+    UvYarns uvYarns;                    // the stitched yarns in UV space, before binding
 };
 
 // What a Scene made without the pipeline stages holds (Scene::fromParts): synthetic scenes for

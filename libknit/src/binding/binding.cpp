@@ -41,8 +41,8 @@ void validateBindInput(const BaseMesh& mesh, const std::vector<glm::dvec3>& norm
         (!yarns.colour.empty() && yarns.colour.size() != yarns.vertexCount()) ||
         (!yarns.ghosts.empty() && yarns.ghosts.size() != yarns.yarnCount()) ||
         (!yarns.island.empty() && yarns.island.size() != yarns.yarnCount()))
-        throw Error(
-            "binding the yarns: their offsets, heights, twists, colours, ghosts or islands do not match their vertices");
+        throw Error("binding the yarns: their offsets, heights, twists, colours, ghosts or islands do not match their "
+                    "vertices");
 }
 
 // Every search radius is bounded by one pattern period (a grid cell): a clamp or weld tolerance

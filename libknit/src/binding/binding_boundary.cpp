@@ -89,7 +89,7 @@ std::optional<BoundVertex> boundaryCrossing(const BaseMesh& mesh, const UvGrid& 
 }
 
 bool leavesIsland(const BaseMesh& mesh, const UvGrid& grid, uint32_t island, glm::dvec2 p, glm::dvec2 q, glm::ivec2 cp,
-                 glm::ivec2 cq, double tol, std::vector<double>& ts) {
+                  glm::ivec2 cq, double tol, std::vector<double>& ts) {
     const glm::ivec2 c0 = glm::min(cp, cq), c1 = glm::max(cp, cq);  // cellOf is monotone
     if (c0 == c1) {  // fast path: a step inside one cell without boundary edges
         const int32_t slot = grid.slotOf(c0);

@@ -34,6 +34,6 @@ std::optional<BoundVertex> boundaryCrossing(const BaseMesh& mesh, const UvGrid& 
 // clamped end lies up to `tol` outside. Cells without boundary edges cost one lookup each.
 // cp, cq: the grid cells of p and q. `ts`: scratch space.
 bool leavesIsland(const BaseMesh& mesh, const UvGrid& grid, uint32_t island, glm::dvec2 p, glm::dvec2 q, glm::ivec2 cp,
-                 glm::ivec2 cq, double tol, std::vector<double>& ts);
+                  glm::ivec2 cq, double tol, std::vector<double>& ts);
 
 }  // namespace knit::impl

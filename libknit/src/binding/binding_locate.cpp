@@ -52,7 +52,7 @@ void markStepsLeavingChart(const BaseMesh& mesh, const UvGrid& grid, const UvYar
         const uint32_t c = grid.islandOfFace[loc[i].point.face];
         if (c == grid.islandOfFace[loc[j].point.face])
             leaves[i] = leavesIsland(mesh, grid, c, yarns.uv[i], yarns.uv[j], grid.cellOf(yarns.uv[i]),
-                                    grid.cellOf(yarns.uv[j]), tolUv, crossings);
+                                     grid.cellOf(yarns.uv[j]), tolUv, crossings);
     }
 }
 

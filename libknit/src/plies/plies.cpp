@@ -260,7 +260,7 @@ void PlyGenerator::generate(size_t first, size_t last, Plies& out, PlyScratch& s
             out.plyOfCurve.push_back(static_cast<uint8_t>(i));
         }
         impl::PlyKernel::sweep(*this, y, centre.data(), m, out.curves.points.data() + base,
-                                 withRadial ? out.radial.data() + base : nullptr, scratch);
+                               withRadial ? out.radial.data() + base : nullptr, scratch);
         if (!colour.empty()) {
             out.colour.resize(base + n * m);
             impl::PlyKernel::plyColours(colour.data(), m, n, out.colour.data() + base);
@@ -341,7 +341,7 @@ Plies makePlies(const PlyGenerator& generator) {
                 const size_t m = samples[y];
                 if (m >= 2) {
                     impl::PlyKernel::sweep(generator, y, X, m, out.curves.points.data() + firstPoint[y],
-                                             out.radial.data() + firstPoint[y], scratch);
+                                           out.radial.data() + firstPoint[y], scratch);
                     if (withColour) impl::PlyKernel::plyColours(colour, m, n, out.colour.data() + firstPoint[y]);
                 }
                 X += m;

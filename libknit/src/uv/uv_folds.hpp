@@ -16,8 +16,8 @@ struct UvEdgeLink {
 };
 
 struct UvFolds {
-    size_t faces = 0;                // faces on the folded-over side of their island
-    uint32_t example = UINT32_MAX;   // the lowest-numbered of them
+    size_t faces = 0;                 // faces on the folded-over side of their island
+    uint32_t example = UINT32_MAX;    // the lowest-numbered of them
     std::vector<uint32_t> perIsland;  // folded faces per island
 };
 

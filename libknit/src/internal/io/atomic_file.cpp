@@ -138,7 +138,7 @@ namespace fs = std::filesystem;
 
 void writeFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write, bool binary) {
     impl::AtomicFile file(path, binary);  // throws naming the path (missing / unwritable folder)
-    write(file.stream());                   // an exception here removes the temporary file
+    write(file.stream());                 // an exception here removes the temporary file
     file.commit();
 }
 
