@@ -26,6 +26,7 @@
 #include <tbb/parallel_for.h>
 
 #include "knit/animation.hpp"
+#include "util/csr.hpp"
 
 namespace knit {
 namespace {
@@ -124,7 +125,7 @@ Closest closestWithin(const Polylines& centres, const std::vector<uint32_t>& yar
     });
     uint32_t* start = scratch.bucketStart.data();
     for (size_t i = 0; i < n; ++i) ++start[scratch.keys[i] + 1];
-    for (size_t b = 0; b < buckets; ++b) start[b + 1] += start[b];
+    util::countsToOffsets(scratch.bucketStart);
     // Filling advances each bucket's start to its end (the next bucket's start): shift back.
     for (size_t i = 0; i < n; ++i) scratch.packed[start[scratch.keys[i]]++] = pack(i);
     for (size_t b = buckets; b > 0; --b) start[b] = start[b - 1];

@@ -4,6 +4,7 @@
 #include "knit/error.hpp"
 #include "util/checks.hpp"
 #include "util/platform.hpp"
+#include "util/csr.hpp"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -44,7 +45,7 @@ std::vector<int8_t> windingSigns(const std::vector<glm::dvec3>& positions, const
     for (const glm::uvec3& t : faces)
         if (proper(t))
             for (int k = 0; k < 3; ++k) ++start[t[k] + 1];
-    for (size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+    util::countsToOffsets(start);
     fan.resize(start[nv]);
     {
         std::vector<uint32_t> fill(start.begin(), start.end() - 1);

@@ -1,5 +1,6 @@
 // uv_folds.cpp — the folded-over side of each UV island (see uv_folds.hpp).
 #include "uv_folds.hpp"
+#include "util/csr.hpp"
 
 #include <cmath>
 
@@ -22,7 +23,7 @@ LinkLists linkLists(size_t faces, const std::vector<UvEdgeLink>& links) {
     LinkLists l;
     l.offsets.assign(faces + 1, 0);
     for (const UvEdgeLink& k : links) ++l.offsets[k.f + 1], ++l.offsets[k.g + 1];
-    for (size_t f = 0; f < faces; ++f) l.offsets[f + 1] += l.offsets[f];
+    util::countsToOffsets(l.offsets);
     l.other.resize(2 * links.size());
     l.folded.resize(2 * links.size());
     std::vector<uint32_t> fill(l.offsets.begin(), l.offsets.end() - 1);

@@ -16,6 +16,7 @@
 #include "knit/error.hpp"
 #include "util/checks.hpp"
 #include "uv_folds.hpp"
+#include "util/csr.hpp"
 
 namespace knit {
 namespace {
@@ -281,7 +282,7 @@ UvGrid buildUvGrid(const BaseMesh& mesh, const UvGridOptions& options) {
     std::sort(edges.begin(), edges.end());
     UnionFind islands(nf);
     std::vector<std::pair<uint64_t, uint32_t>> cellEdge;  // (linear cell, boundary half-edge)
-    std::vector<impl::UvEdgeLink> links;                // manifold UV edges, for fold detection
+    std::vector<impl::UvEdgeLink> links;                  // manifold UV edges, for fold detection
     for (size_t i = 0; i < edges.size();) {
         size_t j = i;
         while (j < edges.size() && edges[j].first == edges[i].first) ++j;
@@ -302,7 +303,7 @@ UvGrid buildUvGrid(const BaseMesh& mesh, const UvGridOptions& options) {
     std::sort(cellEdge.begin(), cellEdge.end());
     grid.edgeOffsets.assign(grid.cells.size() + 1, 0);
     for (const auto& ce : cellEdge) ++grid.edgeOffsets[ce.first + 1];
-    for (size_t c = 0; c < grid.cells.size(); ++c) grid.edgeOffsets[c + 1] += grid.edgeOffsets[c];
+    util::countsToOffsets(grid.edgeOffsets);
     grid.boundaryEdges.reserve(cellEdge.size());
     for (const auto& ce : cellEdge) grid.boundaryEdges.push_back(ce.second);
 

@@ -21,4 +21,12 @@ bool validOffsets(const std::vector<Offset>& offsets, size_t rows, size_t items)
     return offsetEnds(offsets, rows, items) && std::is_sorted(offsets.begin(), offsets.end());
 }
 
+// Counts to offsets, in place (an exclusive prefix sum): on entry offsets[r + 1] holds row r's
+// item count and offsets[0] is 0; on return offsets[r] is row r's first item and offsets.back()
+// the total. The usual way to build a CSR array: count, countsToOffsets, then fill each row.
+template <class Offset>
+void countsToOffsets(std::vector<Offset>& offsets) {
+    for (size_t r = 1; r < offsets.size(); ++r) offsets[r] += offsets[r - 1];
+}
+
 }  // namespace knit::util
