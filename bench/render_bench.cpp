@@ -26,6 +26,7 @@
 #include "knit/synthetic_scene.hpp"
 #include "render_image.hpp"
 #include "trace_scene.hpp"
+#include "util/math.hpp"
 
 namespace {
 
@@ -84,7 +85,7 @@ const Fixture& pipeline() {
         x->geometry = buildPlyGeometry(x->scene.plies(), x->centre, PlyMaterial().fiberTwist);
         x->cells = segmentCells(x->scene, x->geometry);
         // The camera of renderScene: on the mean normal (+z for the drape), radius / sin(15 deg) away.
-        const glm::dvec3 eye = x->centre + glm::dvec3(0, 0, x->radius / std::sin(15.0 * 3.14159265358979 / 180.0));
+        const glm::dvec3 eye = x->centre + glm::dvec3(0, 0, x->radius / std::sin(15.0 * knit::util::kPi / 180.0));
         std::mt19937 rng(1);
         std::uniform_real_distribution<double> u(-1, 1);
         for (int i = 0; i < 1 << 16; ++i) {
@@ -185,7 +186,7 @@ void modeRender(benchmark::State& state, const Fixture& f, bool farCamera) {
     s.width = 96, s.height = 72, s.spp = 4;
     // Synthetic: close up; pipeline: where renderScene puts it (30-degree view of the bounds).
     s.camera.eye =
-        f.centre + glm::dvec3(0, 0, farCamera ? f.radius / std::sin(15.0 * 3.14159265358979 / 180.0) : 2.5 * f.radius);
+        f.centre + glm::dvec3(0, 0, farCamera ? f.radius / std::sin(15.0 * knit::util::kPi / 180.0) : 2.5 * f.radius);
     s.camera.fovYDegrees = farCamera ? 30 : s.camera.fovYDegrees;
     s.camera.target = f.centre;
     s.environment = Rgb(0.05);

@@ -11,6 +11,7 @@
 #include <glm/geometric.hpp>
 
 #include "knit/animation.hpp"
+#include "util/math.hpp"
 
 namespace knit {
 namespace {
@@ -133,12 +134,12 @@ TEST(AnimationStats, aLoopCountsOnlyWhereItIsPressedOntoItself) {
     const int n = 400;
     const double ring = 0.02;  // circumference 2 pi 2 cm, spacing ~0.3 mm
     for (int k = 0; k < n; ++k) {
-        const double t = 2 * M_PI * k / n;
+        const double t = 2 * knit::util::kPi * k / n;
         c.curves.points.push_back(dvec3(ring * std::cos(t), ring * std::sin(t), 0));
         c.arc.push_back(ring * t);
         c.yarnOf.push_back(0);
     }
-    c.length.push_back(2 * M_PI * ring);
+    c.length.push_back(2 * knit::util::kPi * ring);
     c.curves.offsets.push_back(n);
     c.curves.closed.push_back(1);
     const AnimatorOptions o;

@@ -14,6 +14,7 @@
 #include "test_util.hpp"
 #include "knit/animation.hpp"
 #include "knit/generator.hpp"
+#include "util/math.hpp"
 
 namespace knit {
 namespace {
@@ -145,7 +146,7 @@ TEST(Animator, transportedFrameSeedDoesNotFlipWhereTheTangentPassesTheSurfaceNor
     dvec3 lastProjected(0.0), lastTransported(0.0);
     double worstProjected = 1.0, worstTransported = 1.0;
     for (int step = 0; step <= 20; ++step) {
-        const double phi = (80.5 + step) * M_PI / 180.0;  // 89.5 -> 90.5 crosses the normal
+        const double phi = (80.5 + step) * knit::util::kPi / 180.0;  // 89.5 -> 90.5 crosses the normal
         const dvec3 x[2] = {dvec3(0.0), dvec3(std::cos(phi), 0.0, std::sin(phi))};
         dvec3 t[2], projected[2], transported[2];
         curveFrames(x, 2, false, &restNormal, t, projected);

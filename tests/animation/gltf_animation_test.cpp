@@ -15,6 +15,7 @@
 #include "knit/error.hpp"
 #include "common/animated_gltf.hpp"
 #include "test_util.hpp"
+#include "util/math.hpp"
 
 namespace knit {
 namespace {
@@ -56,7 +57,7 @@ TEST(GltfAnimation, skinnedJointRotationTurnsTheMesh) {
     ASSERT_EQ(a.times().size(), 3u);
     for (size_t s = 0; s < 3; ++s) {
         const BaseMesh m = a.sample(s);
-        const double angle = 0.25 * M_PI * double(s), c = std::cos(angle), sn = std::sin(angle);
+        const double angle = 0.25 * knit::util::kPi * double(s), c = std::cos(angle), sn = std::sin(angle);
         for (size_t i = 0; i < 4; ++i) {
             const glm::dvec3 p = quadVertex(i), want(c * p.x - sn * p.y, sn * p.x + c * p.y, p.z);
             EXPECT_NEAR(glm::length(m.positions[i] - want), 0.0, 1e-6) << "sample " << s << " vertex " << i;

@@ -8,6 +8,7 @@
 #include "common/fixtures.hpp"
 #include "knit/error.hpp"
 #include "knit/view.hpp"
+#include "util/math.hpp"
 
 namespace knit {
 namespace {
@@ -106,7 +107,7 @@ TEST(View, frameMeshLooksAtTheGrownBoundsAlongTheFront) {
     EXPECT_NEAR(v.eye.x, 0.5, 1e-12);
     EXPECT_GT(v.eye.z, 1.0);  // in front of the cloth (+z)
     const double radius = 0.5 * glm::length(glm::dvec3(1.0, 1.0, 0.0)) + 0.1;
-    EXPECT_NEAR(glm::distance(v.eye, v.target), radius / std::sin(15.0 * 3.14159265358979 / 180), 1e-9);
+    EXPECT_NEAR(glm::distance(v.eye, v.target), radius / std::sin(15.0 * knit::util::kPi / 180.0), 1e-9);
     EXPECT_EQ(v.width, settings.width);
     EXPECT_NO_THROW(validateView(v));
 }
