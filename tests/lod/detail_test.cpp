@@ -321,8 +321,13 @@ TEST(Detail, viewThatNeedsNoYarnsBuildsNone) {
     DetailOptions d;
     d.viewSettings.width = 32, d.viewSettings.height = 24;  // default framing: a pixel spans stitches
     so.detail = d;
+    int lastIndex = -1, total = 0;
+    so.progress = [&](const std::string&, int index, int n) { lastIndex = index, total = n; };
     const Scene far = buildScene(so);
     ASSERT_TRUE(far.detail().has_value());
+    // Progress counts only the stages that ran: the last one is the last of the total.
+    EXPECT_EQ(lastIndex + 1, total);
+    EXPECT_EQ(size_t(total), far.timings().size());
     for (DetailLevel l : far.detail()->levels.level) ASSERT_TRUE(l == DetailLevel::Surface || l == DetailLevel::Culled);
     EXPECT_EQ(far.yarns().curves.curveCount(), 0u);
     EXPECT_EQ(far.plies().curves.curveCount(), 0u);

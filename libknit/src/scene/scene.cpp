@@ -31,7 +31,18 @@ std::vector<std::vector<glm::ivec2>> cellsPerIsland(const UvGrid& grid) {
     return cells;
 }
 
-int stageCount(const SceneOptions& options) { return (options.buildPlies ? 9 : 8) + (options.detail ? 2 : 0); }
+// Progress: buildScene's stages in named groups, so the total the progress callback reports is
+// the sum of the groups that run (SceneBuilder::run is called once per stage named here).
+constexpr int kInputStages = 2;  // load_pattern, load_mesh (not when the inputs are given in memory)
+constexpr int kGridStages = 2;   // normals, uv_grid
+constexpr int kViewStages = 2;   // levels, detail (with a view)
+constexpr int kYarnStages = 4;   // tiling, stitch, binding, evaluate (skipped when no cell needs yarns)
+constexpr int kPlyStages = 1;    // plies (when asked for)
+
+int stageCount(const SceneOptions& options, bool loadsInputs) {
+    return (loadsInputs ? kInputStages : 0) + kGridStages + (options.detail ? kViewStages : 0) + kYarnStages +
+           (options.buildPlies ? kPlyStages : 0);
+}
 
 bool needsYarns(const CellLevels& levels) {
     for (DetailLevel l : levels.level)
@@ -78,7 +89,7 @@ public:
                 evaluateBinding(s_.bound_.binding, s_.mesh_.faces, s_.mesh_.positions, s_.normals_, s_.yarns_);
             });
         } else {
-            total_ -= 4;  // progress: the four yarn stages are skipped
+            total_ -= kYarnStages;  // progress: the yarn stages are skipped
         }
         if (s_.detail_) run("detail", [&] { pieces(); });
         plies();
@@ -116,7 +127,7 @@ private:
         const double tolUv = options_.bind.clampTolerance * s_.yarnRadius_ / std::max(metresPerUv.x, metresPerUv.y);
         const glm::dvec2 margin = tolUv * s_.placement_.repeats * glm::dvec2(s_.pattern_.px, s_.pattern_.py);
         impl::checkTilingBudget(s_.pattern_, s_.grid_.cells.size(), s_.grid_.dims, tileReach(s_.pattern_, margin),
-                                  physicalSize(), options_.budget);
+                                physicalSize(), options_.budget);
         SceneStages& st = s_.stages_;
         st.tiling = tilesForCells(s_.pattern_, s_.grid_.cells, margin);
         // Overlapping UV islands: each island is also tiled over its own cells, so that each gets
@@ -138,8 +149,9 @@ private:
             st.uvYarns = UvYarns{};
             for (size_t c = 0; c < st.islandTilings.size(); ++c)
                 if (!st.islandTilings[c].tiles.empty())
-                    appendIslandYarns(st.uvYarns, stitchYarns(s_.pattern_, adjacency, st.islandTilings[c], s_.placement_),
-                                     uint32_t(c));
+                    appendIslandYarns(st.uvYarns,
+                                      stitchYarns(s_.pattern_, adjacency, st.islandTilings[c], s_.placement_),
+                                      uint32_t(c));
         }
     }
 
@@ -199,7 +211,7 @@ private:
 };
 
 Scene buildScene(const SceneOptions& options) {
-    SceneBuilder builder(options, stageCount(options));
+    SceneBuilder builder(options, stageCount(options, true));
     builder.loadInputs();
     return builder.finish();
 }
@@ -207,7 +219,7 @@ Scene buildScene(const SceneOptions& options) {
 Scene buildScene(Pattern pattern, BaseMesh mesh, const SceneOptions& options) {
     validatePattern(pattern, pattern.name);
     validateMesh(mesh);
-    SceneBuilder builder(options, stageCount(options) - 2);
+    SceneBuilder builder(options, stageCount(options, false));
     builder.adoptInputs(std::move(pattern), std::move(mesh));
     return builder.finish();
 }
