@@ -20,7 +20,7 @@ py::array readOnlyView(const T* data, size_t count, size_t columns, py::handle o
     // numpy refuses a null data pointer with a base; an empty vector may have none.
     static const T empty{};
     py::array a(py::dtype::of<T>(), shape, strides, count ? data : &empty, owner);
-    py::impl::array_proxy(a.ptr())->flags &= ~py::impl::npy_api::NPY_ARRAY_WRITEABLE_;
+    py::detail::array_proxy(a.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
     return a;
 }
 
