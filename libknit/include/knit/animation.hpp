@@ -22,6 +22,8 @@
 //    FRAME_k`).
 // Per frame only: vertex normals, the binding evaluation, resampling with the fixed layout, the
 // frames and the helices, and the frame statistics; all into buffers reused across frames.
+// The one animation path: `knit animate`, `knit build --rest`, the Python module's
+// Scene.evaluate / evaluate_plies and the Blender add-on all evaluate through an Animator.
 #pragma once
 #include <array>
 #include <cstdint>
@@ -124,7 +126,9 @@ void checkFrame(const BaseMesh& rest, const BaseMesh& frame, const std::string& 
 // Evaluation per frame (src/animator.cpp, src/animation_stats.cpp)
 
 struct AnimatorOptions {
-    bool plies = true;  // sweep the plies per frame (false: yarn centrelines only)
+    // Sweep the plies per frame (false: the yarns only, the binding evaluated; with stats false
+    // too, no resampling at bind time or per frame).
+    bool plies = true;
     bool stats = true;  // compute FrameStats per frame
     // minYarnDistance looks for other yarns up to this distance (yarn diameters); a frame with
     // none that close reports +infinity.
@@ -169,7 +173,7 @@ struct DistanceScratch {
 struct AnimationFrame {
     std::vector<glm::dvec3> meshNormals;  // vertex normals of the frame's mesh
     MappedYarns yarns;                    // the binding evaluated on the frame
-    Polylines centres;                    // resampled centrelines (fixed layout)
+    Polylines centres;                    // resampled centrelines (fixed layout; with plies or stats)
     Plies plies;                          // fixed layout, yarn-major, ply-minor (no radial)
     FrameStats stats;
     DistanceScratch distance;
@@ -185,7 +189,10 @@ public:
 
     // Evaluates the frame whose mesh positions are `positions` (rest connectivity; checked:
     // the count, and finiteness) into `out`. Thread-parallel; allocates only on the first call
-    // with a given `out`. `times` (optional) receives the stage times.
+    // with a given `out`. `times` (optional) receives the stage times. Keeps no state between
+    // calls besides `out`: one Animator may evaluate several frames concurrently from several
+    // threads, each into its own `out`, with the results of sequential calls bit for bit (what
+    // the Python module's Scene.evaluate / evaluate_plies rely on).
     void evaluate(const std::vector<glm::dvec3>& positions, AnimationFrame& out,
                   AnimationStageTimes* times = nullptr) const;
 

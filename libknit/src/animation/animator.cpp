@@ -65,7 +65,9 @@ Animator::Animator(const Scene& rest, const AnimatorOptions& options)
     const size_t yarnCount = yarns.curveCount();
     const double spacing = generator_.options().pitch / generator_.options().samplesPerTurn;
 
-    // Step 1: resample the rest yarns, recording each layout and the rest arc lengths / pitches.
+    // Step 1: resample the rest yarns, recording each layout and the rest arc lengths / pitches
+    // (only for plies or statistics: the yarns alone are the binding evaluated, step 2 of evaluate).
+    const bool centres = options_.plies || options_.stats;
     ResampleLayout layout;
     ResampleScratch resampleScratch;
     std::vector<double> arc;
@@ -74,7 +76,7 @@ Animator::Animator(const Scene& rest, const AnimatorOptions& options)
     restPitch_.assign(yarnCount, 0.0);
     restLength_.assign(yarnCount, 0.0);
     restSeeds_.assign(yarnCount, {});
-    for (size_t y = 0; y < yarnCount; ++y) {
+    for (size_t y = 0; y < yarnCount && centres; ++y) {
         centre.clear();
         const size_t m = resampleCurve(rest.yarns(), y, spacing, centre, nullptr, resampleScratch, &layout);
         if (!rest.yarns().colour.empty())  // the chart's colours, as makePlies gives them
@@ -84,7 +86,7 @@ Animator::Animator(const Scene& rest, const AnimatorOptions& options)
         pieces_.insert(pieces_.end(), layout.pieces.begin(), layout.pieces.end());
         pieceOffsets_.push_back(static_cast<uint32_t>(pieces_.size()));
         if (centreOffsets_.back() + m > UINT32_MAX)
-            throw Error("more than 2^32-1 resampled yarn points; raise --ply-pitch");
+            throw Error("more than 2^32-1 resampled yarn points; raise the ply pitch");
         centreOffsets_.push_back(static_cast<uint32_t>(centreOffsets_.back() + m));
         yarnOfCentre_.insert(yarnOfCentre_.end(), m, static_cast<uint32_t>(y));
         if (m < 2) {
@@ -104,14 +106,15 @@ Animator::Animator(const Scene& rest, const AnimatorOptions& options)
     const uint32_t n = static_cast<uint32_t>(generator_.options().count);
     plyOfYarn_.assign(yarnCount + 1, 0);
     size_t total = 0;
-    for (size_t y = 0; y < yarnCount; ++y) {
+    for (size_t y = 0; y < yarnCount && options_.plies; ++y) {
         plyOfYarn_[y] = total;
         const size_t m = centreOffsets_[y + 1] - centreOffsets_[y];
         if (m < 2 || !options_.plies) continue;
         for (uint32_t i = 0; i < n; ++i) {
             total += m;
             if (total > UINT32_MAX)
-                throw Error("more than 2^32-1 ply points per frame; raise --ply-pitch or lower --samples-per-turn");
+                throw Error(
+                    "more than 2^32-1 ply points per frame; raise the ply pitch or lower the samples per ply turn");
             plyTopology_.curves.offsets.push_back(static_cast<uint32_t>(total));
             plyTopology_.curves.closed.push_back(yarns.closed[y]);
             plyTopology_.yarnOfCurve.push_back(static_cast<uint32_t>(y));
@@ -127,6 +130,7 @@ Animator::Animator(const Scene& rest, const AnimatorOptions& options)
     plyTopology_.pitch = generator_.options().pitch;
 
     // Step 3: rest length of the segment starting at each yarn vertex (the stretch reference).
+    if (!options_.stats) return;
     restSegment_.assign(yarns.pointCount(), 0.0);
     for (size_t y = 0; y < yarnCount; ++y) {
         const uint32_t b = yarns.begin(y), e = yarns.end(y);
@@ -157,9 +161,9 @@ void Animator::evaluate(const std::vector<dvec3>& positions, AnimationFrame& out
     evaluateBinding(rest_.binding(), mesh.faces, positions, out.meshNormals, out.yarns);
     t.evaluate = since(t0);
 
-    // Step 3: the centrelines resampled with the rest layouts.
+    // Step 3: the centrelines resampled with the rest layouts (for the plies and the statistics).
     t0 = Clock::now();
-    resample(out);
+    if (options_.plies || options_.stats) resample(out);
     t.resample = since(t0);
 
     // Step 4: frames and helices with the rest twist phase.
