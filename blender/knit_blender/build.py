@@ -51,8 +51,25 @@ def read_positions(obj, depsgraph):
         evaluated.to_mesh_clear()
 
 
+def weld_corner_uvs(faces, corner_uvs):
+    """(uvs, face_uvs) with one UV vertex per distinct (vertex, uv) pair, numbered in first-use
+    order over the triangle corners: what knit's mesh loaders make of an OBJ, so a UV seam is
+    only where the UVs differ (one UV per loop would make every triangle edge a seam, cutting the
+    yarns there). faces (m, 3) vertex indices; corner_uvs (m, 3, 2) the UV of each corner."""
+    uv = np.asarray(corner_uvs, dtype=np.float64).reshape(-1, 2) + 0.0  # -0 -> +0, as the loaders
+    keys = np.empty(len(uv), dtype=[("vertex", np.int64), ("u", np.float64), ("v", np.float64)])
+    keys["vertex"], keys["u"], keys["v"] = np.asarray(faces).reshape(-1), uv[:, 0], uv[:, 1]
+    _, first, inverse = np.unique(keys, return_index=True, return_inverse=True)
+    order = np.argsort(first)  # the distinct pairs in first-use order
+    rank = np.empty(len(order), dtype=np.int64)
+    rank[order] = np.arange(len(order))
+    return uv[first[order]], rank[inverse.reshape(-1)].reshape(-1, 3)
+
+
 def read_mesh(obj, depsgraph):
-    """knit.Mesh of the evaluated object: triangles, positions, UVs by loop (the active UV map)."""
+    """knit.Mesh of the evaluated object: triangles, positions, the active UV map (welded per
+    vertex as the mesh loaders weld an OBJ's, weld_corner_uvs). Vertices are kept as they are
+    (one per Blender vertex: the frames' positions map onto them one to one)."""
     knit = knit_module()
     evaluated = obj.evaluated_get(depsgraph)
     mesh = evaluated.to_mesh()
@@ -69,7 +86,9 @@ def read_mesh(obj, depsgraph):
         mesh.loop_triangles.foreach_get("loops", loops)
         uvs = np.empty(len(mesh.loops) * 2, dtype=np.float32)
         mesh.uv_layers.active.data.foreach_get("uv", uvs)
-        return knit.Mesh(co.reshape(-1, 3), faces.reshape(-1, 3), uvs.reshape(-1, 2), loops.reshape(-1, 3), obj.name)
+        faces = faces.reshape(-1, 3)
+        welded, face_uvs = weld_corner_uvs(faces, uvs.reshape(-1, 2)[loops.reshape(-1, 3)])
+        return knit.Mesh(co.reshape(-1, 3), faces, welded, face_uvs, obj.name)
     finally:
         evaluated.to_mesh_clear()
 

@@ -12,7 +12,9 @@ import bpy
 import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import knit_blender  # noqa: E402
+from addon_scene import make_animated_grid, points_of  # noqa: E402
 from knit_blender import build  # noqa: E402
 
 
@@ -20,32 +22,6 @@ def check(condition, what):
     print(("ok   " if condition else "FAIL ") + what)
     if not condition:
         raise SystemExit(f"knit_blender test failed: {what}")
-
-
-def make_animated_grid():
-    """A 0.5 m grid with UVs in the XY plane; a shape key 'Bulge' lifts it by up to 0.1 m, keyed
-    0 at frame 1 and 1 at frame 10."""
-    bpy.ops.object.select_all(action="SELECT")
-    bpy.ops.object.delete()
-    bpy.ops.mesh.primitive_grid_add(x_subdivisions=16, y_subdivisions=16, size=0.5, calc_uvs=True)
-    grid = bpy.context.active_object
-    grid.name = "Cloth"
-    grid.shape_key_add(name="Basis")
-    bulge = grid.shape_key_add(name="Bulge")
-    for p in bulge.data:
-        p.co.z += 0.1 * max(0.0, 1.0 - (p.co.x ** 2 + p.co.y ** 2) / 0.0625)
-    bulge.value = 0.0
-    bulge.keyframe_insert("value", frame=1)
-    bulge.value = 1.0
-    bulge.keyframe_insert("value", frame=10)
-    bpy.context.scene.frame_set(1)
-    return grid
-
-
-def points_of(obj):
-    co = np.empty(len(obj.data.vertices) * 3, dtype=np.float32)
-    obj.data.vertices.foreach_get("co", co)
-    return co.reshape(-1, 3)
 
 
 def render_coverage(obj):
@@ -96,6 +72,9 @@ def main():
     check(np.allclose(radius, scene.ply_radius, rtol=1e-6), f"radii are the ply radius {scene.ply_radius:.6g}")
     check(np.allclose(points_of(obj), scene.plies.points, atol=1e-6), "points are the library's plies")
     check(obj.modifiers[0].type == "NODES", "a geometry-nodes modifier renders the curves")
+    # One UV island: the UVs are welded per vertex, so no yarn is cut (and re-welded) at a triangle edge.
+    # (One UV per loop made every triangle edge a seam: 784 welded ends on this grid at repeats (6, 6).)
+    check(scene.stats["welded_ends"] == 0, f"no seam inside the grid (welded ends {scene.stats['welded_ends']})")
 
     rest = points_of(obj)
     bpy.context.scene.frame_set(10)
