@@ -1,5 +1,9 @@
 """The add-on's steps: read the source mesh, bind (knit.build_scene), write the ply mesh, build
-the geometry-nodes modifier, re-evaluate on frame change, bake PC2."""
+the geometry-nodes modifier, re-evaluate on frame change, bake PC2.
+
+Every pose, the bind pose included, is evaluated by Scene.evaluate_plies: the library's Animator,
+the one `knit animate` runs, so frame k here is frame k of `knit animate` on the same meshes and
+options (the point layout, twist phase and ply frames are fixed at bind time)."""
 import json
 import os
 import struct
@@ -96,7 +100,8 @@ def read_mesh(obj, depsgraph):
 # -- Step 2: bind ---------------------------------------------------------------------------------
 
 def bind(source, options, depsgraph):
-    """knit.build_scene on the source's evaluated mesh with the operator's options."""
+    """knit.build_scene on the source's evaluated mesh with the operator's options (no plies: every
+    pose's plies, the bind pose's too, come from Scene.evaluate_plies)."""
     knit = knit_module()
     mesh = read_mesh(source, depsgraph)
     repeats = tuple(options["repeats"])
@@ -105,7 +110,8 @@ def bind(source, options, depsgraph):
         su, sv = knit.uv_to_metre_scale(mesh)
         repeats = (su * gauge[0] / 0.1, sv * gauge[1] / 0.1)
     return knit.build_scene(options["pattern"], mesh, repeats=repeats if repeats[0] > 0 else None,
-                            plies=options["plies"], ply_pitch=options["ply_pitch"], twist=options["twist"])
+                            plies=options["plies"], ply_pitch=options["ply_pitch"], twist=options["twist"],
+                            build_plies=False)
 
 
 # -- Step 3: the ply mesh (edges + radius) --------------------------------------------------------
@@ -205,7 +211,7 @@ def apply_knit(context, source, options):
     if old is not None:
         bpy.data.objects.remove(old)
     mesh = bpy.data.meshes.new(name)
-    fill_ply_mesh(mesh, scene.plies, scene.ply_radius)
+    fill_ply_mesh(mesh, scene.evaluate_plies(scene.mesh.positions), scene.ply_radius)
     obj = bpy.data.objects.new(name, mesh)
     context.collection.objects.link(obj)
     obj.parent = source  # follows the source's transform; points are in its local space
@@ -227,7 +233,8 @@ def scene_of(obj, depsgraph):
 
 
 def update_knit(obj, depsgraph):
-    """Re-evaluates one knit object on its source's current evaluated mesh."""
+    """Re-evaluates one knit object on its source's current evaluated mesh (Scene.evaluate_plies:
+    the same point count on every frame)."""
     source = bpy.data.objects.get(obj[SOURCE_PROP])
     if source is None:
         return
