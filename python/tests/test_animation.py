@@ -163,3 +163,13 @@ def test_evaluate_plies_errors_name_no_command_line_flag(scene):
     with pytest.raises(knit.Error, match="positions: expected") as e:
         scene.evaluate_plies(np.zeros((3, 3)))
     assert "--" not in str(e.value)
+
+
+def test_evaluate_needs_no_valid_ply_options():
+    # The yarns alone do not depend on the ply options: a scene built without plies evaluates its
+    # yarns whatever they are; only evaluate_plies checks them.
+    scene = knit.build_scene("stockinette", "plane", repeats=(2, 2), samples_per_turn=1, build_plies=False)
+    yarns = scene.evaluate(scene.mesh.positions)
+    np.testing.assert_array_equal(yarns.points, scene.yarns.points)
+    with pytest.raises(knit.Error):
+        scene.evaluate_plies(scene.mesh.positions)

@@ -28,6 +28,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -181,7 +182,8 @@ struct AnimationFrame {
 
 class Animator {
 public:
-    // Bind-time work on the rest scene (its mesh, binding and yarns; plyOptions resolved here):
+    // Bind-time work on the rest scene (its mesh, binding and yarns; plyOptions resolved here
+    // unless only the yarns are evaluated):
     // the resampling layouts, rest arc lengths and pitches, rest segment lengths. Keeps a
     // reference to `rest`, which must outlive the Animator. Throws knit::Error for bad ply
     // options or more than 2^32-1 ply points.
@@ -198,7 +200,9 @@ public:
 
     const Scene& rest() const { return rest_; }
     const AnimatorOptions& options() const { return options_; }
-    const PlyOptions& plyOptions() const { return generator_.options(); }  // resolved
+    // Resolved; an Animator of the yarns alone (no plies, no statistics) neither resolves nor
+    // checks them (the yarns do not depend on them) and gives the scene's options as they are.
+    const PlyOptions& plyOptions() const { return generator_ ? generator_->options() : rest_.plyOptions(); }
     size_t centrePointCount() const { return centreOffsets_.back(); }
     size_t plyPointCount() const { return plyTopology_.curves.offsets.back(); }
     // The constant ply curves (offsets, closed flags, yarn and ply of each curve; no points).
@@ -217,7 +221,7 @@ private:
 
     const Scene& rest_;
     AnimatorOptions options_;
-    PlyGenerator generator_;  // on the rest yarns: options, spacing, ply phases
+    std::optional<PlyGenerator> generator_;  // on the rest yarns: options, spacing, ply phases (plies or stats)
     // Resampling layout per yarn (CSR over yarns): kept points and pieces per segment.
     std::vector<uint32_t> keptOffsets_{0}, kept_, pieceOffsets_{0}, pieces_;
     std::vector<uint32_t> centreOffsets_{0};  // resampled points per yarn (CSR)
