@@ -117,3 +117,15 @@ def test_max_memory_that_is_not_a_size_is_refused_naming_the_keyword():
     with pytest.raises(knit.Error, match="max_memory 'lots': expected a size") as e:
         knit.build_scene("stockinette", "plane", repeats=(2, 2), max_memory="lots")
     assert "--" not in str(e.value)
+
+
+@pytest.mark.parametrize("keywords, keyword", [
+    (dict(samples_per_turn=1), "samples_per_turn"),
+    (dict(ply_pitch=-1.0), "ply_pitch"),
+    (dict(plies=20), "plies"),
+    (dict(repeats=(64, 64), max_memory="1M"), "max_memory"),
+])
+def test_library_messages_name_the_python_keyword_not_the_cli_flag(keywords, keyword):
+    with pytest.raises(knit.Error, match=keyword) as e:
+        knit.build_scene("stockinette", "drape", **keywords)
+    assert "--" not in str(e.value)
