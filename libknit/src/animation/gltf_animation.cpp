@@ -258,7 +258,7 @@ BaseMesh GltfAnimation::sample(size_t i, const MeshLoadOptions& options) const {
     std::vector<std::vector<double>> weights;
     poseNodes(d, s.channels, s.parent, s.times.at(i), world, weights);
     const impl::GltfPoser poser = [&](const gltf::MeshInstance& inst, const gltf::Primitive& p,
-                                        const gltf::Accessor& P) {
+                                      const gltf::Accessor& P) {
         // Morph targets: POSITION + sum of weight x target POSITION.
         std::vector<glm::dvec3> v(P.count);
         for (size_t k = 0; k < P.count; ++k) v[k] = {P.get(k, 0), P.get(k, 1), P.get(k, 2)};
