@@ -15,11 +15,13 @@ import numpy as np
 ADDON = __package__ or "knit_blender"
 SOURCE_PROP = "knit_source"    # on <mesh>.knit: the source object's name
 OPTIONS_PROP = "knit_options"  # on <mesh>.knit: the apply options (JSON), to re-bind after a reload
+REST_PROP = "knit_rest"        # on <mesh>.knit: the bind pose's vertex positions (float array), ditto
 NODE_GROUP = "knit_ply_curves"
 MATERIAL = "knit_yarn"
 
 # Bound scenes by knit object name. Blender cannot store Python objects in a .blend file, so a
-# scene missing here (after loading a file) is re-bound from OPTIONS_PROP on first use.
+# scene missing here (after loading a file) is re-bound from OPTIONS_PROP and REST_PROP on first
+# use: the same options on the same pose, so the same scene, whichever frame the file opens on.
 _scenes = {}
 
 
@@ -70,10 +72,11 @@ def weld_corner_uvs(faces, corner_uvs):
     return uv[first[order]], rank[inverse.reshape(-1)].reshape(-1, 3)
 
 
-def read_mesh(obj, depsgraph):
-    """knit.Mesh of the evaluated object: triangles, positions, the active UV map (welded per
-    vertex as the mesh loaders weld an OBJ's, weld_corner_uvs). Vertices are kept as they are
-    (one per Blender vertex: the frames' positions map onto them one to one)."""
+def read_mesh(obj, depsgraph, positions=None):
+    """knit.Mesh of the evaluated object: triangles, positions (or `positions`, (n, 3) float32, for
+    the same vertices), the active UV map (welded per vertex as the mesh loaders weld an OBJ's,
+    weld_corner_uvs). Vertices are kept as they are (one per Blender vertex: the frames'
+    positions map onto them one to one)."""
     knit = knit_module()
     evaluated = obj.evaluated_get(depsgraph)
     mesh = evaluated.to_mesh()
@@ -84,6 +87,8 @@ def read_mesh(obj, depsgraph):
         tris = len(mesh.loop_triangles)
         co = np.empty(len(mesh.vertices) * 3, dtype=np.float32)
         mesh.vertices.foreach_get("co", co)
+        if positions is not None and positions.size == co.size:
+            co = positions
         faces = np.empty(tris * 3, dtype=np.int64)
         mesh.loop_triangles.foreach_get("vertices", faces)
         loops = np.empty(tris * 3, dtype=np.int64)
@@ -99,11 +104,12 @@ def read_mesh(obj, depsgraph):
 
 # -- Step 2: bind ---------------------------------------------------------------------------------
 
-def bind(source, options, depsgraph):
-    """knit.build_scene on the source's evaluated mesh with the operator's options (no plies: every
-    pose's plies, the bind pose's too, come from Scene.evaluate_plies)."""
+def bind(source, options, depsgraph, rest=None):
+    """knit.build_scene on the source's evaluated mesh (its positions replaced by `rest`, the bind
+    pose, when given) with the operator's options (no plies: every pose's plies, the bind pose's
+    too, come from Scene.evaluate_plies)."""
     knit = knit_module()
-    mesh = read_mesh(source, depsgraph)
+    mesh = read_mesh(source, depsgraph, rest)
     repeats = tuple(options["repeats"])
     gauge = tuple(options.get("gauge", (0.0, 0.0)))
     if gauge[0] > 0 and gauge[1] > 0:  # periods per 10 cm -> periods across the UV square
@@ -217,6 +223,7 @@ def apply_knit(context, source, options):
     obj.parent = source  # follows the source's transform; points are in its local space
     obj[SOURCE_PROP] = source.name
     obj[OPTIONS_PROP] = json.dumps(options)
+    obj[REST_PROP] = np.asarray(scene.mesh.positions, dtype=np.float32).ravel().tolist()
     modifier = obj.modifiers.new("knit plies", "NODES")
     modifier.node_group = ply_node_group(options.get("profile_resolution", 6))
     _scenes[obj.name] = scene
@@ -224,11 +231,14 @@ def apply_knit(context, source, options):
 
 
 def scene_of(obj, depsgraph):
-    """The bound knit.Scene of a knit object (re-bound from its stored options if needed)."""
+    """The bound knit.Scene of a knit object, re-bound from its stored options and bind pose if
+    needed (an object applied before the pose was stored binds the source's current mesh)."""
     scene = _scenes.get(obj.name)
     if scene is None:
         source = bpy.data.objects[obj[SOURCE_PROP]]
-        scene = _scenes[obj.name] = bind(source, json.loads(obj[OPTIONS_PROP]), depsgraph)
+        rest = obj.get(REST_PROP)
+        rest = None if rest is None else np.array(rest, dtype=np.float32).reshape(-1, 3)
+        scene = _scenes[obj.name] = bind(source, json.loads(obj[OPTIONS_PROP]), depsgraph, rest)
     return scene
 
 

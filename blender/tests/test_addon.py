@@ -2,8 +2,8 @@
 --python-exit-code 1 --python blender/tests/test_addon.py). KNIT_PYTHONPATH points at build/python.
 
 Checks: <mesh>.knit exists, its point count is the library's, its radii are the ply radius, a frame
-change (a shape key animates the base mesh) moves it, a PC2 bake has the right size, and a small
-Cycles render of it is not blank."""
+change (a shape key animates the base mesh) moves it, a PC2 bake has the right size, a small
+Cycles render of it is not blank, and the file reopened on another frame re-binds the same pose."""
 import os
 import sys
 import tempfile
@@ -93,6 +93,16 @@ def main():
 
     coverage, variance = render_coverage(obj)
     check(coverage > 0.2 and variance > 1e-4, f"Cycles render is not blank (coverage {coverage:.2f}, variance {variance:.2g})")
+    # Reopened on another frame (a new session has no bound scenes): re-bound on the stored bind
+    # pose, not on the frame the file opens on, so frame 10 is what it was.
+    bpy.context.scene.frame_set(10)
+    blend = os.path.join(tempfile.mkdtemp(), "knit.blend")
+    bpy.ops.wm.save_as_mainfile(filepath=blend)
+    build._scenes.clear()
+    bpy.ops.wm.open_mainfile(filepath=blend)
+    bpy.context.scene.frame_set(10)
+    obj = bpy.data.objects["Cloth.knit"]
+    check(np.array_equal(points_of(obj), moved), "reopened on frame 10 and re-bound: frame 10 is unchanged")
     print("knit_blender: all checks passed")
 
 
