@@ -84,14 +84,14 @@ std::vector<glm::dvec3> framePositions(const knit::Scene& scene, const py::array
 // nothing resampled) and one for the plies (Scene.evaluate_plies: the rest layout, twist phase
 // and frame seeds of `knit animate`). An Animator keeps no state between evaluations (each call
 // fills its own AnimationFrame), so evaluations from several Python threads run concurrently
-// without a lock and give the sequential results bit for bit; only the first use of each one
-// takes a lock, while it is made.
+// and give the sequential results bit for bit; a call holds a lock only to look its Animator up
+// (and, the first time, while it is made).
 class SceneAnimators {
 public:
     explicit SceneAnimators(ScenePtr scene) : scene_(std::move(scene)) {}
 
-    // The Animator for the yarns (plies false) or the plies; call without the GIL (making one
-    // resamples every rest yarn).
+    // The Animator for the yarns (plies false) or the plies; call without the GIL (making the
+    // ply one resamples every rest yarn).
     const knit::Animator& get(bool plies) {
         Slot& slot = plies ? plies_ : yarns_;
         const std::lock_guard<std::mutex> lock(slot.mutex);
