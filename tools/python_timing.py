@@ -4,9 +4,9 @@
 
 Prints, for a drape scene scaled to ~N yarn points (and one to ~N ply points):
   * `import knit` wall time (a fresh interpreter, best of 5);
-  * Scene.evaluate from Python vs the same C++ calls (vertexNormals + evaluateBinding into a fresh
-    MappedYarns) looped inside the module (knit._evaluate_seconds_in_cpp), best of 5, and the ratio;
-  * the add-on's frame update without Blender: Scene.evaluate_plies (rest layout) plus the float32
+  * Scene.evaluate from Python vs the same C++ calls (the scene's yarn Animator into a fresh
+    AnimationFrame) looped inside the module (knit._evaluate_seconds_in_cpp), best of 5, and the ratio;
+  * the add-on's frame update without Blender: Scene.evaluate_plies (the ply Animator) plus the float32
     conversion that feeds mesh.vertices.foreach_set, for ~N ply points.
 Not a unit test: numbers depend on the machine and its load; run it on an idle machine.
 """

@@ -4,7 +4,8 @@ Object > Knit > Apply Knit (bpy.ops.object.knit_apply) binds the pattern to the 
 and creates `<mesh>.knit`: a mesh of edges (one chain per ply) with a `radius` point attribute and
 a geometry-nodes modifier (Mesh to Curve -> Set Curve Radius -> Curve to Mesh with a circle
 profile) that Cycles and EEVEE render as tubes. On every frame change the evaluated source mesh
-(modifiers, shape keys) is read and the plies are re-evaluated through the Python module `knit`.
+(modifiers, shape keys) is read and the plies are re-evaluated through the Python module `knit`
+(Scene.evaluate_plies: the Animator of `knit animate`, so frame k equals its frame k).
 Object > Knit > Bake Knit to PC2 (bpy.ops.object.knit_bake_pc2) writes the frames to a PC2 cache.
 
 The module `knit` is found on sys.path (installed into Debian's dist-packages by `cmake --install`),

@@ -1,5 +1,9 @@
 """The add-on's steps: read the source mesh, bind (knit.build_scene), write the ply mesh, build
-the geometry-nodes modifier, re-evaluate on frame change, bake PC2."""
+the geometry-nodes modifier, re-evaluate on frame change, bake PC2.
+
+Every pose, the bind pose included, is evaluated by Scene.evaluate_plies: the library's Animator,
+the one `knit animate` runs, so frame k here is frame k of `knit animate` on the same meshes and
+options (the point layout, twist phase and ply frames are fixed at bind time)."""
 import json
 import os
 import struct
@@ -11,11 +15,13 @@ import numpy as np
 ADDON = __package__ or "knit_blender"
 SOURCE_PROP = "knit_source"    # on <mesh>.knit: the source object's name
 OPTIONS_PROP = "knit_options"  # on <mesh>.knit: the apply options (JSON), to re-bind after a reload
+REST_PROP = "knit_rest"        # on <mesh>.knit: the bind pose's vertex positions (float array), ditto
 NODE_GROUP = "knit_ply_curves"
 MATERIAL = "knit_yarn"
 
 # Bound scenes by knit object name. Blender cannot store Python objects in a .blend file, so a
-# scene missing here (after loading a file) is re-bound from OPTIONS_PROP on first use.
+# scene missing here (after loading a file) is re-bound from OPTIONS_PROP and REST_PROP on first
+# use: the same options on the same pose, so the same scene, whichever frame the file opens on.
 _scenes = {}
 
 
@@ -51,8 +57,26 @@ def read_positions(obj, depsgraph):
         evaluated.to_mesh_clear()
 
 
-def read_mesh(obj, depsgraph):
-    """knit.Mesh of the evaluated object: triangles, positions, UVs by loop (the active UV map)."""
+def weld_corner_uvs(faces, corner_uvs):
+    """(uvs, face_uvs) with one UV vertex per distinct (vertex, uv) pair, numbered in first-use
+    order over the triangle corners: what knit's mesh loaders make of an OBJ, so a UV seam is
+    only where the UVs differ (one UV per loop would make every triangle edge a seam, cutting the
+    yarns there). faces (m, 3) vertex indices; corner_uvs (m, 3, 2) the UV of each corner."""
+    uv = np.asarray(corner_uvs, dtype=np.float64).reshape(-1, 2) + 0.0  # -0 -> +0, as the loaders
+    keys = np.empty(len(uv), dtype=[("vertex", np.int64), ("u", np.float64), ("v", np.float64)])
+    keys["vertex"], keys["u"], keys["v"] = np.asarray(faces).reshape(-1), uv[:, 0], uv[:, 1]
+    _, first, inverse = np.unique(keys, return_index=True, return_inverse=True)
+    order = np.argsort(first)  # the distinct pairs in first-use order
+    rank = np.empty(len(order), dtype=np.int64)
+    rank[order] = np.arange(len(order))
+    return uv[first[order]], rank[inverse.reshape(-1)].reshape(-1, 3)
+
+
+def read_mesh(obj, depsgraph, positions=None):
+    """knit.Mesh of the evaluated object: triangles, positions (or `positions`, (n, 3) float32, for
+    the same vertices), the active UV map (welded per vertex as the mesh loaders weld an OBJ's,
+    weld_corner_uvs). Vertices are kept as they are (one per Blender vertex: the frames'
+    positions map onto them one to one)."""
     knit = knit_module()
     evaluated = obj.evaluated_get(depsgraph)
     mesh = evaluated.to_mesh()
@@ -63,30 +87,37 @@ def read_mesh(obj, depsgraph):
         tris = len(mesh.loop_triangles)
         co = np.empty(len(mesh.vertices) * 3, dtype=np.float32)
         mesh.vertices.foreach_get("co", co)
+        if positions is not None and positions.size == co.size:
+            co = positions
         faces = np.empty(tris * 3, dtype=np.int64)
         mesh.loop_triangles.foreach_get("vertices", faces)
         loops = np.empty(tris * 3, dtype=np.int64)
         mesh.loop_triangles.foreach_get("loops", loops)
         uvs = np.empty(len(mesh.loops) * 2, dtype=np.float32)
         mesh.uv_layers.active.data.foreach_get("uv", uvs)
-        return knit.Mesh(co.reshape(-1, 3), faces.reshape(-1, 3), uvs.reshape(-1, 2), loops.reshape(-1, 3), obj.name)
+        faces = faces.reshape(-1, 3)
+        welded, face_uvs = weld_corner_uvs(faces, uvs.reshape(-1, 2)[loops.reshape(-1, 3)])
+        return knit.Mesh(co.reshape(-1, 3), faces, welded, face_uvs, obj.name)
     finally:
         evaluated.to_mesh_clear()
 
 
 # -- Step 2: bind ---------------------------------------------------------------------------------
 
-def bind(source, options, depsgraph):
-    """knit.build_scene on the source's evaluated mesh with the operator's options."""
+def bind(source, options, depsgraph, rest=None):
+    """knit.build_scene on the source's evaluated mesh (its positions replaced by `rest`, the bind
+    pose, when given) with the operator's options (no plies: every pose's plies, the bind pose's
+    too, come from Scene.evaluate_plies)."""
     knit = knit_module()
-    mesh = read_mesh(source, depsgraph)
+    mesh = read_mesh(source, depsgraph, rest)
     repeats = tuple(options["repeats"])
     gauge = tuple(options.get("gauge", (0.0, 0.0)))
     if gauge[0] > 0 and gauge[1] > 0:  # periods per 10 cm -> periods across the UV square
         su, sv = knit.uv_to_metre_scale(mesh)
         repeats = (su * gauge[0] / 0.1, sv * gauge[1] / 0.1)
     return knit.build_scene(options["pattern"], mesh, repeats=repeats if repeats[0] > 0 else None,
-                            plies=options["plies"], ply_pitch=options["ply_pitch"], twist=options["twist"])
+                            plies=options["plies"], ply_pitch=options["ply_pitch"], twist=options["twist"],
+                            build_plies=False)
 
 
 # -- Step 3: the ply mesh (edges + radius) --------------------------------------------------------
@@ -186,12 +217,13 @@ def apply_knit(context, source, options):
     if old is not None:
         bpy.data.objects.remove(old)
     mesh = bpy.data.meshes.new(name)
-    fill_ply_mesh(mesh, scene.plies, scene.ply_radius)
+    fill_ply_mesh(mesh, scene.evaluate_plies(scene.mesh.positions), scene.ply_radius)
     obj = bpy.data.objects.new(name, mesh)
     context.collection.objects.link(obj)
     obj.parent = source  # follows the source's transform; points are in its local space
     obj[SOURCE_PROP] = source.name
     obj[OPTIONS_PROP] = json.dumps(options)
+    obj[REST_PROP] = np.asarray(scene.mesh.positions, dtype=np.float32).ravel().tolist()
     modifier = obj.modifiers.new("knit plies", "NODES")
     modifier.node_group = ply_node_group(options.get("profile_resolution", 6))
     _scenes[obj.name] = scene
@@ -199,16 +231,20 @@ def apply_knit(context, source, options):
 
 
 def scene_of(obj, depsgraph):
-    """The bound knit.Scene of a knit object (re-bound from its stored options if needed)."""
+    """The bound knit.Scene of a knit object, re-bound from its stored options and bind pose if
+    needed (an object applied before the pose was stored binds the source's current mesh)."""
     scene = _scenes.get(obj.name)
     if scene is None:
         source = bpy.data.objects[obj[SOURCE_PROP]]
-        scene = _scenes[obj.name] = bind(source, json.loads(obj[OPTIONS_PROP]), depsgraph)
+        rest = obj.get(REST_PROP)
+        rest = None if rest is None else np.array(rest, dtype=np.float32).reshape(-1, 3)
+        scene = _scenes[obj.name] = bind(source, json.loads(obj[OPTIONS_PROP]), depsgraph, rest)
     return scene
 
 
 def update_knit(obj, depsgraph):
-    """Re-evaluates one knit object on its source's current evaluated mesh."""
+    """Re-evaluates one knit object on its source's current evaluated mesh (Scene.evaluate_plies:
+    the same point count on every frame)."""
     source = bpy.data.objects.get(obj[SOURCE_PROP])
     if source is None:
         return

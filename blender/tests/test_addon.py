@@ -2,8 +2,8 @@
 --python-exit-code 1 --python blender/tests/test_addon.py). KNIT_PYTHONPATH points at build/python.
 
 Checks: <mesh>.knit exists, its point count is the library's, its radii are the ply radius, a frame
-change (a shape key animates the base mesh) moves it, a PC2 bake has the right size, and a small
-Cycles render of it is not blank."""
+change (a shape key animates the base mesh) moves it, a PC2 bake has the right size, a small
+Cycles render of it is not blank, and the file reopened on another frame re-binds the same pose."""
 import os
 import sys
 import tempfile
@@ -12,7 +12,9 @@ import bpy
 import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import knit_blender  # noqa: E402
+from addon_scene import make_animated_grid, points_of  # noqa: E402
 from knit_blender import build  # noqa: E402
 
 
@@ -20,32 +22,6 @@ def check(condition, what):
     print(("ok   " if condition else "FAIL ") + what)
     if not condition:
         raise SystemExit(f"knit_blender test failed: {what}")
-
-
-def make_animated_grid():
-    """A 0.5 m grid with UVs in the XY plane; a shape key 'Bulge' lifts it by up to 0.1 m, keyed
-    0 at frame 1 and 1 at frame 10."""
-    bpy.ops.object.select_all(action="SELECT")
-    bpy.ops.object.delete()
-    bpy.ops.mesh.primitive_grid_add(x_subdivisions=16, y_subdivisions=16, size=0.5, calc_uvs=True)
-    grid = bpy.context.active_object
-    grid.name = "Cloth"
-    grid.shape_key_add(name="Basis")
-    bulge = grid.shape_key_add(name="Bulge")
-    for p in bulge.data:
-        p.co.z += 0.1 * max(0.0, 1.0 - (p.co.x ** 2 + p.co.y ** 2) / 0.0625)
-    bulge.value = 0.0
-    bulge.keyframe_insert("value", frame=1)
-    bulge.value = 1.0
-    bulge.keyframe_insert("value", frame=10)
-    bpy.context.scene.frame_set(1)
-    return grid
-
-
-def points_of(obj):
-    co = np.empty(len(obj.data.vertices) * 3, dtype=np.float32)
-    obj.data.vertices.foreach_get("co", co)
-    return co.reshape(-1, 3)
 
 
 def render_coverage(obj):
@@ -89,13 +65,17 @@ def main():
     check(obj is not None, "the object Cloth.knit exists")
 
     scene = build.scene_of(obj, bpy.context.evaluated_depsgraph_get())
-    check(len(obj.data.vertices) == scene.plies.point_count > 0,
-          f"point count {len(obj.data.vertices)} is the library's {scene.plies.point_count}")
+    plies = scene.evaluate_plies(scene.mesh.positions)  # the bind pose
+    check(len(obj.data.vertices) == plies.point_count > 0,
+          f"point count {len(obj.data.vertices)} is the library's {plies.point_count}")
     radius = np.empty(len(obj.data.vertices), dtype=np.float32)
     obj.data.attributes["radius"].data.foreach_get("value", radius)
     check(np.allclose(radius, scene.ply_radius, rtol=1e-6), f"radii are the ply radius {scene.ply_radius:.6g}")
-    check(np.allclose(points_of(obj), scene.plies.points, atol=1e-6), "points are the library's plies")
+    check(np.array_equal(points_of(obj), plies.points.astype(np.float32)), "points are the library's plies")
     check(obj.modifiers[0].type == "NODES", "a geometry-nodes modifier renders the curves")
+    # One UV island: the UVs are welded per vertex, so no yarn is cut (and re-welded) at a triangle edge.
+    # (One UV per loop made every triangle edge a seam: 784 welded ends on this grid at repeats (6, 6).)
+    check(scene.stats["welded_ends"] == 0, f"no seam inside the grid (welded ends {scene.stats['welded_ends']})")
 
     rest = points_of(obj)
     bpy.context.scene.frame_set(10)
@@ -103,7 +83,7 @@ def main():
     lift = float((moved[:, 2] - rest[:, 2]).max())
     check(0.08 < lift < 0.12, f"frame 10 lifts the knit with the shape key ({lift:.4f} m)")
     bpy.context.scene.frame_set(1)
-    check(np.allclose(points_of(obj), rest, atol=1e-6), "frame 1 brings it back")
+    check(np.array_equal(points_of(obj), rest), "frame 1 brings it back exactly (frames are history-free)")
 
     path = os.path.join(tempfile.mkdtemp(), "knit.pc2")
     bpy.ops.object.select_all(action="DESELECT")
@@ -113,6 +93,16 @@ def main():
 
     coverage, variance = render_coverage(obj)
     check(coverage > 0.2 and variance > 1e-4, f"Cycles render is not blank (coverage {coverage:.2f}, variance {variance:.2g})")
+    # Reopened on another frame (a new session has no bound scenes): re-bound on the stored bind
+    # pose, not on the frame the file opens on, so frame 10 is what it was.
+    bpy.context.scene.frame_set(10)
+    blend = os.path.join(tempfile.mkdtemp(), "knit.blend")
+    bpy.ops.wm.save_as_mainfile(filepath=blend)
+    build._scenes.clear()
+    bpy.ops.wm.open_mainfile(filepath=blend)
+    bpy.context.scene.frame_set(10)
+    obj = bpy.data.objects["Cloth.knit"]
+    check(np.array_equal(points_of(obj), moved), "reopened on frame 10 and re-bound: frame 10 is unchanged")
     print("knit_blender: all checks passed")
 
 

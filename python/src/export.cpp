@@ -3,6 +3,7 @@
 #include "knit/budget.hpp"
 #include "knit/error.hpp"
 #include "knit/export.hpp"
+#include "memory_budget_arg.hpp"
 
 namespace knitpy {
 
@@ -39,7 +40,7 @@ void registerExport(py::module_& m) {
             o.quantize = quantize;
             o.meshopt = meshopt;
             o.yarnColors = yarnColors;
-            if (!maxMemory.empty()) o.budget = knit::MemoryBudget(knit::parseMemorySize(maxMemory));
+            o.budget = memoryBudgetArg(maxMemory);
             knit::ExportStats stats;
             {
                 py::gil_scoped_release release;
@@ -51,8 +52,8 @@ void registerExport(py::module_& m) {
         "quantize"_a = false, "yarn_colors"_a = false, "meshopt"_a = false, "max_memory"_a = "",
         "Writes the scene's yarns, plies or tube meshes; the format follows the extension of path "
         "(.obj .ply .bcc .pbrt .gltf .glb), written atomically. draco / quantize / meshopt: glTF "
-        "compression as knit build's --draco / --quantize / --meshopt (meshopt: tubes only). max_memory: "
-        "the memory budget as a size ('8G'; '' = min(4 GiB, half the physical memory)), as --max-memory: "
+        "compression: Draco meshes, quantized attributes, meshopt compression (meshopt: tubes only). max_memory: "
+        "the memory budget as a size ('8G'; '' = min(4 GiB, half the physical memory)): "
         "an export whose estimated size is over it raises knit.Error before writing. Returns the export's "
         "counts. Raises knit.Error.");
 }

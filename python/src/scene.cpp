@@ -1,15 +1,19 @@
 // python/src/scene.cpp — knit.Scene (the built pipeline), knit.Binding, build_scene and the
-// per-frame evaluation on new vertex positions.
+// per-frame evaluation on new vertex positions, through the library's Animator (the path
+// `knit animate` takes: layout, twist phase and frame seeds fixed when the scene is bound).
 #include <chrono>
+#include <memory>
+#include <mutex>
 
 #include <pybind11/stl.h>
 
 #include "arrays.hpp"
 #include "bindings.hpp"
+#include "knit/animation.hpp"
 #include "knit/error.hpp"
 #include "knit/generator.hpp"
 #include "knit/scene.hpp"
-#include "frame_plies.hpp"
+#include "memory_budget_arg.hpp"
 #include "ply_options.hpp"
 
 namespace knitpy {
@@ -27,7 +31,7 @@ struct SceneArgs {
     int resU = 32, resV = 32;
     double clampTolerance = 0.01, weldTolerance = 0.25;
     bool weld = true;
-    std::string maxMemory;  // "" = the default budget, else as --max-memory ("8G")
+    std::string maxMemory;  // "" = the default budget, else a size ("8G")
 };
 
 knit::SceneOptions toSceneOptions(const SceneArgs& a) {
@@ -42,7 +46,7 @@ knit::SceneOptions toSceneOptions(const SceneArgs& a) {
     o.bind.weldTolerance = a.weldTolerance;
     o.bind.weld = a.weld;
     o.buildPlies = a.buildPlies;
-    if (!a.maxMemory.empty()) o.budget = knit::MemoryBudget(knit::parseMemorySize(a.maxMemory));
+    o.budget = memoryBudgetArg(a.maxMemory);
     o.plies = toPlyOptions(a.plies, o.plies.yarnRadius);  // the pipeline sets yarnRadius
     return o;
 }
@@ -75,12 +79,58 @@ std::vector<glm::dvec3> framePositions(const knit::Scene& scene, const py::array
     return p;
 }
 
-// The yarns on a new pose: normals of the posed mesh, then the binding's gather.
-knit::MappedYarns evaluatePose(const knit::Scene& scene, const std::vector<glm::dvec3>& positions) {
-    const std::vector<glm::dvec3> normals = knit::vertexNormals(positions, scene.mesh().faces);
-    knit::MappedYarns yarns;
-    knit::evaluateBinding(scene.binding(), scene.mesh().faces, positions, normals, yarns);
-    return yarns;
+// The Animators a Scene evaluates new poses through (knit/animation.hpp), made on first use and
+// kept with the Python Scene: one for the yarns alone (Scene.evaluate: the binding evaluated,
+// nothing resampled) and one for the plies (Scene.evaluate_plies: the rest layout, twist phase
+// and frame seeds of `knit animate`). An Animator keeps no state between evaluations (each call
+// fills its own AnimationFrame), so evaluations from several Python threads run concurrently
+// and give the sequential results bit for bit; a call holds a lock only to look its Animator up
+// (and, the first time, while it is made).
+class SceneAnimators {
+public:
+    explicit SceneAnimators(ScenePtr scene) : scene_(std::move(scene)) {}
+
+    // The Animator for the yarns (plies false) or the plies; call without the GIL (making the
+    // ply one resamples every rest yarn).
+    const knit::Animator& get(bool plies) {
+        Slot& slot = plies ? plies_ : yarns_;
+        const std::lock_guard<std::mutex> lock(slot.mutex);
+        if (!slot.animator) {
+            knit::AnimatorOptions o;
+            o.plies = plies;
+            o.stats = false;  // the frame statistics are knit animate's report
+            slot.animator = std::make_unique<knit::Animator>(*scene_, o);
+        }
+        return *slot.animator;
+    }
+
+private:
+    struct Slot {
+        std::mutex mutex;
+        std::unique_ptr<const knit::Animator> animator;
+    };
+    ScenePtr scene_;  // the Animators refer to it: kept alive with them
+    Slot yarns_, plies_;
+};
+
+// The SceneAnimators of a Python Scene, in its __dict__ (made on first call; the GIL held).
+std::shared_ptr<SceneAnimators> animatorsOf(const py::object& self) {
+    using Held = std::shared_ptr<SceneAnimators>;
+    py::dict dict = self.attr("__dict__");
+    if (!dict.contains("_animators"))
+        dict["_animators"] = py::capsule(new Held(std::make_shared<SceneAnimators>(self.cast<ScenePtr>())),
+                                         [](void* p) { delete static_cast<Held*>(p); });
+    return *static_cast<Held*>(dict["_animators"].cast<py::capsule>().get_pointer());
+}
+
+// The frame of `positions` evaluated by the scene's yarn or ply Animator (GIL released).
+knit::AnimationFrame evaluateFrame(const py::object& self, const py::array& positions, bool plies) {
+    const auto p = framePositions(self.cast<const knit::Scene&>(), positions);
+    const std::shared_ptr<SceneAnimators> animators = animatorsOf(self);
+    py::gil_scoped_release release;
+    knit::AnimationFrame frame;
+    animators->get(plies).evaluate(p, frame);
+    return frame;
 }
 
 py::dict sceneStatsDict(const knit::Scene& scene) {
@@ -114,7 +164,8 @@ void registerBinding(py::module_& m) {
 }
 
 void registerSceneClass(py::module_& m) {
-    py::class_<knit::Scene, ScenePtr>(m, "Scene",
+    // dynamic_attr: the Scene's Animators live in its __dict__ (animatorsOf).
+    py::class_<knit::Scene, ScenePtr>(m, "Scene", py::dynamic_attr(),
                                       "The built pipeline (read-only): pattern, mesh, binding, yarns, plies.")
         .def_property_readonly("pattern", &knit::Scene::pattern, py::return_value_policy::reference_internal)
         .def_property_readonly("mesh", &knit::Scene::mesh, py::return_value_policy::reference_internal)
@@ -135,30 +186,27 @@ void registerSceneClass(py::module_& m) {
         .def_property_readonly("stats", &sceneStatsDict, "counts and stage times (the `knit build` report's numbers)")
         .def(
             "evaluate",
-            [](const knit::Scene& s, const py::array& positions) {
-                const auto p = framePositions(s, positions);
-                py::gil_scoped_release release;
-                return evaluatePose(s, p);
+            [](const py::object& self, const py::array& positions) {
+                return std::move(evaluateFrame(self, positions, false).yarns);
             },
             "positions"_a,
             "The yarns on new vertex positions (n, 3) float32/float64 of the scene's mesh (same "
-            "connectivity): normals of the posed mesh, then the binding. Returns Yarns. Raises knit.Error.")
+            "connectivity): normals of the posed mesh, then the binding (the first steps of knit animate's "
+            "frame). Returns Yarns. Thread-safe: runs without the GIL, concurrently with other evaluations. "
+            "Raises knit.Error.")
         .def(
             "evaluate_plies",
-            [](const knit::Scene& s, const py::array& positions, bool restLayout) {
-                const auto p = framePositions(s, positions);
-                if (restLayout && s.plies().curves.curveCount() == 0 && s.yarns().curves.pointCount() > 0)
-                    throw knit::Error("evaluate_plies: rest_layout needs a scene built with build_plies=True");
-                py::gil_scoped_release release;
-                const knit::MappedYarns yarns = evaluatePose(s, p);
-                return restLayout ? pliesWithRestLayout(yarns, s.plyOptions(), s.plies())
-                                  : knit::makePlies(yarns, s.plyOptions());
+            [](const py::object& self, const py::array& positions) {
+                return std::move(evaluateFrame(self, positions, true).plies);
             },
-            "positions"_a, "rest_layout"_a = true,
-            "The plies on new vertex positions, with the scene's ply options (evaluate, then the ply "
-            "stage). rest_layout=True keeps the rest plies' point counts and offsets (a stretched yarn's "
-            "centreline is re-sampled by arc length to its rest count), for animation caches and meshes; "
-            "False runs make_plies, whose point count follows the yarn length.")
+            "positions"_a,
+            "The plies on new vertex positions, exactly as knit animate evaluates a frame of this scene: "
+            "the layout of every yarn (point counts and order), its twist phase (from the rest arc "
+            "length) and its first ply frame (carried by the bound triangle's rotation) are fixed when "
+            "the scene is bound, so the point count is the same on every pose and nothing swims, flips "
+            "or pops. The first call makes the scene's animator (resamples the rest yarns once). "
+            "Thread-safe: runs without the GIL, concurrently with other evaluations. For the ply stage "
+            "resampled afresh on one pose use make_plies(scene.evaluate(positions), ...). Raises knit.Error.")
         .def("__repr__", [](const knit::Scene& s) {
             return "<knit.Scene '" + s.pattern().name + "' on '" + s.mesh().name +
                    "': " + std::to_string(s.yarns().curves.curveCount()) + " yarns, " +
@@ -166,15 +214,20 @@ void registerSceneClass(py::module_& m) {
         });
 }
 
-// For tools/python_evaluate_timing.py: the seconds of `repeats` Scene.evaluate calls made in C++
-// (vertexNormals + evaluateBinding into a fresh MappedYarns, as Scene.evaluate does).
-double evaluateSecondsInCpp(const knit::Scene& s, const py::array& positions, int repeats) {
+// For tools/python_timing.py: the seconds of `repeats` Scene.evaluate calls made in C++ (the
+// scene's yarn Animator into a fresh AnimationFrame, as Scene.evaluate does).
+double evaluateSecondsInCpp(const py::object& self, const py::array& positions, int repeats) {
+    const knit::Scene& s = self.cast<const knit::Scene&>();
     const auto p = framePositions(s, positions);
+    const std::shared_ptr<SceneAnimators> animators = animatorsOf(self);
     py::gil_scoped_release release;
+    const knit::Animator& animator = animators->get(false);  // made before the clock starts
     const auto start = std::chrono::steady_clock::now();
     for (int i = 0; i < repeats; ++i) {
-        const knit::MappedYarns y = evaluatePose(s, p);
-        if (y.curves.points.empty() && !s.yarns().curves.points.empty()) throw knit::Error("evaluate: no points");
+        knit::AnimationFrame frame;
+        animator.evaluate(p, frame);
+        if (frame.yarns.curves.points.empty() && !s.yarns().curves.points.empty())
+            throw knit::Error("evaluate: no points");
     }
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -204,7 +257,7 @@ void registerScene(py::module_& m) {
         "binding -> evaluation -> plies. pattern / mesh: a file or built-in name, or a Pattern / Mesh. "
         "repeats: (U, V) pattern periods across the UV square, None = the pattern's physical size. "
         "plies: plies per yarn; ply_pitch 0 = 6 yarn radii; twist 'S' or 'Z'. max_memory: the memory budget "
-        "as a size ('8G', '512M'; '' = min(4 GiB, half the physical memory)), as --max-memory: a step whose "
+        "as a size ('8G', '512M'; '' = min(4 GiB, half the physical memory)): a step whose "
         "estimated size is over it raises knit.Error before allocating. Raises knit.Error.");
     m.def("_evaluate_seconds_in_cpp", &evaluateSecondsInCpp, "scene"_a, "positions"_a, "repeats"_a = 1,
           "Timing aid: seconds of `repeats` evaluations made in C++ (what Scene.evaluate runs).");

@@ -13,6 +13,8 @@
 #include "plies/frames_curve.hpp"
 #include "test_util.hpp"
 #include "knit/animation.hpp"
+#include "knit/binding.hpp"
+#include "knit/error.hpp"
 #include "knit/generator.hpp"
 #include "util/math.hpp"
 
@@ -124,6 +126,32 @@ TEST(Animator, buffersAreReusedFromFrameToFrame) {
     EXPECT_EQ(f.plies.curves.points.data(), plies);
     EXPECT_EQ(f.yarns.curves.points.data(), yarns);
     EXPECT_EQ(f.centres.points.data(), centres);
+}
+
+// The yarns alone (the Python module's Scene.evaluate): the binding evaluated on the frame, bit
+// for bit, with nothing resampled and the ply options neither needed nor checked.
+TEST(Animator, yarnsAloneAreTheBindingEvaluatedWithoutPlyOptions) {
+    SceneOptions o;
+    o.placement.repeats = {3, 3};
+    o.buildPlies = false;
+    o.plies.samplesPerTurn = 1;  // invalid for plies
+    const Scene s = buildScene(generateStockinette(), test::planeMesh(test::Triangulation::Regular, 6), o);
+    EXPECT_THROW({ const Animator withPlies(s); }, Error);
+    AnimatorOptions yarnsOnly;
+    yarnsOnly.plies = false;
+    yarnsOnly.stats = false;
+    const Animator animator(s, yarnsOnly);
+    const std::vector<dvec3> frame =
+        mapped(s.mesh().positions, glm::dmat3(1.0, 0.2, 0.0, 0.0, 1.1, 0.0, 0.0, 0.3, 0.9), dvec3(0.1, 0.0, -0.2));
+    AnimationFrame f;
+    animator.evaluate(frame, f);
+    MappedYarns expected;
+    evaluateBinding(s.binding(), s.mesh().faces, frame, vertexNormals(frame, s.mesh().faces), expected);
+    EXPECT_EQ(f.yarns.curves.points, expected.curves.points);
+    EXPECT_EQ(f.yarns.normals, expected.normals);
+    EXPECT_TRUE(f.centres.points.empty());
+    EXPECT_TRUE(f.plies.curves.points.empty());
+    EXPECT_EQ(animator.plyPointCount(), 0u);
 }
 
 TEST(Animator, frameWithAnotherVertexCountOrNaNIsRefused) {

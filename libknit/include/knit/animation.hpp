@@ -22,10 +22,13 @@
 //    FRAME_k`).
 // Per frame only: vertex normals, the binding evaluation, resampling with the fixed layout, the
 // frames and the helices, and the frame statistics; all into buffers reused across frames.
+// The one animation path: `knit animate`, `knit build --rest`, the Python module's
+// Scene.evaluate / evaluate_plies and the Blender add-on all evaluate through an Animator.
 #pragma once
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -124,7 +127,9 @@ void checkFrame(const BaseMesh& rest, const BaseMesh& frame, const std::string& 
 // Evaluation per frame (src/animator.cpp, src/animation_stats.cpp)
 
 struct AnimatorOptions {
-    bool plies = true;  // sweep the plies per frame (false: yarn centrelines only)
+    // Sweep the plies per frame (false: the yarns only, the binding evaluated; with stats false
+    // too, no resampling at bind time or per frame).
+    bool plies = true;
     bool stats = true;  // compute FrameStats per frame
     // minYarnDistance looks for other yarns up to this distance (yarn diameters); a frame with
     // none that close reports +infinity.
@@ -169,7 +174,7 @@ struct DistanceScratch {
 struct AnimationFrame {
     std::vector<glm::dvec3> meshNormals;  // vertex normals of the frame's mesh
     MappedYarns yarns;                    // the binding evaluated on the frame
-    Polylines centres;                    // resampled centrelines (fixed layout)
+    Polylines centres;                    // resampled centrelines (fixed layout; with plies or stats)
     Plies plies;                          // fixed layout, yarn-major, ply-minor (no radial)
     FrameStats stats;
     DistanceScratch distance;
@@ -177,7 +182,8 @@ struct AnimationFrame {
 
 class Animator {
 public:
-    // Bind-time work on the rest scene (its mesh, binding and yarns; plyOptions resolved here):
+    // Bind-time work on the rest scene (its mesh, binding and yarns; plyOptions resolved here
+    // unless only the yarns are evaluated):
     // the resampling layouts, rest arc lengths and pitches, rest segment lengths. Keeps a
     // reference to `rest`, which must outlive the Animator. Throws knit::Error for bad ply
     // options or more than 2^32-1 ply points.
@@ -185,13 +191,18 @@ public:
 
     // Evaluates the frame whose mesh positions are `positions` (rest connectivity; checked:
     // the count, and finiteness) into `out`. Thread-parallel; allocates only on the first call
-    // with a given `out`. `times` (optional) receives the stage times.
+    // with a given `out`. `times` (optional) receives the stage times. Keeps no state between
+    // calls besides `out`: one Animator may evaluate several frames concurrently from several
+    // threads, each into its own `out`, with the results of sequential calls bit for bit (what
+    // the Python module's Scene.evaluate / evaluate_plies rely on).
     void evaluate(const std::vector<glm::dvec3>& positions, AnimationFrame& out,
                   AnimationStageTimes* times = nullptr) const;
 
     const Scene& rest() const { return rest_; }
     const AnimatorOptions& options() const { return options_; }
-    const PlyOptions& plyOptions() const { return generator_.options(); }  // resolved
+    // Resolved; an Animator of the yarns alone (no plies, no statistics) neither resolves nor
+    // checks them (the yarns do not depend on them) and gives the scene's options as they are.
+    const PlyOptions& plyOptions() const { return generator_ ? generator_->options() : rest_.plyOptions(); }
     size_t centrePointCount() const { return centreOffsets_.back(); }
     size_t plyPointCount() const { return plyTopology_.curves.offsets.back(); }
     // The constant ply curves (offsets, closed flags, yarn and ply of each curve; no points).
@@ -210,7 +221,7 @@ private:
 
     const Scene& rest_;
     AnimatorOptions options_;
-    PlyGenerator generator_;  // on the rest yarns: options, spacing, ply phases
+    std::optional<PlyGenerator> generator_;  // on the rest yarns: options, spacing, ply phases (plies or stats)
     // Resampling layout per yarn (CSR over yarns): kept points and pieces per segment.
     std::vector<uint32_t> keptOffsets_{0}, kept_, pieceOffsets_{0}, pieces_;
     std::vector<uint32_t> centreOffsets_{0};  // resampled points per yarn (CSR)

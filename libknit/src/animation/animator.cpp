@@ -2,7 +2,8 @@
 //
 // Bind time (constructor): the rest yarns are resampled once, recording each yarn's layout
 // (ResampleLayout), the rest arc length of every resampled point, the rest pitch of every yarn
-// and the rest length of every yarn segment. Per frame (evaluate): vertex normals -> binding
+// and the rest length of every yarn segment. An Animator of the yarns alone (no plies, no
+// statistics: the Python module's Scene.evaluate) does none of it. Per frame (evaluate): vertex normals -> binding
 // evaluation -> resampling with the fixed layouts -> rotation-minimizing frames and helices
 // with the rest phase -> statistics.
 //
@@ -59,11 +60,17 @@ bool triangleFrame(const std::vector<dvec3>& x, const glm::uvec3& f, glm::dmat3&
 
 }  // namespace
 
-Animator::Animator(const Scene& rest, const AnimatorOptions& options)
-    : rest_(rest), options_(options), generator_(rest.yarns(), rest.plyOptions()) {
+Animator::Animator(const Scene& rest, const AnimatorOptions& options) : rest_(rest), options_(options) {
     const Polylines& yarns = rest.yarns().curves;
     const size_t yarnCount = yarns.curveCount();
-    const double spacing = generator_.options().pitch / generator_.options().samplesPerTurn;
+    restPitch_.assign(yarnCount, 0.0);
+    restLength_.assign(yarnCount, 0.0);
+    restSeeds_.assign(yarnCount, {});
+    plyOfYarn_.assign(yarnCount + 1, 0);
+    // The yarns alone are the binding evaluated (step 2 of evaluate): no ply options, no resampling.
+    if (!options_.plies && !options_.stats) return;
+    const PlyGenerator& generator = generator_.emplace(rest.yarns(), rest.plyOptions());
+    const double spacing = generator.options().pitch / generator.options().samplesPerTurn;
 
     // Step 1: resample the rest yarns, recording each layout and the rest arc lengths / pitches.
     ResampleLayout layout;
@@ -71,9 +78,6 @@ Animator::Animator(const Scene& rest, const AnimatorOptions& options)
     std::vector<double> arc;
     std::vector<dvec3> centre;
     std::vector<glm::vec3> centreColour;  // per resampled point, when the yarns have colours
-    restPitch_.assign(yarnCount, 0.0);
-    restLength_.assign(yarnCount, 0.0);
-    restSeeds_.assign(yarnCount, {});
     for (size_t y = 0; y < yarnCount; ++y) {
         centre.clear();
         const size_t m = resampleCurve(rest.yarns(), y, spacing, centre, nullptr, resampleScratch, &layout);
@@ -84,7 +88,7 @@ Animator::Animator(const Scene& rest, const AnimatorOptions& options)
         pieces_.insert(pieces_.end(), layout.pieces.begin(), layout.pieces.end());
         pieceOffsets_.push_back(static_cast<uint32_t>(pieces_.size()));
         if (centreOffsets_.back() + m > UINT32_MAX)
-            throw Error("more than 2^32-1 resampled yarn points; raise --ply-pitch");
+            throw Error("more than 2^32-1 resampled yarn points; raise the ply pitch");
         centreOffsets_.push_back(static_cast<uint32_t>(centreOffsets_.back() + m));
         yarnOfCentre_.insert(yarnOfCentre_.end(), m, static_cast<uint32_t>(y));
         if (m < 2) {
@@ -92,26 +96,26 @@ Animator::Animator(const Scene& rest, const AnimatorOptions& options)
             restPhase_.insert(restPhase_.end(), m, glm::dvec2(1.0, 0.0));
             continue;
         }
-        restPitch_[y] = impl::PlyKernel::arcAndPitch(generator_, y, centre.data(), m, arc);
+        restPitch_[y] = impl::PlyKernel::arcAndPitch(generator, y, centre.data(), m, arc);
         bindFrameSeed(y, centre);
         restArc_.insert(restArc_.end(), arc.begin(), arc.end());
-        const double rate = impl::PlyKernel::twistRate(generator_, restPitch_[y]);
+        const double rate = impl::PlyKernel::twistRate(generator, restPitch_[y]);
         for (const double s : arc) restPhase_.emplace_back(std::cos(rate * s), std::sin(rate * s));
         restLength_[y] = arc[m - 1] + (yarns.isClosed(y) ? glm::length(centre[0] - centre[m - 1]) : 0.0);
     }
 
     // Step 2: the constant ply layout (yarn-major, ply-minor, as makePlies).
-    const uint32_t n = static_cast<uint32_t>(generator_.options().count);
-    plyOfYarn_.assign(yarnCount + 1, 0);
+    const uint32_t n = static_cast<uint32_t>(generator.options().count);
     size_t total = 0;
-    for (size_t y = 0; y < yarnCount; ++y) {
+    for (size_t y = 0; y < yarnCount && options_.plies; ++y) {
         plyOfYarn_[y] = total;
         const size_t m = centreOffsets_[y + 1] - centreOffsets_[y];
-        if (m < 2 || !options_.plies) continue;
+        if (m < 2) continue;
         for (uint32_t i = 0; i < n; ++i) {
             total += m;
             if (total > UINT32_MAX)
-                throw Error("more than 2^32-1 ply points per frame; raise --ply-pitch or lower --samples-per-turn");
+                throw Error(
+                    "more than 2^32-1 ply points per frame; raise the ply pitch or lower the samples per ply turn");
             plyTopology_.curves.offsets.push_back(static_cast<uint32_t>(total));
             plyTopology_.curves.closed.push_back(yarns.closed[y]);
             plyTopology_.yarnOfCurve.push_back(static_cast<uint32_t>(y));
@@ -122,11 +126,12 @@ Animator::Animator(const Scene& rest, const AnimatorOptions& options)
         }
     }
     plyOfYarn_[yarnCount] = total;
-    plyTopology_.plyRadius = generator_.options().plyRadius;
-    plyTopology_.centerRadius = generator_.options().centerRadius;
-    plyTopology_.pitch = generator_.options().pitch;
+    plyTopology_.plyRadius = generator.options().plyRadius;
+    plyTopology_.centerRadius = generator.options().centerRadius;
+    plyTopology_.pitch = generator.options().pitch;
 
     // Step 3: rest length of the segment starting at each yarn vertex (the stretch reference).
+    if (!options_.stats) return;
     restSegment_.assign(yarns.pointCount(), 0.0);
     for (size_t y = 0; y < yarnCount; ++y) {
         const uint32_t b = yarns.begin(y), e = yarns.end(y);
@@ -157,9 +162,9 @@ void Animator::evaluate(const std::vector<dvec3>& positions, AnimationFrame& out
     evaluateBinding(rest_.binding(), mesh.faces, positions, out.meshNormals, out.yarns);
     t.evaluate = since(t0);
 
-    // Step 3: the centrelines resampled with the rest layouts.
+    // Step 3: the centrelines resampled with the rest layouts (for the plies and the statistics).
     t0 = Clock::now();
-    resample(out);
+    if (options_.plies || options_.stats) resample(out);
     t.resample = since(t0);
 
     // Step 4: frames and helices with the rest twist phase.
@@ -235,7 +240,7 @@ void Animator::sweep(const std::vector<dvec3>& positions, AnimationFrame& out) c
                 seedTangent = r * s.tangent;
             }
             impl::PlyKernel::sweepWithCosSin(
-                generator_, y, out.centres.points.data() + centreOffsets_[y], m, restPhase_.data() + centreOffsets_[y],
+                *generator_, y, out.centres.points.data() + centreOffsets_[y], m, restPhase_.data() + centreOffsets_[y],
                 &seedNormal, carried ? &seedTangent : nullptr, p.curves.points.data() + plyOfYarn_[y], scratch);
         }
     });
