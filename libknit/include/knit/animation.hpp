@@ -203,7 +203,6 @@ public:
     // Resolved; an Animator of the yarns alone (no plies, no statistics) neither resolves nor
     // checks them (the yarns do not depend on them) and gives the scene's options as they are.
     const PlyOptions& plyOptions() const { return generator_ ? generator_->options() : rest_.plyOptions(); }
-    size_t centrePointCount() const { return centreOffsets_.back(); }
     size_t plyPointCount() const { return plyTopology_.curves.offsets.back(); }
     // The constant ply curves (offsets, closed flags, yarn and ply of each curve; no points).
     const Plies& plyTopology() const { return plyTopology_; }
