@@ -11,7 +11,7 @@
 #include <glm/geometric.hpp>
 #include <tbb/global_control.h>
 
-#include "bake_plies.hpp"
+#include "bake/bake_plies.hpp"
 #include "knit/bake.hpp"
 #include "knit/error.hpp"
 #include "knit/generator.hpp"

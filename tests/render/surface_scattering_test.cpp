@@ -15,7 +15,7 @@
 #include "knit/scene.hpp"
 #include "knit/surface_scattering.hpp"
 #include "test_util.hpp"
-#include "trace_surface.hpp"
+#include "tracing/trace_surface.hpp"
 
 namespace knit {
 namespace {

@@ -8,10 +8,10 @@
 #include <glm/common.hpp>
 
 #include "knit/view.hpp"
-#include "render_image.hpp"
-#include "render_view.hpp"
-#include "scene_scale.hpp"
-#include "trace_scene.hpp"
+#include "tracing/render_image.hpp"
+#include "render/render_view.hpp"
+#include "render/scene_scale.hpp"
+#include "tracing/trace_scene.hpp"
 
 namespace knit {
 namespace {

@@ -18,7 +18,7 @@
 #include "knit/fiber_tables.hpp"
 #include "knit/ply_bsdf.hpp"
 #include "knit/ply_geometry.hpp"
-#include "trace_scene.hpp"
+#include "tracing/trace_scene.hpp"
 #include "util/math.hpp"
 
 namespace knit {
