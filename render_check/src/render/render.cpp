@@ -1,4 +1,5 @@
-// renderScene: validate, build tables and the Embree scene, place camera and light, render, write.
+// renderScene as named phases: rescale for tracing, validate, place the geometry, bake a view's
+// surface level, fiber tables, the Embree scene, trace (camera, light, progress), write the images.
 #include "knit/render.hpp"
 
 #include <algorithm>
@@ -6,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <mutex>
+#include <optional>
 
 #include <glm/geometric.hpp>
 
@@ -52,6 +54,183 @@ double surfaceYarnPixels(const Scene& scene) {
     return ply * scene.yarnRadius() / plyRadius;
 }
 
+// One render of a scene at tracing scale: renderScene runs the phases in order, each reading what
+// the ones before it made and filling its part of the result.
+class SceneRender {
+public:
+    SceneRender(const Scene& scene, const RenderOptions& o) : scene_(scene), o_(o) {}
+
+    // Validate every option, the material, the scene, the view, the image paths and the memory
+    // budget before any work.
+    void validate() {
+        if (o_.light != LightPlacement::Front && o_.light != LightPlacement::Back)
+            throw Error("render: unknown light placement " + std::to_string(int(o_.light)) +
+                        " (expected front or back)");
+        const GeometryMode mode = o_.mode;
+        if (mode != GeometryMode::Curves && mode != GeometryMode::Tubes && mode != GeometryMode::Grid)
+            throw Error("render: unknown geometry mode " + std::to_string(int(mode)) +
+                        " (expected curves, tubes or grid)");
+        if (o_.spp < 1)
+            throw Error("render: samples per pixel must be at least 1 (got " + std::to_string(o_.spp) + ")");
+        if (o_.width < 1 || o_.height < 1 || o_.width > 16384 || o_.height > 16384)
+            throw Error("render: image size " + std::to_string(o_.width) + " x " + std::to_string(o_.height) +
+                        " is outside 1..16384");
+        if (o_.maxDepth < 1 || o_.maxDepth > 1000) throw Error("render: max depth must be in 1..1000");
+        if (!(o_.environment >= 0) || !(o_.lightIrradiance >= 0) || !std::isfinite(o_.environment) ||
+            !std::isfinite(o_.lightIrradiance))
+            throw Error("render: environment and light irradiance must be finite and >= 0");
+        if (!(o_.fovDegrees > 1 && o_.fovDegrees < 170))
+            throw Error("render: field of view must be in (1, 170) degrees");
+        if (!(o_.baseAlbedo >= 0 && o_.baseAlbedo <= 1)) throw Error("render: base albedo must be in [0, 1]");
+        if (mode == GeometryMode::Tubes && o_.tubeSides < 3) throw Error("render: tube sides must be >= 3");
+        res_.material = resolveMaterial(o_);
+        if (!o_.surface && !scene_.detail() &&
+            (scene_.plies().curves.curveCount() == 0 || scene_.plies().curves.pointCount() == 0))
+            throw Error("render: the scene has no ply curves (nothing to render; were plies built?)");
+        if (o_.surface && scene_.mesh().faces.empty()) throw Error("render: the surface level needs a base mesh");
+        view_ = renderView(scene_, o_);
+        if (!o_.output.empty()) checkImageName(o_.output, "png", "--output", "PNG");
+        if (!o_.exr.empty()) checkImageName(o_.exr, "exr", "--exr", "EXR");
+        if (!o_.output.empty()) checkWritable(o_.output);
+        if (!o_.exr.empty()) checkWritable(o_.exr);
+        impl::checkRenderBudget(scene_.plies(), o_);
+        res_.mode = mode;
+        res_.light = o_.light;
+        res_.spp = o_.spp;
+    }
+
+    // Ply segments (and a view's yarn-level curves) relative to the centre of the framed bounds;
+    // a view's surface-level triangles (or, with --surface-only, the whole base mesh).
+    void placeGeometry() {
+        const glm::dvec3 centre = framedBounds(scene_.mesh(), impl::sceneMargin(scene_)).centre;
+        geometry_ = o_.surface ? impl::surfaceFrame(scene_, centre)
+                               : impl::renderCurves(scene_, centre, res_.material.fiberTwist);
+        res_.segments = geometry_.segmentCount();
+        surface_ = impl::surfaceMesh(scene_);
+        res_.surfaceTriangles = surface_.faces.size();
+        base_ = o_.baseMesh || o_.surface ? &scene_.mesh() : (surface_.faces.empty() ? nullptr : &surface_);
+        if (geometry_.segmentCount() == 0 && base_ == nullptr)
+            throw Error("render: the view sees none of the cloth (every cell is culled; check --eye and --target)");
+    }
+
+    // A view's surface level: the pattern baked with the render's material, as --surface-only.
+    void bakeViewSurface() {
+        if (o_.surface || o_.baseMesh || surface_.faces.empty()) return;
+        BakeOptions bo;
+        bo.width = o_.viewBakeSize > 0 ? o_.viewBakeSize : viewBakeWidth(scene_.pattern(), surfaceYarnPixels(scene_));
+        bo.plies = patternPlyOptions(scene_.plyOptions(), scene_.pattern(), scene_.placement().scale);
+        const glm::dvec2 stretch = placementStretch(scene_.pattern(), scene_.placement());
+        bo.stretch[0] = stretch.x, bo.stretch[1] = stretch.y;
+        bo.material = res_.material;
+        bo.scatteringPaths = o_.surfaceScatteringPaths;
+        // The table's paths go mostly where this view sees the surface level from and lights it from.
+        const RectLight light = impl::defaultLight(scene_, o_.light, o_.lightIrradiance);
+        bo.scatteringFocus =
+            impl::scatteringFocus(surface_, view_.eye, glm::dvec3(light.corner + 0.5 * (light.edgeU + light.edgeV)));
+        viewBake_ = bakeSurface(scene_.pattern(), bo);
+        viewTexture_ = makeSurfaceTexture(viewBake_, scene_.placement().repeats);
+        res_.surfaceTextured = true;
+        res_.bakeSeconds = viewBake_.seconds;
+    }
+
+    // Fiber tables for the plies of a yarn (at least the scene's count when yarn-level curves
+    // shade as the bundle of its plies).
+    void buildTables() {
+        const auto t0 = std::chrono::steady_clock::now();
+        int plyCount = 1;
+        for (uint8_t p : scene_.plies().plyOfCurve) plyCount = std::max(plyCount, int(p) + 1);
+        // Yarn-level curves shade as the bundle of the scene's plies (its crevice shadow), also when
+        // no cell of the view is at the ply level.
+        if (geometry_.firstBundleSegment < geometry_.segmentCount())
+            plyCount = std::max(plyCount, resolvePlyOptions(scene_.plyOptions()).count);
+        tables_ = buildFiberTables(fiberTableOptions(res_.material, plyCount));
+        res_.tableSeconds = secondsSince(t0);
+        res_.tableBytes = tables_.bytes();
+    }
+
+    // The Embree scene of the chosen mode plus the drawn base mesh and its surface texture.
+    void buildTraceScene() {
+        const auto t0 = std::chrono::steady_clock::now();
+        device_.emplace();
+        TraceSceneOptions so;
+        so.mode = o_.mode;
+        so.tubeSides = o_.tubeSides;
+        so.baseMesh = base_;
+        texture_ = impl::surfaceTexture(scene_, o_);
+        so.baseTexture = o_.surface ? &texture_ : res_.surfaceTextured ? &viewTexture_ : nullptr;
+        // Camera rays read the surface level's tint and holes prefiltered over their footprint.
+        for (SurfaceTexture* t : {&texture_, &viewTexture_}) {
+            t->pixelAngle = 2.0 * std::tan(view_.fovDegrees * util::kPi / 360.0) / view_.height;
+            t->eye = geometry_.toScene(view_.eye);
+        }
+        if (o_.mode == GeometryMode::Grid && !o_.surface) {
+            // A view with no curves (all surface: it built no yarns) has no segment to place.
+            if (geometry_.segmentCount() > 0) cells_ = segmentCells(scene_, geometry_);
+            so.segmentCells = &cells_;
+        }
+        traceScene_.emplace(*device_, geometry_, so);
+        res_.buildSeconds = secondsSince(t0);
+        res_.memory = traceScene_->memory();
+        res_.primitives = traceScene_->primitiveCount();
+    }
+
+    // Camera and light (both from the base mesh grown by the yarns' margin), then the image, with
+    // progress on stderr for long renders.
+    void trace() {
+        TraceSettings ts;
+        ts.width = o_.width, ts.height = o_.height, ts.spp = o_.spp, ts.seed = o_.seed, ts.maxDepth = o_.maxDepth;
+        ts.camera = impl::cameraOf(view_);
+        ts.environment = Rgb(o_.environment);
+        // The surface level (no --base-mesh) is the cloth itself: its body colour.
+        ts.baseAlbedo = o_.baseMesh ? Rgb(o_.baseAlbedo) : res_.material.bodyAlbedo;
+        ts.light = impl::defaultLight(scene_, o_.light, o_.lightIrradiance);
+        std::mutex progressMutex;
+        int lastDecile = 0;
+        if (o_.progress && double(o_.width) * o_.height * o_.spp > 1e6) {
+            ts.progress = [&](double f) {
+                std::lock_guard<std::mutex> lock(progressMutex);
+                const int decile = static_cast<int>(f * 10);
+                if (decile > lastDecile) {
+                    lastDecile = decile;
+                    std::fprintf(stderr, "render: %d%%\n", decile * 10);
+                }
+            };
+        }
+        res_.camera = ts.camera;
+        res_.view = view_;
+        res_.areaLight = ts.light;
+        TraceStats stats;
+        res_.image = renderImage(*traceScene_, res_.material, tables_, ts, &stats);
+        res_.renderSeconds = stats.seconds;
+        res_.rays = stats.rays;
+        res_.raysPerSecond = stats.seconds > 0 ? stats.rays / stats.seconds : 0;
+    }
+
+    // The PNG and EXR files asked for.
+    void writeImages() {
+        if (!o_.output.empty()) writePng(o_.output, res_.image), res_.written.push_back(o_.output);
+        if (!o_.exr.empty()) writeExr(o_.exr, res_.image), res_.written.push_back(o_.exr);
+        res_.peakMemoryBytes = int64_t(util::peakResidentBytes());
+    }
+
+    RenderResult result() { return std::move(res_); }
+
+private:
+    const Scene& scene_;
+    const RenderOptions& o_;
+    RenderResult res_;
+    View view_;
+    PlyGeometry geometry_;            // plies and yarn-level curves in scene units
+    BaseMesh surface_;                // a view's surface-level triangles
+    const BaseMesh* base_ = nullptr;  // the base mesh drawn (the whole mesh, surface_ or none)
+    SurfaceBake viewBake_;            // a view's surface level baked
+    SurfaceTexture viewTexture_;      // its texture
+    SurfaceTexture texture_;          // the texture of RenderOptions::surface
+    FiberTables tables_;
+    std::optional<EmbreeDevice> device_;
+    std::vector<int64_t> cells_;  // grid mode: the cell of each segment
+    std::optional<TraceScene> traceScene_;
+};
 }  // namespace
 
 const char* lightPlacementName(LightPlacement light) {
@@ -71,140 +250,17 @@ PlyMaterial resolveMaterial(const RenderOptions& o) {
 }
 
 RenderResult renderScene(const Scene& scene, const RenderOptions& o) {
-    // Step 0: a scene far from metre size is traced as a copy at unit size (any scale renders).
+    // Rescale: a scene far from metre size is traced as a copy at unit size (any scale renders).
     if (const std::optional<Scene> scaled = impl::sceneAtTracingScale(scene)) return renderScene(*scaled, o);
-    // Step 1: validate every option before any work.
-    if (o.light != LightPlacement::Front && o.light != LightPlacement::Back)
-        throw Error("render: unknown light placement " + std::to_string(int(o.light)) + " (expected front or back)");
-    const GeometryMode mode = o.mode;
-    if (mode != GeometryMode::Curves && mode != GeometryMode::Tubes && mode != GeometryMode::Grid)
-        throw Error("render: unknown geometry mode " + std::to_string(int(mode)) + " (expected curves, tubes or grid)");
-    if (o.spp < 1) throw Error("render: samples per pixel must be at least 1 (got " + std::to_string(o.spp) + ")");
-    if (o.width < 1 || o.height < 1 || o.width > 16384 || o.height > 16384)
-        throw Error("render: image size " + std::to_string(o.width) + " x " + std::to_string(o.height) +
-                    " is outside 1..16384");
-    if (o.maxDepth < 1 || o.maxDepth > 1000) throw Error("render: max depth must be in 1..1000");
-    if (!(o.environment >= 0) || !(o.lightIrradiance >= 0) || !std::isfinite(o.environment) ||
-        !std::isfinite(o.lightIrradiance))
-        throw Error("render: environment and light irradiance must be finite and >= 0");
-    if (!(o.fovDegrees > 1 && o.fovDegrees < 170)) throw Error("render: field of view must be in (1, 170) degrees");
-    if (!(o.baseAlbedo >= 0 && o.baseAlbedo <= 1)) throw Error("render: base albedo must be in [0, 1]");
-    if (mode == GeometryMode::Tubes && o.tubeSides < 3) throw Error("render: tube sides must be >= 3");
-    RenderResult res;
-    res.material = resolveMaterial(o);
-    if (!o.surface && !scene.detail() &&
-        (scene.plies().curves.curveCount() == 0 || scene.plies().curves.pointCount() == 0))
-        throw Error("render: the scene has no ply curves (nothing to render; were plies built?)");
-    if (o.surface && scene.mesh().faces.empty()) throw Error("render: the surface level needs a base mesh");
-    const View view = renderView(scene, o);
-    if (!o.output.empty()) checkImageName(o.output, "png", "--output", "PNG");
-    if (!o.exr.empty()) checkImageName(o.exr, "exr", "--exr", "EXR");
-    if (!o.output.empty()) checkWritable(o.output);
-    if (!o.exr.empty()) checkWritable(o.exr);
-    impl::checkRenderBudget(scene.plies(), o);
-    res.mode = mode;
-    res.light = o.light;
-    res.spp = o.spp;
-    // Step 2: ply segments (and a view's yarn-level curves) relative to the centre of the framed
-    // bounds; a view's surface-level triangles (or, with --surface-only, the whole base mesh).
-    const glm::dvec3 centre = framedBounds(scene.mesh(), impl::sceneMargin(scene)).centre;
-    const PlyGeometry geometry =
-        o.surface ? impl::surfaceFrame(scene, centre) : impl::renderCurves(scene, centre, res.material.fiberTwist);
-    res.segments = geometry.segmentCount();
-    const BaseMesh surface = impl::surfaceMesh(scene);
-    res.surfaceTriangles = surface.faces.size();
-    const BaseMesh* base = o.baseMesh || o.surface ? &scene.mesh() : (surface.faces.empty() ? nullptr : &surface);
-    if (geometry.segmentCount() == 0 && base == nullptr)
-        throw Error("render: the view sees none of the cloth (every cell is culled; check --eye and --target)");
-    // A view's surface level: the pattern baked with the render's material, as --surface-only.
-    SurfaceBake viewBake;
-    SurfaceTexture viewTexture;
-    if (!o.surface && !o.baseMesh && !surface.faces.empty()) {
-        BakeOptions bo;
-        bo.width = o.viewBakeSize > 0 ? o.viewBakeSize : viewBakeWidth(scene.pattern(), surfaceYarnPixels(scene));
-        bo.plies = patternPlyOptions(scene.plyOptions(), scene.pattern(), scene.placement().scale);
-        const glm::dvec2 stretch = placementStretch(scene.pattern(), scene.placement());
-        bo.stretch[0] = stretch.x, bo.stretch[1] = stretch.y;
-        bo.material = res.material;
-        bo.scatteringPaths = o.surfaceScatteringPaths;
-        // The table's paths go mostly where this view sees the surface level from and lights it from.
-        const RectLight light = impl::defaultLight(scene, o.light, o.lightIrradiance);
-        bo.scatteringFocus =
-            impl::scatteringFocus(surface, view.eye, glm::dvec3(light.corner + 0.5 * (light.edgeU + light.edgeV)));
-        viewBake = bakeSurface(scene.pattern(), bo);
-        viewTexture = makeSurfaceTexture(viewBake, scene.placement().repeats);
-        res.surfaceTextured = true;
-        res.bakeSeconds = viewBake.seconds;
-    }
-    // Step 3: fiber tables.
-    auto t0 = std::chrono::steady_clock::now();
-    int plyCount = 1;
-    for (uint8_t p : scene.plies().plyOfCurve) plyCount = std::max(plyCount, int(p) + 1);
-    // Yarn-level curves shade as the bundle of the scene's plies (its crevice shadow), also when
-    // no cell of the view is at the ply level.
-    if (geometry.firstBundleSegment < geometry.segmentCount())
-        plyCount = std::max(plyCount, resolvePlyOptions(scene.plyOptions()).count);
-    const FiberTables tables = buildFiberTables(fiberTableOptions(res.material, plyCount));
-    res.tableSeconds = secondsSince(t0);
-    res.tableBytes = tables.bytes();
-    // Step 4: Embree scene of the chosen mode.
-    t0 = std::chrono::steady_clock::now();
-    EmbreeDevice device;
-    std::vector<int64_t> cells;
-    TraceSceneOptions so;
-    so.mode = mode;
-    so.tubeSides = o.tubeSides;
-    so.baseMesh = base;
-    SurfaceTexture texture = impl::surfaceTexture(scene, o);
-    so.baseTexture = o.surface ? &texture : res.surfaceTextured ? &viewTexture : nullptr;
-    // Camera rays read the surface level's tint and holes prefiltered over their footprint.
-    for (SurfaceTexture* t : {&texture, &viewTexture}) {
-        t->pixelAngle = 2.0 * std::tan(view.fovDegrees * util::kPi / 360.0) / view.height;
-        t->eye = geometry.toScene(view.eye);
-    }
-    if (mode == GeometryMode::Grid && !o.surface) {
-        // A view with no curves (all surface: it built no yarns) has no segment to place.
-        if (geometry.segmentCount() > 0) cells = segmentCells(scene, geometry);
-        so.segmentCells = &cells;
-    }
-    const TraceScene traceScene(device, geometry, so);
-    res.buildSeconds = secondsSince(t0);
-    res.memory = traceScene.memory();
-    res.primitives = traceScene.primitiveCount();
-    // Step 5: camera and light (both from the base mesh grown by the yarns' margin).
-    TraceSettings ts;
-    ts.width = o.width, ts.height = o.height, ts.spp = o.spp, ts.seed = o.seed, ts.maxDepth = o.maxDepth;
-    ts.camera = impl::cameraOf(view);
-    ts.environment = Rgb(o.environment);
-    // The surface level (no --base-mesh) is the cloth itself: its body colour.
-    ts.baseAlbedo = o.baseMesh ? Rgb(o.baseAlbedo) : res.material.bodyAlbedo;
-    ts.light = impl::defaultLight(scene, o.light, o.lightIrradiance);
-    // Step 6: render, with progress on stderr for long renders.
-    std::mutex progressMutex;
-    int lastDecile = 0;
-    if (o.progress && double(o.width) * o.height * o.spp > 1e6) {
-        ts.progress = [&](double f) {
-            std::lock_guard<std::mutex> lock(progressMutex);
-            const int decile = static_cast<int>(f * 10);
-            if (decile > lastDecile) {
-                lastDecile = decile;
-                std::fprintf(stderr, "render: %d%%\n", decile * 10);
-            }
-        };
-    }
-    res.camera = ts.camera;
-    res.view = view;
-    res.areaLight = ts.light;
-    TraceStats stats;
-    res.image = renderImage(traceScene, res.material, tables, ts, &stats);
-    res.renderSeconds = stats.seconds;
-    res.rays = stats.rays;
-    res.raysPerSecond = stats.seconds > 0 ? stats.rays / stats.seconds : 0;
-    // Step 7: images.
-    if (!o.output.empty()) writePng(o.output, res.image), res.written.push_back(o.output);
-    if (!o.exr.empty()) writeExr(o.exr, res.image), res.written.push_back(o.exr);
-    res.peakMemoryBytes = int64_t(util::peakResidentBytes());
-    return res;
+    SceneRender render(scene, o);
+    render.validate();
+    render.placeGeometry();
+    render.bakeViewSurface();
+    render.buildTables();
+    render.buildTraceScene();
+    render.trace();
+    render.writeImages();
+    return render.result();
 }
 
 int viewBakeWidth(const Pattern& pattern, double yarnPixels) {
