@@ -54,11 +54,19 @@ double surfaceYarnPixels(const Scene& scene) {
     return ply * scene.yarnRadius() / plyRadius;
 }
 
-// One render of a scene at tracing scale: renderScene runs the phases in order, each reading what
-// the ones before it made and filling its part of the result.
+// One render of a scene: renderScene runs the phases in order, each reading what the ones before
+// it made and filling its part of the result. Everything traced is in traced_'s units (the scene at
+// tracing scale); what the pattern decides (the bake, the texture's repeats, the yarns' margin) is
+// the scene's own; the camera and light reported are in metres.
 class SceneRender {
 public:
     SceneRender(const Scene& scene, const RenderOptions& o) : scene_(scene), o_(o) {}
+
+    // A scene far from metre size is traced as a copy at unit size (any scale renders).
+    void rescaleForTracing() {
+        copy_ = impl::sceneAtTracingScale(scene_);
+        if (copy_) traced_ = &copy_->scene, scale_ = copy_->scale;
+    }
 
     // Validate every option, the material, the scene, the view, the image paths and the memory
     // budget before any work.
@@ -88,7 +96,7 @@ public:
             (scene_.plies().curves.curveCount() == 0 || scene_.plies().curves.pointCount() == 0))
             throw Error("render: the scene has no ply curves (nothing to render; were plies built?)");
         if (o_.surface && scene_.mesh().faces.empty()) throw Error("render: the surface level needs a base mesh");
-        view_ = renderView(scene_, o_);
+        frame_ = impl::tracedFrame(scene_, traced_->mesh(), scale_, o_);
         if (!o_.output.empty()) checkImageName(o_.output, "png", "--output", "PNG");
         if (!o_.exr.empty()) checkImageName(o_.exr, "exr", "--exr", "EXR");
         if (!o_.output.empty()) checkWritable(o_.output);
@@ -102,13 +110,13 @@ public:
     // Ply segments (and a view's yarn-level curves) relative to the centre of the framed bounds;
     // a view's surface-level triangles (or, with --surface-only, the whole base mesh).
     void placeGeometry() {
-        const glm::dvec3 centre = framedBounds(scene_.mesh(), impl::sceneMargin(scene_)).centre;
-        geometry_ = o_.surface ? impl::surfaceFrame(scene_, centre)
-                               : impl::renderCurves(scene_, centre, res_.material.fiberTwist);
+        const glm::dvec3& centre = frame_.centre;
+        geometry_ = o_.surface ? impl::surfaceFrame(*traced_, centre)
+                               : impl::renderCurves(*traced_, centre, res_.material.fiberTwist);
         res_.segments = geometry_.segmentCount();
-        surface_ = impl::surfaceMesh(scene_);
+        surface_ = impl::surfaceMesh(*traced_);
         res_.surfaceTriangles = surface_.faces.size();
-        base_ = o_.baseMesh || o_.surface ? &scene_.mesh() : (surface_.faces.empty() ? nullptr : &surface_);
+        base_ = o_.baseMesh || o_.surface ? &traced_->mesh() : (surface_.faces.empty() ? nullptr : &surface_);
         if (geometry_.segmentCount() == 0 && base_ == nullptr)
             throw Error("render: the view sees none of the cloth (every cell is culled; check --eye and --target)");
     }
@@ -124,9 +132,9 @@ public:
         bo.material = res_.material;
         bo.scatteringPaths = o_.surfaceScatteringPaths;
         // The table's paths go mostly where this view sees the surface level from and lights it from.
-        const RectLight light = impl::defaultLight(scene_, o_.light, o_.lightIrradiance);
-        bo.scatteringFocus =
-            impl::scatteringFocus(surface_, view_.eye, glm::dvec3(light.corner + 0.5 * (light.edgeU + light.edgeV)));
+        const RectLight& light = frame_.light;
+        bo.scatteringFocus = impl::scatteringFocus(surface_, frame_.view.eye,
+                                                   glm::dvec3(light.corner + 0.5 * (light.edgeU + light.edgeV)));
         viewBake_ = bakeSurface(scene_.pattern(), bo);
         viewTexture_ = makeSurfaceTexture(viewBake_, scene_.placement().repeats);
         res_.surfaceTextured = true;
@@ -138,7 +146,7 @@ public:
     void buildTables() {
         const auto t0 = std::chrono::steady_clock::now();
         int plyCount = 1;
-        for (uint8_t p : scene_.plies().plyOfCurve) plyCount = std::max(plyCount, int(p) + 1);
+        for (uint8_t p : traced_->plies().plyOfCurve) plyCount = std::max(plyCount, int(p) + 1);
         // Yarn-level curves shade as the bundle of the scene's plies (its crevice shadow), also when
         // no cell of the view is at the ply level.
         if (geometry_.firstBundleSegment < geometry_.segmentCount())
@@ -160,12 +168,12 @@ public:
         so.baseTexture = o_.surface ? &texture_ : res_.surfaceTextured ? &viewTexture_ : nullptr;
         // Camera rays read the surface level's tint and holes prefiltered over their footprint.
         for (SurfaceTexture* t : {&texture_, &viewTexture_}) {
-            t->pixelAngle = 2.0 * std::tan(view_.fovDegrees * util::kPi / 360.0) / view_.height;
-            t->eye = geometry_.toScene(view_.eye);
+            t->pixelAngle = 2.0 * std::tan(frame_.view.fovDegrees * util::kPi / 360.0) / frame_.view.height;
+            t->eye = geometry_.toScene(frame_.view.eye);
         }
         if (o_.mode == GeometryMode::Grid && !o_.surface) {
             // A view with no curves (all surface: it built no yarns) has no segment to place.
-            if (geometry_.segmentCount() > 0) cells_ = segmentCells(scene_, geometry_);
+            if (geometry_.segmentCount() > 0) cells_ = segmentCells(*traced_, geometry_);
             so.segmentCells = &cells_;
         }
         traceScene_.emplace(*device_, geometry_, so);
@@ -179,11 +187,11 @@ public:
     void trace() {
         TraceSettings ts;
         ts.width = o_.width, ts.height = o_.height, ts.spp = o_.spp, ts.seed = o_.seed, ts.maxDepth = o_.maxDepth;
-        ts.camera = impl::cameraOf(view_);
+        ts.camera = impl::cameraOf(frame_.view);
         ts.environment = Rgb(o_.environment);
         // The surface level (no --base-mesh) is the cloth itself: its body colour.
         ts.baseAlbedo = o_.baseMesh ? Rgb(o_.baseAlbedo) : res_.material.bodyAlbedo;
-        ts.light = impl::defaultLight(scene_, o_.light, o_.lightIrradiance);
+        ts.light = frame_.light;
         std::mutex progressMutex;
         int lastDecile = 0;
         if (o_.progress && double(o_.width) * o_.height * o_.spp > 1e6) {
@@ -196,9 +204,9 @@ public:
                 }
             };
         }
-        res_.camera = ts.camera;
-        res_.view = view_;
-        res_.areaLight = ts.light;
+        res_.view = scale_.worldView(frame_.view);
+        res_.camera = impl::cameraOf(res_.view);
+        res_.areaLight = scale_.worldLight(frame_.light);
         TraceStats stats;
         res_.image = renderImage(*traceScene_, res_.material, tables_, ts, &stats);
         res_.renderSeconds = stats.seconds;
@@ -218,8 +226,11 @@ public:
 private:
     const Scene& scene_;
     const RenderOptions& o_;
+    std::optional<impl::TracingCopy> copy_;  // the scene at unit size when it is far from metre size
+    const Scene* traced_ = &scene_;          // the scene traced: copy_ or scene_
+    impl::TracingScale scale_;               // metres to traced_'s units (the identity without a copy)
     RenderResult res_;
-    View view_;
+    impl::TracedFrame frame_;         // view, light and geometry origin in traced_'s units
     PlyGeometry geometry_;            // plies and yarn-level curves in scene units
     BaseMesh surface_;                // a view's surface-level triangles
     const BaseMesh* base_ = nullptr;  // the base mesh drawn (the whole mesh, surface_ or none)
@@ -250,9 +261,8 @@ PlyMaterial resolveMaterial(const RenderOptions& o) {
 }
 
 RenderResult renderScene(const Scene& scene, const RenderOptions& o) {
-    // Rescale: a scene far from metre size is traced as a copy at unit size (any scale renders).
-    if (const std::optional<Scene> scaled = impl::sceneAtTracingScale(scene)) return renderScene(*scaled, o);
     SceneRender render(scene, o);
+    render.rescaleForTracing();
     render.validate();
     render.placeGeometry();
     render.bakeViewSurface();
