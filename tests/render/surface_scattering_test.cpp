@@ -236,7 +236,7 @@ TEST(SurfaceScattering, bakedTableIsTheSameForAnyThreadCount) {
 
 TEST(SurfaceScattering, badPathCountNamesTheOption) {
     BakeOptions o = scatteringBake(-1);
-    EXPECT_NE(test::errorOf([&] { bakeSurface(generateStockinette(), o); }).find("--scattering-paths"),
+    EXPECT_NE(test::errorOf([&] { bakeSurface(generateStockinette(), o); }).find("the scattering paths"),
               std::string::npos);
     o = scatteringBake(16);
     o.scatteringSide = 0;

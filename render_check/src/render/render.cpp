@@ -36,9 +36,9 @@ double secondsSince(std::chrono::steady_clock::time_point t) {
 }
 
 // An image path whose extension is not the format written to it (a .jpg holding PNG bytes).
-void checkImageName(const std::string& path, const char* ext, const char* option, const char* format) {
+void checkImageName(const std::string& path, const char* ext, const char* setting, const char* format) {
     if (util::lowerExtension(path) != ext)
-        throw Error(std::string("render: ") + option + " '" + path + "': only " + format +
+        throw Error(std::string("render: ") + setting + " '" + path + "': only " + format +
                     " is written there (use a ." + ext + " name)");
 }
 
@@ -97,8 +97,8 @@ public:
             throw Error("render: the scene has no ply curves (nothing to render; were plies built?)");
         if (o_.surface && scene_.mesh().faces.empty()) throw Error("render: the surface level needs a base mesh");
         frame_ = impl::tracedFrame(scene_, traced_->mesh(), scale_, o_);
-        if (!o_.output.empty()) checkImageName(o_.output, "png", "--output", "PNG");
-        if (!o_.exr.empty()) checkImageName(o_.exr, "exr", "--exr", "EXR");
+        if (!o_.output.empty()) checkImageName(o_.output, "png", "the output image", "PNG");
+        if (!o_.exr.empty()) checkImageName(o_.exr, "exr", "the EXR image", "EXR");
         if (!o_.output.empty()) checkWritable(o_.output);
         if (!o_.exr.empty()) checkWritable(o_.exr);
         impl::checkRenderBudget(scene_.plies(), o_);
@@ -118,7 +118,8 @@ public:
         res_.surfaceTriangles = surface_.faces.size();
         base_ = o_.baseMesh || o_.surface ? &traced_->mesh() : (surface_.faces.empty() ? nullptr : &surface_);
         if (geometry_.segmentCount() == 0 && base_ == nullptr)
-            throw Error("render: the view sees none of the cloth (every cell is culled; check --eye and --target)");
+            throw Error("render: the view sees none of the cloth (every cell is culled; check the eye position and the "
+                        "target position)");
     }
 
     // A view's surface level: the pattern baked with the render's material, as --surface-only.
@@ -255,7 +256,7 @@ const char* lightPlacementName(LightPlacement light) {
 PlyMaterial resolveMaterial(const RenderOptions& o) {
     PlyMaterial m = o.material;
     if (!o.materialFile.empty()) m = loadMaterialFile(o.materialFile, m);
-    if (!o.materialOverrides.empty()) m = applyMaterialOverrides(o.materialOverrides, m, "material flags");
+    if (!o.materialOverrides.empty()) m = applyMaterialOverrides(o.materialOverrides, m, "the material overrides");
     validateMaterial(m, o.materialFile.empty() ? "material" : "material file '" + o.materialFile + "'");
     return m;
 }
