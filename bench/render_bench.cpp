@@ -24,8 +24,8 @@
 #include "knit/ply_geometry.hpp"
 #include "knit/scene.hpp"
 #include "knit/synthetic_scene.hpp"
-#include "render_image.hpp"
-#include "trace_scene.hpp"
+#include "tracing/render_image.hpp"
+#include "tracing/trace_scene.hpp"
 #include "util/math.hpp"
 
 namespace {

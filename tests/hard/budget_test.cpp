@@ -149,13 +149,13 @@ TEST(Budget, renderImageAndTubeGeometryAreRefusedBeforeAllocating) {
     o.budget = MemoryBudget(uint64_t(256) << 20);
     std::string m = errorOf([&] { knit::renderScene(scene, o); });
     EXPECT_NE(m.find("for 1.68e+07 pixels of the image"), std::string::npos) << m;
-    EXPECT_NE(m.find("lower --width / --height"), std::string::npos) << m;
+    EXPECT_NE(m.find("lower the image width or the image height"), std::string::npos) << m;
     o.width = o.height = 16;
     o.mode = knit::GeometryMode::Tubes;
     o.tubeSides = 4096;
     m = errorOf([&] { knit::renderScene(scene, o); });
     EXPECT_NE(m.find("tube triangles"), std::string::npos) << m;
-    EXPECT_NE(m.find("lower --tube-sides"), std::string::npos) << m;
+    EXPECT_NE(m.find("lower the traced tube sides"), std::string::npos) << m;
     o.tubeSides = 8;
     EXPECT_EQ(knit::renderScene(scene, o).image.width, 16);
 }

@@ -11,7 +11,7 @@
 #include <glm/geometric.hpp>
 #include <tbb/global_control.h>
 
-#include "bake_plies.hpp"
+#include "bake/bake_plies.hpp"
 #include "knit/bake.hpp"
 #include "knit/error.hpp"
 #include "knit/generator.hpp"
@@ -306,7 +306,7 @@ TEST(Bake, sameTexturesForAnyThreadCount) {
 TEST(Bake, badSizeNamesTheOption) {
     BakeOptions o = smallBake();
     o.width = 0;
-    EXPECT_NE(test::errorOf([&] { bakeSurface(generateStockinette(), o); }).find("--bake-size"), std::string::npos);
+    EXPECT_NE(test::errorOf([&] { bakeSurface(generateStockinette(), o); }).find("the bake size"), std::string::npos);
 }
 
 }  // namespace

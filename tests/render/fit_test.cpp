@@ -12,7 +12,7 @@
 #include "knit/render.hpp"
 #include "knit/scene.hpp"
 #include "knit/synthetic_scene.hpp"
-#include "fit_renderer.hpp"
+#include "fit/fit_renderer.hpp"
 
 namespace knit {
 namespace {

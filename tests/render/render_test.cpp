@@ -19,7 +19,7 @@
 #include "knit/ply_geometry.hpp"
 #include "knit/render.hpp"
 #include "knit/synthetic_scene.hpp"
-#include "trace_scene.hpp"
+#include "tracing/trace_scene.hpp"
 
 namespace knit {
 namespace {

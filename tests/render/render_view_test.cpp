@@ -7,7 +7,7 @@
 #include "knit/error.hpp"
 #include "knit/render.hpp"
 #include "knit/scene.hpp"
-#include "detail_geometry.hpp"
+#include "render/detail_geometry.hpp"
 
 namespace knit {
 namespace {

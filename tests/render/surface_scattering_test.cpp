@@ -15,7 +15,7 @@
 #include "knit/scene.hpp"
 #include "knit/surface_scattering.hpp"
 #include "test_util.hpp"
-#include "trace_surface.hpp"
+#include "tracing/trace_surface.hpp"
 
 namespace knit {
 namespace {
@@ -236,7 +236,7 @@ TEST(SurfaceScattering, bakedTableIsTheSameForAnyThreadCount) {
 
 TEST(SurfaceScattering, badPathCountNamesTheOption) {
     BakeOptions o = scatteringBake(-1);
-    EXPECT_NE(test::errorOf([&] { bakeSurface(generateStockinette(), o); }).find("--scattering-paths"),
+    EXPECT_NE(test::errorOf([&] { bakeSurface(generateStockinette(), o); }).find("the scattering paths"),
               std::string::npos);
     o = scatteringBake(16);
     o.scatteringSide = 0;

@@ -13,8 +13,8 @@
 #include "knit/plies.hpp"
 #include "knit/ply_geometry.hpp"
 #include "knit/synthetic_scene.hpp"
-#include "trace_geometry.hpp"
-#include "trace_scene.hpp"
+#include "tracing/trace_geometry.hpp"
+#include "tracing/trace_scene.hpp"
 
 namespace knit {
 namespace {

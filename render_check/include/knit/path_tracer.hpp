@@ -1,6 +1,6 @@
 // knit/path_tracer.hpp — what the path tracer takes and makes: pinhole camera, rectangular area
 // light, image. The tracer itself (unidirectional path tracing with next-event estimation and MIS
-// on the internal Embree scene) is render_check/src/render_image.hpp; renderScene (render.hpp) is
+// on the internal Embree scene) is render_check/src/tracing/render_image.hpp; renderScene (render.hpp) is
 // its public entry.
 #pragma once
 #include <vector>

@@ -1,5 +1,5 @@
 // knit/trace_mode.hpp — the tracer's geometry modes and what the scene of one costs (no Embree
-// here: the Embree scene itself is internal to render_check, see src/trace_scene.hpp).
+// here: the Embree scene itself is internal to render_check, see src/tracing/trace_scene.hpp).
 //
 // Modes (all three model the same solid: every ply a tube of the ply radius around its polyline,
 // round ends):

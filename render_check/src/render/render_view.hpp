@@ -4,6 +4,7 @@
 #pragma once
 #include "knit/path_tracer.hpp"
 #include "knit/render.hpp"
+#include "render/scene_scale.hpp"
 
 namespace knit::impl {
 
@@ -15,6 +16,20 @@ double sceneMargin(const Scene& scene);
 // lightbox three times larger behind the cloth, so transmission shows everywhere. Its radiance
 // gives `irradiance` at the framed centre.
 RectLight defaultLight(const Scene& scene, LightPlacement light, double irradiance);
+// The same for a mesh grown by `margin`.
+RectLight defaultLight(const BaseMesh& mesh, double margin, LightPlacement light, double irradiance);
+
+// How renderScene frames a scene it traces as `tracedMesh` (the scene's mesh, or its copy's at
+// unit size with `scale` the map into it), all in traced units: the view (renderView's), the
+// default light and the centre of the framed bounds (the geometry's origin). The yarns' margin is
+// the scene's own, mapped. knit::Error naming the setting for a bad view.
+struct TracedFrame {
+    View view;
+    RectLight light;
+    glm::dvec3 centre{0.0};
+};
+TracedFrame tracedFrame(const Scene& scene, const BaseMesh& tracedMesh, const TracingScale& scale,
+                        const RenderOptions& options);
 
 Camera cameraOf(const View& view);
 

@@ -178,9 +178,9 @@ FitResult fitMaterial(const Scene& scene, const FitTarget& front, const FitTarge
     const Clock::time_point start = Clock::now();
     // Step 1: validate the targets, the options and the free fields against the energy bound.
     checkFitTargets(front, back, mask);
-    if (!(options.budgetSeconds > 0)) throw Error("--budget must be positive (seconds)");
+    if (!(options.budgetSeconds > 0)) throw Error("fit: the time budget must be positive (seconds)");
     if (options.maxEvaluations < 1) throw Error("fit: at least one evaluation is needed");
-    if (options.render.spp < 1) throw Error("--spp must be at least 1");
+    if (options.render.spp < 1) throw Error("fit: the samples per pixel must be at least 1");
     const PlyMaterial base = resolveMaterial(options.render);
     const std::vector<FitParameter> params =
         options.parameters.empty() ? parseFitList("kR,kTT,body-albedo") : options.parameters;

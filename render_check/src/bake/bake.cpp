@@ -18,7 +18,7 @@
 #include "knit/fiber_tables.hpp"
 #include "knit/ply_bsdf.hpp"
 #include "knit/ply_geometry.hpp"
-#include "trace_scene.hpp"
+#include "tracing/trace_scene.hpp"
 #include "util/math.hpp"
 
 namespace knit {
@@ -34,11 +34,11 @@ void requireRange(int value, int lo, int hi, const char* name) {
 }
 
 void validateBake(const Pattern& pattern, const BakeOptions& o) {
-    requireRange(o.width, 1, 8192, "width (--bake-size)");
+    requireRange(o.width, 1, 8192, "the bake size");
     requireRange(o.samplesPerAxis, 1, 64, "samplesPerAxis");
     requireRange(o.albedoPaths, 0, 1024, "albedoPaths");
     requireRange(o.maxBounces, 1, 64, "maxBounces");
-    requireRange(o.scatteringPaths, 0, 1 << 20, "scatteringPaths (--scattering-paths)");
+    requireRange(o.scatteringPaths, 0, 1 << 20, "the scattering paths");
     requireRange(o.scatteringSide, 1, 32, "scatteringSide");  // 2048 bins: a 50 MB table
     if (!(o.scatteringFocusShare >= 0 && o.scatteringFocusShare <= 1))
         throw Error("bake: scatteringFocusShare must be in [0, 1] (got " + std::to_string(o.scatteringFocusShare) +

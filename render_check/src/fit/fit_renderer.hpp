@@ -13,6 +13,7 @@
 #include "knit/ply_geometry.hpp"
 #include "knit/render.hpp"
 #include "knit/scene.hpp"
+#include "render/scene_scale.hpp"
 
 namespace knit {
 
@@ -35,7 +36,7 @@ private:
     void prepareGeometry(double fiberTwist);
     const FiberTables& tablesFor(const PlyMaterial& material);
 
-    std::optional<Scene> scaled_;  // the scene at tracing scale when it is far from metre size
+    std::optional<impl::TracingCopy> scaled_;  // the scene at tracing scale when it is far from metre size
     const Scene* scene_ = nullptr;
     RenderOptions options_;
     glm::dvec3 centre_{0.0};

@@ -3,8 +3,9 @@
 // MIS (power heuristic), on a TraceScene.
 //
 // Deterministic for a seed and any thread count: every pixel has its own random stream seeded from
-// (seed, pixel index); tiles are rendered in parallel with TBB. Plies use the ply BSDF in the frame
-// of plyShadingFrame(); the base mesh (when present) is a two-sided Lambertian reflector. Paths
+// (seed, pixel index); tiles are rendered in parallel with TBB. Each hit scatters with one of the
+// kinds of bsdf/scattering.hpp: plies the ply BSDF in the frame of plyShadingFrame(), the surface
+// level its measured table, the base mesh (when present) a two-sided Lambertian reflector. Paths
 // whose direction is on a different side of the geometric normal than of the shading normal carry
 // no energy (no light leaks through the fiber perturbation).
 #pragma once

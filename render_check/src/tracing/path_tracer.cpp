@@ -1,4 +1,5 @@
-// Path tracer: camera rays, NEE to the area light and the environment with MIS, BSDF sampling.
+// Path tracer: camera rays, NEE to the area light and the environment with MIS, sampling of the
+// scattering at each hit (bsdf/scattering.hpp: ply BSDF, surface table or diffuse base mesh).
 #include "knit/path_tracer.hpp"
 
 #include <algorithm>
@@ -13,6 +14,7 @@
 #include <tbb/parallel_for.h>
 
 #include "knit/error.hpp"
+#include "bsdf/scattering.hpp"
 #include "knit/ply_bsdf.hpp"
 #include "render_image.hpp"
 #include "trace_scene.hpp"
@@ -72,15 +74,10 @@ float hitLight(const LightGeom& l, const glm::vec3& o, const glm::vec3& d, bool&
     return t;
 }
 
+// The frame at a hit and what scatters light there (bsdf/scattering.hpp).
 struct Shading {
     ShadingFrame frame;
-    bool ply = true;
-    const SurfaceScattering* table = nullptr;  // base mesh with a scattering table: shaded by it
-    Rgb tableScale{1.0};                       // the texel's tint over the probability of the hit
-    Rgb albedo{0.0};                           // base mesh: its diffuse albedo (baked texel at the surface level)
-    Rgb transmit{0.0};                         // base mesh: diffuse transmittance (baked; black without a bake)
-    double reflectChance = 1;                  // base mesh: probability of sampling the reflection side
-    Rgb body{0.0};                             // the ply's body albedo (the material's, or its yarn colour's)
+    impl::Scattering scattering;
 };
 
 struct Tracer {
@@ -96,55 +93,46 @@ struct Tracer {
 
     // o, d: the ray that found h (a camera ray reads the surface level's texture prefiltered).
     Shading shade(const TraceHit& h, const glm::vec3& o, const glm::vec3& d) const {
-        Shading sh;
         if (h.kind == TraceHit::Base && scene.baseTexture() && scene.baseTexture()->scattering()) {
-            sh.ply = false;
-            sh.table = scene.baseTexture()->scattering();
-            sh.frame = scene.baseFrame(h);
-            sh.albedo = scene.baseTexture()->tint(scene.baseUv(h), scene.baseLevel(h, o, d));
-            return sh;
+            // The surface level's table: the texel's tint over the probability of the hit, 1 - pass
+            // (the surface filter).
+            const ShadingFrame frame = scene.baseFrame(h);
+            const SurfaceScattering* table = scene.baseTexture()->scattering();
+            const Rgb tint = scene.baseTexture()->tint(scene.baseUv(h), scene.baseLevel(h, o, d));
+            const glm::dvec3 woL = frame.toLocal(-glm::dvec3(d));
+            return {frame, impl::TableScattering{table, tint / std::max(1e-6, 1.0 - table->passAt(woL))}};
         }
         if (h.kind == TraceHit::Base) {
-            sh.ply = false;
-            sh.albedo = scene.baseAlbedo(h, s.baseAlbedo);
-            sh.transmit = scene.baseTransmittance(h);
-            const double r = luminance(sh.albedo), t = luminance(sh.transmit);
-            if (t > 0) sh.reflectChance = r / (r + t);
-            sh.frame.z = glm::dvec3(h.ng);
-            const glm::dvec3 a = std::abs(sh.frame.z.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
-            sh.frame.x = glm::normalize(glm::cross(a, sh.frame.z));
-            sh.frame.y = glm::cross(sh.frame.z, sh.frame.x);
-            return sh;
+            impl::DiffuseScattering diffuse;
+            diffuse.albedo = scene.baseAlbedo(h, s.baseAlbedo);
+            diffuse.transmit = scene.baseTransmittance(h);
+            const double r = luminance(diffuse.albedo), t = luminance(diffuse.transmit);
+            if (t > 0) diffuse.reflectChance = r / (r + t);
+            ShadingFrame frame;
+            frame.z = glm::dvec3(h.ng);
+            const glm::dvec3 a = std::abs(frame.z.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+            frame.x = glm::normalize(glm::cross(a, frame.z));
+            frame.y = glm::cross(frame.z, frame.x);
+            return {frame, diffuse};
         }
         const PlyGeometry& g = scene.plies();
         const uint32_t j = g.segments[h.segment];
         const float u = h.u;
-        sh.frame = plyShadingFrame(scene.plyPoint(h), material, tables);
+        const ShadingFrame frame = plyShadingFrame(scene.plyPoint(h), material, tables);
         // A yarn colour (nearer end of the segment: colours change between stitches) tints the body.
-        sh.body = g.colour.empty() ? material.bodyAlbedo : yarnBodyAlbedo(material, g.colour[u < 0.5f ? j : j + 1]);
-        return sh;
+        const Rgb body =
+            g.colour.empty() ? material.bodyAlbedo : yarnBodyAlbedo(material, g.colour[u < 0.5f ? j : j + 1]);
+        return {frame, impl::PlyScattering{PlyBsdf(material, frame.shadow, body)}};
     }
 
-    // BSDF value (with |cos|) and pdf for world directions; zero when the shading and geometric
-    // sides disagree.
-    Rgb evalBsdf(const Shading& sh, const PlyBsdf& bsdf, const glm::dvec3& woL, const glm::dvec3& wi,
-                 const glm::vec3& ng, double& pdf) const {
+    // Scattering value (with |cos|) and pdf for world directions; zero when the shading and
+    // geometric sides disagree.
+    Rgb evalScattering(const Shading& sh, const glm::dvec3& woL, const glm::dvec3& wi, const glm::vec3& ng,
+                       double& pdf) const {
         pdf = 0;
         const glm::dvec3 wiL = sh.frame.toLocal(wi);
         if ((glm::dot(glm::vec3(wi), ng) > 0) != (wiL.z > 0)) return Rgb(0.0);
-        if (sh.table) {
-            pdf = sh.table->pdf(woL, wiL);
-            return sh.tableScale * sh.table->eval(woL, wiL);
-        }
-        if (!sh.ply) {  // two-sided Lambertian reflection plus diffuse transmission
-            if (wiL.z == 0 || woL.z == 0) return Rgb(0.0);
-            const double c = std::abs(wiL.z) / kPi;
-            const bool reflect = wiL.z * woL.z > 0;
-            pdf = (reflect ? sh.reflectChance : 1 - sh.reflectChance) * c;
-            return (reflect ? sh.albedo : sh.transmit) * c;
-        }
-        pdf = bsdf.pdf(woL, wiL);
-        return bsdf.eval(woL, wiL) * std::abs(wiL.z);
+        return sh.scattering.eval(woL, wiL, pdf);
     }
 
     Rgb radiance(glm::vec3 o, glm::vec3 d, Rng& rng) const {
@@ -173,16 +161,12 @@ struct Tracer {
                 break;
             }
             if (depth >= s.maxDepth) break;
-            // Step 2: local frame and BSDF at the hit.
+            // Step 2: local frame and scattering at the hit.
             const glm::vec3 p = o + h.t * d;
-            Shading sh = shade(h, o, d);
+            const Shading sh = shade(h, o, d);
             const glm::dvec3 wo = -glm::dvec3(d);
             const glm::dvec3 woL = sh.frame.toLocal(wo);
             if ((glm::dot(-d, h.ng) > 0) != (woL.z > 0)) break;
-            // A surface hit happens with probability 1 - pass (the surface filter): its scattering
-            // is the table's over that probability.
-            if (sh.table) sh.tableScale = sh.albedo / std::max(1e-6, 1.0 - sh.table->passAt(woL));
-            const PlyBsdf bsdf(material, sh.frame.shadow, sh.body);
             // Step 3: next-event estimation to the area light.
             if (light.on) {
                 const glm::vec3 y = light.corner + float(rng.uniform()) * light.eu + float(rng.uniform()) * light.ev;
@@ -192,7 +176,7 @@ struct Tracer {
                 const float cosL = -glm::dot(wi, light.n);
                 if (cosL > 0) {
                     double pdfB;
-                    const Rgb f = evalBsdf(sh, bsdf, woL, glm::dvec3(wi), h.ng, pdfB);
+                    const Rgb f = evalScattering(sh, woL, glm::dvec3(wi), h.ng, pdfB);
                     if (f != Rgb(0.0)) {
                         const glm::vec3 org = scene.spawn(h, p, wi);
                         const glm::vec3 seg = y - org;
@@ -211,7 +195,7 @@ struct Tracer {
                              phi = 2 * kPi * rng.uniform();
                 const glm::dvec3 wi(r * std::cos(phi), r * std::sin(phi), z);
                 double pdfB;
-                const Rgb f = evalBsdf(sh, bsdf, woL, wi, h.ng, pdfB);
+                const Rgb f = evalScattering(sh, woL, wi, h.ng, pdfB);
                 if (f != Rgb(0.0)) {
                     const glm::vec3 wf(wi);
                     const glm::vec3 org = scene.spawn(h, p, wf);
@@ -224,36 +208,13 @@ struct Tracer {
                     }
                 }
             }
-            // Step 5: continue the path by sampling the BSDF.
-            glm::dvec3 wiL;
-            Rgb weight;
-            double pdf;
-            if (sh.table) {
-                const double u[4] = {rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform()};
-                wiL = sh.table->sample(woL, u, pdf);
-                if (!(pdf > 0)) break;
-                weight = sh.tableScale * sh.table->eval(woL, wiL) / pdf;
-            } else if (sh.ply) {
-                const BsdfSample bs = bsdf.sample(woL, rng.uniform(), glm::dvec2(rng.uniform(), rng.uniform()));
-                if (!bs.valid) break;
-                wiL = bs.wi, weight = bs.weight, pdf = bs.pdf;
-            } else {
-                // The side by reflectChance (no extra random number without transmission), then
-                // a cosine-weighted direction on it.
-                const bool reflect = sh.reflectChance >= 1 || rng.uniform() < sh.reflectChance;
-                const double u1 = rng.uniform(), u2 = rng.uniform();
-                const double rr = std::sqrt(u1), ph = 2 * kPi * u2;
-                wiL = glm::dvec3(rr * std::cos(ph), rr * std::sin(ph), std::sqrt(std::max(0.0, 1 - u1)));
-                if ((woL.z < 0) == reflect) wiL.z = -wiL.z;
-                const double chance = reflect ? sh.reflectChance : 1 - sh.reflectChance;
-                weight = (reflect ? sh.albedo : sh.transmit) / chance;
-                pdf = chance * std::abs(wiL.z) / kPi;
-                if (!(pdf > 0)) break;
-            }
-            const glm::vec3 wi = glm::normalize(glm::vec3(sh.frame.toWorld(wiL)));
-            if ((glm::dot(wi, h.ng) > 0) != (wiL.z > 0)) break;
-            beta *= weight;
-            prevPdf = pdf;
+            // Step 5: continue the path by sampling the scattering.
+            const impl::ScatterSample next = sh.scattering.sample(woL, rng);
+            if (!next.valid) break;
+            const glm::vec3 wi = glm::normalize(glm::vec3(sh.frame.toWorld(next.wi)));
+            if ((glm::dot(wi, h.ng) > 0) != (next.wi.z > 0)) break;
+            beta *= next.weight;
+            prevPdf = next.pdf;
             // Step 6: Russian roulette.
             if (depth >= 3) {
                 const double q = std::min(0.95, std::max({beta.x, beta.y, beta.z}));

@@ -8,10 +8,10 @@
 #include <glm/common.hpp>
 
 #include "knit/view.hpp"
-#include "render_image.hpp"
-#include "render_view.hpp"
-#include "scene_scale.hpp"
-#include "trace_scene.hpp"
+#include "tracing/render_image.hpp"
+#include "render/render_view.hpp"
+#include "render/scene_scale.hpp"
+#include "tracing/trace_scene.hpp"
 
 namespace knit {
 namespace {
@@ -26,19 +26,21 @@ bool sameTables(const FiberTableOptions& a, const FiberTableOptions& b) {
 FitRenderer::FitRenderer(const Scene& scene, const RenderOptions& options) : options_(options) {
     // Step 1: the scene as renderScene traces it (scaled copy far from metre size).
     scaled_ = impl::sceneAtTracingScale(scene);
-    scene_ = scaled_ ? &*scaled_ : &scene;
+    scene_ = scaled_ ? &scaled_->scene : &scene;
+    const impl::TracingScale scale = scaled_ ? scaled_->scale : impl::TracingScale{};
     options_.materialFile.clear(), options_.materialOverrides.clear();
     options_.output.clear(), options_.exr.clear(), options_.progress = false;
-    // Step 2: the view of each lighting, from a one-sample renderScene of the traced scene.
+    // Step 2: the view of each lighting and the geometry's origin as renderScene frames them (in
+    // the traced scene's units), after a one-sample renderScene has checked the options.
     for (LightPlacement light : {LightPlacement::Front, LightPlacement::Back}) {
         RenderOptions o = options_;
         o.light = light, o.width = 4, o.height = 3, o.spp = 1;
-        const RenderResult r = renderScene(*scene_, o);
-        views_[light] = {r.camera, r.areaLight};
+        renderScene(scene, o);
+        const impl::TracedFrame frame = impl::tracedFrame(scene, scene_->mesh(), scale, o);
+        views_[light] = {impl::cameraOf(frame.view), frame.light};
+        centre_ = frame.centre;
     }
-    // Step 3: the geometry's origin (renderScene's: the centre of the framed mesh bounds) and the
-    // ply count (the tables').
-    centre_ = framedBounds(scene_->mesh(), impl::sceneMargin(*scene_)).centre;
+    // Step 3: the ply count (the tables').
     for (uint8_t p : scene_->plies().plyOfCurve) plyCount_ = std::max(plyCount_, int(p) + 1);
     device_ = std::make_unique<EmbreeDevice>();
 }

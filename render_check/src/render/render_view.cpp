@@ -17,7 +17,11 @@ double sceneMargin(const Scene& scene) {
 }
 
 RectLight defaultLight(const Scene& scene, LightPlacement light, double irradiance) {
-    const FramedBounds f = framedBounds(scene.mesh(), sceneMargin(scene));
+    return defaultLight(scene.mesh(), sceneMargin(scene), light, irradiance);
+}
+
+RectLight defaultLight(const BaseMesh& mesh, double margin, LightPlacement light, double irradiance) {
+    const FramedBounds f = framedBounds(mesh, margin);
     const bool front = light == LightPlacement::Front;
     const double lightSize = front ? f.radius : 3.0 * f.radius, lightDist = 2.5 * f.radius;
     const glm::dvec3 dir = front ? glm::normalize(f.normal + 0.4 * f.right + 0.4 * f.up) : -f.normal;
@@ -41,15 +45,31 @@ Camera cameraOf(const View& view) {
     return c;
 }
 
-}  // namespace impl
-
-View renderView(const Scene& scene, const RenderOptions& o) {
-    View v = scene.detail() ? scene.detail()->view : o.view.value_or(View{});
+TracedFrame tracedFrame(const Scene& scene, const BaseMesh& tracedMesh, const TracingScale& scale,
+                        const RenderOptions& o) {
+    const double margin = sceneMargin(scene) * scale.scale;
+    View v = scene.detail() ? scale.view(scene.detail()->view) : o.view ? scale.view(*o.view) : View{};
     v.fovDegrees = o.fovDegrees, v.width = o.width, v.height = o.height;
-    if (!scene.detail() && !o.view) v = frameMesh(scene.mesh(), impl::sceneMargin(scene), v);
+    if (!scene.detail() && !o.view) v = frameMesh(tracedMesh, margin, v);
     if (v.orthographic) throw Error("render: orthographic views are not rendered (the tracer's camera is a pinhole)");
     validateView(v);
-    return v;
+    TracedFrame f;
+    f.view = v;
+    f.light = defaultLight(tracedMesh, margin, o.light, o.lightIrradiance);
+    f.centre = framedBounds(tracedMesh, margin).centre;
+    return f;
+}
+
+}  // namespace impl
+
+// Framed where the scene is traced (at unit size when far from metre size: the framing's
+// absolute floors stay out of the way), then mapped back to metres.
+View renderView(const Scene& scene, const RenderOptions& o) {
+    const std::optional<impl::TracingScale> scale = impl::tracingScale(scene);
+    if (!scale) return impl::tracedFrame(scene, scene.mesh(), impl::TracingScale{}, o).view;
+    BaseMesh mesh = scene.mesh();
+    for (glm::dvec3& p : mesh.positions) p = scale->point(p);
+    return scale->worldView(impl::tracedFrame(scene, mesh, *scale, o).view);
 }
 
 }  // namespace knit

@@ -13,7 +13,7 @@
 #include "knit/ply_bsdf.hpp"
 #include "knit/ply_material.hpp"
 #include "knit/surface_scattering.hpp"
-#include "trace_scene.hpp"
+#include "tracing/trace_scene.hpp"
 
 namespace knit {
 

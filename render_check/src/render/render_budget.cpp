@@ -29,7 +29,8 @@ std::string counted(double n, const char* what) {
 void checkRenderBudget(const Plies& plies, const RenderOptions& o) {
     // Step 1: the image and its buffers.
     const double pixels = double(o.width) * double(o.height);
-    o.budget.require(pixels * kBytesPerPixel, counted(pixels, "pixels of the image"), "--width / --height");
+    o.budget.require(pixels * kBytesPerPixel, counted(pixels, "pixels of the image"),
+                     "the image width or the image height");
     // Step 2: the geometry of the mode.
     const Polylines& c = plies.curves;
     double segments = 0;
@@ -40,11 +41,13 @@ void checkRenderBudget(const Plies& plies, const RenderOptions& o) {
         tube.sides = o.tubeSides;
         const double triangles = tubeCounts(c, tube).triangles;
         o.budget.require(triangles * kBytesPerTubeTriangle + segments * kBytesPerGridSegment,
-                         counted(triangles, "tube triangles"), "--tube-sides (or use --mode curves)");
+                         counted(triangles, "tube triangles"),
+                         "the traced tube sides (or use the geometry mode curves)");
     } else {
         const bool grid = o.mode == GeometryMode::Grid;
         o.budget.require(segments * (grid ? kBytesPerGridSegment : kBytesPerCurveSegment),
-                         counted(segments, "ply segments"), "--ply-pitch, --samples-per-turn or --repeats");
+                         counted(segments, "ply segments"),
+                         "the samples per turn or the repeats, or raise the ply pitch,");
     }
 }
 
