@@ -3,20 +3,19 @@
 #include <cmath>
 #include <string>
 
+#include "formats.hpp"
 #include "io/atomic_file.hpp"
 #include "knit/cache.hpp"
 #include "knit/error.hpp"
 #include "point_cache.hpp"
 #include "text_out.hpp"
-#include "util/platform.hpp"
 
 namespace knit {
 
 bool cacheFormatOf(const std::string& path, CacheFormat& format) {
-    const std::string ext = util::lowerExtension(path);
-    if (ext == "pc2") format = CacheFormat::Pc2;
-    else if (ext == "mdd") format = CacheFormat::Mdd;
-    else return false;
+    const impl::Format* f = impl::formatOf(path);
+    if (!f || !f->pointCache) return false;
+    format = std::string(f->extension) == "mdd" ? CacheFormat::Mdd : CacheFormat::Pc2;
     return true;
 }
 

@@ -45,8 +45,20 @@ def test_export_meshopt_tubes_are_smaller_than_plain_ones(scene, tmp_path):
 
 def test_export_over_the_memory_budget_raises_and_writes_nothing(scene, tmp_path):
     path = tmp_path / "t.glb"
-    with pytest.raises(knit.Error, match="max-memory"):
+    with pytest.raises(knit.Error, match="max_memory") as e:
         knit.export_scene(scene, str(path), what="tubes", max_memory="1K")
+    assert "--" not in str(e.value)
     assert not path.exists()
-    with pytest.raises(knit.Error, match="max-memory"):
+    with pytest.raises(knit.Error, match="max_memory 'lots'"):
         knit.export_scene(scene, str(tmp_path / "x.obj"), max_memory="lots")
+
+
+def test_export_of_an_empty_result_raises_and_writes_nothing(tmp_path):
+    # No pattern period fits the mesh: no yarn lands on it. Refused by the library, as by the CLI.
+    empty = knit.build_scene("stockinette", "plane", repeats=(1e-6, 1e-6))
+    for name in ["e.obj", "e.glb", "e.bcc"]:
+        path = tmp_path / name
+        with pytest.raises(knit.Error, match="nothing to export: no yarn of pattern 'stockinette' lands on mesh"):
+            knit.export_scene(empty, str(path), what="yarns")
+        assert not path.exists()
+    assert list(tmp_path.iterdir()) == []

@@ -245,9 +245,11 @@ TEST_F(CliBadInput, exportsWithNoCurvesAreRefusedSayingWhy) {
     write("noedge.pyp", "*pattern\n0.01 0.01 0.001 2\n*Q\n0 0 0 0\n0.005 0.005 0 0\n*E\n");
     expectFailure(std::string("build -q --mesh plane --repeats 3 3 --pattern noedge.pyp -o out.obj"),
                   "nothing to export: the pattern 'noedge.pyp' has no edges");
-    expectFailure(std::string("build -q --mesh plane --repeats 1e-6 1e-6 -o out.obj"), "raise --repeats");
+    expectFailure(std::string("build -q --mesh plane --repeats 1e-6 1e-6 -o out.obj"), "raise the repeats (--repeats)");
     for (const char* out : {"out.obj", "out.glb"})
-        expectFailure(kSmall + std::string("--ply-pitch 1e30 -o ") + out, "no ply curve was made; lower --ply-pitch");
+        expectFailure(kSmall + std::string("--ply-pitch 1e30 -o ") + out,
+                      "shorter than one ply sample, the ply pitch (--ply-pitch) 1e+30 m over the samples per turn "
+                      "(--samples-per-turn) 12, so no ply curve was made; lower the ply pitch");
     const CliRun yarns = knit(kSmall + std::string("--ply-pitch 1e30 --export yarns -o y.obj"), dir);
     EXPECT_EQ(yarns.exitCode, 0) << yarns.output;  // the yarns alone are not empty
 }
@@ -286,8 +288,9 @@ TEST_F(CliBadInput, optionErrorsNameTheOptionNotTheInternalField) {
 
 TEST_F(CliBadInput, valuesBeyondFloat32AreRefusedNamingTheOption) {
     expectFailure(kSmall + std::string("--ply-pitch 1e39 -o out.glb"),
-                  "the ply pitch 1e+39 is beyond the float32 range (3.4e38); lower --ply-pitch");
-    expectFailure(kSmall + std::string("--ply-radius 1e39 -o out.obj"), "lower --ply-radius");
+                  "the ply pitch (--ply-pitch) 1e+39 is beyond the float32 range (3.4e38); lower the ply pitch");
+    expectFailure(kSmall + std::string("--ply-radius 1e39 -o out.obj"),
+                  "the ply radius (--ply-radius) 1e+39 is beyond the float32 range (3.4e38); lower the ply radius");
     write(
         "edge.obj",
         "v 0 0 0\nv 3.4e38 0 0\nv 3.4e38 3.4e38 0\nv 0 3.4e38 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3 4/4\n");

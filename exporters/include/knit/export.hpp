@@ -95,7 +95,9 @@ struct ExportStats {
 };
 
 // Writes atomically (temporary file in the same folder, then rename): on error no output file
-// exists. Throws knit::Error for unknown extensions, unwritable paths, conflicting options.
+// exists. Throws knit::Error for unknown extensions, unwritable paths, conflicting options, and
+// what checkSceneExport() refuses (an empty result, values beyond float32), before any file is
+// written.
 //
 // Plies of a scene built without them (SceneOptions::buildPlies = false): `what = Plies` (and
 // tubes of plies) generates them from scene.yarns with scene.plyOptions during the export, the
@@ -108,6 +110,16 @@ struct ExportStats {
 // cells with the baked knit material) written into the same .glb / .gltf as one more mesh under
 // the root node, with its own material and textures; other formats refuse it (knit::Error).
 ExportStats exportScene(const Scene& scene, const ExportOptions& options, const SurfaceLayer* surface = nullptr);
+
+// What no file should hold, refused (knit::Error naming the output, the value and what drives it)
+// before anything is written; exportScene() calls it, and a front end may call it earlier to fail
+// before other work (`knit animate` does for the point caches it writes with PointCacheWriter):
+//   - a value beyond the float32 range: the yarn radius; the ply pitch and radii when plies are
+//     written; the curves' coordinates in a float32 format (.bcc .pbrt .gltf .glb .pc2 .mdd);
+//   - an export without a curve ("nothing to export: <why>; no file written"): a pattern without
+//     edges, no yarn on the mesh, every yarn shorter than one ply sample. Not refused when
+//     `surface` (a view's surface level, written beside the curves) is given.
+void checkSceneExport(const Scene& scene, const ExportOptions& options, const SurfaceLayer* surface = nullptr);
 
 // Lower-level entry: exports the given curves (yarn centrelines or plies) with constant `radius`.
 // `yarnOfCurve` (optional, one entry per curve) selects the COLOR_0 palette entry and is stored;
