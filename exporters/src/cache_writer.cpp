@@ -36,7 +36,7 @@ PointCacheWriter::PointCacheWriter(const std::string& path, const CacheInfo& inf
     if (info.points > INT32_MAX || info.frames > INT32_MAX)
         throw Error("cannot write point cache '" + path + "': more than 2^31-1 points or frames");
     if (format == CacheFormat::Mdd && !(info.fps > 0 && std::isfinite(info.fps)))
-        throw Error("cannot write point cache '" + path + "': --fps must be a positive number");
+        throw Error("cannot write point cache '" + path + "': the frame rate must be a positive number");
     // Step 2: the temporary file and the header.
     state_ = std::make_unique<State>(path);
     state_->format = format;

@@ -90,12 +90,15 @@ void validateInput(const ExportInput& in, bool tubes) {
                     std::to_string(c.points.size()) + " points");
 }
 
-// A tube-mesh glTF extension flag (--quantize, --meshopt) needs a .glb/.gltf output and tubes.
-void requireGltfTubes(const ExportOptions& o, bool tubes, const char* flag, const char* extension) {
+// A tube-mesh glTF extension (mesh quantization, meshopt compression) needs a .glb/.gltf output
+// and tubes.
+void requireGltfTubes(const ExportOptions& o, bool tubes, const char* setting, const char* extension) {
     if (!isGltf(o.path))
-        throw Error("cannot export '" + o.path + "': " + flag + " (" + extension + ") needs a .glb or .gltf output");
+        throw Error("cannot export '" + o.path + "': " + setting + " needs a .glb or .gltf output (" + extension +
+                    " is a glTF extension)");
     if (!tubes)
-        throw Error("cannot export '" + o.path + "': " + flag + " applies to tube meshes only (--export tubes)");
+        throw Error("cannot export '" + o.path + "': " + setting + " applies to tube meshes only; what to export is " +
+                    whatName(o.what) + ", not tubes");
 }
 
 }  // namespace
@@ -111,33 +114,36 @@ void validateExportOptions(const ExportOptions& o) {
                     "' (supported: " + impl::sceneFormatList(", ") + ")");
     const bool tubes = o.what == ExportWhat::Tubes;
     if (tubes && !format->tubes)
-        throw Error("cannot export '" + o.path + "': ." + ext +
-                    " holds curves only; use --export yarns or --export plies (tubes need " +
-                    impl::sceneFormatList("/", true) + ")");
+        throw Error("cannot export '" + o.path + "': ." + ext + " holds curves only: what to export must be yarns or " +
+                    "plies (tubes need " + impl::sceneFormatList("/", true) + ")");
     if (o.sides < 3 || o.sides > 1024)
-        throw Error("export: --sides must be in [3, 1024], got " + std::to_string(o.sides));
+        throw Error("export: the number of tube sides must be in [3, 1024], got " + std::to_string(o.sides));
     if (o.draco) {
         if (!format->gltf)
-            throw Error("cannot export '" + o.path + "': --draco needs a .glb or .gltf output, not ." + ext);
+            throw Error("cannot export '" + o.path + "': Draco compression needs a .glb or .gltf output, not ." + ext);
         if (!tubes)
-            throw Error(std::string("cannot export '") + o.path + "': --draco compresses triangle meshes only; " +
-                        "it cannot be used with curves (--export " + whatName(o.what) + "); use --export tubes");
+            throw Error("cannot export '" + o.path + "': Draco compression applies to tube meshes only, not to " +
+                        "curves; what to export is " + whatName(o.what) + ", not tubes");
         if (o.quantize)
-            throw Error("cannot export '" + o.path + "': --draco and --quantize are alternatives; choose one");
+            throw Error("cannot export '" + o.path +
+                        "': Draco compression and mesh quantization are alternatives; choose one");
     }
-    if (o.quantize) requireGltfTubes(o, tubes, "--quantize", "KHR_mesh_quantization");
+    if (o.quantize) requireGltfTubes(o, tubes, "mesh quantization", "KHR_mesh_quantization");
     if (o.meshopt) {
-        requireGltfTubes(o, tubes, "--meshopt", "EXT_meshopt_compression");
-        if (o.draco) throw Error("cannot export '" + o.path + "': --draco and --meshopt are alternatives; choose one");
+        requireGltfTubes(o, tubes, "meshopt compression", "EXT_meshopt_compression");
+        if (o.draco)
+            throw Error("cannot export '" + o.path +
+                        "': Draco compression and meshopt compression are alternatives; choose one");
     }
     if (o.dracoBits < 1 || o.dracoBits > 30)
-        throw Error("export: --draco-bits must be in [1, 30], got " + std::to_string(o.dracoBits));
+        throw Error("export: the Draco position bits must be in [1, 30], got " + std::to_string(o.dracoBits));
     if (o.dracoNormalBits < 1 || o.dracoNormalBits > 30 || o.dracoTexcoordBits < 1 || o.dracoTexcoordBits > 30)
         throw Error("export: Draco normal/texcoord bits must be in [1, 30]");
     if (o.dracoLevel < 0 || o.dracoLevel > 10)
-        throw Error("export: --draco-level must be in [0, 10], got " + std::to_string(o.dracoLevel));
+        throw Error("export: the Draco level must be in [0, 10], got " + std::to_string(o.dracoLevel));
     if (o.chunkVertices != 0 && o.chunkVertices < 16)
-        throw Error("export: --chunk-vertices must be 0 (auto) or at least 16, got " + std::to_string(o.chunkVertices));
+        throw Error("export: the vertices per chunk must be 0 (auto) or at least 16, got " +
+                    std::to_string(o.chunkVertices));
     if (o.maxBufferBytes < 1024 || o.maxBufferBytes > 0xFFFFFFF0ull)
         throw Error("export: the glTF buffer size limit must be in [1024, 4294967280] bytes");
 }

@@ -1,8 +1,11 @@
 // python/src/export.cpp — export_scene: a built scene to a file (format by extension).
+#include <vector>
+
 #include "bindings.hpp"
 #include "knit/budget.hpp"
 #include "knit/error.hpp"
 #include "knit/export.hpp"
+#include "knit/setting_spelling.hpp"
 
 namespace knitpy {
 
@@ -15,6 +18,16 @@ knit::ExportWhat exportWhat(const std::string& what) {
     if (what == "plies") return knit::ExportWhat::Plies;
     if (what == "tubes") return knit::ExportWhat::Tubes;
     throw knit::Error("what: expected 'yarns', 'plies' or 'tubes', got '" + what + "'");
+}
+
+// export_scene's keywords for the settings library messages name in words (knit/setting_spelling.hpp):
+// "raise the memory budget (max_memory)".
+const std::vector<knit::SettingSpelling>& keywords() {
+    static const std::vector<knit::SettingSpelling> k = {
+        {"what to export", "what"},        {"the number of tube sides", "sides"}, {"Draco compression", "draco"},
+        {"mesh quantization", "quantize"}, {"meshopt compression", "meshopt"},    {"the memory budget", "max_memory"},
+    };
+    return k;
 }
 
 py::dict statsDict(const knit::ExportStats& s) {
@@ -39,11 +52,13 @@ void registerExport(py::module_& m) {
             o.quantize = quantize;
             o.meshopt = meshopt;
             o.yarnColors = yarnColors;
-            if (!maxMemory.empty()) o.budget = knit::MemoryBudget(knit::parseMemorySize(maxMemory));
             knit::ExportStats stats;
-            {
+            try {
+                if (!maxMemory.empty()) o.budget = knit::MemoryBudget(knit::parseMemorySize(maxMemory));
                 py::gil_scoped_release release;
                 stats = knit::exportScene(scene, o);
+            } catch (const knit::Error& e) {
+                throw knit::Error(knit::spellSettings(e.what(), keywords()));
             }
             return statsDict(stats);
         },
@@ -54,7 +69,8 @@ void registerExport(py::module_& m) {
         "compression as knit build's --draco / --quantize / --meshopt (meshopt: tubes only). max_memory: "
         "the memory budget as a size ('8G'; '' = min(4 GiB, half the physical memory)), as --max-memory: "
         "an export whose estimated size is over it raises knit.Error before writing. Returns the export's "
-        "counts. Raises knit.Error.");
+        "counts. Raises knit.Error (an empty result, values beyond float32, bad options; naming the keyword "
+        "of a setting it names), before any file is written.");
 }
 
 }  // namespace knitpy

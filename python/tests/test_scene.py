@@ -118,5 +118,5 @@ def test_max_memory_refuses_a_scene_over_the_budget_before_building_it():
 
 
 def test_max_memory_that_is_not_a_size_is_refused():
-    with pytest.raises(knit.Error, match="max-memory"):
+    with pytest.raises(knit.Error, match="the memory budget 'lots': expected a size"):
         knit.build_scene("stockinette", "plane", repeats=(2, 2), max_memory="lots")

@@ -97,7 +97,7 @@ TEST_F(ExportHard, failureInsideTheStreamedPipelineLeavesNoFile) {
             exportScene(scene, o);
             ADD_FAILURE() << "exported " << o.path;
         } catch (const Error& e) {
-            EXPECT_NE(std::string(e.what()).find("--chunk-vertices"), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find("the vertices per chunk"), std::string::npos) << e.what();
         } catch (const std::exception& e) {
             ADD_FAILURE() << o.path << ": non-knit exception " << e.what();
         }

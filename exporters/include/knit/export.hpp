@@ -60,7 +60,7 @@ struct ExportOptions {
 
     // Chunking: at most this many tube vertices (tubes) or curve points (curves) per chunk;
     // 0 = auto: 1M (2^20), or 256k (2^18) with Draco, whose encoder needs ~0.5 KB per vertex, or
-    // 65535 with --quantize / --meshopt (every chunk then fits UNSIGNED_SHORT indices).
+    // 65535 with quantize / meshopt (every chunk then fits UNSIGNED_SHORT indices).
     // Streamed plies are planned per yarn from a lower bound of their point count (resampling
     // adds a few percent on curved yarns), so their chunks may exceed it slightly; a curve or
     // yarn longer than the limit gets a chunk of its own.
@@ -133,7 +133,7 @@ struct ExportInput {
     const std::vector<uint32_t>* yarnOfCurve = nullptr;
     const std::vector<glm::dvec3>* seedNormals = nullptr;  // per point, tube frame seed (optional)
     // Per point, the linear yarn colour (optional; a pattern with colours): COLOR_0 in glTF (tubes
-    // and curves, unless --yarn-colors), vertex colours in PLY, per-curve colours in pbrt.
+    // and curves, unless yarnColors), vertex colours in PLY, per-curve colours in pbrt.
     const std::vector<glm::vec3>* colours = nullptr;
     // glTF material extras as JSON object text, e.g. {"generator":"libknit"} (empty: none; the
     // exporter adds radius and tube fields). Anything but a JSON object is a knit::Error.
@@ -148,7 +148,8 @@ ExportStats exportCurves(const ExportInput& input, const ExportOptions& options)
 bool streamsPlies(const ExportOptions& options);
 
 // Checks the options against each other and the extension; throws knit::Error naming the
-// conflict (e.g. --draco with curves, --draco with --quantize, Draco for a non-glTF format).
+// conflict (e.g. Draco compression of curves, Draco compression with mesh quantization, Draco for a
+// non-glTF format) and the settings in words (knit/setting_spelling.hpp).
 void validateExportOptions(const ExportOptions& options);
 
 }  // namespace knit

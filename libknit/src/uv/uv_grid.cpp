@@ -191,7 +191,7 @@ uint64_t uvGridEntryBound(const BaseMesh& mesh, glm::dvec2 cellSize) {
 UvGrid buildUvGrid(const BaseMesh& mesh, const UvGridOptions& options) {
     if (!util::positiveFinite(options.cellSize))
         throw Error(
-            "UV grid: the pattern period in UV (from --repeats or the physical size) must be positive and finite");
+            "UV grid: the pattern period in UV, from the repeats or the physical size, must be positive and finite");
     UvGrid grid;
     grid.cellSize = options.cellSize;
     const size_t nf = mesh.faces.size();
@@ -281,7 +281,7 @@ UvGrid buildUvGrid(const BaseMesh& mesh, const UvGridOptions& options) {
     std::sort(edges.begin(), edges.end());
     UnionFind islands(nf);
     std::vector<std::pair<uint64_t, uint32_t>> cellEdge;  // (linear cell, boundary half-edge)
-    std::vector<impl::UvEdgeLink> links;                // manifold UV edges, for fold detection
+    std::vector<impl::UvEdgeLink> links;                  // manifold UV edges, for fold detection
     for (size_t i = 0; i < edges.size();) {
         size_t j = i;
         while (j < edges.size() && edges[j].first == edges[i].first) ++j;
