@@ -16,13 +16,12 @@
 
 #include <nlohmann/json.hpp>
 
-#include "empty_result.hpp"
 #include "export_flags.hpp"
-#include "float_range.hpp"
 #include "frame_sink.hpp"
 #include "interrupt.hpp"
 #include "knit/cache.hpp"
 #include "knit/error.hpp"
+#include "knit/export.hpp"
 #include "knit/output_transaction.hpp"
 #include "path_collisions.hpp"
 #include "report.hpp"
@@ -286,8 +285,7 @@ int runAnimate(const AnimateCommand& a) {
     printWarnings(rest);
     // The rest pose sets every frame's curves, radii and ply pitch: refuse an empty output or
     // radii beyond float32 now (each frame's coordinates are range-checked as its mesh is read).
-    refuseValuesBeyondFloat32(rest, a.exportOptions);
-    refuseEmptyExport(rest, a.exportOptions);
+    checkSceneExport(rest, a.exportOptions);
     AnimatorOptions ao;
     ao.plies = a.exportOptions.what != ExportWhat::Yarns;
     // The statistics go into the report only: without one they are not computed (the distance

@@ -7,15 +7,14 @@
 
 #include <nlohmann/json.hpp>
 
-#include "empty_result.hpp"
 #include "export_flags.hpp"
 #include "export_report.hpp"
 #include "knit/animation.hpp"
 #include "knit/output_transaction.hpp"
 #include "knit/error.hpp"
+#include "knit/export.hpp"
 #include "knit/surface_export.hpp"
 #include "util/platform.hpp"
-#include "float_range.hpp"
 #include "path_collisions.hpp"
 #include "report.hpp"
 #include "rest_pose.hpp"
@@ -241,8 +240,8 @@ int runBuild(const BuildCommand& b) {
     if (built.detail() && !surface && exported.yarns().curves.curveCount() == 0)
         throw Error(
             "the view sees none of the cloth (every cell is culled): check --eye and --target; no file written");
-    refuseValuesBeyondFloat32(exported, b.exportOptions);
-    if (!surface) refuseEmptyExport(exported, b.exportOptions);
+    // Before the outputs are staged, so a refusal names -o (exportScene checks the staged path again).
+    checkSceneExport(exported, b.exportOptions, surface.get());
     // Step 3: the export, then the report, staged and committed together: an existing -o (or report)
     // stays unchanged unless both are complete.
     OutputTransaction outputs;

@@ -1,7 +1,8 @@
 // knit — command-line front end. Each subcommand (one file each) only composes library stages
 // (knit/scene.hpp) with the exporters (knit/export.hpp) and, when built, the render check
 // (knit/render.hpp). This file parses, dispatches and maps errors to exit codes:
-// 0 success, 1 bad input (knit::Error), 3 internal error, CLI11's codes for bad flags.
+// 0 success, 1 bad input (knit::Error, with the flag of each setting it names), 3 internal error,
+// CLI11's codes for bad flags.
 #include <cstdio>
 #include <exception>
 
@@ -14,6 +15,7 @@
 #include "info_command.hpp"
 #include "knit/error.hpp"
 #include "scene_flags.hpp"
+#include "setting_flags.hpp"
 #ifdef KNIT_HAVE_RENDER_CHECK
 #include "render_command.hpp"
 #endif
@@ -68,7 +70,8 @@ int runKnit(int argc, char** argv) {
         if (*fit.command) return runFit(fit);
 #endif
     } catch (const knit::Error& e) {
-        std::fprintf(stderr, "knit: error: %s\n", e.what());
+        // Library messages name settings in words; the CLI adds the flag that sets each.
+        std::fprintf(stderr, "knit: error: %s\n", withFlags(e.what()).c_str());
         return 1;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "knit: internal error: %s\n", e.what());

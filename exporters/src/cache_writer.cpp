@@ -3,20 +3,19 @@
 #include <cmath>
 #include <string>
 
+#include "formats.hpp"
 #include "io/atomic_file.hpp"
 #include "knit/cache.hpp"
 #include "knit/error.hpp"
 #include "point_cache.hpp"
 #include "text_out.hpp"
-#include "util/platform.hpp"
 
 namespace knit {
 
 bool cacheFormatOf(const std::string& path, CacheFormat& format) {
-    const std::string ext = util::lowerExtension(path);
-    if (ext == "pc2") format = CacheFormat::Pc2;
-    else if (ext == "mdd") format = CacheFormat::Mdd;
-    else return false;
+    const impl::Format* f = impl::formatOf(path);
+    if (!f || !f->pointCache) return false;
+    format = std::string(f->extension) == "mdd" ? CacheFormat::Mdd : CacheFormat::Pc2;
     return true;
 }
 
@@ -37,7 +36,7 @@ PointCacheWriter::PointCacheWriter(const std::string& path, const CacheInfo& inf
     if (info.points > INT32_MAX || info.frames > INT32_MAX)
         throw Error("cannot write point cache '" + path + "': more than 2^31-1 points or frames");
     if (format == CacheFormat::Mdd && !(info.fps > 0 && std::isfinite(info.fps)))
-        throw Error("cannot write point cache '" + path + "': --fps must be a positive number");
+        throw Error("cannot write point cache '" + path + "': the frame rate must be a positive number");
     // Step 2: the temporary file and the header.
     state_ = std::make_unique<State>(path);
     state_->format = format;

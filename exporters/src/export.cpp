@@ -12,6 +12,7 @@
 #include "formats.hpp"
 #include "knit/error.hpp"
 #include "material_extras.hpp"
+#include "scene_checks.hpp"
 #include "surface_gltf.hpp"
 #include "util/checks.hpp"
 #include "util/csr.hpp"
@@ -21,12 +22,14 @@ namespace knit {
 
 namespace {
 
-const char* kSupported = ".obj, .ply, .bcc, .pbrt, .gltf, .glb";
-
-bool isCurveFormat(const std::string& ext) { return ext == "bcc"; }
-bool isGltf(const std::string& ext) { return ext == "gltf" || ext == "glb"; }
-bool isKnownFormat(const std::string& ext) {
-    return ext == "obj" || ext == "ply" || ext == "bcc" || ext == "pbrt" || isGltf(ext);
+// A scene format (one exportScene writes), or null.
+const impl::Format* sceneFormat(const std::string& path) {
+    const impl::Format* f = impl::formatOf(path);
+    return f && !f->pointCache ? f : nullptr;
+}
+bool isGltf(const std::string& path) {
+    const impl::Format* f = sceneFormat(path);
+    return f && f->gltf;
 }
 
 const char* whatName(ExportWhat w) {
@@ -87,55 +90,60 @@ void validateInput(const ExportInput& in, bool tubes) {
                     std::to_string(c.points.size()) + " points");
 }
 
-// A tube-mesh glTF extension flag (--quantize, --meshopt) needs a .glb/.gltf output and tubes.
-void requireGltfTubes(const ExportOptions& o, const std::string& ext, bool tubes, const char* flag,
-                      const char* extension) {
-    if (!isGltf(ext))
-        throw Error("cannot export '" + o.path + "': " + flag + " (" + extension + ") needs a .glb or .gltf output");
+// A tube-mesh glTF extension (mesh quantization, meshopt compression) needs a .glb/.gltf output
+// and tubes.
+void requireGltfTubes(const ExportOptions& o, bool tubes, const char* setting, const char* extension) {
+    if (!isGltf(o.path))
+        throw Error("cannot export '" + o.path + "': " + setting + " needs a .glb or .gltf output (" + extension +
+                    " is a glTF extension)");
     if (!tubes)
-        throw Error("cannot export '" + o.path + "': " + flag + " applies to tube meshes only (--export tubes)");
+        throw Error("cannot export '" + o.path + "': " + setting + " applies to tube meshes only; what to export is " +
+                    whatName(o.what) + ", not tubes");
 }
 
 }  // namespace
 
-bool streamsPlies(const ExportOptions& o) {
-    return o.what == ExportWhat::Plies && isGltf(util::lowerExtension(o.path));
-}
+bool streamsPlies(const ExportOptions& o) { return o.what == ExportWhat::Plies && isGltf(o.path); }
 
 void validateExportOptions(const ExportOptions& o) {
     const std::string ext = util::lowerExtension(o.path);
     if (o.path.empty()) throw Error("export: no output path given");
-    if (!isKnownFormat(ext))
+    const impl::Format* format = sceneFormat(o.path);
+    if (!format)
         throw Error("cannot export '" + o.path + "': unknown extension '" + (ext.empty() ? "" : "." + ext) +
-                    "' (supported: " + kSupported + ")");
+                    "' (supported: " + impl::sceneFormatList(", ") + ")");
     const bool tubes = o.what == ExportWhat::Tubes;
-    if (tubes && isCurveFormat(ext))
-        throw Error("cannot export '" + o.path + "': ." + ext +
-                    " holds curves only; use --export yarns or --export plies (tubes need .glb/.gltf/.obj/.ply/.pbrt)");
+    if (tubes && !format->tubes)
+        throw Error("cannot export '" + o.path + "': ." + ext + " holds curves only: what to export must be yarns or " +
+                    "plies (tubes need " + impl::sceneFormatList("/", true) + ")");
     if (o.sides < 3 || o.sides > 1024)
-        throw Error("export: --sides must be in [3, 1024], got " + std::to_string(o.sides));
+        throw Error("export: the number of tube sides must be in [3, 1024], got " + std::to_string(o.sides));
     if (o.draco) {
-        if (!isGltf(ext))
-            throw Error("cannot export '" + o.path + "': --draco needs a .glb or .gltf output, not ." + ext);
+        if (!format->gltf)
+            throw Error("cannot export '" + o.path + "': Draco compression needs a .glb or .gltf output, not ." + ext);
         if (!tubes)
-            throw Error(std::string("cannot export '") + o.path + "': --draco compresses triangle meshes only; " +
-                        "it cannot be used with curves (--export " + whatName(o.what) + "); use --export tubes");
+            throw Error("cannot export '" + o.path + "': Draco compression applies to tube meshes only, not to " +
+                        "curves; what to export is " + whatName(o.what) + ", not tubes");
         if (o.quantize)
-            throw Error("cannot export '" + o.path + "': --draco and --quantize are alternatives; choose one");
+            throw Error("cannot export '" + o.path +
+                        "': Draco compression and mesh quantization are alternatives; choose one");
     }
-    if (o.quantize) requireGltfTubes(o, ext, tubes, "--quantize", "KHR_mesh_quantization");
+    if (o.quantize) requireGltfTubes(o, tubes, "mesh quantization", "KHR_mesh_quantization");
     if (o.meshopt) {
-        requireGltfTubes(o, ext, tubes, "--meshopt", "EXT_meshopt_compression");
-        if (o.draco) throw Error("cannot export '" + o.path + "': --draco and --meshopt are alternatives; choose one");
+        requireGltfTubes(o, tubes, "meshopt compression", "EXT_meshopt_compression");
+        if (o.draco)
+            throw Error("cannot export '" + o.path +
+                        "': Draco compression and meshopt compression are alternatives; choose one");
     }
     if (o.dracoBits < 1 || o.dracoBits > 30)
-        throw Error("export: --draco-bits must be in [1, 30], got " + std::to_string(o.dracoBits));
+        throw Error("export: the Draco position bits must be in [1, 30], got " + std::to_string(o.dracoBits));
     if (o.dracoNormalBits < 1 || o.dracoNormalBits > 30 || o.dracoTexcoordBits < 1 || o.dracoTexcoordBits > 30)
         throw Error("export: Draco normal/texcoord bits must be in [1, 30]");
     if (o.dracoLevel < 0 || o.dracoLevel > 10)
-        throw Error("export: --draco-level must be in [0, 10], got " + std::to_string(o.dracoLevel));
+        throw Error("export: the Draco level must be in [0, 10], got " + std::to_string(o.dracoLevel));
     if (o.chunkVertices != 0 && o.chunkVertices < 16)
-        throw Error("export: --chunk-vertices must be 0 (auto) or at least 16, got " + std::to_string(o.chunkVertices));
+        throw Error("export: the vertices per chunk must be 0 (auto) or at least 16, got " +
+                    std::to_string(o.chunkVertices));
     if (o.maxBufferBytes < 1024 || o.maxBufferBytes > 0xFFFFFFF0ull)
         throw Error("export: the glTF buffer size limit must be in [1024, 4294967280] bytes");
 }
@@ -154,7 +162,7 @@ ExportStats exportCurves(const ExportInput& input, const ExportOptions& requeste
     validateInput(input, tubes);
     const std::string ext = util::lowerExtension(options.path);
     if (input.surface) {
-        if (!isGltf(ext))
+        if (!isGltf(options.path))
             throw Error("cannot export '" + options.path +
                         "': the view's surface level (base-mesh triangles with the baked knit material) is written "
                         "to .glb or .gltf only");
@@ -190,14 +198,9 @@ ExportStats exportCurves(const ExportInput& input, const ExportOptions& requeste
           << " m";
         job.header = h.str();
     }
-    if (tubes && input.curves)
-        impl::checkTubeExportBudget(*input.curves, job.tube, options, ext == "gltf" || ext == "glb");
-    // Step 2: dispatch on the extension.
-    if (ext == "obj") impl::exportObj(job);
-    else if (ext == "ply") impl::exportPly(job);
-    else if (ext == "bcc") impl::exportBcc(job);
-    else if (ext == "pbrt") impl::exportPbrt(job);
-    else impl::exportGltf(job, ext == "glb");
+    if (tubes && input.curves) impl::checkTubeExportBudget(*input.curves, job.tube, options, isGltf(options.path));
+    // Step 2: the format's writer (formats.cpp).
+    sceneFormat(options.path)->write(job);
 
     stats.peakMemoryBytes = util::peakResidentBytes();
     stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -206,17 +209,11 @@ ExportStats exportCurves(const ExportInput& input, const ExportOptions& requeste
 
 ExportStats exportScene(const Scene& scene, const ExportOptions& options, const SurfaceLayer* surface) {
     validateExportOptions(options);
+    checkSceneExport(scene, options, surface);
     // Step: choose the curves (yarn centrelines, built plies, or plies generated while writing)
     // and their radius.
     const bool havePlies = scene.plies().curves.curveCount() > 0;
-    bool usePlies = false;
-    switch (options.what) {
-        case ExportWhat::Yarns: usePlies = false; break;
-        case ExportWhat::Plies: usePlies = true; break;
-        case ExportWhat::Tubes:
-            usePlies = options.tubesOf == TubeSource::Plies || (options.tubesOf == TubeSource::Auto && havePlies);
-            break;
-    }
+    const bool usePlies = impl::exportsPlies(scene, options);
     nlohmann::json extras = {{"generator", "libknit"}, {"yarnRadius", scene.yarnRadius()}};
     std::vector<uint32_t> yarnIds;
     ExportInput in;

@@ -38,7 +38,8 @@ void checkTubeExportBudget(const Polylines& curves, const TubeOptions& tube, con
          << (inFlight == 1 ? " chunk" : " chunks") << " in memory at once";
     if (options.draco) what << ", Draco at " << options.dracoBits << " bits";
     options.budget.require(perChunk * inFlight, what.str(),
-                           options.draco ? "--draco-bits, --sides or --chunk-vertices" : "--sides or --chunk-vertices");
+                           options.draco ? "the Draco position bits, the number of tube sides or the vertices per chunk"
+                                         : "the number of tube sides or the vertices per chunk");
 }
 
 }  // namespace knit::impl

@@ -102,13 +102,14 @@ MorphGlbWriter::MorphGlbWriter(const std::string& path, MorphTopology base, size
     impl::checkOutputFolder(path);
     if (frames == 0) throw Error("cannot write animated glTF '" + path + "': no frames");
     if (!(options.fps > 0 && std::isfinite(options.fps)))
-        throw Error("cannot write animated glTF '" + path + "': --fps must be a positive number");
+        throw Error("cannot write animated glTF '" + path + "': the frame rate must be a positive number");
     const size_t n = base.positions.size();
     const double bytes = morphGlbBytes(n, base.indices.size(), frames, base.triangles);
     if (bytes > kGlbLimit)
         throw Error("cannot write animated glTF '" + path + "': needs about " + formatGiB(bytes) + " for " +
                     std::to_string(frames) + " frames of " + std::to_string(n) +
-                    " vertices, over the 4 GiB a GLB holds; use fewer frames (--step, --last) or a point cache (.pc2)");
+                    " vertices, over the 4 GiB a GLB holds; raise the frame step or lower the last frame for fewer " +
+                    "frames, or write a point cache (.pc2)");
     if (base.triangles && base.normals.size() != n)
         throw Error("cannot write animated glTF '" + path + "': triangles need one normal per vertex");
     if (!base.colours.empty() && base.colours.size() != n)

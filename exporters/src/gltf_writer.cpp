@@ -147,7 +147,8 @@ public:
     void reserve(uint64_t bytes) {
         if (bytes + 4 > maxBytes_)
             throw Error("cannot export '" + output_ + "': one chunk needs " + std::to_string(bytes) +
-                        " bytes, more than the buffer limit " + std::to_string(maxBytes_) + "; lower --chunk-vertices");
+                        " bytes, more than the buffer limit " + std::to_string(maxBytes_) +
+                        "; lower the vertices per chunk");
         if (files_.empty() || sizes_.back() + bytes + 4 > maxBytes_) openBuffer();
     }
     int buffer() const { return int(files_.size()) - 1; }
@@ -718,7 +719,7 @@ private:
         if (bytes + 4 > job_.options.maxBufferBytes)
             throw Error("cannot export '" + job_.options.path + "': a chunk needs up to " + std::to_string(bytes) +
                         " bytes, more than the buffer limit " + std::to_string(job_.options.maxBufferBytes) +
-                        "; lower --chunk-vertices (a single curve longer than the limit cannot be split)");
+                        "; lower the vertices per chunk (a single curve longer than the limit cannot be split)");
     }
 
     // One chunk's node: a POSITION view (stride 12) holding every curve's points and a _RADIUS

@@ -61,7 +61,7 @@ MeshoptView encodeMeshoptTriangles(const void* indices, size_t count, size_t ind
 #else
 
 void requireMeshopt() {
-    throw Error("--meshopt: this build has no meshoptimizer (configure with KNIT_WITH_MESHOPT=ON and "
+    throw Error("meshopt compression: this build has no meshoptimizer (configure with KNIT_WITH_MESHOPT=ON and "
                 "libmeshoptimizer-dev installed)");
 }
 MeshoptView encodeMeshoptAttributes(const void*, size_t, size_t) {

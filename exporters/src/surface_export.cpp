@@ -12,8 +12,7 @@ namespace knit {
 
 void checkSurfaceOutput(const std::string& path) {
     if (util::lowerExtension(path) != "glb")
-        throw Error("cannot export '" + path +
-                    "': the surface level (--surface-only) is written as GLB only (use a .glb name)");
+        throw Error("cannot export '" + path + "': the surface level alone is written as GLB only (use a .glb name)");
     impl::checkOutputFolder(path);
 }
 

@@ -1,4 +1,6 @@
 // python/src/export.cpp — export_scene: a built scene to a file (format by extension).
+#include <vector>
+
 #include "bindings.hpp"
 #include "knit/budget.hpp"
 #include "knit/error.hpp"
@@ -55,7 +57,8 @@ void registerExport(py::module_& m) {
         "compression: Draco meshes, quantized attributes, meshopt compression (meshopt: tubes only). max_memory: "
         "the memory budget as a size ('8G'; '' = min(4 GiB, half the physical memory)): "
         "an export whose estimated size is over it raises knit.Error before writing. Returns the export's "
-        "counts. Raises knit.Error.");
+        "counts. Raises knit.Error (an empty result, values beyond float32, bad options; naming the keyword "
+        "of a setting it names), before any file is written.");
 }
 
 }  // namespace knitpy

@@ -7,17 +7,12 @@
 
 namespace knitpy {
 
-// "" = the default budget (min(4 GiB, half the physical memory)), else a size such as "8G";
-// a text that is not a size raises knit.Error naming the keyword (not the CLI's flag).
+// "" = the default budget (min(4 GiB, half the physical memory)), else a size such as "8G"; a
+// text that is not a size raises knit.Error ("the memory budget (max_memory) 'lots': expected a
+// size ...": the library's words, the keyword added by the module's translator).
 inline knit::MemoryBudget memoryBudgetArg(const std::string& maxMemory) {
     if (maxMemory.empty()) return knit::MemoryBudget();
-    try {
-        return knit::MemoryBudget(knit::parseMemorySize(maxMemory));
-    } catch (const knit::Error&) {
-        throw knit::Error("max_memory '" + maxMemory +
-                          "': expected a size such as '8G', '512M', '64K' or a number "
-                          "of bytes");
-    }
+    return knit::MemoryBudget(knit::parseMemorySize(maxMemory));
 }
 
 }  // namespace knitpy

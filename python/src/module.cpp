@@ -1,69 +1,38 @@
 // python/src/module.cpp — the extension `knit._knit`: knit.Error and the parts of the API.
-#include <cctype>
 #include <string>
+#include <vector>
 
 #include <pybind11/pybind11.h>
 
 #include "bindings.hpp"
 #include "knit/error.hpp"
+#include "knit/setting_spelling.hpp"
 
 namespace knitpy {
 namespace {
 
-// The library's messages may name a setting by the command line's flag ("raise --ply-pitch");
-// a Python user knows it by its keyword argument, or, for a setting the module does not expose,
-// by its name in words. Other flags (of commands the module does not have) stay as they are.
-struct Spelling {
-    const char* flag;
-    const char* keyword;
-};
-constexpr Spelling kSpellings[] = {
-    {"--plies", "plies"},
-    {"--ply-pitch", "ply_pitch"},
-    {"--ply-radius", "ply_radius"},
-    {"--ply-center-radius", "center_radius"},
-    {"--samples-per-turn", "samples_per_turn"},
-    {"--twist", "twist"},
-    {"--repeats", "repeats"},
-    {"--mesh", "mesh"},
-    {"--clamp-tolerance", "clamp_tolerance"},
-    {"--weld-tolerance", "weld_tolerance"},
-    {"--max-memory", "max_memory"},
-    {"--export", "what"},
-    {"--sides", "sides"},
-    {"--draco", "draco"},
-    {"--quantize", "quantize"},
-    {"--meshopt", "meshopt"},
-    {"--yarn-colors", "yarn_colors"},
-    {"--chunk-vertices", "the vertices per export chunk"},
-    {"--draco-bits", "the Draco quantization bits"},
-    {"--draco-level", "the Draco compression level"},
-    {"--gauge", "a gauge"},
-};
-
-bool flagChar(char c) { return std::islower(static_cast<unsigned char>(c)) || c == '-'; }
-
-// `message` with every whole flag of kSpellings replaced by its keyword.
-std::string pythonSpelling(const std::string& message) {
-    std::string out;
-    out.reserve(message.size());
-    size_t i = 0;
-    while (i < message.size()) {
-        const bool starts = message.compare(i, 2, "--") == 0 && (i == 0 || !flagChar(message[i - 1]));
-        if (!starts) {
-            out += message[i++];
-            continue;
-        }
-        size_t end = i + 2;
-        while (end < message.size() && flagChar(message[end])) ++end;
-        const std::string flag = message.substr(i, end - i);
-        const char* keyword = nullptr;
-        for (const Spelling& s : kSpellings)
-            if (flag == s.flag) keyword = s.keyword;
-        out += keyword ? std::string(keyword) : flag;
-        i = end;
-    }
-    return out;
+// Library messages name settings in words ("raise the ply pitch", knit/setting_spelling.hpp); a
+// Python user gets this module's keyword after them ("raise the ply pitch (ply_pitch)"). Settings
+// the module has no keyword for stay in words.
+const std::vector<knit::SettingSpelling>& keywords() {
+    static const std::vector<knit::SettingSpelling> k = {
+        {"the repeats", "repeats"},
+        {"the clamp tolerance", "clamp_tolerance"},
+        {"the weld tolerance", "weld_tolerance"},
+        {"the number of plies", "plies"},
+        {"the ply radius", "ply_radius"},
+        {"the ply centre radius", "center_radius"},
+        {"the ply pitch", "ply_pitch"},
+        {"the samples per turn", "samples_per_turn"},
+        {"the twist direction", "twist"},
+        {"the memory budget", "max_memory"},
+        {"what to export", "what"},
+        {"the number of tube sides", "sides"},
+        {"Draco compression", "draco"},
+        {"mesh quantization", "quantize"},
+        {"meshopt compression", "meshopt"},
+    };
+    return k;
 }
 
 pybind11::exception<knit::Error>* knitError = nullptr;
@@ -75,14 +44,14 @@ PYBIND11_MODULE(_knit, m) {
     m.doc() = "libknit: knitted fabric at ply level on a UV-mapped triangle mesh (pattern -> scene -> "
               "binding -> evaluate -> plies -> export). Arrays are numpy; lengths are metres.";
     // knit::Error (bad files, meshes, options) arrives as knit.Error with the library's message,
-    // settings spelled as this module's keywords (pythonSpelling). The local translator is tried
+    // settings followed by this module's keywords (keywords() above). The local translator is tried
     // before the one register_exception installs.
     knitpy::knitError = &pybind11::register_exception<knit::Error>(m, "Error", PyExc_Exception);
     pybind11::register_local_exception_translator([](std::exception_ptr p) {
         try {
             if (p) std::rethrow_exception(p);
         } catch (const knit::Error& e) {
-            (*knitpy::knitError)(knitpy::pythonSpelling(e.what()).c_str());
+            (*knitpy::knitError)(knit::spellSettings(e.what(), knitpy::keywords()).c_str());
         }
     });
     knitpy::registerPatternAndMesh(m);

@@ -45,9 +45,32 @@ def test_export_meshopt_tubes_are_smaller_than_plain_ones(scene, tmp_path):
 
 def test_export_over_the_memory_budget_raises_and_writes_nothing(scene, tmp_path):
     path = tmp_path / "t.glb"
-    with pytest.raises(knit.Error, match="max_memory") as e:
+    with pytest.raises(knit.Error, match=r"over the memory budget \(max_memory\)") as e:
         knit.export_scene(scene, str(path), what="tubes", max_memory="1K")
     assert "--" not in str(e.value)
     assert not path.exists()
-    with pytest.raises(knit.Error, match="max_memory 'lots'"):
+    with pytest.raises(knit.Error, match=r"the memory budget \(max_memory\) 'lots'"):
         knit.export_scene(scene, str(tmp_path / "x.obj"), max_memory="lots")
+
+
+def test_export_errors_name_the_keywords_not_cli_flags(scene, tmp_path):
+    # The library names settings in words; export_scene adds its keyword after the first mention.
+    with pytest.raises(knit.Error) as e:
+        knit.export_scene(scene, str(tmp_path / "c.glb"), what="plies", draco=True)
+    message = str(e.value)
+    assert "Draco compression (draco) applies to tube meshes only" in message
+    assert "what to export (what) is plies" in message
+    assert "--" not in message
+    with pytest.raises(knit.Error, match=r"the number of tube sides \(sides\) must be in \[3, 1024\], got 2"):
+        knit.export_scene(scene, str(tmp_path / "t.obj"), what="tubes", sides=2)
+
+
+def test_export_of_an_empty_result_raises_and_writes_nothing(tmp_path):
+    # No pattern period fits the mesh: no yarn lands on it. Refused by the library, as by the CLI.
+    empty = knit.build_scene("stockinette", "plane", repeats=(1e-6, 1e-6))
+    for name in ["e.obj", "e.glb", "e.bcc"]:
+        path = tmp_path / name
+        with pytest.raises(knit.Error, match="nothing to export: no yarn of pattern 'stockinette' lands on mesh"):
+            knit.export_scene(empty, str(path), what="yarns")
+        assert not path.exists()
+    assert list(tmp_path.iterdir()) == []

@@ -114,7 +114,7 @@ def test_max_memory_refuses_a_scene_over_the_budget_before_building_it():
 
 
 def test_max_memory_that_is_not_a_size_is_refused_naming_the_keyword():
-    with pytest.raises(knit.Error, match="max_memory 'lots': expected a size") as e:
+    with pytest.raises(knit.Error, match=r"the memory budget \(max_memory\) 'lots': expected a size") as e:
         knit.build_scene("stockinette", "plane", repeats=(2, 2), max_memory="lots")
     assert "--" not in str(e.value)
 

@@ -218,12 +218,14 @@ TEST_F(Cli, badOptionValuesAreNamedByTheirOptionNotByLibraryInternals) {
     const std::string base = "build -q --mesh plane --repeats 2 2 -o out.obj ";
     const std::vector<std::pair<std::string, std::string>> cases = {
         {"--ply-pitch -1",
-         "knit: error: --ply-pitch must be a finite length >= 0 in metres (0 = 6 yarn radii), got -1"},
+         "knit: error: the ply pitch (--ply-pitch) must be a finite length >= 0 in metres (0 = 6 yarn radii), got -1"},
         {"--ply-center-radius -0.5",
-         "knit: error: --ply-center-radius must be a finite length >= 0 in metres (0 = touching plies filling the "
-         "yarn), got -0.5"},
-        {"--samples-per-turn 2", "knit: error: --samples-per-turn must be in 3..1024, got 2"},
-        {"--plies 1 --ply-center-radius 1", "knit: error: --ply-radius: cannot derive it for one ply"},
+         "knit: error: the ply centre radius (--ply-center-radius) must be a finite length >= 0 in metres (0 = "
+         "touching plies filling the yarn), got -0.5"},
+        {"--samples-per-turn 2", "knit: error: the samples per turn (--samples-per-turn) must be in 3..1024, got 2"},
+        {"--plies 1 --ply-center-radius 1",
+         "knit: error: the ply radius (--ply-radius): cannot derive it for one ply with the ply centre radius "
+         "(--ply-center-radius) 1 >= the yarn radius"},
     };
     for (const auto& [flags, expected] : cases) {
         const CliRun r = knit(base + flags, dir);

@@ -170,7 +170,7 @@ TEST_F(FitCli, fitRendersFromTheCameraOfThePhotographs) {
     std::printf("fit loss with the photographs' camera %.4g, with the default framing %.4g\n", withCamera, framed);
     fs::remove(dir / "m.json");
     expectCleanError("--front cam_front.png --back cam_back.png --eye 0 0 0 --target 0 0 0",
-                     {"--eye and --target must differ"});
+                     {"the eye position (--eye) and the target position (--target) must differ"});
     const CliRun sized = run(kFit + "--front cam_front.png --back cam_back.png --width 16 -o m.json");
     EXPECT_NE(sized.exitCode, 0) << "the photographs fix the image size";
     EXPECT_NE(sized.output.find("--width"), std::string::npos) << sized.output;

@@ -41,7 +41,8 @@ TEST(GaugeCli, gaugeWithRepeatsOrMalformedFailsNamingTheFlags) {
     const test::CliRun bad =
         test::runKnit("build -q --mesh plane --gauge 22x30/10ft -o y.obj --export yarns", dir.path());
     EXPECT_EQ(bad.exitCode, 1);
-    EXPECT_NE(bad.output.find("--gauge '22x30/10ft': unknown length unit 'ft'"), std::string::npos) << bad.output;
+    EXPECT_NE(bad.output.find("the gauge (--gauge) '22x30/10ft': unknown length unit 'ft'"), std::string::npos)
+        << bad.output;
 }
 
 }  // namespace

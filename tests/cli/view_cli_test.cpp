@@ -36,7 +36,7 @@ protected:
 
 TEST_F(ViewCli, badViewsNameTheOptionAndWriteNothing) {
     const std::pair<const char*, const char*> cases[] = {
-        {"--eye 0 1 0 --target 0 1 0", "--eye and --target must differ"},
+        {"--eye 0 1 0 --target 0 1 0", "the eye position (--eye) and the target position (--target) must differ"},
         {"--eye 0 1 0 --target 0 0 0 --up 0 -3 0", "--up"},
         {"--eye 0 1 0.2 --target 0 0 0 --fov 0", "--fov"},
         {"--eye 0 1 0.2 --target 0 0 0 --fov 180", "--fov"},

@@ -51,8 +51,8 @@ TEST(ExportErrors, dracoWithCurvesIsRefused) {
     o.what = ExportWhat::Plies;
     o.draco = true;
     const std::string e = errorOf(test::mixedCurves(), o);
-    EXPECT_TRUE(contains(e, "--draco")) << e;
-    EXPECT_TRUE(contains(e, "curves")) << e;
+    EXPECT_TRUE(contains(e, "Draco compression applies to tube meshes only, not to curves")) << e;
+    EXPECT_TRUE(contains(e, "what to export is plies, not tubes")) << e;
     EXPECT_TRUE(test::listDir(dir).empty());
 }
 
@@ -65,14 +65,14 @@ TEST(ExportErrors, dracoOutsideGltfAndDracoWithQuantizeAreRefused) {
     EXPECT_TRUE(contains(errorOf(test::mixedCurves(), o), "needs a .glb or .gltf"));
     o.path = dir + "/t.glb";
     o.quantize = true;
-    EXPECT_TRUE(contains(errorOf(test::mixedCurves(), o), "--quantize"));
+    EXPECT_TRUE(contains(errorOf(test::mixedCurves(), o), "Draco compression and mesh quantization"));
     o.draco = false;
     o.what = ExportWhat::Yarns;
     EXPECT_TRUE(contains(errorOf(test::mixedCurves(), o), "tube meshes only"));
     o.what = ExportWhat::Tubes;
     o.quantize = false;
     o.sides = 2;
-    EXPECT_TRUE(contains(errorOf(test::mixedCurves(), o), "--sides"));
+    EXPECT_TRUE(contains(errorOf(test::mixedCurves(), o), "the number of tube sides must be in [3, 1024], got 2"));
     EXPECT_TRUE(test::listDir(dir).empty());
 }
 
@@ -155,7 +155,7 @@ TEST(ExportErrors, chunkLargerThanBufferLimitIsRefusedWithoutFiles) {
     o.chunkVertices = 500;
     o.maxBufferBytes = 100000;
     const std::string e = errorOf(c, o);
-    EXPECT_TRUE(contains(e, "--chunk-vertices")) << e;
+    EXPECT_TRUE(contains(e, "lower the vertices per chunk")) << e;
     EXPECT_TRUE(test::listDir(dir).empty()) << "left: " << (test::listDir(dir).empty() ? "" : test::listDir(dir)[0]);
 }
 
@@ -218,6 +218,73 @@ TEST(ExportScene, pliesYarnsAndTubesPickTheRightCurves) {
     EXPECT_EQ(exportScene(s, o).vertices, (42 + 33 + 27) * 5u);
 }
 
+// What no file should hold is refused by exportScene itself, for every caller (the CLI, Python,
+// C++), naming why, before anything is written.
+TEST(ExportScene, emptyResultIsRefusedNamingWhyAndWritesNothing) {
+    const std::string dir = test::scratchDir("scene_empty");
+    SceneOptions so;
+    so.mesh = "plane";
+    so.placement.repeats = {1e-6, 1e-6};  // no pattern period fits the mesh: no yarn lands on it
+    const Scene none = buildScene(so);
+    ASSERT_EQ(none.yarns().curves.pointCount(), 0u);
+    ExportOptions o;
+    for (const ExportWhat what : {ExportWhat::Yarns, ExportWhat::Plies, ExportWhat::Tubes})
+        for (const char* name : {"/e.obj", "/e.glb", "/e.bcc"}) {
+            o.what = what;
+            o.path = dir + name;
+            if (what == ExportWhat::Tubes && o.path.back() == 'c') continue;  // .bcc holds no tubes
+            const std::string e = test::errorOf([&] { exportScene(none, o); });
+            EXPECT_TRUE(contains(e, "nothing to export: no yarn of pattern 'stockinette' lands on mesh 'plane'")) << e;
+            EXPECT_TRUE(contains(e, "; no file written")) << e;
+        }
+    // Yarns, but a ply pitch longer than every yarn: no ply curve.
+    so.placement.repeats = {3, 3};
+    so.plies.pitch = 1e30;
+    const Scene noPlies = buildScene(so);
+    ASSERT_GT(noPlies.yarns().curves.pointCount(), 0u);
+    o.what = ExportWhat::Plies;
+    o.path = dir + "/p.glb";
+    const std::string e = test::errorOf([&] { exportScene(noPlies, o); });
+    EXPECT_TRUE(contains(e, "nothing to export: every yarn is shorter than one ply sample")) << e;
+    o.what = ExportWhat::Yarns;  // the yarns are there
+    o.path = dir + "/y.obj";
+    EXPECT_GT(exportScene(noPlies, o).curves, 0u);
+    std::filesystem::remove(o.path);
+    EXPECT_TRUE(test::listDir(dir).empty());
+}
+
+TEST(ExportScene, valuesBeyondFloat32AreRefusedNamingTheValue) {
+    const std::string dir = test::scratchDir("scene_float32");
+    SceneOptions so;
+    so.mesh = "plane";
+    so.placement.repeats = {3, 3};
+    so.plies.pitch = 1e39;  // a double, beyond any float32
+    so.buildPlies = false;
+    const Scene far = buildScene(so);
+    ExportOptions o;
+    o.path = dir + "/p.obj";  // every format refuses radii and pitch beyond float32
+    std::string e = test::errorOf([&] { exportScene(far, o); });
+    EXPECT_TRUE(contains(e, "cannot write '" + o.path + "': the ply pitch 1e+39 is beyond the float32 range")) << e;
+    o.what = ExportWhat::Yarns;  // no plies written: the pitch does not matter
+    EXPECT_GT(exportScene(far, o).curves, 0u);
+    std::filesystem::remove(o.path);
+
+    // Coordinates: refused for a float32 format, kept in double precision by .obj.
+    SceneParts parts;
+    parts.yarnRadius = 0.002;
+    parts.yarns.curves = test::mixedCurves();
+    parts.yarns.curves.points[0].x = 5e38;
+    const Scene huge = Scene::fromParts(std::move(parts));
+    o.path = dir + "/y.glb";
+    e = test::errorOf([&] { exportScene(huge, o); });
+    EXPECT_TRUE(contains(e, "cannot write '" + o.path + "': a coordinate of the curves 5e+38 is beyond the float32"))
+        << e;
+    o.path = dir + "/y.obj";
+    EXPECT_GT(exportScene(huge, o).curves, 0u);
+    std::filesystem::remove(o.path);
+    EXPECT_TRUE(test::listDir(dir).empty());
+}
+
 // A scene built without plies still exports plies: generated while writing (streamed into
 // glTF/GLB, generated in full for other formats), the same curves a scene with plies holds.
 TEST(ExportScene, pliesOfASceneBuiltWithoutPliesAreGeneratedWhileWriting) {
@@ -261,11 +328,14 @@ TEST(ExportScene, pliesOfASceneBuiltWithoutPliesAreGeneratedWhileWriting) {
         exportScene(broken, o);
         FAIL() << "expected knit::Error";
     } catch (const Error& e) {
-        EXPECT_TRUE(contains(e.what(), "--samples-per-turn")) << e.what();
+        EXPECT_TRUE(contains(e.what(), "the samples per turn")) << e.what();
     }
     EXPECT_FALSE(std::filesystem::exists(o.path));
-    o.what = ExportWhat::Tubes;  // auto: the yarns of a scene without plies
+    o.what = ExportWhat::Tubes;  // auto: the yarns of a scene without plies, but plies were asked for
     o.path = dir + "/tubes.obj";
+    EXPECT_TRUE(contains(test::errorOf([&] { exportScene(broken, o); }), "the samples per turn"));
+    o.what = ExportWhat::Yarns;
+    o.path = dir + "/yarns.obj";
     EXPECT_EQ(exportScene(broken, o).curves, broken.yarns().curves.curveCount());
 }
 

@@ -143,7 +143,8 @@ TEST(GltfClients, curveFileNamesTheRadiusAttributeInAssetExtras) {
     for (double r : test::readAttribute(d, prim, "_RADIUS")) ASSERT_FLOAT_EQ(float(r), 0.002f);
 }
 
-// --meshopt needs a glTF output and tubes, and is an alternative to Draco (messages name the flag).
+// meshopt compression needs a glTF output and tubes, and is an alternative to Draco (messages name
+// the setting in words).
 TEST(GltfClients, meshoptNeedsGltfTubesAndIsNoDracoCompanion) {
     const std::string dir = test::scratchDir("gltf_clients_meshopt_errors");
     const Polylines c = test::mixedCurves();
@@ -158,15 +159,18 @@ TEST(GltfClients, meshoptNeedsGltfTubesAndIsNoDracoCompanion) {
     ExportOptions obj = test::tubeOptions(dir + "/t.obj", 8);
     obj.meshopt = true;
     EXPECT_EQ(errorOf(obj),
-              "cannot export '" + obj.path + "': --meshopt (EXT_meshopt_compression) needs a .glb or .gltf output");
+              "cannot export '" + obj.path +
+                  "': meshopt compression needs a .glb or .gltf output (EXT_meshopt_compression is a glTF extension)");
     ExportOptions curves;
     curves.path = dir + "/c.glb";
     curves.meshopt = true;
     EXPECT_EQ(errorOf(curves),
-              "cannot export '" + curves.path + "': --meshopt applies to tube meshes only (--export tubes)");
+              "cannot export '" + curves.path +
+                  "': meshopt compression applies to tube meshes only; what to export is plies, not tubes");
     ExportOptions both = test::tubeOptions(dir + "/b.glb", 8);
     both.meshopt = both.draco = true;
-    EXPECT_EQ(errorOf(both), "cannot export '" + both.path + "': --draco and --meshopt are alternatives; choose one");
+    EXPECT_EQ(errorOf(both), "cannot export '" + both.path +
+                                 "': Draco compression and meshopt compression are alternatives; choose one");
 }
 
 #ifdef KNIT_WITH_MESHOPT

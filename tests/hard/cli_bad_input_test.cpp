@@ -104,10 +104,13 @@ TEST_F(CliBadInput, hugeMeshAtPhysicalSizeIsRefusedClearly) {
 
 TEST_F(CliBadInput, overTheMemoryBudgetIsRefusedNamingOptionAndEstimate) {
     expectFailure(kSmall + std::string("--ply-pitch 1e-7 -o out.obj"), "(estimate) for");
-    expectFailure(kSmall + std::string("--ply-pitch 1e-7 -o out.obj"), "--samples-per-turn (or raise --ply-pitch)");
-    expectFailure(std::string("build -q --mesh plane --mesh-res 4 --repeats 3000 3000 --max-memory 64M -o out.obj"),
-                  "lower --repeats or raise --max-memory");
-    expectFailure(kSmall + std::string("--max-memory 8X -o out.obj"), "--max-memory '8X'");
+    expectFailure(kSmall + std::string("--ply-pitch 1e-7 -o out.obj"),
+                  "lower the samples per turn (--samples-per-turn), or raise the ply pitch (--ply-pitch), or raise the "
+                  "memory budget");
+    const std::string big = "build -q --mesh plane --mesh-res 4 --repeats 3000 3000 --max-memory 64M -o out.obj";
+    expectFailure(big, "over the memory budget (--max-memory) of ");
+    expectFailure(big, "; lower the repeats (--repeats) or raise the memory budget");
+    expectFailure(kSmall + std::string("--max-memory 8X -o out.obj"), "the memory budget (--max-memory) '8X'");
     const CliRun raised = knit(kSmall + std::string("--max-memory 1G -o out.obj"), dir);
     EXPECT_EQ(raised.exitCode, 0) << raised.output;
 }
@@ -116,10 +119,12 @@ TEST_F(CliBadInput, overTheMemoryBudgetIsRefusedNamingOptionAndEstimate) {
 // names the option that drives it; no file is written.
 TEST_F(CliBadInput, bigAllocationsOfEachCommandAreRefusedNamingTheirOption) {
     expectFailure("generate stockinette --samples 1000000 --max-memory 16M -o p.pyp",
-                  "for 1000000 pattern samples, over the memory budget of 0.016 GiB; lower --samples");
+                  "for 1000000 pattern samples, over the memory budget (--max-memory) of 0.016 GiB; lower the samples "
+                  "per stitch (--samples)");
     expectFailure(
         kSmall + std::string("--export tubes --sides 1024 --chunk-vertices 100000000 --max-memory 64M -o t.obj"),
-        "lower --sides or --chunk-vertices or raise --max-memory");
+        "lower the number of tube sides (--sides) or the vertices per chunk (--chunk-vertices) or raise the memory "
+        "budget");
     // A glTF whose one quad mesh is instanced by 100 nodes: 52800 B expanded, over 40 KiB.
     knit_test::GltfBuilder g;
     g.mesh({0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}, {0, 1, 1, 1, 1, 0, 0, 0}, {0, 1, 2, 0, 2, 3});
@@ -156,9 +161,9 @@ TEST_F(CliBadInput, inputsThatAreNotRegularFilesAreRefusedWithoutBlocking) {
 
 TEST_F(CliBadInput, absurdSearchTolerancesAreRefusedNamingTheOption) {
     expectFailure(kSmall + std::string("--clamp-tolerance 1e12 -o out.obj"),
-                  "--clamp-tolerance) reaches beyond one pattern period");
+                  "the clamp tolerance (--clamp-tolerance) 1e+12 yarn radii reaches beyond one pattern period");
     expectFailure(kSmall + std::string("--weld-tolerance 1e300 -o out.obj"),
-                  "--weld-tolerance) reaches beyond one pattern period");
+                  "the weld tolerance (--weld-tolerance) 1e+300 yarn radii reaches beyond one pattern period");
 }
 
 TEST_F(CliBadInput, outputsThatOverwriteAnInputOrEachOtherAreRefusedBeforeAnyWork) {
@@ -248,9 +253,11 @@ TEST_F(CliBadInput, exportsWithNoCurvesAreRefusedSayingWhy) {
     write("noedge.pyp", "*pattern\n0.01 0.01 0.001 2\n*Q\n0 0 0 0\n0.005 0.005 0 0\n*E\n");
     expectFailure(std::string("build -q --mesh plane --repeats 3 3 --pattern noedge.pyp -o out.obj"),
                   "nothing to export: the pattern 'noedge.pyp' has no edges");
-    expectFailure(std::string("build -q --mesh plane --repeats 1e-6 1e-6 -o out.obj"), "raise --repeats");
+    expectFailure(std::string("build -q --mesh plane --repeats 1e-6 1e-6 -o out.obj"), "raise the repeats (--repeats)");
     for (const char* out : {"out.obj", "out.glb"})
-        expectFailure(kSmall + std::string("--ply-pitch 1e30 -o ") + out, "no ply curve was made; lower --ply-pitch");
+        expectFailure(kSmall + std::string("--ply-pitch 1e30 -o ") + out,
+                      "shorter than one ply sample, the ply pitch (--ply-pitch) 1e+30 m over the samples per turn "
+                      "(--samples-per-turn) 12, so no ply curve was made; lower the ply pitch");
     const CliRun yarns = knit(kSmall + std::string("--ply-pitch 1e30 --export yarns -o y.obj"), dir);
     EXPECT_EQ(yarns.exitCode, 0) << yarns.output;  // the yarns alone are not empty
 }
@@ -277,20 +284,23 @@ TEST_F(CliBadInput, coordinatesBeyondFloatRangeAndByteOrderMarksAreNamed) {
 
 TEST_F(CliBadInput, optionErrorsNameTheOptionNotTheInternalField) {
     expectFailure(kSmall + std::string("--ply-pitch -1 -o out.obj"),
-                  "--ply-pitch must be a finite length >= 0 in metres (0 = 6 yarn radii), got -1");
-    expectFailure(kSmall + std::string("--ply-radius -1 -o out.obj"), "--ply-radius must be a finite length >= 0");
+                  "the ply pitch (--ply-pitch) must be a finite length >= 0 in metres (0 = 6 yarn radii), got -1");
+    expectFailure(kSmall + std::string("--ply-radius -1 -o out.obj"),
+                  "the ply radius (--ply-radius) must be a finite length >= 0");
     expectFailure(kSmall + std::string("--samples-per-turn 2 -o out.obj"),
-                  "--samples-per-turn must be in 3..1024, got 2");
+                  "the samples per turn (--samples-per-turn) must be in 3..1024, got 2");
     expectFailure(kSmall + std::string("--clamp-tolerance -1 -o out.obj"),
-                  "--clamp-tolerance and --weld-tolerance must be finite and >= 0");
+                  "the clamp tolerance (--clamp-tolerance) and the weld tolerance (--weld-tolerance) must be finite "
+                  "and >= 0");
     const CliRun r = knit(kSmall + std::string("--ply-pitch -1 -o out.obj"), dir);
     EXPECT_EQ(r.output.find("binding:"), std::string::npos) << r.output;
 }
 
 TEST_F(CliBadInput, valuesBeyondFloat32AreRefusedNamingTheOption) {
     expectFailure(kSmall + std::string("--ply-pitch 1e39 -o out.glb"),
-                  "the ply pitch 1e+39 is beyond the float32 range (3.4e38); lower --ply-pitch");
-    expectFailure(kSmall + std::string("--ply-radius 1e39 -o out.obj"), "lower --ply-radius");
+                  "the ply pitch (--ply-pitch) 1e+39 is beyond the float32 range (3.4e38); lower the ply pitch");
+    expectFailure(kSmall + std::string("--ply-radius 1e39 -o out.obj"),
+                  "the ply radius (--ply-radius) 1e+39 is beyond the float32 range (3.4e38); lower the ply radius");
     write(
         "edge.obj",
         "v 0 0 0\nv 3.4e38 0 0\nv 3.4e38 3.4e38 0\nv 0 3.4e38 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3 4/4\n");

@@ -32,30 +32,30 @@ std::string errorOf(const View& v) {
     return "";
 }
 
-TEST(View, badViewsNameTheOption) {
+TEST(View, badViewsNameTheSetting) {
     View v = lookDownZ();
     EXPECT_EQ(errorOf(v), "");
     v.target = v.eye;
-    EXPECT_NE(errorOf(v).find("--eye and --target must differ"), std::string::npos);
+    EXPECT_NE(errorOf(v).find("the eye position and the target position must differ"), std::string::npos);
     v = lookDownZ(), v.up = {0, 0, 5};
-    EXPECT_NE(errorOf(v).find("--up"), std::string::npos);
+    EXPECT_NE(errorOf(v).find("the up direction must not be parallel"), std::string::npos);
     for (double fov : {0.0, -5.0, 180.0, 200.0}) {
         v = lookDownZ(), v.fovDegrees = fov;
-        EXPECT_NE(errorOf(v).find("--fov"), std::string::npos) << fov;
+        EXPECT_NE(errorOf(v).find("the field of view"), std::string::npos) << fov;
     }
     const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
     v = lookDownZ(), v.eye.y = nan;
-    EXPECT_NE(errorOf(v).find("--eye"), std::string::npos);
+    EXPECT_NE(errorOf(v).find("the eye position"), std::string::npos);
     v = lookDownZ(), v.target.x = inf;
-    EXPECT_NE(errorOf(v).find("--target"), std::string::npos);
+    EXPECT_NE(errorOf(v).find("the target position"), std::string::npos);
     v = lookDownZ(), v.up.z = nan;
-    EXPECT_NE(errorOf(v).find("--up"), std::string::npos);
+    EXPECT_NE(errorOf(v).find("the up direction"), std::string::npos);
     v = lookDownZ(), v.fovDegrees = nan;
-    EXPECT_NE(errorOf(v).find("--fov"), std::string::npos);
+    EXPECT_NE(errorOf(v).find("the field of view"), std::string::npos);
     v = lookDownZ(), v.width = 0;
-    EXPECT_NE(errorOf(v).find("--width"), std::string::npos);
+    EXPECT_NE(errorOf(v).find("the image width"), std::string::npos);
     v = lookDownZ(), v.height = -3;
-    EXPECT_NE(errorOf(v).find("--height"), std::string::npos);
+    EXPECT_NE(errorOf(v).find("the image height"), std::string::npos);
 }
 
 TEST(View, targetProjectsToImageCentreAndEdgesToBorders) {

@@ -258,23 +258,23 @@ TEST(Plies, sAndZTwistHaveOppositeHandedness) {
 
 TEST(Plies, invalidPlyOptionsRejected) {
     const std::vector<std::pair<std::function<void(PlyOptions&)>, std::string>> cases{
-        {[](PlyOptions& o) { o.count = 0; }, "--plies"},
-        {[](PlyOptions& o) { o.count = 17; }, "--plies"},
+        {[](PlyOptions& o) { o.count = 0; }, "the number of plies"},
+        {[](PlyOptions& o) { o.count = 17; }, "the number of plies"},
         {[](PlyOptions& o) { o.yarnRadius = 0.0; }, "the yarn radius"},
         {[](PlyOptions& o) { o.yarnRadius = -0.001; }, "the yarn radius"},
         {[](PlyOptions& o) { o.yarnRadius = std::numeric_limits<double>::quiet_NaN(); }, "the yarn radius"},
-        {[](PlyOptions& o) { o.centerRadius = -0.001; }, "--ply-center-radius"},
-        {[](PlyOptions& o) { o.plyRadius = std::numeric_limits<double>::infinity(); }, "--ply-radius"},
-        {[](PlyOptions& o) { o.pitch = -0.01; }, "--ply-pitch"},
-        {[](PlyOptions& o) { o.pitch = std::numeric_limits<double>::quiet_NaN(); }, "--ply-pitch"},
-        {[](PlyOptions& o) { o.samplesPerTurn = 2; }, "--samples-per-turn"},
-        {[](PlyOptions& o) { o.samplesPerTurn = 1025; }, "--samples-per-turn"},
-        {[](PlyOptions& o) { o.twist = static_cast<Twist>(7); }, "--twist"},
+        {[](PlyOptions& o) { o.centerRadius = -0.001; }, "the ply centre radius"},
+        {[](PlyOptions& o) { o.plyRadius = std::numeric_limits<double>::infinity(); }, "the ply radius"},
+        {[](PlyOptions& o) { o.pitch = -0.01; }, "the ply pitch"},
+        {[](PlyOptions& o) { o.pitch = std::numeric_limits<double>::quiet_NaN(); }, "the ply pitch"},
+        {[](PlyOptions& o) { o.samplesPerTurn = 2; }, "the samples per turn"},
+        {[](PlyOptions& o) { o.samplesPerTurn = 1025; }, "the samples per turn"},
+        {[](PlyOptions& o) { o.twist = static_cast<Twist>(7); }, "the twist direction"},
         {[](PlyOptions& o) {
              o.count = 1;
              o.centerRadius = 0.002;
          },
-         "--ply-radius"},
+         "the ply radius"},
     };
     MappedYarns y;
     addYarn(y, {dvec3(0, 0, 0), dvec3(0.01, 0, 0)}, false);

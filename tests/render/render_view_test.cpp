@@ -56,7 +56,8 @@ TEST(RenderView, defaultCameraFramesTheBaseMeshGrownByTheYarnMargin) {
         renderScene(s, given);
         FAIL() << "eye = target accepted";
     } catch (const Error& e) {
-        EXPECT_NE(std::string(e.what()).find("--eye and --target must differ"), std::string::npos);
+        EXPECT_NE(std::string(e.what()).find("the eye position and the target position must differ"),
+                  std::string::npos);
     }
 }
 

@@ -1,4 +1,4 @@
-// Placement with a gauge (--gauge): parsing, the repeats it gives, and its exclusion of --repeats.
+// Placement with a gauge: parsing, the repeats it gives, and its exclusion of the repeats.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -27,8 +27,8 @@ TEST(Gauge, parsesStitchesRowsAndLengthInEveryUnit) {
     EXPECT_DOUBLE_EQ(parseGauge("22.5x30/10cm").stitches, 22.5);
 }
 
-TEST(Gauge, malformedGaugesNameTheFlagAndWhatIsWrong) {
-    EXPECT_NE(gaugeError("22x30").find("--gauge '22x30': no '/' before the length"), std::string::npos)
+TEST(Gauge, malformedGaugesNameTheSettingAndWhatIsWrong) {
+    EXPECT_NE(gaugeError("22x30").find("the gauge '22x30': no '/' before the length"), std::string::npos)
         << gaugeError("22x30");
     EXPECT_NE(gaugeError("22/10cm").find("no 'x' between stitches and rows"), std::string::npos);
     EXPECT_NE(gaugeError("22x30/10").find("the length has no unit"), std::string::npos);
@@ -37,7 +37,7 @@ TEST(Gauge, malformedGaugesNameTheFlagAndWhatIsWrong) {
     EXPECT_NE(gaugeError("22xabc/10cm").find("rows 'abc' is not a number"), std::string::npos);
     EXPECT_NE(gaugeError("22x30/cm").find("length '' is not a number"), std::string::npos);
     EXPECT_NE(gaugeError("22x30/-1cm").find("length '-1' must be positive"), std::string::npos);
-    EXPECT_NE(gaugeError("").find("--gauge ''"), std::string::npos);
+    EXPECT_NE(gaugeError("").find("the gauge ''"), std::string::npos);
 }
 
 // The built-in plane is 0.5 m square; one period of the generated stockinette is one stitch by
@@ -71,7 +71,7 @@ TEST(Gauge, gaugeWithRepeatsIsAnErrorNamingBoth) {
     o.gauge = parseGauge("22x30/10cm");
     o.repeats = {4, 4};
     const std::string e = test::errorOf([&] { placePattern(generateStockinette(), makePlane(), o); });
-    EXPECT_NE(e.find("--gauge and --repeats are mutually exclusive"), std::string::npos) << e;
+    EXPECT_NE(e.find("the gauge and the repeats are mutually exclusive"), std::string::npos) << e;
 }
 
 // Without a gauge the placement is what it was: the same repeats and scale.

@@ -60,7 +60,7 @@ struct ExportOptions {
 
     // Chunking: at most this many tube vertices (tubes) or curve points (curves) per chunk;
     // 0 = auto: 1M (2^20), or 256k (2^18) with Draco, whose encoder needs ~0.5 KB per vertex, or
-    // 65535 with --quantize / --meshopt (every chunk then fits UNSIGNED_SHORT indices).
+    // 65535 with quantize / meshopt (every chunk then fits UNSIGNED_SHORT indices).
     // Streamed plies are planned per yarn from a lower bound of their point count (resampling
     // adds a few percent on curved yarns), so their chunks may exceed it slightly; a curve or
     // yarn longer than the limit gets a chunk of its own.
@@ -95,7 +95,9 @@ struct ExportStats {
 };
 
 // Writes atomically (temporary file in the same folder, then rename): on error no output file
-// exists. Throws knit::Error for unknown extensions, unwritable paths, conflicting options.
+// exists. Throws knit::Error for unknown extensions, unwritable paths, conflicting options, and
+// what checkSceneExport() refuses (an empty result, values beyond float32), before any file is
+// written.
 //
 // Plies of a scene built without them (SceneOptions::buildPlies = false): `what = Plies` (and
 // tubes of plies) generates them from scene.yarns with scene.plyOptions during the export, the
@@ -109,6 +111,16 @@ struct ExportStats {
 // the root node, with its own material and textures; other formats refuse it (knit::Error).
 ExportStats exportScene(const Scene& scene, const ExportOptions& options, const SurfaceLayer* surface = nullptr);
 
+// What no file should hold, refused (knit::Error naming the output, the value and what drives it)
+// before anything is written; exportScene() calls it, and a front end may call it earlier to fail
+// before other work (`knit animate` does for the point caches it writes with PointCacheWriter):
+//   - a value beyond the float32 range: the yarn radius; the ply pitch and radii when plies are
+//     written; the curves' coordinates in a float32 format (.bcc .pbrt .gltf .glb .pc2 .mdd);
+//   - an export without a curve ("nothing to export: <why>; no file written"): a pattern without
+//     edges, no yarn on the mesh, every yarn shorter than one ply sample. Not refused when
+//     `surface` (a view's surface level, written beside the curves) is given.
+void checkSceneExport(const Scene& scene, const ExportOptions& options, const SurfaceLayer* surface = nullptr);
+
 // Lower-level entry: exports the given curves (yarn centrelines or plies) with constant `radius`.
 // `yarnOfCurve` (optional, one entry per curve) selects the COLOR_0 palette entry and is stored;
 // `materialExtrasJson` (optional: the text of a JSON object) goes into the glTF material's extras.
@@ -121,7 +133,7 @@ struct ExportInput {
     const std::vector<uint32_t>* yarnOfCurve = nullptr;
     const std::vector<glm::dvec3>* seedNormals = nullptr;  // per point, tube frame seed (optional)
     // Per point, the linear yarn colour (optional; a pattern with colours): COLOR_0 in glTF (tubes
-    // and curves, unless --yarn-colors), vertex colours in PLY, per-curve colours in pbrt.
+    // and curves, unless yarnColors), vertex colours in PLY, per-curve colours in pbrt.
     const std::vector<glm::vec3>* colours = nullptr;
     // glTF material extras as JSON object text, e.g. {"generator":"libknit"} (empty: none; the
     // exporter adds radius and tube fields). Anything but a JSON object is a knit::Error.
@@ -136,7 +148,8 @@ ExportStats exportCurves(const ExportInput& input, const ExportOptions& options)
 bool streamsPlies(const ExportOptions& options);
 
 // Checks the options against each other and the extension; throws knit::Error naming the
-// conflict (e.g. --draco with curves, --draco with --quantize, Draco for a non-glTF format).
+// conflict (e.g. Draco compression of curves, Draco compression with mesh quantization, Draco for a
+// non-glTF format) and the settings in words (knit/setting_spelling.hpp).
 void validateExportOptions(const ExportOptions& options);
 
 }  // namespace knit

@@ -16,7 +16,8 @@ public:
 
     // Throws knit::Error when `estimateBytes` (may be huge or inf) is over the budget:
     // "needs about X GiB (estimate) for <what>, over the memory budget of Y GiB; lower
-    // <option> or raise --max-memory". `what` names the counts ("1e10 pattern cells").
+    // <option> or raise the memory budget". `what` names the counts ("1e10 pattern cells"),
+    // `option` the settings that drive them in words ("the repeats"; knit/setting_spelling.hpp).
     void require(double estimateBytes, const std::string& what, const std::string& option) const;
 
     static uint64_t defaultBytes();
@@ -25,7 +26,7 @@ private:
     uint64_t bytes_;
 };
 
-// "8G", "512M", "1.5g", "64K", "2T" or plain bytes; throws knit::Error naming --max-memory
+// "8G", "512M", "1.5g", "64K", "2T" or plain bytes; throws knit::Error naming the memory budget
 // for anything else (or zero).
 uint64_t parseMemorySize(const std::string& text);
 

@@ -34,7 +34,7 @@ struct Gauge {
     double length = 0;  // metres
 };
 // Parses "STITCHES x ROWS / LENGTH" with LENGTH a number and a unit mm, cm, m or in, e.g.
-// "22x30/10cm" (blanks allowed, X for x). Throws knit::Error "--gauge 'TEXT': what is wrong".
+// "22x30/10cm" (blanks allowed, X for x). Throws knit::Error "the gauge 'TEXT': what is wrong".
 Gauge parseGauge(const std::string& text);
 
 struct PlacementOptions {

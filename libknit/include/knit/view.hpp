@@ -20,9 +20,11 @@ struct View {
     double orthoHeight = 1.0;  // world height of the image (orthographic)
 };
 
-// Throws knit::Error naming the CLI option at fault: --eye / --target / --up / --fov when not
-// finite; "--eye and --target must differ"; --up parallel to the view direction; --fov outside
-// (0, 180); --width / --height below 1; an orthographic height that is not positive.
+// Throws knit::Error naming the setting at fault (knit/setting_spelling.hpp): the eye position, target
+// position, up direction or field of view when not finite; "the eye position and the target
+// position must differ"; the up direction parallel to the view direction; the field of view
+// outside (0, 180); the image width or height below 1; an orthographic height that is not
+// positive.
 void validateView(const View& view);
 
 // The camera's orthonormal frame: forward (eye to target), right, and up (image up).

@@ -31,8 +31,8 @@ void validateBindInput(const BaseMesh& mesh, const std::vector<glm::dvec3>& norm
     if (!util::positiveFinite(options.yarnRadius) || !(options.clampTolerance >= 0) || !(options.weldTolerance >= 0) ||
         !util::finite(options.clampTolerance) || !util::finite(options.weldTolerance))
         throw Error(
-            "--clamp-tolerance and --weld-tolerance must be finite and >= 0, and the yarn radius (the pattern's radius "
-            "times its placement scale) positive");
+            "the clamp tolerance and the weld tolerance must be finite and >= 0, and the yarn radius (the pattern's "
+            "radius times its placement scale) positive");
     if (normals.size() != mesh.positions.size())
         throw Error("binding the yarns: " + std::to_string(normals.size()) + " vertex normals for " +
                     std::to_string(mesh.positions.size()) + " mesh vertices");
@@ -50,15 +50,15 @@ void validateBindInput(const BaseMesh& mesh, const std::vector<glm::dvec3>& norm
 void requireBoundedSearch(const UvGrid& grid, glm::dvec2 metresPerUv, const BindOptions& options) {
     const double period =
         std::max(grid.cellSize.x * metresPerUv.x, grid.cellSize.y * metresPerUv.y) / options.yarnRadius;
-    const auto require = [&](double tolerance, const char* name, const char* option) {
+    const auto require = [&](double tolerance, const char* name) {
         if (!(tolerance > period)) return;
         std::ostringstream msg;
-        msg << name << " " << tolerance << " yarn radii (" << option << ") reaches beyond one pattern period ("
-            << period << " yarn radii of " << options.yarnRadius << " m here); use at most that";
+        msg << name << " " << tolerance << " yarn radii reaches beyond one pattern period (" << period
+            << " yarn radii of " << options.yarnRadius << " m here); use at most that";
         throw Error(msg.str());
     };
-    require(options.clampTolerance, "clamp tolerance", "--clamp-tolerance");
-    if (options.weld) require(options.weldTolerance, "weld tolerance", "--weld-tolerance");
+    require(options.clampTolerance, "the clamp tolerance");
+    if (options.weld) require(options.weldTolerance, "the weld tolerance");
 }
 
 }  // namespace

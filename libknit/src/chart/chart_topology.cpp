@@ -128,7 +128,7 @@ double loopParameter(const RowLayout& rows, const StitchLoop& l, int i, int n) {
 
 ChartCell chartToCell(const Chart& chart, const ChartCellOptions& options) {
     if (!util::positiveFinite(options.radius)) throw Error("knitting chart: the yarn radius must be positive");
-    if (options.samplesPerStitch < 8) throw Error("knitting chart: --samples (samples per stitch) must be >= 8");
+    if (options.samplesPerStitch < 8) throw Error("knitting chart: the samples per stitch must be >= 8");
     const int n = options.samplesPerStitch;
     const double s = options.radius / kModelRadius;  // metres per model unit
     ChartCell cell;

@@ -139,7 +139,7 @@ Plies piecePlies(const MappedYarns& yarns, const std::vector<YarnSpan>& spans, c
     out.pitch = g.options().pitch;
     for (Plies& part : parts) {
         if (out.curves.points.size() + part.curves.points.size() > UINT32_MAX)
-            throw Error("more than 2^32-1 ply points; raise --ply-pitch or lower --samples-per-turn");
+            throw Error("more than 2^32-1 ply points; raise the ply pitch or lower the samples per turn");
         out.curves.append(part.curves);
         out.yarnOfCurve.insert(out.yarnOfCurve.end(), part.yarnOfCurve.begin(), part.yarnOfCurve.end());
         out.plyOfCurve.insert(out.plyOfCurve.end(), part.plyOfCurve.begin(), part.plyOfCurve.end());

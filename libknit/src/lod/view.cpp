@@ -26,21 +26,22 @@ glm::dvec2 halfExtent(const View& v) {
 }  // namespace
 
 void validateView(const View& v) {
-    if (!util::finite(v.eye)) throw Error("--eye must be three finite numbers");
-    if (!util::finite(v.target)) throw Error("--target must be three finite numbers");
-    if (!util::finite(v.up)) throw Error("--up must be three finite numbers");
-    if (!std::isfinite(v.fovDegrees)) throw Error("--fov must be a finite number of degrees");
+    if (!util::finite(v.eye)) throw Error("the eye position must be three finite numbers");
+    if (!util::finite(v.target)) throw Error("the target position must be three finite numbers");
+    if (!util::finite(v.up)) throw Error("the up direction must be three finite numbers");
+    if (!std::isfinite(v.fovDegrees)) throw Error("the field of view must be a finite number of degrees");
     const glm::dvec3 dir = v.target - v.eye;
     const double len = glm::length(dir);
-    if (!(len > 0) || !std::isfinite(len)) throw Error("--eye and --target must differ");
+    if (!(len > 0) || !std::isfinite(len)) throw Error("the eye position and the target position must differ");
     const double upLen = glm::length(v.up);
-    if (!(upLen > 0)) throw Error("--up must not be the zero vector");
+    if (!(upLen > 0)) throw Error("the up direction must not be the zero vector");
     if (glm::length(glm::cross(dir / len, v.up / upLen)) < 1e-6)
-        throw Error("--up must not be parallel to the view direction (from --eye to --target)");
+        throw Error("the up direction must not be parallel to the view direction, from the eye position to the target "
+                    "position");
     if (!v.orthographic && !(v.fovDegrees > 0 && v.fovDegrees < 180))
-        throw Error("--fov must be between 0 and 180 degrees (got " + std::to_string(v.fovDegrees) + ")");
-    if (v.width < 1) throw Error("--width must be at least 1 pixel (got " + std::to_string(v.width) + ")");
-    if (v.height < 1) throw Error("--height must be at least 1 pixel (got " + std::to_string(v.height) + ")");
+        throw Error("the field of view must be between 0 and 180 degrees (got " + std::to_string(v.fovDegrees) + ")");
+    if (v.width < 1) throw Error("the image width must be at least 1 pixel (got " + std::to_string(v.width) + ")");
+    if (v.height < 1) throw Error("the image height must be at least 1 pixel (got " + std::to_string(v.height) + ")");
     if (v.orthographic && !util::positiveFinite(v.orthoHeight))
         throw Error("the orthographic image height must be positive and finite");
 }

@@ -238,8 +238,7 @@ BaseMesh impl::gltfMeshOf(const gltf::Document& doc, const MeshLoadOptions& opti
     // fallback buffer (which has no data) as missing.
     for (const std::string& e : doc.extensionsUsed())
         if (e == "EXT_meshopt_compression" || e == "KHR_meshopt_compression")
-            doc.fail(e +
-                     " is not supported (compressed buffer views); export the base mesh without meshopt compression");
+            doc.fail(e + " is not supported (compressed buffer views); export the base mesh uncompressed");
     checkExpansionBudget(doc, options.budget);
     TriangleCollector triangles(doc, options.maxElements, poser);
     doc.forEachMeshInstance([&](const gltf::MeshInstance& instance) { triangles.add(instance); });

@@ -19,7 +19,7 @@ Pattern generateStockinette(const StockinetteParams& prm) {
     // Before allocating: a point, a twist and an edge per sample, and validation's working copies.
     constexpr double kBytesPerSample = 96;
     prm.budget.require(double(prm.samplesPerStitch) * kBytesPerSample,
-                       std::to_string(prm.samplesPerStitch) + " pattern samples", "--samples");
+                       std::to_string(prm.samplesPerStitch) + " pattern samples", "the samples per stitch");
     const double s = prm.radius / prm.modelRadius;  // metres per model unit
     Pattern p;
     p.name = "stockinette";

@@ -59,11 +59,10 @@ std::string num(double v) {
     return buf;
 }
 
-// Messages name the command-line option that sets the value (API users: the PlyOptions field
-// of the same name).
-void requireNonNegativeFinite(double v, const char* option, const char* meaning) {
+// `setting` names the value in words (knit/setting_spelling.hpp).
+void requireNonNegativeFinite(double v, const char* setting, const char* meaning) {
     if (!std::isfinite(v) || v < 0.0)
-        throw Error(std::string(option) + " must be a finite length >= 0 in metres (" + meaning + "), got " + num(v));
+        throw Error(std::string(setting) + " must be a finite length >= 0 in metres (" + meaning + "), got " + num(v));
 }
 
 }  // namespace
@@ -71,18 +70,19 @@ void requireNonNegativeFinite(double v, const char* option, const char* meaning)
 PlyOptions resolvePlyOptions(const PlyOptions& options) {
     PlyOptions o = options;
     // Validate.
-    if (o.count < 1 || o.count > 16) throw Error("--plies must be in 1..16, got " + std::to_string(o.count));
+    if (o.count < 1 || o.count > 16)
+        throw Error("the number of plies must be in 1..16, got " + std::to_string(o.count));
     if (!util::positiveFinite(o.yarnRadius))
         throw Error("the yarn radius " + num(o.yarnRadius) +
-                    " m must be a positive finite length (it is the pattern's radius times its placement scale: "
-                    "check the pattern file's radius and --repeats)");
-    requireNonNegativeFinite(o.centerRadius, "--ply-center-radius", "0 = touching plies filling the yarn");
-    requireNonNegativeFinite(o.plyRadius, "--ply-radius", "0 = touching plies filling the yarn");
-    requireNonNegativeFinite(o.pitch, "--ply-pitch", "0 = 6 yarn radii");
+                    " m must be a positive finite length; it is the pattern's radius times its placement scale: "
+                    "check the pattern file's radius and the repeats");
+    requireNonNegativeFinite(o.centerRadius, "the ply centre radius", "0 = touching plies filling the yarn");
+    requireNonNegativeFinite(o.plyRadius, "the ply radius", "0 = touching plies filling the yarn");
+    requireNonNegativeFinite(o.pitch, "the ply pitch", "0 = 6 yarn radii");
     if (o.samplesPerTurn < 3 || o.samplesPerTurn > 1024)
-        throw Error("--samples-per-turn must be in 3..1024, got " + std::to_string(o.samplesPerTurn));
+        throw Error("the samples per turn must be in 3..1024, got " + std::to_string(o.samplesPerTurn));
     if (o.twist != Twist::S && o.twist != Twist::Z)
-        throw Error("--twist must be S or Z, got " + std::to_string(static_cast<int>(o.twist)));
+        throw Error("the twist direction must be S or Z, got " + std::to_string(static_cast<int>(o.twist)));
     // Fill defaults: touching plies that fill the yarn.
     const double n = static_cast<double>(o.count);
     const double sinPiN = o.count == 1 ? 0.0 : std::sin(util::kPi / n);
@@ -90,8 +90,9 @@ PlyOptions resolvePlyOptions(const PlyOptions& options) {
     if (o.plyRadius == 0.0) {
         o.plyRadius = o.count == 1 ? o.yarnRadius - o.centerRadius : o.centerRadius * sinPiN;
         if (!(o.plyRadius > 0.0))
-            throw Error("--ply-radius: cannot derive it for one ply with --ply-center-radius " + num(o.centerRadius) +
-                        " >= the yarn radius " + num(o.yarnRadius) + "; set --ply-radius explicitly");
+            throw Error("the ply radius: cannot derive it for one ply with the ply centre radius " +
+                        num(o.centerRadius) + " >= the yarn radius " + num(o.yarnRadius) +
+                        "; set the ply radius explicitly");
     }
     if (o.pitch == 0.0) o.pitch = 6.0 * o.yarnRadius;
     return o;
@@ -291,7 +292,7 @@ Plies makePlies(const PlyGenerator& generator) {
     }
     batchStart.push_back(C.curveCount());
     const auto tooMany = [] {
-        return Error("more than 2^32-1 ply points; raise --ply-pitch or lower --samples-per-turn");
+        return Error("more than 2^32-1 ply points; raise the ply pitch or lower the samples per turn");
     };
     if (estimate > UINT32_MAX) throw tooMany();
 

@@ -317,7 +317,7 @@ struct CurveBuffer {
 
 void validateResampleInput(const MappedYarns& yarns, const ResampleOptions& options) {
     if (!util::positiveFinite(options.spacing))
-        throw Error("the ply sample spacing (--ply-pitch / --samples-per-turn) must be a positive finite length, "
+        throw Error("the ply sample spacing, the ply pitch / the samples per turn, must be a positive finite length, "
                     "got " +
                     std::to_string(options.spacing));
     const Polylines& in = yarns.curves;
@@ -373,7 +373,7 @@ MappedYarns resampleYarns(const MappedYarns& yarns, const ResampleOptions& optio
     if (total > UINT32_MAX)
         throw Error(
             "about " + std::to_string(total) +
-            " resampled points (more than 2^32-1) at this spacing; raise --ply-pitch or lower --samples-per-turn");
+            " resampled points (more than 2^32-1) at this spacing; raise the ply pitch or lower the samples per turn");
 
     // Step 3: resample chunk by chunk into separate buffers.
     std::vector<CurveBuffer> buffers(chunks);
@@ -401,7 +401,8 @@ MappedYarns resampleYarns(const MappedYarns& yarns, const ResampleOptions& optio
     out.curves.closed.assign(in.closed.begin(), in.closed.end());
     for (size_t k = 0; k < chunks; ++k) pointStart[k + 1] = pointStart[k] + buffers[k].points.size();
     if (pointStart[chunks] > UINT32_MAX)
-        throw Error("more than 2^32-1 resampled points at this spacing; raise --ply-pitch or lower --samples-per-turn");
+        throw Error(
+            "more than 2^32-1 resampled points at this spacing; raise the ply pitch or lower the samples per turn");
     for (size_t k = 0; k < chunks; ++k)
         for (const uint32_t size : buffers[k].sizes) out.curves.offsets.push_back(out.curves.offsets.back() + size);
     // The two big arrays are allocated (and zero-filled) concurrently.

@@ -21,7 +21,7 @@ std::string count(double n, const char* what) {
 }
 
 const char* repeatsOption(bool physicalSize) {
-    return physicalSize ? "the mesh's size at the pattern's physical size (give --repeats)" : "--repeats";
+    return physicalSize ? "the mesh's size at the pattern's physical size, or set the repeats," : "the repeats";
 }
 
 }  // namespace
@@ -73,7 +73,7 @@ void checkPlyBudget(const MappedYarns& yarns, const PlyOptions& resolved, const 
     const double samples = length / resolved.pitch * resolved.samplesPerTurn + double(c.pointCount());
     const double points = samples * resolved.count;
     budget.require(points * kBytesPerPlyPoint + samples * 96, count(points, "ply vertices"),
-                   "--samples-per-turn (or raise --ply-pitch)");
+                   "the samples per turn, or raise the ply pitch,");
 }
 
 }  // namespace knit::impl

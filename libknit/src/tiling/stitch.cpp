@@ -147,7 +147,7 @@ UvYarns stitchYarns(const Pattern& pattern, const PatternAdjacency& adj, const T
 void appendIslandYarns(UvYarns& yarns, const UvYarns& more, uint32_t island) {
     const size_t base = yarns.vertexCount();
     if (base + more.vertexCount() > UINT32_MAX)
-        throw Error("more than 2^32-1 pattern vertices tiled over all UV islands; lower --repeats");
+        throw Error("more than 2^32-1 pattern vertices tiled over all UV islands; lower the repeats");
     yarns.island.resize(yarns.yarnCount(), UINT32_MAX);  // earlier yarns without an island: any
     yarns.ghosts.resize(yarns.yarnCount());
     yarns.uv.insert(yarns.uv.end(), more.uv.begin(), more.uv.end());

@@ -19,7 +19,7 @@ namespace knit {
 namespace {
 
 [[noreturn]] void badGauge(const std::string& text, const std::string& what) {
-    throw Error("--gauge '" + text + "': " + what +
+    throw Error("the gauge '" + text + "': " + what +
                 " (expected STITCHES x ROWS / LENGTH with a unit mm, cm, m or in, e.g. 22x30/10cm)");
 }
 
@@ -87,10 +87,10 @@ PatternPlacement placePattern(const Pattern& pattern, const BaseMesh& mesh, cons
         throw Error(msg.str());
     }
     if (options.gauge && !physical)
-        throw Error("--gauge and --repeats are mutually exclusive (a gauge sets the repeats)");
+        throw Error("the gauge and the repeats are mutually exclusive (a gauge sets the repeats)");
     if (options.gauge && !(util::positiveFinite(options.gauge->stitches) && util::positiveFinite(options.gauge->rows) &&
                            util::positiveFinite(options.gauge->length)))
-        throw Error("--gauge: stitches, rows and length must be positive and finite");
+        throw Error("the gauge: stitches, rows and length must be positive and finite");
     // Step 2: the mesh's own size and the repeats.
     const glm::dvec2 metresPerUv = uvToMetreScale(mesh);
     if (!(metresPerUv.x > 0 && metresPerUv.y > 0))

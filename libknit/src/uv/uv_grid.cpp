@@ -192,7 +192,7 @@ uint64_t uvGridEntryBound(const BaseMesh& mesh, glm::dvec2 cellSize) {
 UvGrid buildUvGrid(const BaseMesh& mesh, const UvGridOptions& options) {
     if (!util::positiveFinite(options.cellSize))
         throw Error(
-            "UV grid: the pattern period in UV (from --repeats or the physical size) must be positive and finite");
+            "UV grid: the pattern period in UV, from the repeats or the physical size, must be positive and finite");
     UvGrid grid;
     grid.cellSize = options.cellSize;
     const size_t nf = mesh.faces.size();

@@ -1,5 +1,5 @@
-// The memory budget: its default from the physical memory, the size parser of --max-memory, and
-// the refusal message every estimate shares.
+// The memory budget: its default from the physical memory, the parser of its size, and the
+// refusal message every estimate shares.
 #include "knit/budget.hpp"
 
 #include <algorithm>
@@ -36,7 +36,7 @@ MemoryBudget::MemoryBudget() : bytes_(defaultBytes()) {}
 void MemoryBudget::require(double estimateBytes, const std::string& what, const std::string& option) const {
     if (estimateBytes <= double(bytes_)) return;  // NaN falls through: refused too
     throw Error("needs about " + formatGiB(estimateBytes) + " (estimate) for " + what + ", over the memory budget of " +
-                formatGiB(double(bytes_)) + "; lower " + option + " or raise --max-memory");
+                formatGiB(double(bytes_)) + "; lower " + option + " or raise the memory budget");
 }
 
 std::string formatGiB(double bytes) {
@@ -50,7 +50,7 @@ std::string formatGiB(double bytes) {
 
 uint64_t parseMemorySize(const std::string& text) {
     const auto bad = [&] {
-        return Error("--max-memory '" + text + "': expected a size such as 8G, 512M, 64K or a number of bytes");
+        return Error("the memory budget '" + text + "': expected a size such as 8G, 512M, 64K or a number of bytes");
     };
     if (text.empty()) throw bad();
     char* end = nullptr;

@@ -1,0 +1,48 @@
+// The flags of the settings library messages name (see setting_flags.hpp).
+#include "setting_flags.hpp"
+
+namespace knit::cli {
+
+const std::vector<SettingSpelling>& settingFlags() {
+    static const std::vector<SettingSpelling> flags = {
+        // The scene: placement, binding, plies, memory.
+        {"the repeats", "--repeats"},
+        {"the gauge", "--gauge"},
+        {"the clamp tolerance", "--clamp-tolerance"},
+        {"the weld tolerance", "--weld-tolerance"},
+        {"the number of plies", "--plies"},
+        {"the ply radius", "--ply-radius"},
+        {"the ply centre radius", "--ply-center-radius"},
+        {"the ply pitch", "--ply-pitch"},
+        {"the samples per turn", "--samples-per-turn"},
+        {"the twist direction", "--twist"},
+        {"the samples per stitch", "--samples"},
+        {"the memory budget", "--max-memory"},
+        // The view.
+        {"the eye position", "--eye"},
+        {"the target position", "--target"},
+        {"the up direction", "--up"},
+        {"the field of view", "--fov"},
+        {"the image width", "--width"},
+        {"the image height", "--height"},
+        // The export.
+        {"what to export", "--export"},
+        {"the number of tube sides", "--sides"},
+        {"the vertices per chunk", "--chunk-vertices"},
+        {"Draco compression", "--draco"},
+        {"the Draco position bits", "--draco-bits"},
+        {"the Draco level", "--draco-level"},
+        {"mesh quantization", "--quantize"},
+        {"meshopt compression", "--meshopt"},
+        {"the surface level alone", "--surface-only"},
+        // Animation.
+        {"the frame rate", "--fps"},
+        {"the frame step", "--step"},
+        {"the last frame", "--last"},
+    };
+    return flags;
+}
+
+std::string withFlags(const std::string& message) { return spellSettings(message, settingFlags()); }
+
+}  // namespace knit::cli
