@@ -12,10 +12,10 @@
 #include "io/special_file.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 
 namespace knit::impl {
 namespace {
@@ -26,6 +26,25 @@ bool isHexNumber(const std::string& token) {
     const size_t s = !token.empty() && (token[0] == '-' || token[0] == '+') ? 1 : 0;
     return token.size() > s + 1 && token[s] == '0' && (token[s + 1] == 'x' || token[s + 1] == 'X');
 }
+
+// The whitespace-separated words of a line, as `std::istringstream >> std::string` reads them,
+// without a stream per line.
+class Words {
+public:
+    explicit Words(const std::string& line) : line_(line) {}
+    bool next(std::string& word) {
+        while (at_ < line_.size() && std::isspace(static_cast<unsigned char>(line_[at_]))) ++at_;
+        if (at_ == line_.size()) return false;
+        const size_t begin = at_;
+        while (at_ < line_.size() && !std::isspace(static_cast<unsigned char>(line_[at_]))) ++at_;
+        word.assign(line_, begin, at_ - begin);
+        return true;
+    }
+
+private:
+    const std::string& line_;
+    size_t at_ = 0;
+};
 
 }  // namespace
 
@@ -47,16 +66,14 @@ BaseMesh readObjMesh(const std::string& path, const MeshLoadOptions& options) {
     std::string line, key, tok;
     std::vector<long> verts, sorted;
     for (size_t lineNo = 1; std::getline(in, line); ++lineNo) {
-        line = trimmed(line);
-        if (line.empty() || line[0] == '#') continue;
-        std::istringstream ls(line);
-        ls >> key;
+        Words ls(line);
+        if (!ls.next(key) || key[0] == '#') continue;
         if (key == "v" || key == "vt") {
             const int need = key == "v" ? 3 : 2;
             double c[3] = {0, 0, 0};
             float uv[2] = {0, 0};
             for (int i = 0; i < need; ++i) {
-                if (!(ls >> tok) || isHexNumber(tok) || !parseFinite(tok, c[i]))
+                if (!ls.next(tok) || isHexNumber(tok) || !parseFinite(tok, c[i]))
                     failMeshLine(path, lineNo,
                                  key == "v" ? "vertex position is not three finite numbers"
                                             : "texture coordinate (vt) is not two finite numbers");
@@ -67,14 +84,14 @@ BaseMesh readObjMesh(const std::string& path, const MeshLoadOptions& options) {
             else uvs.emplace_back(uv[0], uv[1]);
         } else if (key == "mtllib") {
             // Materials are not read, but a material library that is a device or FIFO is refused.
-            const std::string name = trimmed(line.substr(6));
+            const std::string name = trimmed(trimmed(line).substr(6));
             const std::string lib = (std::filesystem::path(path).parent_path() / name).string();
             if (isSpecialFile(lib)) failMeshLine(path, lineNo, "mtllib '" + name + "' " + notRegularFile());
         } else if (key == "f") {
             FaceRef ref{lineNo, 0, 0};
             verts.clear();
             size_t withVt = 0;
-            while (ls >> tok) {
+            while (ls.next(tok)) {
                 const size_t s1 = tok.find('/');
                 long v = 0, vt = 0;
                 if (!parseIndex(tok.substr(0, s1), v))
