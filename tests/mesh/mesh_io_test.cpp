@@ -278,6 +278,18 @@ TEST(MeshIo, meshWithoutUvsIsRejected) {
     EXPECT_NE(errorOf([&] { knit::loadMesh(ply); }).find("no per-vertex texture coordinates"), std::string::npos);
 }
 
+TEST(MeshIo, objHexadecimalNumbersAreRefusedAtTheirLine) {
+    // strtod reads "0x1p3" as 8; an OBJ reader (OpenMesh's, used before) reads the 0 and fails
+    // on the rest, so such a file is refused naming the line instead of loading either value.
+    TempDir dir;
+    const std::string v = dir.write("hexv.obj", "v 0 0 0\nv 0x1p3 0 0\nv 1 1 0\nvt 0 0\nf 1/1 2/1 3/1\n");
+    EXPECT_NE(errorOf([&] { knit::loadMesh(v); }).find("hexv.obj:2: vertex position is not three finite numbers"),
+              std::string::npos);
+    const std::string vt = dir.write("hexvt.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 -0X1\nf 1/1 2/1 3/1\n");
+    EXPECT_NE(errorOf([&] { knit::loadMesh(vt); }).find("hexvt.obj:4: texture coordinate (vt) is not two finite"),
+              std::string::npos);
+}
+
 TEST(MeshIo, objFaceWithoutVtIsRejected) {
     TempDir dir;
     const std::string p = dir.write("mixed.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n"
