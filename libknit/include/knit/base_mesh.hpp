@@ -50,7 +50,7 @@ struct MeshLoadOptions {
 };
 
 // Reads OBJ (with vt), PLY (with per-vertex u,v / s,t / texcoord) or OFF (with texture coords;
-// PLY and OFF through OpenMesh), or glTF 2.0 (.gltf / .glb, TEXCOORD_0; src/mesh/mesh_gltf.cpp),
+// PLY through OpenMesh), or glTF 2.0 (.gltf / .glb, TEXCOORD_0; src/mesh/mesh_gltf.cpp),
 // chosen by extension (src/mesh/mesh_io.cpp); polygons are fan-triangulated. Throws knit::Error
 // naming the file when it cannot be read, is empty, has no UVs, or has NaN/Inf coordinates.
 BaseMesh loadMesh(const std::string& path, const MeshLoadOptions& options = {});

@@ -3,10 +3,10 @@
 //  * Dispatch is by the file's extension, case-insensitive: .obj (mesh_obj.cpp), .ply
 //    (mesh_ply.cpp), .off (mesh_off.cpp), .gltf/.glb (mesh_gltf.cpp); anything else is an error
 //    that lists the table.
-//  * Every file is read once by its reader, which checks it as it goes and names the line of a
-//    bad element where the format has lines. PLY and OFF are checked by a walk of their own and
-//    then parsed by OpenMesh's readers (mesh_openmesh.hpp); OBJ is parsed here alone, positions
-//    in double.
+//  * Every file is read by its reader, which checks it as it goes and names the line of a bad
+//    element where the format has lines. OBJ and OFF are parsed in one pass by libknit alone
+//    (OBJ positions in double); PLY is checked by a walk of its own and then parsed by
+//    OpenMesh's reader (mesh_ply.cpp says why).
 //  * Faces are triangulated inside their outline (polygon_triangulation.hpp: convex ones as the
 //    fan (v0, vi, vi+1), concave ones by a constrained Delaunay triangulation in their best-fit
 //    plane; a polygon without area or crossing itself is refused naming it). Positions that are

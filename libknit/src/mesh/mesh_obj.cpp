@@ -20,13 +20,6 @@
 namespace knit::impl {
 namespace {
 
-// "0x1p3": a number to strtod, not to an OBJ reader (OpenMesh's, which libknit used before,
-// read the 0 and failed on the rest).
-bool isHexNumber(const std::string& token) {
-    const size_t s = !token.empty() && (token[0] == '-' || token[0] == '+') ? 1 : 0;
-    return token.size() > s + 1 && token[s] == '0' && (token[s + 1] == 'x' || token[s + 1] == 'X');
-}
-
 // The whitespace-separated words of a line, as `std::istringstream >> std::string` reads them,
 // without a stream per line.
 class Words {

@@ -2,25 +2,141 @@
 //
 // OpenMesh 9.0's PLY reader crashes on some malformed headers, trusts list counts and turns a
 // non-numeric ASCII token (e.g. "nan") into zeros and empty faces without reporting failure, so
-// the file is walked here first (scanPly); only a file that passes is parsed by OpenMesh
-// (mesh_openmesh.hpp). Per-vertex u,v or s,t are read by OpenMesh as Options::VertexTexCoord;
+// the file is walked here first (scanPly); only a file that passes is parsed by OpenMesh.
+// OpenMesh's reader talks to a BaseImporter; it gets a *recording* importer instead of a
+// halfedge mesh, which keeps the file's vertices and polygons exactly as read (a halfedge mesh
+// would silently split "non-manifold" faces into duplicated vertices); topology is rebuilt by
+// welding (buildPolygonMesh). OpenMesh prints its own warnings to std::cerr (omerr); the
+// knit::Error thrown here is the authoritative result. Per-vertex u,v or s,t are read by OpenMesh as Options::VertexTexCoord;
 // texture_u,texture_v / texture_s,texture_t are *not* known to OpenMesh 9.0 and are read as
 // custom properties (Options::Custom) into the importer's property-only ArrayKernel. Positions
 // and u,v come through OpenMesh as float32.
-#include "mesh_openmesh.hpp"
+#include "mesh_reader.hpp"
 
 #include <OpenMesh/Core/IO/Options.hh>
+#include <OpenMesh/Core/IO/importer/BaseImporter.hh>
 #include <OpenMesh/Core/IO/reader/PLYReader.hh>
+#include <OpenMesh/Core/Mesh/ArrayKernel.hh>
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <mutex>
 #include <sstream>
 
 namespace knit::impl {
 namespace {
+
+// Recording importer: what OpenMesh's reader saw, without building halfedge topology.
+class RecordingImporter final : public OpenMesh::IO::BaseImporter {
+public:
+    std::vector<OpenMesh::Vec3d> points;
+    std::vector<OpenMesh::Vec2f> vertexUv;
+    std::vector<char> vertexHasUv;
+    Polygons polys;                     // faces as read (PLY texture coordinates are per vertex)
+    OpenMesh::ArrayKernel customProps;  // PLY custom properties (texture_u, ...) land here
+
+    OpenMesh::VertexHandle add_vertex(const OpenMesh::Vec3f& p) override {
+        return add_vertex(OpenMesh::Vec3d(p[0], p[1], p[2]));
+    }
+    OpenMesh::VertexHandle add_vertex(const OpenMesh::Vec3d& p) override {
+        points.push_back(p);
+        vertexUv.emplace_back(0.f, 0.f);
+        vertexHasUv.push_back(0);
+        customProps.new_vertex();
+        return OpenMesh::VertexHandle(int(points.size() - 1));
+    }
+    OpenMesh::VertexHandle add_vertex() override { return add_vertex(OpenMesh::Vec3d(0, 0, 0)); }
+    OpenMesh::FaceHandle add_face(const VHandles& indices) override {
+        for (const auto& vh : indices) polys.faceVerts.push_back(vh.idx());
+        polys.faceStart.push_back(uint32_t(polys.faceVerts.size()));
+        customProps.new_face();
+        return OpenMesh::FaceHandle(int(polys.count() - 1));
+    }
+    void set_texcoord(OpenMesh::VertexHandle vh, const OpenMesh::Vec2f& t) override {
+        if (vh.is_valid() && size_t(vh.idx()) < vertexUv.size()) {
+            vertexUv[vh.idx()] = t;
+            vertexHasUv[vh.idx()] = 1;
+        }
+    }
+    void set_point(OpenMesh::VertexHandle vh, const OpenMesh::Vec3f& p) override {
+        if (vh.is_valid() && size_t(vh.idx()) < points.size()) points[vh.idx()] = OpenMesh::Vec3d(p[0], p[1], p[2]);
+    }
+    OpenMesh::BaseKernel* kernel() override { return &customProps; }
+    size_t n_vertices() const override { return points.size(); }
+    size_t n_faces() const override { return polys.count(); }
+    size_t n_edges() const override { return 0; }
+
+    // Everything below is information libknit does not use.
+    OpenMesh::HalfedgeHandle add_edge(OpenMesh::VertexHandle, OpenMesh::VertexHandle) override {
+        return OpenMesh::HalfedgeHandle();
+    }
+    OpenMesh::FaceHandle add_face(OpenMesh::HalfedgeHandle) override { return OpenMesh::FaceHandle(); }
+    void add_face_texcoords(OpenMesh::FaceHandle, OpenMesh::VertexHandle,
+                            const std::vector<OpenMesh::Vec2f>&) override {}  // PLY UVs are per vertex
+    void add_face_texcoords(OpenMesh::FaceHandle, OpenMesh::VertexHandle,
+                            const std::vector<OpenMesh::Vec3f>&) override {}
+    void set_face_texindex(OpenMesh::FaceHandle, int) override {}
+    void set_halfedge(OpenMesh::VertexHandle, OpenMesh::HalfedgeHandle) override {}
+    void set_normal(OpenMesh::VertexHandle, const OpenMesh::Vec3f&) override {}
+    void set_normal(OpenMesh::VertexHandle, const OpenMesh::Vec3d&) override {}
+    void set_color(OpenMesh::VertexHandle, const OpenMesh::Vec3uc&) override {}
+    void set_color(OpenMesh::VertexHandle, const OpenMesh::Vec4uc&) override {}
+    void set_color(OpenMesh::VertexHandle, const OpenMesh::Vec3f&) override {}
+    void set_color(OpenMesh::VertexHandle, const OpenMesh::Vec4f&) override {}
+    void set_status(OpenMesh::VertexHandle, const OpenMesh::Attributes::StatusInfo&) override {}
+    void set_next(OpenMesh::HalfedgeHandle, OpenMesh::HalfedgeHandle) override {}
+    void set_face(OpenMesh::HalfedgeHandle, OpenMesh::FaceHandle) override {}
+    void request_face_texcoords2D() override {}
+    void set_texcoord(OpenMesh::HalfedgeHandle, const OpenMesh::Vec2f&) override {}
+    void set_texcoord(OpenMesh::VertexHandle, const OpenMesh::Vec3f&) override {}
+    void set_texcoord(OpenMesh::HalfedgeHandle, const OpenMesh::Vec3f&) override {}
+    void set_status(OpenMesh::HalfedgeHandle, const OpenMesh::Attributes::StatusInfo&) override {}
+    void set_color(OpenMesh::EdgeHandle, const OpenMesh::Vec3uc&) override {}
+    void set_color(OpenMesh::EdgeHandle, const OpenMesh::Vec4uc&) override {}
+    void set_color(OpenMesh::EdgeHandle, const OpenMesh::Vec3f&) override {}
+    void set_color(OpenMesh::EdgeHandle, const OpenMesh::Vec4f&) override {}
+    void set_status(OpenMesh::EdgeHandle, const OpenMesh::Attributes::StatusInfo&) override {}
+    void set_normal(OpenMesh::FaceHandle, const OpenMesh::Vec3f&) override {}
+    void set_normal(OpenMesh::FaceHandle, const OpenMesh::Vec3d&) override {}
+    void set_color(OpenMesh::FaceHandle, const OpenMesh::Vec3uc&) override {}
+    void set_color(OpenMesh::FaceHandle, const OpenMesh::Vec4uc&) override {}
+    void set_color(OpenMesh::FaceHandle, const OpenMesh::Vec3f&) override {}
+    void set_color(OpenMesh::FaceHandle, const OpenMesh::Vec4f&) override {}
+    void set_status(OpenMesh::FaceHandle, const OpenMesh::Attributes::StatusInfo&) override {}
+    void add_texture_information(int, std::string) override {}
+};
+
+// Reads a float or double custom vertex property written by OpenMesh's PLY reader.
+bool customVertexScalar(OpenMesh::ArrayKernel& k, const std::string& name, size_t n, std::vector<double>& out) {
+    out.assign(n, 0.0);
+    OpenMesh::VPropHandleT<float> pf;
+    if (k.get_property_handle(pf, name)) {
+        for (size_t i = 0; i < n; ++i) out[i] = k.property(pf, OpenMesh::VertexHandle(int(i)));
+        return true;
+    }
+    OpenMesh::VPropHandleT<double> pd;
+    if (k.get_property_handle(pd, name)) {
+        for (size_t i = 0; i < n; ++i) out[i] = k.property(pd, OpenMesh::VertexHandle(int(i)));
+        return true;
+    }
+    return false;
+}
+
+// The reader singleton keeps per-file state: calls into it are serialized.
+std::mutex& openMeshReaderMutex() {
+    static std::mutex m;
+    return m;
+}
+
+// The recorded positions, float32 as OpenMesh read them, in double.
+std::vector<glm::dvec3> recordedPoints(const RecordingImporter& rec) {
+    std::vector<glm::dvec3> points(rec.points.size());
+    for (size_t i = 0; i < points.size(); ++i) points[i] = {rec.points[i][0], rec.points[i][1], rec.points[i][2]};
+    return points;
+}
 
 // PLY pre-scan. OpenMesh 9.0 crashes on some malformed headers (a property before any element)
 // and sizes buffers from list counts it has not checked (a count of -4 allocated ~20 GB), so the

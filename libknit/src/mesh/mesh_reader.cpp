@@ -31,6 +31,11 @@ void requireFloatRange(const std::string& path, size_t lineNo, const std::string
         failMeshLine(path, lineNo, "'" + token + "' is beyond the float32 range (3.4e38) of mesh coordinates");
 }
 
+bool isHexNumber(const std::string& token) {
+    const size_t s = !token.empty() && (token[0] == '-' || token[0] == '+') ? 1 : 0;
+    return token.size() > s + 1 && token[s] == '0' && (token[s + 1] == 'x' || token[s + 1] == 'X');
+}
+
 bool parseIndex(const std::string& token, long& value) {
     if (token.empty()) return false;
     errno = 0;

@@ -24,6 +24,9 @@ BaseMesh readOffMesh(const std::string& path, const MeshLoadOptions& options);  
 
 // A token that is a whole, finite number ("1.5e-3"; not "nan", "inf", "1e400", "1.0abc").
 bool parseFinite(const std::string& token, double& value);
+// "0x1p3": a number to strtod, not to a mesh reader (OpenMesh's, which libknit used before for
+// OBJ and OFF, read the 0 and went on from the 'x'); refused.
+bool isHexNumber(const std::string& token);
 // A whole, non-zero integer token (OBJ indices, PLY counts).
 bool parseIndex(const std::string& token, long& value);
 // A parsed number the mesh stores as float32 (UVs; PLY/OFF positions): beyond +-3.4e38 it would
