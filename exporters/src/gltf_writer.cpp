@@ -31,56 +31,17 @@
 //    buffers are external "<stem>_<k>.bin"; .gltf: "<stem>.bin", "<stem>_1.bin", ... All files
 //    are renamed into place only after everything was written.
 //  * Every bufferView / accessor offset is 4-byte aligned; POSITION min / max are the exact
-//    float32 (or quantized integer) bounds of the stored data.
+#include "gltf_builder.hpp"
+
 #include <algorithm>
-#include <cctype>
 #include <cmath>
-#include <cstring>
-#include <filesystem>
-#include <limits>
-#include <memory>
-#include <sstream>
 
-#include <glm/common.hpp>
-#include <glm/gtc/type_precision.hpp>
-#include <nlohmann/json.hpp>
-#include <tiny_gltf.h>
-
-#include "io/atomic_file.hpp"
-#include "chunks.hpp"
-#include "draco_codec.hpp"
-#include "formats.hpp"
 #include "material_extras.hpp"
-#include "knit/error.hpp"
-#include "knit/plies.hpp"
-#include "meshopt_codec.hpp"
 #include "surface_gltf.hpp"
-#include "util/math.hpp"
 
 namespace knit::impl {
 
 namespace {
-
-namespace fs = std::filesystem;
-
-constexpr int kArrayBuffer = TINYGLTF_TARGET_ARRAY_BUFFER;
-constexpr int kElementArrayBuffer = TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER;
-
-// Percent-encodes a file name for a relative glTF URI.
-std::string uriEncode(const std::string& name) {
-    static const char* hex = "0123456789ABCDEF";
-    std::string out;
-    for (unsigned char c : name) {
-        if (std::isalnum(c) || c == '-' || c == '_' || c == '.' || c == '~') {
-            out.push_back(char(c));
-        } else {
-            out.push_back('%');
-            out.push_back(hex[c >> 4]);
-            out.push_back(hex[c & 15]);
-        }
-    }
-    return out;
-}
 
 tinygltf::Value toValue(const nlohmann::json& j) {
     switch (j.type()) {
@@ -108,358 +69,6 @@ tinygltf::Value toValue(const nlohmann::json& j) {
     }
 }
 
-// A linear colour in [0, 1] as COLOR_0's normalized RGBA8 (opaque).
-glm::u8vec4 linearRgba8(const glm::vec3& c) {
-    auto byte = [](float v) { return uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); };
-    return glm::u8vec4(byte(c.r), byte(c.g), byte(c.b), 255);
-}
-
-// A palette colour per yarn (golden-ratio hue steps in sRGB; deterministic) as linear RGBA8:
-// glTF's COLOR_0 is linear, so the sRGB palette colour is converted before it is stored.
-glm::u8vec4 yarnColour(uint32_t yarn) {
-    const double h = std::fmod(0.13 + 0.6180339887498949 * double(yarn), 1.0) * 6.0;
-    const double s = 0.55, v = 0.9;
-    const int i = int(h);
-    const double f = h - i, p = v * (1 - s), q = v * (1 - s * f), t = v * (1 - s * (1 - f));
-    double r = v, g = t, b = p;
-    switch (i % 6) {
-        case 0: r = v, g = t, b = p; break;
-        case 1: r = q, g = v, b = p; break;
-        case 2: r = p, g = v, b = t; break;
-        case 3: r = p, g = q, b = v; break;
-        case 4: r = t, g = p, b = v; break;
-        default: r = v, g = p, b = q; break;
-    }
-    auto linear8 = [](double c) { return uint8_t(std::lround(util::srgbToLinear(c) * 255)); };
-    return glm::u8vec4(linear8(r), linear8(g), linear8(b), 255);
-}
-
-// Binary data for the glTF buffers, streamed into temporary files. GLB: buffer 0 is written
-// straight into the GLB's own temporary file after a reserved gap of `glbPrefix` bytes, which
-// finish() fills with the 12-byte header, the JSON chunk (space padded) and the BIN chunk header,
-// so the binary data is written once (no copy) whenever the JSON fits the reservation.
-class BufferSink {
-public:
-    BufferSink(const std::string& outputPath, bool glb, uint64_t maxBytes, uint64_t glbPrefix)
-        : output_(outputPath), glb_(glb), maxBytes_(maxBytes), glbPrefix_(glbPrefix) {}
-
-    // Makes sure the next `bytes` (one chunk's data) fit in the current buffer; else opens a new one.
-    void reserve(uint64_t bytes) {
-        if (bytes + 4 > maxBytes_)
-            throw Error("cannot export '" + output_ + "': one chunk needs " + std::to_string(bytes) +
-                        " bytes, more than the buffer limit " + std::to_string(maxBytes_) +
-                        "; lower the vertices per chunk");
-        if (files_.empty() || sizes_.back() + bytes + 4 > maxBytes_) openBuffer();
-    }
-    int buffer() const { return int(files_.size()) - 1; }
-    // Appends at a 4-byte aligned offset of the current buffer; returns that offset.
-    uint64_t append(const void* data, uint64_t bytes) {
-        pad();
-        const uint64_t at = sizes_.back();
-        files_.back()->stream().write(static_cast<const char*>(data), std::streamsize(bytes));
-        sizes_.back() += bytes;
-        return at;
-    }
-    size_t count() const { return files_.size(); }
-    uint64_t size(size_t k) const { return sizes_[k]; }
-    AtomicFile& file(size_t k) { return *files_[k]; }
-    bool embedsFirst() const { return glb_; }
-    uint64_t glbPrefix() const { return glbPrefix_; }
-    // The final file name of buffer k (GLB: buffer 0 is embedded and has none).
-    std::string fileName(size_t k) const {
-        const fs::path p(output_);
-        const std::string stem = p.stem().string();
-        return k == 0 ? stem + ".bin" : stem + "_" + std::to_string(k) + ".bin";
-    }
-    std::string filePath(size_t k) const { return (fs::path(output_).parent_path() / fileName(k)).string(); }
-    void padAll() {
-        if (!files_.empty()) pad();
-    }
-
-private:
-    void pad() {
-        static const char zeros[4] = {0, 0, 0, 0};
-        const uint64_t r = sizes_.back() % 4;
-        if (r) {
-            files_.back()->stream().write(zeros, std::streamsize(4 - r));
-            sizes_.back() += 4 - r;
-        }
-    }
-    void openBuffer() {
-        if (!files_.empty()) pad();
-        const size_t k = files_.size();
-        const bool inGlb = glb_ && k == 0;
-        files_.push_back(std::make_unique<AtomicFile>(inGlb ? output_ : filePath(k), true));
-        sizes_.push_back(0);
-        if (inGlb) {
-            // The gap for header + JSON chunk + BIN chunk header, filled in by finish().
-            const std::vector<char> gap(size_t(glbPrefix_ + 8), ' ');
-            files_.back()->stream().write(gap.data(), std::streamsize(gap.size()));
-        }
-    }
-    std::string output_;
-    bool glb_;
-    uint64_t maxBytes_;
-    uint64_t glbPrefix_;
-    std::vector<std::unique_ptr<AtomicFile>> files_;
-    std::vector<uint64_t> sizes_;
-};
-
-// GLB header + JSON chunk (padded with spaces to `jsonChunk` bytes) + BIN chunk header.
-void writeGlbHead(std::ostream& out, const std::string& json, uint64_t jsonChunk, uint64_t bin, uint64_t total) {
-    auto u32 = [&](uint32_t v) { out.write(reinterpret_cast<const char*>(&v), 4); };
-    out.write("glTF", 4);
-    u32(2);
-    u32(uint32_t(total));
-    u32(uint32_t(jsonChunk));
-    u32(0x4E4F534A);  // "JSON"
-    out.write(json.data(), std::streamsize(json.size()));
-    for (uint64_t i = json.size(); i < jsonChunk; ++i) out.put(' ');
-    if (bin > 0) {
-        u32(uint32_t(bin));
-        u32(0x004E4942);  // "BIN\0"
-    }
-}
-
-// One chunk of curves on its way to the file: float32 points relative to the chunk's origin,
-// each curve a run of them (a closed curve repeats its first point at the end of its run).
-struct CurveChunk {
-    struct Run {
-        uint32_t first = 0, count = 0;  // in `pos`
-        glm::vec3 lo{0.0f}, hi{0.0f};   // exact float bounds of the run
-    };
-    glm::dvec3 origin{0.0};
-    std::vector<glm::vec3> pos;
-    std::vector<glm::u8vec4> colour;  // per entry of pos (COLOR_0); empty without colours
-    std::vector<Run> runs;
-    size_t points = 0;  // curve points (without the repeated first points)
-    Plies generated;    // storage of generated plies
-    PlyScratch scratch;
-};
-
-// The chunks of a curve export: consecutive curves of the input Polylines (planCurveChunks), or
-// plies generated for consecutive yarns (yarns grouped until their estimated ply points reach
-// maxPoints; a longer yarn gets a chunk of its own).
-class CurveChunkSource {
-public:
-    CurveChunkSource(const ExportInput& input, size_t maxPoints, const std::string& path) : input_(input) {
-        if (input.curves) {
-            chunks_ = planCurveChunks(*input.curves, maxPoints);
-            return;
-        }
-        const PlyGenerator& g = *input.plies;
-        size_t acc = 0;
-        yarnStart_.push_back(0);
-        for (size_t y = 0; y < g.yarnCount(); ++y) {
-            const size_t e = g.estimatePoints(y);
-            // One yarn's plies are one batch with 32-bit offsets: refuse absurd ones up front.
-            if (e > size_t(1) << 31)
-                throw Error("cannot export '" + path + "': yarn " + std::to_string(y) + " would have at least " +
-                            std::to_string(e) +
-                            " ply points (more than 2^31); increase the ply pitch or lower the "
-                            "samples per turn");
-            if (acc > 0 && acc + e > maxPoints) {
-                yarnStart_.push_back(y);
-                acc = 0;
-            }
-            acc += e;
-        }
-        if (g.yarnCount() > 0) yarnStart_.push_back(g.yarnCount());
-    }
-    size_t count() const { return input_.curves ? chunks_.size() : yarnStart_.size() - 1; }
-    size_t curveCountBound() const {
-        return input_.curves ? input_.curves->curveCount()
-                             : input_.plies->yarnCount() * size_t(input_.plies->options().count);
-    }
-    const std::vector<Chunk>& chunks() const { return chunks_; }
-
-    // Produces chunk k and converts it: origin = centre of its points' bounding box.
-    void fill(size_t k, CurveChunk& chunk) const {
-        const Polylines* curves = input_.curves;
-        const std::vector<glm::vec3>* colours = input_.colours;
-        size_t first = 0, last = 0;
-        if (curves) {
-            first = chunks_[k].firstCurve;
-            last = chunks_[k].lastCurve;
-        } else {
-            input_.plies->generate(yarnStart_[k], yarnStart_[k + 1], chunk.generated, chunk.scratch,
-                                   false);  // curves only: no radial directions
-            curves = &chunk.generated.curves;
-            colours = chunk.generated.colour.empty() ? nullptr : &chunk.generated.colour;
-            last = curves->curveCount();
-        }
-        const Chunk range{first, last, 0, 0};
-        chunk.origin = last > first ? chunkOrigin(*curves, range) : glm::dvec3(0.0);
-        chunk.pos.clear();
-        chunk.colour.clear();
-        chunk.runs.clear();
-        chunk.points = 0;
-        for (size_t c = first; c < last; ++c) {
-            const uint32_t n = curves->size(c);
-            if (n < 2) continue;
-            CurveChunk::Run run;
-            run.first = uint32_t(chunk.pos.size());
-            const glm::dvec3* p = curves->points.data() + curves->begin(c);
-            glm::vec3 lo(std::numeric_limits<float>::infinity()), hi(-std::numeric_limits<float>::infinity());
-            for (uint32_t i = 0; i < n; ++i) {
-                const glm::vec3 q(p[i] - chunk.origin);
-                lo = glm::min(lo, q);
-                hi = glm::max(hi, q);
-                chunk.pos.push_back(q);
-                if (colours) chunk.colour.push_back(linearRgba8((*colours)[curves->begin(c) + i]));
-            }
-            if (curves->isClosed(c)) chunk.pos.push_back(chunk.pos[run.first]);
-            if (colours && curves->isClosed(c)) chunk.colour.push_back(chunk.colour[run.first]);
-            run.count = uint32_t(chunk.pos.size() - run.first);
-            run.lo = lo;
-            run.hi = hi;
-            chunk.runs.push_back(run);
-            chunk.points += n;
-        }
-    }
-
-private:
-    const ExportInput& input_;
-    std::vector<Chunk> chunks_;      // materialized curves
-    std::vector<size_t> yarnStart_;  // generated plies: chunk k = yarns [yarnStart_[k], yarnStart_[k + 1])
-};
-
-// KHR_mesh_quantization data of one tube chunk: one uniform step per chunk (the node scale),
-// q = round(p / step) with |q| <= 32767; normals and tangents as normalized shorts (stride 8).
-struct QuantizedTubes {
-    struct S4 {
-        int16_t v[4];
-    };
-    std::vector<S4> position, normal, tangent;
-    std::vector<glm::i8vec4> normal8, tangent8;  // instead of normal / tangent with --meshopt
-    std::vector<glm::u16vec2> uv;                // normalized (u, v / vScale)
-    glm::ivec3 lo{32767}, hi{-32767};            // bounds of the quantized positions
-    double step = 1.0;
-    double vScale = 1.0;  // largest v of the chunk (v >= 0)
-};
-
-// TEXCOORD_0 as normalized uint16: u in [0, 1] directly, v (radius units, >= 0) over the chunk's
-// largest v, recorded as the primitive's texcoordScale.
-void quantizeTexcoords(const TubeMesh& m, QuantizedTubes& q) {
-    float vMax = 0.0f;
-    for (const glm::vec2& uv : m.uvs) vMax = std::max(vMax, uv.y);
-    q.vScale = vMax > 0.0f ? double(vMax) : 1.0;
-    q.uv.resize(m.uvs.size());
-    auto qu = [](double x) { return uint16_t(std::lround(std::clamp(x, 0.0, 1.0) * 65535.0)); };
-    for (size_t i = 0; i < m.uvs.size(); ++i) q.uv[i] = glm::u16vec2(qu(m.uvs[i].x), qu(m.uvs[i].y / q.vScale));
-}
-
-// --quantize --meshopt: NORMAL / TANGENT as normalized BYTE (stride 4, like gltfpack's default
-// 8-bit normals; ~0.5 degree), which halves them before the vertex codec.
-void quantizeDirectionsToBytes(const TubeMesh& m, QuantizedTubes& q) {
-    auto qb = [](double x) { return int8_t(std::lround(std::clamp(x, -1.0, 1.0) * 127.0)); };
-    q.normal8.resize(m.vertexCount());
-    q.tangent8.resize(m.vertexCount());
-    for (size_t i = 0; i < m.vertexCount(); ++i) {
-        const glm::vec3& n = m.normals[i];
-        const glm::vec4& t = m.tangents[i];
-        q.normal8[i] = glm::i8vec4(qb(n.x), qb(n.y), qb(n.z), 0);
-        q.tangent8[i] = glm::i8vec4(qb(t.x), qb(t.y), qb(t.z), t.w < 0 ? int8_t(-127) : int8_t(127));
-    }
-    q.normal.clear();
-    q.tangent.clear();
-}
-
-void quantizeTubes(const TubeMesh& m, QuantizedTubes& q, bool byteDirections) {
-    const size_t n = m.vertexCount();
-    float maxAbs = 0.0f;
-    for (const glm::vec3& p : m.positions) maxAbs = std::max({maxAbs, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
-    q.step = maxAbs > 0 ? double(maxAbs) / 32767.0 : 1.0;
-    q.position.resize(n);
-    q.normal.resize(n);
-    q.tangent.resize(n);
-    q.lo = glm::ivec3(32767);
-    q.hi = glm::ivec3(-32767);
-    auto qs = [](double x) { return int16_t(std::lround(std::clamp(x, -32767.0, 32767.0))); };
-    for (size_t i = 0; i < n; ++i) {
-        for (int k = 0; k < 3; ++k) {
-            q.position[i].v[k] = qs(double(m.positions[i][k]) / q.step);
-            q.lo[k] = std::min<int>(q.lo[k], q.position[i].v[k]);
-            q.hi[k] = std::max<int>(q.hi[k], q.position[i].v[k]);
-            q.normal[i].v[k] = qs(double(m.normals[i][k]) * 32767.0);
-            q.tangent[i].v[k] = qs(double(m.tangents[i][k]) * 32767.0);
-        }
-        q.position[i].v[3] = q.normal[i].v[3] = 0;
-        q.tangent[i].v[3] = m.tangents[i].w < 0 ? int16_t(-32767) : int16_t(32767);
-    }
-    quantizeTexcoords(m, q);
-    if (byteDirections) quantizeDirectionsToBytes(m, q);
-    else q.normal8.clear(), q.tangent8.clear();
-}
-
-// One chunk of tubes on its way to the file (see GltfBuilder::writeTubes).
-struct TubeChunk {
-    TubeMesh mesh;
-    std::vector<glm::u8vec4> colours;  // --yarn-colors
-    QuantizedTubes quantized;          // --quantize
-    DracoChunk draco;                  // --draco
-    std::vector<uint16_t> indices16;   // the triangles as UNSIGNED_SHORT when <= 65535 vertices
-    std::vector<MeshoptView> meshopt;  // --meshopt: tubeViews(), encoded in the parallel half
-};
-
-// UNSIGNED_SHORT indices fit when every index is below 65535 (the primitive-restart value is
-// not allowed as an index).
-bool fitsShortIndices(const TubeMesh& m) { return m.vertexCount() <= 65535; }
-
-// One bufferView + accessor of a tube chunk: `count` elements of `size` bytes at `data`.
-struct TubeView {
-    const char* attribute;  // glTF attribute name, or nullptr for the indices
-    const void* data;
-    size_t count, size;
-    int stride, target, componentType, type;
-    bool normalized;
-};
-
-// The views of a plain or quantized (not Draco) tube chunk, in file order: POSITION, NORMAL,
-// TANGENT, TEXCOORD_0, COLOR_0 (colours), indices (UNSIGNED_SHORT when indices16 is filled).
-std::vector<TubeView> tubeViews(const TubeChunk& t, bool colours, bool quantized) {
-    const TubeMesh& m = t.mesh;
-    const QuantizedTubes& q = t.quantized;
-    const size_t n = m.vertexCount();
-    const int f = TINYGLTF_COMPONENT_TYPE_FLOAT, s = TINYGLTF_COMPONENT_TYPE_SHORT, b = TINYGLTF_COMPONENT_TYPE_BYTE;
-    const int v2 = TINYGLTF_TYPE_VEC2, v3 = TINYGLTF_TYPE_VEC3, v4 = TINYGLTF_TYPE_VEC4;
-    std::vector<TubeView> v;
-    if (!quantized) {
-        v.push_back({"POSITION", m.positions.data(), n, 12, 0, kArrayBuffer, f, v3, false});
-        v.push_back({"NORMAL", m.normals.data(), n, 12, 0, kArrayBuffer, f, v3, false});
-        v.push_back({"TANGENT", m.tangents.data(), n, 16, 0, kArrayBuffer, f, v4, false});
-        v.push_back({"TEXCOORD_0", m.uvs.data(), n, 8, 0, kArrayBuffer, f, v2, false});
-    } else {
-        v.push_back({"POSITION", q.position.data(), n, 8, 8, kArrayBuffer, s, v3, false});
-        if (q.normal8.empty()) {
-            v.push_back({"NORMAL", q.normal.data(), n, 8, 8, kArrayBuffer, s, v3, true});
-            v.push_back({"TANGENT", q.tangent.data(), n, 8, 0, kArrayBuffer, s, v4, true});
-        } else {
-            v.push_back({"NORMAL", q.normal8.data(), n, 4, 4, kArrayBuffer, b, v3, true});
-            v.push_back({"TANGENT", q.tangent8.data(), n, 4, 0, kArrayBuffer, b, v4, true});
-        }
-        v.push_back(
-            {"TEXCOORD_0", q.uv.data(), n, 4, 0, kArrayBuffer, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, v2, true});
-    }
-    if (colours)
-        v.push_back(
-            {"COLOR_0", t.colours.data(), n, 4, 0, kArrayBuffer, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, v4, true});
-    const bool shortIndices = !t.indices16.empty();
-    v.push_back({nullptr, shortIndices ? static_cast<const void*>(t.indices16.data()) : m.triangles.data(),
-                 m.triangles.size() * 3, shortIndices ? size_t(2) : size_t(4), 0, kElementArrayBuffer,
-                 shortIndices ? TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT : TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT,
-                 TINYGLTF_TYPE_SCALAR, false});
-    return v;
-}
-
-// --meshopt: every view of the chunk through meshoptimizer's codecs (index codec for indices).
-void encodeTubeViews(TubeChunk& t, bool colours, bool quantized) {
-    t.meshopt.clear();
-    for (const TubeView& v : tubeViews(t, colours, quantized))
-        t.meshopt.push_back(v.target == kElementArrayBuffer ? encodeMeshoptTriangles(v.data, v.count, v.size)
-                                                            : encodeMeshoptAttributes(v.data, v.count, v.size));
-}
-
 // Bytes reserved in front of a GLB's BIN data for the header and JSON chunk: generous per-chunk
 // (and per-curve) estimates of the JSON size; finish() pads the JSON with spaces to fill it.
 uint64_t jsonReservation(const FormatJob& job, const CurveChunkSource* curves) {
@@ -483,476 +92,107 @@ uint64_t jsonReservation(const FormatJob& job, const CurveChunkSource* curves) {
     return (bytes + 3) / 4 * 4;
 }
 
-class GltfBuilder {
-public:
-    GltfBuilder(const FormatJob& job, bool glb)
-        : job_(job),
-          glb_(glb),
-          curves_(job.tubes
-                      ? nullptr
-                      : std::make_unique<CurveChunkSource>(job.input, job.options.chunkVertices, job.options.path)),
-          sink_(job.options.path, glb, job.options.maxBufferBytes, jsonReservation(job, curves_.get())) {
-        model_.asset.version = "2.0";
-        model_.asset.generator = "libknit";
-        if (!job.tubes) {
-            // Curves: name the custom per-point attribute, so a client can find the radius.
-            tinygltf::Value::Object attributes;
-            attributes["_RADIUS"] = tinygltf::Value(
-                std::string("per-vertex curve radius in metres (FLOAT SCALAR, one value per LINE_STRIP vertex, in the "
-                            "units of POSITION before node transforms)"));
-            tinygltf::Value::Object extras;
-            extras["attributes"] = tinygltf::Value(std::move(attributes));
-            model_.asset.extras = tinygltf::Value(std::move(extras));
-        }
-        model_.defaultScene = 0;
-        tinygltf::Scene scene;
-        scene.name = "knit";
-        scene.nodes.push_back(0);
-        model_.scenes.push_back(scene);
-        tinygltf::Node root;
-        root.name = "libknit";
-        model_.nodes.push_back(root);
-        addMaterial();
-        if (job.tubes && job.options.draco) {
-            model_.extensionsUsed.push_back("KHR_draco_mesh_compression");
-            model_.extensionsRequired.push_back("KHR_draco_mesh_compression");
-        }
-        if (job.tubes && job.options.quantize) {
-            model_.extensionsUsed.push_back("KHR_mesh_quantization");
-            model_.extensionsRequired.push_back("KHR_mesh_quantization");
-        }
-        if (job.tubes && job.options.meshopt) {
-            requireMeshopt();
-            model_.extensionsUsed.push_back("EXT_meshopt_compression");
-            model_.extensionsRequired.push_back("EXT_meshopt_compression");
-        }
-    }
-
-    // Tubes: chunks are swept (and quantized or Draco-encoded) in parallel and written in chunk
-    // order (orderedChunks), so the file does not depend on the thread count.
-    void writeTubes() {
-        const Polylines& curves = *job_.input.curves;
-        const std::vector<Chunk> chunks = planTubeChunks(curves, job_.tube, job_.options.chunkVertices);
-        // Before anything is written: every chunk must fit in one buffer (plain size is the
-        // upper bound; quantized and Draco data are smaller).
-        for (const Chunk& c : chunks) checkChunkFits(c.vertices * 56 + c.triangles * 12 + 64);
-        orderedChunks<TubeChunk>(
-            chunks.size(), [&](size_t k, TubeChunk& t) { prepareTubeChunk(curves, chunks[k], t); },
-            [&](size_t k, const TubeChunk& t) { writeTubeChunk(k, t); });
-        job_.stats.curves = curves.curveCount();
-    }
-
-    // The parallel half: sweep the chunk's tubes, and colour / quantize / Draco-encode them.
-    void prepareTubeChunk(const Polylines& curves, const Chunk& chunk, TubeChunk& t) const {
-        sweepTubes(curves, job_.input.radius, job_.tube, chunk.firstCurve, chunk.lastCurve, chunkOrigin(curves, chunk),
-                   t.mesh);
-        t.colours.clear();
-        t.indices16.clear();
-        if (t.mesh.vertexCount() == 0) return;
-        if (job_.options.yarnColors) t.colours = vertexColours(t.mesh);
-        else std::transform(t.mesh.colours.begin(), t.mesh.colours.end(), std::back_inserter(t.colours), linearRgba8);
-        const std::vector<glm::u8vec4>* col = t.colours.empty() ? nullptr : &t.colours;
-        if (job_.options.draco) {
-            DracoSettings settings;
-            settings.positionBits = job_.options.dracoBits;
-            settings.normalBits = job_.options.dracoNormalBits;
-            settings.texcoordBits = job_.options.dracoTexcoordBits;
-            settings.level = job_.options.dracoLevel;
-            t.draco = encodeDracoTubes(t.mesh, col, settings);
-            return;
-        }
-        if (job_.options.quantize) quantizeTubes(t.mesh, t.quantized, job_.options.meshopt);
-        if (fitsShortIndices(t.mesh)) {
-            t.indices16.resize(t.mesh.triangles.size() * 3);
-            for (size_t i = 0; i < t.mesh.triangles.size(); ++i)
-                for (int k = 0; k < 3; ++k) t.indices16[i * 3 + size_t(k)] = uint16_t(t.mesh.triangles[i][k]);
-        }
-        if (job_.options.meshopt) encodeTubeViews(t, col != nullptr, job_.options.quantize);
-    }
-
-    // The serial half: views, accessors and the chunk's node.
-    void writeTubeChunk(size_t k, const TubeChunk& t) {
-        const TubeMesh& mesh = t.mesh;
-        if (mesh.vertexCount() == 0) return;
-        const std::vector<glm::u8vec4>* col = t.colours.empty() ? nullptr : &t.colours;
-        tinygltf::Primitive prim;
-        prim.mode = TINYGLTF_MODE_TRIANGLES;
-        prim.material = 0;
-        std::vector<double> scale;
-        const size_t plain = mesh.vertexCount() * (12 + 12 + 16 + 8 + (col ? 4 : 0)) + mesh.triangles.size() * 12;
-        job_.stats.uncompressedMeshBytes += plain;
-        if (job_.options.draco) {
-            tubeDraco(t.draco, col != nullptr, prim);
-        } else {
-            // The chunk's data is at most its plain size; meshopt's worst case adds a little.
-            sink_.reserve(plain + plain / 8 + 1024);
-            const uint64_t before = sink_.size(size_t(sink_.buffer()));
-            tubeAccessors(t, col != nullptr, prim, scale);
-            job_.stats.compressedMeshBytes += sink_.size(size_t(sink_.buffer())) - before;
-        }
-        addChunkNode(k, mesh.origin, prim, scale);
-        job_.stats.vertices += mesh.vertexCount();
-        job_.stats.triangles += mesh.triangles.size();
-        job_.stats.maxChunkVertices = std::max(job_.stats.maxChunkVertices, mesh.vertexCount());
-    }
-
-    // Curves: chunks are produced (sliced from the input, or generated plies) and converted to
-    // float32 in parallel, and appended to the buffers in chunk order (a TBB pipeline), so the
-    // writing overlaps the work of the next chunks and at most `tokens` chunks are in memory.
-    void writeCurves() {
-        const CurveChunkSource& source = *curves_;
-        if (job_.input.curves)  // known sizes: fail before anything is written
-            for (const Chunk& c : source.chunks())
-                checkChunkFits((c.vertices + (c.lastCurve - c.firstCurve)) * 16 + 64);
-        orderedChunks<CurveChunk>(
-            source.count(), [&](size_t k, CurveChunk& chunk) { source.fill(k, chunk); },
-            [&](size_t k, const CurveChunk& chunk) { writeCurveChunk(k, chunk); });
-    }
-
-    // A view's surface level (ExportInput::surface): one more node under the root, its mesh,
-    // material and PNG textures in the current buffer.
-    void writeSurface() {
-        if (!job_.input.surface) return;
-        const SurfaceLayer& layer = *job_.input.surface;
-        const SurfaceData d = prepareSurface(layer.mesh, layer.images, layer.material);
-        sink_.reserve(d.bytes() + 64);
-        const AddView add = [&](const void* data, size_t bytes, int target) { return addView(data, bytes, 0, target); };
-        const int node = addSurface(model_, add, d);  // grows model_.nodes: index the root after it
-        model_.nodes[0].children.push_back(node);
-        job_.stats.surfaceVertices = d.vertexCount();
-        job_.stats.surfaceTriangles = d.indices.size() / 3;
-        job_.stats.imageBytes = d.colourPng.size() + d.normalPng.size();
-    }
-
-    // Serializes the JSON with tinygltf, fixes up the buffers, writes all files, renames them.
-    void finish() {
-        std::ostringstream jsonText;
-        tinygltf::TinyGLTF gltf;
-        if (!gltf.WriteGltfSceneToStream(&model_, jsonText, job_.options.prettyJson, false))
-            throw Error("cannot export '" + job_.options.path + "': tinygltf failed to serialize the model");
-        nlohmann::json doc = nlohmann::json::parse(jsonText.str());
-        // The buffers (tinygltf only knows in-memory buffers): sizes and URIs of the streamed files.
-        sink_.padAll();
-        nlohmann::json buffers = nlohmann::json::array();
-        for (size_t k = 0; k < sink_.count(); ++k) {
-            nlohmann::json b = {{"byteLength", sink_.size(k)}};
-            if (!(glb_ && k == 0)) b["uri"] = uriEncode(sink_.fileName(k));
-            buffers.push_back(b);
-        }
-        addMeshoptFallback(doc, buffers);
-        if (buffers.empty()) doc.erase("buffers");
-        else doc["buffers"] = buffers;
-        const std::string json = job_.options.prettyJson ? doc.dump(2) : doc.dump();
-
-        std::unique_ptr<AtomicFile> rewritten;  // GLB whose JSON did not fit the reservation
-        AtomicFile* main = nullptr;
-        uint64_t mainBytes = 0;
-        if (glb_ && sink_.count() > 0) {
-            // GLB with data: the BIN chunk already follows the reserved gap in the GLB's file.
-            const uint64_t bin = sink_.size(0), prefix = sink_.glbPrefix();
-            const uint64_t jsonPadded = (json.size() + 3) / 4 * 4;
-            const bool fits = 20 + jsonPadded <= prefix;
-            const uint64_t jsonChunk = fits ? prefix - 20 : jsonPadded;
-            const uint64_t total = 20 + jsonChunk + 8 + bin;
-            if (total > 0xFFFFFFFFull)
-                throw Error("cannot export '" + job_.options.path + "': the GLB would be " + std::to_string(total) +
-                            " bytes, over the 4 GiB GLB limit; lower the buffer size or write .gltf");
-            AtomicFile& file0 = sink_.file(0);
-            if (fits) {
-                std::ostream& out = file0.stream();
-                out.seekp(0);
-                writeGlbHead(out, json, jsonChunk, bin, total);
-                main = &file0;
-            } else {
-                // Rare: the JSON outgrew the reservation; write a new file and copy the BIN data.
-                file0.close();
-                rewritten = std::make_unique<AtomicFile>(job_.options.path, true);
-                writeGlbHead(rewritten->stream(), json, jsonChunk, bin, total);
-                appendFile(rewritten->stream(), file0.tempPath(), prefix + 8, bin);
-                main = rewritten.get();
-            }
-            mainBytes = total;
-        } else {
-            rewritten = std::make_unique<AtomicFile>(job_.options.path, true);
-            if (glb_) {
-                const uint64_t jsonPadded = (json.size() + 3) / 4 * 4;
-                writeGlbHead(rewritten->stream(), json, jsonPadded, 0, 20 + jsonPadded);
-                mainBytes = 20 + jsonPadded;
-            } else {
-                rewritten->stream().write(json.data(), std::streamsize(json.size()));
-                mainBytes = json.size();
-            }
-            main = rewritten.get();
-        }
-        for (size_t k = 0; k < sink_.count(); ++k) sink_.file(k).close();
-        main->close();
-        // Rename: external buffers first, the main file last; undo on failure.
-        try {
-            for (size_t k = (glb_ ? 1 : 0); k < sink_.count(); ++k) sink_.file(k).commit();
-            main->commit();
-        } catch (...) {
-            for (size_t k = 0; k < sink_.count(); ++k) sink_.file(k).undoCommit();
-            throw;
-        }
-        uint64_t bytes = mainBytes;
-        for (size_t k = (glb_ ? 1 : 0); k < sink_.count(); ++k) bytes += sink_.size(k);
-        job_.stats.bytes = bytes;
-        job_.stats.buffers = sink_.count();
-    }
-
-private:
-    // EXT_meshopt_compression: the fallback buffer (last; no uri, never written) that the
-    // compressed views point to.
-    void addMeshoptFallback(nlohmann::json& doc, nlohmann::json& buffers) const {
-        if (meshoptViews_.empty()) return;
-        const size_t fallback = buffers.size();
-        buffers.push_back({{"byteLength", std::max<uint64_t>(fallbackBytes_, 4)},
-                           {"extensions", {{"EXT_meshopt_compression", {{"fallback", true}}}}}});
-        for (const auto& [v, ext] : meshoptViews_) {
-            nlohmann::json& view = doc["bufferViews"][size_t(v)];
-            view["buffer"] = fallback;
-            view["extensions"]["EXT_meshopt_compression"] = ext;
-        }
-    }
-
-    void checkChunkFits(uint64_t bytes) const {
-        if (bytes + 4 > job_.options.maxBufferBytes)
-            throw Error("cannot export '" + job_.options.path + "': a chunk needs up to " + std::to_string(bytes) +
-                        " bytes, more than the buffer limit " + std::to_string(job_.options.maxBufferBytes) +
-                        "; lower the vertices per chunk (a single curve longer than the limit cannot be split)");
-    }
-
-    // One chunk's node: a POSITION view (stride 12) holding every curve's points and a _RADIUS
-    // view (stride 4) as long as the longest curve, shared by the curves' accessors; one
-    // non-indexed LINE_STRIP primitive per curve.
-    void writeCurveChunk(size_t k, const CurveChunk& chunk) {
-        if (chunk.runs.empty()) return;
-        uint32_t longest = 0;
-        for (const CurveChunk::Run& r : chunk.runs) longest = std::max(longest, r.count);
-        if (radius_.size() < longest) radius_.resize(longest, float(job_.input.radius));
-        sink_.reserve(chunk.pos.size() * 16 + uint64_t(longest) * 4 + 16);
-        const int posView = addView(chunk.pos.data(), chunk.pos.size() * 12, 12, kArrayBuffer);
-        const int radView = addView(radius_.data(), uint64_t(longest) * 4, 4, kArrayBuffer);
-        const int colView =
-            chunk.colour.empty() ? -1 : addView(chunk.colour.data(), chunk.colour.size() * 4, 4, kArrayBuffer);
-        tinygltf::Mesh mesh;
-        mesh.name = "curves " + std::to_string(k);
-        for (const CurveChunk::Run& r : chunk.runs) {
-            tinygltf::Primitive prim;
-            prim.mode = TINYGLTF_MODE_LINE_STRIP;
-            prim.material = 0;
-            const int pos = addAccessor(posView, size_t(r.first) * 12, TINYGLTF_COMPONENT_TYPE_FLOAT,
-                                        TINYGLTF_TYPE_VEC3, r.count, false);
-            model_.accessors[size_t(pos)].minValues = {double(r.lo.x), double(r.lo.y), double(r.lo.z)};
-            model_.accessors[size_t(pos)].maxValues = {double(r.hi.x), double(r.hi.y), double(r.hi.z)};
-            prim.attributes["POSITION"] = pos;
-            prim.attributes["_RADIUS"] =
-                addAccessor(radView, 0, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR, r.count, false);
-            if (colView >= 0)
-                prim.attributes["COLOR_0"] =
-                    addAccessor(colView, size_t(r.first) * 4, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_TYPE_VEC4,
-                                r.count, true);
-            mesh.primitives.push_back(std::move(prim));
-        }
-        addChunkMesh(k, chunk.origin, std::move(mesh), {});
-        job_.stats.curves += chunk.runs.size();
-        job_.stats.vertices += chunk.points;
-        job_.stats.maxChunkVertices = std::max(job_.stats.maxChunkVertices, chunk.points);
-    }
-
-    void addMaterial() {
-        tinygltf::Material m;
-        m.name = "yarn";
-        // COLOR_0 multiplies the base colour: white when the vertices carry the colour.
-        m.pbrMetallicRoughness.baseColorFactor = job_.options.yarnColors || hasPointColours()
-                                                     ? std::vector<double>{1.0, 1.0, 1.0, 1.0}
-                                                     : std::vector<double>{0.8, 0.78, 0.74, 1.0};
-        m.pbrMetallicRoughness.metallicFactor = 0.0;
-        m.pbrMetallicRoughness.roughnessFactor = 0.85;
-        tinygltf::Value::Object sheen;
-        sheen["sheenColorFactor"] =
-            tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(0.8), tinygltf::Value(0.8), tinygltf::Value(0.8)});
-        sheen["sheenRoughnessFactor"] = tinygltf::Value(0.6);
-        m.extensions["KHR_materials_sheen"] = tinygltf::Value(std::move(sheen));
-        nlohmann::json extras = parseMaterialExtras(job_.input.materialExtrasJson);
-        extras["radius"] = job_.input.radius;
-        if (job_.tubes) {
-            extras["tubeSides"] = job_.options.sides;
-            extras["texcoord"] = "u around the tube 0..1 (seam column duplicated), v along in radius units";
-            extras["tangent"] = "along increasing u (around the tube), w = bitangent sign: w * cross(normal, tangent) "
-                                "points along increasing v";
-            extras["color"] = "COLOR_0 (--yarn-colors) is linear: the sRGB palette colour converted";
-            if (job_.options.quantize)
-                extras["texcoordScale"] =
-                    "TEXCOORD_0 is normalized uint16; uv = stored * primitive extras.texcoordScale";
-        }
-        if (hasPointColours() && !job_.options.yarnColors)
-            extras["color"] = "COLOR_0 is the pattern's yarn colour, linear (the chart's sRGB palette converted)";
-        m.extras = toValue(extras);
-        model_.materials.push_back(std::move(m));
-        model_.extensionsUsed.push_back("KHR_materials_sheen");
-    }
-
-    // The pattern carries yarn colours (given per point, or on the yarns plies are generated from).
-    bool hasPointColours() const {
-        return job_.input.colours || (job_.input.plies && !job_.input.plies->yarns().colour.empty());
-    }
-
-    std::vector<glm::u8vec4> vertexColours(const TubeMesh& mesh) const {
-        std::vector<glm::u8vec4> c(mesh.vertexCount());
-        for (size_t i = 0; i < c.size(); ++i) {
-            const uint32_t curve = mesh.curveOfVertex[i];
-            const uint32_t yarn = job_.input.yarnOfCurve ? (*job_.input.yarnOfCurve)[curve] : curve;
-            c[i] = yarnColour(yarn);
-        }
-        return c;
-    }
-
-    int addView(const void* data, uint64_t bytes, int stride, int target) {
-        tinygltf::BufferView v;
-        v.buffer = sink_.buffer();
-        v.byteOffset = size_t(sink_.append(data, bytes));
-        v.byteLength = size_t(bytes);
-        v.byteStride = size_t(stride);
-        v.target = target;
-        model_.bufferViews.push_back(v);
-        return int(model_.bufferViews.size()) - 1;
-    }
-
-    int addAccessor(int view, size_t offset, int componentType, int type, size_t count, bool normalized) {
-        tinygltf::Accessor a;
-        a.bufferView = view;
-        a.byteOffset = offset;
-        a.componentType = componentType;
-        a.type = type;
-        a.count = count;
-        a.normalized = normalized;
-        model_.accessors.push_back(a);
-        return int(model_.accessors.size()) - 1;
-    }
-
-    template <class V>
-    static void setBounds(tinygltf::Accessor& a, const std::vector<V>& values) {
-        V lo = values.front(), hi = values.front();
-        for (const V& v : values) {
-            for (int k = 0; k < 3; ++k) {
-                lo[k] = std::min(lo[k], v[k]);
-                hi[k] = std::max(hi[k], v[k]);
-            }
-        }
-        a.minValues = {double(lo[0]), double(lo[1]), double(lo[2])};
-        a.maxValues = {double(hi[0]), double(hi[1]), double(hi[2])};
-    }
-
-    // The views and accessors of a plain or quantized chunk (the caller reserved the space), with
-    // the exact POSITION bounds, and for quantized data the node scale and texcoordScale extras.
-    void tubeAccessors(const TubeChunk& t, bool colours, tinygltf::Primitive& prim, std::vector<double>& scale) {
-        const bool quantized = job_.options.quantize;
-        const std::vector<TubeView> views = tubeViews(t, colours, quantized);
-        for (size_t i = 0; i < views.size(); ++i) {
-            const TubeView& v = views[i];
-            const int view = job_.options.meshopt ? addMeshoptView(v, t.meshopt[i])
-                                                  : addView(v.data, uint64_t(v.count) * v.size, v.stride, v.target);
-            const int accessor = addAccessor(view, 0, v.componentType, v.type, v.count, v.normalized);
-            if (v.attribute) prim.attributes[v.attribute] = accessor;
-            else prim.indices = accessor;
-        }
-        tinygltf::Accessor& position = model_.accessors[size_t(prim.attributes["POSITION"])];
-        if (!quantized) {
-            setBounds(position, t.mesh.positions);
-            return;
-        }
-        const QuantizedTubes& q = t.quantized;
-        position.minValues = {double(q.lo.x), double(q.lo.y), double(q.lo.z)};
-        position.maxValues = {double(q.hi.x), double(q.hi.y), double(q.hi.z)};
-        scale = {q.step, q.step, q.step};
-        tinygltf::Value::Object extras;
-        extras["texcoordScale"] =
-            tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(1.0), tinygltf::Value(q.vScale)});
-        prim.extras = tinygltf::Value(std::move(extras));
-    }
-
-    // An EXT_meshopt_compression view: the encoded bytes go into the current buffer, the view
-    // itself into the fallback buffer (its index and the extension object are set in finish()).
-    int addMeshoptView(const TubeView& source, const MeshoptView& mv) {
-        tinygltf::BufferView v;
-        v.buffer = 0;
-        fallbackBytes_ = (fallbackBytes_ + 3) / 4 * 4;
-        v.byteOffset = size_t(fallbackBytes_);
-        v.byteLength = source.count * source.size;
-        v.byteStride = source.target == kElementArrayBuffer ? 0 : source.size;
-        v.target = source.target;
-        fallbackBytes_ += v.byteLength;
-        // tinygltf 2.7 drops bufferView extensions: the object is added to the JSON in finish().
-        const uint64_t at = sink_.append(mv.bytes.data(), mv.bytes.size());
-        model_.bufferViews.push_back(v);
-        meshoptViews_.push_back({int(model_.bufferViews.size()) - 1,
-                                 {{"buffer", sink_.buffer()},
-                                  {"byteOffset", at},
-                                  {"byteLength", mv.bytes.size()},
-                                  {"byteStride", mv.stride},
-                                  {"count", mv.count},
-                                  {"mode", mv.mode}}});
-        return meshoptViews_.back().first;
-    }
-
-    void tubeDraco(const DracoChunk& d, bool colours, tinygltf::Primitive& prim) {
-        sink_.reserve(d.bytes.size() + 8);
-        const int view = addView(d.bytes.data(), d.bytes.size(), 0, 0);
-        job_.stats.compressedMeshBytes += d.bytes.size();
-        // Accessors without bufferView: they describe the decoded data.
-        const int f = TINYGLTF_COMPONENT_TYPE_FLOAT;
-        prim.attributes["POSITION"] = addAccessor(-1, 0, f, TINYGLTF_TYPE_VEC3, d.points, false);
-        tinygltf::Accessor& pa = model_.accessors[prim.attributes["POSITION"]];
-        pa.minValues = {d.minPosition.x, d.minPosition.y, d.minPosition.z};
-        pa.maxValues = {d.maxPosition.x, d.maxPosition.y, d.maxPosition.z};
-        prim.attributes["NORMAL"] = addAccessor(-1, 0, f, TINYGLTF_TYPE_VEC3, d.points, false);
-        prim.attributes["TANGENT"] = addAccessor(-1, 0, f, TINYGLTF_TYPE_VEC4, d.points, false);
-        prim.attributes["TEXCOORD_0"] = addAccessor(-1, 0, f, TINYGLTF_TYPE_VEC2, d.points, false);
-        if (colours)
-            prim.attributes["COLOR_0"] =
-                addAccessor(-1, 0, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_TYPE_VEC4, d.points, true);
-        prim.indices =
-            addAccessor(-1, 0, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, d.faces * 3, false);
-        tinygltf::Value::Object attrs;
-        for (const auto& [name, id] : d.attributeIds) attrs[name] = tinygltf::Value(id);
-        tinygltf::Value::Object ext;
-        ext["bufferView"] = tinygltf::Value(view);
-        ext["attributes"] = tinygltf::Value(std::move(attrs));
-        prim.extensions["KHR_draco_mesh_compression"] = tinygltf::Value(std::move(ext));
-    }
-
-    void addChunkNode(size_t k, const glm::dvec3& origin, tinygltf::Primitive& prim, const std::vector<double>& scale) {
-        tinygltf::Mesh mesh;
-        mesh.name = "tubes " + std::to_string(k);
-        mesh.primitives.push_back(std::move(prim));
-        addChunkMesh(k, origin, std::move(mesh), scale);
-    }
-
-    void addChunkMesh(size_t k, const glm::dvec3& origin, tinygltf::Mesh mesh, const std::vector<double>& scale) {
-        model_.meshes.push_back(std::move(mesh));
-        tinygltf::Node node;
-        node.name = "chunk " + std::to_string(k);
-        node.mesh = int(model_.meshes.size()) - 1;
-        node.translation = {origin.x, origin.y, origin.z};
-        node.scale = scale;
-        model_.nodes.push_back(std::move(node));
-        model_.nodes[0].children.push_back(int(model_.nodes.size()) - 1);
-        ++job_.stats.chunks;
-    }
-
-    const FormatJob& job_;
-    bool glb_;
-    std::unique_ptr<CurveChunkSource> curves_;  // curve exports: where the chunks come from
-    BufferSink sink_;
-    tinygltf::Model model_;
-    std::vector<float> radius_;  // the constant _RADIUS values, as long as the longest curve so far
-    // --meshopt: views whose data is in the fallback buffer, with their extension objects.
-    std::vector<std::pair<int, nlohmann::json>> meshoptViews_;
-    uint64_t fallbackBytes_ = 0;  // --meshopt: size of the fallback buffer
-};
-
 }  // namespace
+
+// A linear colour in [0, 1] as COLOR_0's normalized RGBA8 (opaque).
+glm::u8vec4 linearRgba8(const glm::vec3& c) {
+    auto byte = [](float v) { return uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); };
+    return glm::u8vec4(byte(c.r), byte(c.g), byte(c.b), 255);
+}
+
+GltfBuilder::GltfBuilder(const FormatJob& job, bool glb)
+    : job_(job),
+      glb_(glb),
+      curves_(job.tubes ? nullptr
+                        : std::make_unique<CurveChunkSource>(job.input, job.options.chunkVertices, job.options.path)),
+      sink_(job.options.path, glb, job.options.maxBufferBytes, jsonReservation(job, curves_.get())) {
+    model_.asset.version = "2.0";
+    model_.asset.generator = "libknit";
+    if (!job.tubes) {
+        // Curves: name the custom per-point attribute, so a client can find the radius.
+        tinygltf::Value::Object attributes;
+        attributes["_RADIUS"] = tinygltf::Value(
+            std::string("per-vertex curve radius in metres (FLOAT SCALAR, one value per LINE_STRIP vertex, in the "
+                        "units of POSITION before node transforms)"));
+        tinygltf::Value::Object extras;
+        extras["attributes"] = tinygltf::Value(std::move(attributes));
+        model_.asset.extras = tinygltf::Value(std::move(extras));
+    }
+    model_.defaultScene = 0;
+    tinygltf::Scene scene;
+    scene.name = "knit";
+    scene.nodes.push_back(0);
+    model_.scenes.push_back(scene);
+    tinygltf::Node root;
+    root.name = "libknit";
+    model_.nodes.push_back(root);
+    addMaterial();
+    if (job.tubes && job.options.draco) {
+        model_.extensionsUsed.push_back("KHR_draco_mesh_compression");
+        model_.extensionsRequired.push_back("KHR_draco_mesh_compression");
+    }
+    if (job.tubes && job.options.quantize) {
+        model_.extensionsUsed.push_back("KHR_mesh_quantization");
+        model_.extensionsRequired.push_back("KHR_mesh_quantization");
+    }
+    if (job.tubes && job.options.meshopt) {
+        requireMeshopt();
+        model_.extensionsUsed.push_back("EXT_meshopt_compression");
+        model_.extensionsRequired.push_back("EXT_meshopt_compression");
+    }
+}
+
+void GltfBuilder::addMaterial() {
+    tinygltf::Material m;
+    m.name = "yarn";
+    // COLOR_0 multiplies the base colour: white when the vertices carry the colour.
+    m.pbrMetallicRoughness.baseColorFactor = job_.options.yarnColors || hasPointColours()
+                                                 ? std::vector<double>{1.0, 1.0, 1.0, 1.0}
+                                                 : std::vector<double>{0.8, 0.78, 0.74, 1.0};
+    m.pbrMetallicRoughness.metallicFactor = 0.0;
+    m.pbrMetallicRoughness.roughnessFactor = 0.85;
+    tinygltf::Value::Object sheen;
+    sheen["sheenColorFactor"] =
+        tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(0.8), tinygltf::Value(0.8), tinygltf::Value(0.8)});
+    sheen["sheenRoughnessFactor"] = tinygltf::Value(0.6);
+    m.extensions["KHR_materials_sheen"] = tinygltf::Value(std::move(sheen));
+    nlohmann::json extras = parseMaterialExtras(job_.input.materialExtrasJson);
+    extras["radius"] = job_.input.radius;
+    if (job_.tubes) {
+        extras["tubeSides"] = job_.options.sides;
+        extras["texcoord"] = "u around the tube 0..1 (seam column duplicated), v along in radius units";
+        extras["tangent"] = "along increasing u (around the tube), w = bitangent sign: w * cross(normal, tangent) "
+                            "points along increasing v";
+        extras["color"] = "COLOR_0 (--yarn-colors) is linear: the sRGB palette colour converted";
+        if (job_.options.quantize)
+            extras["texcoordScale"] = "TEXCOORD_0 is normalized uint16; uv = stored * primitive extras.texcoordScale";
+    }
+    if (hasPointColours() && !job_.options.yarnColors)
+        extras["color"] = "COLOR_0 is the pattern's yarn colour, linear (the chart's sRGB palette converted)";
+    m.extras = toValue(extras);
+    model_.materials.push_back(std::move(m));
+    model_.extensionsUsed.push_back("KHR_materials_sheen");
+}
+
+// The pattern carries yarn colours (given per point, or on the yarns plies are generated from).
+bool GltfBuilder::hasPointColours() const {
+    return job_.input.colours || (job_.input.plies && !job_.input.plies->yarns().colour.empty());
+}
+
+// A view's surface level (ExportInput::surface): one more node under the root, its mesh,
+// material and PNG textures in the current buffer.
+void GltfBuilder::writeSurface() {
+    if (!job_.input.surface) return;
+    const SurfaceLayer& layer = *job_.input.surface;
+    const SurfaceData d = prepareSurface(layer.mesh, layer.images, layer.material);
+    sink_.reserve(d.bytes() + 64);
+    const AddView add = [&](const void* data, size_t bytes, int target) { return addView(data, bytes, 0, target); };
+    const int node = addSurface(model_, add, d);  // grows model_.nodes: index the root after it
+    model_.nodes[0].children.push_back(node);
+    job_.stats.surfaceVertices = d.vertexCount();
+    job_.stats.surfaceTriangles = d.indices.size() / 3;
+    job_.stats.imageBytes = d.colourPng.size() + d.normalPng.size();
+}
 
 void exportGltf(const FormatJob& job, bool binary) {
     GltfBuilder builder(job, binary);

@@ -220,6 +220,30 @@ TEST(MeshIo, offWithoutTexcoordsIsRejected) {
     EXPECT_NE(errorOf([&] { knit::loadMesh(p); }).find("no texture coordinates"), std::string::npos);
 }
 
+TEST(MeshIo, offVertexLayoutFollowsTheHeader) {
+    // Normals (N) and colours (C, integer or float RGB[A]) come before u v on a vertex line.
+    TempDir dir;
+    const char* faces = "4 0 1 2 3\n3 0 2 3\n";
+    const std::string plain = std::string("STOFF\n4 2 0\n0 0 0 0 0\n1 0 0 1 0\n1 1 0.5 1 1\n0 1 0 0 1\n") + faces;
+    const std::string normalsAndColours = std::string("STCNOFF\n4 2 0\n0 0 0 0 0 1 255 0 0 0 0\n") +
+                                          "1 0 0 0 0 1 0.1 0.2 0.3 0.4 1 0\n1 1 0.5 0 0 1 1 2 3 1 1\n" +
+                                          "0 1 0 0 0 1 0 0 0 255 0 1\n" + faces;
+    const BaseMesh a = knit::loadMesh(dir.write("plain.off", plain));
+    const BaseMesh b = knit::loadMesh(dir.write("nc.off", normalsAndColours));
+    EXPECT_EQ(a.positions, b.positions);
+    EXPECT_EQ(a.uvs, b.uvs);
+    EXPECT_EQ(a.faceUvs, b.faceUvs);
+    // A vertex line without its u v is refused naming the line (OpenMesh, used before, kept the
+    // previous vertex's texture coordinates, or uninitialized ones for the first vertex).
+    const std::string shortLine = dir.write("short.off", "STOFF\n4 2 0\n0 0 0 0 0\n1 0 0\n1 1 0.5 1 1\n"
+                                                         "0 1 0 0 1\n4 0 1 2 3\n3 0 2 3\n");
+    EXPECT_NE(errorOf([&] { knit::loadMesh(shortLine); }).find("short.off:4: a vertex line needs at least 5 numbers"),
+              std::string::npos);
+    // The header starts the first line.
+    const std::string indented = dir.write("indented.off", " " + plain);
+    EXPECT_NE(errorOf([&] { knit::loadMesh(indented); }).find("indented.off:1: not an OFF file"), std::string::npos);
+}
+
 TEST(MeshIo, truncatedOffIsRejected) {
     // OpenMesh repeats the last face for missing face lines and reports success.
     TempDir dir;
@@ -276,6 +300,18 @@ TEST(MeshIo, meshWithoutUvsIsRejected) {
                                                   "property list uchar int vertex_indices\nend_header\n"
                                                   "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
     EXPECT_NE(errorOf([&] { knit::loadMesh(ply); }).find("no per-vertex texture coordinates"), std::string::npos);
+}
+
+TEST(MeshIo, objHexadecimalNumbersAreRefusedAtTheirLine) {
+    // strtod reads "0x1p3" as 8; an OBJ reader (OpenMesh's, used before) reads the 0 and fails
+    // on the rest, so such a file is refused naming the line instead of loading either value.
+    TempDir dir;
+    const std::string v = dir.write("hexv.obj", "v 0 0 0\nv 0x1p3 0 0\nv 1 1 0\nvt 0 0\nf 1/1 2/1 3/1\n");
+    EXPECT_NE(errorOf([&] { knit::loadMesh(v); }).find("hexv.obj:2: vertex position is not three finite numbers"),
+              std::string::npos);
+    const std::string vt = dir.write("hexvt.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 -0X1\nf 1/1 2/1 3/1\n");
+    EXPECT_NE(errorOf([&] { knit::loadMesh(vt); }).find("hexvt.obj:4: texture coordinate (vt) is not two finite"),
+              std::string::npos);
 }
 
 TEST(MeshIo, objFaceWithoutVtIsRejected) {

@@ -1,5 +1,5 @@
 // mesh_weld.hpp (internal) — polygons with per-corner UVs to a welded, triangulated BaseMesh;
-// shared by the OpenMesh formats (mesh_io.cpp) and glTF (mesh_gltf.cpp).
+// shared by the OBJ/PLY/OFF readers (mesh_reader.hpp) and glTF (mesh_gltf.cpp).
 #pragma once
 #include <cstdint>
 #include <functional>
