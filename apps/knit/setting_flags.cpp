@@ -36,6 +36,7 @@ const std::vector<SettingSpelling>& settingFlags() {
         {"meshopt compression", "--meshopt"},
         {"the surface level alone", "--surface-only"},
         // Animation.
+        {"the frame sequence", "--frames"},
         {"the frame rate", "--fps"},
         {"the frame step", "--step"},
         {"the last frame", "--last"},

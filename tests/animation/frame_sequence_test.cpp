@@ -100,9 +100,10 @@ TEST(FrameSequence, nonMatchingUvsAreNamed) {
 }
 
 TEST(FrameSequence, patternWithoutConversionIsRefused) {
-    EXPECT_EQ(test::errorOf([] { FrameSequence("frames.obj"); }),
-              "--frames: 'frames.obj' is neither a folder nor a file pattern with one integer conversion (e.g. "
-              "frame_%04d.obj)");
+    EXPECT_EQ(
+        test::errorOf([] { FrameSequence("frames.obj"); }),
+        "the frame sequence: 'frames.obj' is neither a folder nor a file pattern with one integer conversion (e.g. "
+        "frame_%04d.obj)");
 }
 
 }  // namespace

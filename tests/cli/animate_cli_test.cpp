@@ -95,6 +95,20 @@ TEST_F(Animate, pointCacheHoldsEveryFramesPliesAndTheTopology) {
     EXPECT_EQ(objVertices((dir / "c.obj").string()).size(), ref.size());
 }
 
+// The library names the frame sequence and its settings in words; the CLI adds its flags.
+TEST_F(Animate, frameSequenceErrorsNameTheFlags) {
+    writeWaveSequence(dir, 2, 4);
+    CliRun r = runKnit("animate -q --frames frames.obj --repeats 3 3 -o c.pc2", dir);
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.output.find("the frame sequence (--frames): 'frames.obj' is neither a folder nor a file pattern"),
+              std::string::npos)
+        << r.output;
+    r = runKnit("animate -q --frames frame_%04d.obj --step 0 --repeats 3 3 -o c.pc2", dir);
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.output.find("--step"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir / "c.pc2"));
+}
+
 TEST_F(Animate, badFrameFailsNamingItAndLeavesNoPartialCache) {
     writeWaveSequence(dir, 5, 8);
     writeWaveFrame(dir / "frame_0004.obj", 4, 9);  // another resolution: another vertex count

@@ -89,13 +89,13 @@ std::map<int, std::string> filesOfFolder(const std::string& folder) {
         if (number < 0) continue;
         const std::string ext = util::lowerExtension(name);
         if (!extension.empty() && ext != extension)
-            throw Error("--frames: folder '" + folder + "' holds numbered meshes of two formats (" + extension +
-                        " and " + ext + "); give a printf pattern such as frame_%04d." + extension);
+            throw Error("the frame sequence: folder '" + folder + "' holds numbered meshes of two formats (" +
+                        extension + " and " + ext + "); give a printf pattern such as frame_%04d." + extension);
         extension = ext;
         const auto [it, inserted] = found.emplace(static_cast<int>(number), entry.path().string());
         if (!inserted)
-            throw Error("--frames: folder '" + folder + "' holds two files numbered " + std::to_string(number) + " ('" +
-                        it->second + "' and '" + entry.path().string() + "')");
+            throw Error("the frame sequence: folder '" + folder + "' holds two files numbered " +
+                        std::to_string(number) + " ('" + it->second + "' and '" + entry.path().string() + "')");
     }
     return found;
 }
@@ -104,7 +104,7 @@ std::map<int, std::string> filesOfFolder(const std::string& folder) {
 
 FrameSequence::FrameSequence(const std::string& source, const FrameRange& range) {
     // Step 1: the numbered files that exist (or the samples of one animated glTF).
-    if (range.step < 1) throw Error("--step must be >= 1, got " + std::to_string(range.step));
+    if (range.step < 1) throw Error("the frame step must be >= 1, got " + std::to_string(range.step));
     std::error_code ec;
     NamePattern pattern;
     const bool folder = fs::is_directory(source, ec);
@@ -113,26 +113,26 @@ FrameSequence::FrameSequence(const std::string& source, const FrameRange& range)
         try {
             animation_ = std::make_shared<const GltfAnimation>(source, range.fps);
         } catch (const Error& e) {
-            throw Error("--frames '" + source + "': " + e.what());
+            throw Error("the frame sequence '" + source + "': " + e.what());
         }
         for (size_t k = 0; k < animation_->times().size(); ++k) samples[int(k) + 1] = source;
     }
     if (!folder && !animation_ && !splitPattern(source, pattern))
-        throw Error("--frames: '" + source +
+        throw Error("the frame sequence: '" + source +
                     "' is neither a folder nor a file pattern with one integer conversion (e.g. frame_%04d.obj)");
     if (!folder && !animation_ && !fs::is_directory(pattern.folder, ec))
-        throw Error("--frames: folder '" + pattern.folder + "' of '" + source + "' does not exist");
+        throw Error("the frame sequence: folder '" + pattern.folder + "' of '" + source + "' does not exist");
     const std::map<int, std::string> found =
         animation_ ? samples : (folder ? filesOfFolder(source) : filesOfPattern(pattern));
     if (found.empty() && (range.first < 0 || range.last < 0))
-        throw Error("--frames: no numbered mesh files match '" + source + "'");
+        throw Error("the frame sequence: no numbered mesh files match '" + source + "'");
 
     // Step 2: the range; every frame in it must exist.
     const int first = range.first >= 0 ? range.first : found.begin()->first;
     const int last = range.last >= 0 ? range.last : found.rbegin()->first;
     if (last < first)
-        throw Error("--frames: the range " + std::to_string(first) + ".." + std::to_string(last) + " of '" + source +
-                    "' is empty");
+        throw Error("the frame sequence: the range " + std::to_string(first) + ".." + std::to_string(last) + " of '" +
+                    source + "' is empty");
     for (long k = first; k <= last; k += range.step) {
         const int number = static_cast<int>(k);
         const auto it = found.find(number);

@@ -240,8 +240,8 @@ GltfAnimation::GltfAnimation(std::unique_ptr<State> state, double fps, size_t an
     if (fps > 0) {
         const double last = s.times.back();
         if (!std::isfinite(fps) || !(last * fps < kMaxSamples))
-            s.doc.fail("sampling its animation (last key at " + std::to_string(last) + " s) at --fps " +
-                       std::to_string(fps) + " gives more than 1e6 frames; lower --fps");
+            s.doc.fail("sampling its animation (last key at " + std::to_string(last) + " s) at the frame rate " +
+                       std::to_string(fps) + " gives more than 1e6 frames; lower the frame rate");
         s.times.clear();
         for (size_t k = 0; double(k) / fps <= last + 1e-9; ++k) s.times.push_back(double(k) / fps);
     }
