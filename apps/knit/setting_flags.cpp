@@ -36,6 +36,8 @@ const std::vector<SettingSpelling>& settingFlags() {
         {"meshopt compression", "--meshopt"},
         {"the surface level alone", "--surface-only"},
         // Animation.
+        {"the fitted parameters", "--fit"},
+        {"the parameter bounds", "--bound"},
         {"the frame sequence", "--frames"},
         {"the frame rate", "--fps"},
         {"the frame step", "--step"},

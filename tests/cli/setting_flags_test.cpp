@@ -12,6 +12,9 @@
 #ifdef KNIT_HAVE_RENDER_CHECK
 #include "render_command.hpp"
 #endif
+#ifdef KNIT_HAVE_FIT
+#include "fit_command.hpp"
+#endif
 
 namespace knit::cli {
 namespace {
@@ -36,9 +39,16 @@ TEST(SettingFlags, everyFlagIsAnOptionOfASubcommand) {
     RenderCommand render;
     addRenderCommand(app, render);
 #endif
+#ifdef KNIT_HAVE_FIT
+    FitCommand fit;
+    addFitCommand(app, fit);
+#endif
     for (const SettingSpelling& s : settingFlags()) {
 #ifndef KNIT_HAVE_RENDER_CHECK
         if (s.spelling == "--surface-only") continue;  // a flag of builds with render_check only
+#endif
+#ifndef KNIT_HAVE_FIT
+        if (s.spelling == "--fit" || s.spelling == "--bound") continue;  // knit fit needs NLopt
 #endif
         EXPECT_TRUE(anySubcommandHas(app, s.spelling)) << s.words << ": " << s.spelling;
     }

@@ -138,7 +138,7 @@ TEST(Fit, mismatchedImageSizesNameTheBackImage) {
     EXPECT_THROW(checkFitTargets({a, "f"}, {a, "b"}, std::vector<float>(10, 1.f)), Error);
 }
 
-TEST(Fit, boundsThatBreakEnergyConservationNameTheOption) {
+TEST(Fit, boundsThatBreakEnergyConservationNameTheSetting) {
     std::vector<FitParameter> p = parseFitList("kR,body-albedo");
     applyFitBound(p, "kR=0:0.9");
     applyFitBound(p, "body-albedo=0.3:1");
@@ -146,7 +146,7 @@ TEST(Fit, boundsThatBreakEnergyConservationNameTheOption) {
         FitSpace(p, PlyMaterial{});
         FAIL() << "no error";
     } catch (const Error& e) {
-        EXPECT_NE(std::string(e.what()).find("--bound"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("the parameter bounds"), std::string::npos) << e.what();
         EXPECT_NE(std::string(e.what()).find("energy bound"), std::string::npos) << e.what();
     }
     // Fixed fields count too: kTT up to 0.8 with the default body albedo 0.55 breaks it.

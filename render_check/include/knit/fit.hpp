@@ -25,7 +25,7 @@ class Scene;
 
 struct FitTarget {
     Image image;             // linear RGB
-    std::string source;      // named in messages ("--front 'f.png'")
+    std::string source;      // named in messages ("the front-lit photograph 'f.png'")
     bool saturates = false;  // an 8-bit image (PNG): radiance above 1 was clipped to 1
 };
 
@@ -76,12 +76,13 @@ struct FitParameter {
 };
 
 // The default bounds of a field; knit::Error naming `option` for an unknown name.
-FitParameter fitParameter(const std::string& name, const std::string& option = "--fit");
+FitParameter fitParameter(const std::string& name, const std::string& option = "the fitted parameters");
 // "kR,kTT,body-albedo" -> the fields with default bounds (duplicates and unknown names are errors).
-std::vector<FitParameter> parseFitList(const std::string& list, const std::string& option = "--fit");
+std::vector<FitParameter> parseFitList(const std::string& list, const std::string& option = "the fitted parameters");
 // Applies "NAME=LO:HI" to the matching entry of `params` (it must be free), checking LO <= HI and
 // the field's valid range; errors name `option`.
-void applyFitBound(std::vector<FitParameter>& params, const std::string& bound, const std::string& option = "--bound");
+void applyFitBound(std::vector<FitParameter>& params, const std::string& bound,
+                   const std::string& option = "the parameter bounds");
 
 // The free fields of a fit and the map between a material and the optimiser's vector x in
 // [0, 1]^n. Body albedo is stored as a fraction of the energy left by max(kR, kTT), so every x in
@@ -90,7 +91,8 @@ class FitSpace {
 public:
     // Checks the bounds against the fixed fields of `base`: a box in which some point breaks the
     // energy bound (e.g. kR up to 0.9 with body albedo from 0.3) is a knit::Error naming `option`.
-    FitSpace(std::vector<FitParameter> params, const PlyMaterial& base, const std::string& option = "--bound");
+    FitSpace(std::vector<FitParameter> params, const PlyMaterial& base,
+             const std::string& option = "the parameter bounds");
     size_t size() const { return dims_; }
     const std::vector<FitParameter>& parameters() const { return params_; }
     PlyMaterial material(const std::vector<double>& x) const;       // x in [0, 1]^n -> material
@@ -117,9 +119,9 @@ struct FitIteration {
 };
 
 struct FitOptions {
-    RenderOptions render;                  // scene view, lights, spp (full stage), seed, base material
-    std::vector<FitParameter> parameters;  // free fields (empty: kR, kTT, body-albedo)
-    std::string boundOption = "--bound";   // named in bound errors
+    RenderOptions render;                              // scene view, lights, spp (full stage), seed, base material
+    std::vector<FitParameter> parameters;              // free fields (empty: kR, kTT, body-albedo)
+    std::string boundOption = "the parameter bounds";  // named in bound errors (the CLI: --bound)
     LossOptions loss;
     double budgetSeconds = 600;                         // wall-clock budget of the whole fit (both stages)
     int maxEvaluations = 200;                           // loss evaluations over both stages

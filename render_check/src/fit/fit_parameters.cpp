@@ -101,7 +101,8 @@ void applyFitBound(std::vector<FitParameter>& params, const std::string& bound, 
     const FieldInfo* f = findField(name);
     if (!f) throw Error(option + " '" + bound + "': unknown material field '" + name + "'");
     auto it = std::find_if(params.begin(), params.end(), [&](const FitParameter& p) { return p.name == name; });
-    if (it == params.end()) throw Error(option + " '" + bound + "': '" + name + "' is not fitted (add it to --fit)");
+    if (it == params.end())
+        throw Error(option + " '" + bound + "': '" + name + "' is not fitted (add it to the fitted parameters)");
     double lo = 0, hi = 0;
     try {
         size_t used = 0;
