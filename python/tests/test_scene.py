@@ -108,7 +108,7 @@ def test_evaluate_plies_keeps_the_rest_layout_when_the_yarns_stretch(scene):
 
 
 def test_max_memory_refuses_a_scene_over_the_budget_before_building_it():
-    with pytest.raises(knit.Error, match="memory budget of"):
+    with pytest.raises(knit.Error, match=r"over the memory budget \(max_memory\) of"):
         knit.build_scene("stockinette", "drape", repeats=(64, 64), max_memory="1M")
     assert knit.build_scene("stockinette", "plane", repeats=(2, 2), max_memory="1G").yarns.point_count > 0
 
