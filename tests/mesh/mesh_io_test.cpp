@@ -1,5 +1,5 @@
-// Tests for loadMesh (OBJ / PLY / OFF through OpenMesh): seams, welding, precision, and the
-// malformed inputs OpenMesh would accept silently.
+// Tests for loadMesh (OBJ / PLY / OFF, libknit's own readers): seams, welding, precision, and the
+// malformed inputs OpenMesh's readers (used before) would accept silently.
 #include "knit/base_mesh.hpp"
 #include "knit/error.hpp"
 #include "test_util.hpp"
