@@ -43,11 +43,18 @@ enum class Slot { None, X, Y, Z, U, V, TexU, TexV };
 // a custom property read by its type (beside texture_u/texture_v only), or skipped as one value.
 enum class Read { Float, Int, Indices, Custom, Skip };
 
+// A scalar type as the binary walk reads it: its size and whether it is a float, a signed
+// integer or an unsigned one (set once per property by assignReads, not per value).
+struct PlyScalar {
+    int size = 0;
+    bool isFloat = false, isSigned = false;
+};
 struct PlyProperty {
     bool list = false;
     std::string countType, type, name;
     Read read = Read::Skip;
     Slot slot = Slot::None;
+    PlyScalar value, count;  // the binary layout of `type` and `countType`
 };
 struct PlyElement {
     std::string name;
@@ -91,14 +98,18 @@ bool plySignedType(const std::string& t) {
     return t == "char" || t == "int8" || t == "short" || t == "int16" || t == "int" || t == "int32";
 }
 
+PlyScalar plyScalar(const std::string& type) {
+    return {plyTypeSize(type), type == "float" || type == "float32", plySignedType(type)};
+}
+
 // A binary scalar at `at` as a double (integers exactly up to 2^53).
-double plyBinaryValue(const std::string& body, size_t at, const std::string& type, bool bigEndian) {
-    const int n = plyTypeSize(type);
+double plyBinaryValue(const std::string& body, size_t at, const PlyScalar& type, bool bigEndian) {
+    const int n = type.size;
     unsigned char b[8];
     for (int i = 0; i < n; ++i) b[i] = static_cast<unsigned char>(body[at + (bigEndian ? n - 1 - i : i)]);
     uint64_t u = 0;
     for (int i = n - 1; i >= 0; --i) u = (u << 8) | b[i];
-    if (type == "float" || type == "float32") {
+    if (type.isFloat) {
         float f;
         const uint32_t u32 = uint32_t(u);
         std::memcpy(&f, &u32, 4);
@@ -109,7 +120,7 @@ double plyBinaryValue(const std::string& body, size_t at, const std::string& typ
         std::memcpy(&d, &u, 8);
         return d;
     }
-    if (plySignedType(type)) {
+    if (type.isSigned) {
         const uint64_t sign = uint64_t(1) << (8 * n - 1);
         return double(int64_t(u ^ sign) - int64_t(sign));
     }
@@ -350,23 +361,25 @@ void walkBinary(const std::string& body, size_t at, const std::string& path, con
                 };
                 const Read read = readOf(p, h);
                 if (!p.list) {
-                    const size_t n = size_t(plyTypeSize(p.type));
+                    const PlyScalar& type = p.value;
+                    const size_t n = size_t(type.size);
                     if (body.size() - at < n) truncated();
                     if (vertex && p.slot != Slot::None)
-                        record(p.slot, plyBinaryValue(body, at, p.type, h.bigEndian), slotAsFloat(p), point, uv);
+                        record(p.slot, plyBinaryValue(body, at, type, h.bigEndian), slotAsFloat(p), point, uv);
                     at += n;
                     continue;
                 }
-                const size_t cn = size_t(plyTypeSize(p.countType)), n = size_t(plyTypeSize(p.type));
+                const PlyScalar &countType = p.count, &type = p.value;
+                const size_t cn = size_t(countType.size), n = size_t(type.size);
                 if (body.size() - at < cn) truncated();
-                const double count = plyBinaryValue(body, at, p.countType, h.bigEndian);
+                const double count = plyBinaryValue(body, at, countType, h.bigEndian);
                 at += cn;
                 if (count < 0 || count > double(body.size() - at) / double(n))
                     failMesh(path, "element '" + e.name + "' " + std::to_string(k) + ": list '" + p.name +
                                        "' has a bad count (" + std::to_string(count) + ")");
                 if (e.recorded && read == Read::Indices) {
                     for (size_t c = 0; c < size_t(count); ++c) {
-                        const double v = plyBinaryValue(body, at + c * n, p.type, h.bigEndian);
+                        const double v = plyBinaryValue(body, at + c * n, type, h.bigEndian);
                         d.polys.faceVerts.push_back(static_cast<int>(uint32_t(int64_t(v))));
                     }
                     d.polys.faceStart.push_back(uint32_t(d.polys.faceVerts.size()));
@@ -400,6 +413,8 @@ void assignReads(const std::string& path, PlyHeader& h, PlyData& d) {
         }
         for (size_t i = 0; i < e.props.size(); ++i) {
             PlyProperty& p = e.props[i];
+            p.value = plyScalar(p.type);
+            if (p.list) p.count = plyScalar(p.countType);
             if (!p.list && plyTypeSize(p.name))
                 d.refuse(path + ": property '" + p.type + " " + p.name + "' of element '" + e.name +
                          "' is named after a type (not supported)");
