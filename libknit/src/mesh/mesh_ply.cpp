@@ -420,15 +420,11 @@ void assignReads(const std::string& path, PlyHeader& h, PlyData& d) {
                          "' is named after a type (not supported)");
             if (e.name == "vertex") {
                 // A property declared twice is read twice (the last value counts), except that
-                // OpenMesh's ASCII reader wanted x, y, z once each and a custom property twice
-                // with two types was two properties.
+                // OpenMesh's ASCII reader wanted x, y, z once each.
                 for (size_t j = 0; j < i; ++j)
-                    if (e.props[j].name == p.name && !p.list && !e.props[j].list) {
-                        if (h.ascii && (p.name == "x" || p.name == "y" || p.name == "z"))
-                            d.fail(path + ": property '" + p.name + "' of element 'vertex' is declared twice");
-                        else if (p.name.rfind("texture_", 0) == 0 && p.type != e.props[j].type)
-                            d.refuse(path + ": property '" + p.name + "' of element 'vertex' is declared twice");
-                    }
+                    if (h.ascii && e.props[j].name == p.name && !p.list && !e.props[j].list &&
+                        (p.name == "x" || p.name == "y" || p.name == "z"))
+                        d.fail(path + ": property '" + p.name + "' of element 'vertex' is declared twice");
                 const std::string& n = p.name;
                 if (p.list) p.read = Read::Custom;
                 else if (n == "x" || n == "y" || n == "z")
@@ -442,8 +438,17 @@ void assignReads(const std::string& path, PlyHeader& h, PlyData& d) {
                     p.read = p.type == "float" || p.type == "float32" ? Read::Float : Read::Int;
                 else {
                     p.read = Read::Custom;
-                    if (h.hasTextureUV && n == h.textureU) p.slot = Slot::TexU;
-                    if (h.hasTextureUV && n == h.textureV) p.slot = Slot::TexV;
+                    // A custom property declared with two types was two properties; the float
+                    // one was taken, else the double one.
+                    auto taken = [&](const std::string& name) {
+                        if (!h.hasTextureUV || n != name || !plyFloatType(p.type)) return false;
+                        const bool isFloat = p.type == "float" || p.type == "float32";
+                        return isFloat || !std::any_of(e.props.begin(), e.props.end(), [&](const PlyProperty& q) {
+                                   return !q.list && q.name == name && (q.type == "float" || q.type == "float32");
+                               });
+                    };
+                    if (taken(h.textureU)) p.slot = Slot::TexU;
+                    if (taken(h.textureV)) p.slot = Slot::TexV;
                 }
             } else if (e.name == "face") {
                 if (p.list && (p.name == "vertex_indices" || p.name == "vertex_index")) {
@@ -620,7 +625,7 @@ BaseMesh readPlyMesh(const std::string& path, const MeshLoadOptions& options) {
             for (const PlyElement& e : h.elements)
                 if (e.name == "vertex")
                     for (const PlyProperty& p : e.props)
-                        if (!p.list && p.name == name) return plyFloatType(p.type);
+                        if (!p.list && p.name == name && plyFloatType(p.type)) return true;
             return false;
         };
         if (!declared(h.textureU) || !declared(h.textureV))
