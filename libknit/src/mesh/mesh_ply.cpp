@@ -383,8 +383,11 @@ void walkBinary(const std::string& body, size_t at, const std::string& path, con
                         d.polys.faceVerts.push_back(static_cast<int>(uint32_t(int64_t(v))));
                     }
                     d.polys.faceStart.push_back(uint32_t(d.polys.faceVerts.size()));
-                } else if (e.recorded && read == Read::Skip && cn + size_t(count) * n != n) {
-                    // OpenMesh skipped one value of the list's type: the rest of the file was misread.
+                } else if (e.recorded && read == Read::Skip && cn + size_t(count) * n != n &&
+                           !(e.name == "face" && k + 1 == e.count && &p == &e.props.back() &&
+                             at - cn + n <= body.size())) {
+                    // OpenMesh skipped one value of the list's type: the rest of the file was misread
+                    // (harmlessly only after a list ending the last face, if that stayed in the file).
                     d.refuse(path + ": element '" + e.name + "' " + std::to_string(k) + ": list '" + p.name +
                              "' is not supported in a binary file: lists other than the face's vertex_indices are read "
                              "only beside texture_u/texture_v, and this one was misread");
