@@ -1,5 +1,5 @@
 // mesh_bench.cpp — base-mesh costs: vertex normals (the per-frame part of animation), the UV
-// scale, procedural generation, and loading OBJ / binary PLY (OBJ: one pass + weld; PLY: check walk + OpenMesh + weld).
+// scale, procedural generation, and loading OBJ / binary PLY (OBJ: one pass + weld; PLY: one checking pass + weld).
 #include "knit/base_mesh.hpp"
 
 #include <benchmark/benchmark.h>

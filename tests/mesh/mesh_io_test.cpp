@@ -1,5 +1,5 @@
-// Tests for loadMesh (OBJ / PLY / OFF through OpenMesh): seams, welding, precision, and the
-// malformed inputs OpenMesh would accept silently.
+// Tests for loadMesh (OBJ / PLY / OFF, libknit's own readers): seams, welding, precision, and the
+// malformed inputs OpenMesh's readers (used before) would accept silently.
 #include "knit/base_mesh.hpp"
 #include "knit/error.hpp"
 #include "test_util.hpp"
@@ -151,6 +151,72 @@ TEST(MeshIo, binaryBigEndianPlyWithDoubleTextureUvLoads) {
     const glm::dvec2 scale = knit::uvToMetreScale(m);
     EXPECT_NEAR(scale.x, 2.0, 1e-12);
     EXPECT_NEAR(scale.y, 1.0, 1e-12);
+}
+
+// PLY is read in one pass by libknit (no longer by OpenMesh's reader after the checking walk); a
+// file loads exactly as OpenMesh delivered it.
+TEST(MeshIo, plyLoadsAsOpenMeshDeliveredIt) {
+    const std::string head = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                             "property float z\n";
+    const std::string faces = "element face 2\nproperty list uchar int vertex_indices\n";
+    const std::string verts = "0 0 0.1 0 0.1\n1 0 0.1 1 0\n1 1 0.1 1 1\n0 1 0.1 0 1\n";
+    TempDir dir;
+    // Positions and u,v in float32; texture_u,texture_v as declared (double here).
+    const BaseMesh f = knit::loadMesh(dir.write("f.ply", head + "property float u\nproperty float v\n" + faces +
+                                                             "end_header\n" + verts + "3 0 1 2\n3 0 2 3\n"));
+    EXPECT_EQ(f.positions[0].z, double(0.1f));
+    EXPECT_EQ(f.uvs[f.faceUvs[0][0]].y, double(0.1f));
+    const BaseMesh d =
+        knit::loadMesh(dir.write("d.ply", head + "property double texture_u\nproperty double texture_v\n" + faces +
+                                              "end_header\n" + verts + "3 0 1 2\n3 0 2 3\n"));
+    EXPECT_EQ(d.uvs[d.faceUvs[0][0]].y, 0.1);
+    // Only u: v is 0. The last index of the last face is read as far as it is an integer ("3.0"
+    // is 3), and elements after 'face' are only checked.
+    const BaseMesh u = knit::loadMesh(dir.write("u.ply", head + "property float u\nproperty float q\n" + faces +
+                                                             "element edge 1\nproperty list uchar int e\nend_header\n" +
+                                                             verts + "3 0 1 2\n3 0 2 3.0\n2 0 1\n"));
+    ASSERT_EQ(u.faces.size(), 2u);
+    EXPECT_EQ(u.faces, f.faces);
+    EXPECT_EQ(u.uvs[u.faceUvs[0][2]], glm::dvec2(1, 0));
+}
+
+TEST(MeshIo, plyLayoutsOpenMeshMisreadAreRefusedNamingTheLine) {
+    const std::string vertex = "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                               "property float u\nproperty float v\n";
+    const std::string face = "element face 2\nproperty list uchar int vertex_indices\n";
+    const std::string data = "0 0 0 0 0\n1 0 0 1 0\n0 1 0 0 1\n";
+    TempDir dir;
+    auto error = [&](const std::string& name, const std::string& text) {
+        return errorOf([&] { knit::loadMesh(dir.write(name, text)); });
+    };
+    // A token OpenMesh read in part ("2.0" as an index: 2, then ".0" as the next value).
+    EXPECT_NE(
+        error("part.ply", "ply\nformat ascii 1.0\n" + vertex + face + "end_header\n" + data + "3 0 1 2.0\n3 0 1 2\n")
+            .find("part.ply:15: '2.0' in property 'vertex_indices' of element 'face' must be a plain integer"),
+        std::string::npos);
+    // A header line before the format line (OpenMesh took the words after 'ply' as the format).
+    EXPECT_NE(error("fmt.ply",
+                    "ply\ncomment c\nformat ascii 1.0\n" + vertex + face + "end_header\n" + data + "3 0 1 2\n3 0 2 1\n")
+                  .find("fmt.ply:3: the format line must come right after the 'ply' line"),
+              std::string::npos);
+    // A non-empty list OpenMesh skipped as one value.
+    EXPECT_NE(error("list.ply", "ply\nformat ascii 1.0\n" + vertex + "property list uchar int l\n" + face +
+                                    "end_header\n0 0 0 0 0 1 7\n1 0 0 1 0 0\n0 1 0 0 1 0\n3 0 1 2\n3 0 2 1\n")
+                  .find("list.ply:13: list 'l' of element 'vertex' must be empty"),
+              std::string::npos);
+    // A list count type OpenMesh did not know.
+    EXPECT_NE(error("count.ply", "ply\nformat ascii 1.0\n" + vertex +
+                                     "element face 1\nproperty list ushort int vertex_indices\nend_header\n" + data +
+                                     "3 0 1 2\n")
+                  .find("count type 'ushort'"),
+              std::string::npos);
+    // Binary: a comment right before end_header (OpenMesh started the data one byte late).
+    std::string bin = "ply\nformat binary_big_endian 1.0\n" + vertex +
+                      "element face 1\nproperty list uchar int vertex_indices\ncomment c\nend_header\n";
+    for (float c : {0.f, 0.f, 0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 1.f, 0.f, 0.f, 1.f, 0.f, 0.f, 1.f}) putBE(bin, c);
+    bin.push_back(char(3));
+    for (int32_t i : {0, 1, 2}) putBE(bin, i);
+    EXPECT_NE(error("bin.ply", bin).find("'end_header' must directly follow the last header line"), std::string::npos);
 }
 
 TEST(MeshIo, offLoads) {

@@ -49,8 +49,8 @@ struct MeshLoadOptions {
     MemoryBudget budget;
 };
 
-// Reads OBJ (with vt), PLY (with per-vertex u,v / s,t / texcoord) or OFF (with texture coords;
-// PLY through OpenMesh), or glTF 2.0 (.gltf / .glb, TEXCOORD_0; src/mesh/mesh_gltf.cpp),
+// Reads OBJ (with vt), PLY (with per-vertex u,v / s,t / texture_u,texture_v) or OFF (with
+// texture coords), each in one pass by libknit's own reader (src/mesh/mesh_*.cpp), or glTF 2.0 (.gltf / .glb, TEXCOORD_0; src/mesh/mesh_gltf.cpp),
 // chosen by extension (src/mesh/mesh_io.cpp); polygons are fan-triangulated. Throws knit::Error
 // naming the file when it cannot be read, is empty, has no UVs, or has NaN/Inf coordinates.
 BaseMesh loadMesh(const std::string& path, const MeshLoadOptions& options = {});

@@ -4,9 +4,11 @@
 //    (mesh_ply.cpp), .off (mesh_off.cpp), .gltf/.glb (mesh_gltf.cpp); anything else is an error
 //    that lists the table.
 //  * Every file is read by its reader, which checks it as it goes and names the line of a bad
-//    element where the format has lines. OBJ and OFF are parsed in one pass by libknit alone
-//    (OBJ positions in double); PLY is checked by a walk of its own and then parsed by
-//    OpenMesh's reader (mesh_ply.cpp says why).
+//    element where the format has lines. OBJ, PLY and OFF are each parsed in one pass by
+//    libknit alone (OBJ positions in double; PLY and OFF values as OpenMesh's readers, used
+//    before, delivered them). The readers are our own because OpenMesh 9.0's crash on some
+//    malformed headers, trust list and element counts and turn bad tokens into zeros without
+//    reporting failure, while the checking walk already reads every value.
 //  * Faces are triangulated inside their outline (polygon_triangulation.hpp: convex ones as the
 //    fan (v0, vi, vi+1), concave ones by a constrained Delaunay triangulation in their best-fit
 //    plane; a polygon without area or crossing itself is refused naming it). Positions that are
