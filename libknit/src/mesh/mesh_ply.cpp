@@ -350,6 +350,9 @@ void walkAscii(const std::string& file, size_t pos, size_t lineNo, const std::st
 // Binary: walk the elements through the bytes, recording as OpenMesh read them.
 void walkBinary(const std::string& body, size_t at, const std::string& path, const PlyHeader& h, PlyData& d) {
     for (const PlyElement& e : h.elements) {
+        // An element without properties holds no bytes: nothing to walk, however many it declares
+        // (a count of 2^53 would otherwise spin for ever: tests/fuzz_corpus/ply/timeout-3d69138e...).
+        if (e.props.empty()) continue;
         const bool vertex = e.recorded && e.name == "vertex";
         for (size_t k = 0; k < e.count; ++k) {
             glm::dvec3 point(0.0);
