@@ -8,20 +8,10 @@
 
 #include <CLI/CLI.hpp>
 
-#include "animate_command.hpp"
-#include "build_command.hpp"
-#include "chart_command.hpp"
-#include "generate_command.hpp"
-#include "info_command.hpp"
+#include "commands.hpp"
 #include "knit/error.hpp"
 #include "scene_flags.hpp"
 #include "setting_flags.hpp"
-#ifdef KNIT_HAVE_RENDER_CHECK
-#include "render_command.hpp"
-#endif
-#ifdef KNIT_HAVE_FIT
-#include "fit_command.hpp"
-#endif
 
 namespace {
 
@@ -32,24 +22,8 @@ int runKnit(int argc, char** argv) {
     app.footer(kSceneHelp);
 
     // Subcommands, in the order --help lists them.
-    BuildCommand build;
-    InfoCommand info;
-    GenerateCommand generate;
-    ChartCommand chart;
-    AnimateCommand animate;
-    addBuildCommand(app, build);
-    addAnimateCommand(app, animate);
-    addInfoCommand(app, info);
-    addGenerateCommand(app, generate);
-    addChartCommand(app, chart);
-#ifdef KNIT_HAVE_RENDER_CHECK
-    RenderCommand render;
-    addRenderCommand(app, render);
-#endif
-#ifdef KNIT_HAVE_FIT
-    FitCommand fit;
-    addFitCommand(app, fit);
-#endif
+    Commands commands;
+    addCommands(app, commands);
 
     try {
         app.parse(argc, argv);
@@ -58,17 +32,7 @@ int runKnit(int argc, char** argv) {
     }
 
     try {
-        if (*info.command) return runInfo(info);
-        if (*generate.command) return runGenerate(generate);
-        if (*chart.command) return runChart(chart);
-        if (*build.command) return runBuild(build);
-        if (*animate.command) return runAnimate(animate);
-#ifdef KNIT_HAVE_RENDER_CHECK
-        if (*render.command) return runRender(render);
-#endif
-#ifdef KNIT_HAVE_FIT
-        if (*fit.command) return runFit(fit);
-#endif
+        return runCommand(commands);
     } catch (const knit::Error& e) {
         // Library messages name settings in words; the CLI adds the flag that sets each.
         std::fprintf(stderr, "knit: error: %s\n", withFlags(e.what()).c_str());
@@ -77,7 +41,6 @@ int runKnit(int argc, char** argv) {
         std::fprintf(stderr, "knit: internal error: %s\n", e.what());
         return 3;
     }
-    return 0;
 }
 
 }  // namespace

@@ -4,17 +4,8 @@
 
 #include <CLI/CLI.hpp>
 
-#include "animate_command.hpp"
-#include "build_command.hpp"
-#include "chart_command.hpp"
-#include "generate_command.hpp"
+#include "commands.hpp"
 #include "setting_flags.hpp"
-#ifdef KNIT_HAVE_RENDER_CHECK
-#include "render_command.hpp"
-#endif
-#ifdef KNIT_HAVE_FIT
-#include "fit_command.hpp"
-#endif
 
 namespace knit::cli {
 namespace {
@@ -27,22 +18,8 @@ bool anySubcommandHas(CLI::App& app, const std::string& flag) {
 
 TEST(SettingFlags, everyFlagIsAnOptionOfASubcommand) {
     CLI::App app("test");
-    BuildCommand build;
-    AnimateCommand animate;
-    GenerateCommand generate;
-    ChartCommand chart;
-    addBuildCommand(app, build);
-    addAnimateCommand(app, animate);
-    addGenerateCommand(app, generate);
-    addChartCommand(app, chart);
-#ifdef KNIT_HAVE_RENDER_CHECK
-    RenderCommand render;
-    addRenderCommand(app, render);
-#endif
-#ifdef KNIT_HAVE_FIT
-    FitCommand fit;
-    addFitCommand(app, fit);
-#endif
+    Commands commands;  // every subcommand, registered as main.cpp registers them
+    addCommands(app, commands);
     for (const SettingSpelling& s : settingFlags()) {
 #ifndef KNIT_HAVE_RENDER_CHECK
         if (s.spelling == "--surface-only") continue;  // a flag of builds with render_check only

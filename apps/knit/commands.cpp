@@ -1,0 +1,35 @@
+// Every subcommand registered and dispatched (commands.hpp).
+#include "commands.hpp"
+
+namespace knit::cli {
+
+void addCommands(CLI::App& app, Commands& c) {
+    addBuildCommand(app, c.build);
+    addAnimateCommand(app, c.animate);
+    addInfoCommand(app, c.info);
+    addGenerateCommand(app, c.generate);
+    addChartCommand(app, c.chart);
+#ifdef KNIT_HAVE_RENDER_CHECK
+    addRenderCommand(app, c.render);
+#endif
+#ifdef KNIT_HAVE_FIT
+    addFitCommand(app, c.fit);
+#endif
+}
+
+int runCommand(const Commands& c) {
+    if (*c.info.command) return runInfo(c.info);
+    if (*c.generate.command) return runGenerate(c.generate);
+    if (*c.chart.command) return runChart(c.chart);
+    if (*c.build.command) return runBuild(c.build);
+    if (*c.animate.command) return runAnimate(c.animate);
+#ifdef KNIT_HAVE_RENDER_CHECK
+    if (*c.render.command) return runRender(c.render);
+#endif
+#ifdef KNIT_HAVE_FIT
+    if (*c.fit.command) return runFit(c.fit);
+#endif
+    return 0;
+}
+
+}  // namespace knit::cli

@@ -1,0 +1,41 @@
+// commands.hpp — every subcommand of `knit`, registered on one CLI::App in the order --help lists
+// them, and the dispatch to the one that was given. main.cpp and the flag tests (tests/cli) use
+// the same registration, so a test sees exactly the options a user can type.
+#pragma once
+#include <CLI/CLI.hpp>
+
+#include "animate_command.hpp"
+#include "build_command.hpp"
+#include "chart_command.hpp"
+#include "generate_command.hpp"
+#include "info_command.hpp"
+#ifdef KNIT_HAVE_RENDER_CHECK
+#include "render_command.hpp"
+#endif
+#ifdef KNIT_HAVE_FIT
+#include "fit_command.hpp"
+#endif
+
+namespace knit::cli {
+
+struct Commands {
+    BuildCommand build;
+    InfoCommand info;
+    GenerateCommand generate;
+    ChartCommand chart;
+    AnimateCommand animate;
+#ifdef KNIT_HAVE_RENDER_CHECK
+    RenderCommand render;
+#endif
+#ifdef KNIT_HAVE_FIT
+    FitCommand fit;
+#endif
+};
+
+// Adds every subcommand to `app`; `commands` receives their parsed values.
+void addCommands(CLI::App& app, Commands& commands);
+
+// Runs the subcommand that was parsed (its exit code); 0 when none was.
+int runCommand(const Commands& commands);
+
+}  // namespace knit::cli
