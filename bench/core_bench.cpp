@@ -8,6 +8,7 @@
 
 #include "knit/binding.hpp"
 #include "knit/generator.hpp"
+#include "knit/pattern.hpp"
 #include "knit/scene.hpp"
 #include "knit/stitch.hpp"
 #include "knit/tiling.hpp"
@@ -98,5 +99,24 @@ void BM_EvaluateFloat(benchmark::State& state) {
 BENCHMARK(BM_EvaluateFloat)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
+
+// Partner search of a curves cell (patternFromCurves) over a growing number of short courses: the
+// grid search is about linear in the curve ends (the all-pairs search it replaced was quadratic:
+// minutes at 40000 courses). tests/hard/search_bounds_test.cpp checks the pairs it finds.
+void BM_PartnerSearch(benchmark::State& state) {
+    knit::CurveCell cell;
+    cell.name = "big.json";
+    const int courses = int(state.range(0));
+    cell.px = 0.01;
+    cell.py = 0.01 * courses;
+    cell.radius = 0.001;
+    for (int c = 0; c < courses; ++c) {
+        const double y = 0.01 * c + 0.005;
+        cell.curves.push_back({{0.001, y, 0}, {0.005, y, 0}, {0.009, y, 0}});
+    }
+    for (auto _ : state) benchmark::DoNotOptimize(knit::patternFromCurves(cell));
+    state.SetComplexityN(courses);
+}
+BENCHMARK(BM_PartnerSearch)->RangeMultiplier(4)->Range(2500, 40000)->Complexity()->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();

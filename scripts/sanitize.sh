@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # AddressSanitizer + UndefinedBehaviorSanitizer build of the test suite (-DKNIT_SANITIZE=ON) in
-# build-asan, then ctest over the core, mesh, plies, cli, export and hard tests. Any sanitizer
+# build-asan (the folder scripts/fuzz.sh builds its fuzzers in, configured by scripts/lib/asan_tree.sh),
+# then ctest over the core, mesh, plies, cli, export and hard tests. Any sanitizer
 # report fails the test that triggered it (UBSan is built with -fno-sanitize-recover).
 #
 # Usage: scripts/sanitize.sh [extra ctest arguments]
@@ -14,6 +15,7 @@
 #   (then the hard tests' ray cases are not built).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
+source "$root/scripts/lib/asan_tree.sh"
 build=${KNIT_ASAN_BUILD_DIR:-"$root/build-asan"}
 jobs=${KNIT_JOBS:-2}
 render_check=${KNIT_BUILD_RENDER_CHECK:-ON}
@@ -23,18 +25,7 @@ case "$step" in build|test|all) ;; *) echo "sanitize: KNIT_SANITIZE_STEP must be
 
 build_suite() {
   bash "$root/scripts/setup.sh" || echo "sanitize: warning: scripts/setup.sh failed; continuing with the installed packages"
-  # The Python module is not built here: an ASan-instrumented extension cannot load into Debian's
-  # uninstrumented python3 without preloading the runtime (the Release suite tests it).
-  # clang, -O1 and line tables only, as the sanitizers' own documentation suggests for tests:
-  # reports keep file:line stack traces, and the instrumented build needs far less compiler time
-  # than gcc at -O2 -g (the hard-case catalogue test: 9.8 s of CPU instead of 37 s; gcc -O1 -g1:
-  # 18 s). A build folder configured with another compiler is started afresh.
-  if [ -f "$build/CMakeCache.txt" ] && ! grep -q "^CMAKE_CXX_COMPILER:[A-Z]*=.*$cxx\$" "$build/CMakeCache.txt"; then
-    rm -rf "$build"
-  fi
-  cmake -S "$root" -B "$build" -DCMAKE_CXX_COMPILER="$cxx" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only -DNDEBUG" \
-    -DKNIT_SANITIZE=ON -DKNIT_BUILD_BENCH=OFF -DKNIT_BUILD_RENDER_CHECK="$render_check" -DKNIT_BUILD_PYTHON=OFF
+  configure_asan_tree "$build" "$cxx" "$render_check"
   local targets=(knit_core_tests knit_mesh_tests knit_plies_tests knit_cli_tests knit_export_tests knit_hard_tests)
   [ "${KNIT_SANITIZE_RENDER:-OFF}" = ON ] && [ "$render_check" = ON ] && targets+=(knit_render_tests)
   cmake --build "$build" -j"$jobs" --target "${targets[@]}"

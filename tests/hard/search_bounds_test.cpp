@@ -1,10 +1,9 @@
 // Search without bound (docs/hard-cases.md, "Search radii"): absurd clamp, weld and partner
-// tolerances finish fast with a clear error or a result; the partner search is sub-quadratic.
+// tolerances end with a clear error or a result (a search without bound would hang: ctest's
+// timeout); the partner search pairs a cell of 40000 courses (its speed: bench/core_bench.cpp).
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <cmath>
-#include <functional>
 #include <string>
 
 #include "knit/error.hpp"
@@ -18,18 +17,12 @@ using knit::test::errorOf;
 
 knit::SceneOptions smallPlane() { return knit::test::smallPlaneScene(); }
 
-double secondsOf(const std::function<void()>& f) {
-    const auto t0 = std::chrono::steady_clock::now();
-    f();
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-TEST(SearchBounds, absurdClampToleranceIsRefusedFastNamingTheSetting) {
+TEST(SearchBounds, absurdClampToleranceIsRefusedNamingTheSetting) {
     for (double tol : {1e3, 1e12, 1e300}) {
         knit::SceneOptions o = smallPlane();
         o.bind.clampTolerance = tol;
         std::string m;
-        EXPECT_LT(secondsOf([&] { m = errorOf([&] { knit::buildScene(o); }); }), 5.0);
+        m = errorOf([&] { knit::buildScene(o); });
         EXPECT_NE(m.find("the clamp tolerance"), std::string::npos) << m;
         EXPECT_NE(m.find("beyond one pattern period"), std::string::npos) << m;
     }
@@ -50,8 +43,9 @@ TEST(SearchBounds, clampToleranceWithinOnePeriodStillClamps) {
 }
 
 // 40000 short courses in one curves cell: the all-pairs partner search took minutes (80000 ends,
-// 2.6e10 distance tests); the grid finds the same pairs in well under a second.
-TEST(SearchBounds, partnerSearchOnABigCurvesCellIsSubQuadratic) {
+// 2.6e10 distance tests); the grid finds the same pairs in well under a second. Its speed is
+// measured by BM_PartnerSearch (bench/core_bench.cpp, with its complexity fit); here the pairs.
+TEST(SearchBounds, partnerSearchOnABigCurvesCellPairsEveryCourse) {
     knit::CurveCell cell;
     cell.name = "big.json";
     const int courses = 40000;
@@ -63,7 +57,7 @@ TEST(SearchBounds, partnerSearchOnABigCurvesCellIsSubQuadratic) {
         cell.curves.push_back({{0.001, y, 0}, {0.005, y, 0}, {0.009, y, 0}});
     }
     knit::Pattern p;
-    EXPECT_LT(secondsOf([&] { p = knit::patternFromCurves(cell); }), 10.0);
+    p = knit::patternFromCurves(cell);
     EXPECT_EQ(p.edges.size(), size_t(courses) * 3);  // two in-cell edges + one periodic edge per course
 }
 
