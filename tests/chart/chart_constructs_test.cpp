@@ -198,3 +198,57 @@ TEST(ChartConstructs, twistedStitchesCrossAtTheBase) {
 
 }  // namespace
 }  // namespace knit
+
+namespace knit {
+namespace {
+
+const char* kStrandedBody = "k k k k\nk p k k\nk k k k\nk k k k\n\nA A A A\nA B A B\nB A B A\nA A A A\nA=#ff0000 B=#0000ff\n";
+
+// Stranded colourwork: one yarn per colour a row uses, the same stitches as the chart knitted in
+// one yarn per row (the same loops pulled through the same loops, the same colour per stitch);
+// the vertices differ only near the feet beside another yarn's stitch (where the two yarns step
+// apart, and the foot no longer blends into the neighbour's knit or purl) and in the floats,
+// which pass behind every other yarn they cross.
+TEST(ChartConstructs, strandedDiffersFromOneYarnOnlyInFloatsAndTheFeetAtColourChanges) {
+    const ChartCell one = cellOf(kStrandedBody);
+    const ChartCell two = cellOf(std::string(kStrandedBody) + "stranded\n");
+    EXPECT_EQ(one.yarns, 4);
+    EXPECT_EQ(two.yarns, 6);
+    ASSERT_EQ(one.loops.size(), two.loops.size());
+    EXPECT_EQ(one.colour, two.colour);
+    const double r = one.pattern.radius;
+    for (size_t k = 0; k < one.loops.size(); ++k) {
+        const StitchLoop &a = one.loops[k], &b = two.loops[k];
+        EXPECT_EQ(a.through, b.through);
+        ASSERT_EQ(a.count, b.count);
+        EXPECT_EQ(checkThrough(two, b), "");
+        for (uint32_t i = 0; i < a.count; ++i) {
+            const glm::dvec3 d = two.pattern.points[b.first + i] - one.pattern.points[a.first + i];
+            const double t = -3.14159265358979 + 6.28318530717959 * i / a.count;
+            EXPECT_LT(glm::length(d), (std::abs(t) < 3.14159265358979 - 0.8 ? 1e-12 : 2.0) * r)
+                << "stitch " << a.row << "," << a.column << " vertex " << i;
+            EXPECT_EQ(two.pattern.colour[b.first + i], one.pattern.colour[a.first + i]);
+        }
+    }
+    // The floats: of the rows with two colours, each yarn floats past the other's stitches.
+    EXPECT_TRUE(one.floats.empty());
+    ASSERT_EQ(two.floats.size(), 8u);  // two rows, two yarns each passing two stitches of the other
+    std::vector<bool> inLoop(two.pattern.points.size(), false);  // a stitch's vertex (not a float's)
+    for (const StitchLoop& l : two.loops)
+        for (uint32_t i = l.first; l.madeLoop && i < l.first + l.count; ++i) inLoop[i] = true;
+    for (const ChartFloat& f : two.floats) {
+        EXPECT_EQ(f.columns, 1);
+        EXPECT_FALSE(f.front);
+        int crossings = 0;
+        for (uint32_t v : f.vertices)
+            for (const Crossing& x : test::crossingsBetween(two.pattern, v, v + 1, 0, uint32_t(two.pattern.points.size()), 0))
+                if (inLoop[x.b] && std::abs(int(x.b) - int(v)) > 2) {
+                    EXPECT_LT(x.at.z, x.zb) << "a float of row " << f.row << " passes in front";
+                    ++crossings;
+                }
+        EXPECT_GT(crossings, 0);
+    }
+}
+
+}  // namespace
+}  // namespace knit

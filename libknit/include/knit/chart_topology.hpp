@@ -79,6 +79,7 @@ struct ChartFloat {
     int yarn = 0;
     char colour = 0;     // palette letter (0 without a colour layer)
     bool front = false;              // sl-wyif
+    bool stranded = false;           // it passes stitches of another yarn (stranded colourwork)
     std::vector<uint32_t> vertices;  // its vertices, in yarn order
 };
 
@@ -89,6 +90,10 @@ struct ChartCell {
     std::vector<std::array<uint8_t, 3>> colour;  // per loop sRGB; empty without a colour layer
     std::vector<ChartFloat> floats;              // every float, row by row
     int yarns = 0;                               // closed yarns (one per row, more when stranded)
+    // Per vertex, for the edge leaving it: the yarn length it holds over its length here. 1,
+    // except on loops lifted by slipped or tucked stitches (built stretched over two or more
+    // rows, they hold a plain loop's length) — RelaxOptions::restScale.
+    std::vector<double> restScale;
 
     const StitchLoop& loop(int row, int column) const { return loops[size_t(row) * size_t(width) + size_t(column)]; }
 };

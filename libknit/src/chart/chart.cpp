@@ -411,6 +411,12 @@ const BuiltinChart kBuiltinCharts[] = {
     {"chart:moss", "p k\np k\nk p\nk p\n"},
     {"chart:basketweave", "p p k k\np p k k\nk k p p\nk k p p\n"},
     {"chart:cable4", "# a 2/2 front cable between purl ridges\np k k k k p\np k k k k p\np k k k k p\np c2/2f p\n"},
+    {"chart:eyelet-mesh", "# lace: an eyelet every other row, offset by half the repeat\nk k k k\nk k k2tog yo\nk k k k\n"
+                          "k2tog yo k k\n"},
+    {"chart:honeycomb", "# slip-stitch honeycomb: each slipped stitch held for two rows\nsl k\nsl k\nk sl\nk sl\n"},
+    {"chart:fishermans-rib", "# fisherman's rib: knit and purl columns tucked on alternate rows\nk tuck\ntuck p\n"},
+    {"chart:fair-isle", "# a two-colour stranded band: checks between plain rows\nk k k k\nk k k k\nk k k k\nk k k k\n\n"
+                        "A A A A\nA B A B\nB A B A\nA A A A\nA=#f2e8d5 B=#1d3557\nstranded\n"},
 };
 
 }  // namespace

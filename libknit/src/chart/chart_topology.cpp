@@ -6,6 +6,8 @@
 #include <cmath>
 #include <map>
 
+#include <glm/geometric.hpp>
+
 #include "knit/error.hpp"
 #include "util/checks.hpp"
 #include "util/math.hpp"
@@ -43,8 +45,12 @@ constexpr double kFloatDepth = 2.4;   // |z| of a float (behind or in front of t
 constexpr double kStrandStep = 0.9;   // further depth of each further stranded float in a column
 constexpr double kFloatDrop = 2.5;    // a float runs this far below its row's loop centres
 constexpr double kFloatEnd = 1.2;     // parameter span over which a float meets a foot
+constexpr double kStrandedFloatSlack = 0.95;  // rest-length factor of stranded floats (docs/charts.md)
 constexpr double kTuckDepth = 1.6;    // z of a tuck loop's lower part (behind the held loop)
 constexpr double kTuckFoot = 0.6;     // parameter span over which it meets its feet
+// Where a stranded yarn's loop meets its float beside another yarn's loop, both feet step back
+// from the shared foot point (inwards and up or down), so the two yarns do not meet there.
+constexpr double kJunctionX = 0.5, kJunctionY = 0.6, kJunctionSpan = 0.8;
 constexpr double kTwist0 = 1.3, kTwist1 = 1.9;  // a twisted loop's halves swap sides between these |t|
 constexpr double kTwistDepth = 0.7, kTwistWidth = 0.15;
 
@@ -174,6 +180,19 @@ struct CellGeometry {
     }
 };
 
+// Does another yarn make the loop at column c of row r (a colour change for this yarn)?
+bool otherYarnsLoop(const CellGeometry& g, int r, int c) {
+    return g.yarns->yarnOf[size_t(c)] != g.yarn && makesLoop(g.chart->opAt(r, c));
+}
+
+// How far (0..1) a loop's foot at t steps back from the foot point: towards 1 at the feet beside
+// another yarn's loop.
+double junctionOf(const CellGeometry& g, const StitchLoop& l, double t) {
+    const int side = t < 0 ? -1 : 1;
+    if (!otherYarnsLoop(g, l.row, wrap(l.column + side, g.chart->width))) return 0.0;
+    return smooth(util::kPi - kJunctionSpan, util::kPi, std::abs(t));
+}
+
 // The z sign of a loop's foot side: the neighbouring loop's kind when this yarn makes it, else its own.
 double neighbourSign(const CellGeometry& g, const StitchLoop& l, int side) {
     const int c = wrap(l.column + side, g.chart->width);
@@ -192,8 +211,9 @@ glm::dvec3 loopPoint(const CellGeometry& g, const StitchLoop& l, double t) {
     const double half = (l.stackSize - 1) / 2.0;
     const double twist = l.op == StitchOp::ThroughBack ? 2 * smooth(kTwist0, kTwist1, at) - 1 : 1.0;
     const double x = util::kTwoPi * (l.column + l.headShift * upper) + (half - p.stackRank) * kStackShift * upper +
-                     twist * (t + kLoopWidth * std::sin(2 * t));
-    const double y = rows.y[size_t(l.row)] + kLoopHeight * std::cos(t) + upper * rows.headRise(l.row, l.lift);
+                     twist * (t + kLoopWidth * std::sin(2 * t)) - (t < 0 ? -1 : 1) * kJunctionX * junctionOf(g, l, t);
+    double y = rows.y[size_t(l.row)] + kLoopHeight * std::cos(t) + upper * rows.headRise(l.row, l.lift);
+    y += (t < 0 ? -1 : 1) * kJunctionY * junctionOf(g, l, t);
     // Height: the upper half follows the stitch pulled through this loop, the lower half this
     // stitch; at the feet the neighbouring column's kind takes over half-way.
     const double neighbour = neighbourSign(g, l, t < 0 ? -1 : 1);
@@ -231,13 +251,28 @@ double floatDepth(const CellGeometry& g, int r, int c) {
 glm::dvec3 floatPoint(const CellGeometry& g, int r, int c, double t) {
     const double yMid = g.rows->y[size_t(r)] - kFloatDrop, zMid = floatDepth(g, r, c);
     const int side = t < 0 ? -1 : 1, n = wrap(c + side, g.chart->width);
-    double yEnd = yMid, zEnd = 0.5 * (zMid + floatDepth(g, r, n));
-    if (g.loopOf(r, n)) {
-        yEnd = g.rows->y[size_t(r)] - kLoopHeight;
+    double xEnd = 0, yEnd = yMid, zEnd = 0.5 * (zMid + floatDepth(g, r, n));
+    if (g.loopOf(r, n)) {  // its foot on side -side, stepped back when this column is another yarn's loop
+        const double j = otherYarnsLoop(g, r, c) ? 1.0 : 0.0;
+        xEnd = side * kJunctionX * j;
+        yEnd = g.rows->y[size_t(r)] - kLoopHeight - side * kJunctionY * j;
         zEnd = -kDepth * sign(g.chart->at(r, n));
     }
     const double e = smooth(util::kPi - kFloatEnd, util::kPi, std::abs(t));
-    return {util::kTwoPi * c + t, yMid + (yEnd - yMid) * e, zMid + (zEnd - zMid) * e};
+    return {util::kTwoPi * c + t + xEnd * e, yMid + (yEnd - yMid) * e, zMid + (zEnd - zMid) * e};
+}
+
+// Vertices of a float column: its yarn is about a third as long as a loop's, so about a third of
+// the loop's samples keep the segments as long as the loops' (the contact skips only the two
+// neighbouring segments along a yarn, so shorter ones would push a float's own vertices apart).
+int floatSamples(int n) { return std::max(3, (n + 1) / 3); }
+
+// The first vertex of each column of one yarn of row r (and one past its last), from `first`.
+std::vector<uint32_t> columnStarts(const CellGeometry& g, int r, int n, uint32_t first) {
+    std::vector<uint32_t> starts{first};
+    for (int c = 0; c < g.chart->width; ++c)
+        starts.push_back(starts.back() + uint32_t(g.loopOf(r, c) ? n : floatSamples(n)));
+    return starts;
 }
 
 // The loop parameter of sample i of n: uniform, or dense around |t| = pi / 2 where the upper part
@@ -248,7 +283,8 @@ double loopParameter(const RowLayout& rows, const StitchLoop& l, int i, int n) {
 }
 
 // The floats of one yarn of a row: its runs of columns without a loop (cyclic).
-void addFloats(const CellGeometry& g, int r, int globalYarn, uint32_t yarnFirst, int n, std::vector<ChartFloat>& out) {
+void addFloats(const CellGeometry& g, int r, int globalYarn, const std::vector<uint32_t>& columnFirst,
+               std::vector<ChartFloat>& out) {
     const int W = g.chart->width;
     int start = 0;
     while (start < W && !g.loopOf(r, start)) ++start;
@@ -269,12 +305,45 @@ void addFloats(const CellGeometry& g, int r, int globalYarn, uint32_t yarnFirst,
         for (; k < W && !g.loopOf(r, (start + k) % W); ++k) {
             const int cc = (start + k) % W;
             f.front = f.front && g.yarns->yarnOf[size_t(cc)] == g.yarn && g.chart->opAt(r, cc) == StitchOp::SlipFront;
-            for (int i = 0; i < n; ++i) f.vertices.push_back(yarnFirst + uint32_t(cc * n + i));
+            f.stranded = f.stranded || g.yarns->yarnOf[size_t(cc)] != g.yarn;
+            for (uint32_t i = columnFirst[size_t(cc)]; i < columnFirst[size_t(cc) + 1]; ++i) f.vertices.push_back(i);
             ++f.columns;
         }
         if (f.colour == 0 && !g.chart->colour.empty()) f.colour = g.chart->colourAt(r, c);
         out.push_back(f);
     }
+}
+
+// Step 8: lifted loops hold a plain loop's yarn: their edges' rest lengths are scaled by the
+// plain loop's length over theirs.
+std::vector<double> liftedRestScale(const ChartCell& cell, double metresPerUnit, int n) {
+    const Pattern& p = cell.pattern;
+    std::vector<double> scale(p.points.size(), 1.0);
+    double plain = 0;
+    for (int i = 0; i < n; ++i) {
+        auto at = [&](int k) {
+            const double t = -util::kPi + util::kTwoPi * k / n;
+            return glm::dvec3(t + kLoopWidth * std::sin(2 * t), kLoopHeight * std::cos(t), -kDepth * std::cos(2 * t));
+        };
+        plain += glm::length(at(i + 1) - at(i)) * metresPerUnit;
+    }
+    for (const StitchLoop& l : cell.loops) {
+        if (l.lift == 0 || !l.madeLoop) continue;
+        double length = 0;
+        for (uint32_t i = l.first; i < l.first + l.count; ++i) {
+            const PeriodicEdge& e = p.edges[i];
+            length += glm::length(p.points[e.v1] + glm::dvec3(e.dx * p.px, e.dy * p.py, 0) - p.points[e.v0]);
+        }
+        for (uint32_t i = l.first; i < l.first + l.count; ++i) scale[i] = std::min(1.0, plain / length);
+    }
+    // Stranded floats hold a little less yarn than the loose construction gives them (0.95 of
+    // it, on top of the relaxation's rest length): with the construction's length the relaxed
+    // band's stitches stood 0.17 r further out than the same chart in one yarn, with 0.9-0.95 of
+    // it 0.3 r less far (docs/charts.md, "Stranded floats").
+    for (const ChartFloat& f : cell.floats)
+        if (f.stranded)
+            for (uint32_t v : f.vertices) scale[v] = kStrandedFloatSlack;
+    return scale;
 }
 
 }  // namespace
@@ -294,21 +363,26 @@ ChartCell chartToCell(const Chart& chart, const ChartCellOptions& options) {
     const std::vector<RowYarns> yarns = rowYarns(chart);
     const std::vector<Plan> plan = planLoops(chart);
     const RowLayout rows = rowLayout(chart, plan);
-    // Step 5: the stitch record: which yarn's vertices make each cell.
-    uint32_t rowFirst = 0;
-    int yarnCount = 0;
-    std::vector<uint32_t> yarnFirst;
+    // Step 5: each yarn's columns (a loop: n vertices, a float: fewer) and the stitch record:
+    // which yarn's vertices make each cell.
+    std::vector<std::vector<uint32_t>> starts;  // per yarn, rows in order
+    uint32_t next = 0;
     for (int r = 0; r < chart.height; ++r) {
         const RowYarns& ry = yarns[size_t(r)];
-        for (size_t k = 0; k < ry.colours.size(); ++k) yarnFirst.push_back(rowFirst + uint32_t(k * size_t(W * n)));
+        const int firstYarn = int(starts.size());
+        for (size_t k = 0; k < ry.colours.size(); ++k) {
+            const CellGeometry g{&chart, &rows, &plan, &ry, int(k)};
+            starts.push_back(columnStarts(g, r, n, next));
+            next = starts.back().back();
+        }
         for (int c = 0; c < W; ++c) {
             const Plan& p = plan[size_t(r) * size_t(W) + size_t(c)];
             StitchLoop l;
             l.row = r;
             l.column = c;
-            l.yarn = yarnCount + ry.yarnOf[size_t(c)];
-            l.first = yarnFirst[size_t(l.yarn)] + uint32_t(c * n);
-            l.count = uint32_t(n);
+            l.yarn = firstYarn + ry.yarnOf[size_t(c)];
+            l.first = starts[size_t(l.yarn)][size_t(c)];
+            l.count = starts[size_t(l.yarn)][size_t(c) + 1] - l.first;
             l.kind = chart.at(r, c);
             l.op = chart.opAt(r, c);
             l.madeLoop = makesLoop(l.op);
@@ -320,10 +394,8 @@ ChartCell chartToCell(const Chart& chart, const ChartCellOptions& options) {
             l.through = p.through;
             cell.loops.push_back(l);
         }
-        rowFirst += uint32_t(ry.colours.size() * size_t(W * n));
-        yarnCount += int(ry.colours.size());
     }
-    cell.yarns = yarnCount;
+    cell.yarns = int(starts.size());
     Pattern& p = cell.pattern;
     p.name = chart.name;
     p.stitchesPerPeriod = W;
@@ -338,25 +410,27 @@ ChartCell chartToCell(const Chart& chart, const ChartCellOptions& options) {
         const RowYarns& ry = yarns[size_t(r)];
         for (size_t k = 0; k < ry.colours.size(); ++k, ++yarn) {
             CellGeometry g{&chart, &rows, &plan, &ry, int(k)};
-            const uint32_t first = uint32_t(p.points.size());
+            const std::vector<uint32_t>& at = starts[size_t(yarn)];
             for (int c = 0; c < W; ++c) {
                 const StitchLoop& l = cell.loop(r, c);
                 const bool mine = g.loopOf(r, c);
-                for (int i = 0; i < n; ++i) {
-                    const double t = mine ? loopParameter(rows, l, i, n) : -util::kPi + util::kTwoPi * i / n;
+                const int m = int(at[size_t(c) + 1] - at[size_t(c)]);
+                for (int i = 0; i < m; ++i) {
+                    const double t = mine ? loopParameter(rows, l, i, m) : -util::kPi + util::kTwoPi * i / m;
                     p.points.push_back((mine ? loopPoint(g, l, t) : floatPoint(g, r, c, t)) * s);
                     letter.push_back(chart.colour.empty() ? char(0)
                                      : chart.colourwork == Colourwork::Stranded ? ry.colours[k]
                                                                                  : chart.colourAt(r, c));
                 }
             }
-            const uint32_t last = uint32_t(p.points.size()) - 1;
+            const uint32_t first = at.front(), last = at.back() - 1;
             for (uint32_t i = first; i < last; ++i) p.edges.push_back({i, i + 1, 0, 0});
             p.edges.push_back({last, first, 1, 0});
-            addFloats(g, r, yarn, first, n, cell.floats);
+            addFloats(g, r, yarn, at, cell.floats);
         }
     }
     p.twist.assign(p.points.size(), 0.0);
+    cell.restScale = liftedRestScale(cell, s, n);
     // Step 7: the colour layer, per loop (sRGB) and per vertex (linear).
     if (!chart.colour.empty()) {
         for (const StitchLoop& l : cell.loops) cell.colour.push_back(chart.palette.at(chart.colourAt(l.row, l.column)));
