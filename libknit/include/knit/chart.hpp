@@ -64,6 +64,7 @@ struct Chart {
     int width = 0, height = 0;     // stitches per row, rows
     std::vector<StitchKind> kind;  // width * height, row-major, row 0 = bottom row
     std::vector<StitchOp> op;      // the same layout
+    std::vector<int> rowLine;      // the source line of each row, row 0 (the last line) first
     // The first loop of row - 1 (its column, 0..width-1) a cell consumes: loops are consumed left
     // to right, so a row's consumption is the running sum of its cells' loopsConsumed.
     std::vector<int> firstSource;

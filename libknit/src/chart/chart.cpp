@@ -170,9 +170,11 @@ std::vector<std::vector<int>> readStitches(const Block& block, const std::string
     chart.kind.assign(cells, StitchKind::Knit);
     chart.op.assign(cells, StitchOp::Plain);
     chart.firstSource.assign(cells, 0);
+    chart.rowLine.assign(size_t(chart.height), 0);
     for (size_t i = 0; i < rows.size(); ++i) {
         const Line& line = block[i];
         const int row = chart.height - 1 - int(i);  // the bottom row is the last line
+        chart.rowLine[size_t(row)] = line.number;
         int column = 0, consumed = 0;
         for (size_t k = 0; k < rows[i].size(); ++k) {
             const Stitch& s = rows[i][k];

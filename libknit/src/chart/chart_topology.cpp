@@ -218,11 +218,14 @@ glm::dvec3 loopPoint(const CellGeometry& g, const StitchLoop& l, double t) {
     // stitch; at the feet the neighbouring column's kind takes over half-way.
     const double neighbour = neighbourSign(g, l, t < 0 ? -1 : 1);
     const double s = sign(l.kind);
-    const double zUp = -kDepth * std::cos(2 * t) * p.up;
-    double zLow = -kDepth * std::cos(2 * t) * (s + 0.5 * (neighbour - s) * smooth(util::kPi - kFootBlend, util::kPi, at));
-    if (l.op == StitchOp::Tuck)  // behind the held loop, meeting its feet
-        zLow = -kTuckDepth + (-kDepth * 0.5 * (s + neighbour) + kTuckDepth) * smooth(util::kPi - kTuckFoot, util::kPi, at);
-    double z = zUp + (zLow - zUp) * smooth(kLegSwitch0, kLegSwitch1, at);
+    const double low = s + 0.5 * (neighbour - s) * smooth(util::kPi - kFootBlend, util::kPi, at);
+    double z = -kDepth * std::cos(2 * t) * (p.up + (low - p.up) * smooth(kLegSwitch0, kLegSwitch1, at));
+    if (l.op == StitchOp::Tuck) {  // the lower part behind the held loop, meeting its feet
+        const double zUp = -kDepth * std::cos(2 * t) * p.up;
+        const double zLow =
+            -kTuckDepth + (-kDepth * 0.5 * (s + neighbour) + kTuckDepth) * smooth(util::kPi - kTuckFoot, util::kPi, at);
+        z = zUp + (zLow - zUp) * smooth(kLegSwitch0, kLegSwitch1, at);
+    }
     // Cable legs, where they cross: the left-moving ones in front for a front cross.
     if (l.headShift != 0 && p.cable) {
         const double bump = std::sin(util::kPi * upper);
