@@ -89,6 +89,20 @@ TEST(ChartConstructsRelaxed, eyeletStaysOpen) {
     EXPECT_GE(eyelet.radius, 1.5 * plain.radius);
 }
 
+// Yarn length per area (L r / A) of the slip-stitch honeycomb against the HYLC honeycomb cell.
+TEST(ChartConstructsRelaxed, honeycombDensityIsNearTheHylcHoneycomb) {
+    auto lengthPerArea = [](const Pattern& p) {
+        double L = 0;
+        for (const PeriodicEdge& e : p.edges)
+            L += glm::length(p.points[e.v1] + glm::dvec3(e.dx * p.px, e.dy * p.py, 0) - p.points[e.v0]);
+        return L * p.radius / (p.px * p.py);
+    };
+    const Pattern hylc = loadPyp(std::string(KNIT_SHARED_DIR) + "/patterns/hylc/slip_stitch_honeycomb.pyp");
+    const double ours = lengthPerArea(relaxedBuiltin("chart:honeycomb").relaxed.pattern), theirs = lengthPerArea(hylc);
+    std::printf("L r / A: honeycomb %.3f, HYLC slip-stitch honeycomb %.3f\n", ours, theirs);
+    EXPECT_NEAR(ours / theirs, 1.0, 0.15);
+}
+
 // Stranded floats stay on the wrong side after relaxation: behind every stitch they cross, and
 // the front of the stranded band stands no further out than the same chart in one yarn per row.
 TEST(ChartConstructsRelaxed, strandedFloatsStayBehindTheStitches) {
