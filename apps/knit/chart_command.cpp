@@ -40,7 +40,8 @@ struct FloatPlace {
     int row = 0, line = 0, first = 0, last = 0;
 };
 FloatPlace placeOf(const Chart& chart, const ChartFloat& f) {
-    return {f.row + 1, chart.rowLine[size_t(f.row)], f.firstColumn + 1, (f.firstColumn + f.columns - 1) % chart.width + 1};
+    return {f.row + 1, chart.rowLine[size_t(f.row)], f.firstColumn + 1,
+            (f.firstColumn + f.columns - 1) % chart.width + 1};
 }
 
 nlohmann::json floatsOf(const Chart& chart, const ChartPattern& cp, int maxFloat) {
@@ -112,7 +113,8 @@ int runChart(const ChartCommand& c) {
             outputs.stage(c.output), [&](std::ostream& out) { writePyp(out, cp.relaxed.pattern); }, false);
         if (!c.report.empty())
             writeFileAtomically(
-                outputs.stage(c.report), [&](std::ostream& out) { out << reportOf(chart, cp, c.maxFloat).dump(2) << '\n'; }, false);
+                outputs.stage(c.report),
+                [&](std::ostream& out) { out << reportOf(chart, cp, c.maxFloat).dump(2) << '\n'; }, false);
         outputs.commit();
     });
     std::printf("wrote %s (%d x %d stitches, %zu vertices, min distance %.3f r, %.2f s)\n", c.output.c_str(),

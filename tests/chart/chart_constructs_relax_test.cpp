@@ -55,7 +55,8 @@ std::string checkThroughEnds(const ChartCell& cell, const StitchLoop& l) {
         f.n = glm::normalize(glm::cross(course, wale));
         f.e2 = glm::normalize(wale - glm::dot(wale, f.n) * f.n);
         f.e1 = glm::cross(f.e2, f.n);
-        std::vector<Crossing> c = test::crossingsBetween(p, l.first, l.first + l.count, b.first, b.first + b.count, iy, f);
+        std::vector<Crossing> c =
+            test::crossingsBetween(p, l.first, l.first + l.count, b.first, b.first + b.count, iy, f);
         if (c.empty()) return where + ": no crossing with a loop it is pulled through";
         std::sort(c.begin(), c.end(), [](const Crossing& x, const Crossing& y) { return x.at.y < y.at.y; });
         if ((c.back().at.z > c.back().zb) != (l.kind == StitchKind::Knit))
@@ -70,7 +71,8 @@ TEST(ChartConstructsRelaxed, newBuiltinsRelaxApartAndKeepTheirCrossings) {
         const ChartPattern& cp = relaxedBuiltin(name);
         std::printf("%-22s %4d iterations %.2f s, min distance %.3f r, period %.2f x %.2f r\n", name,
                     cp.relaxed.iterations, cp.seconds, cp.relaxed.minDistance,
-                    cp.relaxed.pattern.px / cp.relaxed.pattern.radius, cp.relaxed.pattern.py / cp.relaxed.pattern.radius);
+                    cp.relaxed.pattern.px / cp.relaxed.pattern.radius,
+                    cp.relaxed.pattern.py / cp.relaxed.pattern.radius);
         EXPECT_GE(cp.relaxed.minDistance, 1.9) << name;
         EXPECT_GT(cp.relaxed.closestApproach, 0.2) << name;
         const ChartCell cell = relaxedCell(cp);
@@ -135,10 +137,11 @@ TEST(ChartConstructsRelaxed, strandedFloatsStayBehindTheStitches) {
         for (const glm::dvec3& v : q.points) z = std::min(z, v.z);
         return z / q.radius;
     };
-    std::printf("front / back: stranded %.2f / %.2f r, one yarn %.2f / %.2f r; period %.2f x %.2f r, one yarn %.2f x %.2f r\n",
-                front(two.relaxed.pattern), back(two.relaxed.pattern), front(one.relaxed.pattern), back(one.relaxed.pattern),
-                two.relaxed.pattern.px / p.radius, two.relaxed.pattern.py / p.radius, one.relaxed.pattern.px / p.radius,
-                one.relaxed.pattern.py / p.radius);
+    std::printf(
+        "front / back: stranded %.2f / %.2f r, one yarn %.2f / %.2f r; period %.2f x %.2f r, one yarn %.2f x %.2f r\n",
+        front(two.relaxed.pattern), back(two.relaxed.pattern), front(one.relaxed.pattern), back(one.relaxed.pattern),
+        two.relaxed.pattern.px / p.radius, two.relaxed.pattern.py / p.radius, one.relaxed.pattern.px / p.radius,
+        one.relaxed.pattern.py / p.radius);
     EXPECT_LE(front(two.relaxed.pattern), front(one.relaxed.pattern) + 0.1);
 }
 

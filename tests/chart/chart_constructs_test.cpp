@@ -41,8 +41,8 @@ std::string checkThrough(const ChartCell& cell, const StitchLoop& l) {
         const StitchLoop& b = cell.loop(ref.row, ref.column);
         // A loop taken is below: in the tile below when its row index is not smaller.
         const std::vector<Crossing> c = between(cell, rangeOf(l), rangeOf(b), ref.row >= l.row ? -1 : 0);
-        const std::string with = where + " through (" + std::to_string(ref.row) + ", " + std::to_string(ref.column) +
-                                 "): " + describe(c);
+        const std::string with =
+            where + " through (" + std::to_string(ref.row) + ", " + std::to_string(ref.column) + "): " + describe(c);
         if (c.size() != 4) return with + "expected 4 crossings";
         const bool knit = l.kind == StitchKind::Knit;
         for (size_t i = 0; i < 4; ++i)
@@ -76,8 +76,10 @@ TEST(ChartConstructs, decreasesTakeTheirLoopsTogetherTheTopOneInFront) {
         const char* text;
         int column;
         std::vector<int> order;  // the loops of row 0, front to back
-    } cases[] = {{"k yo k2tog k\nk k k k\n", 2, {1, 2}}, {"k ssk yo k\nk k k k\n", 1, {2, 1}},
-                 {"yo k3tog yo\nk k k\n", 1, {0, 1, 2}}, {"yo sssk yo\nk k k\n", 1, {2, 1, 0}},
+    } cases[] = {{"k yo k2tog k\nk k k k\n", 2, {1, 2}},
+                 {"k ssk yo k\nk k k k\n", 1, {2, 1}},
+                 {"yo k3tog yo\nk k k\n", 1, {0, 1, 2}},
+                 {"yo sssk yo\nk k k\n", 1, {2, 1, 0}},
                  {"yo cdd yo\nk k k\n", 1, {1, 0, 2}}};
     for (const auto& t : cases) {
         const ChartCell cell = cellOf(t.text);
@@ -202,7 +204,8 @@ TEST(ChartConstructs, twistedStitchesCrossAtTheBase) {
 namespace knit {
 namespace {
 
-const char* kStrandedBody = "k k k k\nk p k k\nk k k k\nk k k k\n\nA A A A\nA B A B\nB A B A\nA A A A\nA=#ff0000 B=#0000ff\n";
+const char* kStrandedBody =
+    "k k k k\nk p k k\nk k k k\nk k k k\n\nA A A A\nA B A B\nB A B A\nA A A A\nA=#ff0000 B=#0000ff\n";
 
 // Stranded colourwork: one yarn per colour a row uses, the same stitches as the chart knitted in
 // one yarn per row (the same loops pulled through the same loops, the same colour per stitch);
@@ -241,7 +244,8 @@ TEST(ChartConstructs, strandedDiffersFromOneYarnOnlyInFloatsAndTheFeetAtColourCh
         EXPECT_FALSE(f.front);
         int crossings = 0;
         for (uint32_t v : f.vertices)
-            for (const Crossing& x : test::crossingsBetween(two.pattern, v, v + 1, 0, uint32_t(two.pattern.points.size()), 0))
+            for (const Crossing& x :
+                 test::crossingsBetween(two.pattern, v, v + 1, 0, uint32_t(two.pattern.points.size()), 0))
                 if (inLoop[x.b] && std::abs(int(x.b) - int(v)) > 2) {
                     EXPECT_LT(x.at.z, x.zb) << "a float of row " << f.row << " passes in front";
                     ++crossings;

@@ -54,7 +54,8 @@ TEST(ChartCommand, badChartFailsWithLineAndColumn) {
 // the row and the columns, and listed in the report; the cell is written all the same.
 TEST(ChartCommand, longFloatsAreWarnedAboutAndReported) {
     test::TempDir dir;
-    dir.write("band.chart", "k k k k k k k k\nk k k k k k k k\n\nA A A A A A A A\nA B A A A A A A\nA=#ffffff B=#000000\nstranded\n");
+    dir.write("band.chart",
+              "k k k k k k k k\nk k k k k k k k\n\nA A A A A A A A\nA B A A A A A A\nA=#ffffff B=#000000\nstranded\n");
     const test::CliRun r = test::runKnit("chart band.chart -o cell.pyp --report r.json", dir.path());
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("knit: warning: band.chart:2: row 1: the float of colour B over columns 3-1 (round the "

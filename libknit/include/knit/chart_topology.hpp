@@ -60,13 +60,13 @@ struct StitchLoop {
     uint32_t first = 0, count = 0;
     StitchKind kind = StitchKind::Knit;
     StitchOp op = StitchOp::Plain;
-    int yarn = 0;           // the yarn (edge chain) these vertices are on
-    int sourceColumn = 0;   // the column of row - 1 this loop is pulled through (-1: a yarn-over)
-    int headShift = 0;      // columns the head of this loop moves (to the stitch pulled through it)
-    int lift = 0;           // rows its upper part is lifted (slipped or tucked above it)
-    int stackIndex = 0;     // place among the loops one stitch is pulled through (0 = top / front)
+    int yarn = 0;          // the yarn (edge chain) these vertices are on
+    int sourceColumn = 0;  // the column of row - 1 this loop is pulled through (-1: a yarn-over)
+    int headShift = 0;     // columns the head of this loop moves (to the stitch pulled through it)
+    int lift = 0;          // rows its upper part is lifted (slipped or tucked above it)
+    int stackIndex = 0;    // place among the loops one stitch is pulled through (0 = top / front)
     int stackSize = 1;
-    bool madeLoop = true;   // false for sl / sl-wyif: the course floats past
+    bool madeLoop = true;  // false for sl / sl-wyif: the course floats past
     // The loops this loop is pulled through, top (front) first: none for yo, tuck and sl.
     std::vector<LoopRef> through;
 };
@@ -77,7 +77,7 @@ struct ChartFloat {
     int row = 0;
     int firstColumn = 0, columns = 0;  // the columns it passes (cyclic over the chart's width)
     int yarn = 0;
-    char colour = 0;     // palette letter (0 without a colour layer)
+    char colour = 0;                 // palette letter (0 without a colour layer)
     bool front = false;              // sl-wyif
     bool stranded = false;           // it passes stitches of another yarn (stranded colourwork)
     std::vector<uint32_t> vertices;  // its vertices, in yarn order

@@ -31,7 +31,7 @@ struct RelaxOptions {
     // all): a chart's slipped and tucked loops are built stretched over two or more rows but
     // hold a plain loop's yarn (knit/chart_topology.hpp, ChartCell::restScale).
     std::vector<double> restScale;
-    bool freePeriod = true;         // the period (px, py) is a variable
+    bool freePeriod = true;  // the period (px, py) is a variable
     int maxIterations = 4000;
     double gradientTolerance = 1e-4;          // stop when the largest gradient entry is below this,
     double relativeGradientTolerance = 1e-6;  // or below this times its value at the start,

@@ -108,12 +108,12 @@ struct NamedOp {
     StitchKind kind;
 };
 const NamedOp kOps[] = {
-    {"k", StitchOp::Plain, StitchKind::Knit},         {"p", StitchOp::Plain, StitchKind::Purl},
-    {"yo", StitchOp::YarnOver, StitchKind::Knit},     {"k2tog", StitchOp::K2tog, StitchKind::Knit},
-    {"ssk", StitchOp::Ssk, StitchKind::Knit},         {"k3tog", StitchOp::K3tog, StitchKind::Knit},
-    {"sssk", StitchOp::Sssk, StitchKind::Knit},       {"cdd", StitchOp::Cdd, StitchKind::Knit},
-    {"sl", StitchOp::Slip, StitchKind::Knit},         {"sl-wyif", StitchOp::SlipFront, StitchKind::Knit},
-    {"tuck", StitchOp::Tuck, StitchKind::Knit},       {"ktbl", StitchOp::ThroughBack, StitchKind::Knit},
+    {"k", StitchOp::Plain, StitchKind::Knit},          {"p", StitchOp::Plain, StitchKind::Purl},
+    {"yo", StitchOp::YarnOver, StitchKind::Knit},      {"k2tog", StitchOp::K2tog, StitchKind::Knit},
+    {"ssk", StitchOp::Ssk, StitchKind::Knit},          {"k3tog", StitchOp::K3tog, StitchKind::Knit},
+    {"sssk", StitchOp::Sssk, StitchKind::Knit},        {"cdd", StitchOp::Cdd, StitchKind::Knit},
+    {"sl", StitchOp::Slip, StitchKind::Knit},          {"sl-wyif", StitchOp::SlipFront, StitchKind::Knit},
+    {"tuck", StitchOp::Tuck, StitchKind::Knit},        {"ktbl", StitchOp::ThroughBack, StitchKind::Knit},
     {"ptbl", StitchOp::ThroughBack, StitchKind::Purl},
 };
 
@@ -298,13 +298,14 @@ void readColourwork(const Layout& layout, const std::string& source, Chart& char
     const Line& line = layout.colourwork.front();
     const std::string& word = line.tokens[0].text;
     if (layout.colourwork.size() > 1)
-        fail(source, layout.colourwork[1].number, 1, "a second colourwork line (the first is line " +
-                                                         std::to_string(line.number) + ")");
+        fail(source, layout.colourwork[1].number, 1,
+             "a second colourwork line (the first is line " + std::to_string(line.number) + ")");
     if (chart.colour.empty())
-        fail(source, line.number, 1, "'" + word + "' needs a colour block and a palette: it says how their colours are knitted");
+        fail(source, line.number, 1,
+             "'" + word + "' needs a colour block and a palette: it says how their colours are knitted");
     if (line.number < layout.palette.back().number)
-        fail(source, line.number, 1, "'" + word + "' goes after the palette line (line " +
-                                         std::to_string(layout.palette.back().number) + ")");
+        fail(source, line.number, 1,
+             "'" + word + "' goes after the palette line (line " + std::to_string(layout.palette.back().number) + ")");
     chart.colourwork = word == "stranded" ? Colourwork::Stranded : Colourwork::Intarsia;
 }
 
@@ -312,35 +313,25 @@ void readColourwork(const Layout& layout, const std::string& source, Chart& char
 
 int loopsConsumed(StitchOp op) {
     switch (op) {
-        case StitchOp::YarnOver:
-            return 0;
+        case StitchOp::YarnOver: return 0;
         case StitchOp::K2tog:
-        case StitchOp::Ssk:
-            return 2;
+        case StitchOp::Ssk: return 2;
         case StitchOp::K3tog:
         case StitchOp::Sssk:
-        case StitchOp::Cdd:
-            return 3;
-        default:
-            return 1;
+        case StitchOp::Cdd: return 3;
+        default: return 1;
     }
 }
 
 std::vector<int> Chart::sources(int row, int column) const {
     const int s = firstSource[size_t(row) * size_t(width) + size_t(column)];
     switch (opAt(row, column)) {
-        case StitchOp::YarnOver:
-            return {};
-        case StitchOp::K2tog:
-            return {s, s + 1};
-        case StitchOp::Ssk:
-            return {s + 1, s};
-        case StitchOp::K3tog:
-            return {s, s + 1, s + 2};
-        case StitchOp::Sssk:
-            return {s + 2, s + 1, s};
-        case StitchOp::Cdd:
-            return {s + 1, s, s + 2};
+        case StitchOp::YarnOver: return {};
+        case StitchOp::K2tog: return {s, s + 1};
+        case StitchOp::Ssk: return {s + 1, s};
+        case StitchOp::K3tog: return {s, s + 1, s + 2};
+        case StitchOp::Sssk: return {s + 2, s + 1, s};
+        case StitchOp::Cdd: return {s + 1, s, s + 2};
         case StitchOp::Cable:
             for (const ChartCable& c : cables) {
                 if (c.row != row || column < c.column || column >= c.column + c.left + c.right) continue;
@@ -350,8 +341,7 @@ std::vector<int> Chart::sources(int row, int column) const {
                 return {start + (j < c.right ? j + c.left : j - c.right)};
             }
             return {s};
-        default:
-            return {s};
+        default: return {s};
     }
 }
 
@@ -413,12 +403,14 @@ const BuiltinChart kBuiltinCharts[] = {
     {"chart:moss", "p k\np k\nk p\nk p\n"},
     {"chart:basketweave", "p p k k\np p k k\nk k p p\nk k p p\n"},
     {"chart:cable4", "# a 2/2 front cable between purl ridges\np k k k k p\np k k k k p\np k k k k p\np c2/2f p\n"},
-    {"chart:eyelet-mesh", "# lace: an eyelet every other row, offset by half the repeat\nk k k k\nk k k2tog yo\nk k k k\n"
-                          "k2tog yo k k\n"},
+    {"chart:eyelet-mesh",
+     "# lace: an eyelet every other row, offset by half the repeat\nk k k k\nk k k2tog yo\nk k k k\n"
+     "k2tog yo k k\n"},
     {"chart:honeycomb", "# slip-stitch honeycomb: each slipped stitch held for two rows\nsl k\nsl k\nk sl\nk sl\n"},
     {"chart:fishermans-rib", "# fisherman's rib: knit and purl columns tucked on alternate rows\nk tuck\ntuck p\n"},
-    {"chart:fair-isle", "# a two-colour stranded band: checks between plain rows\nk k k k\nk k k k\nk k k k\nk k k k\n\n"
-                        "A A A A\nA B A B\nB A B A\nA A A A\nA=#f2e8d5 B=#1d3557\nstranded\n"},
+    {"chart:fair-isle",
+     "# a two-colour stranded band: checks between plain rows\nk k k k\nk k k k\nk k k k\nk k k k\n\n"
+     "A A A A\nA B A B\nB A B A\nA A A A\nA=#f2e8d5 B=#1d3557\nstranded\n"},
 };
 
 }  // namespace

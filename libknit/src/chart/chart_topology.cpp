@@ -39,15 +39,15 @@ constexpr double kCableDepth = 1.0;
 constexpr double kWarp = 0.4;
 
 // Round 2 constructs (model units).
-constexpr double kStackDepth = 0.6;   // z between the upper parts of loops one stitch takes together
-constexpr double kStackShift = 0.35;  // x between their heads, so their legs cross in projection
-constexpr double kFloatDepth = 2.4;   // |z| of a float (behind or in front of the stitches it passes)
-constexpr double kStrandStep = 0.9;   // further depth of each further stranded float in a column
-constexpr double kFloatDrop = 2.5;    // a float runs this far below its row's loop centres
-constexpr double kFloatEnd = 1.2;     // parameter span over which a float meets a foot
+constexpr double kStackDepth = 0.6;           // z between the upper parts of loops one stitch takes together
+constexpr double kStackShift = 0.35;          // x between their heads, so their legs cross in projection
+constexpr double kFloatDepth = 2.4;           // |z| of a float (behind or in front of the stitches it passes)
+constexpr double kStrandStep = 0.9;           // further depth of each further stranded float in a column
+constexpr double kFloatDrop = 2.5;            // a float runs this far below its row's loop centres
+constexpr double kFloatEnd = 1.2;             // parameter span over which a float meets a foot
 constexpr double kStrandedFloatSlack = 0.95;  // rest-length factor of stranded floats (docs/charts.md)
-constexpr double kTuckDepth = 1.6;    // z of a tuck loop's lower part (behind the held loop)
-constexpr double kTuckFoot = 0.6;     // parameter span over which it meets its feet
+constexpr double kTuckDepth = 1.6;            // z of a tuck loop's lower part (behind the held loop)
+constexpr double kTuckFoot = 0.6;             // parameter span over which it meets its feet
 // Where a stranded yarn's loop meets its float beside another yarn's loop, both feet step back
 // from the shared foot point (inwards and up or down), so the two yarns do not meet there.
 constexpr double kJunctionX = 0.5, kJunctionY = 0.6, kJunctionSpan = 0.8;
@@ -120,8 +120,9 @@ std::vector<Plan> planLoops(const Chart& chart) {
             }
             std::vector<int> byColumn(taken.size());
             for (size_t k = 0; k < taken.size(); ++k) byColumn[k] = int(k);
-            std::stable_sort(byColumn.begin(), byColumn.end(),
-                             [&](int a, int b) { return taken[size_t(a)].first.column < taken[size_t(b)].first.column; });
+            std::stable_sort(byColumn.begin(), byColumn.end(), [&](int a, int b) {
+                return taken[size_t(a)].first.column < taken[size_t(b)].first.column;
+            });
             const ChartCable* cable = nullptr;
             for (const ChartCable& cb : chart.cables)
                 if (cb.row == R && C >= cb.column && C < cb.column + cb.left + cb.right) cable = &cb;
@@ -159,7 +160,8 @@ RowLayout rowLayout(const Chart& chart, const std::vector<Plan>& plan) {
     for (int r = 0; r < chart.height; ++r) {
         bool moves = false;
         for (int c = 0; c < chart.width; ++c)
-            moves = moves || (makesLoop(chart.opAt(r, c)) && plan[size_t(r) * size_t(chart.width) + size_t(c)].consumerColumn != c);
+            moves = moves || (makesLoop(chart.opAt(r, c)) &&
+                              plan[size_t(r) * size_t(chart.width) + size_t(c)].consumerColumn != c);
         rows.y.push_back(rows.period);
         rows.stretched.push_back(moves);
         rows.period += kRowPitch + (moves ? kCableLift : 0.0);
@@ -421,9 +423,9 @@ ChartCell chartToCell(const Chart& chart, const ChartCellOptions& options) {
                 for (int i = 0; i < m; ++i) {
                     const double t = mine ? loopParameter(rows, l, i, m) : -util::kPi + util::kTwoPi * i / m;
                     p.points.push_back((mine ? loopPoint(g, l, t) : floatPoint(g, r, c, t)) * s);
-                    letter.push_back(chart.colour.empty() ? char(0)
+                    letter.push_back(chart.colour.empty()                       ? char(0)
                                      : chart.colourwork == Colourwork::Stranded ? ry.colours[k]
-                                                                                 : chart.colourAt(r, c));
+                                                                                : chart.colourAt(r, c));
                 }
             }
             const uint32_t first = at.front(), last = at.back() - 1;
