@@ -99,6 +99,8 @@ TEST(ChartGrammar, colourworkLineAfterThePalette) {
               "bad.chart:4:1: 'stranded' goes after the palette line (line 5)");
     EXPECT_EQ(chartError(std::string(body) + "stranded\nintarsia\n"),
               "bad.chart:8:1: a second colourwork line (the first is line 7)");
+    EXPECT_EQ(chartError("k k k k k\n\nA B C D E\nA=#000000 B=#000001 C=#000002 D=#000003 E=#000004\nstranded\n"),
+              "bad.chart:1:1: row uses 5 colours (ABCDE); stranded colourwork carries at most 4 yarns along a row");
 }
 
 }  // namespace

@@ -91,6 +91,8 @@ int loopsConsumed(StitchOp op);
 // Slipped and tucked stitches hold the loop below for the next row; a loop may be held on at
 // most this many rows in a row (docs/charts.md: anchoring).
 constexpr int kMaxHeldRows = 3;
+// Stranded colourwork carries at most this many yarns along a row (Fair Isle uses two).
+constexpr int kMaxStrandedColours = 4;
 
 // Parses chart text. Errors are knit::Error "SOURCE:LINE:COLUMN: what" (1-based), for ragged rows,
 // an unknown token, a cable over purl stitches (`cN/Mpf`, `cN/Mpb`), a cable wider than the chart,

@@ -307,6 +307,17 @@ void readColourwork(const Layout& layout, const std::string& source, Chart& char
         fail(source, line.number, 1,
              "'" + word + "' goes after the palette line (line " + std::to_string(layout.palette.back().number) + ")");
     chart.colourwork = word == "stranded" ? Colourwork::Stranded : Colourwork::Intarsia;
+    // Stranded: each colour of a row is a yarn carried along the whole row.
+    if (chart.colourwork == Colourwork::Stranded)
+        for (int r = 0; r < chart.height; ++r) {
+            std::string used;
+            for (int c = 0; c < chart.width; ++c)
+                if (used.find(chart.colourAt(r, c)) == std::string::npos) used += chart.colourAt(r, c);
+            if (int(used.size()) > kMaxStrandedColours)
+                fail(source, chart.rowLine[size_t(r)], 1,
+                     "row uses " + std::to_string(used.size()) + " colours (" + used + "); stranded colourwork carries "
+                     "at most " + std::to_string(kMaxStrandedColours) + " yarns along a row");
+        }
 }
 
 }  // namespace
