@@ -98,8 +98,11 @@ struct ChartCell {
     const StitchLoop& loop(int row, int column) const { return loops[size_t(row) * size_t(width) + size_t(column)]; }
 };
 
-// Throws knit::Error for a non-positive radius, fewer than 8 samples per stitch, or intarsia
-// colourwork (parsed, not built yet).
+// A cell holds at most this many yarn vertices (a chart is one period: a few hundred stitches).
+constexpr uint64_t kMaxChartVertices = uint64_t(1) << 22;
+
+// Throws knit::Error for a non-positive radius, fewer than 8 samples per stitch, intarsia
+// colourwork (parsed, not built yet) or more than kMaxChartVertices vertices.
 ChartCell chartToCell(const Chart& chart, const ChartCellOptions& options = {});
 
 }  // namespace knit

@@ -315,8 +315,10 @@ void readColourwork(const Layout& layout, const std::string& source, Chart& char
                 if (used.find(chart.colourAt(r, c)) == std::string::npos) used += chart.colourAt(r, c);
             if (int(used.size()) > kMaxStrandedColours)
                 fail(source, chart.rowLine[size_t(r)], 1,
-                     "row uses " + std::to_string(used.size()) + " colours (" + used + "); stranded colourwork carries "
-                     "at most " + std::to_string(kMaxStrandedColours) + " yarns along a row");
+                     "row uses " + std::to_string(used.size()) + " colours (" + used +
+                         "); stranded colourwork carries "
+                         "at most " +
+                         std::to_string(kMaxStrandedColours) + " yarns along a row");
         }
 }
 

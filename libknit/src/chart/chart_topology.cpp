@@ -351,37 +351,38 @@ std::vector<double> liftedRestScale(const ChartCell& cell, double metresPerUnit,
     return scale;
 }
 
-}  // namespace
+// Everything the cell is built from.
+struct CellInputs {
+    const Chart& chart;
+    const std::vector<RowYarns>& yarns;
+    const std::vector<Plan>& plan;
+    const RowLayout& rows;
+    int n = 0;  // samples per loop
+};
 
-ChartCell chartToCell(const Chart& chart, const ChartCellOptions& options) {
-    if (!util::positiveFinite(options.radius)) throw Error("knitting chart: the yarn radius must be positive");
-    if (options.samplesPerStitch < 8) throw Error("knitting chart: the samples per stitch must be >= 8");
-    if (chart.colourwork == Colourwork::Intarsia)
-        throw Error(chart.name +
-                    ": intarsia colourwork is parsed but not built yet (use `stranded`, or leave the line out to "
-                    "paint the colours on one yarn per row)");
-    const int n = options.samplesPerStitch, W = chart.width;
-    const double s = options.radius / kModelRadius;  // metres per model unit
-    ChartCell cell;
-    cell.width = W;
-    cell.height = chart.height;
-    const std::vector<RowYarns> yarns = rowYarns(chart);
-    const std::vector<Plan> plan = planLoops(chart);
-    const RowLayout rows = rowLayout(chart, plan);
-    // Step 5: each yarn's columns (a loop: n vertices, a float: fewer) and the stitch record:
-    // which yarn's vertices make each cell.
-    std::vector<std::vector<uint32_t>> starts;  // per yarn, rows in order
-    uint32_t next = 0;
+// Step 5: each yarn's columns (a loop: n vertices, a float: fewer), rows in order, and the
+// stitch record: which yarn's vertices make each cell. Returns the columns' first vertices.
+std::vector<std::vector<uint32_t>> stitchRecord(const CellInputs& in, ChartCell& cell) {
+    const Chart& chart = in.chart;
+    std::vector<std::vector<uint32_t>> starts;  // per yarn
+    uint64_t next = 0;
     for (int r = 0; r < chart.height; ++r) {
-        const RowYarns& ry = yarns[size_t(r)];
+        const RowYarns& ry = in.yarns[size_t(r)];
         const int firstYarn = int(starts.size());
         for (size_t k = 0; k < ry.colours.size(); ++k) {
-            const CellGeometry g{&chart, &rows, &plan, &ry, int(k)};
-            starts.push_back(columnStarts(g, r, n, next));
+            const CellGeometry g{&chart, &in.rows, &in.plan, &ry, int(k)};
+            // The vertex count, bounded before anything is allocated for it.
+            uint64_t count = 0;
+            for (int c = 0; c < chart.width; ++c) count += uint64_t(g.loopOf(r, c) ? in.n : floatSamples(in.n));
+            if (next + count > kMaxChartVertices)
+                throw Error(chart.name + ": the chart makes more than " + std::to_string(kMaxChartVertices) +
+                            " yarn vertices (" + std::to_string(chart.width) + " x " + std::to_string(chart.height) +
+                            " stitches): a chart is one period of the fabric");
+            starts.push_back(columnStarts(g, r, in.n, uint32_t(next)));
             next = starts.back().back();
         }
-        for (int c = 0; c < W; ++c) {
-            const Plan& p = plan[size_t(r) * size_t(W) + size_t(c)];
+        for (int c = 0; c < chart.width; ++c) {
+            const Plan& p = in.plan[size_t(r) * size_t(chart.width) + size_t(c)];
             StitchLoop l;
             l.row = r;
             l.column = c;
@@ -401,28 +402,33 @@ ChartCell chartToCell(const Chart& chart, const ChartCellOptions& options) {
         }
     }
     cell.yarns = int(starts.size());
+    return starts;
+}
+
+// Step 6: the vertices (model units times `scale`), yarn by yarn along each row; every yarn
+// closes through +x. Returns the palette letter of every vertex.
+std::vector<char> buildYarns(const CellInputs& in, const std::vector<std::vector<uint32_t>>& starts, double scale,
+                             ChartCell& cell) {
+    const Chart& chart = in.chart;
     Pattern& p = cell.pattern;
-    p.name = chart.name;
-    p.stitchesPerPeriod = W;
-    p.rowsPerPeriod = chart.height;
-    p.px = util::kTwoPi * W * s;
-    p.py = rows.period * s;
-    p.radius = options.radius;
-    // Step 6: the vertices, yarn by yarn along each row; every yarn closes through +x.
-    std::vector<char> letter;  // palette letter per vertex
+    std::vector<char> letter;
+    const size_t vertices = starts.empty() ? 0 : starts.back().back();
+    p.points.reserve(vertices);
+    p.edges.reserve(vertices);
+    letter.reserve(vertices);
     int yarn = 0;
     for (int r = 0; r < chart.height; ++r) {
-        const RowYarns& ry = yarns[size_t(r)];
+        const RowYarns& ry = in.yarns[size_t(r)];
         for (size_t k = 0; k < ry.colours.size(); ++k, ++yarn) {
-            CellGeometry g{&chart, &rows, &plan, &ry, int(k)};
+            const CellGeometry g{&chart, &in.rows, &in.plan, &ry, int(k)};
             const std::vector<uint32_t>& at = starts[size_t(yarn)];
-            for (int c = 0; c < W; ++c) {
+            for (int c = 0; c < chart.width; ++c) {
                 const StitchLoop& l = cell.loop(r, c);
                 const bool mine = g.loopOf(r, c);
                 const int m = int(at[size_t(c) + 1] - at[size_t(c)]);
                 for (int i = 0; i < m; ++i) {
-                    const double t = mine ? loopParameter(rows, l, i, m) : -util::kPi + util::kTwoPi * i / m;
-                    p.points.push_back((mine ? loopPoint(g, l, t) : floatPoint(g, r, c, t)) * s);
+                    const double t = mine ? loopParameter(in.rows, l, i, m) : -util::kPi + util::kTwoPi * i / m;
+                    p.points.push_back((mine ? loopPoint(g, l, t) : floatPoint(g, r, c, t)) * scale);
                     letter.push_back(chart.colour.empty()                       ? char(0)
                                      : chart.colourwork == Colourwork::Stranded ? ry.colours[k]
                                                                                 : chart.colourAt(r, c));
@@ -434,19 +440,51 @@ ChartCell chartToCell(const Chart& chart, const ChartCellOptions& options) {
             addFloats(g, r, yarn, at, cell.floats);
         }
     }
-    p.twist.assign(p.points.size(), 0.0);
-    cell.restScale = liftedRestScale(cell, s, n);
-    // Step 7: the colour layer, per loop (sRGB) and per vertex (linear).
-    if (!chart.colour.empty()) {
-        for (const StitchLoop& l : cell.loops) cell.colour.push_back(chart.palette.at(chart.colourAt(l.row, l.column)));
-        std::map<char, glm::vec3> linear;
-        for (const auto& [key, srgb] : chart.palette) {
-            glm::vec3 c(0.f);
-            for (int k = 0; k < 3; ++k) c[k] = float(util::srgbToLinear(srgb[size_t(k)] / 255.0));
-            linear[key] = c;
-        }
-        for (const char c : letter) p.colour.push_back(linear.at(c));
+    return letter;
+}
+
+// Step 7: the colour layer, per loop (sRGB) and per vertex (linear).
+void colourLayer(const Chart& chart, const std::vector<char>& letter, ChartCell& cell) {
+    if (chart.colour.empty()) return;
+    for (const StitchLoop& l : cell.loops) cell.colour.push_back(chart.palette.at(chart.colourAt(l.row, l.column)));
+    std::map<char, glm::vec3> linear;
+    for (const auto& [key, srgb] : chart.palette) {
+        glm::vec3 c(0.f);
+        for (int k = 0; k < 3; ++k) c[k] = float(util::srgbToLinear(srgb[size_t(k)] / 255.0));
+        linear[key] = c;
     }
+    for (const char c : letter) cell.pattern.colour.push_back(linear.at(c));
+}
+
+}  // namespace
+
+ChartCell chartToCell(const Chart& chart, const ChartCellOptions& options) {
+    if (!util::positiveFinite(options.radius)) throw Error("knitting chart: the yarn radius must be positive");
+    if (options.samplesPerStitch < 8) throw Error("knitting chart: the samples per stitch must be >= 8");
+    if (chart.colourwork == Colourwork::Intarsia)
+        throw Error(chart.name +
+                    ": intarsia colourwork is parsed but not built yet (use `stranded`, or leave the line out to "
+                    "paint the colours on one yarn per row)");
+    const double s = options.radius / kModelRadius;  // metres per model unit
+    ChartCell cell;
+    cell.width = chart.width;
+    cell.height = chart.height;
+    const std::vector<RowYarns> yarns = rowYarns(chart);
+    const std::vector<Plan> plan = planLoops(chart);
+    const RowLayout rows = rowLayout(chart, plan);
+    const CellInputs in{chart, yarns, plan, rows, options.samplesPerStitch};
+    const std::vector<std::vector<uint32_t>> starts = stitchRecord(in, cell);
+    Pattern& p = cell.pattern;
+    p.name = chart.name;
+    p.stitchesPerPeriod = chart.width;
+    p.rowsPerPeriod = chart.height;
+    p.px = util::kTwoPi * chart.width * s;
+    p.py = rows.period * s;
+    p.radius = options.radius;
+    const std::vector<char> letter = buildYarns(in, starts, s, cell);
+    p.twist.assign(p.points.size(), 0.0);
+    cell.restScale = liftedRestScale(cell, s, options.samplesPerStitch);
+    colourLayer(chart, letter, cell);
     validatePattern(p, p.name);
     return cell;
 }
