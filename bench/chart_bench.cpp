@@ -1,5 +1,6 @@
 // Chart relaxation targets of issue 13: a 2 x 2 stockinette in <= 2 s, a 12-stitch x 16-row
-// cable cell in <= 60 s (2 cores). Counters: iterations, min distance (radii), L r / A.
+// cable cell in <= 60 s (2 cores); issue 25: every built-in of round 2 (lace, slip stitch, tuck,
+// stranded) in <= 60 s. Counters: iterations, min distance (radii), L r / A.
 #include <benchmark/benchmark.h>
 
 #include <string>
@@ -44,8 +45,14 @@ void relax(benchmark::State& state, const knit::Chart& chart) {
 void BM_RelaxStockinette2x2(benchmark::State& state) { relax(state, knit::builtinChart("chart:stockinette")); }
 void BM_RelaxCable12x16(benchmark::State& state) { relax(state, knit::parseChart(cableCell(), "cable12x16")); }
 
+void BM_RelaxBuiltin(benchmark::State& state, const char* name) { relax(state, knit::builtinChart(name)); }
+
 }  // namespace
 
+BENCHMARK_CAPTURE(BM_RelaxBuiltin, eyelet_mesh, "chart:eyelet-mesh")->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK_CAPTURE(BM_RelaxBuiltin, honeycomb, "chart:honeycomb")->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK_CAPTURE(BM_RelaxBuiltin, fishermans_rib, "chart:fishermans-rib")->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK_CAPTURE(BM_RelaxBuiltin, fair_isle, "chart:fair-isle")->Unit(benchmark::kSecond)->Iterations(1);
 BENCHMARK(BM_RelaxStockinette2x2)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_RelaxCable12x16)->Unit(benchmark::kSecond)->Iterations(1);
 BENCHMARK_MAIN();

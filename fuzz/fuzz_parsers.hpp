@@ -171,8 +171,8 @@ inline Outcome runChart(const uint8_t* data, size_t size) {
             throw std::logic_error("chart: inconsistent size");
         for (int r = 0; r < chart.height; ++r)
             for (int c = 0; c < chart.width; ++c)
-                if (chart.sourceColumn(r, c) < 0 || chart.sourceColumn(r, c) >= chart.width)
-                    throw std::logic_error("chart: source column outside");
+                for (const int j : chart.sources(r, c))
+                    if (j < 0 || j >= chart.width) throw std::logic_error("chart: source column outside");
         if (chart.width * chart.height <= 64) chartToCell(chart, ChartCellOptions{0.001, 8});
         return Outcome::Parsed;
     } catch (const Error&) {

@@ -23,12 +23,59 @@ void addChartCommand(CLI::App& app, ChartCommand& c) {
     c.command->add_option("--yarn-radius", c.yarnRadius, "Yarn radius (metres)")
         ->check(CLI::PositiveNumber)
         ->capture_default_str();
-    c.command->add_option("--report", c.report, "Write a JSON report (size, iterations, min distance, period)");
+    c.command->add_option("--report", c.report,
+                          "Write a JSON report (size, iterations, min distance, period, every float)");
+    c.command
+        ->add_option("--max-float", c.maxFloat,
+                     "Warn about floats (stranded colourwork, slipped stitches) longer than this many stitches")
+        ->check(CLI::Range(1, 1000000))
+        ->capture_default_str();
 }
 
 namespace {
 
-nlohmann::json reportOf(const Chart& chart, const ChartPattern& cp) {
+// Where a float lies, in the knitter's words: chart row (1 = the bottom row) and its line, the
+// columns it passes (1 = the leftmost; it may wrap round the repeat).
+struct FloatPlace {
+    int row = 0, line = 0, first = 0, last = 0;
+};
+FloatPlace placeOf(const Chart& chart, const ChartFloat& f) {
+    return {f.row + 1, chart.rowLine[size_t(f.row)], f.firstColumn + 1,
+            (f.firstColumn + f.columns - 1) % chart.width + 1};
+}
+
+nlohmann::json floatsOf(const Chart& chart, const ChartPattern& cp, int maxFloat) {
+    nlohmann::json floats = nlohmann::json::array();
+    for (const ChartFloat& f : cp.cell.floats) {
+        const FloatPlace at = placeOf(chart, f);
+        floats.push_back({{"row", at.row},
+                          {"line", at.line},
+                          {"columns", {at.first, at.last}},
+                          {"stitches", f.columns},
+                          {"colour", f.colour ? std::string(1, f.colour) : std::string()},
+                          {"side", f.front ? "front" : "back"},
+                          {"stranded", f.stranded},
+                          {"too_long", f.columns > maxFloat}});
+    }
+    return floats;
+}
+
+// A warning per float longer than --max-float.
+void warnLongFloats(const Chart& chart, const ChartPattern& cp, int maxFloat) {
+    for (const ChartFloat& f : cp.cell.floats) {
+        if (f.columns <= maxFloat) continue;
+        const FloatPlace at = placeOf(chart, f);
+        const std::string colour = f.colour ? std::string(" of colour ") + f.colour : std::string();
+        const char* wraps = at.last < at.first ? " (round the repeat)" : "";
+        std::fprintf(stderr,
+                     "knit: warning: %s:%d: row %d: the float%s over columns %d-%d%s is %d stitches long, longer "
+                     "than --max-float %d (long floats snag: catch it or shorten the run)\n",
+                     chart.name.c_str(), at.line, at.row, colour.c_str(), at.first, at.last, wraps, f.columns,
+                     maxFloat);
+    }
+}
+
+nlohmann::json reportOf(const Chart& chart, const ChartPattern& cp, int maxFloat) {
     const Pattern& p = cp.relaxed.pattern;
     return {{"chart", chart.name},
             {"stitches", chart.width},
@@ -39,7 +86,10 @@ nlohmann::json reportOf(const Chart& chart, const ChartPattern& cp) {
             {"iterations", cp.relaxed.iterations},
             {"converged", cp.relaxed.converged},
             {"min_distance_radii", cp.relaxed.minDistance},
-            {"seconds", cp.seconds}};
+            {"seconds", cp.seconds},
+            {"yarns", cp.cell.yarns},
+            {"max_float", maxFloat},
+            {"floats", floatsOf(chart, cp, maxFloat)}};
 }
 
 }  // namespace
@@ -56,13 +106,15 @@ int runChart(const ChartCommand& c) {
     ChartPatternOptions options;
     options.radius = c.yarnRadius;
     const ChartPattern cp = relaxChart(chart, options);
+    warnLongFloats(chart, cp, c.maxFloat);
     OutputTransaction outputs;  // the pattern and its report are committed together
     outputs.run([&] {
         writeFileAtomically(
             outputs.stage(c.output), [&](std::ostream& out) { writePyp(out, cp.relaxed.pattern); }, false);
         if (!c.report.empty())
             writeFileAtomically(
-                outputs.stage(c.report), [&](std::ostream& out) { out << reportOf(chart, cp).dump(2) << '\n'; }, false);
+                outputs.stage(c.report),
+                [&](std::ostream& out) { out << reportOf(chart, cp, c.maxFloat).dump(2) << '\n'; }, false);
         outputs.commit();
     });
     std::printf("wrote %s (%d x %d stitches, %zu vertices, min distance %.3f r, %.2f s)\n", c.output.c_str(),

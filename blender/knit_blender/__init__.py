@@ -46,7 +46,11 @@ class OBJECT_OT_knit_apply(bpy.types.Operator):
     bl_options = {"REGISTER", "UNDO"}
 
     pattern: bpy.props.StringProperty(name="Pattern", default="stockinette",
-                                      description="Built-in pattern name or a .pyp / .json file")
+                                      description="Built-in pattern name (or chart:NAME), or a .pyp / .json / "
+                                                  ".chart file")
+    chart_text: bpy.props.StringProperty(name="Chart text", default="",
+                                         description="A text block holding a stitch chart (libknit docs/charts.md); "
+                                                     "when set it replaces Pattern")
     repeats: bpy.props.FloatVectorProperty(name="Repeats", size=2, default=(8.0, 8.0), min=0.0,
                                            description="Pattern periods across the UV square (0, 0: see Gauge)")
     gauge: bpy.props.FloatVectorProperty(name="Gauge", size=2, default=(0.0, 0.0), min=0.0,
@@ -68,8 +72,15 @@ class OBJECT_OT_knit_apply(bpy.types.Operator):
             self.report({"ERROR"}, f"the Python module knit was not found ({e}): install it with cmake --install, "
                                    "or set KNIT_PYTHONPATH or the add-on's Module folder to <build>/python")
             return {"CANCELLED"}
+        options = self.as_keywords()
+        if self.chart_text:  # the chart's text is stored with the object, so a re-bind uses it
+            block = bpy.data.texts.get(self.chart_text)
+            if block is None:
+                self.report({"ERROR"}, f"Chart text: there is no text block named '{self.chart_text}'")
+                return {"CANCELLED"}
+            options["chart_source"] = block.as_string()
         try:
-            obj = build.apply_knit(context, context.active_object, self.as_keywords())
+            obj = build.apply_knit(context, context.active_object, options)
         except (knit.Error, ValueError) as e:
             self.report({"ERROR"}, str(e))
             return {"CANCELLED"}

@@ -115,7 +115,10 @@ def bind(source, options, depsgraph, rest=None):
     if gauge[0] > 0 and gauge[1] > 0:  # periods per 10 cm -> periods across the UV square
         su, sv = knit.uv_to_metre_scale(mesh)
         repeats = (su * gauge[0] / 0.1, sv * gauge[1] / 0.1)
-    return knit.build_scene(options["pattern"], mesh, repeats=repeats if repeats[0] > 0 else None,
+    pattern = options["pattern"]
+    if options.get("chart_source"):  # chart text from a text block (the operator's Chart text)
+        pattern = knit.chart_pattern(options["chart_source"], name=options.get("chart_text") or "chart text")
+    return knit.build_scene(pattern, mesh, repeats=repeats if repeats[0] > 0 else None,
                             plies=options["plies"], ply_pitch=options["ply_pitch"], twist=options["twist"],
                             build_plies=False)
 

@@ -56,6 +56,36 @@ def render_coverage(obj):
     return float((luminance > 0.02).mean()), float(luminance.var())
 
 
+def check_chart_text():
+    """A chart in a text block (a lace row and a stranded colour row) knits as that chart; a bad
+    chart or a missing block cancels with the error."""
+    os.environ["KNIT_CACHE_DIR"] = tempfile.mkdtemp()
+    block = bpy.data.texts.new("lace")
+    block.write("k yo k2tog k\nk k k k\n\nA A A A\nA B A B\nA=#ffffff B=#1d3557\nstranded\n")
+    bpy.ops.object.select_all(action="DESELECT")
+    cloth = bpy.data.objects["Cloth"]
+    bpy.context.view_layer.objects.active = cloth
+    result = bpy.ops.object.knit_apply(chart_text="lace", repeats=(3, 3), plies=2)
+    check(result == {"FINISHED"}, "knit_apply with a chart text block finished")
+    obj = bpy.data.objects["Cloth.knit"]
+    scene = build.scene_of(obj, bpy.context.evaluated_depsgraph_get())
+    check(scene.pattern.name == "lace", f"the chart text is the pattern ({scene.pattern.name})")
+    check(len(obj.data.vertices) == scene.evaluate_plies(scene.mesh.positions).point_count > 0,
+          "the chart's plies are the object's points")
+    bad = bpy.data.texts.new("bad")
+    bad.write("k yo k k\nk k k k\n")
+    try:
+        bad_result = bpy.ops.object.knit_apply(chart_text="bad")
+    except RuntimeError as e:  # the operator's ERROR report raises in background mode
+        bad_result = str(e)
+    check("bad:1:8: row consumes 3 loops" in str(bad_result), f"a bad chart is refused with its position ({bad_result})")
+    try:
+        missing = bpy.ops.object.knit_apply(chart_text="nope")
+    except RuntimeError as e:
+        missing = str(e)
+    check("no text block named 'nope'" in str(missing), f"a missing text block is named ({missing})")
+
+
 def main():
     knit_blender.register()
     make_animated_grid()
@@ -103,6 +133,7 @@ def main():
     bpy.context.scene.frame_set(10)
     obj = bpy.data.objects["Cloth.knit"]
     check(np.array_equal(points_of(obj), moved), "reopened on frame 10 and re-bound: frame 10 is unchanged")
+    check_chart_text()
     print("knit_blender: all checks passed")
 
 

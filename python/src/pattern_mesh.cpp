@@ -2,9 +2,15 @@
 // and making a mesh from numpy arrays.
 #include <pybind11/stl.h>
 
+#include <cmath>
+
 #include "arrays.hpp"
 #include "bindings.hpp"
 #include "knit/base_mesh.hpp"
+#include "knit/chart.hpp"
+#include "knit/chart_cache.hpp"
+#include "knit/chart_topology.hpp"
+#include "knit/error.hpp"
 #include "knit/generator.hpp"
 #include "knit/pattern.hpp"
 
@@ -29,6 +35,47 @@ knit::BaseMesh meshFromArrays(const py::array& positions, const py::array& faces
     return mesh;
 }
 
+// Chart text (the format of docs/charts.md) to a relaxed pattern, through the chart cache.
+knit::Pattern chartPattern(const std::string& text, const std::string& name, double yarnRadius) {
+    if (!(yarnRadius > 0) || !std::isfinite(yarnRadius)) throw knit::Error("yarn_radius must be positive");
+    knit::ChartPatternOptions options;
+    options.radius = yarnRadius;
+    return knit::cachedChartPattern(text, name, options);
+}
+
+// The floats of a chart (stranded colourwork, slipped stitches): one dict each, in the
+// knitter's numbering (row 1 = the bottom row, column 1 = the leftmost), as `knit chart --report`.
+py::list chartFloats(const std::string& text, const std::string& name, int maxFloat) {
+    if (maxFloat < 1) throw knit::Error("max_float must be at least 1");
+    const knit::Chart chart = knit::parseChart(text, name);
+    const knit::ChartCell cell = knit::chartToCell(chart);
+    py::list out;
+    for (const knit::ChartFloat& f : cell.floats) {
+        py::dict d;
+        d["row"] = f.row + 1;
+        d["line"] = chart.rowLine[size_t(f.row)];
+        d["columns"] = py::make_tuple(f.firstColumn + 1, (f.firstColumn + f.columns - 1) % chart.width + 1);
+        d["stitches"] = f.columns;
+        d["colour"] = f.colour ? std::string(1, f.colour) : std::string();
+        d["side"] = f.front ? "front" : "back";
+        d["too_long"] = f.columns > maxFloat;
+        out.append(d);
+    }
+    return out;
+}
+
+void registerChart(py::module_& m) {
+    m.def("chart_pattern", &chartPattern, "text"_a, "name"_a = "<chart text>", "yarn_radius"_a = 0.001,
+          "A stitch chart given as text (docs/charts.md: k p yo k2tog ssk ... sl tuck ktbl, cables, a colour "
+          "block, `stranded`) relaxed into a Pattern, cached like chart files. A chart file or chart:NAME goes "
+          "to load_pattern. Raises knit.Error naming NAME:LINE:COLUMN.",
+          py::call_guard<py::gil_scoped_release>());
+    m.def("chart_floats", &chartFloats, "text"_a, "name"_a = "<chart text>", "max_float"_a = 5,
+          "The chart's floats as dicts (row, line, columns, stitches, colour, side, too_long: longer than "
+          "max_float stitches). Raises knit.Error for a bad chart.");
+    m.def("builtin_charts", &knit::builtinChartNames, "The chart:NAME patterns load_pattern accepts.");
+}
+
 void registerPattern(py::module_& m) {
     py::class_<knit::Pattern>(m, "Pattern",
                               "One periodic pattern cell (metres): points, periodic edges, period, radius.")
@@ -47,6 +94,7 @@ void registerPattern(py::module_& m) {
           "Loads a pattern: a .pyp / .json file or a built-in name (builtin_patterns()). Raises knit.Error.",
           py::call_guard<py::gil_scoped_release>());
     m.def("builtin_patterns", &knit::builtinPatternNames, "Names load_pattern accepts besides files.");
+    registerChart(m);
 }
 
 void registerMesh(py::module_& m) {

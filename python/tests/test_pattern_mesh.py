@@ -84,3 +84,35 @@ def test_scene_on_a_mesh_from_arrays():
 def test_vertex_normals_of_a_flat_quad_point_up():
     positions, faces, _ = quad()
     np.testing.assert_allclose(knit.vertex_normals(positions, faces), np.tile([0, 0, 1.0], (4, 1)))
+
+
+FAIR_ISLE = "k k k k k k k k\nk k k k k k k k\n\nA A A A A A A A\nA B A A A A A A\nA=#ffffff B=#000000\nstranded\n"
+
+
+def test_chart_text_relaxes_into_a_pattern(tmp_path, monkeypatch):
+    monkeypatch.setenv("KNIT_CACHE_DIR", str(tmp_path))
+    p = knit.chart_pattern("k yo k2tog k\nk k k k\n", name="lace")
+    assert p.name == "lace"
+    assert p.points.shape == (4 * 2 * 24, 3)
+    assert p.radius == 0.001
+    assert "chart:eyelet-mesh" in knit.builtin_charts()
+    # A chart file goes through load_pattern, the same cell.
+    f = tmp_path / "lace.chart"
+    f.write_text("k yo k2tog k\nk k k k\n")
+    assert knit.load_pattern(str(f)).points.shape == p.points.shape
+
+
+def test_bad_chart_text_names_line_and_column():
+    with pytest.raises(knit.Error, match=r"bad:1:8: row consumes 3 loops but the row below makes 4"):
+        knit.chart_pattern("k yo k k\nk k k k\n", name="bad")
+    with pytest.raises(knit.Error, match="yarn_radius must be positive"):
+        knit.chart_pattern("k k\n", yarn_radius=0)
+
+
+def test_chart_floats_flags_long_floats():
+    floats = knit.chart_floats(FAIR_ISLE, name="band")
+    long = [f for f in floats if f["too_long"]]
+    assert len(long) == 1
+    assert long[0]["row"] == 1 and long[0]["colour"] == "B" and long[0]["stitches"] == 7
+    assert long[0]["columns"] == (3, 1) and long[0]["side"] == "back" and long[0]["line"] == 2
+    assert not any(f["too_long"] for f in knit.chart_floats(FAIR_ISLE, max_float=7))

@@ -73,7 +73,8 @@ TEST(Chart, raggedRowNamesLineAndColumn) {
 
 TEST(Chart, unknownTokenNamesLineAndColumn) {
     EXPECT_EQ(chartError("k k\nk  x\n"),
-              "bad.chart:2:4: unknown stitch 'x' (expected k, p or a cable c1/1f c1/1b c2/2f c2/2b c3/3f c3/3b)");
+              "bad.chart:2:4: unknown stitch 'x' (expected k, p, yo, k2tog, ssk, k3tog, sssk, cdd, sl, sl-wyif, tuck, "
+              "ktbl, ptbl or a cable c1/1f c1/1b c2/2f c2/2b c3/3f c3/3b)");
     EXPECT_NE(chartError("c4/4f\n").find("bad.chart:1:1: unknown stitch"), std::string::npos);
 }
 

@@ -178,6 +178,30 @@ TEST(Colour, duplicateStitchChangesColourWithinTheCourse) {
     EXPECT_TRUE(mixed);
 }
 
+// Stranded colourwork: every yarn is one colour, through the pattern, the mapped yarns and the
+// plies (the exports and the renderer read these arrays), and both colours are knitted.
+TEST(Colour, strandedYarnsKeepTheirColourThroughThePipeline) {
+    const Pattern p = chartToCell(builtinChart("chart:fair-isle")).pattern;
+    SceneOptions o;
+    o.placement.repeats = {2, 2};
+    o.buildPlies = true;
+    const Scene scene = buildScene(p, makePlane(), o);
+    const MappedYarns& y = scene.yarns();
+    ASSERT_EQ(y.colour.size(), y.curves.pointCount());
+    std::map<float, int> colours;  // by red component: cream and navy differ there
+    for (size_t c = 0; c < y.curves.curveCount(); ++c) {
+        for (uint32_t i = y.curves.begin(c); i < y.curves.end(c); ++i)
+            ASSERT_EQ(y.colour[i], y.colour[y.curves.begin(c)]) << "yarn " << c << " changes colour";
+        ++colours[y.colour[y.curves.begin(c)].r];
+    }
+    EXPECT_EQ(colours.size(), 2u);
+    const Plies& pl = scene.plies();
+    ASSERT_EQ(pl.colour.size(), pl.curves.pointCount());
+    for (size_t c = 0; c < pl.curves.curveCount(); ++c)
+        for (uint32_t i = pl.curves.begin(c); i < pl.curves.end(c); ++i)
+            ASSERT_EQ(pl.colour[i], y.colour[y.curves.begin(pl.yarnOfCurve[c])]) << c;
+}
+
 TEST(Colour, patternsWithoutColoursCarryNoColourArrays) {
     SceneOptions o;
     o.placement.repeats = {3, 3};

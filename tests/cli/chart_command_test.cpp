@@ -50,6 +50,28 @@ TEST(ChartCommand, badChartFailsWithLineAndColumn) {
     EXPECT_FALSE(std::filesystem::exists(dir.file("cell.pyp")));
 }
 
+// Stranded floats longer than --max-float (default 5) are warned about with the chart's line,
+// the row and the columns, and listed in the report; the cell is written all the same.
+TEST(ChartCommand, longFloatsAreWarnedAboutAndReported) {
+    test::TempDir dir;
+    dir.write("band.chart", "k k k k k k k\n\nA B A A A A A\nA=#ffffff B=#000000\nstranded\n");
+    const test::CliRun r = test::runKnit("chart band.chart -o cell.pyp --report r.json", dir.path());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("knit: warning: band.chart:1: row 1: the float of colour B over columns 3-1 (round the "
+                            "repeat) is 6 stitches long, longer than --max-float 5"),
+              std::string::npos)
+        << r.output;
+    EXPECT_EQ(r.output.find("colour A over"), std::string::npos) << r.output;  // A's float is one stitch
+    const std::string report = test::readText(dir.file("r.json"));
+    EXPECT_NE(report.find("\"too_long\": true"), std::string::npos) << report;
+    EXPECT_NE(report.find("\"max_float\": 5"), std::string::npos) << report;
+    EXPECT_TRUE(std::filesystem::exists(dir.file("cell.pyp")));
+    const test::CliRun quiet = test::runKnit("chart band.chart -o cell2.pyp --max-float 6", dir.path());
+    ASSERT_EQ(quiet.exitCode, 0) << quiet.output;
+    EXPECT_EQ(quiet.output.find("warning"), std::string::npos) << quiet.output;
+    EXPECT_NE(test::runKnit("chart band.chart -o cell3.pyp --max-float 0", dir.path()).exitCode, 0);
+}
+
 TEST(ChartCommand, buildAcceptsAChartFileAndCachesIt) {
     test::TempDir dir;
     dir.write("seed.chart", "k p\np k\n");

@@ -14,6 +14,20 @@
 // Cables: a cable token of row r moves the heads of the loops of row r - 1 to their new columns;
 // their legs cross. The left-moving loops' legs pass in front for a front cross (`f`), behind for
 // a back cross (`b`).
+// Round 2 (docs/charts.md has the details):
+//   * decreases: the loops a decrease consumes are stacked, their heads moved to its column, the
+//     one on top (Chart::sources order) in front where their legs cross; the new loop's legs pass
+//     in front of every head, its feet behind every leg;
+//   * yo: a loop pulled through nothing (the loops below it lean into the decreases);
+//   * sl / sl-wyif: the course makes no loop there but a float from foot to foot, behind (-z) /
+//     in front (+z) of the slipped loop, whose upper part is lifted to the row above (it spans
+//     two rows, or more when slipped again);
+//   * tuck: the course makes a tuck loop that lies behind the held (lifted) loop without being
+//     pulled through it; the next row's stitch is pulled through both, the held loop in front;
+//   * ktbl / ptbl: the loop's two halves cross once at its base, above the head below, the strand
+//     rising from the left foot (to the right leg) in front;
+//   * stranded colourwork: one yarn per colour a row uses; a yarn makes the loops of its colour
+//     and floats behind (-z) everywhere else, at the height of the course's lower half.
 //
 // The loop shape in the plane is the plain-knit curve of generateStockinette (K. Crane's model),
 // one stitch per 2 pi of the parameter; heights follow the rule above. The result is a starting
@@ -33,13 +47,40 @@ struct ChartCellOptions {
     int samplesPerStitch = 24;  // vertices per loop (>= 8)
 };
 
-// The vertices of one loop: course `row`, vertices [first, first + count) of the pattern.
+// A loop this loop is pulled through: its row and column (a tuck's held loop lies rows below).
+struct LoopRef {
+    int row = 0, column = 0;
+    bool operator==(const LoopRef& o) const { return row == o.row && column == o.column; }
+};
+
+// The vertices of one chart cell on the yarn that works it: course `row`, vertices
+// [first, first + count) of the pattern: a loop, or for sl / sl-wyif the float of the course.
 struct StitchLoop {
     int row = 0, column = 0;
     uint32_t first = 0, count = 0;
     StitchKind kind = StitchKind::Knit;
-    int sourceColumn = 0;  // the column of row - 1 this loop is pulled through
-    int headShift = 0;     // columns the head of this loop moves (a cable of the row above)
+    StitchOp op = StitchOp::Plain;
+    int yarn = 0;          // the yarn (edge chain) these vertices are on
+    int sourceColumn = 0;  // the column of row - 1 this loop is pulled through (-1: a yarn-over)
+    int headShift = 0;     // columns the head of this loop moves (to the stitch pulled through it)
+    int lift = 0;          // rows its upper part is lifted (slipped or tucked above it)
+    int stackIndex = 0;    // place among the loops one stitch is pulled through (0 = top / front)
+    int stackSize = 1;
+    bool madeLoop = true;  // false for sl / sl-wyif: the course floats past
+    // The loops this loop is pulled through, top (front) first: none for yo, tuck and sl.
+    std::vector<LoopRef> through;
+};
+
+// A float: a yarn passing columns without making a loop (stranded colourwork's other colours,
+// and the course past slipped stitches), on the wrong side (-z) or, for sl-wyif, the right side.
+struct ChartFloat {
+    int row = 0;
+    int firstColumn = 0, columns = 0;  // the columns it passes (cyclic over the chart's width)
+    int yarn = 0;
+    char colour = 0;                 // palette letter (0 without a colour layer)
+    bool front = false;              // sl-wyif
+    bool stranded = false;           // it passes stitches of another yarn (stranded colourwork)
+    std::vector<uint32_t> vertices;  // its vertices, in yarn order
 };
 
 struct ChartCell {
@@ -47,11 +88,21 @@ struct ChartCell {
     int width = 0, height = 0;                   // stitches per period (the chart's size)
     std::vector<StitchLoop> loops;               // row-major, row 0 first
     std::vector<std::array<uint8_t, 3>> colour;  // per loop sRGB; empty without a colour layer
+    std::vector<ChartFloat> floats;              // every float, row by row
+    int yarns = 0;                               // closed yarns (one per row, more when stranded)
+    // Per vertex, for the edge leaving it: the yarn length it holds over its length here. 1,
+    // except on loops lifted by slipped or tucked stitches (built stretched over two or more
+    // rows, they hold a plain loop's length) — RelaxOptions::restScale.
+    std::vector<double> restScale;
 
     const StitchLoop& loop(int row, int column) const { return loops[size_t(row) * size_t(width) + size_t(column)]; }
 };
 
-// Throws knit::Error for a non-positive radius or fewer than 8 samples per stitch.
+// A cell holds at most this many yarn vertices (a chart is one period: a few hundred stitches).
+constexpr uint64_t kMaxChartVertices = uint64_t(1) << 22;
+
+// Throws knit::Error for a non-positive radius, fewer than 8 samples per stitch, intarsia
+// colourwork (parsed, not built yet) or more than kMaxChartVertices vertices.
 ChartCell chartToCell(const Chart& chart, const ChartCellOptions& options = {});
 
 }  // namespace knit

@@ -27,7 +27,11 @@ struct RelaxOptions {
     double contact = 400;           // contact penalty weight
     double contactDistance = 2.05;  // D, in yarn radii (the penalty settles slightly inside D)
     double restLength = 1.0;        // rest length / input length, per edge
-    bool freePeriod = true;         // the period (px, py) is a variable
+    // Optional per-vertex factor on restLength for the edge leaving that vertex (empty: 1 for
+    // all): a chart's slipped and tucked loops are built stretched over two or more rows but
+    // hold a plain loop's yarn (knit/chart_topology.hpp, ChartCell::restScale).
+    std::vector<double> restScale;
+    bool freePeriod = true;  // the period (px, py) is a variable
     int maxIterations = 4000;
     double gradientTolerance = 1e-4;          // stop when the largest gradient entry is below this,
     double relativeGradientTolerance = 1e-6;  // or below this times its value at the start,

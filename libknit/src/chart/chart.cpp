@@ -1,6 +1,7 @@
 // Stitch chart parsing (text -> Chart) and the built-in charts.
 #include "knit/chart.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <fstream>
 #include <sstream>
@@ -42,6 +43,7 @@ std::vector<Token> splitTokens(const std::string& text) {
 struct Layout {
     std::vector<Block> blocks;
     std::vector<Line> palette;
+    std::vector<Line> colourwork;  // lines holding just `stranded` or `intarsia`
     int lastLine = 0;
 };
 
@@ -60,6 +62,10 @@ Layout readLayout(const std::string& text) {
             layout.palette.push_back(std::move(line));
             continue;
         }
+        if (line.tokens.size() == 1 && (line.tokens[0].text == "stranded" || line.tokens[0].text == "intarsia")) {
+            layout.colourwork.push_back(std::move(line));
+            continue;
+        }
         if (!blockOpen) layout.blocks.emplace_back();
         blockOpen = true;
         layout.blocks.back().push_back(std::move(line));
@@ -67,14 +73,18 @@ Layout readLayout(const std::string& text) {
     return layout;
 }
 
-// One parsed stitch token: `span` stitches, a cable when span > 1.
+// One parsed stitch token: `span` columns (a cable when span > 1), each consuming loopsConsumed(op)
+// loops of the row below (a cable's N + M stitches one each).
 struct Stitch {
     StitchKind kind = StitchKind::Knit;
+    StitchOp op = StitchOp::Plain;
     int span = 1, right = 0, left = 0;
     bool front = true;
 };
 
-const char* kKnownTokens = "expected k, p or a cable c1/1f c1/1b c2/2f c2/2b c3/3f c3/3b";
+const char* kKnownTokens =
+    "expected k, p, yo, k2tog, ssk, k3tog, sssk, cdd, sl, sl-wyif, tuck, ktbl, ptbl or a cable c1/1f c1/1b c2/2f "
+    "c2/2b c3/3f c3/3b";
 
 // cN/M[p]{f,b}; returns false for anything else.
 bool parseCable(const std::string& t, Stitch& s, bool& overPurl) {
@@ -88,16 +98,33 @@ bool parseCable(const std::string& t, Stitch& s, bool& overPurl) {
     s.left = t[3] - '0';
     s.span = s.right + s.left;
     s.front = cross == 'f';
+    s.op = StitchOp::Cable;
     return true;
 }
 
+struct NamedOp {
+    const char* token;
+    StitchOp op;
+    StitchKind kind;
+};
+const NamedOp kOps[] = {
+    {"k", StitchOp::Plain, StitchKind::Knit},          {"p", StitchOp::Plain, StitchKind::Purl},
+    {"yo", StitchOp::YarnOver, StitchKind::Knit},      {"k2tog", StitchOp::K2tog, StitchKind::Knit},
+    {"ssk", StitchOp::Ssk, StitchKind::Knit},          {"k3tog", StitchOp::K3tog, StitchKind::Knit},
+    {"sssk", StitchOp::Sssk, StitchKind::Knit},        {"cdd", StitchOp::Cdd, StitchKind::Knit},
+    {"sl", StitchOp::Slip, StitchKind::Knit},          {"sl-wyif", StitchOp::SlipFront, StitchKind::Knit},
+    {"tuck", StitchOp::Tuck, StitchKind::Knit},        {"ktbl", StitchOp::ThroughBack, StitchKind::Knit},
+    {"ptbl", StitchOp::ThroughBack, StitchKind::Purl},
+};
+
 Stitch parseStitch(const Token& token, const std::string& source, int line) {
     Stitch s;
-    if (token.text == "k") return s;
-    if (token.text == "p") {
-        s.kind = StitchKind::Purl;
-        return s;
-    }
+    for (const NamedOp& n : kOps)
+        if (token.text == n.token) {
+            s.op = n.op;
+            s.kind = n.kind;
+            return s;
+        }
     bool overPurl = false;
     if (!parseCable(token.text, s, overPurl))
         fail(source, line, token.column, "unknown stitch '" + token.text + "' (" + kKnownTokens + ")");
@@ -107,8 +134,26 @@ Stitch parseStitch(const Token& token, const std::string& source, int line) {
     return s;
 }
 
-// The stitch block: every row's stitches and cables, checked for width.
-void readStitches(const Block& block, const std::string& source, Chart& chart) {
+// A row must consume exactly the loops the row below makes (one per column, `width`): the first
+// token where the running count goes over, or the last one when it falls short, is named.
+void checkBalance(const std::vector<Stitch>& row, const Line& line, const std::string& source, int width) {
+    int consumed = 0;
+    size_t at = row.size() - 1;
+    for (size_t k = 0; k < row.size(); ++k) {
+        consumed += row[k].span * loopsConsumed(row[k].op);
+        if (consumed > width && at == row.size() - 1) at = k;
+    }
+    if (consumed == width) return;
+    fail(source, line.number, line.tokens[at].column,
+         "row consumes " + std::to_string(consumed) + " loops but the row below makes " + std::to_string(width) +
+             " (yo takes none, k2tog and ssk two, k3tog, sssk and cdd three, every other stitch one): pair each "
+             "yo with a decrease");
+}
+
+// The stitch block: every row's stitches and cables, checked for width and balance. Returns the
+// text column of each chart cell (its token's), row by row, bottom row first.
+std::vector<std::vector<int>> readStitches(const Block& block, const std::string& source, Chart& chart) {
+    std::vector<std::vector<int>> textColumns(block.size());
     chart.height = int(block.size());
     std::vector<std::vector<Stitch>> rows;
     for (const Line& line : block) {
@@ -121,11 +166,16 @@ void readStitches(const Block& block, const std::string& source, Chart& chart) {
         return n;
     };
     chart.width = count(rows[0]);
-    chart.kind.assign(size_t(chart.width) * size_t(chart.height), StitchKind::Knit);
+    const size_t cells = size_t(chart.width) * size_t(chart.height);
+    chart.kind.assign(cells, StitchKind::Knit);
+    chart.op.assign(cells, StitchOp::Plain);
+    chart.firstSource.assign(cells, 0);
+    chart.rowLine.assign(size_t(chart.height), 0);
     for (size_t i = 0; i < rows.size(); ++i) {
         const Line& line = block[i];
         const int row = chart.height - 1 - int(i);  // the bottom row is the last line
-        int column = 0;
+        chart.rowLine[size_t(row)] = line.number;
+        int column = 0, consumed = 0;
         for (size_t k = 0; k < rows[i].size(); ++k) {
             const Stitch& s = rows[i][k];
             if (s.span > chart.width)
@@ -133,15 +183,62 @@ void readStitches(const Block& block, const std::string& source, Chart& chart) {
                      "cable '" + line.tokens[k].text + "' spans " + std::to_string(s.span) +
                          " stitches but the chart is " + std::to_string(chart.width) + " wide");
             if (s.span > 1) chart.cables.push_back({row, column, s.right, s.left, s.front});
-            for (int j = 0; j < s.span && column + j < chart.width; ++j)
-                chart.kind[size_t(row) * size_t(chart.width) + size_t(column + j)] = s.kind;
+            for (int j = 0; j < s.span && column + j < chart.width; ++j) {
+                const size_t cell = size_t(row) * size_t(chart.width) + size_t(column + j);
+                chart.kind[cell] = s.kind;
+                chart.op[cell] = s.op;
+                chart.firstSource[cell] = std::min(consumed, chart.width - 1);
+                consumed += loopsConsumed(s.op);
+                textColumns[size_t(row)].push_back(line.tokens[k].column);
+            }
             column += s.span;
         }
         if (column != chart.width)
             fail(source, line.number, line.tokens.back().column,
                  "row has " + std::to_string(column) + " stitches, expected " + std::to_string(chart.width) +
                      " (as the first row, line " + std::to_string(block[0].number) + ")");
+        checkBalance(rows[i], line, source, chart.width);
     }
+    return textColumns;
+}
+
+// Step 3 of parsing: charts whose yarn would not hold together. A column that is a yarn-over on
+// every row hangs on nothing below; a loop slipped or tucked on every row is never worked, and
+// one held over more than kMaxHeldRows rows makes a float and an elongated loop that do not hold.
+void checkAnchors(const Chart& chart, const Block& block, const std::vector<std::vector<int>>& textColumns,
+                  const std::string& source) {
+    auto lineOf = [&](int row) { return block[size_t(chart.height - 1 - row)].number; };
+    auto where = [&](int row, int column) { return textColumns[size_t(row)][size_t(column)]; };
+    for (int c = 0; c < chart.width; ++c) {
+        bool allYo = true;
+        for (int r = 0; r < chart.height && allYo; ++r) allYo = chart.opAt(r, c) == StitchOp::YarnOver;
+        if (allYo)
+            fail(source, lineOf(0), where(0, c),
+                 "column " + std::to_string(c + 1) +
+                     " is a yarn-over on every row: its loops hang on nothing below, so the fabric splits "
+                     "into a ladder there (work it as a stitch on at least one row)");
+    }
+    auto held = [](StitchOp op) { return op == StitchOp::Slip || op == StitchOp::SlipFront || op == StitchOp::Tuck; };
+    for (int r = 0; r < chart.height; ++r)
+        for (int c = 0; c < chart.width; ++c) {
+            // Follow the loop down while it is passed up unworked.
+            int rows = 0, rr = r, cc = c;
+            while (held(chart.opAt(rr, cc)) && rows <= chart.height) {
+                cc = chart.sourceColumn(rr, cc);
+                rr = (rr + chart.height - 1) % chart.height;
+                ++rows;
+            }
+            if (rows > chart.height)
+                fail(source, lineOf(r), where(r, c),
+                     "the loop in column " + std::to_string(c + 1) +
+                         " is slipped or tucked on every row: it is never worked, so the rows are not held "
+                         "together there");
+            if (rows > kMaxHeldRows)
+                fail(source, lineOf(r), where(r, c),
+                     "the loop in column " + std::to_string(c + 1) + " is slipped or tucked on " +
+                         std::to_string(rows) + " rows in a row (at most " + std::to_string(kMaxHeldRows) +
+                         "): work it on a row in between");
+        }
 }
 
 int hexDigit(char c) {
@@ -195,16 +292,75 @@ void readColours(const Block& block, const std::string& source, Chart& chart) {
     }
 }
 
+// A line holding just `stranded` or `intarsia`, after the palette line, once, with a colour block.
+void readColourwork(const Layout& layout, const std::string& source, Chart& chart) {
+    if (layout.colourwork.empty()) return;
+    const Line& line = layout.colourwork.front();
+    const std::string& word = line.tokens[0].text;
+    if (layout.colourwork.size() > 1)
+        fail(source, layout.colourwork[1].number, 1,
+             "a second colourwork line (the first is line " + std::to_string(line.number) + ")");
+    if (chart.colour.empty())
+        fail(source, line.number, 1,
+             "'" + word + "' needs a colour block and a palette: it says how their colours are knitted");
+    if (line.number < layout.palette.back().number)
+        fail(source, line.number, 1,
+             "'" + word + "' goes after the palette line (line " + std::to_string(layout.palette.back().number) + ")");
+    chart.colourwork = word == "stranded" ? Colourwork::Stranded : Colourwork::Intarsia;
+    // Stranded: each colour of a row is a yarn carried along the whole row.
+    if (chart.colourwork == Colourwork::Stranded)
+        for (int r = 0; r < chart.height; ++r) {
+            std::string used;
+            for (int c = 0; c < chart.width; ++c)
+                if (used.find(chart.colourAt(r, c)) == std::string::npos) used += chart.colourAt(r, c);
+            if (int(used.size()) > kMaxStrandedColours)
+                fail(source, chart.rowLine[size_t(r)], 1,
+                     "row uses " + std::to_string(used.size()) + " colours (" + used +
+                         "); stranded colourwork carries "
+                         "at most " +
+                         std::to_string(kMaxStrandedColours) + " yarns along a row");
+        }
+}
+
 }  // namespace
 
-int Chart::sourceColumn(int row, int column) const {
-    for (const ChartCable& c : cables) {
-        if (c.row != row || column < c.column || column >= c.column + c.left + c.right) continue;
-        const int j = column - c.column;
-        // Positions [0, right) receive the right-hand stitches, [right, span) the left-hand ones.
-        return j < c.right ? column + c.left : column - c.right;
+int loopsConsumed(StitchOp op) {
+    switch (op) {
+        case StitchOp::YarnOver: return 0;
+        case StitchOp::K2tog:
+        case StitchOp::Ssk: return 2;
+        case StitchOp::K3tog:
+        case StitchOp::Sssk:
+        case StitchOp::Cdd: return 3;
+        default: return 1;
     }
-    return column;
+}
+
+std::vector<int> Chart::sources(int row, int column) const {
+    const int s = firstSource[size_t(row) * size_t(width) + size_t(column)];
+    switch (opAt(row, column)) {
+        case StitchOp::YarnOver: return {};
+        case StitchOp::K2tog: return {s, s + 1};
+        case StitchOp::Ssk: return {s + 1, s};
+        case StitchOp::K3tog: return {s, s + 1, s + 2};
+        case StitchOp::Sssk: return {s + 2, s + 1, s};
+        case StitchOp::Cdd: return {s + 1, s, s + 2};
+        case StitchOp::Cable:
+            for (const ChartCable& c : cables) {
+                if (c.row != row || column < c.column || column >= c.column + c.left + c.right) continue;
+                const int j = column - c.column;
+                const int start = firstSource[size_t(row) * size_t(width) + size_t(c.column)];
+                // Positions [0, right) receive the right-hand stitches, [right, span) the left-hand ones.
+                return {start + (j < c.right ? j + c.left : j - c.right)};
+            }
+            return {s};
+        default: return {s};
+    }
+}
+
+int Chart::sourceColumn(int row, int column) const {
+    const std::vector<int> s = sources(row, column);
+    return s.empty() ? -1 : s.front();
 }
 
 Chart parseChart(const std::string& text, const std::string& source) {
@@ -214,12 +370,15 @@ Chart parseChart(const std::string& text, const std::string& source) {
     // Step 1: the stitch block (required).
     if (layout.blocks.empty())
         fail(source, layout.lastLine > 0 ? layout.lastLine : 1, 1, "empty chart: no stitch rows");
-    readStitches(layout.blocks[0], source, chart);
+    const std::vector<std::vector<int>> textColumns = readStitches(layout.blocks[0], source, chart);
+    checkAnchors(chart, layout.blocks[0], textColumns, source);
     // Step 2: the optional palette and colour block.
     readPalette(layout.palette, source, chart);
     if (layout.blocks.size() > 2)
         fail(source, layout.blocks[2][0].number, 1, "a chart has at most two blocks (stitches, then colours)");
     if (layout.blocks.size() == 2) readColours(layout.blocks[1], source, chart);
+    // Step 3: how the colours are knitted.
+    readColourwork(layout, source, chart);
     return chart;
 }
 
@@ -257,6 +416,14 @@ const BuiltinChart kBuiltinCharts[] = {
     {"chart:moss", "p k\np k\nk p\nk p\n"},
     {"chart:basketweave", "p p k k\np p k k\nk k p p\nk k p p\n"},
     {"chart:cable4", "# a 2/2 front cable between purl ridges\np k k k k p\np k k k k p\np k k k k p\np c2/2f p\n"},
+    {"chart:eyelet-mesh",
+     "# lace: an eyelet every other row, offset by half the repeat\nk k k k\nk k k2tog yo\nk k k k\n"
+     "k2tog yo k k\n"},
+    {"chart:honeycomb", "# slip-stitch honeycomb: each slipped stitch held for two rows\nsl k\nsl k\nk sl\nk sl\n"},
+    {"chart:fishermans-rib", "# fisherman's rib: knit and purl columns tucked on alternate rows\nk tuck\ntuck p\n"},
+    {"chart:fair-isle",
+     "# a two-colour stranded band: checks between plain rows\nk k k k\nk k k k\nk k k k\nk k k k\n\n"
+     "A A A A\nA B A B\nB A B A\nA A A A\nA=#f2e8d5 B=#1d3557\nstranded\n"},
 };
 
 }  // namespace

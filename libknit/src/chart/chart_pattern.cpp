@@ -15,6 +15,7 @@ ChartPattern relaxChart(const Chart& chart, const ChartPatternOptions& options) 
     // Step 2: the yarn comes to rest with the period free.
     RelaxOptions relax;
     relax.restLength = options.restLength;
+    relax.restScale = out.cell.restScale;
     relax.maxIterations = options.maxIterations;
     const auto start = std::chrono::steady_clock::now();
     out.relaxed = relaxYarn(out.cell.pattern, relax);

@@ -4,6 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+
+#include <glm/geometric.hpp>
 
 #include "knit/error.hpp"
 #include "util/checks.hpp"
@@ -35,93 +38,422 @@ constexpr double kCableDepth = 1.0;
 // kWarp < 1/2), so the long cable legs get several vertices.
 constexpr double kWarp = 0.4;
 
+// Round 2 constructs (model units).
+constexpr double kStackDepth = 0.6;           // z between the upper parts of loops one stitch takes together
+constexpr double kStackShift = 0.35;          // x between their heads, so their legs cross in projection
+constexpr double kFloatDepth = 2.4;           // |z| of a float (behind or in front of the stitches it passes)
+constexpr double kStrandStep = 0.9;           // further depth of each further stranded float in a column
+constexpr double kFloatDrop = 2.5;            // a float runs this far below its row's loop centres
+constexpr double kFloatEnd = 1.2;             // parameter span over which a float meets a foot
+constexpr double kStrandedFloatSlack = 0.95;  // rest-length factor of stranded floats (docs/charts.md)
+constexpr double kTuckDepth = 1.6;            // z of a tuck loop's lower part (behind the held loop)
+constexpr double kTuckFoot = 0.6;             // parameter span over which it meets its feet
+// Where a stranded yarn's loop meets its float beside another yarn's loop, both feet step back
+// from the shared foot point (inwards and up or down), so the two yarns do not meet there.
+constexpr double kJunctionX = 0.5, kJunctionY = 0.6, kJunctionSpan = 0.8;
+constexpr double kTwist0 = 1.3, kTwist1 = 1.9;  // a twisted loop's halves swap sides between these |t|
+constexpr double kTwistDepth = 0.7, kTwistWidth = 0.15;
+
 double sign(StitchKind k) { return k == StitchKind::Knit ? 1.0 : -1.0; }
 double smooth(double a, double b, double x) {  // 0 at a, 1 at b (either order)
     const double u = std::clamp((x - a) / (b - a), 0.0, 1.0);
     return u * u * (3 - 2 * u);
 }
 int wrap(int i, int n) { return ((i % n) + n) % n; }
+bool held(StitchOp op) { return op == StitchOp::Slip || op == StitchOp::SlipFront || op == StitchOp::Tuck; }
+bool makesLoop(StitchOp op) { return op != StitchOp::Slip && op != StitchOp::SlipFront; }
 
-// What the row above does to the loop (row, column): the column of the loop pulled through it,
-// and whether its head moves in a front cross.
-struct Above {
-    int column = 0;
-    bool front = true;
+// Step 1: the yarns of each row. One per row, or for stranded colourwork one per colour the row
+// uses (in order of first use); yarnOf[c] is the row's yarn that works column c.
+struct RowYarns {
+    std::vector<char> colours;
+    std::vector<int> yarnOf;
 };
-Above rowAbove(const Chart& chart, int row, int column) {
-    const int up = wrap(row + 1, chart.height);
-    for (const ChartCable& c : chart.cables) {
-        if (c.row != up || column < c.column || column >= c.column + c.left + c.right) continue;
-        for (int p = c.column; p < c.column + c.left + c.right; ++p)
-            if (chart.sourceColumn(up, p) == column) return {p, c.front};
-    }
-    return {column, true};
-}
-
-// Step 1: the stitch record (which loop is pulled through which).
-std::vector<StitchLoop> stitchLoops(const Chart& chart, int samples) {
-    std::vector<StitchLoop> loops;
-    for (int r = 0; r < chart.height; ++r)
-        for (int c = 0; c < chart.width; ++c) {
-            StitchLoop l;
-            l.row = r;
-            l.column = c;
-            l.first = uint32_t((r * chart.width + c) * samples);
-            l.count = uint32_t(samples);
-            l.kind = chart.at(r, c);
-            l.sourceColumn = chart.sourceColumn(r, c);
-            l.headShift = rowAbove(chart, r, c).column - c;
-            loops.push_back(l);
-        }
-    return loops;
-}
-
-// Step 2: where each row sits (rows below a cable row are stretched by kCableLift).
-struct RowLayout {
-    std::vector<double> y;        // y of each row's loop centres
-    std::vector<bool> stretched;  // the row above has a cable
-    double period = 0;
-};
-RowLayout rowLayout(const Chart& chart) {
-    RowLayout rows;
+std::vector<RowYarns> rowYarns(const Chart& chart) {
+    std::vector<RowYarns> rows(size_t(chart.height));
+    const bool stranded = chart.colourwork == Colourwork::Stranded;
     for (int r = 0; r < chart.height; ++r) {
-        const int up = wrap(r + 1, chart.height);
-        const bool cable =
-            std::any_of(chart.cables.begin(), chart.cables.end(), [&](const ChartCable& c) { return c.row == up; });
-        rows.y.push_back(rows.period);
-        rows.stretched.push_back(cable);
-        rows.period += kRowPitch + (cable ? kCableLift : 0.0);
+        RowYarns& y = rows[size_t(r)];
+        for (int c = 0; c < chart.width; ++c) {
+            const char colour = chart.colour.empty() ? char(0) : chart.colourAt(r, c);
+            const char key = stranded ? colour : char(0);
+            const auto it = std::find(y.colours.begin(), y.colours.end(), key);
+            y.yarnOf.push_back(int(it - y.colours.begin()));
+            if (it == y.colours.end()) y.colours.push_back(key);
+        }
     }
     return rows;
 }
 
-// Step 3: one vertex of a loop at parameter t, in model units.
-glm::dvec3 loopPoint(const Chart& chart, const RowLayout& rows, const StitchLoop& l, double t) {
+// Step 2: what the rows above do to each loop (row, column) a course makes: the stitch pulled
+// through it (column, kind, a cable's cross), the rows it is held for, its place in the stack of
+// loops that stitch takes together; and for every stitch the loops it is pulled through.
+struct Plan {
+    int consumerColumn = 0;
+    double up = 1;  // sign of the stitch pulled through it
+    bool cable = false, front = true;
+    int lift = 0, stackIndex = 0, stackSize = 1, stackRank = 0;  // rank: left to right among the stack
+    std::vector<LoopRef> through;
+};
+std::vector<Plan> planLoops(const Chart& chart) {
+    const int W = chart.width, H = chart.height;
+    std::vector<Plan> plan(size_t(W) * size_t(H));
+    for (int c = 0; c < W; ++c)
+        for (int r = 0; r < H; ++r) plan[size_t(r) * size_t(W) + size_t(c)].consumerColumn = c;
+    for (int R = 0; R < H; ++R)
+        for (int C = 0; C < W; ++C) {
+            const StitchOp op = chart.opAt(R, C);
+            if (held(op)) continue;
+            // The loops taken: for each source, the loop at the bottom of its chain of slipped or
+            // tucked cells, then the tuck loops laid behind it (lowest first).
+            std::vector<std::pair<LoopRef, int>> taken;  // (loop, unwrapped row)
+            for (const int j : chart.sources(R, C)) {
+                int rr = R - 1, cc = j;
+                std::vector<std::pair<LoopRef, int>> tucks;
+                for (int guard = 0; held(chart.opAt(wrap(rr, H), cc)) && guard <= H; ++guard) {
+                    if (chart.opAt(wrap(rr, H), cc) == StitchOp::Tuck) tucks.push_back({{wrap(rr, H), cc}, rr});
+                    cc = chart.sourceColumn(wrap(rr, H), cc);
+                    --rr;
+                }
+                taken.push_back({{wrap(rr, H), cc}, rr});
+                for (auto t = tucks.rbegin(); t != tucks.rend(); ++t) taken.push_back(*t);
+            }
+            std::vector<int> byColumn(taken.size());
+            for (size_t k = 0; k < taken.size(); ++k) byColumn[k] = int(k);
+            std::stable_sort(byColumn.begin(), byColumn.end(), [&](int a, int b) {
+                return taken[size_t(a)].first.column < taken[size_t(b)].first.column;
+            });
+            const ChartCable* cable = nullptr;
+            for (const ChartCable& cb : chart.cables)
+                if (cb.row == R && C >= cb.column && C < cb.column + cb.left + cb.right) cable = &cb;
+            Plan& stitch = plan[size_t(R) * size_t(W) + size_t(C)];
+            for (size_t k = 0; k < taken.size(); ++k) {
+                Plan& l = plan[size_t(taken[k].first.row) * size_t(W) + size_t(taken[k].first.column)];
+                l.consumerColumn = C;
+                l.up = sign(chart.at(R, C));
+                l.cable = cable != nullptr;
+                l.front = cable ? cable->front : true;
+                l.lift = R - 1 - taken[k].second;
+                l.stackIndex = int(k);
+                l.stackSize = int(taken.size());
+                l.stackRank = int(std::find(byColumn.begin(), byColumn.end(), int(k)) - byColumn.begin());
+                stitch.through.push_back(taken[k].first);
+            }
+        }
+    return plan;
+}
+
+// Step 3: where each row sits (rows whose loops' heads move sideways are stretched by kCableLift).
+struct RowLayout {
+    std::vector<double> y;        // y of each row's loop centres
+    std::vector<bool> stretched;  // heads of this row move to other columns
+    double period = 0;
+    // The height the upper part of a loop of `row` rises to when its head sits `lift` rows up.
+    double headRise(int row, int lift) const {
+        const int n = int(y.size()), top = row + lift;
+        const double yTop = y[size_t(wrap(top, n))] + period * double((top - wrap(top, n)) / n);
+        return yTop - y[size_t(row)] + (stretched[size_t(wrap(top, n))] ? kCableLift : 0.0);
+    }
+};
+RowLayout rowLayout(const Chart& chart, const std::vector<Plan>& plan) {
+    RowLayout rows;
+    for (int r = 0; r < chart.height; ++r) {
+        bool moves = false;
+        for (int c = 0; c < chart.width; ++c)
+            moves = moves || (makesLoop(chart.opAt(r, c)) &&
+                              plan[size_t(r) * size_t(chart.width) + size_t(c)].consumerColumn != c);
+        rows.y.push_back(rows.period);
+        rows.stretched.push_back(moves);
+        rows.period += kRowPitch + (moves ? kCableLift : 0.0);
+    }
+    return rows;
+}
+
+// Everything a course's vertex needs about the cell it passes.
+struct CellGeometry {
+    const Chart* chart = nullptr;
+    const RowLayout* rows = nullptr;
+    const std::vector<Plan>* plan = nullptr;
+    const RowYarns* yarns = nullptr;
+    int yarn = 0;  // the row's yarn (index into yarns->colours)
+    const Plan& at(int r, int c) const { return (*plan)[size_t(r) * size_t(chart->width) + size_t(c)]; }
+    bool loopOf(int r, int c) const {  // does this yarn make a loop at column c of row r?
+        return yarns->yarnOf[size_t(c)] == yarn && makesLoop(chart->opAt(r, c));
+    }
+};
+
+// Does another yarn make the loop at column c of row r (a colour change for this yarn)?
+bool otherYarnsLoop(const CellGeometry& g, int r, int c) {
+    return g.yarns->yarnOf[size_t(c)] != g.yarn && makesLoop(g.chart->opAt(r, c));
+}
+
+// How far (0..1) a loop's foot at t steps back from the foot point: towards 1 at the feet beside
+// another yarn's loop.
+double junctionOf(const CellGeometry& g, const StitchLoop& l, double t) {
+    const int side = t < 0 ? -1 : 1;
+    if (!otherYarnsLoop(g, l.row, wrap(l.column + side, g.chart->width))) return 0.0;
+    return smooth(util::kPi - kJunctionSpan, util::kPi, std::abs(t));
+}
+
+// The z sign of a loop's foot side: the neighbouring loop's kind when this yarn makes it, else its own.
+double neighbourSign(const CellGeometry& g, const StitchLoop& l, int side) {
+    const int c = wrap(l.column + side, g.chart->width);
+    return g.loopOf(l.row, c) ? sign(g.chart->at(l.row, c)) : sign(l.kind);
+}
+
+// Step 4a: one vertex of a loop at parameter t, in model units.
+glm::dvec3 loopPoint(const CellGeometry& g, const StitchLoop& l, double t) {
+    const RowLayout& rows = *g.rows;
+    const Plan& p = g.at(l.row, l.column);
     const double at = std::abs(t);
-    // Plane: the plain-knit curve; the upper part lifted and moved by a cable of the row above.
-    const double upper = rows.stretched[size_t(l.row)] ? smooth(kShift1, kShift0, at) : 0.0;
-    const double x = util::kTwoPi * (l.column + l.headShift * upper) + t + kLoopWidth * std::sin(2 * t);
-    const double y = rows.y[size_t(l.row)] + kLoopHeight * std::cos(t) + kCableLift * upper;
+    const bool moves = rows.stretched[size_t(l.row)] || l.lift > 0 || l.stackSize > 1;
+    // Plane: the plain-knit curve (a twisted loop's upper part traversed the other way); the
+    // upper part lifted and moved to the stitch pulled through it.
+    const double upper = moves ? smooth(kShift1, kShift0, at) : 0.0;
+    const double half = (l.stackSize - 1) / 2.0;
+    const double twist = l.op == StitchOp::ThroughBack ? 2 * smooth(kTwist0, kTwist1, at) - 1 : 1.0;
+    const double x = util::kTwoPi * (l.column + l.headShift * upper) + (half - p.stackRank) * kStackShift * upper +
+                     twist * (t + kLoopWidth * std::sin(2 * t)) - (t < 0 ? -1 : 1) * kJunctionX * junctionOf(g, l, t);
+    double y = rows.y[size_t(l.row)] + kLoopHeight * std::cos(t) + upper * rows.headRise(l.row, l.lift);
+    y += (t < 0 ? -1 : 1) * kJunctionY * junctionOf(g, l, t);
     // Height: the upper half follows the stitch pulled through this loop, the lower half this
     // stitch; at the feet the neighbouring column's kind takes over half-way.
-    const Above above = rowAbove(chart, l.row, l.column);
-    const double up = sign(chart.at(wrap(l.row + 1, chart.height), above.column));
-    const double neighbour = sign(chart.at(l.row, wrap(l.column + (t < 0 ? -1 : 1), chart.width)));
-    const double low = sign(l.kind) + 0.5 * (neighbour - sign(l.kind)) * smooth(util::kPi - kFootBlend, util::kPi, at);
-    const double s = up + (low - up) * smooth(kLegSwitch0, kLegSwitch1, at);
-    double z = -kDepth * std::cos(2 * t) * s;
+    const double neighbour = neighbourSign(g, l, t < 0 ? -1 : 1);
+    const double s = sign(l.kind);
+    const double low = s + 0.5 * (neighbour - s) * smooth(util::kPi - kFootBlend, util::kPi, at);
+    double z = -kDepth * std::cos(2 * t) * (p.up + (low - p.up) * smooth(kLegSwitch0, kLegSwitch1, at));
+    if (l.op == StitchOp::Tuck) {  // the lower part behind the held loop, meeting its feet
+        const double zUp = -kDepth * std::cos(2 * t) * p.up;
+        const double zLow =
+            -kTuckDepth + (-kDepth * 0.5 * (s + neighbour) + kTuckDepth) * smooth(util::kPi - kTuckFoot, util::kPi, at);
+        z = zUp + (zLow - zUp) * smooth(kLegSwitch0, kLegSwitch1, at);
+    }
     // Cable legs, where they cross: the left-moving ones in front for a front cross.
-    if (l.headShift != 0) {
+    if (l.headShift != 0 && p.cable) {
         const double bump = std::sin(util::kPi * upper);
-        z += ((l.headShift < 0) == above.front ? 1.0 : -1.0) * kCableDepth * kDepth * bump;
+        z += ((l.headShift < 0) == p.front ? 1.0 : -1.0) * kCableDepth * kDepth * bump;
+    }
+    // Loops taken together: the top one in front.
+    z += (half - l.stackIndex) * kStackDepth * std::min(1.0, 2 * upper);
+    // A twisted loop's halves cross at its base, the strand from the left foot in front.
+    if (l.op == StitchOp::ThroughBack) {
+        const double u = (at - 0.5 * (kTwist0 + kTwist1)) / kTwistWidth;
+        z += (t < 0 ? 1.0 : -1.0) * kTwistDepth * std::exp(-u * u);
     }
     return {x, y, z};
 }
 
-// The loop parameter of sample i of n: uniform, or dense around |t| = pi / 2 on stretched rows.
+// The depth of yarn `yarn`'s float at column c of row r (it does not make the loop there).
+double floatDepth(const CellGeometry& g, int r, int c) {
+    const int worker = g.yarns->yarnOf[size_t(c)];
+    if (worker == g.yarn) return g.chart->opAt(r, c) == StitchOp::SlipFront ? kFloatDepth : -kFloatDepth;
+    const int rank = g.yarn < worker ? g.yarn : g.yarn - 1;  // among the yarns floating here
+    return -(kFloatDepth + kStrandStep * rank);
+}
+
+// Step 4b: one vertex of a float at column c (t as for a loop): at the height of the course's
+// lower half, meeting the neighbouring loop's foot or the neighbouring float.
+glm::dvec3 floatPoint(const CellGeometry& g, int r, int c, double t) {
+    const double yMid = g.rows->y[size_t(r)] - kFloatDrop, zMid = floatDepth(g, r, c);
+    const int side = t < 0 ? -1 : 1, n = wrap(c + side, g.chart->width);
+    double xEnd = 0, yEnd = yMid, zEnd = 0.5 * (zMid + floatDepth(g, r, n));
+    if (g.loopOf(r, n)) {  // its foot on side -side, stepped back when this column is another yarn's loop
+        const double j = otherYarnsLoop(g, r, c) ? 1.0 : 0.0;
+        xEnd = side * kJunctionX * j;
+        yEnd = g.rows->y[size_t(r)] - kLoopHeight - side * kJunctionY * j;
+        zEnd = -kDepth * sign(g.chart->at(r, n));
+    }
+    const double e = smooth(util::kPi - kFloatEnd, util::kPi, std::abs(t));
+    return {util::kTwoPi * c + t + xEnd * e, yMid + (yEnd - yMid) * e, zMid + (zEnd - zMid) * e};
+}
+
+// Vertices of a float column: its yarn is about a third as long as a loop's, so about a third of
+// the loop's samples keep the segments as long as the loops' (the contact skips only the two
+// neighbouring segments along a yarn, so shorter ones would push a float's own vertices apart).
+int floatSamples(int n) { return std::max(3, (n + 1) / 3); }
+
+// The first vertex of each column of one yarn of row r (and one past its last), from `first`.
+std::vector<uint32_t> columnStarts(const CellGeometry& g, int r, int n, uint32_t first) {
+    std::vector<uint32_t> starts{first};
+    for (int c = 0; c < g.chart->width; ++c)
+        starts.push_back(starts.back() + uint32_t(g.loopOf(r, c) ? n : floatSamples(n)));
+    return starts;
+}
+
+// The loop parameter of sample i of n: uniform, or dense around |t| = pi / 2 where the upper part
+// moves (stretched rows, lifted loops).
 double loopParameter(const RowLayout& rows, const StitchLoop& l, int i, int n) {
     const double u = -util::kPi + util::kTwoPi * i / n;
-    return rows.stretched[size_t(l.row)] ? u + kWarp * std::sin(2 * u) : u;
+    return rows.stretched[size_t(l.row)] || l.lift > 0 ? u + kWarp * std::sin(2 * u) : u;
+}
+
+// The floats of one yarn of a row: its runs of columns without a loop (cyclic).
+void addFloats(const CellGeometry& g, int r, int globalYarn, const std::vector<uint32_t>& columnFirst,
+               std::vector<ChartFloat>& out) {
+    const int W = g.chart->width;
+    int start = 0;
+    while (start < W && !g.loopOf(r, start)) ++start;
+    const bool all = start == W;
+    if (all) start = 0;
+    for (int k = 0; k < W;) {
+        const int c = (start + k) % W;
+        if (g.loopOf(r, c)) {
+            ++k;
+            continue;
+        }
+        ChartFloat f;
+        f.row = r;
+        f.firstColumn = c;
+        f.yarn = globalYarn;
+        f.colour = g.yarns->colours[size_t(g.yarn)];
+        f.front = true;
+        for (; k < W && !g.loopOf(r, (start + k) % W); ++k) {
+            const int cc = (start + k) % W;
+            f.front = f.front && g.yarns->yarnOf[size_t(cc)] == g.yarn && g.chart->opAt(r, cc) == StitchOp::SlipFront;
+            f.stranded = f.stranded || g.yarns->yarnOf[size_t(cc)] != g.yarn;
+            for (uint32_t i = columnFirst[size_t(cc)]; i < columnFirst[size_t(cc) + 1]; ++i) f.vertices.push_back(i);
+            ++f.columns;
+        }
+        if (f.colour == 0 && !g.chart->colour.empty()) f.colour = g.chart->colourAt(r, c);
+        out.push_back(f);
+    }
+}
+
+// Step 8: lifted loops hold a plain loop's yarn: their edges' rest lengths are scaled by the
+// plain loop's length over theirs.
+std::vector<double> liftedRestScale(const ChartCell& cell, double metresPerUnit, int n) {
+    const Pattern& p = cell.pattern;
+    std::vector<double> scale(p.points.size(), 1.0);
+    double plain = 0;
+    for (int i = 0; i < n; ++i) {
+        auto at = [&](int k) {
+            const double t = -util::kPi + util::kTwoPi * k / n;
+            return glm::dvec3(t + kLoopWidth * std::sin(2 * t), kLoopHeight * std::cos(t), -kDepth * std::cos(2 * t));
+        };
+        plain += glm::length(at(i + 1) - at(i)) * metresPerUnit;
+    }
+    for (const StitchLoop& l : cell.loops) {
+        if (l.lift == 0 || !l.madeLoop) continue;
+        double length = 0;
+        for (uint32_t i = l.first; i < l.first + l.count; ++i) {
+            const PeriodicEdge& e = p.edges[i];
+            length += glm::length(p.points[e.v1] + glm::dvec3(e.dx * p.px, e.dy * p.py, 0) - p.points[e.v0]);
+        }
+        for (uint32_t i = l.first; i < l.first + l.count; ++i) scale[i] = std::min(1.0, plain / length);
+    }
+    // Stranded floats hold a little less yarn than the loose construction gives them (0.95 of
+    // it, on top of the relaxation's rest length): with the construction's length the relaxed
+    // band's stitches stood 0.17 r further out than the same chart in one yarn, with 0.9-0.95 of
+    // it 0.3 r less far (docs/charts.md, "Stranded floats").
+    for (const ChartFloat& f : cell.floats)
+        if (f.stranded)
+            for (uint32_t v : f.vertices) scale[v] = kStrandedFloatSlack;
+    return scale;
+}
+
+// Everything the cell is built from.
+struct CellInputs {
+    const Chart& chart;
+    const std::vector<RowYarns>& yarns;
+    const std::vector<Plan>& plan;
+    const RowLayout& rows;
+    int n = 0;  // samples per loop
+};
+
+// Step 5: each yarn's columns (a loop: n vertices, a float: fewer), rows in order, and the
+// stitch record: which yarn's vertices make each cell. Returns the columns' first vertices.
+std::vector<std::vector<uint32_t>> stitchRecord(const CellInputs& in, ChartCell& cell) {
+    const Chart& chart = in.chart;
+    std::vector<std::vector<uint32_t>> starts;  // per yarn
+    uint64_t next = 0;
+    for (int r = 0; r < chart.height; ++r) {
+        const RowYarns& ry = in.yarns[size_t(r)];
+        const int firstYarn = int(starts.size());
+        for (size_t k = 0; k < ry.colours.size(); ++k) {
+            const CellGeometry g{&chart, &in.rows, &in.plan, &ry, int(k)};
+            // The vertex count, bounded before anything is allocated for it.
+            uint64_t count = 0;
+            for (int c = 0; c < chart.width; ++c) count += uint64_t(g.loopOf(r, c) ? in.n : floatSamples(in.n));
+            if (next + count > kMaxChartVertices)
+                throw Error(chart.name + ": the chart makes more than " + std::to_string(kMaxChartVertices) +
+                            " yarn vertices (" + std::to_string(chart.width) + " x " + std::to_string(chart.height) +
+                            " stitches): a chart is one period of the fabric");
+            starts.push_back(columnStarts(g, r, in.n, uint32_t(next)));
+            next = starts.back().back();
+        }
+        for (int c = 0; c < chart.width; ++c) {
+            const Plan& p = in.plan[size_t(r) * size_t(chart.width) + size_t(c)];
+            StitchLoop l;
+            l.row = r;
+            l.column = c;
+            l.yarn = firstYarn + ry.yarnOf[size_t(c)];
+            l.first = starts[size_t(l.yarn)][size_t(c)];
+            l.count = starts[size_t(l.yarn)][size_t(c) + 1] - l.first;
+            l.kind = chart.at(r, c);
+            l.op = chart.opAt(r, c);
+            l.madeLoop = makesLoop(l.op);
+            l.sourceColumn = chart.sourceColumn(r, c);
+            l.headShift = p.consumerColumn - c;
+            l.lift = p.lift;
+            l.stackIndex = p.stackIndex;
+            l.stackSize = p.stackSize;
+            l.through = p.through;
+            cell.loops.push_back(l);
+        }
+    }
+    cell.yarns = int(starts.size());
+    return starts;
+}
+
+// Step 6: the vertices (model units times `scale`), yarn by yarn along each row; every yarn
+// closes through +x. Returns the palette letter of every vertex.
+std::vector<char> buildYarns(const CellInputs& in, const std::vector<std::vector<uint32_t>>& starts, double scale,
+                             ChartCell& cell) {
+    const Chart& chart = in.chart;
+    Pattern& p = cell.pattern;
+    std::vector<char> letter;
+    const size_t vertices = starts.empty() ? 0 : starts.back().back();
+    p.points.reserve(vertices);
+    p.edges.reserve(vertices);
+    letter.reserve(vertices);
+    int yarn = 0;
+    for (int r = 0; r < chart.height; ++r) {
+        const RowYarns& ry = in.yarns[size_t(r)];
+        for (size_t k = 0; k < ry.colours.size(); ++k, ++yarn) {
+            const CellGeometry g{&chart, &in.rows, &in.plan, &ry, int(k)};
+            const std::vector<uint32_t>& at = starts[size_t(yarn)];
+            for (int c = 0; c < chart.width; ++c) {
+                const StitchLoop& l = cell.loop(r, c);
+                const bool mine = g.loopOf(r, c);
+                const int m = int(at[size_t(c) + 1] - at[size_t(c)]);
+                for (int i = 0; i < m; ++i) {
+                    const double t = mine ? loopParameter(in.rows, l, i, m) : -util::kPi + util::kTwoPi * i / m;
+                    p.points.push_back((mine ? loopPoint(g, l, t) : floatPoint(g, r, c, t)) * scale);
+                    letter.push_back(chart.colour.empty()                       ? char(0)
+                                     : chart.colourwork == Colourwork::Stranded ? ry.colours[k]
+                                                                                : chart.colourAt(r, c));
+                }
+            }
+            const uint32_t first = at.front(), last = at.back() - 1;
+            for (uint32_t i = first; i < last; ++i) p.edges.push_back({i, i + 1, 0, 0});
+            p.edges.push_back({last, first, 1, 0});
+            addFloats(g, r, yarn, at, cell.floats);
+        }
+    }
+    return letter;
+}
+
+// Step 7: the colour layer, per loop (sRGB) and per vertex (linear).
+void colourLayer(const Chart& chart, const std::vector<char>& letter, ChartCell& cell) {
+    if (chart.colour.empty()) return;
+    for (const StitchLoop& l : cell.loops) cell.colour.push_back(chart.palette.at(chart.colourAt(l.row, l.column)));
+    std::map<char, glm::vec3> linear;
+    for (const auto& [key, srgb] : chart.palette) {
+        glm::vec3 c(0.f);
+        for (int k = 0; k < 3; ++k) c[k] = float(util::srgbToLinear(srgb[size_t(k)] / 255.0));
+        linear[key] = c;
+    }
+    for (const char c : letter) cell.pattern.colour.push_back(linear.at(c));
 }
 
 }  // namespace
@@ -129,40 +461,30 @@ double loopParameter(const RowLayout& rows, const StitchLoop& l, int i, int n) {
 ChartCell chartToCell(const Chart& chart, const ChartCellOptions& options) {
     if (!util::positiveFinite(options.radius)) throw Error("knitting chart: the yarn radius must be positive");
     if (options.samplesPerStitch < 8) throw Error("knitting chart: the samples per stitch must be >= 8");
-    const int n = options.samplesPerStitch;
+    if (chart.colourwork == Colourwork::Intarsia)
+        throw Error(chart.name +
+                    ": intarsia colourwork is parsed but not built yet (use `stranded`, or leave the line out to "
+                    "paint the colours on one yarn per row)");
     const double s = options.radius / kModelRadius;  // metres per model unit
     ChartCell cell;
     cell.width = chart.width;
     cell.height = chart.height;
-    cell.loops = stitchLoops(chart, n);
+    const std::vector<RowYarns> yarns = rowYarns(chart);
+    const std::vector<Plan> plan = planLoops(chart);
+    const RowLayout rows = rowLayout(chart, plan);
+    const CellInputs in{chart, yarns, plan, rows, options.samplesPerStitch};
+    const std::vector<std::vector<uint32_t>> starts = stitchRecord(in, cell);
     Pattern& p = cell.pattern;
     p.name = chart.name;
     p.stitchesPerPeriod = chart.width;
     p.rowsPerPeriod = chart.height;
     p.px = util::kTwoPi * chart.width * s;
-    const RowLayout rows = rowLayout(chart);
     p.py = rows.period * s;
     p.radius = options.radius;
-    // Step 4: the vertices, loop by loop along each course; the course closes through +x.
-    for (const StitchLoop& l : cell.loops)
-        for (int i = 0; i < n; ++i) p.points.push_back(loopPoint(chart, rows, l, loopParameter(rows, l, i, n)) * s);
+    const std::vector<char> letter = buildYarns(in, starts, s, cell);
     p.twist.assign(p.points.size(), 0.0);
-    const uint32_t perCourse = uint32_t(chart.width * n);
-    for (int r = 0; r < chart.height; ++r) {
-        const uint32_t first = uint32_t(r) * perCourse;
-        for (uint32_t i = 0; i + 1 < perCourse; ++i) p.edges.push_back({first + i, first + i + 1, 0, 0});
-        p.edges.push_back({first + perCourse - 1, first, 1, 0});
-    }
-    // Step 5: the colour layer, per loop (sRGB) and per vertex of the loop (linear).
-    if (!chart.colour.empty())
-        for (const StitchLoop& l : cell.loops) {
-            const std::array<uint8_t, 3> srgb =
-                chart.palette.at(chart.colour[size_t(l.row) * size_t(chart.width) + size_t(l.column)]);
-            cell.colour.push_back(srgb);
-            glm::vec3 linear(0.f);
-            for (int k = 0; k < 3; ++k) linear[k] = float(util::srgbToLinear(srgb[size_t(k)] / 255.0));
-            p.colour.insert(p.colour.end(), l.count, linear);
-        }
+    cell.restScale = liftedRestScale(cell, s, options.samplesPerStitch);
+    colourLayer(chart, letter, cell);
     validatePattern(p, p.name);
     return cell;
 }

@@ -183,6 +183,11 @@ Problem setUp(const Pattern& p, const RelaxOptions& opt, Vec& v) {
     if (!(opt.relativeGradientTolerance >= 0) || !(opt.relativeEnergyTolerance >= 0) || opt.energyWindow < 0)
         throw Error("yarn relaxation: the relative gradient and energy tolerances and the energy window must be >= 0");
     if (p.edges.size() != pb.n) throw Error(p.name + ": relaxation needs closed yarns (every vertex starts one edge)");
+    if (!opt.restScale.empty() && opt.restScale.size() != pb.n)
+        throw Error("yarn relaxation: the rest-length scale has " + std::to_string(opt.restScale.size()) +
+                    " entries for " + std::to_string(pb.n) + " vertices");
+    for (const double f : opt.restScale)
+        if (!(f > 0) || !std::isfinite(f)) throw Error("yarn relaxation: the rest-length scales must be positive");
     pb.yarns = relax::indexYarns(p, pb.segs);
     for (int32_t len : pb.yarns.length)
         if (len < 4) throw Error(p.name + ": relaxation needs yarns of at least 4 vertices");
@@ -195,7 +200,8 @@ Problem setUp(const Pattern& p, const RelaxOptions& opt, Vec& v) {
     v[Eigen::Index(3 * pb.n + 1)] = p.py / p.radius;
     double total = 0;
     for (const Seg& s : pb.segs) {
-        pb.rest.push_back(opt.restLength * glm::length(at(v, pb.n, s.b, s.dx, s.dy) - vertex(v, s.a)));
+        const double scale = opt.restScale.empty() ? 1.0 : opt.restScale[s.a];
+        pb.rest.push_back(opt.restLength * scale * glm::length(at(v, pb.n, s.b, s.dx, s.dy) - vertex(v, s.a)));
         total += pb.rest.back();
     }
     pb.meanRest = total / double(pb.n);
