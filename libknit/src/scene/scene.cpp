@@ -77,6 +77,12 @@ public:
     }
     // The stages after the inputs, then the Scene.
     Scene finish() {
+        // A table that does not fit the pattern is refused before any work.
+        if (options_.deform.mode == DeformMode::Strain) {
+            if (!options_.deform.table)
+                throw Error("strain-aware deformation needs a strain table (the deform mode is strain)");
+            checkStrainTable(*options_.deform.table, s_.pattern_);
+        }
         run("normals", [&] { s_.normals_ = vertexNormals(s_.mesh_.positions, s_.mesh_.faces); });
         run("uv_grid", [&] { placeAndGrid(); });
         // With a view, the level of every cell comes first (it needs only the mesh, the grid and
@@ -168,8 +174,6 @@ private:
     // Step: the strain table's displacements added to the evaluated yarns (the rest mesh itself
     // may be strained against the pattern's layout: a non-isometric UV layout).
     void deform() {
-        if (!options_.deform.table)
-            throw Error("strain-aware deformation needs a strain table (the deform mode is strain)");
         auto deformer = std::make_shared<const StrainDeformer>(s_.mesh_, s_.pattern_, s_.placement_,
                                                                s_.bound_.binding, options_.deform.table);
         s_.deformStats_ = deformer->apply(s_.bound_.binding, s_.mesh_.positions, s_.yarns_);
