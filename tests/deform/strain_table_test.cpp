@@ -206,6 +206,8 @@ TEST(StrainTable, madypgFolderIsReadWithTheDocumentedLayout) {
     const glm::dvec4 mid = lookupStrainTable(t, 2, {0.25, 0.35, 0.1}, &clamped);
     EXPECT_FALSE(clamped);
     EXPECT_NEAR(mid.x, 2 + 0.1 * 1.5 + 0.01 * 1.5 + 0.001 * 0.5, 1e-5);
+    lookupStrainTable(t, 2, {1.0 + 1e-12, 0.7 + 1e-12, -0.2 - 1e-12}, &clamped);  // round-off at the ends
+    EXPECT_FALSE(clamped);
     const glm::dvec4 far = lookupStrainTable(t, 2, {3.0, 0.0, 0.4}, &clamped);
     EXPECT_TRUE(clamped);
     EXPECT_NEAR(far.x, value(2, 3, 1, 1, 0), 1e-5);

@@ -21,19 +21,21 @@ glm::dmat2 latticeMap(const Strain& s) {
 
 namespace {
 
-// The interval of `axis` holding v (clamped) and the fraction along it.
+// The interval of `axis` holding v (clamped) and the fraction along it. Round-off beyond the end
+// samples (a strain of exactly the largest sample computed from a mesh) is not counted as clamped.
 void locate(const std::vector<double>& axis, double v, size_t& i, double& t, bool& clamped) {
+    constexpr double kSlack = 1e-9;
     if (axis.size() == 1) {
         i = 0;
         t = 0;
-        clamped = clamped || v != axis[0];
+        clamped = clamped || !(std::abs(v - axis[0]) <= kSlack);
         return;
     }
     if (!(v >= axis.front())) {  // NaN clamps to the first sample
-        clamped = true;
+        clamped = clamped || !(v >= axis.front() - kSlack);
         v = axis.front();
     } else if (v > axis.back()) {
-        clamped = true;
+        clamped = clamped || v > axis.back() + kSlack;
         v = axis.back();
     }
     const auto it = std::upper_bound(axis.begin(), axis.end(), v);
