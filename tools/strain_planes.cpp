@@ -150,6 +150,39 @@ int main(int argc, char** argv) {
                             s.sa, s.sy, g.lengthRatio, d.lengthRatio, g.closestRadii, d.closestRadii,
                             100 * d.clampedFraction);
         }
+        // Stretch sequences on a 30 cm sheet (the runs of issue 23): a third along the courses while
+        // the wales contract by a tenth, then released; a biaxial stretch by 30 % and release. Per
+        // sequence: the range of the frames' yarn length ratio and the closest yarns (diameters).
+        const knit::BaseMesh sheet = squarePlane(0.3, 30);
+        knit::SceneOptions sheetOptions;
+        sheetOptions.buildPlies = false;
+        const knit::Scene sheetNone = knit::buildScene(pattern, sheet, sheetOptions);
+        sheetOptions.deform = {knit::DeformMode::Strain, table};
+        const knit::Scene sheetStrain = knit::buildScene(pattern, sheet, sheetOptions);
+        const std::vector<std::pair<std::string, knit::Strain>> sequences = {
+            {"courses +33 %, wales -10 %, and back", {1.0 / 3, 0, -0.1}}, {"biaxial +30 % and back", {0.3, 0, 0.3}}};
+        if (!json)
+            std::printf("\n| sequence (21 frames) | length ratio none | length ratio strain | closest none (diam.) | "
+                        "closest strain (diam.) |\n|---|---|---|---|---|\n");
+        for (const auto& [name, peak] : sequences) {
+            double lo[2] = {1e9, 1e9}, hi[2] = {0, 0}, closest[2] = {1e9, 1e9};
+            for (int k = 0; k <= 20; ++k) {
+                const double w = k <= 10 ? k / 10.0 : (20 - k) / 10.0;
+                const knit::Strain s{w * peak.sx, 0, w * peak.sy};
+                const PlaneResult r[2] = {measure(sheetNone, s), measure(sheetStrain, s)};
+                for (int m = 0; m < 2; ++m) {
+                    lo[m] = std::min(lo[m], r[m].lengthRatio);
+                    hi[m] = std::max(hi[m], r[m].lengthRatio);
+                    closest[m] = std::min(closest[m], r[m].closestRadii / 2);
+                }
+            }
+            out["sequences"].push_back({{"name", name},
+                                        {"none", {{"length_ratio", {lo[0], hi[0]}}, {"closest_diameters", closest[0]}}},
+                                        {"strain", {{"length_ratio", {lo[1], hi[1]}}, {"closest_diameters", closest[1]}}}});
+            if (!json)
+                std::printf("| %s | %.3f - %.3f | %.3f - %.3f | %.2f | %.2f |\n", name.c_str(), lo[0], hi[0], lo[1],
+                            hi[1], closest[0], closest[1]);
+        }
         if (json) std::cout << out.dump(2) << '\n';
         else std::cout << "\ntable: " << out["table"].dump() << '\n';
     } catch (const knit::Error& e) {
