@@ -17,6 +17,7 @@ from ._knit import (  # noqa: F401
     Pattern,
     Plies,
     Scene,
+    StrainTable,
     Yarns,
     build_scene,
     builtin_meshes,
@@ -24,7 +25,9 @@ from ._knit import (  # noqa: F401
     export_scene,
     load_mesh,
     load_pattern,
+    load_strain_table,
     make_plies,
+    strain_table,
     uv_to_metre_scale,
     vertex_normals,
 )

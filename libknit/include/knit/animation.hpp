@@ -131,6 +131,9 @@ struct AnimatorOptions {
     // too, no resampling at bind time or per frame).
     bool plies = true;
     bool stats = true;  // compute FrameStats per frame
+    // Apply the rest scene's strain deformer (SceneOptions::deform) on every frame; false: the
+    // geometric mapping even for a scene built with a strain table.
+    bool deform = true;
     // minYarnDistance looks for other yarns up to this distance (yarn diameters); a frame with
     // none that close reports +infinity.
     double distanceCutoff = 2.0;
