@@ -70,9 +70,7 @@ PlaneResult measure(const knit::Scene& scene, const knit::Strain& s) {
     return r;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
     CLI::App app("Strain tables on uniformly strained planes (docs/deformation.md)");
     std::string patternName = "stockinette", tablePath;
     std::vector<int> samples{9, 9, 9};
@@ -103,12 +101,9 @@ int main(int argc, char** argv) {
             const std::clock_t c0 = std::clock();
             table = std::make_shared<const knit::StrainTable>(knit::makeStrainTable(pattern, to, &st));
             const double cpu = double(std::clock() - c0) / CLOCKS_PER_SEC;
-            out["table"] = {{"vertices", table->vertexCount},
-                            {"samples", table->samples()},
-                            {"wall_seconds", st.seconds},
-                            {"cpu_seconds", cpu},
-                            {"unconverged", st.unconverged},
-                            {"closest_radii", st.minDistance}};
+            out["table"] = {{"vertices", table->vertexCount}, {"samples", table->samples()},
+                            {"wall_seconds", st.seconds},     {"cpu_seconds", cpu},
+                            {"unconverged", st.unconverged},  {"closest_radii", st.minDistance}};
         } else {
             table = std::make_shared<const knit::StrainTable>(knit::loadStrainTable(tablePath));
             out["table"] = {{"file", tablePath}, {"vertices", table->vertexCount}, {"samples", table->samples()}};
@@ -176,9 +171,10 @@ int main(int argc, char** argv) {
                     closest[m] = std::min(closest[m], r[m].closestRadii / 2);
                 }
             }
-            out["sequences"].push_back({{"name", name},
-                                        {"none", {{"length_ratio", {lo[0], hi[0]}}, {"closest_diameters", closest[0]}}},
-                                        {"strain", {{"length_ratio", {lo[1], hi[1]}}, {"closest_diameters", closest[1]}}}});
+            out["sequences"].push_back(
+                {{"name", name},
+                 {"none", {{"length_ratio", {lo[0], hi[0]}}, {"closest_diameters", closest[0]}}},
+                 {"strain", {{"length_ratio", {lo[1], hi[1]}}, {"closest_diameters", closest[1]}}}});
             if (!json)
                 std::printf("| %s | %.3f - %.3f | %.3f - %.3f | %.2f | %.2f |\n", name.c_str(), lo[0], hi[0], lo[1],
                             hi[1], closest[0], closest[1]);
@@ -190,4 +186,17 @@ int main(int argc, char** argv) {
         return 1;
     }
     return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    try {
+        return run(argc, argv);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "strain_planes: %s\n", e.what());
+    } catch (...) {
+        std::fprintf(stderr, "strain_planes: unknown error\n");
+    }
+    return 1;
 }

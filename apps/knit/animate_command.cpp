@@ -233,10 +233,11 @@ std::vector<FrameRecord> runFrames(const FrameSequence& seq, const Animator& ani
         totals.write += since(t1);
         records.push_back({seq.frame(i).number, since(t0), frame.stats, frame.deform});
         if (!quiet && animator.options().stats)
-            std::fprintf(stderr,
-                         "frame %d (%zu/%zu): %.3f s, max stretch %.4g, min yarn distance %.4g, yarn length ratio %.4g\n",
-                         seq.frame(i).number, i + 1, seq.size(), records.back().seconds, frame.stats.maxStretch,
-                         frame.stats.minYarnDistance, frame.stats.yarnLengthRatio);
+            std::fprintf(
+                stderr,
+                "frame %d (%zu/%zu): %.3f s, max stretch %.4g, min yarn distance %.4g, yarn length ratio %.4g\n",
+                seq.frame(i).number, i + 1, seq.size(), records.back().seconds, frame.stats.maxStretch,
+                frame.stats.minYarnDistance, frame.stats.yarnLengthRatio);
         else if (!quiet)
             std::fprintf(stderr, "frame %d (%zu/%zu): %.3f s\n", seq.frame(i).number, i + 1, seq.size(),
                          records.back().seconds);

@@ -48,7 +48,8 @@ void addInfoCommand(CLI::App& app, InfoCommand& i) {
         "info",
         "Describe a pattern (period, radius, counts, edges crossing each side, loops of a 1x1 tiling) or a strain "
         "table (.npy or a sxsasy/ folder)");
-    i.command->add_option("pattern", i.pattern, "Pattern file (.pyp / .json), built-in name or strain table")->required();
+    i.command->add_option("pattern", i.pattern, "Pattern file (.pyp / .json), built-in name or strain table")
+        ->required();
     i.command->add_flag("--json", i.json, "Print JSON");
 }
 
@@ -56,7 +57,8 @@ namespace {
 // A strain table: a .npy file, or a folder holding data.npy (MADYPG's sxsasy/).
 bool isStrainTable(const std::string& path) {
     std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) return std::filesystem::exists(std::filesystem::path(path) / "data.npy", ec);
+    if (std::filesystem::is_directory(path, ec))
+        return std::filesystem::exists(std::filesystem::path(path) / "data.npy", ec);
     return path.size() > 4 && path.compare(path.size() - 4, 4, ".npy") == 0;
 }
 }  // namespace

@@ -73,8 +73,9 @@ void addSceneFlags(CLI::App& cmd, SceneFlags& f) {
                    "slide and bend as the pattern's strain table says; made on the spot without --strain-table). "
                    "Default: strain with --strain-table, else none")
         ->check(CLI::IsMember({"none", "strain"}));
-    cmd.add_option("--strain-table", f.strainTable,
-                   "Strain table of the pattern: a file made by `knit strain-table` (T.npy) or a MADYPG sxsasy/ folder");
+    cmd.add_option(
+        "--strain-table", f.strainTable,
+        "Strain table of the pattern: a file made by `knit strain-table` (T.npy) or a MADYPG sxsasy/ folder");
     cmd.add_flag("-q,--quiet", f.quiet, "No progress output on stderr");
 }
 

@@ -22,7 +22,7 @@ struct SceneFlags {
     int meshRes = 0;              // 0: the built-in meshes' default
     bool noWeld = false;
     bool quiet = false;
-    std::string maxMemory;  // empty: MemoryBudget's default
+    std::string maxMemory;    // empty: MemoryBudget's default
     std::string deform;       // empty (none unless a table is given), "none" or "strain"
     std::string strainTable;  // empty, or a table file / MADYPG sxsasy/ folder
 };

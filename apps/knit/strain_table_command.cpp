@@ -18,14 +18,16 @@ void addStrainTableCommand(CLI::App& app, StrainTableCommand& c) {
         "strain-table",
         "Make a pattern's strain table: its cell relaxed under every sampled strain (sx, sa, sy), the displacement "
         "of each cell vertex recorded (T.npy + T.axes.txt; see docs/deformation.md)");
-    c.command->add_option("--pattern", c.pattern, "Pattern file (.pyp / .json) or built-in name")->capture_default_str();
+    c.command->add_option("--pattern", c.pattern, "Pattern file (.pyp / .json) or built-in name")
+        ->capture_default_str();
     c.command->add_option("-o,--output", c.output, "Table file to write (.npy; its axes go to .axes.txt beside it)")
         ->required();
     c.command->add_option("--samples", c.samples, "Samples along sx, sa and sy (default 9 9 9)")->expected(3);
     c.command->add_option("--sx-range", c.sxRange, "Smallest and largest sx (default -0.2 1.0)")->expected(2);
     c.command->add_option("--sa-range", c.saRange, "Smallest and largest sa (default -0.7 0.7)")->expected(2);
     c.command->add_option("--sy-range", c.syRange, "Smallest and largest sy (default -0.2 1.0)")->expected(2);
-    c.command->add_option("--iterations", c.maxIterations, "Largest relaxation iteration count per sample (default 600)")
+    c.command
+        ->add_option("--iterations", c.maxIterations, "Largest relaxation iteration count per sample (default 600)")
         ->check(CLI::Range(1, 1000000));
     c.command->add_flag("-q,--quiet", c.quiet, "No estimate or progress on stderr");
 }
@@ -93,13 +95,13 @@ void printStrainTableInfo(const StrainTable& t, bool json) {
         return;
     }
     std::printf("strain table  %s\n", t.source.c_str());
-    if (t.px > 0) std::printf("pattern       %s, period %.9g x %.9g m, radius %.9g m\n", t.pattern.c_str(), t.px, t.py, t.radius);
+    if (t.px > 0)
+        std::printf("pattern       %s, period %.9g x %.9g m, radius %.9g m\n", t.pattern.c_str(), t.px, t.py, t.radius);
     else std::printf("pattern       (not recorded: a MADYPG table; only its vertex count is checked)\n");
     std::printf("vertices      %zu\nsamples       %zu x %zu x %zu (sx, sa, sy)\n", t.vertexCount, t.axes[0].size(),
                 t.axes[1].size(), t.axes[2].size());
     const char* names[3] = {"sx", "sa", "sy"};
-    for (size_t a = 0; a < 3; ++a)
-        std::printf("%-13s [%.6g, %.6g]\n", names[a], t.axes[a].front(), t.axes[a].back());
+    for (size_t a = 0; a < 3; ++a) std::printf("%-13s [%.6g, %.6g]\n", names[a], t.axes[a].front(), t.axes[a].back());
     std::printf("largest |d|   %.6g (pattern units)\n", largest);
 }
 

@@ -31,7 +31,7 @@ struct SceneArgs {
     int resU = 32, resV = 32;
     double clampTolerance = 0.01, weldTolerance = 0.25;
     bool weld = true;
-    std::string maxMemory;  // "" = the default budget, else a size ("8G")
+    std::string maxMemory;    // "" = the default budget, else a size ("8G")
     std::string deform = "";  // "", "none" or "strain"
     py::object strainTable;   // None, a path or a StrainTable
 };
@@ -44,12 +44,14 @@ void resolveDeform(const SceneArgs& a, const py::object& pattern, knit::SceneOpt
     if (a.deform == "none") return;
     if (!a.strainTable.is_none()) {
         o.deform.mode = knit::DeformMode::Strain;
-        o.deform.table = py::isinstance<py::str>(a.strainTable)
-                             ? std::make_shared<const knit::StrainTable>(knit::loadStrainTable(a.strainTable.cast<std::string>()))
-                             : std::shared_ptr<const knit::StrainTable>(a.strainTable.cast<std::shared_ptr<knit::StrainTable>>());
+        o.deform.table =
+            py::isinstance<py::str>(a.strainTable)
+                ? std::make_shared<const knit::StrainTable>(knit::loadStrainTable(a.strainTable.cast<std::string>()))
+                : std::shared_ptr<const knit::StrainTable>(a.strainTable.cast<std::shared_ptr<knit::StrainTable>>());
     } else if (a.deform == "strain") {
-        const knit::Pattern p = py::isinstance<py::str>(pattern) ? knit::loadPatternFileOrName(pattern.cast<std::string>())
-                                                                 : pattern.cast<knit::Pattern>();
+        const knit::Pattern p = py::isinstance<py::str>(pattern)
+                                    ? knit::loadPatternFileOrName(pattern.cast<std::string>())
+                                    : pattern.cast<knit::Pattern>();
         py::gil_scoped_release release;
         o.deform.mode = knit::DeformMode::Strain;
         o.deform.table = std::make_shared<const knit::StrainTable>(knit::makeStrainTable(p, {}));
@@ -133,7 +135,7 @@ private:
         std::mutex mutex;
         std::unique_ptr<const knit::Animator> animator;
     };
-    ScenePtr scene_;  // the Animators refer to it: kept alive with them
+    ScenePtr scene_;                                        // the Animators refer to it: kept alive with them
     Slot yarns_, plies_, yarnsGeometric_, pliesGeometric_;  // with and without the strain deformer
 };
 
@@ -230,7 +232,8 @@ void registerSceneClass(py::module_& m) {
             "The yarns on new vertex positions (n, 3) float32/float64 of the scene's mesh (same "
             "connectivity): normals of the posed mesh, then the binding (the first steps of knit animate's "
             "frame). deform: None (the scene's mode), 'none' (the geometric mapping) or 'strain' (the strain "
-            "table the scene was built with). Returns Yarns. Thread-safe: runs without the GIL, concurrently with other evaluations. "
+            "table the scene was built with). Returns Yarns. Thread-safe: runs without the GIL, concurrently with "
+            "other evaluations. "
             "Raises knit.Error.")
         .def(
             "evaluate_plies",

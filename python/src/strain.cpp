@@ -26,8 +26,8 @@ void registerStrain(py::module_& m) {
         "dtwist) in the pattern's units (docs/deformation.md).")
         .def_property_readonly("source", [](const knit::StrainTable& t) { return t.source; })
         .def_property_readonly("vertex_count", [](const knit::StrainTable& t) { return t.vertexCount; })
-        .def_property_readonly("axes", [](const knit::StrainTable& t) { return t.axes; },
-                               "(sx, sa, sy) sample values, three lists")
+        .def_property_readonly(
+            "axes", [](const knit::StrainTable& t) { return t.axes; }, "(sx, sa, sy) sample values, three lists")
         .def_property_readonly(
             "data",
             [](const knit::StrainTable& t) {
@@ -72,7 +72,8 @@ void registerStrain(py::module_& m) {
         "Makes a pattern's strain table (its cell relaxed under each sampled strain; `knit strain-table`), written to "
         "path (.npy + .axes.txt) when given. Raises knit.Error.");
     m.def(
-        "load_strain_table", [](const std::string& path) { return std::make_shared<knit::StrainTable>(knit::loadStrainTable(path)); },
+        "load_strain_table",
+        [](const std::string& path) { return std::make_shared<knit::StrainTable>(knit::loadStrainTable(path)); },
         "path"_a, "Reads a table file (T.npy with T.axes.txt) or a MADYPG sxsasy/ folder. Raises knit.Error.");
 }
 

@@ -132,7 +132,8 @@ TEST(StrainTable, refusesBadOptionsNamingThem) {
 
 StrainTable syntheticTable(size_t vertices) {
     StrainTable t;
-    t.axes = {std::vector<double>{-0.2, 0.4, 1.0}, std::vector<double>{-0.5, 0.5}, std::vector<double>{-0.2, 0.2, 0.6, 1.0}};
+    t.axes = {std::vector<double>{-0.2, 0.4, 1.0}, std::vector<double>{-0.5, 0.5},
+              std::vector<double>{-0.2, 0.2, 0.6, 1.0}};
     t.vertexCount = vertices;
     t.pattern = "stockinette";
     t.px = 0.0078539816339744835;
@@ -176,7 +177,8 @@ TEST(StrainTable, madypgFolderIsReadWithTheDocumentedLayout) {
     const auto value = [](size_t v, size_t ix, size_t ia, size_t iy, size_t c) {
         return float(v) + 0.1F * float(ix) + 0.01F * float(ia) + 0.001F * float(iy) + 10.0F * float(c);
     };
-    std::string dict = "{'descr': '<f4', 'fortran_order': False, 'shape': (" + std::to_string(nv * nx * na * ny) + ", 4), }";
+    std::string dict =
+        "{'descr': '<f4', 'fortran_order': False, 'shape': (" + std::to_string(nv * nx * na * ny) + ", 4), }";
     dict.append(118 - dict.size(), ' ');
     dict.push_back('\n');
     std::string npy = std::string("\x93NUMPY\x01\x00", 8) + char(dict.size()) + char(0) + dict;
@@ -215,6 +217,27 @@ TEST(StrainTable, madypgFolderIsReadWithTheDocumentedLayout) {
     const std::string msg = test::errorOf([&] { checkStrainTable(t, generateStockinette()); });
     EXPECT_NE(msg.find("sxsasy"), std::string::npos) << msg;
     EXPECT_NE(msg.find("5 cell vertices"), std::string::npos) << msg;
+}
+
+// The prepared lookup (the deformer's) agrees with the plain one, for even and uneven axes.
+TEST(StrainTable, preparedLookupAgreesWithThePlainOne) {
+    StrainTable t = syntheticTable(3);
+    for (int uneven = 0; uneven < 2; ++uneven) {
+        if (uneven) t.axes[0] = {-0.2, 0.1, 1.0};
+        const StrainLookup prepared(t);
+        uint32_t seed = 1;
+        const auto rnd = [&seed](double lo, double hi) {
+            seed = seed * 1664525U + 1013904223U;
+            return lo + (hi - lo) * double(seed >> 8) / double(1 << 24);
+        };
+        for (int k = 0; k < 500; ++k) {
+            const Strain s{rnd(-0.5, 1.3), rnd(-0.9, 0.9), rnd(-0.5, 1.3)};
+            bool c1 = false, c2 = false;
+            const glm::dvec4 a = lookupStrainTable(t, uint32_t(k % 3), s, &c1), b = prepared(uint32_t(k % 3), s, c2);
+            EXPECT_EQ(c1, c2);
+            for (int c = 0; c < 4; ++c) EXPECT_NEAR(a[c], b[c], 1e-12);
+        }
+    }
 }
 
 TEST(StrainTable, refusesAPeriodMismatch) {
@@ -257,8 +280,7 @@ TEST(StrainTable, refusesDamagedFilesNamingThem) {
     refuse(good, "0 x\n0\n0\n", "'x'");
     // Rows not a multiple of the sample count.
     refuse(good, "0 1 2 3 4 5 6\n0\n0\n", "multiple");
-    EXPECT_NE(test::errorOf([&] { loadStrainTable(dir.file("missing.npy")); }).find("missing.npy"),
-              std::string::npos);
+    EXPECT_NE(test::errorOf([&] { loadStrainTable(dir.file("missing.npy")); }).find("missing.npy"), std::string::npos);
 }
 
 // A table written into a folder that does not exist fails before writing and leaves nothing.

@@ -44,7 +44,7 @@ Strain strainOf(const glm::dmat2& C);
 glm::dmat2 latticeMap(const Strain& s);
 
 struct StrainTable {
-    std::string source;                     // file or folder, for messages
+    std::string source;                       // file or folder, for messages
     std::array<std::vector<double>, 3> axes;  // sample values of sx, sa, sy (strictly increasing)
     size_t vertexCount = 0;
     std::vector<float> data;  // 4 per row, rows as in the file comment
@@ -59,6 +59,25 @@ struct StrainTable {
 // clamped to them (*clamped set), never extrapolated.
 glm::dvec4 lookupStrainTable(const StrainTable& table, uint32_t vertex, const Strain& s, bool* clamped = nullptr);
 
+// The same lookup prepared once for a table (the per-frame hot loop): evenly spaced axes (as
+// makeStrainTable's) are indexed directly, others searched. Keeps a reference to the table.
+class StrainLookup {
+public:
+    explicit StrainLookup(const StrainTable& table);
+    glm::dvec4 operator()(uint32_t vertex, const Strain& s, bool& clamped) const;
+
+private:
+    struct Axis {
+        const std::vector<double>* values = nullptr;
+        double first = 0, last = 0, inverseStep = 0;
+        size_t stride = 0;  // floats between neighbouring samples
+        bool even = false;
+    };
+    Axis axes_[3];
+    const float* data_ = nullptr;
+    size_t vertexStride_ = 0;
+};
+
 // ---- making tables ---------------------------------------------------------------------------
 
 struct StrainTableOptions {
@@ -72,10 +91,10 @@ struct StrainTableOptions {
 };
 
 struct StrainTableStats {
-    double seconds = 0;         // wall time
-    size_t samples = 0;         // relaxations (the rest cell included)
-    size_t unconverged = 0;     // stopped at the iteration cap
-    double minDistance = 0;     // closest distinct yarns over every sample, in yarn radii
+    double seconds = 0;          // wall time
+    size_t samples = 0;          // relaxations (the rest cell included)
+    size_t unconverged = 0;      // stopped at the iteration cap
+    double minDistance = 0;      // closest distinct yarns over every sample, in yarn radii
     double restMinDistance = 0;  // of the relaxed rest cell
 };
 
@@ -143,7 +162,7 @@ public:
 
 private:
     std::vector<glm::uvec3> faces_, faceUvs_;
-    std::vector<glm::dvec2> layout_;  // per UV vertex: pattern-space position (metres, object scale)
+    std::vector<glm::dvec2> layout_;    // per UV vertex: pattern-space position (metres, object scale)
     std::vector<uint32_t> cellVertex_;  // per yarn vertex: its pattern vertex
     std::vector<glm::dvec4> zero_;      // per pattern vertex: the table at zero strain
     double scale_ = 1;

@@ -162,7 +162,8 @@ void Animator::evaluate(const std::vector<dvec3>& positions, AnimationFrame& out
     t0 = Clock::now();
     evaluateBinding(rest_.binding(), mesh.faces, positions, out.meshNormals, out.yarns);
     out.deform = {};
-    if (options_.deform && rest_.deformer()) out.deform = rest_.deformer()->apply(rest_.binding(), positions, out.yarns);
+    if (options_.deform && rest_.deformer())
+        out.deform = rest_.deformer()->apply(rest_.binding(), positions, out.yarns);
     t.evaluate = since(t0);
 
     // Step 3: the centrelines resampled with the rest layouts (for the plies and the statistics).

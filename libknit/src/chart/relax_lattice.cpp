@@ -52,7 +52,8 @@ struct State {
 
     void deform(const Vec& v) {
         x.resize(c.n);
-        for (size_t i = 0; i < c.n; ++i) x[i] = M * glm::dvec3(v[Eigen::Index(3 * i)], v[Eigen::Index(3 * i + 1)], v[Eigen::Index(3 * i + 2)]);
+        for (size_t i = 0; i < c.n; ++i)
+            x[i] = M * glm::dvec3(v[Eigen::Index(3 * i)], v[Eigen::Index(3 * i + 1)], v[Eigen::Index(3 * i + 2)]);
     }
 
     // Every pair of distinct, non-adjacent segments (any image) whose deformed centrelines are
@@ -70,12 +71,23 @@ struct State {
                 hi[k] = std::max(hi[k], v[Eigen::Index(3 * i + size_t(k))]);
             }
         const double extentX = hi[0] - lo[0], extentY = hi[1] - lo[1];
-        const int kx = int(std::ceil((refCut + extentX) / c.px)) + 1, ky = int(std::ceil((refCut + extentY) / c.py)) + 1;
+        const int kx = int(std::ceil((refCut + extentX) / c.px)) + 1,
+                  ky = int(std::ceil((refCut + extentY) / c.py)) + 1;
+        // Bounding spheres first (midpoint and half length): most images are far.
+        std::vector<glm::dvec3> mid(c.n);
+        std::vector<double> half(c.n);
+        for (size_t k = 0; k < c.n; ++k) {
+            mid[k] = 0.5 * (x[c.segs[k].a] + segEnd(c.segs[k]));
+            half[k] = 0.5 * glm::length(segEnd(c.segs[k]) - x[c.segs[k].a]);
+        }
         for (uint32_t s = 0; s < c.n; ++s)
             for (uint32_t t = s; t < c.n; ++t)
                 for (int iy = -ky; iy <= ky; ++iy)
                     for (int ix = -kx; ix <= kx; ++ix) {
                         if (t == s && (iy < 0 || (iy == 0 && ix <= 0))) continue;
+                        const double reachPair = cutoff + half[s] + half[t];
+                        const glm::dvec3 apart = mid[t] + shift(ix, iy) - mid[s];
+                        if (glm::dot(apart, apart) >= reachPair * reachPair) continue;
                         const Pair pr{s, t, ix, iy};
                         if (relax::nearAlongYarn(c.yarns, c.segs, pr, 3)) continue;
                         if (distance(pr) < cutoff) pairs.push_back(pr);
@@ -84,7 +96,8 @@ struct State {
 
     double distance(const Pair& pr) const {
         const Seg &s = c.segs[pr.s], &t = c.segs[pr.t];
-        const glm::dvec3 p0 = x[s.a], p1 = segEnd(s), q0 = x[t.a] + shift(pr.ix, pr.iy), q1 = segEnd(t) + shift(pr.ix, pr.iy);
+        const glm::dvec3 p0 = x[s.a], p1 = segEnd(s), q0 = x[t.a] + shift(pr.ix, pr.iy),
+                         q1 = segEnd(t) + shift(pr.ix, pr.iy);
         double a = 0, b = 0;
         relax::closestParameters(p0, p1, q0, q1, a, b);
         return glm::length((p0 + a * (p1 - p0)) - (q0 + b * (q1 - q0)));
@@ -153,7 +166,8 @@ struct State {
     double largestMove(const Vec& d) const {
         double m = 0;
         for (size_t i = 0; i < c.n; ++i)
-            m = std::max(m, glm::length(M * glm::dvec3(d[Eigen::Index(3 * i)], d[Eigen::Index(3 * i + 1)], d[Eigen::Index(3 * i + 2)])));
+            m = std::max(m, glm::length(M * glm::dvec3(d[Eigen::Index(3 * i)], d[Eigen::Index(3 * i + 1)],
+                                                       d[Eigen::Index(3 * i + 2)])));
         return m;
     }
 };
@@ -320,8 +334,8 @@ LatticeRelaxResult LatticeCell::relax(const glm::dmat2& F, const std::vector<glm
     result.minDistance = closest;
     result.points.resize(c.n);
     for (size_t i = 0; i < c.n; ++i)
-        result.points[i] = glm::dvec3(v[Eigen::Index(3 * i)], v[Eigen::Index(3 * i + 1)], v[Eigen::Index(3 * i + 2)]) *
-                           c.radius;
+        result.points[i] =
+            glm::dvec3(v[Eigen::Index(3 * i)], v[Eigen::Index(3 * i + 1)], v[Eigen::Index(3 * i + 2)]) * c.radius;
     return result;
 }
 

@@ -119,6 +119,7 @@ DeformStats StrainDeformer::apply(const Binding& b, const std::vector<glm::dvec3
     // 3. Per yarn vertex.
     enum : uint8_t { kZero = 0, kMoved = 1, kClamped = 2, kDegenerate = 4 };
     std::vector<uint8_t> flag(b.vertexCount(), kZero);
+    const StrainLookup lookup(*table_);
     glm::dvec3* points = yarns.curves.points.data();
     const glm::dvec3* normals = yarns.normals.data();
     tbb::parallel_for(tbb::blocked_range<size_t>(0, b.vertexCount(), 16384), [&](const tbb::blocked_range<size_t>& r) {
@@ -133,7 +134,7 @@ DeformStats StrainDeformer::apply(const Binding& b, const std::vector<glm::dvec3
             const Strain s = strainOf(b0 * C[t.x] + b1 * C[t.y] + b2 * C[t.z]);
             if (nearZero(s)) continue;
             bool clamped = false;
-            const glm::dvec4 d = lookupStrainTable(*table_, cellVertex_[i], s, &clamped) - zero_[cellVertex_[i]];
+            const glm::dvec4 d = lookup(cellVertex_[i], s, clamped) - zero_[cellVertex_[i]];
             const glm::dvec3 fx = b0 * Fx[t.x] + b1 * Fx[t.y] + b2 * Fx[t.z];
             const glm::dvec3 fy = b0 * Fy[t.x] + b1 * Fy[t.y] + b2 * Fy[t.z];
             points[i] += scale_ * (d.x * fx + d.y * fy + d.z * normals[i]);

@@ -16,7 +16,8 @@ Strain strainOf(const glm::dmat2& C) {
 }
 
 glm::dmat2 latticeMap(const Strain& s) {
-    return glm::dmat2(glm::dvec2(1 + s.sx, 0.0), (1 + s.sy) * glm::dvec2(s.sa, std::sqrt(std::max(0.0, 1 - s.sa * s.sa))));
+    return glm::dmat2(glm::dvec2(1 + s.sx, 0.0),
+                      (1 + s.sy) * glm::dvec2(s.sa, std::sqrt(std::max(0.0, 1 - s.sa * s.sa))));
 }
 
 namespace {
@@ -67,6 +68,69 @@ glm::dvec4 lookupStrainTable(const StrainTable& table, uint32_t vertex, const St
         }
         if (w == 0) continue;
         const float* row = &table.data[4 * (base + k[0] + nx * k[1] + nx * na * k[2])];
+        out += w * glm::dvec4(row[0], row[1], row[2], row[3]);
+    }
+    return out;
+}
+
+StrainLookup::StrainLookup(const StrainTable& table) : data_(table.data.data()) {
+    size_t stride = 4;
+    for (size_t a = 0; a < 3; ++a) {
+        const std::vector<double>& v = table.axes[a];
+        Axis& ax = axes_[a];
+        ax.values = &v;
+        ax.first = v.front();
+        ax.last = v.back();
+        ax.stride = stride;
+        stride *= v.size();
+        ax.even = v.size() >= 2;
+        const double step = v.size() >= 2 ? (v.back() - v.front()) / double(v.size() - 1) : 0.0;
+        for (size_t i = 1; ax.even && i < v.size(); ++i)
+            ax.even = std::abs(v[i] - (v.front() + double(i) * step)) <= 1e-9 * std::max(1.0, std::abs(step));
+        ax.inverseStep = ax.even ? 1.0 / step : 0.0;
+    }
+    vertexStride_ = stride;
+}
+
+glm::dvec4 StrainLookup::operator()(uint32_t vertex, const Strain& s, bool& clamped) const {
+    const double value[3] = {s.sx, s.sa, s.sy};
+    size_t offset = vertexStride_ * size_t(vertex);
+    double t[3] = {0, 0, 0};
+    size_t step[3] = {0, 0, 0};
+    for (int a = 0; a < 3; ++a) {
+        const Axis& ax = axes_[a];
+        size_t i = 0;
+        if (ax.even) {
+            double v = value[a];
+            if (!(v >= ax.first)) {
+                clamped = clamped || !(v >= ax.first - 1e-9);
+                v = ax.first;
+            } else if (v > ax.last) {
+                clamped = clamped || v > ax.last + 1e-9;
+                v = ax.last;
+            }
+            const size_t n = ax.values->size();
+            const double f = (v - ax.first) * ax.inverseStep;
+            i = std::min(size_t(std::max(f, 0.0)), n - 2);
+            t[a] = std::min(std::max(f - double(i), 0.0), 1.0);
+            step[a] = ax.stride;
+        } else {
+            locate(*ax.values, value[a], i, t[a], clamped);
+            step[a] = ax.values->size() > 1 ? ax.stride : 0;
+        }
+        offset += i * ax.stride;
+    }
+    glm::dvec4 out(0.0);
+    for (int corner = 0; corner < 8; ++corner) {
+        double w = 1;
+        size_t o = offset;
+        for (int a = 0; a < 3; ++a) {
+            const bool up = (corner >> a) & 1;
+            w *= up ? t[a] : 1 - t[a];
+            o += up ? step[a] : 0;
+        }
+        if (w == 0) continue;
+        const float* row = data_ + o;
         out += w * glm::dvec4(row[0], row[1], row[2], row[3]);
     }
     return out;

@@ -121,7 +121,9 @@ StrainTable makeStrainTable(const Pattern& pattern, const StrainTableOptions& op
                   linspace(options.syRange, options.samples[2])};
     const Index3 n = options.samples;
     const size_t total = table.samples();
-    const auto flat = [&](const Index3& i) { return size_t(i[0]) + size_t(n[0]) * (size_t(i[1]) + size_t(n[1]) * size_t(i[2])); };
+    const auto flat = [&](const Index3& i) {
+        return size_t(i[0]) + size_t(n[0]) * (size_t(i[1]) + size_t(n[1]) * size_t(i[2]));
+    };
 
     // 1. The rest cell: relaxed on the undeformed lattice; every displacement is against it.
     const impl::LatticeRelaxResult rest = restCell.relax(glm::dmat2(1.0), {});
@@ -178,8 +180,8 @@ double estimateStrainTableSeconds(const Pattern& pattern, const StrainTableOptio
     const auto t1 = std::chrono::steady_clock::now();
     cell.relax(latticeMap({options.sxRange[1], options.saRange[1], options.syRange[1]}), rest.points);
     const auto t2 = std::chrono::steady_clock::now();
-    const double perSample = 0.5 * (std::chrono::duration<double>(t1 - t0).count() +
-                                    std::chrono::duration<double>(t2 - t1).count());
+    const double perSample =
+        0.5 * (std::chrono::duration<double>(t1 - t0).count() + std::chrono::duration<double>(t2 - t1).count());
     const double samples = double(options.samples[0]) * options.samples[1] * options.samples[2];
     const unsigned threads = std::max(1U, std::thread::hardware_concurrency());
     return perSample * samples / double(threads);

@@ -89,8 +89,8 @@ NpyArray parseNpyHeader(const std::string& npy, const std::string& source) {
     const uint64_t bytes = a.rows > kMaxTableBytes ? 0 : a.rows * 4 * (a.doubles ? 8 : 4);
     if (a.rows > kMaxTableBytes || bytes != npy.size() - a.dataOffset) {
         std::ostringstream m;
-        m << source << ": the .npy header declares " << a.rows << " rows of 4 (" << bytes << " bytes) but the file holds "
-          << npy.size() - a.dataOffset << " bytes of data";
+        m << source << ": the .npy header declares " << a.rows << " rows of 4 (" << bytes
+          << " bytes) but the file holds " << npy.size() - a.dataOffset << " bytes of data";
         throw Error(m.str());
     }
     return a;
@@ -137,7 +137,8 @@ AxesFile parseAxes(const std::string& text, const std::string& source) {
                 throw Error(where + ": '" + token + "' is not a finite number");
             std::vector<double>& a = f.axes[axis];
             if (!a.empty() && !(v > a.back()))
-                throw Error(where + ": the sample values must increase (" + token + " after " + std::to_string(a.back()) + ")");
+                throw Error(where + ": the sample values must increase (" + token + " after " +
+                            std::to_string(a.back()) + ")");
             if (a.size() >= 4096) throw Error(where + ": more than 4096 samples");
             a.push_back(v);
         }
@@ -151,10 +152,12 @@ AxesFile parseAxes(const std::string& text, const std::string& source) {
 
 std::string readWhole(const std::string& path, const std::string& what) {
     std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec)) throw Error("cannot read " + what + " '" + path + "': no such file");
+    if (!std::filesystem::is_regular_file(path, ec))
+        throw Error("cannot read " + what + " '" + path + "': no such file");
     const uintmax_t size = std::filesystem::file_size(path, ec);
     if (ec) throw Error("cannot read " + what + " '" + path + "': " + ec.message());
-    if (size > kMaxTableBytes) throw Error(path + ": " + std::to_string(size) + " bytes; a strain table is at most 2 GiB");
+    if (size > kMaxTableBytes)
+        throw Error(path + ": " + std::to_string(size) + " bytes; a strain table is at most 2 GiB");
     std::ifstream in(path, std::ios::binary);
     std::string bytes(size_t(size), '\0');
     if (!in || !in.read(bytes.data(), std::streamsize(size))) throw Error("cannot read " + what + " '" + path + "'");
@@ -268,8 +271,8 @@ void checkStrainTable(const StrainTable& table, const Pattern& pattern) {
     if (table.vertexCount != pattern.points.size())
         throw Error("the strain table '" + table.source + "' is for " + std::to_string(table.vertexCount) +
                     " cell vertices; the pattern '" + pattern.name + "' has " + std::to_string(pattern.points.size()));
-    if (table.px > 0 && (std::abs(table.px - pattern.px) > 1e-6 * pattern.px ||
-                         std::abs(table.py - pattern.py) > 1e-6 * pattern.py)) {
+    if (table.px > 0 &&
+        (std::abs(table.px - pattern.px) > 1e-6 * pattern.px || std::abs(table.py - pattern.py) > 1e-6 * pattern.py)) {
         std::ostringstream m;
         m << "the strain table '" << table.source << "' was made for the period " << table.px << " x " << table.py
           << " m; the pattern '" << pattern.name << "' has " << pattern.px << " x " << pattern.py << " m";

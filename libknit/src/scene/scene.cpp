@@ -174,8 +174,8 @@ private:
     // Step: the strain table's displacements added to the evaluated yarns (the rest mesh itself
     // may be strained against the pattern's layout: a non-isometric UV layout).
     void deform() {
-        auto deformer = std::make_shared<const StrainDeformer>(s_.mesh_, s_.pattern_, s_.placement_,
-                                                               s_.bound_.binding, options_.deform.table);
+        auto deformer = std::make_shared<const StrainDeformer>(s_.mesh_, s_.pattern_, s_.placement_, s_.bound_.binding,
+                                                               options_.deform.table);
         s_.deformStats_ = deformer->apply(s_.bound_.binding, s_.mesh_.positions, s_.yarns_);
         s_.deformer_ = std::move(deformer);
     }
