@@ -22,6 +22,7 @@
 #include "knit/chart_topology.hpp"
 #include "knit/error.hpp"
 #include "knit/pattern.hpp"
+#include "knit/strain.hpp"
 #include "knit/uv_grid.hpp"
 #ifdef KNIT_FUZZ_HAVE_RENDER_CHECK
 #include <stdexcept>
@@ -52,6 +53,30 @@ inline Outcome runPyp(const uint8_t* data, size_t size) {
     try {
         splitAtPeriodicEdges(p);
     } catch (const Error&) {
+    }
+    return Outcome::Parsed;
+}
+
+// Strain table: the input is the axes text, then the .npy bytes from their "\x93NUMPY" magic on
+// (no magic: all axes text, no .npy). On success, lookups anywhere (inside, outside, NaN) are
+// finite and the table describes itself consistently.
+inline Outcome runStrainTable(const uint8_t* data, size_t size) {
+    if (size > kMaxInput) return Outcome::Rejected;
+    const std::string all(reinterpret_cast<const char*>(data), size);
+    const size_t magic = all.find("\x93NUMPY");
+    const std::string axes = all.substr(0, magic), npy = magic == std::string::npos ? "" : all.substr(magic);
+    StrainTable t;
+    try {
+        t = parseStrainTable(npy, axes, "fuzz.npy");
+    } catch (const Error&) {
+        return Outcome::Rejected;
+    }
+    if (t.data.size() != 4 * t.vertexCount * t.samples()) throw std::logic_error("table size does not match its axes");
+    const double nan = std::nan("");
+    for (const Strain s : {Strain{0, 0, 0}, Strain{-5, 2, 9}, Strain{nan, nan, nan}, Strain{1e300, -1e300, 0.5}}) {
+        bool clamped = false;
+        const glm::dvec4 d = lookupStrainTable(t, uint32_t(t.vertexCount - 1), s, &clamped);
+        if (!std::isfinite(d.x + d.y + d.z + d.w)) throw std::logic_error("non-finite lookup");
     }
     return Outcome::Parsed;
 }

@@ -154,6 +154,7 @@ struct FrameRecord {
     int number = 0;
     double seconds = 0;
     FrameStats stats;
+    DeformStats deform;
 };
 
 struct StageTotals {
@@ -197,7 +198,18 @@ nlohmann::json animateReport(double bindSeconds, const std::vector<FrameRecord>&
         if (stats) {
             list.back()["maxStretch"] = f.stats.maxStretch;
             list.back()["minYarnDistance"] = distanceJson(f.stats.minYarnDistance);
+            list.back()["yarnLengthRatio"] = f.stats.yarnLengthRatio;
         }
+        if (animator.rest().deformer())
+            list.back()["clampedFraction"] = f.deform.total ? double(f.deform.clamped) / double(f.deform.total) : 0.0;
+    }
+    if (const auto& d = animator.rest().deformer()) {
+        const StrainTable& t = d->table();
+        report["deform"] = {{"mode", "strain"},
+                            {"strain_table", t.source},
+                            {"samples", {t.axes[0].size(), t.axes[1].size(), t.axes[2].size()}}};
+    } else {
+        report["deform"] = {{"mode", "none"}};
     }
     return report;
 }
@@ -219,11 +231,13 @@ std::vector<FrameRecord> runFrames(const FrameSequence& seq, const Animator& ani
         const auto t1 = Clock::now();
         sink.write(seq.frame(i).number, mesh, frame);
         totals.write += since(t1);
-        records.push_back({seq.frame(i).number, since(t0), frame.stats});
+        records.push_back({seq.frame(i).number, since(t0), frame.stats, frame.deform});
         if (!quiet && animator.options().stats)
-            std::fprintf(stderr, "frame %d (%zu/%zu): %.3f s, max stretch %.4g, min yarn distance %.4g\n",
-                         seq.frame(i).number, i + 1, seq.size(), records.back().seconds, frame.stats.maxStretch,
-                         frame.stats.minYarnDistance);
+            std::fprintf(
+                stderr,
+                "frame %d (%zu/%zu): %.3f s, max stretch %.4g, min yarn distance %.4g, yarn length ratio %.4g\n",
+                seq.frame(i).number, i + 1, seq.size(), records.back().seconds, frame.stats.maxStretch,
+                frame.stats.minYarnDistance, frame.stats.yarnLengthRatio);
         else if (!quiet)
             std::fprintf(stderr, "frame %d (%zu/%zu): %.3f s\n", seq.frame(i).number, i + 1, seq.size(),
                          records.back().seconds);

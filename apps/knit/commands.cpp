@@ -9,6 +9,7 @@ void addCommands(CLI::App& app, Commands& c) {
     addInfoCommand(app, c.info);
     addGenerateCommand(app, c.generate);
     addChartCommand(app, c.chart);
+    addStrainTableCommand(app, c.strainTable);
 #ifdef KNIT_HAVE_RENDER_CHECK
     addRenderCommand(app, c.render);
 #endif
@@ -21,6 +22,7 @@ int runCommand(const Commands& c) {
     if (*c.info.command) return runInfo(c.info);
     if (*c.generate.command) return runGenerate(c.generate);
     if (*c.chart.command) return runChart(c.chart);
+    if (*c.strainTable.command) return runStrainTable(c.strainTable);
     if (*c.build.command) return runBuild(c.build);
     if (*c.animate.command) return runAnimate(c.animate);
 #ifdef KNIT_HAVE_RENDER_CHECK

@@ -2,12 +2,15 @@
 #include "info_command.hpp"
 
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 
 #include <nlohmann/json.hpp>
 
 #include "knit/generator.hpp"
 #include "knit/pattern.hpp"
+#include "knit/strain.hpp"
+#include "strain_table_command.hpp"
 
 namespace knit::cli {
 namespace {
@@ -42,12 +45,29 @@ void printText(const Pattern& p, const PatternInfo& info) {
 
 void addInfoCommand(CLI::App& app, InfoCommand& i) {
     i.command = app.add_subcommand(
-        "info", "Describe a pattern: period, radius, counts, edges crossing each side, loops of a 1x1 tiling");
-    i.command->add_option("pattern", i.pattern, "Pattern file (.pyp / .json) or built-in name")->required();
+        "info",
+        "Describe a pattern (period, radius, counts, edges crossing each side, loops of a 1x1 tiling) or a strain "
+        "table (.npy or a sxsasy/ folder)");
+    i.command->add_option("pattern", i.pattern, "Pattern file (.pyp / .json), built-in name or strain table")
+        ->required();
     i.command->add_flag("--json", i.json, "Print JSON");
 }
 
+namespace {
+// A strain table: a .npy file, or a folder holding data.npy (MADYPG's sxsasy/).
+bool isStrainTable(const std::string& path) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec))
+        return std::filesystem::exists(std::filesystem::path(path) / "data.npy", ec);
+    return path.size() > 4 && path.compare(path.size() - 4, 4, ".npy") == 0;
+}
+}  // namespace
+
 int runInfo(const InfoCommand& i) {
+    if (isStrainTable(i.pattern)) {
+        printStrainTableInfo(loadStrainTable(i.pattern), i.json);
+        return 0;
+    }
     const Pattern p = loadPatternFileOrName(i.pattern);
     const PatternInfo info = describePattern(p);
     if (i.json) printJson(p, info);

@@ -90,6 +90,19 @@ nlohmann::json sceneReport(const Scene& s, const SceneStats& st) {
                       {"center_radius", pl.centerRadius},
                       {"pitch", pl.pitch}};
     }
+    // Strain-aware deformation: the mode, the table and what it did on this mesh.
+    const DeformStats& ds = s.deformStats();
+    if (s.deformer()) {
+        const StrainTable& t = s.deformer()->table();
+        j["deform"] = {{"mode", "strain"},
+                       {"strain_table", t.source},
+                       {"samples", {t.axes[0].size(), t.axes[1].size(), t.axes[2].size()}},
+                       {"displaced_vertices", ds.vertices},
+                       {"clamped_fraction", ds.total ? double(ds.clamped) / double(ds.total) : 0.0},
+                       {"degenerate_vertices", ds.degenerate}};
+    } else {
+        j["deform"] = {{"mode", "none"}};
+    }
     // Step 3: wall time per stage and in all.
     nlohmann::json times = nlohmann::json::object();
     for (const StageTime& t : st.stageTimes) times[t.stage] = t.seconds;

@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "choice.hpp"
+#include "strain_table_command.hpp"
 #include "knit/base_mesh.hpp"
 #include "knit/error.hpp"
 #include "knit/generator.hpp"
@@ -67,8 +68,50 @@ void addSceneFlags(CLI::App& cmd, SceneFlags& f) {
     cmd.add_option("--max-memory", f.maxMemory,
                    "Memory budget (8G, 512M, ...; default min(4G, half the physical memory)): steps estimated to need "
                    "more are refused");
+    cmd.add_option("--deform", f.deform,
+                   "How yarns follow a strained surface: none (mapped with it, stretching like rubber) or strain (they "
+                   "slide and bend as the pattern's strain table says; made on the spot without --strain-table). "
+                   "Default: strain with --strain-table, else none")
+        ->check(CLI::IsMember({"none", "strain"}));
+    cmd.add_option(
+        "--strain-table", f.strainTable,
+        "Strain table of the pattern: a file made by `knit strain-table` (T.npy) or a MADYPG sxsasy/ folder");
     cmd.add_flag("-q,--quiet", f.quiet, "No progress output on stderr");
 }
+
+namespace {
+
+// The deform mode and its table: given, made now (--deform strain alone), or none with a note
+// naming the command that makes one.
+void resolveDeform(const SceneFlags& f, SceneOptions& o) {
+    if (f.deform == "none") return;
+    if (!f.strainTable.empty()) {
+        o.deform.mode = DeformMode::Strain;
+        o.deform.table = std::make_shared<const StrainTable>(loadStrainTable(f.strainTable));
+        return;
+    }
+    if (f.deform == "strain") {
+        StrainTableStats stats;
+        const Pattern pattern = loadPatternFileOrName(o.pattern);
+        o.deform.mode = DeformMode::Strain;
+        o.deform.table =
+            std::make_shared<const StrainTable>(makeTableWithProgress(pattern, StrainTableOptions{}, f.quiet, stats));
+        if (!f.quiet)
+            std::fprintf(stderr,
+                         "knit: made the strain table in %.1f s (not kept; `knit strain-table --pattern %s -o T.npy` "
+                         "makes one to reuse with --strain-table T.npy)\n",
+                         stats.seconds, o.pattern.c_str());
+        return;
+    }
+    if (!f.quiet)
+        std::fprintf(stderr,
+                     "knit: note: yarns follow the surface geometrically (--deform none: no strain table given); for "
+                     "yarns that slide instead of stretching: `knit strain-table --pattern %s -o T.npy`, then "
+                     "--strain-table T.npy (or --deform strain to make one now)\n",
+                     o.pattern.c_str());
+}
+
+}  // namespace
 
 SceneOptions resolveScene(const SceneFlags& f) {
     SceneOptions o = f.scene;
@@ -80,6 +123,7 @@ SceneOptions resolveScene(const SceneFlags& f) {
     if (f.meshRes > 0) o.meshOptions.resU = o.meshOptions.resV = f.meshRes;
     o.bind.weld = !f.noWeld;
     if (!f.maxMemory.empty()) o.budget = MemoryBudget(parseMemorySize(f.maxMemory));
+    resolveDeform(f, o);
     if (!f.quiet)
         o.progress = [](const std::string& stage, int index, int total) {
             std::fprintf(stderr, "[%d/%d] %s\n", index + 1, total, stage.c_str());

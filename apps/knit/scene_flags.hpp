@@ -22,12 +22,14 @@ struct SceneFlags {
     int meshRes = 0;              // 0: the built-in meshes' default
     bool noWeld = false;
     bool quiet = false;
-    std::string maxMemory;  // empty: MemoryBudget's default
+    std::string maxMemory;    // empty: MemoryBudget's default
+    std::string deform;       // empty (none unless a table is given), "none" or "strain"
+    std::string strainTable;  // empty, or a table file / MADYPG sxsasy/ folder
 };
 
 // Registers --pattern --mesh --repeats --gauge --mesh-res --plies --ply-pitch --ply-radius
 // --ply-center-radius --twist --samples-per-turn --clamp-tolerance --weld-tolerance --no-weld
-// --max-memory -q.
+// --max-memory --deform --strain-table -q.
 void addSceneFlags(CLI::App& command, SceneFlags& flags);
 
 // The scene options the parsed flags ask for (with stage progress on stderr unless --quiet).

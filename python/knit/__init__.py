@@ -17,6 +17,7 @@ from ._knit import (  # noqa: F401
     Pattern,
     Plies,
     Scene,
+    StrainTable,
     Yarns,
     build_scene,
     builtin_charts,
@@ -27,7 +28,9 @@ from ._knit import (  # noqa: F401
     chart_floats,
     chart_pattern,
     load_pattern,
+    load_strain_table,
     make_plies,
+    strain_table,
     uv_to_metre_scale,
     vertex_normals,
 )

@@ -56,6 +56,7 @@ PYBIND11_MODULE(_knit, m) {
     });
     knitpy::registerPatternAndMesh(m);
     knitpy::registerCurves(m);
+    knitpy::registerStrain(m);
     knitpy::registerScene(m);
     knitpy::registerExport(m);
 }

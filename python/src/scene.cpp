@@ -31,8 +31,32 @@ struct SceneArgs {
     int resU = 32, resV = 32;
     double clampTolerance = 0.01, weldTolerance = 0.25;
     bool weld = true;
-    std::string maxMemory;  // "" = the default budget, else a size ("8G")
+    std::string maxMemory;    // "" = the default budget, else a size ("8G")
+    std::string deform = "";  // "", "none" or "strain"
+    py::object strainTable;   // None, a path or a StrainTable
 };
+
+// deform / strain_table as the CLI's --deform / --strain-table: a table given means strain unless
+// deform is "none"; deform "strain" without a table makes one.
+void resolveDeform(const SceneArgs& a, const py::object& pattern, knit::SceneOptions& o) {
+    if (a.deform != "" && a.deform != "none" && a.deform != "strain")
+        throw knit::Error("deform must be 'none' or 'strain', got '" + a.deform + "'");
+    if (a.deform == "none") return;
+    if (!a.strainTable.is_none()) {
+        o.deform.mode = knit::DeformMode::Strain;
+        o.deform.table =
+            py::isinstance<py::str>(a.strainTable)
+                ? std::make_shared<const knit::StrainTable>(knit::loadStrainTable(a.strainTable.cast<std::string>()))
+                : std::shared_ptr<const knit::StrainTable>(a.strainTable.cast<std::shared_ptr<knit::StrainTable>>());
+    } else if (a.deform == "strain") {
+        const knit::Pattern p = py::isinstance<py::str>(pattern)
+                                    ? knit::loadPatternFileOrName(pattern.cast<std::string>())
+                                    : pattern.cast<knit::Pattern>();
+        py::gil_scoped_release release;
+        o.deform.mode = knit::DeformMode::Strain;
+        o.deform.table = std::make_shared<const knit::StrainTable>(knit::makeStrainTable(p, {}));
+    }
+}
 
 knit::SceneOptions toSceneOptions(const SceneArgs& a) {
     knit::SceneOptions o;
@@ -54,6 +78,7 @@ knit::SceneOptions toSceneOptions(const SceneArgs& a) {
 // Runs the pipeline; `pattern` / `mesh` are names or files (str) or Pattern / Mesh objects.
 ScenePtr buildScene(const py::object& pattern, const py::object& mesh, const SceneArgs& args) {
     knit::SceneOptions options = toSceneOptions(args);
+    resolveDeform(args, pattern, options);
     const bool inMemory = !py::isinstance<py::str>(pattern) || !py::isinstance<py::str>(mesh);
     if (!inMemory) {
         options.pattern = pattern.cast<std::string>();
@@ -92,12 +117,13 @@ public:
 
     // The Animator for the yarns (plies false) or the plies; call without the GIL (making the
     // ply one resamples every rest yarn).
-    const knit::Animator& get(bool plies) {
-        Slot& slot = plies ? plies_ : yarns_;
+    const knit::Animator& get(bool plies, bool deform = true) {
+        Slot& slot = plies ? (deform ? plies_ : pliesGeometric_) : (deform ? yarns_ : yarnsGeometric_);
         const std::lock_guard<std::mutex> lock(slot.mutex);
         if (!slot.animator) {
             knit::AnimatorOptions o;
             o.plies = plies;
+            o.deform = deform;
             o.stats = false;  // the frame statistics are knit animate's report
             slot.animator = std::make_unique<knit::Animator>(*scene_, o);
         }
@@ -109,8 +135,8 @@ private:
         std::mutex mutex;
         std::unique_ptr<const knit::Animator> animator;
     };
-    ScenePtr scene_;  // the Animators refer to it: kept alive with them
-    Slot yarns_, plies_;
+    ScenePtr scene_;                                        // the Animators refer to it: kept alive with them
+    Slot yarns_, plies_, yarnsGeometric_, pliesGeometric_;  // with and without the strain deformer
 };
 
 // The SceneAnimators of a Python Scene, in its __dict__ (made on first call; the GIL held).
@@ -124,12 +150,25 @@ std::shared_ptr<SceneAnimators> animatorsOf(const py::object& self) {
 }
 
 // The frame of `positions` evaluated by the scene's yarn or ply Animator (GIL released).
-knit::AnimationFrame evaluateFrame(const py::object& self, const py::array& positions, bool plies) {
-    const auto p = framePositions(self.cast<const knit::Scene&>(), positions);
+// deform: None (the scene's own mode), "none" (the geometric mapping) or "strain" (the scene must
+// have been built with a strain table).
+knit::AnimationFrame evaluateFrame(const py::object& self, const py::array& positions, bool plies,
+                                   const py::object& deform = py::none()) {
+    const knit::Scene& scene = self.cast<const knit::Scene&>();
+    bool useDeformer = true;
+    if (!deform.is_none()) {
+        const std::string d = deform.cast<std::string>();
+        if (d != "none" && d != "strain") throw knit::Error("deform must be 'none' or 'strain', got '" + d + "'");
+        if (d == "strain" && !scene.deformer())
+            throw knit::Error("deform='strain' needs a scene built with a strain table (build_scene(..., "
+                              "strain_table=...) or deform='strain')");
+        useDeformer = d == "strain";
+    }
+    const auto p = framePositions(scene, positions);
     const std::shared_ptr<SceneAnimators> animators = animatorsOf(self);
     py::gil_scoped_release release;
     knit::AnimationFrame frame;
-    animators->get(plies).evaluate(p, frame);
+    animators->get(plies, useDeformer).evaluate(p, frame);
     return frame;
 }
 
@@ -186,13 +225,15 @@ void registerSceneClass(py::module_& m) {
         .def_property_readonly("stats", &sceneStatsDict, "counts and stage times (the `knit build` report's numbers)")
         .def(
             "evaluate",
-            [](const py::object& self, const py::array& positions) {
-                return std::move(evaluateFrame(self, positions, false).yarns);
+            [](const py::object& self, const py::array& positions, const py::object& deform) {
+                return std::move(evaluateFrame(self, positions, false, deform).yarns);
             },
-            "positions"_a,
+            "positions"_a, "deform"_a = py::none(),
             "The yarns on new vertex positions (n, 3) float32/float64 of the scene's mesh (same "
             "connectivity): normals of the posed mesh, then the binding (the first steps of knit animate's "
-            "frame). Returns Yarns. Thread-safe: runs without the GIL, concurrently with other evaluations. "
+            "frame). deform: None (the scene's mode), 'none' (the geometric mapping) or 'strain' (the strain "
+            "table the scene was built with). Returns Yarns. Thread-safe: runs without the GIL, concurrently with "
+            "other evaluations. "
             "Raises knit.Error.")
         .def(
             "evaluate_plies",
@@ -241,24 +282,28 @@ void registerScene(py::module_& m) {
         "build_scene",
         [](const py::object& pattern, const py::object& mesh, const py::object& repeats, int plies, double plyPitch,
            const std::string& twist, double plyRadius, double centerRadius, int samplesPerTurn, bool buildPlies,
-           int resU, int resV, double clampTolerance, bool weld, double weldTolerance, const std::string& maxMemory) {
+           int resU, int resV, double clampTolerance, bool weld, double weldTolerance, const std::string& maxMemory,
+           const std::string& deform, const py::object& strainTable) {
             SceneArgs a{repeats,       {plies, plyPitch, twist, plyRadius, centerRadius, samplesPerTurn},
                         buildPlies,    resU,
                         resV,          clampTolerance,
                         weldTolerance, weld,
-                        maxMemory};
+                        maxMemory,     deform,
+                        strainTable};
             return buildScene(pattern, mesh, a);
         },
         "pattern"_a = "stockinette", "mesh"_a = "drape", "repeats"_a = py::none(), "plies"_a = 2, "ply_pitch"_a = 0.0,
         "twist"_a = "S", "ply_radius"_a = 0.0, "center_radius"_a = 0.0, "samples_per_turn"_a = 12,
         "build_plies"_a = true, "res_u"_a = 32, "res_v"_a = 32, "clamp_tolerance"_a = 0.01, "weld"_a = true,
-        "weld_tolerance"_a = 0.25, "max_memory"_a = "",
+        "weld_tolerance"_a = 0.25, "max_memory"_a = "", "deform"_a = "", "strain_table"_a = py::none(),
         "Runs the pipeline: load pattern -> load mesh -> placement -> UV grid -> tiling -> stitch -> "
         "binding -> evaluation -> plies. pattern / mesh: a file or built-in name, or a Pattern / Mesh. "
         "repeats: (U, V) pattern periods across the UV square, None = the pattern's physical size. "
         "plies: plies per yarn; ply_pitch 0 = 6 yarn radii; twist 'S' or 'Z'. max_memory: the memory budget "
         "as a size ('8G', '512M'; '' = min(4 GiB, half the physical memory)): a step whose "
-        "estimated size is over it raises knit.Error before allocating. Raises knit.Error.");
+        "estimated size is over it raises knit.Error before allocating. deform: 'none', 'strain' or '' (strain when "
+        "strain_table is given, else none); strain_table: a path (T.npy or a MADYPG sxsasy/ folder) or a "
+        "StrainTable; deform='strain' without one makes a table first. Raises knit.Error.");
     m.def("_evaluate_seconds_in_cpp", &evaluateSecondsInCpp, "scene"_a, "positions"_a, "repeats"_a = 1,
           "Timing aid: seconds of `repeats` evaluations made in C++ (what Scene.evaluate runs).");
 }

@@ -58,6 +58,7 @@ TEST(FuzzCorpus, objCorpusParsesOrThrowsKnitError) { replay("obj", runObj); }
 TEST(FuzzCorpus, plyCorpusParsesOrThrowsKnitError) { replay("ply", runPly); }
 TEST(FuzzCorpus, offCorpusParsesOrThrowsKnitError) { replay("off", runOff); }
 TEST(FuzzCorpus, gltfCorpusParsesOrThrowsKnitError) { replay("gltf", runGltf); }
+TEST(FuzzCorpus, strainTableCorpusParsesOrThrowsKnitError) { replay("strain_table", runStrainTable); }
 TEST(FuzzCorpus, gltfAnimationCorpusParsesOrThrowsKnitError) { replay("gltf_animation", runGltfAnimation); }
 TEST(FuzzCorpus, chartCorpusParsesOrThrowsKnitError) { replay("chart", runChart); }
 #ifdef KNIT_FUZZ_HAVE_RENDER_CHECK

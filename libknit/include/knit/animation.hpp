@@ -131,6 +131,9 @@ struct AnimatorOptions {
     // too, no resampling at bind time or per frame).
     bool plies = true;
     bool stats = true;  // compute FrameStats per frame
+    // Apply the rest scene's strain deformer (SceneOptions::deform) on every frame; false: the
+    // geometric mapping even for a scene built with a strain table.
+    bool deform = true;
     // minYarnDistance looks for other yarns up to this distance (yarn diameters); a frame with
     // none that close reports +infinity.
     double distanceCutoff = 2.0;
@@ -147,6 +150,8 @@ struct FrameStats {
     // the resampled centrelines (spacing pitch / samplesPerTurn); +infinity when none is within
     // distanceCutoff.
     double minYarnDistance = 0.0;
+    // Total yarn length (between binding vertices) over the rest scene's.
+    double yarnLengthRatio = 1.0;
 };
 
 // Wall time of the per-frame stages of one evaluate call.
@@ -177,6 +182,7 @@ struct AnimationFrame {
     Polylines centres;                    // resampled centrelines (fixed layout; with plies or stats)
     Plies plies;                          // fixed layout, yarn-major, ply-minor (no radial)
     FrameStats stats;
+    DeformStats deform;  // strain-aware deformation (when the rest scene has a deformer)
     DistanceScratch distance;
 };
 
@@ -230,6 +236,7 @@ private:
     std::vector<double> restLength_;          // per yarn: resampled rest length (closed: with the closing segment)
     std::vector<uint32_t> yarnOfCentre_;      // yarn of each resampled point
     std::vector<double> restSegment_;         // rest length of the segment from each yarn vertex (0: none)
+    double restTotalLength_ = 0;              // totalYarnLength of the rest yarns
     std::vector<size_t> plyOfYarn_;           // first ply point of each yarn
     std::vector<FrameSeed> restSeeds_;        // per yarn
     Plies plyTopology_;
@@ -238,6 +245,8 @@ private:
 // The statistics of a frame (what Animator::evaluate computes when options.stats is set):
 // `restSegment` per yarn vertex, `yarnOfCentre` and `restArc` per centre point, `yarnRadius`.
 double maxYarnStretch(const Polylines& yarns, const std::vector<double>& restSegment);
+// Total length of the curves (closed ones with their closing segment); the same for any thread count.
+double totalYarnLength(const Polylines& yarns);
 double minYarnDistance(const Polylines& centres, const std::vector<uint32_t>& yarnOfCentre,
                        const std::vector<double>& restArc, const std::vector<double>& restLength, double yarnRadius,
                        const AnimatorOptions& options, DistanceScratch& scratch);

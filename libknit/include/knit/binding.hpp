@@ -36,6 +36,11 @@ struct Binding {
     std::vector<double> height;
     std::vector<double> twist;
     std::vector<glm::vec3> colour;  // linear yarn colour per vertex; empty without colours
+    // Per vertex, the tiled pattern vertex it comes from (UvYarns::source: tile slot x pattern
+    // vertex count + pattern vertex; a boundary crossing: the vertex it leaves from), which
+    // strain-aware deformation (knit/strain.hpp) looks its displacement up by. Empty when the
+    // yarns had no sources.
+    std::vector<uint32_t> source;
     std::vector<uint32_t> offsets{0};
     std::vector<uint8_t> closed;
 

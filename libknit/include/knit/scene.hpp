@@ -14,6 +14,7 @@
 #include "knit/pattern.hpp"
 #include "knit/plies.hpp"
 #include "knit/stitch.hpp"
+#include "knit/strain.hpp"
 #include "knit/tiling.hpp"
 #include "knit/uv_grid.hpp"
 
@@ -39,6 +40,8 @@ struct SceneOptions {
     // Level of detail for a view (knit/detail.hpp): plies only for the pieces of yarn in ply-level
     // cells; none: the whole scene at full ply detail.
     std::optional<DetailOptions> detail;
+    // Strain-aware deformation of the yarns (knit/strain.hpp); none by default.
+    DeformOptions deform;
 };
 
 // What SceneOptions::detail made: the view used, the level of every cell and the yarn pieces per
@@ -109,6 +112,10 @@ public:
     // frames as the full scene does, also when it built no yarns), from the binding for a scene
     // made from parts.
     double yarnMargin() const;
+    // With SceneOptions::deform in Strain mode: the deformer (for animation) and what it did on
+    // the scene's own mesh; null / zeros otherwise.
+    const std::shared_ptr<const StrainDeformer>& deformer() const { return deformer_; }
+    const DeformStats& deformStats() const { return deformStats_; }
 
 private:
     friend class SceneBuilder;  // scene.cpp: runs the stages of buildScene into a Scene
@@ -126,6 +133,8 @@ private:
     PlyOptions plyOptions_;
     std::vector<StageTime> timings_;
     std::optional<SceneDetail> detail_;
+    std::shared_ptr<const StrainDeformer> deformer_;
+    DeformStats deformStats_;
 };
 
 // Runs: load pattern -> load mesh -> normals -> placement -> UV grid -> tiling -> stitch ->

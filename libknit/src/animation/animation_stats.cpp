@@ -55,6 +55,22 @@ double maxYarnStretch(const Polylines& yarns, const std::vector<double>& restSeg
     return best.combine([](double a, double b) { return std::max(a, b); });
 }
 
+double totalYarnLength(const Polylines& yarns) {
+    std::vector<double> perYarn(yarns.curveCount(), 0.0);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, yarns.curveCount(), 256), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t y = r.begin(); y < r.end(); ++y) {
+            const uint32_t first = yarns.begin(y), e = yarns.end(y);
+            double sum = 0;
+            for (uint32_t i = first; i + 1 < e; ++i) sum += glm::length(yarns.points[i + 1] - yarns.points[i]);
+            if (yarns.isClosed(y) && e - first > 2) sum += glm::length(yarns.points[first] - yarns.points[e - 1]);
+            perYarn[y] = sum;
+        }
+    });
+    double total = 0;
+    for (double l : perYarn) total += l;
+    return total;
+}
+
 namespace {
 
 // A point of the search in float, relative to the frame's first point (so a garment far from

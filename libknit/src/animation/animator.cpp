@@ -140,6 +140,7 @@ Animator::Animator(const Scene& rest, const AnimatorOptions& options) : rest_(re
             restSegment_[i] = glm::length(yarns.points[j] - yarns.points[i]);
         }
     }
+    restTotalLength_ = totalYarnLength(yarns);
 }
 
 void Animator::evaluate(const std::vector<dvec3>& positions, AnimationFrame& out, AnimationStageTimes* times) const {
@@ -160,6 +161,9 @@ void Animator::evaluate(const std::vector<dvec3>& positions, AnimationFrame& out
     // Step 2: the binding evaluated on the frame.
     t0 = Clock::now();
     evaluateBinding(rest_.binding(), mesh.faces, positions, out.meshNormals, out.yarns);
+    out.deform = {};
+    if (options_.deform && rest_.deformer())
+        out.deform = rest_.deformer()->apply(rest_.binding(), positions, out.yarns);
     t.evaluate = since(t0);
 
     // Step 3: the centrelines resampled with the rest layouts (for the plies and the statistics).
@@ -176,6 +180,7 @@ void Animator::evaluate(const std::vector<dvec3>& positions, AnimationFrame& out
     t0 = Clock::now();
     if (options_.stats) {
         out.stats.maxStretch = maxYarnStretch(out.yarns.curves, restSegment_);
+        out.stats.yarnLengthRatio = restTotalLength_ > 0 ? totalYarnLength(out.yarns.curves) / restTotalLength_ : 1.0;
         out.stats.minYarnDistance = minYarnDistance(out.centres, yarnOfCentre_, restArc_, restLength_,
                                                     rest_.yarnRadius(), options_, out.distance);
         t.stats = since(t0);

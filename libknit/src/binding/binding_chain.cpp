@@ -121,7 +121,8 @@ void fillBinding(const std::vector<Segment>& segments, size_t vertexCount, const
                  const PieceVertices& vertices, Binding& out) {
     tbb::parallel_invoke([&] { out.face.resize(vertexCount); }, [&] { out.bary.resize(vertexCount); },
                          [&] { out.height.resize(vertexCount); }, [&] { out.twist.resize(vertexCount); },
-                         [&] { out.colour.resize(vertices.colour ? vertexCount : 0); });
+                         [&] { out.colour.resize(vertices.colour ? vertexCount : 0); },
+                         [&] { out.source.resize(vertices.source ? vertexCount : 0); });
     tbb::parallel_for(tbb::blocked_range<size_t>(0, segments.size(), 16), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t k = r.begin(); k != r.end(); ++k) {
             const Segment& g = segments[k];
@@ -135,6 +136,7 @@ void fillBinding(const std::vector<Segment>& segments, size_t vertexCount, const
                 out.height[o] = v.height;
                 out.twist[o] = v.twist;
                 if (vertices.colour) out.colour[o] = vertices.colour[v.origin];
+                if (vertices.source) out.source[o] = vertices.source[v.origin];
             }
         }
     });

@@ -37,7 +37,8 @@ struct LocatedYarns {
     // The located vertices as pieces read them (heights and twists from `yarns`).
     PieceVertices vertices(const UvYarns& yarns) const {
         return {loc.get(), yarns.height.data(), yarns.twist.data(),
-                yarns.colour.empty() ? nullptr : yarns.colour.data()};
+                yarns.colour.empty() ? nullptr : yarns.colour.data(),
+                yarns.source.size() == yarns.vertexCount() ? yarns.source.data() : nullptr};
     }
 };
 

@@ -41,6 +41,7 @@ struct PieceVertices {
     const double* height = nullptr;
     const double* twist = nullptr;
     const glm::vec3* colour = nullptr;
+    const uint32_t* source = nullptr;  // tiled vertex id per yarn vertex (UvYarns::source); may be null
 
     BoundVertex vertex(size_t i) const {
         return BoundVertex{loc[i].point.face, loc[i].point.bary, height[i], twist[i], uint32_t(i)};

@@ -39,9 +39,11 @@ constexpr int kViewStages = 2;   // levels, detail (with a view)
 constexpr int kYarnStages = 4;   // tiling, stitch, binding, evaluate (skipped when no cell needs yarns)
 constexpr int kPlyStages = 1;    // plies (when asked for)
 
+int deformStages(const SceneOptions& options) { return options.deform.mode == DeformMode::Strain ? 1 : 0; }
+
 int stageCount(const SceneOptions& options, bool loadsInputs) {
     return (loadsInputs ? kInputStages : 0) + kGridStages + (options.detail ? kViewStages : 0) + kYarnStages +
-           (options.buildPlies ? kPlyStages : 0);
+           (options.buildPlies ? kPlyStages : 0) + deformStages(options);
 }
 
 bool needsYarns(const CellLevels& levels) {
@@ -75,6 +77,12 @@ public:
     }
     // The stages after the inputs, then the Scene.
     Scene finish() {
+        // A table that does not fit the pattern is refused before any work.
+        if (options_.deform.mode == DeformMode::Strain) {
+            if (!options_.deform.table)
+                throw Error("strain-aware deformation needs a strain table (the deform mode is strain)");
+            checkStrainTable(*options_.deform.table, s_.pattern_);
+        }
         run("normals", [&] { s_.normals_ = vertexNormals(s_.mesh_.positions, s_.mesh_.faces); });
         run("uv_grid", [&] { placeAndGrid(); });
         // With a view, the level of every cell comes first (it needs only the mesh, the grid and
@@ -88,8 +96,9 @@ public:
             run("evaluate", [&] {
                 evaluateBinding(s_.bound_.binding, s_.mesh_.faces, s_.mesh_.positions, s_.normals_, s_.yarns_);
             });
+            if (options_.deform.mode == DeformMode::Strain) run("deform", [&] { deform(); });
         } else {
-            total_ -= kYarnStages;  // progress: the yarn stages are skipped
+            total_ -= kYarnStages + deformStages(options_);  // progress: the yarn stages are skipped
         }
         if (s_.detail_) run("detail", [&] { pieces(); });
         plies();
@@ -160,6 +169,15 @@ private:
         BindOptions o = options_.bind;
         o.yarnRadius = s_.yarnRadius_;
         s_.bound_ = bindYarns(s_.mesh_, s_.normals_, s_.grid_, s_.stages_.uvYarns, o);
+    }
+
+    // Step: the strain table's displacements added to the evaluated yarns (the rest mesh itself
+    // may be strained against the pattern's layout: a non-isometric UV layout).
+    void deform() {
+        auto deformer = std::make_shared<const StrainDeformer>(s_.mesh_, s_.pattern_, s_.placement_, s_.bound_.binding,
+                                                               options_.deform.table);
+        s_.deformStats_ = deformer->apply(s_.bound_.binding, s_.mesh_.positions, s_.yarns_);
+        s_.deformer_ = std::move(deformer);
     }
 
     // Step: the view (given, or framing the mesh grown by the yarns' margin) and the level of

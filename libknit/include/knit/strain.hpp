@@ -1,0 +1,173 @@
+// knit/strain.hpp — strain-aware deformation of the yarns (Sperl, Narain, Wojtan, "Mechanics-Aware
+// Deformation of Yarn Pattern Geometry", SIGGRAPH 2021): where the cloth is stretched, sheared or
+// compressed against the pattern's rest layout, the yarns slide and bend as the pattern's own
+// relaxation says instead of stretching with the surface.
+//
+// Strain convention (the published one): F maps pattern space (x along courses, y along wales, at
+// the pattern's period times the placement's scale) to 3D, C = F^T F, and
+//   sx = sqrt(C00) - 1,  sy = sqrt(C11) - 1,  sa = C01 / ((1 + sx)(1 + sy))
+// (sa: the cosine of the angle between the deformed axes). A strain table holds, per cell vertex
+// and strain sample, the displacement D = (dx, dy, dz, dtwist) in the pattern's reference space
+// and units: the vertex goes to F (X + D) plus its height (z + dz) along the normal.
+//
+// Table files (documented in docs/deformation.md):
+//  * the project's own: `T.npy`, NumPy format 1.0, float32 little-endian, shape (Nv Nx Na Ny, 4),
+//    row isx + Nx isa + Nx Na isy + Nx Na Ny vertex, columns dx dy dz dtwist (metres of the
+//    pattern file), and beside it `T.axes.txt`: three lines of sample values (sx, sa, sy) after
+//    `#` lines naming the pattern, its vertex count, period and radius;
+//  * MADYPG's published tables, a folder `sxsasy/` holding `axes.txt` (the three lines) and
+//    `data.npy` in the same layout.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/mat2x2.hpp>
+#include <glm/vec4.hpp>
+
+#include "knit/base_mesh.hpp"
+#include "knit/binding.hpp"
+#include "knit/pattern.hpp"
+#include "knit/tiling.hpp"
+
+namespace knit {
+
+struct Strain {
+    double sx = 0, sa = 0, sy = 0;
+};
+// The strain of a first fundamental form C (symmetric 2 x 2).
+Strain strainOf(const glm::dmat2& C);
+// A lattice map with that strain: F = [(1+sx, 0), (1+sy)(sa, sqrt(1 - sa^2))] (columns).
+glm::dmat2 latticeMap(const Strain& s);
+
+struct StrainTable {
+    std::string source;                       // file or folder, for messages
+    std::array<std::vector<double>, 3> axes;  // sample values of sx, sa, sy (strictly increasing)
+    size_t vertexCount = 0;
+    std::vector<float> data;  // 4 per row, rows as in the file comment
+    // The project's own tables: the pattern they were made for (empty / 0 for MADYPG's tables).
+    std::string pattern;
+    double px = 0, py = 0, radius = 0;
+
+    size_t samples() const { return axes[0].size() * axes[1].size() * axes[2].size(); }
+};
+
+// The displacement of `vertex` at strain s, trilinear in the table; strains outside the axes are
+// clamped to them (*clamped set), never extrapolated.
+glm::dvec4 lookupStrainTable(const StrainTable& table, uint32_t vertex, const Strain& s, bool* clamped = nullptr);
+
+// The same lookup prepared once for a table (the per-frame hot loop): evenly spaced axes (as
+// makeStrainTable's) are indexed directly, others searched. Keeps a reference to the table.
+class StrainLookup {
+public:
+    explicit StrainLookup(const StrainTable& table);
+    glm::dvec4 operator()(uint32_t vertex, const Strain& s, bool& clamped) const;
+
+private:
+    struct Axis {
+        const std::vector<double>* values = nullptr;
+        double first = 0, last = 0, inverseStep = 0;
+        size_t stride = 0;  // floats between neighbouring samples
+        bool even = false;
+    };
+    Axis axes_[3];
+    const float* data_ = nullptr;
+    size_t vertexStride_ = 0;
+};
+
+// ---- making tables ---------------------------------------------------------------------------
+
+struct StrainTableOptions {
+    std::array<int, 3> samples{9, 9, 9};  // along sx, sa, sy
+    std::array<double, 2> sxRange{-0.2, 1.0}, saRange{-0.7, 0.7}, syRange{-0.2, 1.0};
+    // The yarn-level solver (chart relaxation's energy on the deformed lattice, period fixed).
+    double stretch = 200, bend = 1, contact = 400;
+    int maxIterations = 600;
+    // Called after each sample with the samples done and the total (from worker threads, serialised).
+    std::function<void(size_t done, size_t total)> progress;
+};
+
+struct StrainTableStats {
+    double seconds = 0;          // wall time
+    size_t samples = 0;          // relaxations (the rest cell included)
+    size_t unconverged = 0;      // stopped at the iteration cap
+    double minDistance = 0;      // closest distinct yarns over every sample, in yarn radii
+    double restMinDistance = 0;  // of the relaxed rest cell
+};
+
+// Throws knit::Error for options out of range (sample counts 1..64 per axis, ranges increasing and
+// within sx, sy > -1, |sa| < 1) or a pattern relaxation cannot use (open yarns).
+StrainTable makeStrainTable(const Pattern& pattern, const StrainTableOptions& options,
+                            StrainTableStats* stats = nullptr);
+// Seconds the whole table is expected to take: a few samples timed on this machine, scaled.
+double estimateStrainTableSeconds(const Pattern& pattern, const StrainTableOptions& options);
+
+// ---- files -------------------------------------------------------------------------------------
+
+// `path` (.npy) and its axes file (strainAxesPath), both written atomically (knit/output_file.hpp).
+void writeStrainTable(const StrainTable& table, const std::string& path);
+std::string strainAxesPath(const std::string& npyPath);  // T.npy -> T.axes.txt
+// A table file (with its axes file) or a MADYPG folder (axes.txt + data.npy). Throws knit::Error
+// naming the file and what is wrong (header, shape, dtype, non-finite values, axes).
+StrainTable loadStrainTable(const std::string& path);
+// The parser behind it, on bytes: `npy` the .npy file, `axes` the axes text.
+StrainTable parseStrainTable(const std::string& npy, const std::string& axes, const std::string& source);
+// Throws knit::Error naming the table unless it fits the pattern: its vertex count, and for the
+// project's own tables its period (relative 1e-6).
+void checkStrainTable(const StrainTable& table, const Pattern& pattern);
+
+// What a bound scene file stores to find the table again (issue 26).
+struct StrainTableRef {
+    std::string path;  // table file or MADYPG folder, as given
+    size_t vertexCount = 0;
+    std::array<size_t, 3> samples{0, 0, 0};
+};
+StrainTableRef strainTableRef(const StrainTable& table);
+
+// ---- applying tables ---------------------------------------------------------------------------
+
+enum class DeformMode { None, Strain };
+
+// How a scene deforms its yarns (SceneOptions::deform): `None` maps them geometrically; `Strain`
+// adds `table`'s displacements (which must then be given).
+struct DeformOptions {
+    DeformMode mode = DeformMode::None;
+    std::shared_ptr<const StrainTable> table;
+};
+
+struct DeformStats {
+    size_t vertices = 0;    // yarn vertices displaced (strain away from zero)
+    size_t clamped = 0;     // yarn vertices whose strain lay outside the table (clamped)
+    size_t degenerate = 0;  // yarn vertices on a triangle whose strain is undefined (zero displacement)
+    size_t total = 0;       // yarn vertices looked at
+};
+
+// Strain-aware deformation of one scene's yarns, set up once on the rest mesh and applied per pose.
+class StrainDeformer {
+public:
+    // `mesh`: the rest mesh (its UVs give the pattern-space layout through `placement`);
+    // `binding`: its binding (Binding::source must be filled); the table must fit `pattern`.
+    // Throws knit::Error naming the table when it does not fit.
+    StrainDeformer(const BaseMesh& mesh, const Pattern& pattern, const PatternPlacement& placement,
+                   const Binding& binding, std::shared_ptr<const StrainTable> table);
+
+    // Adds the table's displacement to `yarns` (evaluateBinding(binding, ...) on `positions`, the
+    // same connectivity as the rest mesh). Zero strain leaves every point bit for bit.
+    DeformStats apply(const Binding& binding, const std::vector<glm::dvec3>& positions, MappedYarns& yarns) const;
+
+    const StrainTable& table() const { return *table_; }
+
+private:
+    std::vector<glm::uvec3> faces_, faceUvs_;
+    std::vector<glm::dvec2> layout_;    // per UV vertex: pattern-space position (metres, object scale)
+    std::vector<uint32_t> cellVertex_;  // per yarn vertex: its pattern vertex
+    std::vector<glm::dvec4> zero_;      // per pattern vertex: the table at zero strain
+    double scale_ = 1;
+    size_t uvCount_ = 0, positionCount_ = 0;
+    std::shared_ptr<const StrainTable> table_;
+};
+
+}  // namespace knit

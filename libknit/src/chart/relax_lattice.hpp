@@ -1,0 +1,64 @@
+// relax_lattice.hpp (internal) — a pattern's periodic cell relaxed on a prescribed, deformed
+// lattice: the strain tables' yarn-level solver (deform/strain_table.cpp).
+//
+// The unknowns are the cell's vertices in reference (pattern) space, Y; the yarn lives at
+// M Y, M = [F 0; 0 1] (F the 2 x 2 in-plane map, heights unchanged), and its periodic images at
+// M (Y + (i px, j py, 0)). The energy is chart relaxation's (knit/relax.hpp), evaluated on the
+// deformed yarn, with the period fixed: inextensibility against the rest pattern's own edge
+// lengths (weighted far above bending), bending, and the contact penalty between segments of any
+// image. L-BFGS with a backtracking line search; every step is capped so that no two segments
+// move by more than 0.9 of their distance (the crossing structure is kept: yarns never pass
+// through each other). Kept apart from relax.cpp so that the chart solver stays as it is.
+#pragma once
+#include <memory>
+#include <vector>
+
+#include <glm/mat2x2.hpp>
+#include <glm/vec3.hpp>
+
+#include "knit/pattern.hpp"
+
+namespace knit::impl {
+
+struct LatticeRelaxOptions {
+    double stretch = 200;           // inextensibility weight (as RelaxOptions)
+    double bend = 1;                // bending weight
+    double contact = 400;           // contact penalty weight
+    double contactDistance = 2.05;  // in yarn radii
+    int maxIterations = 600;
+    double gradientTolerance = 1e-4;  // largest gradient entry, in the energy's units per radius
+    double maxStep = 0.25;            // largest vertex move per step, in yarn radii
+};
+
+struct LatticeRelaxResult {
+    std::vector<glm::dvec3> points;  // reference-space vertices (metres, the pattern's units)
+    int iterations = 0;
+    bool converged = false;
+    double energy = 0;
+    double minDistance = 0;  // closest distinct non-adjacent segments of the deformed yarn, in radii
+};
+
+// The cell of one pattern, set up once (rest lengths from the pattern's own edges) and relaxed
+// under any number of lattice maps. Throws knit::Error for a pattern relaxation cannot use (open
+// yarns, inconsistently oriented edges, yarns under 4 vertices) or invalid options.
+class LatticeCell {
+public:
+    LatticeCell(const Pattern& pattern, const LatticeRelaxOptions& options);
+    ~LatticeCell();
+    LatticeCell(const LatticeCell&) = delete;
+    LatticeCell& operator=(const LatticeCell&) = delete;
+
+    // Relaxes from `start` (reference-space vertices in metres; empty: the pattern's own) on the
+    // lattice deformed by F (columns: where the pattern's x and y axes go). Thread-safe: each call
+    // has its own state.
+    LatticeRelaxResult relax(const glm::dmat2& F, const std::vector<glm::dvec3>& start) const;
+
+    size_t vertexCount() const;
+
+    struct Impl;
+
+private:
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace knit::impl

@@ -1,0 +1,139 @@
+// The strain convention and the trilinear table lookup (see knit/strain.hpp).
+#include <algorithm>
+#include <cmath>
+
+#include "knit/strain.hpp"
+
+namespace knit {
+
+Strain strainOf(const glm::dmat2& C) {
+    Strain s;
+    const double a = std::sqrt(std::max(C[0][0], 0.0)), b = std::sqrt(std::max(C[1][1], 0.0));
+    s.sx = a - 1;
+    s.sy = b - 1;
+    s.sa = a > 0 && b > 0 ? C[1][0] / (a * b) : 0.0;
+    return s;
+}
+
+glm::dmat2 latticeMap(const Strain& s) {
+    return glm::dmat2(glm::dvec2(1 + s.sx, 0.0),
+                      (1 + s.sy) * glm::dvec2(s.sa, std::sqrt(std::max(0.0, 1 - s.sa * s.sa))));
+}
+
+namespace {
+
+// The interval of `axis` holding v (clamped) and the fraction along it. Round-off beyond the end
+// samples (a strain of exactly the largest sample computed from a mesh) is not counted as clamped.
+void locate(const std::vector<double>& axis, double v, size_t& i, double& t, bool& clamped) {
+    constexpr double kSlack = 1e-9;
+    if (axis.size() == 1) {
+        i = 0;
+        t = 0;
+        clamped = clamped || !(std::abs(v - axis[0]) <= kSlack);
+        return;
+    }
+    if (!(v >= axis.front())) {  // NaN clamps to the first sample
+        clamped = clamped || !(v >= axis.front() - kSlack);
+        v = axis.front();
+    } else if (v > axis.back()) {
+        clamped = clamped || v > axis.back() + kSlack;
+        v = axis.back();
+    }
+    const auto it = std::upper_bound(axis.begin(), axis.end(), v);
+    i = std::min(size_t(std::max<std::ptrdiff_t>(it - axis.begin() - 1, 0)), axis.size() - 2);
+    t = (v - axis[i]) / (axis[i + 1] - axis[i]);
+}
+
+}  // namespace
+
+glm::dvec4 lookupStrainTable(const StrainTable& table, uint32_t vertex, const Strain& s, bool* clamped) {
+    const size_t nx = table.axes[0].size(), na = table.axes[1].size(), ny = table.axes[2].size();
+    size_t i[3] = {0, 0, 0};
+    double t[3] = {0, 0, 0};
+    bool c = false;
+    locate(table.axes[0], s.sx, i[0], t[0], c);
+    locate(table.axes[1], s.sa, i[1], t[1], c);
+    locate(table.axes[2], s.sy, i[2], t[2], c);
+    if (clamped) *clamped = c;
+    const size_t base = nx * na * ny * size_t(vertex);
+    glm::dvec4 out(0.0);
+    for (int corner = 0; corner < 8; ++corner) {
+        double w = 1;
+        size_t k[3];
+        for (int a = 0; a < 3; ++a) {
+            const bool up = (corner >> a) & 1;
+            const size_t count = table.axes[size_t(a)].size();
+            k[a] = std::min(i[a] + (up ? 1 : 0), count - 1);
+            w *= up ? t[a] : 1 - t[a];
+        }
+        if (w == 0) continue;
+        const float* row = &table.data[4 * (base + k[0] + nx * k[1] + nx * na * k[2])];
+        out += w * glm::dvec4(row[0], row[1], row[2], row[3]);
+    }
+    return out;
+}
+
+StrainLookup::StrainLookup(const StrainTable& table) : data_(table.data.data()) {
+    size_t stride = 4;
+    for (size_t a = 0; a < 3; ++a) {
+        const std::vector<double>& v = table.axes[a];
+        Axis& ax = axes_[a];
+        ax.values = &v;
+        ax.first = v.front();
+        ax.last = v.back();
+        ax.stride = stride;
+        stride *= v.size();
+        ax.even = v.size() >= 2;
+        const double step = v.size() >= 2 ? (v.back() - v.front()) / double(v.size() - 1) : 0.0;
+        for (size_t i = 1; ax.even && i < v.size(); ++i)
+            ax.even = std::abs(v[i] - (v.front() + double(i) * step)) <= 1e-9 * std::max(1.0, std::abs(step));
+        ax.inverseStep = ax.even ? 1.0 / step : 0.0;
+    }
+    vertexStride_ = stride;
+}
+
+glm::dvec4 StrainLookup::operator()(uint32_t vertex, const Strain& s, bool& clamped) const {
+    const double value[3] = {s.sx, s.sa, s.sy};
+    size_t offset = vertexStride_ * size_t(vertex);
+    double t[3] = {0, 0, 0};
+    size_t step[3] = {0, 0, 0};
+    for (int a = 0; a < 3; ++a) {
+        const Axis& ax = axes_[a];
+        size_t i = 0;
+        if (ax.even) {
+            double v = value[a];
+            if (!(v >= ax.first)) {
+                clamped = clamped || !(v >= ax.first - 1e-9);
+                v = ax.first;
+            } else if (v > ax.last) {
+                clamped = clamped || v > ax.last + 1e-9;
+                v = ax.last;
+            }
+            const size_t n = ax.values->size();
+            const double f = (v - ax.first) * ax.inverseStep;
+            i = std::min(size_t(std::max(f, 0.0)), n - 2);
+            t[a] = std::min(std::max(f - double(i), 0.0), 1.0);
+            step[a] = ax.stride;
+        } else {
+            locate(*ax.values, value[a], i, t[a], clamped);
+            step[a] = ax.values->size() > 1 ? ax.stride : 0;
+        }
+        offset += i * ax.stride;
+    }
+    glm::dvec4 out(0.0);
+    for (int corner = 0; corner < 8; ++corner) {
+        double w = 1;
+        size_t o = offset;
+        for (int a = 0; a < 3; ++a) {
+            const bool up = (corner >> a) & 1;
+            w *= up ? t[a] : 1 - t[a];
+            o += up ? step[a] : 0;
+        }
+        if (w == 0) continue;
+        const float* row = data_ + o;
+        out += w * glm::dvec4(row[0], row[1], row[2], row[3]);
+    }
+    return out;
+}
+
+}  // namespace knit

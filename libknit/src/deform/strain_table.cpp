@@ -1,0 +1,190 @@
+// Strain tables made by the project's own yarn-level solver: the pattern's cell relaxed on the
+// lattice deformed by each sample's F (chart/relax_lattice.hpp), displacements recorded against
+// the cell relaxed on the undeformed lattice. Samples are walked outwards from the one nearest zero
+// strain, each warm-started from its neighbour one step closer (samples at the same step count run
+// in parallel; each one's start is fixed, so the table does not depend on the thread count).
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <mutex>
+#include <sstream>
+#include <thread>
+
+#include <tbb/parallel_for.h>
+
+#include "chart/relax_lattice.hpp"
+#include "knit/error.hpp"
+#include "knit/strain.hpp"
+
+namespace knit {
+namespace {
+
+using Index3 = std::array<int, 3>;
+
+std::vector<double> linspace(const std::array<double, 2>& r, int n) {
+    std::vector<double> v(static_cast<size_t>(n));
+    for (int i = 0; i < n; ++i) v[size_t(i)] = n == 1 ? r[0] : r[0] + (r[1] - r[0]) * double(i) / double(n - 1);
+    return v;
+}
+
+void validateOptions(const StrainTableOptions& o) {
+    for (int a = 0; a < 3; ++a)
+        if (o.samples[size_t(a)] < 1 || o.samples[size_t(a)] > 64)
+            throw Error("the strain samples must be 1 to 64 per axis, got " + std::to_string(o.samples[size_t(a)]));
+    const auto range = [](const std::array<double, 2>& r, double lo, double hi, const char* name) {
+        if (!(r[0] <= r[1]) || !(r[0] > lo) || !(r[1] < hi) || !std::isfinite(r[0]) || !std::isfinite(r[1])) {
+            std::ostringstream m;
+            m << "the " << name << " range " << r[0] << " " << r[1] << " must be increasing and within (" << lo << ", "
+              << hi << ")";
+            throw Error(m.str());
+        }
+    };
+    range(o.sxRange, -1, 10, "sx");
+    range(o.saRange, -0.95, 0.95, "sa");
+    range(o.syRange, -1, 10, "sy");
+    if (!(o.stretch > 0) || !(o.bend >= 0) || !(o.contact >= 0) || o.maxIterations < 1)
+        throw Error("the strain table's stretch weight must be positive, its bend and contact weights >= 0 and its "
+                    "iteration count >= 1");
+}
+
+impl::LatticeRelaxOptions solverOptions(const StrainTableOptions& o) {
+    impl::LatticeRelaxOptions lo;
+    lo.stretch = o.stretch;
+    lo.bend = o.bend;
+    lo.contact = o.contact;
+    lo.maxIterations = o.maxIterations;
+    return lo;
+}
+
+// The sample nearest zero strain along each axis.
+Index3 nearestZero(const std::array<std::vector<double>, 3>& axes) {
+    Index3 z{};
+    for (size_t a = 0; a < 3; ++a) {
+        size_t best = 0;
+        for (size_t i = 0; i < axes[a].size(); ++i)
+            if (std::abs(axes[a][i]) < std::abs(axes[a][best])) best = i;
+        z[a] = int(best);
+    }
+    return z;
+}
+
+// The samples grouped by their step count from `zero`; each one's parent is its neighbour one step
+// closer (along the first axis where they differ).
+struct Walk {
+    std::vector<std::vector<Index3>> layers;
+};
+Walk walkFrom(const Index3& zero, const Index3& n) {
+    Walk w;
+    for (int y = 0; y < n[2]; ++y)
+        for (int a = 0; a < n[1]; ++a)
+            for (int x = 0; x < n[0]; ++x) {
+                const size_t d = size_t(std::abs(x - zero[0]) + std::abs(a - zero[1]) + std::abs(y - zero[2]));
+                if (w.layers.size() <= d) w.layers.resize(d + 1);
+                w.layers[d].push_back({x, a, y});
+            }
+    return w;
+}
+Index3 parentOf(const Index3& i, const Index3& zero) {
+    Index3 p = i;
+    for (size_t a = 0; a < 3; ++a)
+        if (p[a] != zero[a]) {
+            p[a] += p[a] < zero[a] ? 1 : -1;
+            break;
+        }
+    return p;
+}
+
+Strain strainAt(const std::array<std::vector<double>, 3>& axes, const Index3& i) {
+    return {axes[0][size_t(i[0])], axes[1][size_t(i[1])], axes[2][size_t(i[2])]};
+}
+
+}  // namespace
+
+StrainTable makeStrainTable(const Pattern& pattern, const StrainTableOptions& options, StrainTableStats* stats) {
+    validateOptions(options);
+    const auto t0 = std::chrono::steady_clock::now();
+    const impl::LatticeCell cell(pattern, solverOptions(options));
+    // The rest cell is what every displacement is measured against: relaxed longer.
+    impl::LatticeRelaxOptions restOptions = solverOptions(options);
+    restOptions.maxIterations = 8 * options.maxIterations;
+    const impl::LatticeCell restCell(pattern, restOptions);
+    const size_t nv = cell.vertexCount();
+    StrainTable table;
+    table.source = pattern.name;
+    table.pattern = pattern.name;
+    table.px = pattern.px;
+    table.py = pattern.py;
+    table.radius = pattern.radius;
+    table.vertexCount = nv;
+    table.axes = {linspace(options.sxRange, options.samples[0]), linspace(options.saRange, options.samples[1]),
+                  linspace(options.syRange, options.samples[2])};
+    const Index3 n = options.samples;
+    const size_t total = table.samples();
+    const auto flat = [&](const Index3& i) {
+        return size_t(i[0]) + size_t(n[0]) * (size_t(i[1]) + size_t(n[1]) * size_t(i[2]));
+    };
+
+    // 1. The rest cell: relaxed on the undeformed lattice; every displacement is against it.
+    const impl::LatticeRelaxResult rest = restCell.relax(glm::dmat2(1.0), {});
+    // 2. The samples, outwards from zero strain (a sample at zero strain is the rest cell itself).
+    const Index3 zero = nearestZero(table.axes);
+    std::vector<impl::LatticeRelaxResult> result(total);
+    std::mutex progressMutex;
+    size_t done = 0;
+    for (const std::vector<Index3>& layer : walkFrom(zero, n).layers)
+        tbb::parallel_for(size_t(0), layer.size(), [&](size_t k) {
+            const Index3& i = layer[k];
+            const std::vector<glm::dvec3>& start = i == zero ? rest.points : result[flat(parentOf(i, zero))].points;
+            const Strain s = strainAt(table.axes, i);
+            result[flat(i)] = s.sx == 0 && s.sa == 0 && s.sy == 0 ? rest : cell.relax(latticeMap(s), start);
+            if (options.progress) {
+                const std::lock_guard<std::mutex> lock(progressMutex);
+                options.progress(++done, total);
+            }
+        });
+    // 3. Displacements in the table's layout, the cell's translation (free in the relaxation) removed.
+    table.data.assign(4 * nv * total, 0.0F);
+    StrainTableStats st;
+    st.samples = total + 1;
+    st.restMinDistance = rest.minDistance;
+    st.minDistance = rest.minDistance;
+    for (size_t s = 0; s < total; ++s) {
+        const impl::LatticeRelaxResult& r = result[s];
+        st.unconverged += r.converged ? 0 : 1;
+        st.minDistance = std::min(st.minDistance, r.minDistance);
+        glm::dvec3 mean(0.0);
+        for (size_t v = 0; v < nv; ++v) mean += r.points[v] - rest.points[v];
+        mean /= double(nv);
+        for (size_t v = 0; v < nv; ++v) {
+            const glm::dvec3 d = r.points[v] - rest.points[v] - mean;
+            float* row = &table.data[4 * (s + total * v)];
+            row[0] = float(d.x);
+            row[1] = float(d.y);
+            row[2] = float(d.z);
+            row[3] = 0.0F;  // the solver has no twist variable: no twist change
+        }
+    }
+    st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (stats) *stats = st;
+    return table;
+}
+
+double estimateStrainTableSeconds(const Pattern& pattern, const StrainTableOptions& options) {
+    validateOptions(options);
+    // Two relaxations timed: the rest cell from the pattern, and the far corner of the table
+    // warm-started from it (a hard sample; most samples start one step away and take less).
+    const auto t0 = std::chrono::steady_clock::now();
+    const impl::LatticeCell cell(pattern, solverOptions(options));
+    const impl::LatticeRelaxResult rest = cell.relax(glm::dmat2(1.0), {});
+    const auto t1 = std::chrono::steady_clock::now();
+    cell.relax(latticeMap({options.sxRange[1], options.saRange[1], options.syRange[1]}), rest.points);
+    const auto t2 = std::chrono::steady_clock::now();
+    const double perSample =
+        0.5 * (std::chrono::duration<double>(t1 - t0).count() + std::chrono::duration<double>(t2 - t1).count());
+    const double samples = double(options.samples[0]) * options.samples[1] * options.samples[2];
+    const unsigned threads = std::max(1U, std::thread::hardware_concurrency());
+    return perSample * samples / double(threads);
+}
+
+}  // namespace knit

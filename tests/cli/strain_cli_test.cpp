@@ -1,0 +1,107 @@
+// `knit strain-table`, `knit info T.npy` and the --deform / --strain-table scene flags: the table
+// file numpy reads, the report's deform section, refusals naming the table, and an interrupted
+// table run that leaves no file.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <csignal>
+#include <filesystem>
+#include <string>
+#include <thread>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <nlohmann/json.hpp>
+
+#include "common/run_knit.hpp"
+#include "test_util.hpp"
+
+namespace knit {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A small table of the default pattern (3 x 2 x 3 samples), made once per test folder.
+std::string smallTable(const test::TempDir& dir) {
+    const test::CliRun r = test::runKnit("strain-table --samples 3 2 3 --sx-range -0.1 0.6 -o t.npy", dir.path());
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("estimated"), std::string::npos) << r.output;  // the estimate comes first
+    return dir.file("t.npy");
+}
+
+TEST(StrainCli, strainTableWritesATableInfoDescribes) {
+    const test::TempDir dir;
+    smallTable(dir);
+    EXPECT_TRUE(fs::exists(dir.file("t.axes.txt")));
+    const test::CliRun info = test::runKnit("info t.npy --json", dir.path());
+    ASSERT_EQ(info.exitCode, 0) << info.output;
+    const nlohmann::json j = nlohmann::json::parse(info.output);
+    EXPECT_EQ(j["vertices"], 24);
+    EXPECT_EQ(j["samples"], nlohmann::json({3, 2, 3}));
+    EXPECT_EQ(j["pattern"]["name"], "stockinette");
+    EXPECT_GT(j["largest_displacement"].get<double>(), 0.0);
+}
+
+TEST(StrainCli, buildReportsTheDeformModeAndTable) {
+    const test::TempDir dir;
+    smallTable(dir);
+    // Repeats that stretch the pattern along u: a strained layout (sx ~ 0.4 against v).
+    const std::string scene = "build --mesh plane --mesh-res 8 --repeats 30 60 --export yarns ";
+    const test::CliRun s = test::runKnit(scene + "--strain-table t.npy -o s.obj --report s.json", dir.path());
+    ASSERT_EQ(s.exitCode, 0) << s.output;
+    const nlohmann::json rs = nlohmann::json::parse(test::readText(dir.file("s.json")));
+    EXPECT_EQ(rs["deform"]["mode"], "strain");
+    EXPECT_EQ(rs["deform"]["strain_table"], "t.npy");
+    EXPECT_EQ(rs["deform"]["samples"], nlohmann::json({3, 2, 3}));
+    EXPECT_GT(rs["deform"]["displaced_vertices"].get<size_t>(), 0U);
+    const test::CliRun g = test::runKnit(scene + "-o g.obj --report g.json", dir.path());
+    ASSERT_EQ(g.exitCode, 0) << g.output;
+    EXPECT_EQ(nlohmann::json::parse(test::readText(dir.file("g.json")))["deform"]["mode"], "none");
+    EXPECT_NE(g.output.find("knit strain-table --pattern stockinette"), std::string::npos) << g.output;
+    EXPECT_NE(test::readText(dir.file("s.obj")), test::readText(dir.file("g.obj")));
+    // --deform none with a table given: the geometric mapping, as without one.
+    const test::CliRun n = test::runKnit(scene + "--deform none --strain-table t.npy -o n.obj -q", dir.path());
+    ASSERT_EQ(n.exitCode, 0) << n.output;
+    EXPECT_EQ(test::readText(dir.file("n.obj")), test::readText(dir.file("g.obj")));
+}
+
+TEST(StrainCli, mismatchedOrDamagedTablesAreRefusedNamingThem) {
+    const test::TempDir dir;
+    smallTable(dir);
+    const std::string pattern = std::string(KNIT_SHARED_DIR) + "/patterns/hylc/stocktiny.pyp";
+    const test::CliRun m =
+        test::runKnit("build -q --mesh plane --pattern '" + pattern + "' --strain-table t.npy -o m.obj", dir.path());
+    EXPECT_NE(m.exitCode, 0);
+    EXPECT_NE(m.output.find("t.npy"), std::string::npos) << m.output;
+    EXPECT_NE(m.output.find("cell vertices"), std::string::npos) << m.output;
+    EXPECT_FALSE(fs::exists(dir.file("m.obj")));
+    dir.write("bad.npy", "\x93NUMPY garbage");
+    dir.write("bad.axes.txt", "0\n0\n0\n");
+    const test::CliRun b = test::runKnit("build -q --mesh plane --strain-table bad.npy -o b.obj", dir.path());
+    EXPECT_NE(b.exitCode, 0);
+    EXPECT_NE(b.output.find("bad.npy"), std::string::npos) << b.output;
+    const test::CliRun d = test::runKnit("build -q --mesh plane --deform sideways -o d.obj", dir.path());
+    EXPECT_NE(d.exitCode, 0);
+    EXPECT_NE(d.output.find("--deform"), std::string::npos) << d.output;
+}
+
+// Ctrl-C while the samples relax: no table, no axes file, no temporary file.
+TEST(StrainCli, interruptedTableRunLeavesNoFile) {
+    const test::TempDir dir;
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+        if (::chdir(dir.path().c_str()) != 0) ::_exit(127);
+        ::execl(KNIT_CLI, KNIT_CLI, "strain-table", "-q", "--samples", "40", "40", "40", "-o", "t.npy",
+                static_cast<char*>(nullptr));
+        ::_exit(127);
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(600));
+    ::kill(pid, SIGINT);
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    EXPECT_FALSE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "status " << status;
+    for (const auto& e : fs::directory_iterator(dir.path())) ADD_FAILURE() << "left behind: " << e.path();
+}
+
+}  // namespace
+}  // namespace knit
