@@ -9,6 +9,7 @@ void addCommands(CLI::App& app, Commands& c) {
     addInfoCommand(app, c.info);
     addGenerateCommand(app, c.generate);
     addChartCommand(app, c.chart);
+    addServeCommand(app, c.serve);
 #ifdef KNIT_HAVE_RENDER_CHECK
     addRenderCommand(app, c.render);
 #endif
@@ -23,6 +24,7 @@ int runCommand(const Commands& c) {
     if (*c.chart.command) return runChart(c.chart);
     if (*c.build.command) return runBuild(c.build);
     if (*c.animate.command) return runAnimate(c.animate);
+    if (*c.serve.command) return runServe(c.serve);
 #ifdef KNIT_HAVE_RENDER_CHECK
     if (*c.render.command) return runRender(c.render);
 #endif

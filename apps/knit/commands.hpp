@@ -9,6 +9,7 @@
 #include "chart_command.hpp"
 #include "generate_command.hpp"
 #include "info_command.hpp"
+#include "serve_command.hpp"
 #ifdef KNIT_HAVE_RENDER_CHECK
 #include "render_command.hpp"
 #endif
@@ -24,6 +25,7 @@ struct Commands {
     GenerateCommand generate;
     ChartCommand chart;
     AnimateCommand animate;
+    ServeCommand serve;
 #ifdef KNIT_HAVE_RENDER_CHECK
     RenderCommand render;
 #endif
