@@ -58,6 +58,7 @@ int runServe(const ServeCommand& s) {
                      s.host.c_str());
     const std::string shown = s.host.find(':') != std::string::npos ? "[" + s.host + "]" : s.host;
     std::printf("knit serve: http://%s:%d/ (Ctrl-C stops it)\n", shown.c_str(), port);
+    std::printf("knit serve: temporary files in %s (removed when it stops)\n", server.tempFolder().c_str());
     std::fflush(stdout);
     std::atomic<bool> signalled{false};
     std::thread waiter([&] {

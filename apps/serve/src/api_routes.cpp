@@ -31,9 +31,9 @@ void answerError(httplib::Response& res, int status, const std::string& message)
 }
 
 // A job slot for the session (its older job cancelled); throws RequestError 503 when every slot
-// stays busy for two seconds.
+// stays busy for ServeOptions::jobWaitMs.
 std::shared_ptr<JobTicket> startJob(ServerState& state, const std::string& session) {
-    std::unique_ptr<JobTicket> ticket = state.jobs.start(session, std::chrono::milliseconds(2000));
+    std::unique_ptr<JobTicket> ticket = state.jobs.start(session, std::chrono::milliseconds(state.options.jobWaitMs));
     if (!ticket)
         throw RequestError(503, "busy: " + std::to_string(state.jobs.maxJobs()) +
                                     " jobs are running (knit serve --jobs); try again");
@@ -41,18 +41,20 @@ std::shared_ptr<JobTicket> startJob(ServerState& state, const std::string& sessi
 }
 
 // The relaxed chart: from memory, or relaxed now with a "step" line every 20 iterations and the
-// swatch of the cell so far at most every 250 ms (`swatchRepeats` null: no intermediate swatches).
+// swatch of the cell so far, the first after 100 ms, then every 300 ms (`swatchRepeats` null: no
+// intermediate swatches). A small chart is mostly at rest after a few hundred iterations, so the
+// page shows its yarns early; the converged ones replace them.
 RelaxedChart relaxed(ServerState& state, const Chart& chart, const std::string& text, const CancelToken& token,
                      const Emit& emit, const std::array<double, 2>* swatchRepeats) {
     RelaxedChart out;
     if (state.charts.find(text, out)) return out;
-    Clock::time_point lastSwatch = Clock::now();
+    Clock::time_point nextSwatch = Clock::now() + std::chrono::milliseconds(100);
     out = relaxPageChart(chart, [&](const RelaxStep& step) {
         if (token.cancelled()) return false;
         json line = {{"type", "step"}, {"iteration", step.iteration}, {"energy", step.energy}};
-        if (swatchRepeats && Clock::now() - lastSwatch > std::chrono::milliseconds(250)) {
+        if (swatchRepeats && Clock::now() > nextSwatch) {
             line["swatch"] = swatchJson(step.pattern, *swatchRepeats);
-            lastSwatch = Clock::now();
+            nextSwatch = Clock::now() + std::chrono::milliseconds(300);
         }
         emit(line);
         return !token.cancelled();
@@ -70,6 +72,7 @@ void handleInfo(const httplib::Request&, httplib::Response& res, ServerState& st
            {{"charts", charts},
             {"meshes", builtinMeshNames()},
             {"jobs", state.options.jobs},
+            {"running", state.jobs.running()},
             {"limits",
              {{"chart_bytes", l.maxChartBytes},
               {"chart_stitches", l.maxChartStitches},

@@ -1,6 +1,7 @@
 // The HTTP server of `knit serve` (server.hpp): static files, the API routes, request checks.
 #include "server.hpp"
 
+#include <algorithm>
 #include <csignal>
 
 #include <httplib.h>
@@ -11,6 +12,9 @@
 
 namespace knit::serve {
 namespace {
+
+// The largest JSON body: the chart text and room for the other fields.
+uint64_t jsonBodyLimit(const ServeOptions& o) { return o.limits.maxChartBytes * 2 + 16384; }
 
 bool isLoopback(const std::string& host) { return host == "127.0.0.1" || host == "localhost" || host == "::1"; }
 
@@ -29,6 +33,18 @@ bool refused(const httplib::Request& req, httplib::Response& res, const ServeOpt
     if (req.method == "POST") {
         const std::string type = req.get_header_value("Content-Type");
         const bool upload = req.path == "/api/mesh";
+        // Sizes from the Content-Length header, before the body is read.
+        const uint64_t length = req.get_header_value<uint64_t>("Content-Length");
+        const uint64_t limit = upload ? o.maxUploadBytes : jsonBodyLimit(o);
+        if (length > limit) {
+            res.status = 413;
+            res.set_content(nlohmann::json{{"error", std::string(upload ? "the upload" : "the request body") + " is " +
+                                                         std::to_string(length) + " bytes, over the limit of " +
+                                                         std::to_string(limit)}}
+                                .dump(),
+                            "application/json");
+            return true;
+        }
         if ((upload && type.rfind("application/octet-stream", 0) != 0) || (!upload && type.rfind("application/json", 0) != 0)) {
             res.status = 415;
             res.set_content(std::string(R"({"error":"send the body as )") +
@@ -59,7 +75,7 @@ Server::Server(const ServeOptions& options) {
     // Threads for connections: the jobs, plus the page's static files and short requests.
     const size_t threads = size_t(options.jobs) + 12;
     http.new_task_queue = [threads] { return new httplib::ThreadPool(threads); };
-    http.set_payload_max_length(std::max<uint64_t>(options.maxUploadBytes, options.limits.maxChartBytes + 4096));
+    http.set_payload_max_length(std::max<uint64_t>(options.maxUploadBytes, jsonBodyLimit(options)));
     http.set_keep_alive_timeout(2);
     http.set_read_timeout(10);
     http.set_write_timeout(10);

@@ -37,18 +37,36 @@ async function updateSwatch() {
   swatchRequest?.abort();
   const controller = swatchRequest = new AbortController();
   const started = performance.now();
+  let firstShown = false;
+  delete document.body.dataset.editToFirstYarnsMs;
   status('relaxing…');
   try {
     const last = await postStream('/api/swatch', {session, chart: editor.text}, (line) => {
       if (controller.signal.aborted) return;
       if (line.type === 'step') status(`relaxing… iteration ${line.iteration}`);
-      if (line.swatch && mode === 'swatch') { view.showSwatch(line.swatch, !framed); framed = true; }
+      if (line.swatch && mode === 'swatch') {
+        view.showSwatch(line.swatch, !framed);
+        framed = true;
+        if (!firstShown) {
+          firstShown = true;
+          const edited = lastEdit;
+          requestAnimationFrame(() => {
+            document.body.dataset.editToFirstYarnsMs = String(Math.round(performance.now() - edited));
+          });
+        }
+      }
     }, controller.signal);
     if (controller.signal.aborted) return;
     if (last.type === 'done') {
       editor.setError(null);
       showWarnings(last.warnings);
+      const requested = performance.now() - started, edited = lastEdit;
       if (mode === 'swatch') { view.showSwatch(last.swatch, !framed); framed = true; }
+      await new Promise(requestAnimationFrame);  // the frame with the yarns
+      if (!firstShown) document.body.dataset.editToFirstYarnsMs = String(Math.round(performance.now() - edited));
+      // Measured on the page: the last edit to the frame with its yarns (docs/serve.md).
+      document.body.dataset.editToYarnsMs = String(Math.round(performance.now() - edited));
+      document.body.dataset.serverMs = String(Math.round(requested));
       document.body.dataset.swatchYarns = String(last.swatch.yarns);
       status(`${last.swatch.yarns} yarns, ${last.stats.width} × ${last.stats.height} stitches, ` +
              `${last.stats.iterations} iterations; shown ${Math.round(performance.now() - started)} ms after the request`);
@@ -98,11 +116,12 @@ function scheduleGarment(delay) {
   garmentTimer = setTimeout(updateGarment, delay);
 }
 
-let editTimer = 0;
+let editTimer = 0, lastEdit = 0;
 function changed() {
+  lastEdit = performance.now();
   refreshPalette();
   clearTimeout(editTimer);
-  editTimer = setTimeout(updateSwatch, 120);  // debounced: the newest text wins
+  editTimer = setTimeout(updateSwatch, 80);  // debounced: the newest text wins
 }
 
 async function start() {
