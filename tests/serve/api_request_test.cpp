@@ -2,9 +2,13 @@
 // with its status and a message naming the field.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 
 #include "api_request.hpp"
+#include "chart_job.hpp"
 
 namespace knit::serve {
 namespace {
@@ -74,6 +78,40 @@ TEST(ServeRequest, garmentViewGaugeAndFormatAreChecked) {
     EXPECT_EQ(garment(R"({"session":"a","chart":"k","format":"obj"})", true).second,
               "\"format\" must be \"pyp\", \"glb\" or \"pc2\"");
     EXPECT_EQ(parseGarmentRequest(R"({"session":"a","chart":"k","format":"pc2"})", limits, true).format, DownloadFormat::Pc2);
+}
+
+// The fuzzer's regression corpus (fuzz/serve_request_fuzzer.cpp), replayed in every build: each
+// body is accepted or refused with 400 / 413, and a parsed chart fails only at a line and column.
+TEST(ServeRequest, fuzzCorpusIsAcceptedOrRefusedAsBadRequest) {
+    const std::filesystem::path folder = KNIT_SOURCE_DIR "/tests/fuzz_corpus/serve_request";
+    RequestLimits limits;
+    limits.maxChartStitches = 64;
+    size_t files = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(folder)) {
+        std::ifstream in(entry.path(), std::ios::binary);
+        std::ostringstream bytes;
+        bytes << in.rdbuf();
+        const std::string body = bytes.str();
+        ++files;
+        for (int endpoint = 0; endpoint < 4; ++endpoint) {
+            const auto [status, message] = refusal([&] {
+                if (endpoint == 0) {
+                    const SwatchRequest r = parseSwatchRequest(body, limits);
+                    try {
+                        parsePageChart(r.chart, limits.maxChartStitches);
+                    } catch (const ChartTextError& e) {
+                        EXPECT_GE(e.line(), 1) << entry.path();
+                        EXPECT_GE(e.column(), 1) << entry.path();
+                    }
+                }
+                if (endpoint == 1) parseGarmentRequest(body, limits, false);
+                if (endpoint == 2) parseGarmentRequest(body, limits, true);
+                if (endpoint == 3) parseCancelRequest(body);
+            });
+            EXPECT_TRUE(status == 0 || status == 400 || status == 413) << entry.path() << ": " << status << " " << message;
+        }
+    }
+    EXPECT_GE(files, 4u);
 }
 
 }  // namespace
