@@ -162,6 +162,23 @@ TEST_F(ServerApi, uploadsAreReadWithoutTouchingOtherFiles) {
     EXPECT_EQ(glb->body.size(), done["bytes"].get<size_t>());
 }
 
+// Sizes are estimated before the work: a garment over the memory budget is refused naming the
+// request field that drives it, before anything is built.
+TEST_F(ServerApi, aGarmentOverTheBudgetIsRefusedNamingTheField) {
+    ServeOptions o;
+    o.budget = MemoryBudget(uint64_t(64) << 20);
+    start(o);
+    const std::vector<json> lines = stream(
+        "/api/garment", {{"session", "big"}, {"chart", "k k\nk k\n"}, {"mesh", "plane"}, {"repeats", {4000, 4000}}});
+    ASSERT_FALSE(lines.empty());
+    const json& end = lines.back();
+    EXPECT_EQ(end["type"], "error");
+    EXPECT_EQ(end["status"], 422);
+    const std::string message = end["error"];
+    EXPECT_NE(message.find("over the memory budget (knit serve --max-memory)"), std::string::npos) << message;
+    EXPECT_NE(message.find("the repeats (\"repeats\")"), std::string::npos) << message;
+}
+
 TEST_F(ServerApi, aNewerEditCancelsTheOlderJobOfThePage) {
     start();
     auto older = std::async(std::launch::async, [&] { return stream("/api/swatch", {{"session", "p"}, {"chart", slowChart()}}); });

@@ -187,7 +187,7 @@ httplib::Server::Handler guarded(void (*handler)(const httplib::Request&, httpli
         } catch (const JobCancelled&) {
             answerError(res, 409, "cancelled: the page started a newer job");
         } catch (const Error& e) {
-            answerError(res, 422, e.what());
+            answerError(res, 422, withPageFields(e.what()));
         } catch (const std::exception& e) {
             answerError(res, 500, std::string("internal error: ") + e.what());
         }

@@ -2,12 +2,33 @@
 #include "stream.hpp"
 
 #include <string>
+#include <vector>
 
 #include "api_request.hpp"
 #include "chart_job.hpp"
 #include "knit/error.hpp"
+#include "knit/setting_spelling.hpp"
 
 namespace knit::serve {
+namespace {
+
+}  // namespace
+
+std::string withPageFields(const std::string& message) {
+    static const std::vector<SettingSpelling> fields = {
+        {"the repeats", "\"repeats\""},
+        {"the gauge", "\"gauge\""},
+        {"the memory budget", "knit serve --max-memory"},
+        {"the eye position", "\"view.eye\""},
+        {"the target position", "\"view.target\""},
+        {"the up direction", "\"view.up\""},
+        {"the field of view", "\"view.fov\""},
+        {"the image width", "\"view.width\""},
+        {"the image height", "\"view.height\""},
+    };
+    return spellSettings(message, fields);
+}
+
 namespace {
 
 nlohmann::json errorLine(int status, const std::string& message) {
@@ -28,7 +49,7 @@ nlohmann::json endLine(const std::exception_ptr& failure) {
     } catch (const RequestError& e) {
         return errorLine(e.status(), e.what());
     } catch (const Error& e) {
-        return errorLine(422, e.what());
+        return errorLine(422, withPageFields(e.what()));
     } catch (const std::exception& e) {
         return errorLine(500, std::string("internal error: ") + e.what());
     }

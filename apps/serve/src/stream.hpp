@@ -4,6 +4,7 @@
 #pragma once
 #include <functional>
 #include <memory>
+#include <string>
 
 #include <httplib.h>
 #include <nlohmann/json.hpp>
@@ -11,6 +12,10 @@
 #include "jobs.hpp"
 
 namespace knit::serve {
+
+// A library message with the request field (or server flag) of each setting it names, in the
+// page's words: "lower the repeats (\"repeats\")" (knit/setting_spelling.hpp).
+std::string withPageFields(const std::string& message);
 
 // Writes one line; throws JobCancelled when the client has gone (and cancels the job).
 using Emit = std::function<void(const nlohmann::json& line)>;
