@@ -4,6 +4,7 @@
 #include <pthread.h>
 
 #include <atomic>
+#include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <thread>
@@ -16,7 +17,8 @@ namespace knit::cli {
 
 void addServeCommand(CLI::App& app, ServeCommand& s) {
     s.command = app.add_subcommand("serve", "Serve a local web page: write a chart and see it knitted in 3D");
-    s.command->add_option("--host", s.host, "Address to listen on (another than 127.0.0.1 exposes the page to the network)")
+    s.command
+        ->add_option("--host", s.host, "Address to listen on (another than 127.0.0.1 exposes the page to the network)")
         ->capture_default_str();
     s.command->add_option("--port", s.port, "Port (0: a free one; the address is printed)")
         ->check(CLI::Range(0, 65535))
@@ -30,7 +32,8 @@ void addServeCommand(CLI::App& app, ServeCommand& s) {
     s.command->add_option("--max-result-mb", s.maxResultMb, "Largest garment file the page may ask for (MB)")
         ->check(CLI::Range(0.001, 4096.0))
         ->capture_default_str();
-    s.command->add_option("--max-memory", s.maxMemory, "Memory budget of each job's scene (e.g. 2G; default min(4G, RAM/2))");
+    s.command->add_option("--max-memory", s.maxMemory,
+                          "Memory budget of each job's scene (e.g. 2G; default min(4G, RAM/2))");
 }
 
 int runServe(const ServeCommand& s) {
@@ -60,17 +63,22 @@ int runServe(const ServeCommand& s) {
     std::printf("knit serve: http://%s:%d/ (Ctrl-C stops it)\n", shown.c_str(), port);
     std::printf("knit serve: temporary files in %s (removed when it stops)\n", server.tempFolder().c_str());
     std::fflush(stdout);
-    std::atomic<bool> signalled{false};
+    // The waiter looks for a stop signal every 200 ms until the server has stopped.
+    std::atomic<bool> stopped{false};
     std::thread waiter([&] {
-        int sig = 0;
-        sigwait(&stopSignals, &sig);
-        signalled = true;
-        server.stop();
+        const timespec tick{0, 200 * 1000 * 1000};
+        bool signalled = false;
+        while (!stopped) {
+            if (!signalled)
+                signalled = sigtimedwait(&stopSignals, nullptr, &tick) > 0;
+            else
+                std::this_thread::sleep_for(std::chrono::milliseconds(50));
+            // Again until run() has returned: a stop before the server listened would be lost.
+            if (signalled) server.stop();
+        }
     });
     server.run();
-    // run() returns after a signal; if it stopped for another reason, wake the waiter so it can
-    // be joined.
-    if (!signalled) pthread_kill(waiter.native_handle(), SIGTERM);
+    stopped = true;
     waiter.join();
     std::printf("knit serve: stopped\n");
     return 0;

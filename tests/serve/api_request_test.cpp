@@ -38,7 +38,8 @@ TEST(ServeRequest, malformedBodiesAreRefusedNamingTheField) {
     EXPECT_EQ(swatch("{"), std::make_pair(400, std::string("the request body is not valid JSON")));
     EXPECT_EQ(swatch("[1]").first, 400);
     EXPECT_EQ(swatch(R"({"chart":"k"})").second, "\"session\" must be a string (the page's id)");
-    EXPECT_EQ(swatch(R"({"session":"a b","chart":"k"})").second, "\"session\" may hold only letters, digits, '-' and '_'");
+    EXPECT_EQ(swatch(R"({"session":"a b","chart":"k"})").second,
+              "\"session\" may hold only letters, digits, '-' and '_'");
     EXPECT_EQ(swatch(R"({"session":"a"})").second, "\"chart\" must be a string (the chart text)");
     EXPECT_EQ(swatch(R"({"session":"a","chart":"k","colour":1})").second, "unknown field \"colour\"");
     EXPECT_EQ(swatch(R"({"session":"a","chart":"k","repeats":[0,5]})").first, 400);
@@ -50,7 +51,8 @@ TEST(ServeRequest, malformedBodiesAreRefusedNamingTheField) {
 TEST(ServeRequest, chartOverTheSizeLimitIs413) {
     RequestLimits limits;
     limits.maxChartBytes = 10;
-    const auto [status, message] = refusal([&] { parseSwatchRequest(R"({"session":"a","chart":"k k k k k k"})", limits); });
+    const auto [status, message] =
+        refusal([&] { parseSwatchRequest(R"({"session":"a","chart":"k k k k k k"})", limits); });
     EXPECT_EQ(status, 413);
     EXPECT_EQ(message, "\"chart\" is 11 bytes, over the limit of 10");
 }
@@ -73,11 +75,14 @@ TEST(ServeRequest, garmentViewGaugeAndFormatAreChecked) {
               "give \"repeats\" or \"gauge\", not both");
     EXPECT_EQ(garment(R"({"session":"a","chart":"k","gauge":"lots"})", false).first, 400);
     EXPECT_EQ(garment(R"({"session":"a","chart":"k","view":{"eye":[0,0,0],"target":[0,0,0]}})", false).first, 400);
-    EXPECT_EQ(garment(R"({"session":"a","chart":"k","view":{"eye":[0,0,1],"target":[0,0,0],"width":1.5}})", false).first, 400);
+    EXPECT_EQ(
+        garment(R"({"session":"a","chart":"k","view":{"eye":[0,0,1],"target":[0,0,0],"width":1.5}})", false).first,
+        400);
     EXPECT_EQ(garment(R"({"session":"a","chart":"k","format":"glb"})", false).second, "unknown field \"format\"");
     EXPECT_EQ(garment(R"({"session":"a","chart":"k","format":"obj"})", true).second,
               "\"format\" must be \"pyp\", \"glb\" or \"pc2\"");
-    EXPECT_EQ(parseGarmentRequest(R"({"session":"a","chart":"k","format":"pc2"})", limits, true).format, DownloadFormat::Pc2);
+    EXPECT_EQ(parseGarmentRequest(R"({"session":"a","chart":"k","format":"pc2"})", limits, true).format,
+              DownloadFormat::Pc2);
 }
 
 // The fuzzer's regression corpus (fuzz/serve_request_fuzzer.cpp), replayed in every build: each
@@ -108,7 +113,8 @@ TEST(ServeRequest, fuzzCorpusIsAcceptedOrRefusedAsBadRequest) {
                 if (endpoint == 2) parseGarmentRequest(body, limits, true);
                 if (endpoint == 3) parseCancelRequest(body);
             });
-            EXPECT_TRUE(status == 0 || status == 400 || status == 413) << entry.path() << ": " << status << " " << message;
+            EXPECT_TRUE(status == 0 || status == 400 || status == 413)
+                << entry.path() << ": " << status << " " << message;
         }
     }
     EXPECT_GE(files, 4u);

@@ -110,8 +110,6 @@ try {
     return n / (d.length / 4);
   });
   check(lit > 0.05, `the canvas is not blank (${(100 * lit).toFixed(1)}% of pixels show yarn)`);
-  if (args.screenshot) await page.screenshot({path: args.screenshot});
-
   // A chart error: underlined at its line and column, shown as LINE:COLUMN: message.
   await page.click('#chart');
   await page.keyboard.type('\nk q');
@@ -144,6 +142,22 @@ try {
   const report = await validator.validateBytes(new Uint8Array(glb.bytes));
   check(report.issues.numErrors === 0, `the downloaded GLB (${glb.bytes.length} bytes) passes the glTF validator: ` +
         `${report.issues.numErrors} errors, ${report.issues.numWarnings} warnings`);
+  if (args.screenshot) {
+    // For docs/serve.md: a striped rib, the page at 1280 x 800 saved at half scale (a small PNG).
+    await page.click('input[name=mode][value=swatch]');
+    await page.evaluate(() => {
+      const chart = document.getElementById('chart');
+      chart.value = '# 1x1 rib in two-row stripes\nk p\nk p\nk p\nk p\n\nB B\nB B\nA A\nA A\nA=#c8553d B=#2a6f97\n';
+      delete document.body.dataset.swatchYarns;
+      chart.dispatchEvent(new Event('input'));
+    });
+    await page.waitForFunction(() => document.body.dataset.swatchYarns, {timeout: 30000});
+    await page.setViewport({width: 1280, height: 800, deviceScaleFactor: 0.5});
+    await new Promise((r) => setTimeout(r, 500));
+    await page.screenshot({path: args.screenshot});
+    await page.setViewport({width: 1280, height: 800});
+  }
+
   // The chart error's answer (422) is the one resource error Chromium may log.
   const unexpected = errors.filter((e) => !/status of 422/.test(e));
   check(unexpected.length === 0, `no other console errors in the whole session ${unexpected.join(' | ')}`);

@@ -133,6 +133,9 @@ TEST_F(ServerApi, statusCodesOfBadRequests) {
     EXPECT_EQ(client().Get("/api/nothing")->status, 404);
     EXPECT_EQ(client().Post("/api/mesh?name=a.obj", std::string(8192, 'v'), "application/octet-stream")->status, 413);
     EXPECT_EQ(client().Post("/api/mesh?name=a.exe", "v 0 0 0", "application/octet-stream")->status, 415);
+    // Static files only below the page's folder.
+    EXPECT_EQ(client().Get("/../CMakeLists.txt")->status, 404);
+    EXPECT_EQ(client().Get("/three/../../../../etc/passwd")->status, 404);
     httplib::Headers foreign = {{"Host", "attacker.example:80"}};
     EXPECT_EQ(client().Get("/api/info", foreign)->status, 421);
 }
@@ -181,7 +184,9 @@ TEST_F(ServerApi, aGarmentOverTheBudgetIsRefusedNamingTheField) {
 
 TEST_F(ServerApi, aNewerEditCancelsTheOlderJobOfThePage) {
     start();
-    auto older = std::async(std::launch::async, [&] { return stream("/api/swatch", {{"session", "p"}, {"chart", slowChart()}}); });
+    auto older = std::async(std::launch::async, [&] {
+        return stream("/api/swatch", {{"session", "p"}, {"chart", slowChart()}});
+    });
     while (running() == 0) std::this_thread::sleep_for(std::chrono::milliseconds(10));
     const std::vector<json> newer = stream("/api/swatch", {{"session", "p"}, {"chart", "k k\nk k\n"}});
     EXPECT_EQ(newer.back()["type"], "done");
@@ -189,7 +194,9 @@ TEST_F(ServerApi, aNewerEditCancelsTheOlderJobOfThePage) {
     ASSERT_FALSE(old.empty());
     EXPECT_EQ(old.back()["type"], "cancelled");
     // The explicit cancel of a page's job.
-    auto third = std::async(std::launch::async, [&] { return stream("/api/swatch", {{"session", "q"}, {"chart", slowChart()}}); });
+    auto third = std::async(std::launch::async, [&] {
+        return stream("/api/swatch", {{"session", "q"}, {"chart", slowChart()}});
+    });
     while (running() == 0) std::this_thread::sleep_for(std::chrono::milliseconds(10));
     EXPECT_EQ(json::parse(post("/api/cancel", {{"session", "q"}})->body)["cancelled"], 1);
     EXPECT_EQ(third.get().back()["type"], "cancelled");
@@ -200,13 +207,21 @@ TEST_F(ServerApi, twoPagesAtOnceAndABusyServer) {
     o.jobs = 2;
     o.jobWaitMs = 100;
     start(o);
-    auto a = std::async(std::launch::async, [&] { return stream("/api/swatch", {{"session", "a"}, {"chart", "k p\np k\n"}}); });
-    auto b = std::async(std::launch::async, [&] { return stream("/api/swatch", {{"session", "b"}, {"chart", "k k\np p\n"}}); });
+    auto a = std::async(std::launch::async, [&] {
+        return stream("/api/swatch", {{"session", "a"}, {"chart", "k p\np k\n"}});
+    });
+    auto b = std::async(std::launch::async, [&] {
+        return stream("/api/swatch", {{"session", "b"}, {"chart", "k k\np p\n"}});
+    });
     EXPECT_EQ(a.get().back()["type"], "done");
     EXPECT_EQ(b.get().back()["type"], "done");
     // Both slots held by slow jobs: a third page is told the server is busy.
-    auto c = std::async(std::launch::async, [&] { return stream("/api/swatch", {{"session", "c"}, {"chart", slowChart()}}); });
-    auto d = std::async(std::launch::async, [&] { return stream("/api/swatch", {{"session", "d"}, {"chart", slowChart() + "\n"}}); });
+    auto c = std::async(std::launch::async, [&] {
+        return stream("/api/swatch", {{"session", "c"}, {"chart", slowChart()}});
+    });
+    auto d = std::async(std::launch::async, [&] {
+        return stream("/api/swatch", {{"session", "d"}, {"chart", slowChart() + "\n"}});
+    });
     while (running() < 2) std::this_thread::sleep_for(std::chrono::milliseconds(10));
     const auto busy = post("/api/swatch", {{"session", "e"}, {"chart", "k\n"}});
     EXPECT_EQ(busy->status, 503);
@@ -249,7 +264,8 @@ TEST(ServeCommand, ctrlCStopsItCleanly) {
         const std::string text = line;
         const std::string marker = "temporary files in ";
         if (text.find(marker) != std::string::npos)
-            temp = text.substr(text.find(marker) + marker.size(), text.find(" (removed") - text.find(marker) - marker.size());
+            temp = text.substr(text.find(marker) + marker.size(),
+                               text.find(" (removed") - text.find(marker) - marker.size());
     }
     ASSERT_GT(port, 0);
     ASSERT_TRUE(std::filesystem::is_directory(temp)) << temp;

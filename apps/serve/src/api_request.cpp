@@ -32,7 +32,7 @@ void requireKnownKeys(const json& j, std::initializer_list<const char*> known) {
 std::string requireSession(const json& j) {
     if (!j.contains("session") || !j["session"].is_string())
         throw RequestError(400, "\"session\" must be a string (the page's id)");
-    const std::string s = j["session"].get<std::string>();
+    std::string s = j["session"].get<std::string>();
     if (s.empty() || s.size() > 64) throw RequestError(400, "\"session\" must be 1 to 64 characters long");
     for (char c : s)
         if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_'))
@@ -41,7 +41,8 @@ std::string requireSession(const json& j) {
 }
 
 std::string requireChart(const json& j, const RequestLimits& limits) {
-    if (!j.contains("chart") || !j["chart"].is_string()) throw RequestError(400, "\"chart\" must be a string (the chart text)");
+    if (!j.contains("chart") || !j["chart"].is_string())
+        throw RequestError(400, "\"chart\" must be a string (the chart text)");
     std::string text = j["chart"].get<std::string>();
     if (text.size() > limits.maxChartBytes)
         throw RequestError(413, "\"chart\" is " + std::to_string(text.size()) + " bytes, over the limit of " +
@@ -60,8 +61,8 @@ std::array<double, 2> repeatsOf(const json& j, double maxRepeats) {
     std::array<double, 2> r{0, 0};
     if (!j.contains("repeats")) return r;
     const json& v = j["repeats"];
-    const std::string message = "\"repeats\" must be two numbers from 1 to " + std::to_string(int(maxRepeats)) +
-                                " (or [0, 0] for the default)";
+    const std::string message =
+        "\"repeats\" must be two numbers from 1 to " + std::to_string(int(maxRepeats)) + " (or [0, 0] for the default)";
     if (!v.is_array() || v.size() != 2) throw RequestError(400, message);
     for (size_t k = 0; k < 2; ++k) r[k] = finiteNumber(v[k], "\"repeats\"");
     const bool none = r[0] == 0 && r[1] == 0;
@@ -113,15 +114,14 @@ SwatchRequest parseSwatchRequest(const std::string& body, const RequestLimits& l
 
 GarmentRequest parseGarmentRequest(const std::string& body, const RequestLimits& limits, bool download) {
     const json j = parseObject(body);
-    if (download)
-        requireKnownKeys(j, {"session", "chart", "mesh", "repeats", "gauge", "view", "format"});
-    else
-        requireKnownKeys(j, {"session", "chart", "mesh", "repeats", "gauge", "view"});
+    if (download) requireKnownKeys(j, {"session", "chart", "mesh", "repeats", "gauge", "view", "format"});
+    else requireKnownKeys(j, {"session", "chart", "mesh", "repeats", "gauge", "view"});
     GarmentRequest r;
     r.session = requireSession(j);
     r.chart = requireChart(j, limits);
     if (j.contains("mesh")) {
-        if (!j["mesh"].is_string()) throw RequestError(400, "\"mesh\" must be a string (a built-in name or an upload id)");
+        if (!j["mesh"].is_string())
+            throw RequestError(400, "\"mesh\" must be a string (a built-in name or an upload id)");
         r.mesh = j["mesh"].get<std::string>();
     }
     r.repeats = repeatsOf(j, 4096);
@@ -137,14 +137,10 @@ GarmentRequest parseGarmentRequest(const std::string& body, const RequestLimits&
     if (j.contains("view") && !j["view"].is_null()) r.view = viewOf(j["view"], limits);
     if (download) {
         const std::string f = j.contains("format") && j["format"].is_string() ? j["format"].get<std::string>() : "";
-        if (f == "pyp")
-            r.format = DownloadFormat::Pyp;
-        else if (f == "glb")
-            r.format = DownloadFormat::Glb;
-        else if (f == "pc2")
-            r.format = DownloadFormat::Pc2;
-        else
-            throw RequestError(400, "\"format\" must be \"pyp\", \"glb\" or \"pc2\"");
+        if (f == "pyp") r.format = DownloadFormat::Pyp;
+        else if (f == "glb") r.format = DownloadFormat::Glb;
+        else if (f == "pc2") r.format = DownloadFormat::Pc2;
+        else throw RequestError(400, "\"format\" must be \"pyp\", \"glb\" or \"pc2\"");
     }
     return r;
 }

@@ -45,10 +45,10 @@ enum class DownloadFormat { Pyp, Glb, Pc2 };
 
 // The garment (POST /api/garment) and downloads (POST /api/download): the chart on a mesh.
 struct GarmentRequest : JobRequest {
-    std::string mesh = "drape";    // a built-in mesh name or an upload id ("upload-3")
-    std::optional<Gauge> gauge;    // or repeats
-    std::array<double, 2> repeats{0, 0};  // 0 0 with no gauge: the default gauge
-    std::optional<View> view;      // the page's camera (level of detail); none: the default framing
+    std::string mesh = "drape";                   // a built-in mesh name or an upload id ("upload-3")
+    std::optional<Gauge> gauge;                   // or repeats
+    std::array<double, 2> repeats{0, 0};          // 0 0 with no gauge: the default gauge
+    std::optional<View> view;                     // the page's camera (level of detail); none: the default framing
     DownloadFormat format = DownloadFormat::Glb;  // downloads only
 };
 

@@ -35,8 +35,8 @@ void answerError(httplib::Response& res, int status, const std::string& message)
 std::shared_ptr<JobTicket> startJob(ServerState& state, const std::string& session) {
     std::unique_ptr<JobTicket> ticket = state.jobs.start(session, std::chrono::milliseconds(state.options.jobWaitMs));
     if (!ticket)
-        throw RequestError(503, "busy: " + std::to_string(state.jobs.maxJobs()) +
-                                    " jobs are running (knit serve --jobs); try again");
+        throw RequestError(
+            503, "busy: " + std::to_string(state.jobs.maxJobs()) + " jobs are running (knit serve --jobs); try again");
     return std::shared_ptr<JobTicket>(std::move(ticket));
 }
 
@@ -87,7 +87,10 @@ void handleSwatch(const httplib::Request& req, httplib::Response& res, ServerSta
     streamJob(res, ticket, [&state, r, chart, token = ticket->sharedToken()](const Emit& emit) {
         const RelaxedChart c = relaxed(state, chart, r.chart, *token, emit, &r.repeats);
         token->check();
-        emit({{"type", "done"}, {"swatch", swatchJson(c.pattern, r.repeats)}, {"warnings", c.warnings}, {"stats", c.stats}});
+        emit({{"type", "done"},
+              {"swatch", swatchJson(c.pattern, r.repeats)},
+              {"warnings", c.warnings},
+              {"stats", c.stats}});
     });
 }
 
@@ -109,11 +112,11 @@ void handleGarment(const httplib::Request& req, httplib::Response& res, ServerSt
     streamJob(res, ticket, [&state, r, chart, mesh, token = ticket->sharedToken()](const Emit& emit) {
         const RelaxedChart c = relaxed(state, chart, r.chart, *token, emit, nullptr);
         const std::string path = state.temp.newFile("garment", "glb");
-        json stats = writeGarmentGlb(c.pattern, mesh, garmentSettings(state, r), path,
-                                     [&](const std::string& stage, int index, int total) {
-                                         token->check();
-                                         emit({{"type", "stage"}, {"stage", stage}, {"index", index}, {"total", total}});
-                                     });
+        json stats = writeGarmentGlb(
+            c.pattern, mesh, garmentSettings(state, r), path, [&](const std::string& stage, int index, int total) {
+                token->check();
+                emit({{"type", "stage"}, {"stage", stage}, {"index", index}, {"total", total}});
+            });
         token->check();
         const std::string id = state.addResult(path);
         stats["type"] = "done";
@@ -126,7 +129,8 @@ void handleGarment(const httplib::Request& req, httplib::Response& res, ServerSt
 void handleResult(const httplib::Request& req, httplib::Response& res, ServerState& state) {
     const std::string path = state.resultPath(req.matches[1]);
     std::string bytes;
-    if (path.empty() || !readWholeFile(path, bytes)) return answerError(res, 404, "no such result (the server keeps the last 16)");
+    if (path.empty() || !readWholeFile(path, bytes))
+        return answerError(res, 404, "no such result (the server keeps the last 16)");
     res.set_header("Cache-Control", "no-store");
     if (req.has_param("download")) res.set_header("Content-Disposition", "attachment; filename=\"knit-garment.glb\"");
     res.set_content(bytes, "model/gltf-binary");

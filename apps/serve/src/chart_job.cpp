@@ -32,8 +32,9 @@ Chart parsePageChart(const std::string& text, int maxStitches) {
         throw ChartTextError(1, 1, what.rfind(prefix, 0) == 0 ? what.substr(prefix.size()) : what);
     }
     if (int64_t(chart.width) * chart.height > maxStitches)
-        throw ChartTextError(1, 1, "the chart has " + std::to_string(chart.width) + " x " + std::to_string(chart.height) +
-                                       " stitches, over the page's limit of " + std::to_string(maxStitches));
+        throw ChartTextError(1, 1,
+                             "the chart has " + std::to_string(chart.width) + " x " + std::to_string(chart.height) +
+                                 " stitches, over the page's limit of " + std::to_string(maxStitches));
     return chart;
 }
 

@@ -39,7 +39,7 @@ Chart parsePageChart(const std::string& text, int maxStitches);
 struct RelaxedChart {
     Pattern pattern;
     nlohmann::json warnings = nlohmann::json::array();  // strings
-    nlohmann::json stats;                                // iterations, converged, seconds, min distance
+    nlohmann::json stats;                               // iterations, converged, seconds, min distance
 };
 
 // The last few relaxed charts by text (a page toggling between two charts relaxes each once).

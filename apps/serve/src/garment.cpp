@@ -55,7 +55,8 @@ nlohmann::json writeGarmentGlb(const Pattern& pattern, const BaseMesh& mesh, con
     const Polylines& curves = visible.yarns().curves;
     // A line-strip point is 12 bytes of position, 4 of radius and 4 of colour; closed curves
     // repeat their first point.
-    const double estimate = 20.0 * double(curves.pointCount() + curves.curveCount()) + 1024.0 * double(curves.curveCount());
+    const double estimate =
+        20.0 * double(curves.pointCount() + curves.curveCount()) + 1024.0 * double(curves.curveCount());
     if (estimate > double(settings.maxFileBytes))
         throw Error("the garment's yarns would take about " + std::to_string(int64_t(estimate / 1048576)) +
                     " MB, over the page's limit of " + std::to_string(settings.maxFileBytes >> 20) +

@@ -19,8 +19,8 @@ namespace knit::serve {
 struct GarmentSettings {
     std::array<double, 2> repeats{0, 0};  // 0 0 and no gauge: the pattern at its own size
     std::optional<Gauge> gauge;
-    std::optional<View> view;  // none: the default framing (knit/view.hpp frameMesh)
-    MemoryBudget budget;       // the scene's stages refuse estimates over it
+    std::optional<View> view;                    // none: the default framing (knit/view.hpp frameMesh)
+    MemoryBudget budget;                         // the scene's stages refuse estimates over it
     uint64_t maxFileBytes = uint64_t(64) << 20;  // the GLB, estimated before it is written
 };
 

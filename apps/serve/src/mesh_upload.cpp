@@ -32,7 +32,8 @@ BaseMesh loadUploadedMesh(const std::string& bytes, const std::string& name, Tem
                           const MemoryBudget& budget) {
     const std::string ext = lowerExtension(name);
     if (ext != "obj" && ext != "glb" && ext != "gltf")
-        throw RequestError(415, "upload a mesh as .obj, .glb or .gltf with UVs (got '" + name + "'; give it with ?name=FILE)");
+        throw RequestError(
+            415, "upload a mesh as .obj, .glb or .gltf with UVs (got '" + name + "'; give it with ?name=FILE)");
     if (bytes.empty()) throw RequestError(400, "the upload '" + name + "' is empty");
     MeshLoadOptions options;
     options.budget = budget;

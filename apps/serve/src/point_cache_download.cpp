@@ -9,7 +9,8 @@
 
 namespace knit::serve {
 
-std::string yarnPointCache(const Pattern& pattern, const BaseMesh& mesh, const GarmentSettings& settings, TempFolder& temp) {
+std::string yarnPointCache(const Pattern& pattern, const BaseMesh& mesh, const GarmentSettings& settings,
+                           TempFolder& temp) {
     SceneOptions options;
     options.buildPlies = false;
     options.placement.repeats = {settings.repeats[0], settings.repeats[1]};

@@ -10,6 +10,7 @@ namespace knit::serve {
 
 // The PC2 bytes (written in `temp` and removed). Throws knit::Error for what the pipeline
 // refuses and when the file would exceed settings.maxFileBytes.
-std::string yarnPointCache(const Pattern& pattern, const BaseMesh& mesh, const GarmentSettings& settings, TempFolder& temp);
+std::string yarnPointCache(const Pattern& pattern, const BaseMesh& mesh, const GarmentSettings& settings,
+                           TempFolder& temp);
 
 }  // namespace knit::serve

@@ -2,6 +2,9 @@
 #include "server.hpp"
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <thread>
 #include <csignal>
 
 #include <httplib.h>
@@ -45,7 +48,8 @@ bool refused(const httplib::Request& req, httplib::Response& res, const ServeOpt
                             "application/json");
             return true;
         }
-        if ((upload && type.rfind("application/octet-stream", 0) != 0) || (!upload && type.rfind("application/json", 0) != 0)) {
+        if ((upload && type.rfind("application/octet-stream", 0) != 0) ||
+            (!upload && type.rfind("application/json", 0) != 0)) {
             res.status = 415;
             res.set_content(std::string(R"({"error":"send the body as )") +
                                 (upload ? "application/octet-stream" : "application/json") + R"("})",
@@ -64,6 +68,7 @@ struct Server::Impl {
     ServerState state;
     httplib::Server http;
     int port = 0;
+    std::atomic<bool> inRun{false}, stopRequested{false};
 };
 
 Server::Server(const ServeOptions& options) {
@@ -102,17 +107,28 @@ Server::~Server() { stop(); }
 
 int Server::bind() {
     const ServeOptions& o = impl_->state.options;
-    const int port = o.port == 0 ? impl_->http.bind_to_any_port(o.host) : (impl_->http.bind_to_port(o.host, o.port) ? o.port : -1);
-    if (port <= 0) throw Error("cannot listen on " + o.host + ":" + std::to_string(o.port) + " (in use, or not an address of this machine)");
+    const int port =
+        o.port == 0 ? impl_->http.bind_to_any_port(o.host) : (impl_->http.bind_to_port(o.host, o.port) ? o.port : -1);
+    if (port <= 0)
+        throw Error("cannot listen on " + o.host + ":" + std::to_string(o.port) +
+                    " (in use, or not an address of this machine)");
     impl_->port = port;
     return port;
 }
 
-void Server::run() { impl_->http.listen_after_bind(); }
+void Server::run() {
+    impl_->inRun = true;
+    if (!impl_->stopRequested) impl_->http.listen_after_bind();
+    impl_->inRun = false;
+}
 
 void Server::stop() {
     if (!impl_) return;
+    impl_->stopRequested = true;
     impl_->state.jobs.cancelAll();
+    // run() may be about to listen (a stop before it does would be lost): wait until it listens.
+    for (int k = 0; k < 400 && impl_->inRun && !impl_->http.is_running(); ++k)
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
     impl_->http.stop();
 }
 

@@ -15,8 +15,8 @@ namespace knit::serve {
 
 struct ServeOptions {
     std::string host = "127.0.0.1";
-    int port = 8080;  // 0: any free port (bind() returns it)
-    int jobs = 2;     // jobs (relaxations, garment builds, downloads) at once
+    int port = 8080;       // 0: any free port (bind() returns it)
+    int jobs = 2;          // jobs (relaxations, garment builds, downloads) at once
     int jobWaitMs = 2000;  // how long a request waits for a free job slot before 503
     uint64_t maxUploadBytes = uint64_t(32) << 20;
     uint64_t maxResultBytes = uint64_t(64) << 20;  // a garment GLB, estimated before it is written

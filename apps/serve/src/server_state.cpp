@@ -8,7 +8,7 @@ namespace knit::serve {
 
 std::string ServerState::addUpload(BaseMesh mesh) {
     std::lock_guard<std::mutex> lock(mutex_);
-    const std::string id = "upload-" + std::to_string(nextUpload_++);
+    std::string id = "upload-" + std::to_string(nextUpload_++);
     uploads_.emplace_back(id, std::move(mesh));
     while (uploads_.size() > kMaxUploads) uploads_.pop_front();
     return id;
@@ -25,14 +25,15 @@ BaseMesh ServerState::mesh(const std::string& nameOrId) const {
         std::string known;
         for (const std::string& n : names) known += (known.empty() ? "" : ", ") + n;
         throw RequestError(404, "\"mesh\": no built-in mesh or upload '" + nameOrId + "' (built-ins: " + known +
-                                    "; uploads are kept while they are among the last " + std::to_string(kMaxUploads) + ")");
+                                    "; uploads are kept while they are among the last " + std::to_string(kMaxUploads) +
+                                    ")");
     }
     return builtinMesh(nameOrId);
 }
 
 std::string ServerState::addResult(const std::string& path) {
     std::lock_guard<std::mutex> lock(mutex_);
-    const std::string id = "r" + std::to_string(nextResult_++);
+    std::string id = "r" + std::to_string(nextResult_++);
     results_.emplace_back(id, path);
     while (results_.size() > kMaxResults) {
         std::remove(results_.front().second.c_str());

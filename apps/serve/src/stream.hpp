@@ -24,6 +24,6 @@ using Emit = std::function<void(const nlohmann::json& line)>;
 // worker thread) while `ticket` holds the job's slot. Exceptions end the stream with a line of
 // their own: JobCancelled "cancelled", ChartTextError and knit::Error "error" with status 422
 // (and line and column for the chart), RequestError its status, anything else 500.
-void streamJob(httplib::Response& res, std::shared_ptr<JobTicket> ticket, std::function<void(const Emit&)> work);
+void streamJob(httplib::Response& res, std::shared_ptr<JobTicket> ticket, const std::function<void(const Emit&)>& work);
 
 }  // namespace knit::serve

@@ -41,7 +41,8 @@ WebFiles findWebFiles(const std::string& executable) {
 #ifdef KNIT_SERVE_BUILD_THREE
     threes.emplace_back(KNIT_SERVE_BUILD_THREE);  // the build tree: npm's three at set-up
 #endif
-    w.three = firstWith(threes, "build/three.module.js", "three.js (run scripts/setup.sh or `cmake --build build --target three_js`)");
+    w.three = firstWith(threes, "build/three.module.js",
+                        "three.js (run scripts/setup.sh or `cmake --build build --target three_js`)");
     return w;
 }
 

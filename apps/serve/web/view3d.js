@@ -113,7 +113,9 @@ export class KnitView {
       this.content.add(new THREE.Mesh(tubeGeometry(c.points, c.closed, c.colours, swatch.radius), this.material));
     }
     this.canvas.dataset.yarns = String(this.content.children.length);
-    if (frame) {
+    // Framed again when the swatch's size changes much (another chart), not while it relaxes.
+    if (frame || !this.swatchSize || Math.abs(swatch.size - this.swatchSize) > 0.3 * this.swatchSize) {
+      this.swatchSize = swatch.size;
       // The swatch lies on y = 0 (front +y): look down on it, a little from the bottom edge.
       const s = swatch.size;
       this.controls.target.set(0, 0, 0);
