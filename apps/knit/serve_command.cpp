@@ -69,10 +69,8 @@ int runServe(const ServeCommand& s) {
         const timespec tick{0, 200 * 1000 * 1000};
         bool signalled = false;
         while (!stopped) {
-            if (!signalled)
-                signalled = sigtimedwait(&stopSignals, nullptr, &tick) > 0;
-            else
-                std::this_thread::sleep_for(std::chrono::milliseconds(50));
+            if (!signalled) signalled = sigtimedwait(&stopSignals, nullptr, &tick) > 0;
+            else std::this_thread::sleep_for(std::chrono::milliseconds(50));
             // Again until run() has returned: a stop before the server listened would be lost.
             if (signalled) server.stop();
         }

@@ -55,7 +55,8 @@ nlohmann::json endLine(const std::exception_ptr& failure) {
 
 }  // namespace
 
-void streamJob(httplib::Response& res, std::shared_ptr<JobTicket> ticket, const std::function<void(const Emit&)>& work) {
+void streamJob(httplib::Response& res, std::shared_ptr<JobTicket> ticket,
+               const std::function<void(const Emit&)>& work) {
     res.set_header("Cache-Control", "no-store");
     res.set_chunked_content_provider("application/x-ndjson", [ticket, work](size_t, httplib::DataSink& sink) {
         bool gone = false;
