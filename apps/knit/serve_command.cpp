@@ -62,6 +62,7 @@ int runServe(const ServeCommand& s) {
     const std::string shown = s.host.find(':') != std::string::npos ? "[" + s.host + "]" : s.host;
     std::printf("knit serve: http://%s:%d/ (Ctrl-C stops it)\n", shown.c_str(), port);
     std::printf("knit serve: temporary files in %s (removed when it stops)\n", server.tempFolder().c_str());
+    std::printf("knit serve: page from %s, three.js from %s\n", o.web.page.c_str(), o.web.three.c_str());
     std::fflush(stdout);
     // The waiter looks for a stop signal every 200 ms until the server has stopped.
     std::atomic<bool> stopped{false};

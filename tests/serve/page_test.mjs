@@ -132,7 +132,7 @@ try {
 
   // The GLB download, as the page asks for it, through the glTF validator.
   const glb = await page.evaluate(async () => {
-    const body = {session: 'dl', chart: document.getElementById('chart').value, mesh: 'drape', format: 'glb'};
+    const body = {session: 'dl', chart: document.getElementById('chart').value, mesh: 'plane', repeats: [6, 6], format: 'glb'};
     const res = await fetch('/api/download', {method: 'POST', headers: {'Content-Type': 'application/json'}, body: JSON.stringify(body)});
     return {status: res.status, disposition: res.headers.get('Content-Disposition'), bytes: Array.from(new Uint8Array(await res.arrayBuffer()))};
   });

@@ -9,6 +9,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <future>
 #include <thread>
@@ -180,6 +181,31 @@ TEST_F(ServerApi, aGarmentOverTheBudgetIsRefusedNamingTheField) {
     const std::string message = end["error"];
     EXPECT_NE(message.find("over the memory budget (knit serve --max-memory)"), std::string::npos) << message;
     EXPECT_NE(message.find("the repeats (\"repeats\")"), std::string::npos) << message;
+}
+
+// Downloads: the relaxed cell as .pyp, the yarn points as a one-frame PC2 (its header and size
+// follow from the points), each as an attachment.
+TEST_F(ServerApi, downloadsArePypAndPc2Files) {
+    start();
+    const json request = {{"session", "d"}, {"chart", "k p\nk p\n"}, {"mesh", "plane"}, {"repeats", {4, 4}}};
+    json pyp = request, pc2 = request;
+    pyp["format"] = "pyp";
+    pc2["format"] = "pc2";
+    const auto cell = post("/api/download", pyp);
+    ASSERT_EQ(cell->status, 200) << cell->body;
+    EXPECT_EQ(cell->get_header_value("Content-Disposition"), "attachment; filename=\"knit-chart.pyp\"");
+    EXPECT_NE(cell->body.find("*GAUGE"), std::string::npos);
+    const auto cache = post("/api/download", pc2);
+    ASSERT_EQ(cache->status, 200) << cache->body;
+    const std::string& bytes = cache->body;
+    ASSERT_GE(bytes.size(), 32u);
+    EXPECT_EQ(bytes.substr(0, 12), std::string("POINTCACHE2\0", 12));
+    int32_t points = 0, samples = 0;
+    std::memcpy(&points, bytes.data() + 16, 4);
+    std::memcpy(&samples, bytes.data() + 28, 4);
+    EXPECT_GT(points, 0);
+    EXPECT_EQ(samples, 1);
+    EXPECT_EQ(bytes.size(), 32u + 12u * size_t(points));
 }
 
 TEST_F(ServerApi, aNewerEditCancelsTheOlderJobOfThePage) {

@@ -155,7 +155,7 @@ void handleDownload(const httplib::Request& req, httplib::Response& res, ServerS
     if (r.format == DownloadFormat::Pyp) {
         std::ostringstream out;
         writePyp(out, c.pattern);
-        bytes = out.str(), file = "knit-chart.pyp", type = "text/plain";
+        bytes = out.str(), file = "knit-chart.pyp", type = "application/octet-stream";
     } else if (r.format == DownloadFormat::Glb) {
         const std::string path = state.temp.newFile("download", "glb");
         writeGarmentGlb(c.pattern, mesh, garmentSettings(state, r), path, nullptr);

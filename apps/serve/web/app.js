@@ -62,7 +62,8 @@ async function updateSwatch() {
       showWarnings(last.warnings);
       const requested = performance.now() - started, edited = lastEdit;
       if (mode === 'swatch') { view.showSwatch(last.swatch, !framed); framed = true; }
-      await new Promise(requestAnimationFrame);  // the frame with the yarns
+      // The frame with the yarns: view.draw() renders in the next animation frame, before this.
+      await new Promise(requestAnimationFrame);
       if (!firstShown) document.body.dataset.editToFirstYarnsMs = String(Math.round(performance.now() - edited));
       // Measured on the page: the last edit to the frame with its yarns (docs/serve.md).
       document.body.dataset.editToYarnsMs = String(Math.round(performance.now() - edited));

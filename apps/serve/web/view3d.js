@@ -156,7 +156,17 @@ export class KnitView {
     };
   }
 
+  // Renders in the next animation frame, once however many changes came before it.
   draw() {
+    if (this.drawPending) return;
+    this.drawPending = true;
+    requestAnimationFrame(() => {
+      this.drawPending = false;
+      this.render();
+    });
+  }
+
+  render() {
     // Front light from over the viewer's shoulder; back light from behind the fabric.
     const eye = this.camera.position.clone().sub(this.controls.target);
     const up = this.camera.up.clone().multiplyScalar(eye.length() * 0.5);
