@@ -183,6 +183,34 @@ TEST_F(ServerApi, aGarmentOverTheBudgetIsRefusedNamingTheField) {
     EXPECT_NE(message.find("the repeats (\"repeats\")"), std::string::npos) << message;
 }
 
+// The garment is built for the page's camera: a close view of one corner culls the cells outside
+// it and sends fewer yarn points than the default framing; a view away from the mesh is refused.
+TEST_F(ServerApi, theGarmentFollowsThePagesCamera) {
+    start();
+    const json base = {{"session", "v"}, {"chart", "k k\nk k\n"}, {"mesh", "plane"}, {"repeats", {12, 12}}};
+    const auto garment = [&](const json& body) { return stream("/api/garment", body).back(); };
+    const json whole = garment(base);
+    ASSERT_EQ(whole["type"], "done") << whole.dump();
+    EXPECT_EQ(whole["culled_cells"], 0);
+    json corner = base;
+    corner["view"] = {{"eye", {0.2, 0.08, 0.2}},
+                      {"target", {0.2, 0, 0.2}},
+                      {"up", {0, 0, -1}},
+                      {"fov", 30},
+                      {"width", 640},
+                      {"height", 480}};
+    const json near = garment(corner);
+    ASSERT_EQ(near["type"], "done") << near.dump();
+    EXPECT_GT(near["culled_cells"].get<int>(), 0);
+    EXPECT_LT(near["points"].get<size_t>(), whole["points"].get<size_t>());
+    json away = base;
+    away["view"] = {{"eye", {0, 1, 0}}, {"target", {0, 2, 0}}, {"up", {0, 0, 1}}};
+    const json none = garment(away);
+    EXPECT_EQ(none["type"], "error");
+    EXPECT_EQ(none["status"], 422);
+    EXPECT_EQ(none["error"], "the view sees none of the garment; turn the camera towards it");
+}
+
 // Downloads: the relaxed cell as .pyp, the yarn points as a one-frame PC2 (its header and size
 // follow from the points), each as an attachment.
 TEST_F(ServerApi, downloadsArePypAndPc2Files) {
