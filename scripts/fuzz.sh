@@ -31,7 +31,7 @@ step=${KNIT_FUZZ_STEP:-all}
 case "$step" in build|run|all) ;; *) echo "fuzz: KNIT_FUZZ_STEP must be build, run or all, got '$step'" >&2; exit 2 ;; esac
 targets=("$@")
 if [ ${#targets[@]} -eq 0 ]; then
-  targets=(pyp curves_json obj ply off gltf gltf_animation chart strain_table)
+  targets=(pyp curves_json obj ply off gltf gltf_animation chart strain_table serve_request)
   [ "$render" = ON ] && targets+=(material)
 fi
 

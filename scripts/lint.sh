@@ -55,7 +55,7 @@ if [ "$run_tidy" = 1 ]; then
     -DKNIT_BUILD_TESTS=OFF -DKNIT_BUILD_BENCH=OFF -DKNIT_BUILD_TOOLS=ON > "$build.configure.log" 2>&1 ||
     { cat "$build.configure.log"; exit 1; }
   mapfile -t units < <(git ls-files 'libknit/src/*.cpp' 'exporters/src/*.cpp' 'render_check/src/*.cpp' \
-                                    'apps/knit/*.cpp' 'tools/*.cpp')
+                                    'apps/knit/*.cpp' 'apps/serve/src/*.cpp' 'tools/*.cpp')
   echo "== clang-tidy ($(clang-tidy --version | grep -oE '[0-9]+\.[0-9.]+' | head -1)): ${#units[@]} files, $jobs at a time"
   logs=$(mktemp -d)
   trap 'rm -rf "$logs"' EXIT

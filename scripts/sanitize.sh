@@ -43,7 +43,7 @@ cd "$build"
 # Test binaries that were not built register as <name>_NOT_BUILT: leave them out; so is the
 # export test that measures the process's peak memory (ASan's shadow memory and quarantine
 # change what it measures), and the tests that drive outside programs over a whole installed or
-# Release build (python, the Blender add-on, three.js / Blender clients, the installed package):
-# scripts/test.sh runs those.
+# Release build (python, the Blender add-on, three.js / Blender clients, the installed package,
+# the page of knit serve in Chromium): scripts/test.sh runs those.
 ctest --output-on-failure -j"$jobs" \
-  -E "_NOT_BUILT|Streaming.peakMemory|^python_tests$|^blender_addon$|^consumer_package$|^clients_" "$@"
+  -E "_NOT_BUILT|Streaming.peakMemory|^python_tests$|^blender_addon$|^consumer_package$|^clients_|^serve_page$" "$@"

@@ -10,6 +10,7 @@ packages=(
   clang libclang-rt-14-dev
   pybind11-dev python3-dev python3-numpy python3-pytest blender
   clang-format clang-tidy
+  libcpp-httplib-dev chromium  # knit serve's HTTP server; the headless browser of its page tests
   "$@"
 )
 # The glTF-Validator runs on Node.js: use the machine's node/npm if present (a NodeSource

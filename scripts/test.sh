@@ -9,5 +9,7 @@ build="$root/build"
 [ -d "$build/node/node_modules/gltf-validator" ] || cmake --build "$build" --target gltf_validator
 # three.js (npm) for the real-client tests (tests/clients).
 [ -d "$build/node/node_modules/three" ] || cmake --build "$build" --target three_js
+# puppeteer-core (npm) drives Debian's Chromium through the page of `knit serve` (tests/serve).
+[ -d "$build/node/node_modules/puppeteer-core" ] || cmake --build "$build" --target puppeteer_core
 cd "$build"
 ctest --output-on-failure -j"${KNIT_JOBS:-$(nproc)}"

@@ -10,6 +10,7 @@ void addCommands(CLI::App& app, Commands& c) {
     addGenerateCommand(app, c.generate);
     addChartCommand(app, c.chart);
     addStrainTableCommand(app, c.strainTable);
+    addServeCommand(app, c.serve);
 #ifdef KNIT_HAVE_RENDER_CHECK
     addRenderCommand(app, c.render);
 #endif
@@ -25,6 +26,7 @@ int runCommand(const Commands& c) {
     if (*c.strainTable.command) return runStrainTable(c.strainTable);
     if (*c.build.command) return runBuild(c.build);
     if (*c.animate.command) return runAnimate(c.animate);
+    if (*c.serve.command) return runServe(c.serve);
 #ifdef KNIT_HAVE_RENDER_CHECK
     if (*c.render.command) return runRender(c.render);
 #endif

@@ -10,6 +10,7 @@
 #include "generate_command.hpp"
 #include "info_command.hpp"
 #include "strain_table_command.hpp"
+#include "serve_command.hpp"
 #ifdef KNIT_HAVE_RENDER_CHECK
 #include "render_command.hpp"
 #endif
@@ -26,6 +27,7 @@ struct Commands {
     ChartCommand chart;
     AnimateCommand animate;
     StrainTableCommand strainTable;
+    ServeCommand serve;
 #ifdef KNIT_HAVE_RENDER_CHECK
     RenderCommand render;
 #endif

@@ -204,5 +204,36 @@ TEST(Relax, openYarnsAreRefused) {
     EXPECT_THROW(relaxYarn(p), Error);
 }
 
+// The step callback (knit serve's progress stream) sees the run as it goes and can stop it; a
+// callback that lets it run does not change the result.
+TEST(Relax, stepCallbackReportsProgressAndStopsTheRun) {
+    const Chart chart = parseChart("k k\nk k\n", "t");
+    const ChartPattern plain = relaxChart(chart);
+    ChartPatternOptions watched;
+    std::vector<int> seen;
+    watched.stepInterval = 10;
+    watched.onStep = [&](const RelaxStep& s) {
+        seen.push_back(s.iteration);
+        EXPECT_EQ(s.pattern.points.size(), plain.relaxed.pattern.points.size());
+        return true;
+    };
+    const ChartPattern full = relaxChart(chart, watched);
+    EXPECT_FALSE(full.relaxed.stopped);
+    EXPECT_EQ(full.relaxed.iterations, plain.relaxed.iterations);
+    EXPECT_EQ(full.relaxed.pattern.points, plain.relaxed.pattern.points);
+    ASSERT_FALSE(seen.empty());
+    EXPECT_EQ(seen.front(), 10);
+    EXPECT_EQ(seen.back(), (plain.relaxed.iterations - 1) / 10 * 10);
+
+    ChartPatternOptions stopping;
+    stopping.stepInterval = 30;
+    stopping.onStep = [](const RelaxStep& s) { return s.iteration < 60; };
+    const ChartPattern stopped = relaxChart(chart, stopping);
+    EXPECT_TRUE(stopped.relaxed.stopped);
+    EXPECT_FALSE(stopped.relaxed.converged);
+    EXPECT_EQ(stopped.relaxed.iterations, 60);
+    EXPECT_NE(stopped.relaxed.pattern.points, plain.relaxed.pattern.points);
+}
+
 }  // namespace
 }  // namespace knit

@@ -17,6 +17,10 @@ struct ChartPatternOptions {
     // stockinette's yarn length per area within 7%, see docs/charts.md).
     double restLength = 0.8;
     int maxIterations = 4000;
+    // Progress and cancellation of the relaxation (RelaxOptions::onStep); not part of the
+    // cache key, since it does not change the result.
+    RelaxStepFn onStep;
+    int stepInterval = 50;
 };
 
 struct ChartPattern {

@@ -17,9 +17,21 @@
 // The pair search and the contact forces run in parallel (TBB), one slot per segment or pair,
 // joined and summed in order: deterministic, the same result for any thread count.
 #pragma once
+#include <functional>
+
 #include "knit/pattern.hpp"
 
 namespace knit {
+
+// The state of a running relaxation, for progress display (RelaxOptions::onStep).
+struct RelaxStep {
+    int iteration = 0;
+    double energy = 0;
+    Pattern pattern;  // the cell as it is now (as RelaxResult::pattern would be if it stopped here)
+};
+// Called every RelaxOptions::stepInterval iterations; returning false stops the relaxation
+// (RelaxResult::stopped), e.g. when the user has moved on to another chart.
+using RelaxStepFn = std::function<bool(const RelaxStep&)>;
 
 struct RelaxOptions {
     double stretch = 200;           // inextensibility weight
@@ -40,6 +52,8 @@ struct RelaxOptions {
     double relativeEnergyTolerance = 1e-6;
     int energyWindow = 500;
     double maxStep = 0.25;  // largest vertex move per step, in yarn radii
+    RelaxStepFn onStep;     // optional: progress and cancellation (does not change the result)
+    int stepInterval = 50;  // iterations between onStep calls (>= 1)
 };
 
 struct RelaxResult {
@@ -55,6 +69,7 @@ struct RelaxResult {
     // the contact pair list.
     int evaluations = 0;
     int pairRebuilds = 0;
+    bool stopped = false;  // onStep returned false: `pattern` is the state at that iteration
 };
 
 // Throws knit::Error when the pattern is invalid or a yarn has fewer than 4 vertices.

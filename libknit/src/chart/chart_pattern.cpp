@@ -17,6 +17,8 @@ ChartPattern relaxChart(const Chart& chart, const ChartPatternOptions& options) 
     relax.restLength = options.restLength;
     relax.restScale = out.cell.restScale;
     relax.maxIterations = options.maxIterations;
+    relax.onStep = options.onStep;
+    relax.stepInterval = options.stepInterval;
     const auto start = std::chrono::steady_clock::now();
     out.relaxed = relaxYarn(out.cell.pattern, relax);
     out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

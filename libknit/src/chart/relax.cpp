@@ -310,6 +310,11 @@ RelaxResult relaxYarn(const Pattern& initial, const RelaxOptions& options) {
             result.converged = true;
             break;
         }
+        if (options.onStep && it > 0 && it % std::max(options.stepInterval, 1) == 0 &&
+            !options.onStep(RelaxStep{it, e, toPattern(initial, pb, v)})) {
+            result.stopped = true;
+            break;
+        }
         // Step 2: direction (L-BFGS, steepest descent when it is not a descent direction).
         Vec d = lbfgsDirection(g, S, Y);
         if (d.dot(g) >= 0) {

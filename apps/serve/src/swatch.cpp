@@ -1,0 +1,55 @@
+// The swatch: the pattern at its own size on a square of the built-in plane (swatch.hpp).
+#include "swatch.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "knit/scene.hpp"
+
+namespace knit::serve {
+namespace {
+
+double rounded(double x, double unit) { return std::round(x / unit) * unit; }
+
+nlohmann::json curvesJson(const MappedYarns& yarns) {
+    nlohmann::json curves = nlohmann::json::array();
+    const Polylines& c = yarns.curves;
+    for (size_t k = 0; k < c.curveCount(); ++k) {
+        std::vector<double> points, colours;
+        points.reserve(3 * c.size(k));
+        for (uint32_t i = c.begin(k); i < c.end(k); ++i)
+            for (int a = 0; a < 3; ++a) points.push_back(rounded(c.points[i][a], 1e-6));
+        nlohmann::json curve = {{"closed", c.isClosed(k)}, {"points", points}};
+        if (!yarns.colour.empty()) {
+            for (uint32_t i = c.begin(k); i < c.end(k); ++i)
+                for (int a = 0; a < 3; ++a) colours.push_back(rounded(yarns.colour[i][a], 1e-3));
+            curve["colours"] = colours;
+        }
+        curves.push_back(std::move(curve));
+    }
+    return curves;
+}
+
+}  // namespace
+
+nlohmann::json swatchJson(const Pattern& pattern, std::array<double, 2> repeats) {
+    if (repeats[0] == 0 && repeats[1] == 0) {
+        repeats[0] = std::ceil(12.0 / std::max(pattern.stitchesPerPeriod, 1));
+        repeats[1] = std::ceil(12.0 / std::max(pattern.rowsPerPeriod, 1));
+    }
+    // A square plane as wide as the longer side, the pattern at its own size on it (the placement's
+    // physical size): stitches keep their shape, the shorter side gets part tiles.
+    ProceduralMeshOptions plane;
+    plane.size = std::max(repeats[0] * pattern.px, repeats[1] * pattern.py);
+    plane.resU = plane.resV = 8;
+    SceneOptions options;
+    options.buildPlies = false;
+    options.placement.repeats = {0.0, 0.0};
+    const Scene scene = buildScene(pattern, makePlane(plane), options);
+    return {{"yarns", scene.yarns().curves.curveCount()},
+            {"radius", scene.yarnRadius()},
+            {"size", plane.size},
+            {"curves", curvesJson(scene.yarns())}};
+}
+
+}  // namespace knit::serve

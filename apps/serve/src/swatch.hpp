@@ -1,0 +1,18 @@
+// swatch.hpp — a relaxed chart knitted into a small square swatch (the built-in plane, the
+// pattern at its own size) and its yarns as JSON for the page's 3D view.
+#pragma once
+#include <array>
+
+#include <nlohmann/json.hpp>
+
+#include "knit/pattern.hpp"
+
+namespace knit::serve {
+
+// The swatch's yarns: {"yarns": N, "radius": r, "size": side (m), "curves": [{"closed": bool,
+// "points": [x, y, z, ...], "colours": [r, g, b, ...] (linear, only with a colour layer)}]}.
+// `repeats` 0 0: enough periods for about 12 stitches and rows each way. Points are in metres on
+// the plane y = 0 (its normal +y), rounded to a micrometre.
+nlohmann::json swatchJson(const Pattern& pattern, std::array<double, 2> repeats);
+
+}  // namespace knit::serve

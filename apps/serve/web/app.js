@@ -1,0 +1,179 @@
+// app.js — the page: the chart editor drives a debounced live swatch (the server relaxes the
+// chart and streams the yarns); the garment view, palette, gauge, uploads and downloads.
+import {postStream, getJson, download, uploadMesh} from './api.js';
+import {ChartEditor} from './editor.js';
+import {KnitView} from './view3d.js';
+
+const $ = (id) => document.getElementById(id);
+const session = 'p' + Math.random().toString(36).slice(2, 12);
+const editor = new ChartEditor($('chart'), $('chart-marks'), $('chart-error'));
+const view = new KnitView($('view'));
+const status = (text) => { $('status').textContent = text; };
+let mode = 'swatch';
+let swatchRequest = null, garmentRequest = null;
+let framed = false, garmentFramed = false;
+let garmentTimer = 0;
+
+function showWarnings(list) {
+  $('warnings').replaceChildren(...(list ?? []).map((w) => Object.assign(document.createElement('li'), {textContent: w})));
+}
+
+function refreshPalette() {
+  const box = $('palette');
+  const colours = editor.palette();
+  box.replaceChildren(...Object.entries(colours).map(([letter, hex]) => {
+    const label = document.createElement('label');
+    const input = Object.assign(document.createElement('input'), {type: 'color', value: hex.toLowerCase()});
+    input.setAttribute('aria-label', `colour ${letter}`);
+    input.addEventListener('change', () => { editor.setColour(letter, input.value); changed(); });
+    label.append(letter, input);
+    return label;
+  }));
+  $('add-colour').hidden = Object.keys(colours).length > 0;
+}
+
+// The swatch: relaxed on the server, intermediate cells shown as they arrive.
+async function updateSwatch() {
+  swatchRequest?.abort();
+  const controller = swatchRequest = new AbortController();
+  const started = performance.now();
+  let firstShown = false;
+  delete document.body.dataset.editToFirstYarnsMs;
+  status('relaxing…');
+  try {
+    const last = await postStream('/api/swatch', {session, chart: editor.text}, (line) => {
+      if (controller.signal.aborted) return;
+      if (line.type === 'step') status(`relaxing… iteration ${line.iteration}`);
+      if (line.swatch && mode === 'swatch') {
+        view.showSwatch(line.swatch, !framed);
+        framed = true;
+        if (!firstShown) {
+          firstShown = true;
+          const edited = lastEdit;
+          requestAnimationFrame(() => {
+            document.body.dataset.editToFirstYarnsMs = String(Math.round(performance.now() - edited));
+          });
+        }
+      }
+    }, controller.signal);
+    if (controller.signal.aborted) return;
+    if (last.type === 'done') {
+      editor.setError(null);
+      showWarnings(last.warnings);
+      const requested = performance.now() - started, edited = lastEdit;
+      if (mode === 'swatch') { view.showSwatch(last.swatch, !framed); framed = true; }
+      // The frame with the yarns: view.draw() renders in the next animation frame, before this.
+      await new Promise(requestAnimationFrame);
+      if (!firstShown) document.body.dataset.editToFirstYarnsMs = String(Math.round(performance.now() - edited));
+      // Measured on the page: the last edit to the frame with its yarns (docs/serve.md).
+      document.body.dataset.editToYarnsMs = String(Math.round(performance.now() - edited));
+      document.body.dataset.serverMs = String(Math.round(requested));
+      document.body.dataset.swatchYarns = String(last.swatch.yarns);
+      status(`${last.swatch.yarns} yarns, ${last.stats.width} × ${last.stats.height} stitches, ` +
+             `${last.stats.iterations} iterations; shown ${Math.round(performance.now() - started)} ms after the request`);
+      if (mode === 'garment') scheduleGarment(0);
+    } else if (last.type === 'error') {
+      if (last.line) editor.setError(last); else status(last.error);
+    }
+  } catch (e) {
+    if (e.name !== 'AbortError') status(String(e));
+  }
+}
+
+function garmentBody() {
+  const body = {session, chart: editor.text, mesh: $('mesh').value};
+  const gauge = $('gauge').value.trim();
+  if (gauge) body.gauge = gauge;
+  if (garmentFramed) body.view = view.view();
+  return body;
+}
+
+async function updateGarment() {
+  garmentRequest?.abort();
+  const controller = garmentRequest = new AbortController();
+  status('building the garment…');
+  try {
+    const last = await postStream('/api/garment', garmentBody(), (line) => {
+      if (line.type === 'stage') status(`building the garment: ${line.stage}`);
+    }, controller.signal);
+    if (controller.signal.aborted) return;
+    if (last.type === 'done') {
+      await view.showGarment(last.result, last.yarns, garmentFramed ? null : last.camera);
+      garmentFramed = true;
+      document.body.dataset.garmentYarns = String(last.yarns);
+      showWarnings(last.warnings);
+      status(`garment: ${last.yarns} yarn pieces, ${(last.bytes / 1048576).toFixed(1)} MB, ` +
+             `${last.culled_cells} of ${last.cells} cells culled for this view`);
+    } else if (last.type === 'error') {
+      if (last.line) editor.setError(last); else status(last.error);
+    }
+  } catch (e) {
+    if (e.name !== 'AbortError') status(String(e));
+  }
+}
+
+function scheduleGarment(delay) {
+  clearTimeout(garmentTimer);
+  garmentTimer = setTimeout(updateGarment, delay);
+}
+
+let editTimer = 0, lastEdit = 0;
+function changed() {
+  lastEdit = performance.now();
+  refreshPalette();
+  clearTimeout(editTimer);
+  editTimer = setTimeout(updateSwatch, 80);  // debounced: the newest text wins
+}
+
+async function start() {
+  const info = await getJson('/api/info');
+  const builtin = $('builtin');
+  for (const c of info.charts) builtin.append(new Option(c.name.replace(/^chart:/, ''), c.text));
+  for (const m of info.meshes) $('mesh').append(new Option(m, m));
+  $('mesh').value = info.meshes.includes('drape') ? 'drape' : info.meshes[0];
+  builtin.addEventListener('change', () => { editor.text = builtin.value; editor.setError(null); changed(); });
+  $('chart').addEventListener('input', changed);
+  $('add-colour').addEventListener('click', () => { if (editor.addColourLayer()) changed(); });
+  $('light').addEventListener('change', () => view.setBackLight($('light').value === 'back'));
+  $('gauge').addEventListener('change', () => { if (mode === 'garment') scheduleGarment(0); });
+  $('mesh').addEventListener('change', () => { garmentFramed = false; if (mode === 'garment') scheduleGarment(0); });
+  for (const radio of document.querySelectorAll('input[name=mode]')) {
+    radio.addEventListener('change', () => {
+      mode = radio.value;
+      if (mode === 'garment') scheduleGarment(0); else { framed = false; updateSwatch(); }
+    });
+  }
+  // The garment is rebuilt for the new camera once it stops moving (view-driven detail).
+  view.controls.addEventListener('end', () => { if (mode === 'garment') scheduleGarment(600); });
+  $('upload').addEventListener('change', async () => {
+    const file = $('upload').files[0];
+    if (!file) return;
+    try {
+      const m = await uploadMesh(file);
+      $('mesh').append(new Option(`${m.name} (${m.triangles} triangles)`, m.mesh));
+      $('mesh').value = m.mesh;
+      garmentFramed = false;
+      status(`uploaded ${m.name}: ${m.vertices} vertices, ${m.triangles} triangles`);
+      if (mode === 'garment') scheduleGarment(0);
+    } catch (e) {
+      status(`upload refused: ${e.message}`);
+    }
+  });
+  for (const button of document.querySelectorAll('[data-download]')) {
+    button.addEventListener('click', async () => {
+      try {
+        status(`downloading .${button.dataset.download}…`);
+        const body = garmentBody();
+        body.format = button.dataset.download;
+        status(`saved ${await download(body)}`);
+      } catch (e) {
+        status(`download refused: ${e.message}`);
+      }
+    });
+  }
+  editor.text = info.charts.find((c) => c.name === 'chart:stockinette')?.text ?? info.charts[0].text;
+  builtin.value = editor.text;
+  changed();
+}
+
+start();

@@ -1,0 +1,124 @@
+// The API's request parsing (apps/serve/src/api_request.cpp): every malformed body is refused
+// with its status and a message naming the field.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "api_request.hpp"
+#include "chart_job.hpp"
+
+namespace knit::serve {
+namespace {
+
+// The status and message of the refusal of `parse`, or {0, ""} when it was accepted.
+template <class Parse>
+std::pair<int, std::string> refusal(Parse parse) {
+    try {
+        parse();
+    } catch (const RequestError& e) {
+        return {e.status(), e.what()};
+    }
+    return {0, ""};
+}
+
+TEST(ServeRequest, swatchRequestIsParsed) {
+    const SwatchRequest r = parseSwatchRequest(R"({"session":"abc-1","chart":"k k\nk k\n","repeats":[3,4]})", {});
+    EXPECT_EQ(r.session, "abc-1");
+    EXPECT_EQ(r.chart, "k k\nk k\n");
+    EXPECT_EQ(r.repeats[0], 3);
+    EXPECT_EQ(r.repeats[1], 4);
+}
+
+TEST(ServeRequest, malformedBodiesAreRefusedNamingTheField) {
+    const RequestLimits limits;
+    const auto swatch = [&](const std::string& body) { return refusal([&] { parseSwatchRequest(body, limits); }); };
+    EXPECT_EQ(swatch("{"), std::make_pair(400, std::string("the request body is not valid JSON")));
+    EXPECT_EQ(swatch("[1]").first, 400);
+    EXPECT_EQ(swatch(R"({"chart":"k"})").second, "\"session\" must be a string (the page's id)");
+    EXPECT_EQ(swatch(R"({"session":"a b","chart":"k"})").second,
+              "\"session\" may hold only letters, digits, '-' and '_'");
+    EXPECT_EQ(swatch(R"({"session":"a"})").second, "\"chart\" must be a string (the chart text)");
+    EXPECT_EQ(swatch(R"({"session":"a","chart":"k","colour":1})").second, "unknown field \"colour\"");
+    EXPECT_EQ(swatch(R"({"session":"a","chart":"k","repeats":[0,5]})").first, 400);
+    EXPECT_EQ(swatch(R"({"session":"a","chart":"k","repeats":[1,1e9]})").first, 400);
+    EXPECT_EQ(swatch(R"({"session":"a","chart":"k","repeats":"3"})").first, 400);
+    EXPECT_EQ(swatch(R"({"session":"a","chart":"k","repeats":[1,1]})").first, 0);
+}
+
+TEST(ServeRequest, chartOverTheSizeLimitIs413) {
+    RequestLimits limits;
+    limits.maxChartBytes = 10;
+    const auto [status, message] =
+        refusal([&] { parseSwatchRequest(R"({"session":"a","chart":"k k k k k k"})", limits); });
+    EXPECT_EQ(status, 413);
+    EXPECT_EQ(message, "\"chart\" is 11 bytes, over the limit of 10");
+}
+
+TEST(ServeRequest, garmentViewGaugeAndFormatAreChecked) {
+    const RequestLimits limits;
+    const GarmentRequest g = parseGarmentRequest(
+        R"({"session":"a","chart":"k","mesh":"plane","gauge":"22x30/10cm",
+            "view":{"eye":[0,1,1],"target":[0,0,0],"up":[0,1,0],"fov":40,"width":640,"height":480}})",
+        limits, false);
+    ASSERT_TRUE(g.gauge);
+    EXPECT_DOUBLE_EQ(g.gauge->stitches, 22);
+    ASSERT_TRUE(g.view);
+    EXPECT_EQ(g.view->width, 640);
+    EXPECT_EQ(g.mesh, "plane");
+    const auto garment = [&](const std::string& body, bool download) {
+        return refusal([&] { parseGarmentRequest(body, limits, download); });
+    };
+    EXPECT_EQ(garment(R"({"session":"a","chart":"k","repeats":[2,2],"gauge":"22x30/10cm"})", false).second,
+              "give \"repeats\" or \"gauge\", not both");
+    EXPECT_EQ(garment(R"({"session":"a","chart":"k","gauge":"lots"})", false).first, 400);
+    EXPECT_EQ(garment(R"({"session":"a","chart":"k","view":{"eye":[0,0,0],"target":[0,0,0]}})", false).first, 400);
+    EXPECT_EQ(
+        garment(R"({"session":"a","chart":"k","view":{"eye":[0,0,1],"target":[0,0,0],"width":1.5}})", false).first,
+        400);
+    EXPECT_EQ(garment(R"({"session":"a","chart":"k","format":"glb"})", false).second, "unknown field \"format\"");
+    EXPECT_EQ(garment(R"({"session":"a","chart":"k","format":"obj"})", true).second,
+              "\"format\" must be \"pyp\", \"glb\" or \"pc2\"");
+    EXPECT_EQ(parseGarmentRequest(R"({"session":"a","chart":"k","format":"pc2"})", limits, true).format,
+              DownloadFormat::Pc2);
+}
+
+// The fuzzer's regression corpus (fuzz/serve_request_fuzzer.cpp), replayed in every build: each
+// body is accepted or refused with 400 / 413, and a parsed chart fails only at a line and column.
+TEST(ServeRequest, fuzzCorpusIsAcceptedOrRefusedAsBadRequest) {
+    const std::filesystem::path folder = KNIT_SOURCE_DIR "/tests/fuzz_corpus/serve_request";
+    RequestLimits limits;
+    limits.maxChartStitches = 64;
+    size_t files = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(folder)) {
+        std::ifstream in(entry.path(), std::ios::binary);
+        std::ostringstream bytes;
+        bytes << in.rdbuf();
+        const std::string body = bytes.str();
+        ++files;
+        for (int endpoint = 0; endpoint < 4; ++endpoint) {
+            const auto [status, message] = refusal([&] {
+                if (endpoint == 0) {
+                    const SwatchRequest r = parseSwatchRequest(body, limits);
+                    try {
+                        parsePageChart(r.chart, limits.maxChartStitches);
+                    } catch (const ChartTextError& e) {
+                        EXPECT_GE(e.line(), 1) << entry.path();
+                        EXPECT_GE(e.column(), 1) << entry.path();
+                    }
+                }
+                if (endpoint == 1) parseGarmentRequest(body, limits, false);
+                if (endpoint == 2) parseGarmentRequest(body, limits, true);
+                if (endpoint == 3) parseCancelRequest(body);
+            });
+            EXPECT_TRUE(status == 0 || status == 400 || status == 413)
+                << entry.path() << ": " << status << " " << message;
+        }
+    }
+    EXPECT_GE(files, 4u);
+}
+
+}  // namespace
+}  // namespace knit::serve
