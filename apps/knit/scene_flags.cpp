@@ -104,11 +104,12 @@ void resolveDeform(const SceneFlags& f, SceneOptions& o) {
         return;
     }
     if (!f.quiet)
-        std::fprintf(stderr,
-                     "knit: note: yarns follow the surface geometrically (--deform none: no strain table given); for "
-                     "yarns that slide instead of stretching: `knit strain-table --pattern %s -o T.npy`, then "
-                     "--strain-table T.npy (or --deform strain to make one now)\n",
-                     o.pattern.c_str());
+        std::fprintf(
+            stderr,
+            "knit: note: yarns follow the surface geometrically (--deform none: no strain table given); to let "
+            "them slide and bend as knitted yarn does: `knit strain-table --pattern %s -o T.npy`, then "
+            "--strain-table T.npy (or --deform strain to make one now)\n",
+            o.pattern.c_str());
 }
 
 }  // namespace
