@@ -18,6 +18,7 @@ const std::vector<SettingSpelling>& settingFlags() {
         {"the twist direction", "--twist"},
         {"the samples per stitch", "--samples"},
         {"the memory budget", "--max-memory"},
+        {"the mesh resolution", "--mesh-res"},
         // The view.
         {"the eye position", "--eye"},
         {"the target position", "--target"},

@@ -26,6 +26,7 @@ const std::vector<knit::SettingSpelling>& keywords() {
         {"the samples per turn", "samples_per_turn"},
         {"the twist direction", "twist"},
         {"the memory budget", "max_memory"},
+        {"the mesh resolution", "res_u, res_v"},
         {"what to export", "what"},
         {"the number of tube sides", "sides"},
         {"Draco compression", "draco"},

@@ -58,9 +58,9 @@ TEST(StaleTemporaries, onlyOurNamesWithAProcessIdAreTemporaries) {
     ASSERT_TRUE(file);
     EXPECT_FALSE(file->stagingFolder);
     EXPECT_EQ(file->pid, 4242);
-    for (const char* name : {"c.pc2.4242.0.tmp", ".4242.0.tmp", "..4242.0.tmp", ".c.pc2.4242.0", ".c.pc2.42x.0.tmp",
-                             ".c.pc2.4242..tmp", ".notes.tmp", ".knit-staging.abc.tmp", ".knit-staging.1.0.tmp",
-                             ".c.99999999999.0.tmp", ".c.0.0.tmp"})
+    for (const char* name :
+         {"c.pc2.4242.0.tmp", ".4242.0.tmp", "..4242.0.tmp", ".c.pc2.4242.0", ".c.pc2.42x.0.tmp", ".c.pc2.4242..tmp",
+          ".notes.tmp", ".knit-staging.abc.tmp", ".knit-staging.1.0.tmp", ".c.99999999999.0.tmp", ".c.0.0.tmp"})
         EXPECT_FALSE(parseTemporaryName(name)) << name;
 }
 

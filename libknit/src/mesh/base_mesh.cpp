@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 
 namespace knit {
@@ -294,6 +295,13 @@ BaseMesh loadMeshFileOrName(const std::string& fileOrName, const ProceduralMeshO
         throw Error("'" + fileOrName +
                     "' is neither a mesh file (.obj, .ply, .off, .gltf, .glb) nor a built-in mesh (" + known + ")");
     }
+    // Positions, UVs, two triangles of position and UV indices per quad, and the welding's keys:
+    // ~100 bytes per quad, rounded up (the Python module takes any resolution up to 1e8 quads).
+    const double quads = double(std::max(o.resU, 0)) * double(std::max(o.resV, 0));
+    char count[32];
+    std::snprintf(count, sizeof count, "%.3g", quads);
+    load.budget.require(128.0 * quads, std::string(count) + " quads of the built-in mesh '" + fileOrName + "'",
+                        "the mesh resolution");
     return builtinMesh(fileOrName, o);
 }
 
