@@ -25,6 +25,7 @@ from ._knit import (  # noqa: F401
     load_mesh,
     load_pattern,
     make_plies,
+    spell_settings,
     uv_to_metre_scale,
     vertex_normals,
 )

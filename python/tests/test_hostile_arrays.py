@@ -114,3 +114,14 @@ def test_mesh_resolution_is_named_by_its_keywords():
     with pytest.raises(knit.Error, match=r"needs about .* for 1e\+08 quads of the built-in mesh 'plane'.*"
                                          r"lower the mesh resolution \(res_u, res_v\)"):
         knit.build_scene("stockinette", "plane", repeats=(2, 2), res_u=10000, res_v=10000, max_memory="1G")
+
+
+def test_a_tiny_ply_pitch_is_estimated_before_the_first_evaluate_plies():
+    # A scene bound without plies (as the Blender add-on binds) was never estimated for them: the
+    # first evaluate_plies resampled every yarn at this pitch and took all memory.
+    scene = knit.build_scene("stockinette", "plane", repeats=(6, 6), ply_pitch=1e-12, build_plies=False)
+    with pytest.raises(knit.Error, match=r"needs about .* ply vertices, over the memory budget .*"
+                                         r"raise the ply pitch \(ply_pitch\)") as e:
+        scene.evaluate_plies(scene.mesh.positions)
+    assert "--" not in str(e.value)
+    np.testing.assert_array_equal(scene.evaluate(scene.mesh.positions).points, scene.yarns.points)  # yarns need no plies
