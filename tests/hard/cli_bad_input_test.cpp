@@ -315,6 +315,31 @@ TEST_F(CliBadInput, valuesBeyondFloat32AreRefusedNamingTheOption) {
 // after the first was written (a file-size limit, as a full disk would) and the existing first
 // output stays byte-identical; no new or staged file is left. The limits hold the first file and
 // not the second whether /bin/sh counts ulimit -f in 512- or 1024-byte blocks.
+// The generator wrote a pattern for any model parameters (exit 0): a cell of 6e-33 m from
+// --model-radius 1e30, loops 1e30 stitches wide from --a 1e30, a 1e27 m row from --h 1e30.
+TEST_F(CliBadInput, generatorRefusesModelParametersOutsideAnyKnitNamingTheFlag) {
+    const std::string g = "generate stockinette -o g.pyp ";
+    expectFailure(g + "--a 1e30", "the loop width (--a) 1e+30 is outside -3.14159 .. 3.14159 model units");
+    expectFailure(g + "--a nan", "the loop width (--a) nan is outside");
+    expectFailure(g + "--h 1e30", "the loop height (--h) 1e+30 is outside 0.392699 .. 100.531 model units");
+    expectFailure(g + "--d -1e30", "the over/under depth (--d) -1e+30 is outside");
+    expectFailure(g + "--row-gap 1e30", "the row gap (--row-gap) 1e+30 is outside");
+    expectFailure(g + "--row-gap -3.5", "a loop reaches at most 4 rows");
+    expectFailure(g + "--model-radius 1e30", "the model yarn radius (--model-radius) 1e+30 is outside 0.001 .. 2.25");
+    expectFailure(g + "--model-radius 0", "the model yarn radius (--model-radius) 0 is outside");
+    expectFailure(g + "--radius 1e30", "the generator's yarn radius (--radius) 1e+30 is outside 1e-06 .. 1 m");
+    expectFailure(g + "--radius 1e-30", "the generator's yarn radius (--radius) 1e-30 is outside");
+    expectFailure(g + "--samples 1", "the samples per stitch (--samples) 1 is outside 4 .. 1e+09");
+    // The shipped pattern's parameters (patterns/generate.sh) and the ends of the ranges pass.
+    for (const std::string ok :
+         {"--a 1.5 --h 4 --d 1 --row-gap 0.5 --model-radius 0.8 --radius 0.001 --samples 24",
+          "--a -3.14 --h 100 --row-gap -75 --model-radius 0.001 --radius 1e-6", "--a 3.14 --d 6.28 --radius 1"}) {
+        const CliRun r = knit(g + ok, dir);
+        EXPECT_EQ(r.exitCode, 0) << ok << "\n" << r.output;
+        fs::remove(dir / "g.pyp");
+    }
+}
+
 TEST_F(CliBadInput, failedSecondOutputLeavesTheExistingFirstOutputUnchanged) {
     const auto runLimited = [&](const std::string& args, int blocks) {
         const std::string cmd = "cd '" + dir.string() + "' && trap '' XFSZ && ulimit -f " + std::to_string(blocks) +
