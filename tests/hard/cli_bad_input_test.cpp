@@ -340,6 +340,32 @@ TEST_F(CliBadInput, generatorRefusesModelParametersOutsideAnyKnitNamingTheFlag) 
     }
 }
 
+// Sizes far outside any garment were blamed on the memory budget, the clamp tolerance or the
+// repeats; now the file, the element and the value are named.
+TEST_F(CliBadInput, absurdSizesAreRefusedNamingTheFileTheElementAndTheValue) {
+    const std::string cell = "*pattern # px py radius num_vertedges\n";
+    const std::string loop = "\n*Q # dofs: x y z t\n0 0 Z 0\n0.5 0.5 0 0\n\n*E # v0 v1 dx dy\n0 1 0 0\n1 0 1 0\n";
+    const auto pattern = [&](const std::string& name, const std::string& header, const std::string& z) {
+        std::string q = loop;
+        q.replace(q.find('Z'), 1, z);
+        write(name, cell + header + " 2" + q);
+    };
+    pattern("thick.pyp", "1 1 1e20", "0");
+    pattern("high.pyp", "1 1 0.1", "1e17");
+    pattern("tiny.pyp", "1e-30 1e-30 1e-31", "0");
+    write("big.obj", "v 0 0 0\nv 1e30 0 0\nv 1e30 1e30 0\nvt 0 0\nvt 1 0\nvt 1 1\nf 1/1 2/2 3/3\n");
+    expectFailure(kSmall + std::string("--pattern thick.pyp -o o.obj"),
+                  "thick.pyp: the yarn radius 1e+20 m is larger than the period (1 x 1 m)");
+    expectFailure(kSmall + std::string("--pattern high.pyp -o o.obj"),
+                  "high.pyp: vertex 0 lies 1e+17 m off the mid-surface, 1e+17 periods");
+    expectFailure("build -q --mesh plane --pattern tiny.pyp -o o.obj",
+                  "tiny.pyp: at its physical size (period 1e-30 x 1e-30 m) on mesh 'plane' (0.5 x 0.5 m per UV unit) "
+                  "the pattern repeats 5e+29 x 5e+29 times per UV unit, beyond 1e7");
+    expectFailure("build -q --mesh big.obj -o o.obj", "on mesh 'big.obj' (1e+30 x 1e+30 m per UV unit)");
+    expectFailure("build -q --mesh plane --mesh-res 4 --repeats 1e9 1 -o o.obj",
+                  "the repeats (--repeats) (1e+09, 1) are beyond 1e7 periods per UV unit");
+}
+
 TEST_F(CliBadInput, failedSecondOutputLeavesTheExistingFirstOutputUnchanged) {
     const auto runLimited = [&](const std::string& args, int blocks) {
         const std::string cmd = "cd '" + dir.string() + "' && trap '' XFSZ && ulimit -f " + std::to_string(blocks) +
