@@ -125,3 +125,12 @@ def test_a_tiny_ply_pitch_is_estimated_before_the_first_evaluate_plies():
         scene.evaluate_plies(scene.mesh.positions)
     assert "--" not in str(e.value)
     np.testing.assert_array_equal(scene.evaluate(scene.mesh.positions).points, scene.yarns.points)  # yarns need no plies
+
+
+def test_error_words_let_another_front_end_name_the_settings():
+    with pytest.raises(knit.Error) as e:
+        knit.build_scene("stockinette", "plane", repeats=(64, 64), max_memory="1M")
+    assert "lower the repeats (repeats)" in str(e.value)
+    assert "(repeats)" not in e.value.words and "lower the repeats or raise the memory budget" in e.value.words
+    spelled = knit.spell_settings(e.value.words, [("the repeats", "Repeats")])
+    assert "lower the repeats (Repeats) or raise the memory budget" in spelled and "max_memory" not in spelled
