@@ -366,6 +366,16 @@ TEST_F(CliBadInput, absurdSizesAreRefusedNamingTheFileTheElementAndTheValue) {
                   "the repeats (--repeats) (1e+09, 1) are beyond 1e7 periods per UV unit");
 }
 
+// Draco's tables grow with 2^bits whatever the scene: a few thousand tube vertices at 29 bits took
+// 2 GB (4.1 GB at 30 bits) while the estimate said ~100 MB, so a 1 GiB budget let them through.
+TEST_F(CliBadInput, dracoBitDepthsAreEstimatedBeforeTheEncoderAllocatesItsTables) {
+    const std::string tiny = "build -q --mesh plane --mesh-res 8 --repeats 2 2 --export tubes --draco -o d.glb ";
+    expectFailure(tiny + "--draco-bits 29 --max-memory 1G", "Draco at 29 bits");
+    expectFailure(tiny + "--draco-bits 30", "lower the Draco position bits (--draco-bits)");
+    const CliRun r = knit(tiny + "--draco-bits 24 --max-memory 1G", dir);
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+}
+
 TEST_F(CliBadInput, failedSecondOutputLeavesTheExistingFirstOutputUnchanged) {
     const auto runLimited = [&](const std::string& args, int blocks) {
         const std::string cmd = "cd '" + dir.string() + "' && trap '' XFSZ && ulimit -f " + std::to_string(blocks) +
