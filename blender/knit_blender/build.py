@@ -266,6 +266,7 @@ def apply_knit(context, source, options):
     obj[REST_PROP] = np.asarray(scene.mesh.positions, dtype=np.float32).ravel().tolist()
     obj[BOUND_PROP] = json.dumps(signature)
     obj[STATUS_PROP] = ""
+    _said[obj.name] = ""
     modifier = obj.modifiers.new("knit plies", "NODES")
     modifier.node_group = ply_node_group(options.get("profile_resolution", 6))
     _scenes[obj.name] = scene
@@ -349,12 +350,21 @@ def update_knit(obj, depsgraph):
     return status
 
 
+# What was last said per knit object (by name): said once even where the object cannot be written
+# (Blender refuses ID writes in some contexts, e.g. while rendering an animation).
+_said = {}
+
+
 def set_status(obj, status):
     """Records why the knit object no longer follows its source ("" = it does) and says so once:
     one line on the console and the status bar when it changes, the object's panel while it lasts."""
-    if obj.get(STATUS_PROP, "") == status:
+    if _said.get(obj.name, obj.get(STATUS_PROP, "")) == status:
         return
-    obj[STATUS_PROP] = status
+    _said[obj.name] = status
+    try:
+        obj[STATUS_PROP] = status
+    except (AttributeError, RuntimeError, TypeError):  # ID writes not allowed here: the console says it
+        pass
     text = f"{obj.name}: {status}" if status else None
     if text:
         print(f"knit: warning: {text}")
