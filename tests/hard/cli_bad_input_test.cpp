@@ -10,6 +10,8 @@
 #include <sys/stat.h>
 #include <sys/wait.h>
 
+#include <nlohmann/json.hpp>
+
 #include "common/run_knit.hpp"
 #include "mesh/gltf_builder.hpp"
 #include "test_util.hpp"
@@ -375,6 +377,54 @@ TEST_F(CliBadInput, dracoBitDepthsAreEstimatedBeforeTheEncoderAllocatesItsTables
     const CliRun r = knit(tiny + "--draco-bits 24 --max-memory 1G", dir);
     EXPECT_EQ(r.exitCode, 0) << r.output;
 }
+
+#ifdef KNIT_HARD_HAVE_RENDER_CHECK
+// A 1e-12 m sheet rendered as its surface level (the level of detail floored depths and the framing
+// at a micrometre: the knit looked a million times too far) into an empty image without a word,
+// and a 1e-30 m one aborted in Embree (`ray.valid()`). Both now render their plies like the 1 m sheet.
+TEST_F(CliBadInput, extremeScalesRenderTheKnitLikeAMetreSizedOne) {
+    const auto sheet = [&](const std::string& name, double size) {
+        std::string obj, vt, f;
+        const int n = 4;
+        for (int j = 0; j <= n; ++j)
+            for (int i = 0; i <= n; ++i) {
+                char line[128];
+                std::snprintf(line, sizeof line, "v %.17g %.17g 0\n", i * size / n, j * size / n);
+                obj += line;
+                std::snprintf(line, sizeof line, "vt %.17g %.17g\n", double(i) / n, double(j) / n);
+                vt += line;
+            }
+        for (int j = 0; j < n; ++j)
+            for (int i = 0; i < n; ++i) {
+                const int a = j * (n + 1) + i + 1, b = a + 1, c = a + n + 2, d = a + n + 1;
+                const auto corner = [](int k) { return std::to_string(k) + "/" + std::to_string(k); };
+                f += "f " + corner(a) + " " + corner(b) + " " + corner(c) + "\n";
+                f += "f " + corner(a) + " " + corner(c) + " " + corner(d) + "\n";
+            }
+        write(name, obj + vt + f);
+    };
+    const auto render = [&](const std::string& mesh) {
+        const CliRun r = knit("render -q --mesh " + mesh + " --repeats 4 4 --width 32 --height 32 --spp 1 --output " +
+                                  mesh + ".png --report " + mesh + ".json",
+                              dir);
+        EXPECT_EQ(r.exitCode, 0) << mesh << "\n" << r.output;
+        return nlohmann::json::parse(knit::test::readText((dir / (mesh + ".json")).string()));
+    };
+    sheet("metre.obj", 1.0);
+    const nlohmann::json reference = render("metre.obj");
+    ASSERT_GT(reference["levels"]["plies"]["cells"].get<int>(), 0);
+    for (const auto& [name, size] : {std::pair<std::string, double>{"pico.obj", 1e-12}, {"tiny.obj", 1e-30}}) {
+        sheet(name, size);
+        const nlohmann::json r = render(name);
+        EXPECT_EQ(r["levels"]["plies"]["cells"], reference["levels"]["plies"]["cells"]) << name;
+        EXPECT_EQ(r["levels"]["surface"]["cells"].get<int>(), 0) << name;
+        for (int c = 0; c < 3; ++c)
+            EXPECT_NEAR(r["meanRadiance"][c].get<double>(), reference["meanRadiance"][c].get<double>(),
+                        0.02 * reference["meanRadiance"][c].get<double>())
+                << name;
+    }
+}
+#endif
 
 TEST_F(CliBadInput, failedSecondOutputLeavesTheExistingFirstOutputUnchanged) {
     const auto runLimited = [&](const std::string& args, int blocks) {
