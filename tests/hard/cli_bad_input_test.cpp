@@ -364,6 +364,12 @@ TEST_F(CliBadInput, absurdSizesAreRefusedNamingTheFileTheElementAndTheValue) {
                   "tiny.pyp: at its physical size (period 1e-30 x 1e-30 m) on mesh 'plane' (0.5 x 0.5 m per UV unit) "
                   "the pattern repeats 5e+29 x 5e+29 times per UV unit, beyond 1e7");
     expectFailure("build -q --mesh big.obj -o o.obj", "on mesh 'big.obj' (1e+30 x 1e+30 m per UV unit)");
+    expectFailure("build -q --mesh plane --gauge 1e30x1e30/10cm -o o.obj",
+                  "the gauge (--gauge) gives the repeats (--repeats) (5e+30, 5e+30), beyond 1e7 periods per UV unit");
+    // --mesh-res 4096 peaked at 5.1 GB (std::bad_alloc under a 4 GB limit) past an estimate of the mesh alone.
+    expectFailure("build -q --mesh plane --mesh-res 4096 --repeats 1 1 --max-memory 4G -o o.obj",
+                  "needs about 5 GiB (estimate) for 1.68e+07 quads of the built-in mesh 'plane', over the memory "
+                  "budget (--max-memory) of 4 GiB; lower the mesh resolution (--mesh-res)");
     expectFailure("build -q --mesh plane --mesh-res 4 --repeats 1e9 1 -o o.obj",
                   "the repeats (--repeats) (1e+09, 1) are beyond 1e7 periods per UV unit");
 }

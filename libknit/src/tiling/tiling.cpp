@@ -109,8 +109,8 @@ PatternPlacement placePattern(const Pattern& pattern, const BaseMesh& mesh, cons
                 << " times per UV unit, beyond 1e7: the period or the mesh's size is far outside any garment; "
                    "check their units, or set the repeats";
         else
-            msg << (options.gauge ? "the gauge gives repeats (" : "the repeats (") << placement.repeats.x << ", "
-                << placement.repeats.y << ") are beyond 1e7 periods per UV unit";
+            msg << (options.gauge ? "the gauge gives the repeats (" : "the repeats (") << placement.repeats.x << ", "
+                << placement.repeats.y << (options.gauge ? "), beyond" : ") are beyond") << " 1e7 periods per UV unit";
         throw Error(msg.str());
     }
     // Step 3: physical size of one period on the mesh relative to the pattern's own period.
