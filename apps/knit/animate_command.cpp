@@ -301,6 +301,7 @@ int runAnimate(const AnimateCommand& a) {
     // radii beyond float32 now (each frame's coordinates are range-checked as its mesh is read).
     checkSceneExport(rest, a.exportOptions);
     AnimatorOptions ao;
+    ao.budget = sceneOptions.budget;
     ao.plies = a.exportOptions.what != ExportWhat::Yarns;
     // The statistics go into the report only: without one they are not computed (the distance
     // search costs more than a frame's plies).

@@ -145,6 +145,7 @@ int runBuildOnRestPose(const BuildCommand& b) {
     const Scene rest = bindRestPose(options, b.rest);
     printWarnings(rest);
     AnimatorOptions ao;
+    ao.budget = options.budget;
     ao.plies = b.exportOptions.what != ExportWhat::Yarns;
     ao.stats = false;
     const Animator animator(rest, ao);

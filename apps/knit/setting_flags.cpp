@@ -17,8 +17,16 @@ const std::vector<SettingSpelling>& settingFlags() {
         {"the samples per turn", "--samples-per-turn"},
         {"the twist direction", "--twist"},
         {"the samples per stitch", "--samples"},
+        // The generator's model.
+        {"the generator's yarn radius", "--radius"},
+        {"the loop height", "--h"},
+        {"the row gap", "--row-gap"},
+        {"the loop width", "--a"},
+        {"the over/under depth", "--d"},
+        {"the model yarn radius", "--model-radius"},
         {"the memory budget", "--max-memory"},
         {"the deform mode", "--deform"},
+        {"the mesh resolution", "--mesh-res"},
         // The view.
         {"the eye position", "--eye"},
         {"the target position", "--target"},

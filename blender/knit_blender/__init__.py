@@ -8,6 +8,14 @@ profile) that Cycles and EEVEE render as tubes. On every frame change the evalua
 (Scene.evaluate_plies: the Animator of `knit animate`, so frame k equals its frame k).
 Object > Knit > Bake Knit to PC2 (bpy.ops.object.knit_bake_pc2) writes the frames to a PC2 cache.
 
+Nothing prints a traceback. A knit whose source no longer matches its binding (the vertex or face
+count changed by a modifier such as Decimate or Remesh, the source deleted, its UV map changed,
+the module knit missing) keeps its last good shape and says why once: a line on the console and
+the status bar, and in the Knit panel of the object's properties for as long as it lasts, with
+Re-apply Knit (bpy.ops.object.knit_reapply: binds again, with the same options, to the source as
+it is now). Errors name the operator's properties (Repeats, Plies, Ply pitch), never a command
+line flag or a Python keyword.
+
 The module `knit` is found on sys.path (installed into Debian's dist-packages by `cmake --install`),
 else in the folders of the environment variable KNIT_PYTHONPATH or of the add-on preference
 "Module folder" (e.g. <checkout>/build/python).
@@ -23,6 +31,7 @@ bl_info = {
 }
 
 import importlib
+import json
 
 if "bpy" in locals():
     importlib.reload(build)  # noqa: F821 (Blender's add-on reload)
@@ -67,10 +76,9 @@ class OBJECT_OT_knit_apply(bpy.types.Operator):
 
     def execute(self, context):
         try:
-            knit = knit_module()
+            knit_module()
         except ImportError as e:
-            self.report({"ERROR"}, f"the Python module knit was not found ({e}): install it with cmake --install, "
-                                   "or set KNIT_PYTHONPATH or the add-on's Module folder to <build>/python")
+            self.report({"ERROR"}, _missing_module_message(e))
             return {"CANCELLED"}
         options = self.as_keywords()
         if self.chart_text:  # the chart's text is stored with the object, so a re-bind uses it
@@ -81,10 +89,48 @@ class OBJECT_OT_knit_apply(bpy.types.Operator):
             options["chart_source"] = block.as_string()
         try:
             obj = build.apply_knit(context, context.active_object, options)
-        except (knit.Error, ValueError) as e:
-            self.report({"ERROR"}, str(e))
+        except Exception as e:  # noqa: BLE001 - reported in the interface, never a traceback
+            self.report({"ERROR"}, build.message_of(e))
             return {"CANCELLED"}
         self.report({"INFO"}, f"{obj.name}: {len(obj.data.vertices)} ply points")
+        return {"FINISHED"}
+
+
+def _missing_module_message(e):
+    return (f"the Python module knit was not found ({e}): install it with cmake --install, "
+            "or set KNIT_PYTHONPATH or the add-on's Module folder to <build>/python")
+
+
+class OBJECT_OT_knit_reapply(bpy.types.Operator):
+    """Bind the active knit object again, with the options it was applied with, to its source as it is now"""
+    bl_idname = "object.knit_reapply"
+    bl_label = "Re-apply Knit"
+    bl_options = {"REGISTER", "UNDO"}
+
+    @classmethod
+    def poll(cls, context):
+        obj = context.active_object
+        return obj is not None and build.SOURCE_PROP in obj
+
+    def execute(self, context):
+        obj = context.active_object
+        try:
+            build.knit_module()
+        except ImportError as e:
+            self.report({"ERROR"}, _missing_module_message(e))
+            return {"CANCELLED"}
+        source = bpy.data.objects.get(obj[build.SOURCE_PROP])
+        if source is None or source.type != "MESH":
+            self.report({"ERROR"}, f"{obj.name}: its source mesh '{obj[build.SOURCE_PROP]}' no longer exists; "
+                                   "select a mesh and use Apply Knit")
+            return {"CANCELLED"}
+        try:
+            new = build.apply_knit(context, source, json.loads(obj[build.OPTIONS_PROP]))
+        except Exception as e:  # noqa: BLE001 - reported in the interface, never a traceback
+            self.report({"ERROR"}, build.message_of(e))
+            return {"CANCELLED"}
+        context.view_layer.objects.active = new
+        self.report({"INFO"}, f"{new.name}: re-applied, {len(new.data.vertices)} ply points")
         return {"FINISHED"}
 
 
@@ -104,9 +150,50 @@ class OBJECT_OT_knit_bake_pc2(bpy.types.Operator):
 
     def execute(self, context):
         path = bpy.path.abspath(self.filepath or f"//{context.active_object.name}.pc2")
-        frames = build.bake_pc2(context, context.active_object, path, self.frame_start, self.frame_end)
+        if self.frame_end < self.frame_start:
+            self.report({"ERROR"}, f"End ({self.frame_end}) is before Start ({self.frame_start}); nothing written")
+            return {"CANCELLED"}
+        try:
+            frames = build.bake_pc2(context, context.active_object, path, self.frame_start, self.frame_end)
+        except Exception as e:  # noqa: BLE001 - reported in the interface, never a traceback
+            self.report({"ERROR"}, f"{path}: {build.message_of(e)}; nothing written")
+            return {"CANCELLED"}
         self.report({"INFO"}, f"{path}: {frames} frames")
         return {"FINISHED"}
+
+
+class OBJECT_PT_knit(bpy.types.Panel):
+    """Object properties > Knit: whether the knit follows its source, and Re-apply."""
+    bl_label = "Knit"
+    bl_space_type = "PROPERTIES"
+    bl_region_type = "WINDOW"
+    bl_context = "object"
+
+    @classmethod
+    def poll(cls, context):
+        obj = context.active_object
+        return obj is not None and build.SOURCE_PROP in obj
+
+    def draw(self, context):
+        obj = context.active_object
+        status = obj.get(build.STATUS_PROP, "")
+        self.layout.label(text=f"Source: {obj[build.SOURCE_PROP]}")
+        if status:
+            box = self.layout.box()
+            for k, line in enumerate(_wrapped(status, 60)):
+                box.label(text=line, icon="ERROR" if k == 0 else "BLANK1")
+        self.layout.operator(OBJECT_OT_knit_reapply.bl_idname, icon="FILE_REFRESH")
+
+
+def _wrapped(text, width):
+    lines, line = [], ""
+    for word in text.split():
+        if line and len(line) + 1 + len(word) > width:
+            lines.append(line)
+            line = word
+        else:
+            line = f"{line} {word}".strip()
+    return lines + ([line] if line else [])
 
 
 class VIEW3D_MT_knit(bpy.types.Menu):
@@ -114,6 +201,7 @@ class VIEW3D_MT_knit(bpy.types.Menu):
 
     def draw(self, context):
         self.layout.operator(OBJECT_OT_knit_apply.bl_idname)
+        self.layout.operator(OBJECT_OT_knit_reapply.bl_idname)
         self.layout.operator(OBJECT_OT_knit_bake_pc2.bl_idname)
 
 
@@ -121,7 +209,8 @@ def _menu(self, context):
     self.layout.menu("VIEW3D_MT_knit")
 
 
-_classes = (KnitPreferences, OBJECT_OT_knit_apply, OBJECT_OT_knit_bake_pc2, VIEW3D_MT_knit)
+_classes = (KnitPreferences, OBJECT_OT_knit_apply, OBJECT_OT_knit_reapply, OBJECT_OT_knit_bake_pc2, OBJECT_PT_knit,
+            VIEW3D_MT_knit)
 
 
 def register():

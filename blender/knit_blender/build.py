@@ -8,6 +8,7 @@ import json
 import os
 import struct
 import sys
+import zlib
 
 import bpy
 import numpy as np
@@ -16,6 +17,8 @@ ADDON = __package__ or "knit_blender"
 SOURCE_PROP = "knit_source"    # on <mesh>.knit: the source object's name
 OPTIONS_PROP = "knit_options"  # on <mesh>.knit: the apply options (JSON), to re-bind after a reload
 REST_PROP = "knit_rest"        # on <mesh>.knit: the bind pose's vertex positions (float array), ditto
+BOUND_PROP = "knit_bound"      # on <mesh>.knit: what the binding needs of its source (JSON, signature_of)
+STATUS_PROP = "knit_status"    # on <mesh>.knit: why it no longer follows its source ("" = it does)
 NODE_GROUP = "knit_ply_curves"
 MATERIAL = "knit_yarn"
 
@@ -45,16 +48,51 @@ def knit_module():
 
 # -- Step 1: the source mesh as arrays ------------------------------------------------------------
 
-def read_positions(obj, depsgraph):
-    """Vertex positions (n, 3) float32 of the evaluated object (modifiers, shape keys), local space."""
+def read_frame(obj, depsgraph):
+    """(positions, signature) of the evaluated object (modifiers, shape keys), local space:
+    vertex positions (n, 3) float32, and what the binding depends on (signature_of)."""
     evaluated = obj.evaluated_get(depsgraph)
     mesh = evaluated.to_mesh()
     try:
         co = np.empty(len(mesh.vertices) * 3, dtype=np.float32)
         mesh.vertices.foreach_get("co", co)
-        return co.reshape(-1, 3)
+        return co.reshape(-1, 3), signature_of(mesh)
     finally:
         evaluated.to_mesh_clear()
+
+
+def read_positions(obj, depsgraph):
+    """Vertex positions (n, 3) float32 of the evaluated object (modifiers, shape keys), local space."""
+    return read_frame(obj, depsgraph)[0]
+
+
+def signature_of(mesh):
+    """What a binding depends on besides the positions: the vertex and face counts, the active UV
+    map's name and a checksum of its coordinates. A change of any of them (Decimate, Remesh, an
+    edited or another UV map) makes the bound knit invalid for the mesh."""
+    uv = mesh.uv_layers.active
+    crc = None
+    if uv is not None:
+        uvs = np.empty(len(mesh.loops) * 2, dtype=np.float32)
+        uv.data.foreach_get("uv", uvs)
+        crc = zlib.crc32(uvs.tobytes())
+    return {"vertices": len(mesh.vertices), "faces": len(mesh.polygons), "uv_map": uv.name if uv else None,
+            "uv_crc": crc}
+
+
+def signature_change(bound, now):
+    """Why the source no longer matches its binding (in the interface's words), or ""."""
+    if bound["vertices"] != now["vertices"]:
+        return (f"the source now has {now['vertices']} vertices, the knit was bound to {bound['vertices']} "
+                "(a modifier such as Decimate or Remesh, or an edit, changed them)")
+    if bound["faces"] != now["faces"]:
+        return f"the source now has {now['faces']} faces, the knit was bound to {bound['faces']}"
+    if bound["uv_map"] != now["uv_map"]:
+        return (f"the source's active UV map is now {now['uv_map'] or 'none'!s}, "
+                f"the knit was bound to {bound['uv_map']}")
+    if bound["uv_crc"] != now["uv_crc"]:
+        return f"the source's UV map {now['uv_map']} changed since the knit was bound"
+    return ""
 
 
 def weld_corner_uvs(faces, corner_uvs):
@@ -215,18 +253,23 @@ def apply_knit(context, source, options):
     depsgraph = context.evaluated_depsgraph_get()
     options = {k: (list(v) if hasattr(v, "__len__") and not isinstance(v, str) else v) for k, v in options.items()}
     scene = bind(source, options, depsgraph)
+    plies = scene.evaluate_plies(scene.mesh.positions)  # may fail: before the previous knit is replaced
+    signature = read_frame(source, depsgraph)[1]
     name = f"{source.name}.knit"
     old = bpy.data.objects.get(name)
     if old is not None:
         bpy.data.objects.remove(old)
     mesh = bpy.data.meshes.new(name)
-    fill_ply_mesh(mesh, scene.evaluate_plies(scene.mesh.positions), scene.ply_radius)
+    fill_ply_mesh(mesh, plies, scene.ply_radius)
     obj = bpy.data.objects.new(name, mesh)
     context.collection.objects.link(obj)
     obj.parent = source  # follows the source's transform; points are in its local space
     obj[SOURCE_PROP] = source.name
     obj[OPTIONS_PROP] = json.dumps(options)
     obj[REST_PROP] = np.asarray(scene.mesh.positions, dtype=np.float32).ravel().tolist()
+    obj[BOUND_PROP] = json.dumps(signature)
+    obj[STATUS_PROP] = ""
+    _said[obj.name] = ""
     modifier = obj.modifiers.new("knit plies", "NODES")
     modifier.node_group = ply_node_group(options.get("profile_resolution", 6))
     _scenes[obj.name] = scene
@@ -245,39 +288,129 @@ def scene_of(obj, depsgraph):
     return scene
 
 
-def update_knit(obj, depsgraph):
+# -- Frame changes: follow the source, or say once why not ------------------------------------------
+
+# The interface's names of the settings library messages name (knit.Error.words): the operator's
+# properties; settings it has no property for stay in words.
+PROPERTY_NAMES = [
+    ("the repeats", "Repeats"),
+    ("the gauge", "Gauge"),
+    ("the number of plies", "Plies"),
+    ("the ply pitch", "Ply pitch"),
+    ("the twist direction", "Twist"),
+]
+REAPPLY_HINT = "Object > Knit > Re-apply Knit binds it to the source as it is now"
+
+
+def message_of(error):
+    """An exception as the interface shows it: a knit.Error in the operator's property names,
+    anything else as its type and message (no traceback)."""
+    words = getattr(error, "words", None)
+    if words is not None:
+        try:
+            return knit_module().spell_settings(words, PROPERTY_NAMES)
+        except ImportError:
+            return words
+    if isinstance(error, (ValueError, OSError)):
+        return str(error)
+    return f"{type(error).__name__}: {error}"
+
+
+def follow_source(obj, depsgraph):
     """Re-evaluates one knit object on its source's current evaluated mesh (Scene.evaluate_plies:
-    the same point count on every frame)."""
+    the same point count on every frame); returns "" or why it cannot (its points then stay as
+    they were: the last good shape)."""
+    try:
+        knit_module()
+    except ImportError as e:
+        return (f"the Python module knit was not found ({e}); install it with cmake --install, or set "
+                "KNIT_PYTHONPATH or the add-on's Module folder to <build>/python")
     source = bpy.data.objects.get(obj[SOURCE_PROP])
-    if source is None:
-        return
+    if source is None or source.type != "MESH":
+        return f"its source mesh '{obj[SOURCE_PROP]}' was deleted or renamed; {REAPPLY_HINT} (select the source)"
+    positions, signature = read_frame(source, depsgraph)
+    bound = obj.get(BOUND_PROP)
+    change = signature_change(json.loads(bound), signature) if bound else ""
+    if change:
+        return f"{change}; it keeps its last shape. {REAPPLY_HINT}"
     scene = scene_of(obj, depsgraph)
-    plies = scene.evaluate_plies(read_positions(source, depsgraph))
+    if len(positions) != len(scene.mesh.positions):  # a knit applied before the signature was stored
+        return (f"the source now has {len(positions)} vertices, the knit was bound to "
+                f"{len(scene.mesh.positions)}; it keeps its last shape. {REAPPLY_HINT}")
+    plies = scene.evaluate_plies(positions)
     if not set_ply_points(obj.data, plies):
         fill_ply_mesh(obj.data, plies, scene.ply_radius)
+    return ""
+
+
+def update_knit(obj, depsgraph):
+    """follow_source, never raising: an error becomes the object's status."""
+    try:
+        status = follow_source(obj, depsgraph)
+    except Exception as e:  # noqa: BLE001 - a handler must not raise: the status says what happened
+        status = f"{message_of(e)}; it keeps its last shape. {REAPPLY_HINT}"
+    set_status(obj, status)
+    return status
+
+
+# What was last said per knit object (by name): said once even where the object cannot be written
+# (Blender refuses ID writes in some contexts, e.g. while rendering an animation).
+_said = {}
+
+
+def set_status(obj, status):
+    """Records why the knit object no longer follows its source ("" = it does) and says so once:
+    one line on the console and the status bar when it changes, the object's panel while it lasts."""
+    if _said.get(obj.name, obj.get(STATUS_PROP, "")) == status:
+        return
+    _said[obj.name] = status
+    try:
+        obj[STATUS_PROP] = status
+    except (AttributeError, RuntimeError, TypeError):  # ID writes not allowed here: the console says it
+        pass
+    text = f"{obj.name}: {status}" if status else None
+    if text:
+        print(f"knit: warning: {text}")
+    try:
+        for window in bpy.context.window_manager.windows:
+            window.workspace.status_text_set(text)
+    except (AttributeError, RuntimeError):  # no windows in background mode
+        pass
 
 
 @bpy.app.handlers.persistent
 def on_frame_change(scene, depsgraph=None):
-    depsgraph = depsgraph or bpy.context.evaluated_depsgraph_get()
-    for obj in scene.objects:
-        if SOURCE_PROP in obj and obj.type == "MESH":
-            update_knit(obj, depsgraph)
+    """Every knit object follows its source; one that cannot keeps its shape and says why (update_knit)."""
+    try:
+        depsgraph = depsgraph or bpy.context.evaluated_depsgraph_get()
+        objects = [obj for obj in scene.objects if SOURCE_PROP in obj and obj.type == "MESH"]
+    except Exception as e:  # noqa: BLE001 - a handler must not raise
+        print(f"knit: warning: the frame change could not be followed: {message_of(e)}")
+        return
+    for obj in objects:
+        update_knit(obj, depsgraph)
 
 
 def bake_pc2(context, obj, path, first, last):
-    """Writes frames first..last of the knit object's points to a PC2 file; returns the frame count."""
+    """Writes frames first..last of the knit object's points to a PC2 file; returns the frame count.
+    Raises ValueError (nothing written) when a frame cannot follow the source (its status)."""
     scene = context.scene
     current = scene.frame_current
     count = len(obj.data.vertices)
     tmp = path + ".tmp"
-    with open(tmp, "wb") as f:
-        f.write(struct.pack("<12siiffi", b"POINTCACHE2\0", 1, count, float(first), 1.0, last - first + 1))
-        co = np.empty(count * 3, dtype=np.float32)
-        for frame in range(first, last + 1):
-            scene.frame_set(frame)  # runs on_frame_change
-            obj.data.vertices.foreach_get("co", co)
-            f.write(co.tobytes())
-    os.replace(tmp, path)
-    scene.frame_set(current)
+    try:
+        with open(tmp, "wb") as f:
+            f.write(struct.pack("<12siiffi", b"POINTCACHE2\0", 1, count, float(first), 1.0, last - first + 1))
+            co = np.empty(count * 3, dtype=np.float32)
+            for frame in range(first, last + 1):
+                scene.frame_set(frame)  # runs on_frame_change
+                if obj.get(STATUS_PROP):
+                    raise ValueError(f"frame {frame}: {obj[STATUS_PROP]}")
+                obj.data.vertices.foreach_get("co", co)
+                f.write(co.tobytes())
+        os.replace(tmp, path)
+    finally:
+        if os.path.exists(tmp):
+            os.remove(tmp)
+        scene.frame_set(current)
     return last - first + 1

@@ -12,6 +12,7 @@
 #include <system_error>
 
 #include "io/atomic_file.hpp"
+#include "io/stale_temporaries.hpp"
 #include "io/temp_registry.hpp"
 
 namespace knit {
@@ -69,6 +70,7 @@ OutputTransaction::~OutputTransaction() { removeStaging(); }
 const OutputTransaction::Folder& OutputTransaction::folderFor(const std::string& finalFolder) {
     for (const Folder& f : folders_)
         if (f.final == finalFolder) return f;
+    impl::removeStaleTemporariesOnce(finalFolder);  // staging folders of killed runs
     static std::atomic<unsigned> counter{0};
     Folder f;
     f.final = finalFolder;
@@ -81,6 +83,7 @@ const OutputTransaction::Folder& OutputTransaction::folderFor(const std::string&
         throw Error("cannot write into folder '" + (finalFolder.empty() ? std::string(".") : finalFolder) +
                     "': cannot create a temporary folder there (" + ec.message() + ")");
     }
+    f.lockFd = impl::lockTemporary(f.staging);  // released only when the folder is gone (or the process)
     folders_.push_back(f);
     return folders_.back();
 }
@@ -130,6 +133,8 @@ void OutputTransaction::removeStaging() {
         fs::remove_all(f.staging, ec);
         impl::unregisterTempFile(f.registrySlot);
         f.registrySlot = -1;
+        impl::unlockTemporary(f.lockFd);
+        f.lockFd = -1;
     }
     folders_.clear();
 }

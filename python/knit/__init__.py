@@ -31,6 +31,7 @@ from ._knit import (  # noqa: F401
     load_strain_table,
     make_plies,
     strain_table,
+    spell_settings,
     uv_to_metre_scale,
     vertex_normals,
 )

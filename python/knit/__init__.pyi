@@ -7,7 +7,8 @@ import numpy.typing as npt
 ArrayF = npt.NDArray[np.float64]
 ArrayLike = npt.ArrayLike
 
-class Error(Exception): ...
+class Error(Exception):
+    words: str  # the library's message, settings in words (spell_settings adds another spelling)
 
 class Pattern:
     name: str
@@ -138,6 +139,7 @@ def strain_table(pattern: Union[str, Pattern] = "stockinette", path: Optional[st
 def load_strain_table(path: str) -> StrainTable: ...
 def make_plies(yarns: Yarns, yarn_radius: float, count: int = 2, pitch: float = 0.0, twist: str = "S",
                ply_radius: float = 0.0, center_radius: float = 0.0, samples_per_turn: int = 12) -> Plies: ...
+def spell_settings(words: str, spellings: Sequence[Tuple[str, str]]) -> str: ...
 def export_scene(scene: Scene, path: str, what: str = "plies", sides: int = 8, caps: bool = True,
                  draco: bool = False, quantize: bool = False, yarn_colors: bool = False,
                  meshopt: bool = False, max_memory: str = "") -> dict: ...

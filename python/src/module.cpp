@@ -3,6 +3,7 @@
 #include <vector>
 
 #include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
 
 #include "bindings.hpp"
 #include "knit/error.hpp"
@@ -26,6 +27,7 @@ const std::vector<knit::SettingSpelling>& keywords() {
         {"the samples per turn", "samples_per_turn"},
         {"the twist direction", "twist"},
         {"the memory budget", "max_memory"},
+        {"the mesh resolution", "res_u, res_v"},
         {"what to export", "what"},
         {"the number of tube sides", "sides"},
         {"Draco compression", "draco"},
@@ -51,9 +53,25 @@ PYBIND11_MODULE(_knit, m) {
         try {
             if (p) std::rethrow_exception(p);
         } catch (const knit::Error& e) {
-            (*knitpy::knitError)(knit::spellSettings(e.what(), knitpy::keywords()).c_str());
+            // The message with this module's keywords; `words` keeps the library's message, for a
+            // front end on top of the module with its own spelling (spell_settings).
+            pybind11::object error = pybind11::reinterpret_borrow<pybind11::object>(knitpy::knitError->ptr())(
+                knit::spellSettings(e.what(), knitpy::keywords()));
+            error.attr("words") = std::string(e.what());
+            PyErr_SetObject(knitpy::knitError->ptr(), error.ptr());
         }
     });
+    m.def(
+        "spell_settings",
+        [](const std::string& words, const std::vector<std::pair<std::string, std::string>>& spellings) {
+            std::vector<knit::SettingSpelling> s;
+            for (const auto& [w, spelling] : spellings) s.push_back({w, spelling});
+            return knit::spellSettings(words, s);
+        },
+        pybind11::arg("words"), pybind11::arg("spellings"),
+        "A library message (knit.Error.words) with a front end's spelling of each setting after its first "
+        "mention: spellings is [(words, spelling)], e.g. [('the repeats', 'Repeats')]. knit.Error's own "
+        "message is this with the module's keywords.");
     knitpy::registerPatternAndMesh(m);
     knitpy::registerCurves(m);
     knitpy::registerStrain(m);

@@ -140,6 +140,7 @@ void registerMesh(py::module_& m) {
         [](const py::array& positions, const py::array& faces) {
             const auto p = toVec3(positions, "positions");
             const auto f = toUvec3(faces, "faces");
+            requireIndicesBelow(f, p.size(), "faces", "positions");
             std::vector<glm::dvec3> n;
             {
                 py::gil_scoped_release release;

@@ -2,6 +2,7 @@
 // per-frame evaluation on new vertex positions, through the library's Animator (the path
 // `knit animate` takes: layout, twist phase and frame seeds fixed when the scene is bound).
 #include <chrono>
+#include <cmath>
 #include <memory>
 #include <mutex>
 
@@ -61,7 +62,13 @@ void resolveDeform(const SceneArgs& a, const py::object& pattern, knit::SceneOpt
 knit::SceneOptions toSceneOptions(const SceneArgs& a) {
     knit::SceneOptions o;
     if (!a.repeats.is_none()) {
-        const auto r = a.repeats.cast<std::pair<double, double>>();
+        std::pair<double, double> r;
+        try {
+            r = a.repeats.cast<std::pair<double, double>>();
+        } catch (const py::cast_error&) {
+            throw py::type_error("repeats: expected None or a pair (U, V) of numbers, got " +
+                                 std::string(py::repr(a.repeats)));
+        }
         o.placement.repeats = {r.first, r.second};
     }
     o.meshOptions.resU = a.resU;
@@ -88,8 +95,10 @@ ScenePtr buildScene(const py::object& pattern, const py::object& mesh, const Sce
     }
     knit::Pattern p = py::isinstance<py::str>(pattern) ? knit::loadPatternFileOrName(pattern.cast<std::string>())
                                                        : pattern.cast<knit::Pattern>();
+    knit::MeshLoadOptions load;
+    load.budget = options.budget;
     knit::BaseMesh b = py::isinstance<py::str>(mesh)
-                           ? knit::loadMeshFileOrName(mesh.cast<std::string>(), options.meshOptions)
+                           ? knit::loadMeshFileOrName(mesh.cast<std::string>(), options.meshOptions, load)
                            : mesh.cast<knit::BaseMesh>();
     py::gil_scoped_release release;
     return std::make_shared<knit::Scene>(knit::buildScene(std::move(p), std::move(b), options));
@@ -149,6 +158,19 @@ std::shared_ptr<SceneAnimators> animatorsOf(const py::object& self) {
     return *static_cast<Held*>(dict["_animators"].cast<py::capsule>().get_pointer());
 }
 
+// The last guard against returning non-finite data: the checked positions keep every step finite,
+// and should a pose still give a non-finite point it is refused, naming the curve and the point.
+void requireFiniteCurves(const knit::Polylines& curves, const char* what) {
+    for (size_t c = 0; c < curves.curveCount(); ++c)
+        for (uint32_t i = curves.begin(c); i < curves.end(c); ++i) {
+            const glm::dvec3& q = curves.points[i];
+            if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z))
+                throw knit::Error("positions: this pose gives a non-finite point (" + std::string(what) + " " +
+                                  std::to_string(c) + ", point " + std::to_string(i - curves.begin(c)) +
+                                  "); check the positions for collapsed or far-flung vertices");
+        }
+}
+
 // The frame of `positions` evaluated by the scene's yarn or ply Animator (GIL released).
 // deform: None (the scene's own mode), "none" (the geometric mapping) or "strain" (the scene must
 // have been built with a strain table).
@@ -169,6 +191,8 @@ knit::AnimationFrame evaluateFrame(const py::object& self, const py::array& posi
     py::gil_scoped_release release;
     knit::AnimationFrame frame;
     animators->get(plies, useDeformer).evaluate(p, frame);
+    if (plies) requireFiniteCurves(frame.plies.curves, "ply curve");
+    else requireFiniteCurves(frame.yarns.curves, "yarn");
     return frame;
 }
 

@@ -17,6 +17,7 @@
 #include "common/run_knit.hpp"
 #include "export/gltf_read.hpp"
 #include "export/gltf_validator.hpp"
+#include "test_util.hpp"
 
 namespace fs = std::filesystem;
 
@@ -155,6 +156,34 @@ TEST_F(Animate, sigtermMidRunLeavesNoPartialCacheAndNoTempFile) {
     std::ifstream log(dir / "log.txt");
     const std::string text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
     EXPECT_NE(text.find("interrupted by signal 15"), std::string::npos) << text;
+}
+
+// SIGKILL cannot be caught: the killed run leaves its staging folder. The previous cache is
+// untouched, and the next run writing into that folder removes the dead run's staging folder.
+TEST_F(Animate, sigkillMidCacheKeepsThePreviousCacheAndTheNextRunCleansUp) {
+    writeWaveSequence(dir, 400, 16);
+    const std::string run = "'" KNIT_CLI "' animate -q --no-stats --frames frame_%04d.obj --repeats 6 6 -o c.pc2";
+    CliRun r = runShell(run + " --last 3", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const std::string previous = readText((dir / "c.pc2").string());
+    ASSERT_GT(previous.size(), 1000u);
+    r = runShell(run + " > log.txt 2>&1 & pid=$!; for i in $(seq 1 2000); do "
+                       "ls .knit-staging.*/.c.pc2.*.tmp >/dev/null 2>&1 && break; sleep 0.005; done; "
+                       "kill -KILL $pid; wait $pid; echo rc=$?",
+                 dir);
+    EXPECT_NE(r.output.find("rc=137"), std::string::npos) << r.output;  // 128 + SIGKILL
+    EXPECT_EQ(readText((dir / "c.pc2").string()), previous);
+    const auto staging = [&] {
+        std::vector<std::string> left;
+        for (const std::string& name : files())
+            if (name.rfind(".knit-staging.", 0) == 0 || name.find(".tmp") != std::string::npos) left.push_back(name);
+        return left;
+    };
+    ASSERT_EQ(staging().size(), 1u);  // what the kill left: the staging folder with the partial cache
+    r = runShell(run + " --last 3", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_EQ(staging(), std::vector<std::string>{});
+    EXPECT_EQ(readText((dir / "c.pc2").string()), previous);
 }
 
 TEST_F(Animate, animatedGlbMorphTargetKEqualsCacheFrameK) {

@@ -132,7 +132,7 @@ TEST(Budget, dracoQuantizationBitsCountInTheTubeExportEstimate) {
     knit::test::TempDir tmp;
     TubeExport t(tmp.file("t.glb"));
     t.options.draco = true;
-    t.options.dracoBits = 30;  // Draco's tables: ~200 MB per chunk at 30 bits, at least 2 chunks in flight
+    t.options.dracoBits = 30;  // Draco's tables: 4 GiB per chunk at 30 bits
     t.options.budget = MemoryBudget(uint64_t(256) << 20);
     const std::string m = errorOf([&] { knit::exportCurves(t.input, t.options); });
     EXPECT_NE(m.find("Draco at 30 bits"), std::string::npos) << m;

@@ -10,6 +10,8 @@
 #include <sys/stat.h>
 #include <sys/wait.h>
 
+#include <nlohmann/json.hpp>
+
 #include "common/run_knit.hpp"
 #include "mesh/gltf_builder.hpp"
 #include "test_util.hpp"
@@ -315,6 +317,121 @@ TEST_F(CliBadInput, valuesBeyondFloat32AreRefusedNamingTheOption) {
 // after the first was written (a file-size limit, as a full disk would) and the existing first
 // output stays byte-identical; no new or staged file is left. The limits hold the first file and
 // not the second whether /bin/sh counts ulimit -f in 512- or 1024-byte blocks.
+// The generator wrote a pattern for any model parameters (exit 0): a cell of 6e-33 m from
+// --model-radius 1e30, loops 1e30 stitches wide from --a 1e30, a 1e27 m row from --h 1e30.
+TEST_F(CliBadInput, generatorRefusesModelParametersOutsideAnyKnitNamingTheFlag) {
+    const std::string g = "generate stockinette -o g.pyp ";
+    expectFailure(g + "--a 1e30", "the loop width (--a) 1e+30 is outside -3.14159 .. 3.14159 model units");
+    expectFailure(g + "--a nan", "the loop width (--a) nan is outside");
+    expectFailure(g + "--h 1e30", "the loop height (--h) 1e+30 is outside 0.392699 .. 100.531 model units");
+    expectFailure(g + "--d -1e30", "the over/under depth (--d) -1e+30 is outside");
+    expectFailure(g + "--row-gap 1e30", "the row gap (--row-gap) 1e+30 is outside");
+    expectFailure(g + "--row-gap -3.5", "a loop reaches at most 4 rows");
+    expectFailure(g + "--model-radius 1e30", "the model yarn radius (--model-radius) 1e+30 is outside 0.001 .. 2.25");
+    expectFailure(g + "--model-radius 0", "the model yarn radius (--model-radius) 0 is outside");
+    expectFailure(g + "--radius 1e30", "the generator's yarn radius (--radius) 1e+30 is outside 1e-06 .. 1 m");
+    expectFailure(g + "--radius 1e-30", "the generator's yarn radius (--radius) 1e-30 is outside");
+    expectFailure(g + "--samples 1", "the samples per stitch (--samples) 1 is outside 4 .. 1e+09");
+    // The shipped pattern's parameters (patterns/generate.sh) and the ends of the ranges pass.
+    for (const std::string ok :
+         {"--a 1.5 --h 4 --d 1 --row-gap 0.5 --model-radius 0.8 --radius 0.001 --samples 24",
+          "--a -3.14 --h 100 --row-gap -75 --model-radius 0.001 --radius 1e-6", "--a 3.14 --d 6.28 --radius 1"}) {
+        const CliRun r = knit(g + ok, dir);
+        EXPECT_EQ(r.exitCode, 0) << ok << "\n" << r.output;
+        fs::remove(dir / "g.pyp");
+    }
+}
+
+// Sizes far outside any garment were blamed on the memory budget, the clamp tolerance or the
+// repeats; now the file, the element and the value are named.
+TEST_F(CliBadInput, absurdSizesAreRefusedNamingTheFileTheElementAndTheValue) {
+    const std::string cell = "*pattern # px py radius num_vertedges\n";
+    const std::string loop = "\n*Q # dofs: x y z t\n0 0 Z 0\n0.5 0.5 0 0\n\n*E # v0 v1 dx dy\n0 1 0 0\n1 0 1 0\n";
+    const auto pattern = [&](const std::string& name, const std::string& header, const std::string& z) {
+        std::string q = loop;
+        q.replace(q.find('Z'), 1, z);
+        write(name, cell + header + " 2" + q);
+    };
+    pattern("thick.pyp", "1 1 1e20", "0");
+    pattern("high.pyp", "1 1 0.1", "1e17");
+    pattern("tiny.pyp", "1e-30 1e-30 1e-31", "0");
+    write("big.obj", "v 0 0 0\nv 1e30 0 0\nv 1e30 1e30 0\nvt 0 0\nvt 1 0\nvt 1 1\nf 1/1 2/2 3/3\n");
+    expectFailure(kSmall + std::string("--pattern thick.pyp -o o.obj"),
+                  "thick.pyp: the yarn radius 1e+20 m is larger than the period (1 x 1 m)");
+    expectFailure(kSmall + std::string("--pattern high.pyp -o o.obj"),
+                  "high.pyp: vertex 0 lies 1e+17 m off the mid-surface, 1e+17 periods");
+    expectFailure("build -q --mesh plane --pattern tiny.pyp -o o.obj",
+                  "tiny.pyp: at its physical size (period 1e-30 x 1e-30 m) on mesh 'plane' (0.5 x 0.5 m per UV unit) "
+                  "the pattern repeats 5e+29 x 5e+29 times per UV unit, beyond 1e7");
+    expectFailure("build -q --mesh big.obj -o o.obj", "on mesh 'big.obj' (1e+30 x 1e+30 m per UV unit)");
+    expectFailure("build -q --mesh plane --gauge 1e30x1e30/10cm -o o.obj",
+                  "the gauge (--gauge) gives the repeats (--repeats) (5e+30, 5e+30), beyond 1e7 periods per UV unit");
+    // --mesh-res 4096 peaked at 5.1 GB (std::bad_alloc under a 4 GB limit) past an estimate of the mesh alone.
+    expectFailure("build -q --mesh plane --mesh-res 4096 --repeats 1 1 --max-memory 4G -o o.obj",
+                  "needs about 5 GiB (estimate) for 1.68e+07 quads of the built-in mesh 'plane', over the memory "
+                  "budget (--max-memory) of 4 GiB; lower the mesh resolution (--mesh-res)");
+    expectFailure("build -q --mesh plane --mesh-res 4 --repeats 1e9 1 -o o.obj",
+                  "the repeats (--repeats) (1e+09, 1) are beyond 1e7 periods per UV unit");
+}
+
+// Draco's tables grow with 2^bits whatever the scene: a few thousand tube vertices at 29 bits took
+// 2 GB (4.1 GB at 30 bits) while the estimate said ~100 MB, so a 1 GiB budget let them through.
+TEST_F(CliBadInput, dracoBitDepthsAreEstimatedBeforeTheEncoderAllocatesItsTables) {
+    const std::string tiny = "build -q --mesh plane --mesh-res 8 --repeats 2 2 --export tubes --draco -o d.glb ";
+    expectFailure(tiny + "--draco-bits 29 --max-memory 1G", "Draco at 29 bits");
+    expectFailure(tiny + "--draco-bits 30", "lower the Draco position bits (--draco-bits)");
+    const CliRun r = knit(tiny + "--draco-bits 24 --max-memory 1G", dir);
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+}
+
+#ifdef KNIT_HARD_HAVE_RENDER_CHECK
+// A 1e-12 m sheet rendered as its surface level (the level of detail floored depths and the framing
+// at a micrometre: the knit looked a million times too far) into an empty image without a word,
+// and a 1e-30 m one aborted in Embree (`ray.valid()`). Both now render their plies like the 1 m sheet.
+TEST_F(CliBadInput, extremeScalesRenderTheKnitLikeAMetreSizedOne) {
+    const auto sheet = [&](const std::string& name, double size) {
+        std::string obj, vt, f;
+        const int n = 4;
+        for (int j = 0; j <= n; ++j)
+            for (int i = 0; i <= n; ++i) {
+                char line[128];
+                std::snprintf(line, sizeof line, "v %.17g %.17g 0\n", i * size / n, j * size / n);
+                obj += line;
+                std::snprintf(line, sizeof line, "vt %.17g %.17g\n", double(i) / n, double(j) / n);
+                vt += line;
+            }
+        for (int j = 0; j < n; ++j)
+            for (int i = 0; i < n; ++i) {
+                const int a = j * (n + 1) + i + 1, b = a + 1, c = a + n + 2, d = a + n + 1;
+                const auto corner = [](int k) { return std::to_string(k) + "/" + std::to_string(k); };
+                f += "f " + corner(a) + " " + corner(b) + " " + corner(c) + "\n";
+                f += "f " + corner(a) + " " + corner(c) + " " + corner(d) + "\n";
+            }
+        write(name, obj + vt + f);
+    };
+    const auto render = [&](const std::string& mesh) {
+        const CliRun r = knit("render -q --mesh " + mesh + " --repeats 4 4 --width 32 --height 32 --spp 1 --output " +
+                                  mesh + ".png --report " + mesh + ".json",
+                              dir);
+        EXPECT_EQ(r.exitCode, 0) << mesh << "\n" << r.output;
+        return nlohmann::json::parse(knit::test::readText((dir / (mesh + ".json")).string()));
+    };
+    sheet("metre.obj", 1.0);
+    const nlohmann::json reference = render("metre.obj");
+    ASSERT_GT(reference["levels"]["plies"]["cells"].get<int>(), 0);
+    for (const auto& [name, size] : {std::pair<std::string, double>{"pico.obj", 1e-12}, {"tiny.obj", 1e-30}}) {
+        sheet(name, size);
+        const nlohmann::json r = render(name);
+        EXPECT_EQ(r["levels"]["plies"]["cells"], reference["levels"]["plies"]["cells"]) << name;
+        EXPECT_EQ(r["levels"]["surface"]["cells"].get<int>(), 0) << name;
+        for (int c = 0; c < 3; ++c)
+            EXPECT_NEAR(r["meanRadiance"][c].get<double>(), reference["meanRadiance"][c].get<double>(),
+                        0.02 * reference["meanRadiance"][c].get<double>())
+                << name;
+    }
+}
+#endif
+
 TEST_F(CliBadInput, failedSecondOutputLeavesTheExistingFirstOutputUnchanged) {
     const auto runLimited = [&](const std::string& args, int blocks) {
         const std::string cmd = "cd '" + dir.string() + "' && trap '' XFSZ && ulimit -f " + std::to_string(blocks) +

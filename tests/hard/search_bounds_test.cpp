@@ -61,6 +61,25 @@ TEST(SearchBounds, partnerSearchOnABigCurvesCellPairsEveryCourse) {
     EXPECT_EQ(p.edges.size(), size_t(courses) * 3);  // two in-cell edges + one periodic edge per course
 }
 
+// 40000 curves packed into a 1 cm cell (ends 2.5e-7 m apart, segments 4 mm long): every end was a
+// candidate partner of every other, 6.4e9 pairs, std::bad_alloc after 3 GB. Refused in well
+// under a second, naming the file and why.
+TEST(SearchBounds, curvesPackedCloserThanTheirSegmentsAreRefusedBeforeListingEveryPair) {
+    knit::CurveCell cell;
+    cell.name = "dense.json";
+    const int courses = 40000;
+    cell.px = cell.py = 0.01;
+    cell.radius = 0.01 / courses / 4;
+    for (int c = 0; c < courses; ++c) {
+        const double y = 0.01 * (c + 0.5) / courses;
+        cell.curves.push_back({{0.001, y, 0}, {0.005, y, 0}, {0.009, y, 0}});
+    }
+    std::string m;
+    EXPECT_LT(secondsOf([&] { m = errorOf([&] { knit::patternFromCurves(cell); }); }), 10.0);
+    EXPECT_NE(m.find("dense.json: 40000 curves whose ends lie so close together"), std::string::npos) << m;
+    EXPECT_NE(m.find("split the curves into shorter segments, or give the cell fewer curves"), std::string::npos) << m;
+}
+
 TEST(SearchBounds, absurdPartnerToleranceStillPairsNeighbours) {
     knit::CurveCell cell;
     cell.name = "c.json";

@@ -6,7 +6,9 @@
 // next to it (same filesystem), the writers write there (a .gltf's .bin files land beside it
 // under their final names), and commit() renames every staged file onto its folder at the end.
 // If a step fails before commit(), the destructor removes the staging folders and every
-// pre-existing output is unchanged; SIGINT / SIGTERM remove them too. If a rename in commit()
+// pre-existing output is unchanged; SIGINT / SIGTERM remove them too, and a run killed outright
+// (SIGKILL, power loss) leaves them to the next run writing into that folder, which removes the
+// staging folders of processes that are gone (internal io/stale_temporaries.hpp). If a rename in commit()
 // fails, the files renamed before it are put back (the previous files restored from hard links).
 #pragma once
 #include <string>
@@ -52,6 +54,7 @@ private:
         std::string final;    // the outputs' folder as given ("" for the working folder)
         std::string staging;  // <final>/.knit-staging.<pid>.<n>.tmp
         int registrySlot = -1;
+        int lockFd = -1;  // holds the folder's lock: it is in use (io/stale_temporaries.hpp)
     };
     const Folder& folderFor(const std::string& finalFolder);
     void removeStaging();

@@ -37,6 +37,7 @@
 #include <glm/vec3.hpp>
 
 #include "knit/base_mesh.hpp"
+#include "knit/budget.hpp"
 #include "knit/plies.hpp"
 #include "knit/scene.hpp"
 
@@ -140,6 +141,11 @@ struct AnimatorOptions {
     // Points of one yarn count as "different yarns" for minYarnDistance when they are farther
     // apart along the rest yarn than this (yarn diameters): a loop pressed onto its own yarn.
     double sameYarnSeparation = 4.0;
+    // The ply points per frame (and the bind-time layout behind them) are estimated from the rest
+    // yarns and the ply options before anything is resampled and refused over this budget: a
+    // scene bound without plies (build_scene(build_plies=False), the Blender add-on) has not been
+    // estimated for them, and a tiny ply pitch made the first evaluate_plies take all memory.
+    MemoryBudget budget;
 };
 
 struct FrameStats {

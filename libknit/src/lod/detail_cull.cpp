@@ -1,5 +1,6 @@
 // classifyCells: frustum and back-face culling per UV cell, then the level by projected size with
 // hysteresis (knit/detail.hpp).
+#include <limits>
 #include <algorithm>
 #include <map>
 #include <unordered_map>
@@ -61,14 +62,16 @@ bool facesAway(const BaseMesh& mesh, const uint32_t* tris, size_t count, const V
 }
 
 // Step (nearest depth): the smallest depth of the cell's corners minus the margin, at least a
-// micrometre (a cell reaching behind the eye is as close as it gets).
+// millionth of the margin (a cell reaching behind the eye is as close as it gets). The floor is
+// relative: a fixed micrometre made every cell of a 1e-12 m scene look a million times too far,
+// so it was drawn as its surface level (an empty image, without a word).
 double nearestDepth(const BaseMesh& mesh, const uint32_t* tris, size_t count, const View& view, const ViewBasis& basis,
                     double grow) {
     double depth = 1e300;
     for (size_t i = 0; i < count; ++i)
         for (int c = 0; c < 3; ++c)
             depth = std::min(depth, glm::dot(mesh.positions[mesh.faces[tris[i]][c]] - view.eye, basis.forward));
-    return std::max(depth - grow, 1e-6);
+    return std::max(depth - grow, grow > 0 ? 1e-6 * grow : std::numeric_limits<double>::min());
 }
 
 // Step (level): plies, yarns or surface by projected radius, keeping the previous level while

@@ -101,7 +101,10 @@ FramedBounds framedBounds(const BaseMesh& mesh, double margin) {
     for (const glm::dvec3& p : mesh.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
     if (mesh.positions.empty()) lo = hi = glm::dvec3(0.0);
     f.centre = 0.5 * (lo + hi);
-    f.radius = std::max(0.5 * glm::length(hi - lo) + margin, 1e-6);
+    // A degenerate mesh (one point, no margin) gets a micrometre; any other keeps its own size,
+    // however small (a fixed micrometre floor framed a 1e-12 m scene a million times too wide).
+    const double radius = 0.5 * glm::length(hi - lo) + margin;
+    f.radius = radius > 0 ? radius : 1e-6;
     // Step 2: the cloth's front, the area-weighted mean normal; a closed mesh has none (its normals
     // cancel up to rounding): the shortest axis of the bounds instead.
     glm::dvec3 normal(0.0);

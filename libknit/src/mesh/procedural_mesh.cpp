@@ -27,11 +27,11 @@ void checkOptions(const char* what, const ProceduralMeshOptions& o, int minU, in
                   bool height) {
     const std::string w = what;
     if (o.resU < minU || o.resV < minV)
-        throw Error(w + ": resolution " + std::to_string(o.resU) + " x " + std::to_string(o.resV) +
-                    " is too small (needs resU >= " + std::to_string(minU) + ", resV >= " + std::to_string(minV) + ")");
+        throw Error(w + ": the mesh resolution " + std::to_string(o.resU) + " x " + std::to_string(o.resV) +
+                    " quads is too small (at least " + std::to_string(minU) + " x " + std::to_string(minV) + ")");
     if (double(o.resU) * double(o.resV) > 1e8)
-        throw Error(w + ": resolution " + std::to_string(o.resU) + " x " + std::to_string(o.resV) +
-                    " is too large (at most 1e8 quads)");
+        throw Error(w + ": the mesh resolution " + std::to_string(o.resU) + " x " + std::to_string(o.resV) +
+                    " quads is too large (at most 1e8 quads)");
     auto positive = [&](bool used, double v, const char* name) {
         if (used && !util::positiveFinite(v))
             throw Error(w + ": " + name + " must be a finite number > 0 (got " + std::to_string(v) + ")");

@@ -1,7 +1,10 @@
 // The project's own parametric patterns and the registry of built-in names.
 #include "knit/generator.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
 #include <sys/stat.h>
 
 #include "knit/chart.hpp"
@@ -11,11 +14,49 @@
 
 namespace knit {
 
+namespace {
+
+std::string number(double x) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.6g", x);
+    return buf;
+}
+
+// Throws unless lo <= value <= hi (NaN fails), naming the setting in words and why the range.
+void requireWithin(double value, double lo, double hi, const char* setting, const char* unit, const char* why) {
+    if (value >= lo && value <= hi) return;
+    throw Error("stockinette generator: " + std::string(setting) + " " + number(value) + " is outside " + number(lo) +
+                " .. " + number(hi) + " " + unit + ": " + why);
+}
+
+// The model's parameters, in model units where one stitch is 2 pi wide, within the shapes the
+// model makes a knit of: outside them the pattern was written (exit 0) and was unusable (a cell
+// of 1e-33 m, a loop reaching 1e30 stitches sideways).
+void checkParams(const StockinetteParams& prm) {
+    constexpr double kStitch = util::kTwoPi;
+    requireWithin(double(prm.samplesPerStitch), 4, 1e9, "the samples per stitch", "samples",
+                  "the loop needs at least 4 samples");
+    requireWithin(prm.radius, 1e-6, 1.0, "the generator's yarn radius", "m",
+                  "no garment yarn is thinner than a micrometre or thicker than a metre");
+    requireWithin(prm.h, kStitch / 16, 16 * kStitch, "the loop height", "model units",
+                  "a loop at most 16 times taller or flatter than a stitch is wide");
+    const double row = prm.h + prm.rowGap;
+    requireWithin(prm.rowGap, prm.h / 4 - prm.h, 16 * kStitch, "the row gap", "model units",
+                  "a loop reaches at most 4 rows (row spacing = loop height + row gap) and rows at most 16 stitch "
+                  "widths apart");
+    requireWithin(prm.a, -kStitch / 2, kStitch / 2, "the loop width", "model units",
+                  "the loop legs may bulge at most half a stitch sideways");
+    requireWithin(prm.d, -kStitch, kStitch, "the over/under depth", "model units",
+                  "the yarn may leave the mid-surface by at most one stitch width");
+    requireWithin(prm.modelRadius, 1e-3, std::min(kStitch, row) / 2, "the model yarn radius", "model units",
+                  "the yarn must fit within one stitch width and one row spacing (and be more than a "
+                  "thousandth of a unit)");
+}
+
+}  // namespace
+
 Pattern generateStockinette(const StockinetteParams& prm) {
-    if (!(prm.radius > 0) || !(prm.modelRadius > 0) || !(prm.h > 0) || !(prm.rowGap > -prm.h) ||
-        prm.samplesPerStitch < 4)
-        throw Error(
-            "stockinette generator: radius, modelRadius, h must be positive, h + rowGap > 0 and samplesPerStitch >= 4");
+    checkParams(prm);
     // Before allocating: a point, a twist and an edge per sample, and validation's working copies.
     constexpr double kBytesPerSample = 96;
     prm.budget.require(double(prm.samplesPerStitch) * kBytesPerSample,

@@ -89,6 +89,10 @@ Pattern patternFromCurves(const CurveCell& cell, const PartnerOptions& options) 
     const impl::PointGrid grid(std::move(endPoints), radius > 0 ? radius : 1.0);
     std::vector<impl::PointGrid::Neighbour> near;
     std::vector<std::pair<uint32_t, int>> found;  // (b, shift)
+    //    Ends packed closer than the search radius make every pair a candidate: 40000 curves in a
+    //    1 cm cell asked for 6.4e9 candidates (std::bad_alloc after 3 GB). A real cell has a few
+    //    per end; past this many the cell is refused naming why, before the list grows.
+    const size_t maxCandidates = 64 * ends.size() + 4096;
     for (uint32_t a = 0; a < ends.size(); ++a) {
         const glm::dvec2 pa(p.points[ends[a].vertex]);
         found.clear();
@@ -105,6 +109,15 @@ Pattern patternFromCurves(const CurveCell& cell, const PartnerOptions& options) 
             if (glm::distance(pa, qb) > tol) continue;
             const double cost = glm::distance(pa + ends[a].step, qb) + glm::distance(qb + ends[b].step, pa);
             candidates.push_back({cost, a, b, shifts[k][0], shifts[k][1]});
+        }
+        if (candidates.size() > maxCandidates) {
+            std::ostringstream msg;
+            msg << cell.name << ": " << cell.curves.size() << " curves whose ends lie so close together that the "
+                << "partner search would weigh more than " << maxCandidates << " candidate pairs (" << found.size()
+                << " ends within " << tol << " m of " << endName(ends[a])
+                << " alone; the search radius follows the longest in-cell segment, " << longestSegment
+                << " m): split the curves into shorter segments, or give the cell fewer curves";
+            throw Error(msg.str());
         }
     }
 

@@ -1,6 +1,7 @@
 // .pyp pattern reading/writing, validation, periodic adjacency and pattern statistics.
 #include "knit/pattern.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -273,6 +274,25 @@ void validatePattern(const Pattern& p, const std::string& source) {
     for (size_t i = 0; i < p.points.size(); ++i)
         if (!util::finite(p.points[i]) || !util::finite(p.twist[i]))
             bad("vertex " + std::to_string(i) + " has a non-finite coordinate");
+    // Sizes far outside any knit (a yarn thicker than its stitch, a loop 1e17 m off the surface)
+    // are refused here, naming the value: downstream they only showed as a memory estimate or a
+    // search radius blamed on an option.
+    const double period = std::max(p.px, p.py);
+    if (p.radius > period) {
+        std::ostringstream m;
+        m << "the yarn radius " << p.radius << " m is larger than the period (" << p.px << " x " << p.py
+          << " m): a yarn thicker than its stitches; check the units of the radius";
+        bad(m.str());
+    }
+    constexpr double kMaxHeightPeriods = 16;
+    for (size_t i = 0; i < p.points.size(); ++i)
+        if (std::abs(p.points[i].z) > kMaxHeightPeriods * period) {
+            std::ostringstream m;
+            m << "vertex " << i << " lies " << p.points[i].z << " m off the mid-surface, "
+              << std::abs(p.points[i].z) / period << " periods (a knit lies on its surface: at most "
+              << kMaxHeightPeriods << " periods)";
+            bad(m.str());
+        }
     for (size_t i = 0; i < p.edges.size(); ++i) {
         const PeriodicEdge& e = p.edges[i];
         if (e.v0 >= p.points.size() || e.v1 >= p.points.size())

@@ -102,7 +102,15 @@ PatternPlacement placePattern(const Pattern& pattern, const BaseMesh& mesh, cons
                                       : r;
     if (placement.repeats.x > 1e7 || placement.repeats.y > 1e7) {
         std::ostringstream msg;
-        msg << "repeats (" << placement.repeats.x << ", " << placement.repeats.y << ") exceed 1e7 periods per UV unit";
+        if (physical && !options.gauge)
+            msg << pattern.name << ": at its physical size (period " << pattern.px << " x " << pattern.py
+                << " m) on mesh '" << mesh.name << "' (" << metresPerUv.x << " x " << metresPerUv.y
+                << " m per UV unit) the pattern repeats " << placement.repeats.x << " x " << placement.repeats.y
+                << " times per UV unit, beyond 1e7: the period or the mesh's size is far outside any garment; "
+                   "check their units, or set the repeats";
+        else
+            msg << (options.gauge ? "the gauge gives the repeats (" : "the repeats (") << placement.repeats.x << ", "
+                << placement.repeats.y << (options.gauge ? "), beyond" : ") are beyond") << " 1e7 periods per UV unit";
         throw Error(msg.str());
     }
     // Step 3: physical size of one period on the mesh relative to the pattern's own period.

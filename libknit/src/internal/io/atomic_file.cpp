@@ -13,6 +13,7 @@
 
 #include "knit/error.hpp"
 #include "knit/output_file.hpp"
+#include "stale_temporaries.hpp"
 #include "temp_registry.hpp"
 
 namespace knit::impl {
@@ -55,6 +56,7 @@ void checkOutputFolder(const std::string& path) {
 
 AtomicFile::AtomicFile(const std::string& path, bool binary) : path_(path) {
     checkOutputFolder(path);
+    removeStaleTemporariesOnce(fs::path(path).parent_path().string());  // left by killed runs
     temp_ = tempSibling(path);
     registrySlot_ = registerTempFile(temp_);  // before it exists: no window where a signal leaks it
     buffer_.reset(new char[kStreamBuffer]);
@@ -67,6 +69,7 @@ AtomicFile::AtomicFile(const std::string& path, bool binary) : path_(path) {
         throw Error("cannot write '" + path + "': cannot create a file in folder '" + folderOf(path) + "'" +
                     (err ? std::string(" (") + std::strerror(err) + ")" : std::string()));
     }
+    lockFd_ = lockTemporary(temp_);
 }
 
 AtomicFile::~AtomicFile() {
@@ -76,6 +79,7 @@ AtomicFile::~AtomicFile() {
         fs::remove(temp_, ec);
     }
     unregisterTempFile(registrySlot_);
+    unlockTemporary(lockFd_);
 }
 
 void AtomicFile::close() {
@@ -103,6 +107,8 @@ void AtomicFile::commit() {
     committed_ = true;
     unregisterTempFile(registrySlot_);
     registrySlot_ = -1;
+    unlockTemporary(lockFd_);
+    lockFd_ = -1;
 }
 
 void AtomicFile::undoCommit() {

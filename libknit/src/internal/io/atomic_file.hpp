@@ -10,7 +10,8 @@ namespace knit::impl {
 
 // A temporary file next to `path` (same folder, so the final rename is atomic). The destructor
 // removes the temporary file unless commit() renamed it onto `path`; SIGINT / SIGTERM while it
-// is open removes it too (temp_registry.hpp). Errors name `path`.
+// is open removes it too (temp_registry.hpp); while it exists it is locked, so a run killed
+// outright leaves one a later writer to that folder removes (stale_temporaries.hpp). Errors name `path`.
 class AtomicFile {
 public:
     AtomicFile(const std::string& path, bool binary);
@@ -39,6 +40,7 @@ private:
     bool committed_ = false;
     uint64_t size_ = 0;
     int registrySlot_ = -1;  // in the signal cleanup registry while the temporary file exists
+    int lockFd_ = -1;        // holds the temporary file's lock (stale_temporaries.hpp)
 };
 
 // Checks that `path` names a file whose folder exists and is writable (knit::requireWritableFolder)
