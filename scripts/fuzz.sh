@@ -28,7 +28,7 @@ step=${KNIT_FUZZ_STEP:-all}
 case "$step" in build|run|all) ;; *) echo "fuzz: KNIT_FUZZ_STEP must be build, run or all, got '$step'" >&2; exit 2 ;; esac
 targets=("$@")
 if [ ${#targets[@]} -eq 0 ]; then
-  targets=(pyp curves_json obj ply off gltf gltf_animation chart)
+  targets=(pyp curves_json obj ply off gltf gltf_animation chart bound_scene)
   [ "$render" = ON ] && targets+=(material)
 fi
 
