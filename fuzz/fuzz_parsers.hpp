@@ -228,8 +228,11 @@ inline Outcome runBoundScene(const uint8_t* data, size_t size) {
         bytes = std::string("KNITBIND") + std::string(reinterpret_cast<const char*>(head), sizeof head) + payload;
     }
     try {
-        const BoundScene b = decodeBoundScene(bytes, "fuzz.knitbind", MemoryBudget(uint64_t(64) << 20));
-        const Animator animator(b.scene);
+        const MemoryBudget budget(uint64_t(64) << 20);
+        const BoundScene b = decodeBoundScene(bytes, "fuzz.knitbind", budget);
+        AnimatorOptions options;
+        options.budget = budget;
+        const Animator animator(b.scene, options);
         AnimationFrame frame;
         animator.evaluate(b.scene.mesh().positions, frame);
     } catch (const Error&) {

@@ -8,7 +8,7 @@ packages=(
   libgtest-dev libbenchmark-dev libstb-dev nlohmann-json3-dev libcli11-dev libtinyexr-dev
   libeigen3-dev libmeshoptimizer-dev libnlopt-dev
   clang libclang-rt-14-dev
-  pybind11-dev python3-dev python3-numpy python3-pytest blender
+  pybind11-dev python3-dev python3-numpy python3-pytest python3-distributed blender
   clang-format clang-tidy
   "$@"
 )

@@ -13,9 +13,11 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include <nlohmann/json.hpp>
+#include <tbb/global_control.h>
 
 #include "export_flags.hpp"
 #include "frame_sink.hpp"
@@ -273,11 +275,19 @@ void addAnimateCommand(CLI::App& app, AnimateCommand& a) {
         ->capture_default_str();
     a.command->add_option("--report", a.report,
                           "Write a JSON report (bind and frame times, per-frame stretch and yarn distance)");
+    a.command
+        ->add_option("--threads", a.threads,
+                     "Worker threads (0: every core; 1 per task when a farm or knit.distributed runs several "
+                     "chunks on one machine)")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 4096));
     a.command->footer(kSceneHelp);
 }
 
 int runAnimate(const AnimateCommand& a) {
     // Step 1: fail before long work: outputs, the sequence and its files.
+    std::optional<tbb::global_control> threads;
+    if (a.threads > 0) threads.emplace(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(a.threads));
     checkOutput(a.exportOptions);
     checkReportPath(a.report);
     FrameRange range = a.range;
@@ -299,6 +309,7 @@ int runAnimate(const AnimateCommand& a) {
     // The statistics go into the report only: without one they are not computed (the distance
     // search costs more than a frame's plies).
     ao.stats = !a.noStats && !a.report.empty();
+    ao.budget = sceneOptions.budget;  // --max-memory: the plies per frame
     const Animator animator(rest, ao);
     const double bindSeconds = since(t0);
     // Step 3: the frames, streamed into staged outputs (existing files stay unchanged until the end).

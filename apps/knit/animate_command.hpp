@@ -23,6 +23,7 @@ struct AnimateCommand {
     bool linear = false;          // --linear: animated .glb weights blend (LINEAR) instead of STEP
     bool noStats = false;         // --no-stats: no maxStretch / minYarnDistance in the report
     std::string report;           // --report path; empty = none
+    int threads = 0;              // --threads: worker threads (0: every core)
 };
 
 void addAnimateCommand(CLI::App& app, AnimateCommand& animate);

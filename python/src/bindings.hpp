@@ -10,5 +10,6 @@ void registerPatternAndMesh(py::module_& m);  // pattern_mesh.cpp: Pattern, Mesh
 void registerCurves(py::module_& m);          // curves.cpp: Curves, Yarns, Plies, make_plies
 void registerScene(py::module_& m);           // scene.cpp: Scene, Binding, build_scene, evaluate
 void registerExport(py::module_& m);          // export.cpp: export_scene
+void registerBoundScene(py::module_& m);      // bound_scene.cpp: bound scene files, frame numbers
 
 }  // namespace knitpy

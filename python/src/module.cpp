@@ -58,4 +58,5 @@ PYBIND11_MODULE(_knit, m) {
     knitpy::registerCurves(m);
     knitpy::registerScene(m);
     knitpy::registerExport(m);
+    knitpy::registerBoundScene(m);
 }

@@ -37,6 +37,7 @@
 #include <glm/vec3.hpp>
 
 #include "knit/base_mesh.hpp"
+#include "knit/budget.hpp"
 #include "knit/plies.hpp"
 #include "knit/scene.hpp"
 
@@ -137,6 +138,9 @@ struct AnimatorOptions {
     // Points of one yarn count as "different yarns" for minYarnDistance when they are farther
     // apart along the rest yarn than this (yarn diameters): a loop pressed onto its own yarn.
     double sameYarnSeparation = 4.0;
+    // The ply points per frame (from the rest yarns' length, the pitch and the samples per turn)
+    // are estimated at bind time and refused over this budget (knit::Error naming the settings).
+    MemoryBudget budget;
 };
 
 struct FrameStats {
@@ -186,7 +190,7 @@ public:
     // unless only the yarns are evaluated):
     // the resampling layouts, rest arc lengths and pitches, rest segment lengths. Keeps a
     // reference to `rest`, which must outlive the Animator. Throws knit::Error for bad ply
-    // options or more than 2^32-1 ply points.
+    // options, more than 2^32-1 ply points or plies over options.budget.
     explicit Animator(const Scene& rest, const AnimatorOptions& options = {});
 
     // Evaluates the frame whose mesh positions are `positions` (rest connectivity; checked:

@@ -34,6 +34,7 @@
 #include "plies/frames_curve.hpp"
 #include "plies/plies_kernel.hpp"
 #include "plies/resample_curve.hpp"
+#include "scene/scene_budget.hpp"
 #include "util/checks.hpp"
 
 namespace knit {
@@ -70,6 +71,7 @@ Animator::Animator(const Scene& rest, const AnimatorOptions& options) : rest_(re
     // The yarns alone are the binding evaluated (step 2 of evaluate): no ply options, no resampling.
     if (!options_.plies && !options_.stats) return;
     const PlyGenerator& generator = generator_.emplace(rest.yarns(), rest.plyOptions());
+    impl::checkPlyBudget(rest.yarns(), generator.options(), options_.budget);  // before resampling
     const double spacing = generator.options().pitch / generator.options().samplesPerTurn;
 
     // Step 1: resample the rest yarns, recording each layout and the rest arc lengths / pitches.
