@@ -29,6 +29,7 @@ import struct
 import subprocess
 import sys
 import time
+import uuid
 
 from ._knit import Error, frame_numbers
 
@@ -128,21 +129,30 @@ def _job_folder(output, manifest):
     return folder
 
 
-def _fan_out(client, jobs, progress, what):
-    """Runs (key, command, first, last) jobs as tasks; returns {key: seconds}. Raises Error for a failed chunk."""
-    from distributed import as_completed
+def _fan_out(client, jobs, progress, what, timeout):
+    """Runs (label, command, first, last) jobs as tasks; returns {label: seconds}. Raises Error for a
+    failed chunk (a worker that died is not a failure: Dask runs its task again elsewhere)."""
+    from distributed import TimeoutError as DaskTimeout
+    from distributed import wait
 
-    futures = {client.submit(_run_chunk, command, a, b, key=key, pure=False, retries=0): key
-               for key, command, a, b in jobs}
+    token = uuid.uuid4().hex[:12]  # task keys unique to this bake (a resumed bake may overlap an old one)
+    futures = {client.submit(_run_chunk, command, a, b, key="knit-%s-%s" % (label, token), pure=False,
+                             retries=0): label for label, command, a, b in jobs}
     seconds = {}
+    pending = set(futures)
+    deadline = None if timeout is None else time.monotonic() + timeout
     try:
-        for done, future in enumerate(as_completed(list(futures)), 1):
-            if future.status == "error":
-                error = future.exception()
-                raise Error("%s failed: %s" % (what, error)) from None
-            seconds[futures[future]] = future.result()
-            if progress:
-                progress("%s %s done (%d/%d)" % (what, futures[future], done, len(futures)))
+        while pending:
+            left = None if deadline is None else max(deadline - time.monotonic(), 0.001)
+            done, pending = wait(list(pending), timeout=left, return_when="FIRST_COMPLETED")
+            for future in done:
+                if future.status != "finished":
+                    raise Error("%s failed: %s" % (what, future.exception())) from None
+                seconds[futures[future]] = future.result()
+                if progress:
+                    progress("%s %s done (%d/%d)" % (what, futures[future], len(seconds), len(futures)))
+    except (DaskTimeout, TimeoutError):
+        raise Error("timeout: the %ss did not finish within %s s" % (what, timeout)) from None
     finally:
         client.cancel(list(futures))
     return seconds
@@ -153,7 +163,7 @@ def _stderr_progress(message):
 
 
 def bake(bound, frames, output, client=None, chunk=10, first=-1, last=-1, step=1, fps=24.0, threads=1,
-         export="plies", knit_cli=None, progress=True, workers=None):
+         export="plies", knit_cli=None, progress=True, workers=None, timeout=None):
     """Bakes the frames of a bound scene (`knit bind`) into `output` on a Dask cluster.
 
     bound: the bound scene file. frames: the mesh sequence as `knit animate --frames` takes it;
@@ -162,7 +172,7 @@ def bake(bound, frames, output, client=None, chunk=10, first=-1, last=-1, step=1
     distributed.Client; None starts a LocalCluster of `workers` (default: one per core) single-
     threaded workers and closes it at the end. chunk: frames per task. threads: knit's threads per
     task. export: plies or yarns. progress: True (lines on stderr), False, or a callable taking a
-    message. Returns a dict: frames, chunks, reused (chunks kept from an earlier run), seconds,
+    message. timeout: seconds for all chunks (None: no limit). Returns a dict: frames, chunks, reused (chunks kept from an earlier run), seconds,
     chunk_seconds (per chunk key). Raises knit.Error naming the frame and file of a failed chunk.
     """
     per_frame = _check_args(bound, frames, output, chunk, step)
@@ -204,7 +214,7 @@ def bake(bound, frames, output, client=None, chunk=10, first=-1, last=-1, step=1
     if client is None and jobs:
         cluster, client = _start_cluster(workers or os.cpu_count() or 1)
     try:
-        seconds = _fan_out(client, jobs, report, "chunk") if jobs else {}
+        seconds = _fan_out(client, jobs, report, "chunk", timeout) if jobs else {}
     finally:
         if cluster is not None:
             client.close()
