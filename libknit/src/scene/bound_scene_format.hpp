@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include <zlib.h>
+
 #include "knit/base_mesh.hpp"
 #include "knit/binding.hpp"
 #include "knit/pattern.hpp"
@@ -20,6 +22,11 @@ static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "bound scene files are 
 
 constexpr char kBoundSceneMagic[8] = {'K', 'N', 'I', 'T', 'B', 'I', 'N', 'D'};
 constexpr size_t kBoundSceneHeaderBytes = 32;
+
+// The CRC-32 (zlib's: the polynomial of gzip and PNG) of a payload.
+inline uint32_t payloadCrc32(const char* data, size_t size) {
+    return static_cast<uint32_t>(crc32_z(crc32_z(0L, Z_NULL, 0), reinterpret_cast<const Bytef*>(data), size));
+}
 
 // What the file stores (the rest is rebuilt on loading).
 struct BoundSceneParts {

@@ -11,8 +11,6 @@
 #include <sstream>
 #include <type_traits>
 
-#include <boost/crc.hpp>
-
 #include "knit/bound_scene.hpp"
 #include "knit/error.hpp"
 #include "knit/uv_grid.hpp"
@@ -111,12 +109,10 @@ std::string_view checkHeader(std::string_view bytes, const std::string& name) {
         throw Error(boundName(name) + " is damaged: " + std::to_string(present - payload) +
                     " bytes follow the payload its header announces");
     const std::string_view body = bytes.substr(kHeader);
-    boost::crc_32_type crc;
-    crc.process_bytes(body.data(), body.size());
-    const uint32_t stored = get<uint32_t>(bytes, 24);
-    if (crc.checksum() != stored) {
+    const uint32_t stored = get<uint32_t>(bytes, 24), computed = impl::payloadCrc32(body.data(), body.size());
+    if (computed != stored) {
         std::ostringstream s;
-        s << std::hex << "stored 0x" << stored << ", computed 0x" << crc.checksum();
+        s << std::hex << "stored 0x" << stored << ", computed 0x" << computed;
         throw Error(boundName(name) + " is damaged: its checksum does not match its contents (CRC-32 " + s.str() + ")");
     }
     return body;

@@ -4,8 +4,6 @@
 #include <cstring>
 #include <type_traits>
 
-#include <boost/crc.hpp>
-
 #include "knit/bound_scene.hpp"
 #include "knit/error.hpp"
 #include "knit/output_file.hpp"
@@ -71,13 +69,11 @@ std::string encodeBoundScene(const Scene& rest, const BoundSceneInfo& info) {
     PayloadWriter writer(payload);
     const impl::BoundSceneParts& constParts = parts;
     impl::boundSceneLayout(writer, constParts);
-    boost::crc_32_type crc;
-    crc.process_bytes(payload.data(), payload.size());
     std::string bytes(impl::kBoundSceneMagic, sizeof impl::kBoundSceneMagic);
     put(bytes, kBoundSceneFormatVersion);
     put(bytes, static_cast<uint32_t>(impl::kBoundSceneHeaderBytes));
     put(bytes, static_cast<uint64_t>(payload.size()));
-    put(bytes, static_cast<uint32_t>(crc.checksum()));
+    put(bytes, impl::payloadCrc32(payload.data(), payload.size()));
     put(bytes, uint32_t(0));
     return bytes + payload;
 }
