@@ -223,8 +223,12 @@ inline Outcome runBoundScene(const uint8_t* data, size_t size) {
         const std::string payload = bytes.substr(1);
         boost::crc_32_type crc;
         crc.process_bytes(payload.data(), payload.size());
-        const uint32_t head[6] = {kBoundSceneFormatVersion, 32, static_cast<uint32_t>(payload.size()), 0,
-                                  static_cast<uint32_t>(crc.checksum()), 0};
+        const uint32_t head[6] = {kBoundSceneFormatVersion,
+                                  32,
+                                  static_cast<uint32_t>(payload.size()),
+                                  0,
+                                  static_cast<uint32_t>(crc.checksum()),
+                                  0};
         bytes = std::string("KNITBIND") + std::string(reinterpret_cast<const char*>(head), sizeof head) + payload;
     }
     try {

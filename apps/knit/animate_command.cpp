@@ -317,7 +317,8 @@ int runAnimate(const AnimateCommand& a) {
     const ExportOptions staged = stagedExport(a.exportOptions, sceneOptions.budget, outputs);
     CacheFormat format;
     std::unique_ptr<FrameSink> sink;
-    if (cacheFormatOf(staged.path, format)) sink = std::make_unique<CacheSink>(staged.path, animator, seq, a.fps, range.step);
+    if (cacheFormatOf(staged.path, format))
+        sink = std::make_unique<CacheSink>(staged.path, animator, seq, a.fps, range.step);
     else if (isAnimatedGlb(staged.path, hasFramePattern(staged.path)))
         sink = makeAnimatedGlbSink(animator, seq.size(), staged, {a.fps, a.linear}, sceneOptions.budget);
     else sink = std::make_unique<FilesSink>(animator, staged);
@@ -332,8 +333,7 @@ int runAnimate(const AnimateCommand& a) {
     outputs.run([&] { outputs.commit(); });
     std::printf("animated %zu frames (%zu yarn vertices, %zu ply vertices per frame): %s %.3f s, wrote %s\n",
                 frames.size(), rest.yarns().curves.pointCount(), animator.plyPointCount(),
-                a.bound.empty() ? "bind" : "load", bindSeconds,
-                a.exportOptions.path.c_str());
+                a.bound.empty() ? "bind" : "load", bindSeconds, a.exportOptions.path.c_str());
     return 0;
 }
 

@@ -19,21 +19,20 @@ namespace {
 
 // The settings the scene is bound with, for provenance (the file itself holds their results).
 nlohmann::json settingsJson(const SceneOptions& o) {
-    nlohmann::json j = {{"writer", "knit bind"},
-                        {"pattern", o.pattern},
-                        {"mesh", o.mesh},
-                        {"repeats", {o.placement.repeats.x, o.placement.repeats.y}},
-                        {"plies",
-                         {{"count", o.plies.count},
-                          {"pitch", o.plies.pitch},
-                          {"plyRadius", o.plies.plyRadius},
-                          {"centerRadius", o.plies.centerRadius},
-                          {"twist", o.plies.twist == Twist::S ? "S" : "Z"},
-                          {"samplesPerTurn", o.plies.samplesPerTurn}}},
-                        {"bind",
-                         {{"clampTolerance", o.bind.clampTolerance},
-                          {"weldTolerance", o.bind.weldTolerance},
-                          {"weld", o.bind.weld}}}};
+    nlohmann::json j = {
+        {"writer", "knit bind"},
+        {"pattern", o.pattern},
+        {"mesh", o.mesh},
+        {"repeats", {o.placement.repeats.x, o.placement.repeats.y}},
+        {"plies",
+         {{"count", o.plies.count},
+          {"pitch", o.plies.pitch},
+          {"plyRadius", o.plies.plyRadius},
+          {"centerRadius", o.plies.centerRadius},
+          {"twist", o.plies.twist == Twist::S ? "S" : "Z"},
+          {"samplesPerTurn", o.plies.samplesPerTurn}}},
+        {"bind",
+         {{"clampTolerance", o.bind.clampTolerance}, {"weldTolerance", o.bind.weldTolerance}, {"weld", o.bind.weld}}}};
     if (o.placement.gauge)
         j["gauge"] = {{"stitches", o.placement.gauge->stitches},
                       {"rows", o.placement.gauge->rows},
@@ -42,10 +41,21 @@ nlohmann::json settingsJson(const SceneOptions& o) {
 }
 
 // The scene flags a bound scene file fixes.
-const char* const kBoundSceneFlags[] = {"--pattern",       "--mesh",         "--repeats",          "--gauge",
-                                        "--mesh-res",      "--plies",        "--ply-pitch",        "--ply-radius",
-                                        "--ply-center-radius", "--twist",    "--samples-per-turn", "--clamp-tolerance",
-                                        "--weld-tolerance", "--no-weld",     "--rest"};
+const char* const kBoundSceneFlags[] = {"--pattern",
+                                        "--mesh",
+                                        "--repeats",
+                                        "--gauge",
+                                        "--mesh-res",
+                                        "--plies",
+                                        "--ply-pitch",
+                                        "--ply-radius",
+                                        "--ply-center-radius",
+                                        "--twist",
+                                        "--samples-per-turn",
+                                        "--clamp-tolerance",
+                                        "--weld-tolerance",
+                                        "--no-weld",
+                                        "--rest"};
 
 }  // namespace
 

@@ -20,7 +20,9 @@ namespace {
 
 constexpr uint64_t kPc2Header = 32;
 
-uint32_t u32(const unsigned char* b) { return uint32_t(b[0]) | uint32_t(b[1]) << 8 | uint32_t(b[2]) << 16 | uint32_t(b[3]) << 24; }
+uint32_t u32(const unsigned char* b) {
+    return uint32_t(b[0]) | uint32_t(b[1]) << 8 | uint32_t(b[2]) << 16 | uint32_t(b[3]) << 24;
+}
 float f32(const unsigned char* b) {
     const uint32_t v = u32(b);
     float f;
@@ -86,7 +88,8 @@ Pc2Range readPc2Range(const std::string& path) {
     in.read(reinterpret_cast<char*>(h), kPc2Header);
     if (in.gcount() != std::streamsize(kPc2Header) || std::memcmp(h, "POINTCACHE2\0", 12) != 0)
         throw Error("point cache '" + path + "' is not a PC2 file (no POINTCACHE2 header)");
-    if (u32(h + 12) != 1) throw Error("point cache '" + path + "' has PC2 version " + std::to_string(u32(h + 12)) + ", not 1");
+    if (u32(h + 12) != 1)
+        throw Error("point cache '" + path + "' has PC2 version " + std::to_string(u32(h + 12)) + ", not 1");
     Pc2Range r;
     r.path = path;
     r.points = u32(h + 16);
@@ -144,7 +147,8 @@ CacheMergeResult mergePointCaches(const std::vector<std::string>& chunks, const 
     std::vector<char> header;
     impl::pc2Header(info, header);
     cache.stream().write(header.data(), std::streamsize(header.size()));
-    for (const Pc2Range& r : c) impl::appendFile(cache.stream(), r.path, kPc2Header, uint64_t(12) * r.points * r.frames);
+    for (const Pc2Range& r : c)
+        impl::appendFile(cache.stream(), r.path, kPc2Header, uint64_t(12) * r.points * r.frames);
     const std::string firstTopology = topologyPathOf(c.front().path);
     impl::appendFile(topology.stream(), firstTopology, 0, std::filesystem::file_size(firstTopology));
     topology.close();

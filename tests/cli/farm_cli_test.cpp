@@ -75,7 +75,8 @@ TEST_F(Farm, chunksOfABoundSceneMergeToTheBytesOfOneRun) {
     ASSERT_EQ(r.exitCode, 0) << r.output;
     chunk(4, 6, "part_%04d.obj", "--export yarns");
     for (const char* k : {"0004", "0005", "0006"})
-        EXPECT_TRUE(bytesOf(dir / (std::string("part_") + k + ".obj")) == bytesOf(dir / (std::string("one_") + k + ".obj")))
+        EXPECT_TRUE(bytesOf(dir / (std::string("part_") + k + ".obj")) ==
+                    bytesOf(dir / (std::string("one_") + k + ".obj")))
             << k;
     EXPECT_FALSE(fs::exists(dir / "part_0003.obj"));
     // With a frame step the chunks record it (the PC2 sample rate) and merge the same way.

@@ -90,7 +90,8 @@ std::string_view checkHeader(std::string_view bytes, const std::string& name) {
     const size_t kHeader = impl::kBoundSceneHeaderBytes;
     if (bytes.size() < sizeof impl::kBoundSceneMagic ||
         std::memcmp(bytes.data(), impl::kBoundSceneMagic, sizeof impl::kBoundSceneMagic) != 0)
-        throw Error("'" + name + "' is not a bound scene file (it does not start with KNITBIND; write one with `knit bind`)");
+        throw Error("'" + name +
+                    "' is not a bound scene file (it does not start with KNITBIND; write one with `knit bind`)");
     if (bytes.size() < kHeader)
         throw Error(boundName(name) + " is truncated: " + std::to_string(bytes.size()) + " bytes, shorter than its " +
                     std::to_string(kHeader) + "-byte header");
@@ -187,8 +188,8 @@ BoundScene decodeBoundScene(std::string_view bytes, const std::string& name, con
     parts.bindStats = p.stats;
     parts.mesh = std::move(p.mesh);
     parts.binding = std::move(p.binding);
-    BoundScene out{Scene::fromParts(std::move(parts)), {kBoundSceneFormatVersion, std::move(p.settings),
-                                                        std::move(p.strainTable)}};
+    BoundScene out{Scene::fromParts(std::move(parts)),
+                   {kBoundSceneFormatVersion, std::move(p.settings), std::move(p.strainTable)}};
     return out;
 }
 
