@@ -119,6 +119,7 @@ CacheMergeResult mergePointCaches(const std::vector<std::string>& chunks, const 
         throw Error("cannot write '" + output + "': merged point caches are PC2 (.pc2)");
     // Step 1: every header, and the same points, step and topology in each.
     std::vector<Pc2Range> c;
+    c.reserve(chunks.size());
     for (const std::string& path : chunks) c.push_back(readPc2Range(path));
     const auto key = topologyKey(topologyPathOf(c[0].path), c[0].path);
     for (const Pc2Range& r : c) {
