@@ -137,5 +137,28 @@ TEST_F(Farm, boundFileErrorsNameTheFileAndTheFlag) {
     EXPECT_NE(r.output.find("frame 1"), std::string::npos) << r.output;
 }
 
+#ifdef KNIT_HAVE_RENDER_CHECK
+TEST_F(Farm, renderOfABoundSceneSkipsBindingAndPosesItAsAnimate) {
+    bind();
+    const std::string size = " --width 48 --height 36 --spp 2";
+    CliRun r = knit("render -q --mesh frame_0001.obj --repeats 3 3 --detail full" + size + " --output full.png");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    r = knit("render -q --bound g.knitbind" + size + " --output rest.png");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(bytesOf(dir / "rest.png") == bytesOf(dir / "full.png"));  // the rest pose: the same image
+    for (const char* out : {"f5a.png", "f5b.png"}) {
+        r = knit("render -q --bound g.knitbind --frame-mesh frame_0005.obj" + size + " --output " + out);
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+    }
+    EXPECT_TRUE(bytesOf(dir / "f5a.png") == bytesOf(dir / "f5b.png"));
+    EXPECT_FALSE(bytesOf(dir / "f5a.png") == bytesOf(dir / "rest.png"));
+    r = knit("render -q --bound g.knitbind --detail view --output x.png");
+    EXPECT_NE(r.output.find("--detail view cannot be given with --bound"), std::string::npos) << r.output;
+    r = knit("render -q --frame-mesh frame_0005.obj --output x.png");
+    EXPECT_NE(r.output.find("--frame-mesh needs --bound"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir / "x.png"));
+}
+#endif
+
 }  // namespace
 }  // namespace knit::test

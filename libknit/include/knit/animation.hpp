@@ -132,6 +132,7 @@ struct AnimatorOptions {
     // too, no resampling at bind time or per frame).
     bool plies = true;
     bool stats = true;  // compute FrameStats per frame
+    bool radial = false;  // with plies: also each ply point's radial direction (Plies::radial; a renderer needs it)
     // minYarnDistance looks for other yarns up to this distance (yarn diameters); a frame with
     // none that close reports +infinity.
     double distanceCutoff = 2.0;
