@@ -102,21 +102,21 @@ void addRenderCommand(CLI::App& app, RenderCommand& r) {
     r.command->add_option("--bound", r.bound,
                           "Bound scene file (`knit bind`): render it at full detail without binding (no scene flags "
                           "besides --max-memory and -q)");
-    r.command->add_option("--frame-mesh", r.frameMesh,
-                          "With --bound: the pose to render (a mesh with the rest mesh's connectivity; default the rest "
-                          "pose), evaluated as `knit animate` evaluates that frame");
+    r.command->add_option(
+        "--frame-mesh", r.frameMesh,
+        "With --bound: the pose to render (a mesh with the rest mesh's connectivity; default the rest "
+        "pose), evaluated as `knit animate` evaluates that frame");
     r.command->footer(kSceneHelp);
 }
 
 int runRender(const RenderCommand& r) {
     checkReportPath(r.report);  // before the scene and the render: the same check as `build`
-    refuseCollidingPaths(
-        {{"--mesh", r.scene.scene.mesh},
-         {"--pattern", r.scene.scene.pattern},
-         {"--material", r.options.materialFile},
-         {"--bound", r.bound},
-         {"--frame-mesh", r.frameMesh}},
-        {{"--output", r.options.output}, {"--exr", r.options.exr}, {"--report", r.report}});
+    refuseCollidingPaths({{"--mesh", r.scene.scene.mesh},
+                          {"--pattern", r.scene.scene.pattern},
+                          {"--material", r.options.materialFile},
+                          {"--bound", r.bound},
+                          {"--frame-mesh", r.frameMesh}},
+                         {{"--output", r.options.output}, {"--exr", r.options.exr}, {"--report", r.report}});
     // Step 1: the camera (validated before any work); the PNG, the EXR and the report are staged
     // and committed together at the end.
     OutputTransaction outputs;

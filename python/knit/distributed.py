@@ -33,7 +33,7 @@ import uuid
 
 from ._knit import Error, frame_numbers
 
-__all__ = ["bake", "find_knit", "chunk_ranges"]
+__all__ = ["bake", "render_frames", "find_knit", "chunk_ranges"]
 
 _PR_SET_PDEATHSIG = 1
 
@@ -62,13 +62,14 @@ class ChunkFailed(Exception):
 
 
 def _run_chunk(command, first, last):
-    """Runs one chunk's knit command on a worker; returns its wall seconds."""
+    """Runs one chunk's knit command (or a list of commands) on a worker; returns its wall seconds."""
     start = time.monotonic()
-    proc = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                          preexec_fn=_die_with_parent, check=False)
-    if proc.returncode != 0:
-        message = (proc.stderr.strip() or proc.stdout.strip()).replace("knit: error: ", "")
-        raise ChunkFailed("frames %d-%d: %s" % (first, last, message))
+    for one in command if isinstance(command[0], list) else [command]:
+        proc = subprocess.run(one, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                              preexec_fn=_die_with_parent, check=False)
+        if proc.returncode != 0:
+            message = (proc.stderr.strip() or proc.stdout.strip()).replace("knit: error: ", "")
+            raise ChunkFailed("frames %d-%d: %s" % (first, last, message))
     return time.monotonic() - start
 
 
@@ -228,3 +229,50 @@ def bake(bound, frames, output, client=None, chunk=10, first=-1, last=-1, step=1
         shutil.rmtree(os.path.dirname(chunk_files[0]), ignore_errors=True)
     return {"frames": len(numbers), "chunks": len(ranges), "reused": reused, "seconds": time.monotonic() - start,
             "chunk_seconds": seconds}
+
+
+def render_frames(bound, frames, output, client=None, chunk=1, first=-1, last=-1, step=1, render_args=(),
+                  knit_cli=None, progress=True, workers=None, timeout=None):
+    """Renders each frame of a bound scene on a Dask cluster: `knit render --bound BOUND --frame-mesh
+    FRAME_k [render_args] --output OUTPUT_k` (`output` a pattern such as out_%04d.png; render_args e.g.
+    ["--width", "960", "--spp", "64"]), `chunk` frames per task. Frames whose image exists are kept
+    (a resumed render redoes only the missing ones); each image is written atomically by knit.
+    client / workers / progress / timeout as in bake(). Returns a dict: frames, chunks, reused,
+    seconds, chunk_seconds. Raises knit.Error naming the frame and file of a failed render.
+    """
+    _check_args(bound, frames, output, chunk, step)
+    if "%" not in os.path.basename(output):
+        raise Error("output: '%s': give a per-frame pattern such as out_%%04d.png" % output)
+    output = os.path.abspath(output)
+    knit_exe = find_knit(knit_cli)
+    report = progress if callable(progress) else (_stderr_progress if progress else None)
+    start = time.monotonic()
+    numbers = frame_numbers(frames, first, last, step)
+    frames = os.path.abspath(frames)
+    jobs, reused = [], 0
+    for a, b in chunk_ranges(numbers, chunk):
+        todo = [n for n in numbers if a <= n <= b and not os.path.exists(output % n)]
+        if not todo:
+            reused += 1
+            continue
+        # The frame's mesh file as `knit animate` finds it (a printf pattern; a folder's files by number).
+        commands = [[knit_exe, "render", "-q", "--bound", os.path.abspath(bound), "--frame-mesh", _frame_file(frames, n)]
+                    + [str(x) for x in render_args] + ["--output", output % n] for n in todo]
+        jobs.append(("render-%d-%d" % (a, b), commands, a, b))
+    cluster = None
+    if client is None and jobs:
+        cluster, client = _start_cluster(workers or os.cpu_count() or 1)
+    try:
+        seconds = _fan_out(client, jobs, report, "render", timeout) if jobs else {}
+    finally:
+        if cluster is not None:
+            client.close()
+            cluster.close()
+    return {"frames": len(numbers), "chunks": len(jobs) + reused, "reused": reused,
+            "seconds": time.monotonic() - start, "chunk_seconds": seconds}
+
+
+def _frame_file(frames, number):
+    if "%" in os.path.basename(frames):
+        return frames % number
+    raise Error("frames: render_frames takes a printf pattern such as frames/frame_%04d.obj")

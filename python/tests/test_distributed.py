@@ -139,6 +139,24 @@ def test_cluster_bake_equals_knit_animate_and_an_interrupted_bake_resumes(cluste
         assert read(d / ("f_%04d.obj" % k)) == read(d / ("one_%04d.obj" % k)), k
 
 
+def test_render_frames_equal_knit_render_of_each_frame(cluster, sequence):
+    client, _ = cluster
+    d = sequence
+    size = ["--width", "32", "--height", "24", "--spp", "2"]
+    result = kd.render_frames(str(d / "g.knitbind"), str(d / "frame_%04d.obj"), str(d / "r_%04d.png"), client=client,
+                              chunk=2, first=3, last=5, render_args=size, progress=False, knit_cli=KNIT, timeout=60)
+    assert result["frames"] == 3 and result["chunks"] == 2
+    for k in (3, 4, 5):
+        run("render", "-q", "--bound", "g.knitbind", "--frame-mesh", "frame_%04d.obj" % k, *size, "--output",
+            "one_%04d.png" % k, cwd=d)
+        assert read(d / ("r_%04d.png" % k)) == read(d / ("one_%04d.png" % k)), k
+    assert not (d / "r_0002.png").exists()
+    os.remove(d / "r_0004.png")  # resumed: only the missing frame's chunk runs again
+    result = kd.render_frames(str(d / "g.knitbind"), str(d / "frame_%04d.obj"), str(d / "r_%04d.png"), client=client,
+                              chunk=2, first=3, last=5, render_args=size, progress=False, knit_cli=KNIT, timeout=60)
+    assert result["reused"] == 1 and read(d / "r_0004.png") == read(d / "one_0004.png")
+
+
 def test_bad_input_fails_the_bake_naming_the_frame_and_file(cluster, sequence):
     client, _ = cluster
     d = sequence

@@ -131,7 +131,7 @@ struct AnimatorOptions {
     // Sweep the plies per frame (false: the yarns only, the binding evaluated; with stats false
     // too, no resampling at bind time or per frame).
     bool plies = true;
-    bool stats = true;  // compute FrameStats per frame
+    bool stats = true;    // compute FrameStats per frame
     bool radial = false;  // with plies: also each ply point's radial direction (Plies::radial; a renderer needs it)
     // minYarnDistance looks for other yarns up to this distance (yarn diameters); a frame with
     // none that close reports +infinity.
