@@ -16,8 +16,11 @@
 #include <string>
 #include <unistd.h>
 
+#include <boost/crc.hpp>
+
 #include "knit/animation.hpp"
 #include "knit/base_mesh.hpp"
+#include "knit/bound_scene.hpp"
 #include "knit/chart.hpp"
 #include "knit/chart_topology.hpp"
 #include "knit/error.hpp"
@@ -234,5 +237,37 @@ inline Outcome runMaterial(const uint8_t* data, size_t size) {
     return Outcome::Parsed;
 }
 #endif
+
+// Bound scene file bytes -> Scene -> an Animator evaluating the rest pose. An input starting
+// with 'P' is a payload: it gets a valid header and checksum first, so the fuzzer reaches the
+// field reader and the consistency checks behind the CRC (any other input is a whole file).
+inline Outcome runBoundScene(const uint8_t* data, size_t size) {
+    if (size > kMaxInput) return Outcome::Rejected;
+    std::string bytes(reinterpret_cast<const char*>(data), size);
+    if (!bytes.empty() && bytes[0] == 'P') {
+        const std::string payload = bytes.substr(1);
+        boost::crc_32_type crc;
+        crc.process_bytes(payload.data(), payload.size());
+        const uint32_t head[6] = {kBoundSceneFormatVersion,
+                                  32,
+                                  static_cast<uint32_t>(payload.size()),
+                                  0,
+                                  static_cast<uint32_t>(crc.checksum()),
+                                  0};
+        bytes = std::string("KNITBIND") + std::string(reinterpret_cast<const char*>(head), sizeof head) + payload;
+    }
+    try {
+        const MemoryBudget budget(uint64_t(64) << 20);
+        const BoundScene b = decodeBoundScene(bytes, "fuzz.knitbind", budget);
+        AnimatorOptions options;
+        options.budget = budget;
+        const Animator animator(b.scene, options);
+        AnimationFrame frame;
+        animator.evaluate(b.scene.mesh().positions, frame);
+    } catch (const Error&) {
+        return Outcome::Rejected;
+    }
+    return Outcome::Parsed;
+}
 
 }  // namespace knit::fuzz

@@ -9,7 +9,8 @@
 #
 # Usage: scripts/fuzz.sh [SECONDS_PER_TARGET] [TARGET ...]
 #   SECONDS_PER_TARGET  default 60 (or $KNIT_FUZZ_SECONDS)
-#   TARGET              pyp curves_json obj ply off gltf gltf_animation chart strain_table material (default: all)
+#   TARGET              pyp curves_json obj ply off gltf gltf_animation chart strain_table bound_scene
+#                       serve_request material (default: all)
 # Environment: KNIT_FUZZ_BUILD_DIR (default KNIT_ASAN_BUILD_DIR, else build-asan), KNIT_JOBS (build jobs, and fuzzers run
 #   side by side, default 2: each fuzzer is one process on one core, so two cores fuzz two targets
 #   at once for the same time each), KNIT_FUZZ_SEED (libFuzzer -seed, default 1),
@@ -31,7 +32,7 @@ step=${KNIT_FUZZ_STEP:-all}
 case "$step" in build|run|all) ;; *) echo "fuzz: KNIT_FUZZ_STEP must be build, run or all, got '$step'" >&2; exit 2 ;; esac
 targets=("$@")
 if [ ${#targets[@]} -eq 0 ]; then
-  targets=(pyp curves_json obj ply off gltf gltf_animation chart strain_table serve_request)
+  targets=(pyp curves_json obj ply off gltf gltf_animation chart strain_table bound_scene serve_request)
   [ "$render" = ON ] && targets+=(material)
 fi
 

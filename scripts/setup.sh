@@ -6,9 +6,9 @@ packages=(
   build-essential cmake pkg-config
   libcgal-dev libdraco-dev libtinygltf-dev libglm-dev libembree-dev libtbb-dev
   libgtest-dev libbenchmark-dev libstb-dev nlohmann-json3-dev libcli11-dev libtinyexr-dev
-  libeigen3-dev libmeshoptimizer-dev libnlopt-dev
+  libeigen3-dev libmeshoptimizer-dev libnlopt-dev zlib1g-dev
   clang libclang-rt-14-dev
-  pybind11-dev python3-dev python3-numpy python3-pytest blender
+  pybind11-dev python3-dev python3-numpy python3-pytest python3-distributed blender
   clang-format clang-tidy
   libcpp-httplib-dev chromium  # knit serve's HTTP server; the headless browser of its page tests
   "$@"

@@ -5,6 +5,7 @@
 #include "animate_command.hpp"
 
 #include "animated_glb.hpp"
+#include "bind_command.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -12,13 +13,16 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include <nlohmann/json.hpp>
+#include <tbb/global_control.h>
 
 #include "export_flags.hpp"
 #include "frame_sink.hpp"
 #include "interrupt.hpp"
+#include "knit/bound_scene.hpp"
 #include "knit/cache.hpp"
 #include "knit/error.hpp"
 #include "knit/export.hpp"
@@ -56,12 +60,13 @@ const Polylines& cacheCurves(const AnimationFrame& f, bool plies) { return plies
 
 class CacheSink : public FrameSink {
 public:
-    CacheSink(const std::string& path, const Animator& animator, const FrameSequence& seq, double fps)
+    CacheSink(const std::string& path, const Animator& animator, const FrameSequence& seq, double fps, int step)
         : topologyPath_(topologyPathOf(path)), plies_(animator.options().plies) {
         CacheInfo info;
         info.points = plies_ ? animator.plyPointCount() : animator.rest().yarns().curves.pointCount();
         info.frames = seq.size();
         info.startFrame = seq.frame(0).number;
+        info.step = step;  // PC2: the chunks of a farm run record their frame range (knit cache merge)
         info.fps = fps;
         cache_ = std::make_unique<PointCacheWriter>(path, info);
     }
@@ -129,7 +134,7 @@ void checkOutput(const ExportOptions& o) {
 void refuseAnimateCollisions(const AnimateCommand& a, const FrameSequence& seq) {
     const std::string& out = a.exportOptions.path;
     const std::vector<NamedPath> inputs = {
-        {"--frames", a.frames}, {"--rest", a.rest}, {"--pattern", a.scene.scene.pattern}};
+        {"--frames", a.frames}, {"--rest", a.rest}, {"--pattern", a.scene.scene.pattern}, {"--bound", a.bound}};
     CacheFormat format;
     const bool cache = cacheFormatOf(out, format);
     if (cache || !hasFramePattern(out)) {  // a point cache and its topology, or one animated .glb
@@ -258,6 +263,9 @@ void addAnimateCommand(CLI::App& app, AnimateCommand& a) {
             "with morph-target or skinned animation (sampled at its keyframes, or at --fps)")
         ->required();
     a.command->add_option("--rest", a.rest, "Rest pose mesh that is bound (default: the first frame)");
+    a.command->add_option("--bound", a.bound,
+                          "Bound scene file (`knit bind`): load it instead of binding (no scene flags besides "
+                          "--max-memory and -q)");
     a.command->add_option("--first", a.range.first, "First frame number (default: the smallest found)");
     a.command->add_option("--last", a.range.last, "Last frame number (default: the largest found)");
     a.command->add_option("--step", a.range.step, "Frame number step")->capture_default_str();
@@ -281,21 +289,31 @@ void addAnimateCommand(CLI::App& app, AnimateCommand& a) {
         ->capture_default_str();
     a.command->add_option("--report", a.report,
                           "Write a JSON report (bind and frame times, per-frame stretch and yarn distance)");
+    a.command
+        ->add_option("--threads", a.threads,
+                     "Worker threads (0: every core; 1 per task when a farm or knit.distributed runs several "
+                     "chunks on one machine)")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 4096));
     a.command->footer(kSceneHelp);
 }
 
 int runAnimate(const AnimateCommand& a) {
     // Step 1: fail before long work: outputs, the sequence and its files.
+    std::optional<tbb::global_control> threads;
+    if (a.threads > 0) threads.emplace(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(a.threads));
     checkOutput(a.exportOptions);
     checkReportPath(a.report);
     FrameRange range = a.range;
     if (a.command != nullptr && a.command->count("--fps") > 0) range.fps = a.fps;  // glTF input: sample at --fps
     const FrameSequence seq(a.frames, range);
     refuseAnimateCollisions(a, seq);
-    // Step 2: bind once on the rest pose.
+    // Step 2: bind once on the rest pose, or load the scene bound by `knit bind`.
+    if (!a.bound.empty() && a.command != nullptr) refuseSceneFlagsWithBound(*a.command);
     const auto t0 = Clock::now();
     const SceneOptions sceneOptions = resolveScene(a.scene);
-    const Scene rest = bindRestPose(sceneOptions, a.rest.empty() ? seq.frame(0).path : a.rest);
+    const Scene rest = a.bound.empty() ? bindRestPose(sceneOptions, a.rest.empty() ? seq.frame(0).path : a.rest)
+                                       : readBoundScene(a.bound, sceneOptions.budget).scene;
     printWarnings(rest);
     // The rest pose sets every frame's curves, radii and ply pitch: refuse an empty output or
     // radii beyond float32 now (each frame's coordinates are range-checked as its mesh is read).
@@ -306,6 +324,7 @@ int runAnimate(const AnimateCommand& a) {
     // The statistics go into the report only: without one they are not computed (the distance
     // search costs more than a frame's plies).
     ao.stats = !a.noStats && !a.report.empty();
+    ao.budget = sceneOptions.budget;  // --max-memory: the plies per frame
     const Animator animator(rest, ao);
     const double bindSeconds = since(t0);
     // Step 3: the frames, streamed into staged outputs (existing files stay unchanged until the end).
@@ -313,7 +332,8 @@ int runAnimate(const AnimateCommand& a) {
     const ExportOptions staged = stagedExport(a.exportOptions, sceneOptions.budget, outputs);
     CacheFormat format;
     std::unique_ptr<FrameSink> sink;
-    if (cacheFormatOf(staged.path, format)) sink = std::make_unique<CacheSink>(staged.path, animator, seq, a.fps);
+    if (cacheFormatOf(staged.path, format))
+        sink = std::make_unique<CacheSink>(staged.path, animator, seq, a.fps, range.step);
     else if (isAnimatedGlb(staged.path, hasFramePattern(staged.path)))
         sink = makeAnimatedGlbSink(animator, seq.size(), staged, {a.fps, a.linear}, sceneOptions.budget);
     else sink = std::make_unique<FilesSink>(animator, staged);
@@ -326,9 +346,9 @@ int runAnimate(const AnimateCommand& a) {
         outputs.run(
             [&] { writeReport(outputs.stage(a.report), animateReport(bindSeconds, frames, totals, animator)); });
     outputs.run([&] { outputs.commit(); });
-    std::printf("animated %zu frames (%zu yarn vertices, %zu ply vertices per frame): bind %.3f s, wrote %s\n",
-                frames.size(), rest.yarns().curves.pointCount(), animator.plyPointCount(), bindSeconds,
-                a.exportOptions.path.c_str());
+    std::printf("animated %zu frames (%zu yarn vertices, %zu ply vertices per frame): %s %.3f s, wrote %s\n",
+                frames.size(), rest.yarns().curves.pointCount(), animator.plyPointCount(),
+                a.bound.empty() ? "bind" : "load", bindSeconds, a.exportOptions.path.c_str());
     return 0;
 }
 

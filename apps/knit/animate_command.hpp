@@ -17,11 +17,13 @@ struct AnimateCommand {
     ExportOptions exportOptions;  // -o: out.pc2, out.mdd or a pattern such as out_%04d.glb
     std::string frames;           // --frames: printf pattern or folder
     std::string rest;             // --rest: the rest pose (default: the first frame)
+    std::string bound;            // --bound: a bound scene file (`knit bind`) instead of binding
     FrameRange range;             // --first --last --step
     double fps = 24;              // --fps: MDD frame times
     bool linear = false;          // --linear: animated .glb weights blend (LINEAR) instead of STEP
     bool noStats = false;         // --no-stats: no maxStretch / minYarnDistance in the report
     std::string report;           // --report path; empty = none
+    int threads = 0;              // --threads: worker threads (0: every core)
 };
 
 void addAnimateCommand(CLI::App& app, AnimateCommand& animate);

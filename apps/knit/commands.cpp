@@ -6,6 +6,8 @@ namespace knit::cli {
 void addCommands(CLI::App& app, Commands& c) {
     addBuildCommand(app, c.build);
     addAnimateCommand(app, c.animate);
+    addBindCommand(app, c.bind);
+    addCacheCommand(app, c.cache);
     addInfoCommand(app, c.info);
     addGenerateCommand(app, c.generate);
     addChartCommand(app, c.chart);
@@ -27,6 +29,8 @@ int runCommand(const Commands& c) {
     if (*c.build.command) return runBuild(c.build);
     if (*c.animate.command) return runAnimate(c.animate);
     if (*c.serve.command) return runServe(c.serve);
+    if (*c.bind.command) return runBind(c.bind);
+    if (*c.cache.command) return runCache(c.cache);
 #ifdef KNIT_HAVE_RENDER_CHECK
     if (*c.render.command) return runRender(c.render);
 #endif

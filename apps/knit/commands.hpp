@@ -5,7 +5,9 @@
 #include <CLI/CLI.hpp>
 
 #include "animate_command.hpp"
+#include "bind_command.hpp"
 #include "build_command.hpp"
+#include "cache_command.hpp"
 #include "chart_command.hpp"
 #include "generate_command.hpp"
 #include "info_command.hpp"
@@ -28,6 +30,8 @@ struct Commands {
     AnimateCommand animate;
     StrainTableCommand strainTable;
     ServeCommand serve;
+    BindCommand bind;    // issue 26: bound scene files
+    CacheCommand cache;  // issue 26: chunk merge
 #ifdef KNIT_HAVE_RENDER_CHECK
     RenderCommand render;
 #endif

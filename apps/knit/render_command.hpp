@@ -16,9 +16,11 @@ struct RenderCommand {
     CLI::App* command = nullptr;  // set by addRenderCommand
     SceneFlags scene;
     RenderOptions options;
-    ViewFlags view;        // --fov --width --height fill options
-    std::string report;    // --report path; empty = none
-    SurfaceFlags surface;  // --surface-only --bake-size: trace the base mesh with the baked knit
+    ViewFlags view;         // --fov --width --height fill options
+    std::string report;     // --report path; empty = none
+    SurfaceFlags surface;   // --surface-only --bake-size: trace the base mesh with the baked knit
+    std::string bound;      // --bound: a bound scene file (`knit bind`), rendered at full detail
+    std::string frameMesh;  // --frame-mesh: the pose to render with --bound (default: the rest pose)
 };
 
 // Registers the subcommand and its flags on `app`, bound to `render` (which must outlive parsing).

@@ -9,7 +9,7 @@ void pc2Header(const CacheInfo& info, std::vector<char>& out) {
     putU32(out, 1, false);  // file version
     putU32(out, static_cast<uint32_t>(info.points), false);
     putF32(out, static_cast<float>(info.startFrame), false);
-    putF32(out, 1.0f, false);  // sample rate: one sample per frame
+    putF32(out, static_cast<float>(info.step), false);  // sample rate: frames between samples
     putU32(out, static_cast<uint32_t>(info.frames), false);
 }
 

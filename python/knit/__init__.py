@@ -24,6 +24,8 @@ from ._knit import (  # noqa: F401
     builtin_meshes,
     builtin_patterns,
     export_scene,
+    frame_numbers,
+    load_bound_scene,
     load_mesh,
     chart_floats,
     chart_pattern,
@@ -32,12 +34,14 @@ from ._knit import (  # noqa: F401
     make_plies,
     strain_table,
     spell_settings,
+    save_bound_scene,
     uv_to_metre_scale,
     vertex_normals,
 )
 
 __all__ = [
     "Binding", "Curves", "Error", "Mesh", "Pattern", "Plies", "Scene", "Yarns",
-    "build_scene", "builtin_meshes", "builtin_patterns", "export_scene", "load_mesh",
-    "load_pattern", "make_plies", "uv_to_metre_scale", "vertex_normals",
+    "build_scene", "builtin_meshes", "builtin_patterns", "export_scene", "frame_numbers",
+    "load_bound_scene", "load_mesh", "load_pattern", "make_plies", "save_bound_scene", "uv_to_metre_scale",
+    "vertex_normals",
 ]

@@ -11,5 +11,6 @@ void registerCurves(py::module_& m);          // curves.cpp: Curves, Yarns, Plie
 void registerScene(py::module_& m);           // scene.cpp: Scene, Binding, build_scene, evaluate
 void registerExport(py::module_& m);          // export.cpp: export_scene
 void registerStrain(py::module_& m);          // strain.cpp: StrainTable, strain_table, load_strain_table
+void registerBoundScene(py::module_& m);      // bound_scene.cpp: bound scene files, frame numbers
 
 }  // namespace knitpy

@@ -77,4 +77,5 @@ PYBIND11_MODULE(_knit, m) {
     knitpy::registerStrain(m);
     knitpy::registerScene(m);
     knitpy::registerExport(m);
+    knitpy::registerBoundScene(m);
 }

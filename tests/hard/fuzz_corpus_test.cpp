@@ -57,6 +57,7 @@ TEST(FuzzCorpus, curvesJsonCorpusParsesOrThrowsKnitError) { replay("curves_json"
 TEST(FuzzCorpus, objCorpusParsesOrThrowsKnitError) { replay("obj", runObj); }
 TEST(FuzzCorpus, plyCorpusParsesOrThrowsKnitError) { replay("ply", runPly); }
 TEST(FuzzCorpus, offCorpusParsesOrThrowsKnitError) { replay("off", runOff); }
+TEST(FuzzCorpus, boundSceneCorpusParsesOrThrowsKnitError) { replay("bound_scene", runBoundScene); }
 TEST(FuzzCorpus, gltfCorpusParsesOrThrowsKnitError) { replay("gltf", runGltf); }
 TEST(FuzzCorpus, strainTableCorpusParsesOrThrowsKnitError) { replay("strain_table", runStrainTable); }
 TEST(FuzzCorpus, gltfAnimationCorpusParsesOrThrowsKnitError) { replay("gltf_animation", runGltfAnimation); }

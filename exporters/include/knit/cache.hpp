@@ -4,7 +4,7 @@
 //
 // Formats (by extension of the cache path):
 //   .pc2  PC2, little-endian: char[12] "POINTCACHE2\0", int32 version 1, int32 points,
-//         float32 start frame, float32 sample rate (frames between samples: 1), int32 samples,
+//         float32 start frame, float32 sample rate (frames between samples: the frame step), int32 samples,
 //         then float32 x, y, z per point per sample.
 //   .mdd  MDD, big-endian: int32 frames, int32 points, float32 time (seconds) per frame, then
 //         float32 x, y, z per point per frame.
@@ -32,6 +32,7 @@ struct CacheInfo {
     size_t points = 0;
     size_t frames = 0;
     double startFrame = 0;  // PC2: the first sample's frame number
+    double step = 1;        // PC2: frames between samples (the sample rate field)
     double fps = 24;        // MDD: frame k's time is k / fps seconds
 };
 
@@ -56,6 +57,32 @@ private:
     struct State;
     std::unique_ptr<State> state_;
 };
+
+// The frame range a PC2 file holds, from its header (frame numbers start, start + step, ...).
+struct Pc2Range {
+    std::string path;
+    uint32_t points = 0;
+    int64_t start = 0;  // first frame number
+    int64_t step = 1;   // frames between samples
+    uint32_t frames = 0;
+    int64_t last() const { return start + step * (int64_t(frames) - 1); }
+};
+// Reads and checks the header of a PC2 file: the magic, version 1, integral start frame and
+// step (>= 1), and a file size of exactly 32 + 12 x points x frames bytes. Throws knit::Error
+// "point cache '<path>': <what is wrong>".
+Pc2Range readPc2Range(const std::string& path);
+
+// Concatenates PC2 chunks (e.g. `knit animate --first A --last B` runs on a farm) into one PC2
+// at `output`, with its topology .obj copied from the first chunk's (the first frame's points,
+// as a single run writes it). The chunks, in any order, must hold the same points and step and
+// tile one contiguous frame range exactly once, each beside its topology .obj with the same
+// segments; otherwise a knit::Error names the missing or doubled frames and their chunks, or the
+// chunk that differs. Both outputs appear whole or not at all.
+struct CacheMergeResult {
+    int64_t first = 0, last = 0, step = 1;
+    size_t frames = 0, points = 0;
+};
+CacheMergeResult mergePointCaches(const std::vector<std::string>& chunks, const std::string& output);
 
 // The topology of a point cache as OBJ: `v` per point (of one frame) in cache order, then one
 // `l i j` record per segment (closed curves: last -> first too; no point repeated), which every

@@ -131,7 +131,8 @@ struct AnimatorOptions {
     // Sweep the plies per frame (false: the yarns only, the binding evaluated; with stats false
     // too, no resampling at bind time or per frame).
     bool plies = true;
-    bool stats = true;  // compute FrameStats per frame
+    bool stats = true;    // compute FrameStats per frame
+    bool radial = false;  // with plies: also each ply point's radial direction (Plies::radial; a renderer needs it)
     // Apply the rest scene's strain deformer (SceneOptions::deform) on every frame; false: the
     // geometric mapping even for a scene built with a strain table.
     bool deform = true;
@@ -198,7 +199,7 @@ public:
     // unless only the yarns are evaluated):
     // the resampling layouts, rest arc lengths and pitches, rest segment lengths. Keeps a
     // reference to `rest`, which must outlive the Animator. Throws knit::Error for bad ply
-    // options or more than 2^32-1 ply points.
+    // options, more than 2^32-1 ply points or plies over options.budget.
     explicit Animator(const Scene& rest, const AnimatorOptions& options = {});
 
     // Evaluates the frame whose mesh positions are `positions` (rest connectivity; checked:

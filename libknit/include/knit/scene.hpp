@@ -79,6 +79,11 @@ struct SceneParts {
     Plies plies;
     std::optional<SceneDetail> detail;     // a view's levels and pieces (of these yarns)
     std::optional<PlyOptions> plyOptions;  // none: the defaults with yarnRadius
+    // A scene saved after binding (knit/bound_scene.hpp) keeps its pattern, placement and bind
+    // statistics; synthetic scenes leave them empty.
+    Pattern pattern;
+    PatternPlacement placement;
+    BindStats bindStats;
 };
 
 // The result of the pipeline: read-only, made by buildScene (or Scene::fromParts).

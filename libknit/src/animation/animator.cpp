@@ -225,6 +225,7 @@ void Animator::sweep(const std::vector<dvec3>& positions, AnimationFrame& out) c
     if (p.curves.offsets != plyTopology_.curves.offsets) {  // first frame with this buffer
         p = plyTopology_;
         p.curves.points.resize(plyTopology_.curves.offsets.back());
+        if (options_.radial) p.radial.resize(plyTopology_.curves.offsets.back());
     }
     const size_t yarnCount = restPitch_.size();
     const std::vector<glm::uvec3>& faces = rest_.mesh().faces;
@@ -246,9 +247,10 @@ void Animator::sweep(const std::vector<dvec3>& positions, AnimationFrame& out) c
                 seedNormal = r * s.normal;
                 seedTangent = r * s.tangent;
             }
-            impl::PlyKernel::sweepWithCosSin(
-                *generator_, y, out.centres.points.data() + centreOffsets_[y], m, restPhase_.data() + centreOffsets_[y],
-                &seedNormal, carried ? &seedTangent : nullptr, p.curves.points.data() + plyOfYarn_[y], scratch);
+            impl::PlyKernel::sweepWithCosSin(*generator_, y, out.centres.points.data() + centreOffsets_[y], m,
+                                             restPhase_.data() + centreOffsets_[y], &seedNormal,
+                                             carried ? &seedTangent : nullptr, p.curves.points.data() + plyOfYarn_[y],
+                                             scratch, options_.radial ? p.radial.data() + plyOfYarn_[y] : nullptr);
         }
     });
 }

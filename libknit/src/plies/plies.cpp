@@ -218,12 +218,13 @@ void PlyKernel::sweepWithPhase(const PlyGenerator& g, size_t y, const dvec3* X, 
 }
 
 void PlyKernel::sweepWithCosSin(const PlyGenerator& g, size_t y, const dvec3* X, size_t m, const glm::dvec2* phase,
-                                const dvec3* seed, const dvec3* seedTangent, dvec3* P, PlyScratch& scratch) {
+                                const dvec3* seed, const dvec3* seedTangent, dvec3* P, PlyScratch& scratch,
+                                dvec3* radial) {
     PlyScratch::Buffers& buf = buffers(scratch);
     frames(g, y, X, m, seed, seedTangent, buf);
     helices(
         g.options_, X, buf.tangent.data(), buf.normal.data(), m, g.cosPly_, g.sinPly_,
-        [&](size_t j) { return phase[j]; }, P, nullptr);
+        [&](size_t j) { return phase[j]; }, P, radial);
 }
 
 }  // namespace impl

@@ -62,7 +62,7 @@ struct PlyKernel {
     // the first tangent (see curveFrames).
     static void sweepWithCosSin(const PlyGenerator& generator, size_t y, const glm::dvec3* centre, size_t m,
                                 const glm::dvec2* phase, const glm::dvec3* seed, const glm::dvec3* seedTangent,
-                                glm::dvec3* points, PlyScratch& scratch);
+                                glm::dvec3* points, PlyScratch& scratch, glm::dvec3* radial = nullptr);
 };
 
 }  // namespace impl

@@ -255,6 +255,9 @@ Scene Scene::fromParts(SceneParts parts) {
     s.yarnRadius_ = parts.yarnRadius;
     s.grid_ = std::move(parts.grid);
     s.bound_.binding = std::move(parts.binding);
+    s.bound_.stats = parts.bindStats;
+    s.pattern_ = std::move(parts.pattern);
+    s.placement_ = parts.placement;
     s.yarns_ = std::move(parts.yarns);
     s.plies_ = std::move(parts.plies);
     s.detail_ = std::move(parts.detail);

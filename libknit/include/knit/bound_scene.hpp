@@ -1,0 +1,58 @@
+// knit/bound_scene.hpp — a bound rest scene saved once and loaded by every process that
+// evaluates frames of it (`knit bind`, then `knit animate --bound` on any machine of a farm).
+//
+// The file holds what evaluation depends on, exactly (doubles bit for bit): the pattern and its
+// placement, the yarn radius and UV cell size, the rest mesh (positions, UVs, faces), the binding
+// (triangle, barycentrics, height, twist, colour per yarn vertex; yarn offsets and closed flags),
+// the bind statistics, the ply settings, the settings the scene was built with (JSON, for
+// provenance) and a reference to a strain table (empty: none). Loading rebuilds what is a pure
+// function of those: the rest vertex normals, the rest yarns (the binding evaluated on the rest
+// mesh) and the UV grid, with the same code as binding, so a loaded scene evaluates every frame
+// to the same bytes as the scene that was saved; the Animator's ply layout and rest twist phases
+// are in turn a pure function of the rest yarns and ply settings. Nothing depends on other frames.
+//
+// Layout (little-endian): a 32-byte header
+//   char[8] "KNITBIND", u32 format version, u32 header size (32), u64 payload bytes,
+//   u32 CRC-32 of the payload, u32 zero
+// then the payload: the fields above in a fixed order, arrays as a u64 count and packed
+// elements, strings as a u64 length and bytes. A file of another format version, a truncated
+// or otherwise damaged file (size or checksum wrong, counts beyond the file, indices out of
+// range) is refused with a knit::Error saying which.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "knit/budget.hpp"
+#include "knit/scene.hpp"
+
+namespace knit {
+
+// The format this library writes and reads (a file of any other version is refused).
+constexpr uint32_t kBoundSceneFormatVersion = 1;
+
+struct BoundSceneInfo {
+    uint32_t formatVersion = kBoundSceneFormatVersion;
+    std::string settings;     // JSON text: the settings the scene was bound with (provenance)
+    std::string strainTable;  // reference to a strain table the evaluation uses; empty: none
+};
+
+struct BoundScene {
+    Scene scene;  // pattern, placement, mesh, normals, grid, binding, rest yarns, ply options
+    BoundSceneInfo info;
+};
+
+// The bytes of a bound scene file of `rest` (a scene built by buildScene without a view;
+// plies are not stored). Throws knit::Error for a scene made from parts or with a view.
+std::string encodeBoundScene(const Scene& rest, const BoundSceneInfo& info);
+// Writes them to `path` atomically (knit/output_file.hpp).
+void writeBoundScene(const std::string& path, const Scene& rest, const BoundSceneInfo& info);
+
+// Reads a bound scene from bytes; `name` names them in messages. Sizes are checked against the
+// bytes present before anything is allocated, and the loaded scene's estimated memory against
+// `budget`. Throws knit::Error "<name>: <what is wrong>".
+BoundScene decodeBoundScene(std::string_view bytes, const std::string& name, const MemoryBudget& budget = {});
+// The same from a file (its size checked against `budget` before it is read).
+BoundScene readBoundScene(const std::string& path, const MemoryBudget& budget = {});
+
+}  // namespace knit

@@ -1,0 +1,89 @@
+// bound_scene_format.hpp (internal) — the payload layout of a bound scene file
+// (knit/bound_scene.hpp), described once (boundSceneLayout) and walked by the writer and the
+// reader, so the two cannot disagree on the order or the width of a field.
+#pragma once
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <zlib.h>
+
+#include "knit/base_mesh.hpp"
+#include "knit/binding.hpp"
+#include "knit/pattern.hpp"
+#include "knit/plies.hpp"
+#include "knit/tiling.hpp"
+
+namespace knit::impl {
+
+// Packed arrays are copied as bytes: the file is little-endian.
+static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "bound scene files are written on little-endian hosts");
+
+constexpr char kBoundSceneMagic[8] = {'K', 'N', 'I', 'T', 'B', 'I', 'N', 'D'};
+constexpr size_t kBoundSceneHeaderBytes = 32;
+
+// The CRC-32 (zlib's: the polynomial of gzip and PNG) of a payload.
+inline uint32_t payloadCrc32(const char* data, size_t size) {
+    return static_cast<uint32_t>(crc32_z(crc32_z(0L, Z_NULL, 0), reinterpret_cast<const Bytef*>(data), size));
+}
+
+// What the file stores (the rest is rebuilt on loading).
+struct BoundSceneParts {
+    std::string settings, strainTable;
+    Pattern pattern;
+    PatternPlacement placement;
+    BaseMesh mesh;
+    Binding binding;
+    BindStats stats;
+    PlyOptions plies;
+};
+
+// The fields in file order; `io` has value(x, what), array(v, what), text(s, what) and
+// blocks(map, what), for `P` = const BoundSceneParts (writing) or BoundSceneParts (reading).
+template <class IO, class P>
+void boundSceneLayout(IO& io, P& p) {
+    io.text(p.settings, "the settings");
+    io.text(p.strainTable, "the strain table reference");
+    // The pattern.
+    io.text(p.pattern.name, "the pattern name");
+    io.value(p.pattern.px, "the pattern period");
+    io.value(p.pattern.py, "the pattern period");
+    io.value(p.pattern.radius, "the pattern yarn radius");
+    io.array(p.pattern.points, "the pattern points");
+    io.array(p.pattern.twist, "the pattern twists");
+    io.array(p.pattern.edges, "the pattern edges");
+    io.value(p.pattern.stitchesPerPeriod, "the pattern stitches per period");
+    io.value(p.pattern.rowsPerPeriod, "the pattern rows per period");
+    io.array(p.pattern.colour, "the pattern colours");
+    io.blocks(p.pattern.extraBlocks, "the pattern's extra blocks");
+    // Its placement on the mesh.
+    io.value(p.placement.repeats, "the repeats");
+    io.value(p.placement.scale, "the placement scale");
+    io.value(p.placement.periodMetres, "the period in metres");
+    // The rest mesh.
+    io.text(p.mesh.name, "the mesh name");
+    io.array(p.mesh.positions, "the mesh positions");
+    io.array(p.mesh.uvs, "the mesh UVs");
+    io.array(p.mesh.faces, "the mesh faces");
+    io.array(p.mesh.faceUvs, "the mesh face UVs");
+    // The binding and its statistics.
+    io.array(p.binding.face, "the binding triangles");
+    io.array(p.binding.bary, "the binding barycentrics");
+    io.array(p.binding.height, "the binding heights");
+    io.array(p.binding.twist, "the binding twists");
+    io.array(p.binding.colour, "the binding colours");
+    io.array(p.binding.offsets, "the yarn offsets");
+    io.array(p.binding.closed, "the yarn closed flags");
+    io.value(p.stats, "the bind statistics");
+    // The ply settings (as the scene holds them: resolved by the evaluation).
+    io.value(p.plies.count, "the number of plies");
+    io.value(p.plies.yarnRadius, "the ply yarn radius");
+    io.value(p.plies.centerRadius, "the ply centre radius");
+    io.value(p.plies.plyRadius, "the ply radius");
+    io.value(p.plies.pitch, "the ply pitch");
+    io.value(p.plies.twist, "the twist direction");
+    io.value(p.plies.samplesPerTurn, "the samples per turn");
+}
+
+}  // namespace knit::impl

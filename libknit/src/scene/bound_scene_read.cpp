@@ -1,0 +1,208 @@
+// bound_scene_read.cpp — a bound scene file (knit/bound_scene.hpp) back into a Scene: the header
+// (magic, format version, size, CRC-32), the payload walked in boundSceneLayout's order with
+// every count checked against the bytes left before anything is allocated, the invariants the
+// evaluation relies on, then what is a pure function of the stored parts (rest normals, UV grid,
+// rest yarns) rebuilt with the pipeline's own calls.
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <type_traits>
+
+#include "knit/bound_scene.hpp"
+#include "knit/error.hpp"
+#include "knit/uv_grid.hpp"
+#include "scene/bound_scene_format.hpp"
+#include "scene/scene_budget.hpp"
+#include "util/checks.hpp"
+
+namespace knit {
+namespace {
+
+std::string boundName(const std::string& name) { return "bound scene '" + name + "'"; }
+
+// Reads the fields from the payload; every count is checked against the bytes left.
+class PayloadReader {
+public:
+    PayloadReader(std::string_view bytes, const std::string& name) : bytes_(bytes), name_(name) {}
+    template <class T>
+    void value(T& v, const char* what) {
+        static_assert(std::is_trivially_copyable_v<T>);
+        need(sizeof(T), what);
+        std::memcpy(&v, bytes_.data() + at_, sizeof(T));
+        at_ += sizeof(T);
+    }
+    template <class T>
+    void array(std::vector<T>& v, const char* what) {
+        const uint64_t n = count(sizeof(T), what);
+        v.resize(n);
+        if (n > 0) std::memcpy(static_cast<void*>(v.data()), bytes_.data() + at_, n * sizeof(T));
+        at_ += n * sizeof(T);
+    }
+    void text(std::string& s, const char* what) {
+        const uint64_t n = count(1, what);
+        s.assign(bytes_.data() + at_, n);
+        at_ += n;
+    }
+    void blocks(std::map<std::string, std::vector<std::vector<double>>>& b, const char* what) {
+        const uint64_t n = count(2 * sizeof(uint64_t), what);  // each block: a name and a row count at least
+        for (uint64_t i = 0; i < n; ++i) {
+            std::string key;
+            text(key, what);
+            std::vector<std::vector<double>>& rows = b[key];
+            rows.resize(count(sizeof(uint64_t), what));  // each row: its length at least
+            for (std::vector<double>& row : rows) array(row, what);
+        }
+    }
+    size_t left() const { return bytes_.size() - at_; }
+
+private:
+    // A count of elements of `size` bytes, refused when they would not fit in the bytes left.
+    uint64_t count(size_t size, const char* what) {
+        uint64_t n = 0;
+        value(n, what);
+        if (n > left() / size)
+            throw Error(boundName(name_) + " is damaged: " + what + " claim " + std::to_string(n) + " elements of " +
+                        std::to_string(size) + " bytes, but only " + std::to_string(left()) + " bytes are left");
+        return n;
+    }
+    void need(size_t n, const char* what) const {
+        if (n > left())
+            throw Error(boundName(name_) + " is damaged: it ends inside " + what + " (byte " + std::to_string(at_) +
+                        " of the payload)");
+    }
+    std::string_view bytes_;
+    std::string name_;
+    size_t at_ = 0;
+};
+
+template <class T>
+T get(std::string_view bytes, size_t at) {
+    T v;
+    std::memcpy(&v, bytes.data() + at, sizeof(T));
+    return v;
+}
+
+// Step 1: the header; returns the payload.
+std::string_view checkHeader(std::string_view bytes, const std::string& name) {
+    const size_t kHeader = impl::kBoundSceneHeaderBytes;
+    if (bytes.size() < sizeof impl::kBoundSceneMagic ||
+        std::memcmp(bytes.data(), impl::kBoundSceneMagic, sizeof impl::kBoundSceneMagic) != 0)
+        throw Error("'" + name +
+                    "' is not a bound scene file (it does not start with KNITBIND; write one with `knit bind`)");
+    if (bytes.size() < kHeader)
+        throw Error(boundName(name) + " is truncated: " + std::to_string(bytes.size()) + " bytes, shorter than its " +
+                    std::to_string(kHeader) + "-byte header");
+    const uint32_t version = get<uint32_t>(bytes, 8);
+    if (version != kBoundSceneFormatVersion)
+        throw Error(boundName(name) + " has format version " + std::to_string(version) + "; this knit reads version " +
+                    std::to_string(kBoundSceneFormatVersion) + " only (bind the scene again with this knit)");
+    if (get<uint32_t>(bytes, 12) != kHeader || get<uint32_t>(bytes, 28) != 0)
+        throw Error(boundName(name) + " is damaged: its header is not a version " +
+                    std::to_string(kBoundSceneFormatVersion) + " header");
+    const uint64_t payload = get<uint64_t>(bytes, 16), present = bytes.size() - kHeader;
+    if (present < payload)
+        throw Error(boundName(name) + " is truncated: it holds " + std::to_string(bytes.size()) + " bytes of the " +
+                    std::to_string(kHeader + payload) + " its header announces");
+    if (present > payload)
+        throw Error(boundName(name) + " is damaged: " + std::to_string(present - payload) +
+                    " bytes follow the payload its header announces");
+    const std::string_view body = bytes.substr(kHeader);
+    const uint32_t stored = get<uint32_t>(bytes, 24), computed = impl::payloadCrc32(body.data(), body.size());
+    if (computed != stored) {
+        std::ostringstream s;
+        s << std::hex << "stored 0x" << stored << ", computed 0x" << computed;
+        throw Error(boundName(name) + " is damaged: its checksum does not match its contents (CRC-32 " + s.str() + ")");
+    }
+    return body;
+}
+
+bool positiveFinite(double v) { return std::isfinite(v) && v > 0; }
+
+// Step 3: the invariants the evaluation relies on (a file with a valid checksum that another
+// writer made inconsistent).
+void checkParts(const impl::BoundSceneParts& p) {
+    validatePattern(p.pattern, p.pattern.name);
+    validateMesh(p.mesh);
+    const PatternPlacement& pl = p.placement;
+    if (!positiveFinite(pl.repeats.x) || !positiveFinite(pl.repeats.y) || !positiveFinite(pl.scale) ||
+        !positiveFinite(p.pattern.radius * pl.scale))
+        throw Error("the placement (repeats, scale) is not positive and finite");
+    const Binding& b = p.binding;
+    const size_t n = b.face.size();
+    if (b.bary.size() != n || b.height.size() != n || (!b.twist.empty() && b.twist.size() != n) ||
+        (!b.colour.empty() && b.colour.size() != n))
+        throw Error("the binding's arrays differ in length (" + std::to_string(n) + " yarn vertices)");
+    if (b.offsets.size() != b.closed.size() + 1 || b.offsets.front() != 0 || b.offsets.back() != n)
+        throw Error("the yarn offsets do not cover the " + std::to_string(n) + " yarn vertices");
+    for (size_t y = 0; y < b.closed.size(); ++y)
+        if (b.offsets[y + 1] < b.offsets[y] || b.closed[y] > 1)
+            throw Error("yarn " + std::to_string(y) + " has a bad offset or closed flag");
+    for (size_t i = 0; i < n; ++i) {
+        if (b.face[i] >= p.mesh.faces.size())
+            throw Error("yarn vertex " + std::to_string(i) + " is bound to triangle " + std::to_string(b.face[i]) +
+                        " of " + std::to_string(p.mesh.faces.size()));
+        if (!util::finite(b.bary[i]) || !std::isfinite(b.height[i]) || (!b.twist.empty() && !std::isfinite(b.twist[i])))
+            throw Error("yarn vertex " + std::to_string(i) + " has a coordinate that is not finite");
+    }
+    PlyOptions plies = p.plies;
+    plies.yarnRadius = p.pattern.radius * pl.scale;
+    (void)resolvePlyOptions(plies);  // throws for settings the evaluation would refuse
+}
+
+}  // namespace
+
+BoundScene decodeBoundScene(std::string_view bytes, const std::string& name, const MemoryBudget& budget) {
+    // Steps 1 and 2: the header, then the payload (sizes checked against the bytes present).
+    const std::string_view payload = checkHeader(bytes, name);
+    impl::BoundSceneParts p;
+    PayloadReader reader(payload, name);
+    impl::boundSceneLayout(reader, p);
+    if (reader.left() != 0)
+        throw Error(boundName(name) + " is damaged: " + std::to_string(reader.left()) + " bytes follow its last field");
+    // Step 3: the invariants, then what rebuilding needs, against the memory budget.
+    try {
+        checkParts(p);
+    } catch (const Error& e) {
+        throw Error(boundName(name) + " is inconsistent: " + e.what());
+    }
+    const double vertices = static_cast<double>(p.binding.face.size());
+    budget.require(static_cast<double>(payload.size()) + impl::kBytesPerYarnVertex * vertices +
+                       48.0 * static_cast<double>(p.mesh.positions.size()),
+                   "loading " + boundName(name), "the scene's size (bind fewer repeats)");
+    impl::checkGridBudget(p.mesh, p.placement, false, budget);
+    // Step 4: the rest normals, UV grid and rest yarns, as buildScene makes them.
+    SceneParts parts;
+    parts.yarnRadius = p.pattern.radius * p.placement.scale;
+    parts.normals = vertexNormals(p.mesh.positions, p.mesh.faces);
+    UvGridOptions gridOptions;
+    gridOptions.cellSize = p.placement.cellSize();
+    gridOptions.maxEntries = std::numeric_limits<uint64_t>::max();  // bounded by the memory budget above
+    parts.grid = buildUvGrid(p.mesh, gridOptions);
+    evaluateBinding(p.binding, p.mesh.faces, p.mesh.positions, parts.normals, parts.yarns);
+    parts.plyOptions = p.plies;
+    parts.pattern = std::move(p.pattern);
+    parts.placement = p.placement;
+    parts.bindStats = p.stats;
+    parts.mesh = std::move(p.mesh);
+    parts.binding = std::move(p.binding);
+    BoundScene out{Scene::fromParts(std::move(parts)),
+                   {kBoundSceneFormatVersion, std::move(p.settings), std::move(p.strainTable)}};
+    return out;
+}
+
+BoundScene readBoundScene(const std::string& path, const MemoryBudget& budget) {
+    std::error_code ec;
+    const uintmax_t size = std::filesystem::file_size(path, ec);
+    if (ec) throw Error("cannot read bound scene '" + path + "': " + ec.message());
+    budget.require(static_cast<double>(size), "reading " + boundName(path), "the scene's size (bind fewer repeats)");
+    std::ifstream in(path, std::ios::binary);
+    std::string bytes(size, '\0');
+    if (!in || !in.read(bytes.data(), static_cast<std::streamsize>(size)))
+        throw Error("cannot read bound scene '" + path + "'");
+    return decodeBoundScene(bytes, path, budget);
+}
+
+}  // namespace knit

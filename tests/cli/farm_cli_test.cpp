@@ -1,0 +1,164 @@
+// Farm bakes end to end (issue 26): `knit bind` once, `knit animate --bound --first A --last B`
+// per chunk, `knit cache merge`: the same bytes as one `knit animate` run, whatever the chunks.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "animate_sequence.hpp"
+#include "common/run_knit.hpp"
+
+namespace fs = std::filesystem;
+
+namespace knit::test {
+namespace {
+
+std::string bytesOf(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+class Farm : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir = fs::temp_directory_path() / ("knit_farm_" + std::to_string(::getpid()) + "_" +
+                                           ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(dir);
+        fs::create_directories(dir);
+        writeWaveSequence(dir, 9, 8);
+    }
+    void TearDown() override { fs::remove_all(dir); }
+    CliRun knit(const std::string& args) const { return runKnit(args, dir); }
+    void bind() const {
+        const CliRun r = knit("bind -q --mesh frame_0001.obj --repeats 3 3 -o g.knitbind");
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+    }
+    // `animate --bound` over frames first..last into `out`.
+    void chunk(int first, int last, const std::string& out, const std::string& more = "") const {
+        const CliRun r = knit("animate -q --bound g.knitbind --frames frame_%04d.obj --first " + std::to_string(first) +
+                              " --last " + std::to_string(last) + " " + more + " -o " + out);
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+    }
+    fs::path dir;
+};
+
+TEST_F(Farm, chunksOfABoundSceneMergeToTheBytesOfOneRun) {
+    bind();
+    CliRun r = knit("animate -q --frames frame_%04d.obj --repeats 3 3 -o one.pc2");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const std::string one = bytesOf(dir / "one.pc2"), topology = bytesOf(dir / "one.obj");
+    ASSERT_GT(one.size(), 9 * 12 * 1000u);
+    // 1, 2 and 3 chunks (given out of order), merged.
+    const std::vector<std::vector<std::pair<int, int>>> splits = {{{1, 9}}, {{5, 9}, {1, 4}}, {{7, 9}, {1, 3}, {4, 6}}};
+    for (size_t s = 0; s < splits.size(); ++s) {
+        std::string chunks;
+        for (const auto& [a, b] : splits[s]) {
+            const std::string name = "s" + std::to_string(s) + "_" + std::to_string(a) + ".pc2";
+            chunk(a, b, name);
+            chunks += name + " ";
+        }
+        const std::string merged = "m" + std::to_string(s) + ".pc2";
+        r = knit("cache merge " + chunks + "-o " + merged);
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+        EXPECT_NE(r.output.find("frames 1-9"), std::string::npos) << r.output;
+        EXPECT_TRUE(bytesOf(dir / merged) == one) << splits[s].size() << " chunks";
+        EXPECT_TRUE(bytesOf(dir / ("m" + std::to_string(s) + ".obj")) == topology) << splits[s].size() << " chunks";
+    }
+    // MDD and per-frame files of a chunk: the single run's frames.
+    r = knit("animate -q --frames frame_%04d.obj --repeats 3 3 -o one.mdd");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    chunk(1, 9, "bound.mdd");
+    EXPECT_TRUE(bytesOf(dir / "bound.mdd") == bytesOf(dir / "one.mdd"));
+    r = knit("animate -q --frames frame_%04d.obj --repeats 3 3 --export yarns -o one_%04d.obj");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    chunk(4, 6, "part_%04d.obj", "--export yarns");
+    for (const char* k : {"0004", "0005", "0006"})
+        EXPECT_TRUE(bytesOf(dir / (std::string("part_") + k + ".obj")) ==
+                    bytesOf(dir / (std::string("one_") + k + ".obj")))
+            << k;
+    EXPECT_FALSE(fs::exists(dir / "part_0003.obj"));
+    // With a frame step the chunks record it (the PC2 sample rate) and merge the same way.
+    r = knit("animate -q --frames frame_%04d.obj --repeats 3 3 --step 2 -o two.pc2");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    chunk(1, 5, "t1.pc2", "--step 2");
+    chunk(7, 9, "t2.pc2", "--step 2");
+    r = knit("cache merge t1.pc2 t2.pc2 -o t.pc2");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(bytesOf(dir / "t.pc2") == bytesOf(dir / "two.pc2"));
+}
+
+TEST_F(Farm, mergeNamesMissingAndDoubledFramesAndWritesNothing) {
+    bind();
+    chunk(1, 3, "a.pc2");
+    chunk(4, 6, "b.pc2");
+    chunk(5, 9, "c.pc2");
+    chunk(8, 9, "d.pc2");
+    CliRun r = knit("cache merge a.pc2 d.pc2 -o m.pc2");
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.output.find("frames 4-7 missing (between 'a.pc2' and 'd.pc2')"), std::string::npos) << r.output;
+    r = knit("cache merge a.pc2 b.pc2 c.pc2 -o m.pc2");
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.output.find("frames 5-6 in both 'b.pc2' and 'c.pc2'"), std::string::npos) << r.output;
+    r = knit("cache merge a.pc2 b.pc2 b.pc2 -o m.pc2");
+    EXPECT_NE(r.output.find("frames 4-6 in both 'b.pc2' and 'b.pc2'"), std::string::npos) << r.output;
+    // A chunk of another garment (3 plies): not the same points.
+    r = knit("animate -q --frames frame_%04d.obj --repeats 3 3 --plies 3 --first 7 --last 9 -o e.pc2");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    r = knit("cache merge a.pc2 b.pc2 e.pc2 -o m.pc2");
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.output.find("differ"), std::string::npos) << r.output;
+    // A truncated chunk.
+    fs::resize_file(dir / "b.pc2", fs::file_size(dir / "b.pc2") - 12);
+    r = knit("cache merge a.pc2 b.pc2 -o m.pc2");
+    EXPECT_NE(r.output.find("point cache 'b.pc2' has"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("(truncated)"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir / "m.pc2"));
+    EXPECT_FALSE(fs::exists(dir / "m.obj"));
+}
+
+TEST_F(Farm, boundFileErrorsNameTheFileAndTheFlag) {
+    bind();
+    CliRun r = knit("animate -q --bound g.knitbind --pattern rib --frames frame_%04d.obj -o c.pc2");
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.output.find("--pattern cannot be given with --bound"), std::string::npos) << r.output;
+    fs::resize_file(dir / "g.knitbind", fs::file_size(dir / "g.knitbind") / 2);
+    r = knit("animate -q --bound g.knitbind --frames frame_%04d.obj -o c.pc2");
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.output.find("bound scene 'g.knitbind' is truncated"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir / "c.pc2"));
+    // A frame of another mesh is refused naming the frame.
+    writeWaveFrame(dir / "other_0001.obj", 1, 5);
+    r = knit("bind -q --mesh frame_0001.obj --repeats 3 3 -o g.knitbind");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    r = knit("animate -q --bound g.knitbind --frames other_%04d.obj -o c.pc2");
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.output.find("frame 1"), std::string::npos) << r.output;
+}
+
+#ifdef KNIT_HAVE_RENDER_CHECK
+TEST_F(Farm, renderOfABoundSceneSkipsBindingAndPosesItAsAnimate) {
+    bind();
+    const std::string size = " --width 48 --height 36 --spp 2";
+    CliRun r = knit("render -q --mesh frame_0001.obj --repeats 3 3 --detail full" + size + " --output full.png");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    r = knit("render -q --bound g.knitbind" + size + " --output rest.png");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(bytesOf(dir / "rest.png") == bytesOf(dir / "full.png"));  // the rest pose: the same image
+    for (const char* out : {"f5a.png", "f5b.png"}) {
+        r = knit("render -q --bound g.knitbind --frame-mesh frame_0005.obj" + size + " --output " + out);
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+    }
+    EXPECT_TRUE(bytesOf(dir / "f5a.png") == bytesOf(dir / "f5b.png"));
+    EXPECT_FALSE(bytesOf(dir / "f5a.png") == bytesOf(dir / "rest.png"));
+    r = knit("render -q --bound g.knitbind --detail view --output x.png");
+    EXPECT_NE(r.output.find("--detail view cannot be given with --bound"), std::string::npos) << r.output;
+    r = knit("render -q --frame-mesh frame_0005.obj --output x.png");
+    EXPECT_NE(r.output.find("--frame-mesh needs --bound"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir / "x.png"));
+}
+#endif
+
+}  // namespace
+}  // namespace knit::test
