@@ -24,6 +24,24 @@ std::pair<int, std::string> refusal(Parse parse) {
     return {0, ""};
 }
 
+// The page lists a chart's long floats (with their line, row and columns) and its eyelets.
+TEST(ServeChart, longFloatsAndEyeletsAreWarnedAbout) {
+    const auto warningsOf = [](const std::string& text) {
+        const Chart chart = parsePageChart(text, 400);
+        nlohmann::json w = nlohmann::json::array();
+        addDesignWarnings(chart, chartToCell(chart), w);
+        return w.dump();
+    };
+    EXPECT_EQ(warningsOf("k k k k\nk k k k\n"), "[]");
+    const std::string slipped = warningsOf("k sl sl sl sl sl sl k\nk k k k k k k k\n");
+    EXPECT_NE(slipped.find("line 1, row 2: a float over columns 2-7 is 6 stitches long, longer than 5"),
+              std::string::npos)
+        << slipped;
+    EXPECT_EQ(warningsOf("k sl sl sl sl sl k k\nk k k k k k k k\n"), "[]");  // 5 stitches: the rule allows it
+    const std::string lace = warningsOf("k yo k2tog k\nk k k k\n");
+    EXPECT_NE(lace.find("1 yarn-over opens an eyelet"), std::string::npos) << lace;
+}
+
 TEST(ServeRequest, swatchRequestIsParsed) {
     const SwatchRequest r = parseSwatchRequest(R"({"session":"abc-1","chart":"k k\nk k\n","repeats":[3,4]})", {});
     EXPECT_EQ(r.session, "abc-1");

@@ -55,6 +55,25 @@ void RelaxedCharts::put(const std::string& text, const RelaxedChart& relaxed) {
     while (entries_.size() > capacity_) entries_.pop_back();
 }
 
+void addDesignWarnings(const Chart& chart, const ChartCell& cell, nlohmann::json& warnings) {
+    constexpr int kMaxFloat = 5;
+    for (const ChartFloat& f : cell.floats) {
+        if (f.columns <= kMaxFloat) continue;
+        const int last = (f.firstColumn + f.columns - 1) % chart.width + 1;
+        warnings.push_back("line " + std::to_string(chart.rowLine[size_t(f.row)]) + ", row " +
+                           std::to_string(f.row + 1) + ": a float over columns " + std::to_string(f.firstColumn + 1) +
+                           "-" + std::to_string(last) + " is " + std::to_string(f.columns) +
+                           " stitches long, longer than " + std::to_string(kMaxFloat) +
+                           " (long floats snag: catch it or shorten the run)");
+    }
+    int eyelets = 0;
+    for (StitchOp op : chart.op) eyelets += op == StitchOp::YarnOver ? 1 : 0;
+    if (eyelets > 0)
+        warnings.push_back(std::to_string(eyelets) +
+                           (eyelets == 1 ? " yarn-over opens an eyelet" : " yarn-overs open eyelets") +
+                           " (holes) per repeat");
+}
+
 RelaxedChart relaxPageChart(const Chart& chart, const RelaxStepFn& onStep) {
     ChartPatternOptions options;
     options.onStep = onStep;
@@ -69,6 +88,7 @@ RelaxedChart relaxPageChart(const Chart& chart, const RelaxStepFn& onStep) {
                  {"min_distance", relaxed.relaxed.minDistance},
                  {"width", chart.width},
                  {"height", chart.height}};
+    addDesignWarnings(chart, relaxed.cell, out.warnings);
     if (!relaxed.relaxed.converged)
         out.warnings.push_back("the relaxation stopped at its iteration cap (" +
                                std::to_string(relaxed.relaxed.iterations) + "): the stitches may not be at rest yet");

@@ -12,6 +12,7 @@
 
 #include "knit/chart.hpp"
 #include "knit/chart_pattern.hpp"
+#include "knit/chart_topology.hpp"
 #include "knit/pattern.hpp"
 
 namespace knit::serve {
@@ -54,6 +55,11 @@ private:
     std::mutex mutex_;
     std::list<std::pair<std::string, RelaxedChart>> entries_;  // most recent first
 };
+
+// What a designer is warned about in the chart itself, appended to `warnings` (strings): floats
+// longer than the common rule of 5 stitches (they snag; `knit chart --max-float`), and the eyelets
+// its yarn-overs open. `cell` is the chart's cell (chartToCell), relaxed or not.
+void addDesignWarnings(const Chart& chart, const ChartCell& cell, nlohmann::json& warnings);
 
 // Relaxes `chart`; `onStep` as in ChartPatternOptions (return false to stop: then JobCancelled).
 RelaxedChart relaxPageChart(const Chart& chart, const RelaxStepFn& onStep);
