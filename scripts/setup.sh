@@ -3,7 +3,7 @@
 # Usage: scripts/setup.sh [EXTRA_PACKAGE ...]   (extra packages a script needs, e.g. gnuplot-nox)
 set -euo pipefail
 packages=(
-  build-essential cmake pkg-config
+  build-essential cmake pkg-config ccache
   libcgal-dev libdraco-dev libtinygltf-dev libglm-dev libembree-dev libtbb-dev
   libgtest-dev libbenchmark-dev libstb-dev nlohmann-json3-dev libcli11-dev libtinyexr-dev
   libeigen3-dev libmeshoptimizer-dev libnlopt-dev zlib1g-dev

@@ -18,6 +18,7 @@ configure_asan_tree() {
   cmake -S "$ASAN_TREE_ROOT" -B "$build" -DCMAKE_CXX_COMPILER="$cxx" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only -DNDEBUG" \
     -DKNIT_SANITIZE=ON -DKNIT_BUILD_FUZZERS="$fuzzers" -DKNIT_BUILD_BENCH=OFF \
-    -DKNIT_BUILD_RENDER_CHECK="$render" -DKNIT_BUILD_PYTHON=OFF
+    -DKNIT_BUILD_RENDER_CHECK="$render" -DKNIT_BUILD_PYTHON=OFF "${ccache_launcher[@]}"
 }
 ASAN_TREE_ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
+source "$ASAN_TREE_ROOT/scripts/lib/ccache.sh"
