@@ -363,18 +363,22 @@ TEST(Render, badInputIsAClearError) {
     EXPECT_FALSE(std::filesystem::exists(o.output));
 }
 
+// An image whose write fails (its path is a folder) leaves nothing beside it: no temporary file
+// of any name (the writer stages `.<name>.<pid>.<n>.tmp` and renames it when complete).
 TEST(Render, failedWriteLeavesNoPartialFile) {
-    const std::string dir = tmpFile("dir.png");
-    std::filesystem::create_directories(dir);  // a folder where the image should go
+    const std::filesystem::path folder = tmpFile("failed_write");
+    std::filesystem::remove_all(folder);
+    std::filesystem::create_directories(folder / "out.png");  // a folder where the image should go
     Image im;
     im.width = 2, im.height = 2;
     im.rgb.assign(12, 0.5f);
-    EXPECT_THROW(checkWritable(dir), Error);
-    size_t files = 0;
-    for (auto& e : std::filesystem::directory_iterator(std::string(KNIT_BINARY_DIR)))
-        files += e.path().filename().string().find("render_test_dir.png.tmp") != std::string::npos;
-    EXPECT_EQ(files, 0u);
-    std::filesystem::remove_all(dir);
+    EXPECT_THROW(checkWritable((folder / "out.png").string()), Error);
+    EXPECT_THROW(writePng((folder / "out.png").string(), im), Error);
+    EXPECT_THROW(writeExr((folder / "out.png").string(), im), Error);
+    std::vector<std::string> left;
+    for (const auto& e : std::filesystem::directory_iterator(folder)) left.push_back(e.path().filename().string());
+    EXPECT_EQ(left, std::vector<std::string>{"out.png"});
+    std::filesystem::remove_all(folder);
 }
 
 }  // namespace
