@@ -12,11 +12,14 @@
 #include <glm/geometric.hpp>
 
 #include "knit/error.hpp"
+#include "lbfgs.hpp"
 #include "relax_contact.hpp"
 
 namespace knit {
 namespace {
 
+using relax::lbfgsDirection;
+using relax::lbfgsRemember;
 using relax::Pair;
 using relax::Seg;
 using Vec = Eigen::VectorXd;
@@ -263,19 +266,6 @@ bool converged(const RelaxOptions& o, const Vec& g, double gStart, double eStart
     return eThen - eNow <= o.relativeEnergyTolerance * (eStart - eNow);
 }
 
-// The L-BFGS two-loop recursion: direction = -H g.
-Vec lbfgsDirection(const Vec& g, const std::vector<Vec>& S, const std::vector<Vec>& Y) {
-    Vec q = g;
-    std::vector<double> alpha(S.size());
-    for (size_t i = S.size(); i-- > 0;) {
-        alpha[i] = S[i].dot(q) / Y[i].dot(S[i]);
-        q -= alpha[i] * Y[i];
-    }
-    if (!S.empty()) q *= S.back().dot(Y.back()) / Y.back().dot(Y.back());
-    for (size_t i = 0; i < S.size(); ++i) q += (alpha[i] - Y[i].dot(q) / Y[i].dot(S[i])) * S[i];
-    return -q;
-}
-
 Pattern toPattern(const Pattern& initial, const Problem& pb, const Vec& v) {
     Pattern out = initial;
     const double r = initial.radius;
@@ -342,16 +332,7 @@ RelaxResult relaxYarn(const Pattern& initial, const RelaxOptions& options) {
         }
         // Step 4: memory update; the pair list is rebuilt when two points may have come closer by
         // half the skin since it was built.
-        S.push_back(vNew - v);
-        Y.push_back(gNew - g);
-        if (Y.back().dot(S.back()) <= 1e-300) {
-            S.pop_back();
-            Y.pop_back();
-        }
-        if (S.size() > 8) {
-            S.erase(S.begin());
-            Y.erase(Y.begin());
-        }
+        lbfgsRemember(S, Y, vNew - v, gNew - g);
         v.swap(vNew);
         g.swap(gNew);
         e = eNew;

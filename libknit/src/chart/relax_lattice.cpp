@@ -11,10 +11,13 @@
 #include <glm/mat3x3.hpp>
 
 #include "knit/error.hpp"
+#include "lbfgs.hpp"
 #include "relax_contact.hpp"
 
 namespace knit::impl {
 
+using relax::lbfgsDirection;
+using relax::lbfgsRemember;
 using relax::Pair;
 using relax::Seg;
 using Vec = Eigen::VectorXd;
@@ -172,19 +175,6 @@ struct State {
     }
 };
 
-// The L-BFGS two-loop recursion (Nocedal & Wright, algorithm 7.4): -H g.
-Vec direction(const Vec& g, const std::vector<Vec>& S, const std::vector<Vec>& Y) {
-    Vec q = g;
-    std::vector<double> alpha(S.size());
-    for (size_t i = S.size(); i-- > 0;) {
-        alpha[i] = S[i].dot(q) / Y[i].dot(S[i]);
-        q -= alpha[i] * Y[i];
-    }
-    if (!S.empty()) q *= S.back().dot(Y.back()) / Y.back().dot(Y.back());
-    for (size_t i = 0; i < S.size(); ++i) q += (alpha[i] - Y[i].dot(q) / Y[i].dot(S[i])) * S[i];
-    return -q;
-}
-
 double smallestSingularValue(const glm::dmat2& F) {
     const glm::dmat2 C = glm::transpose(F) * F;
     const double tr = C[0][0] + C[1][1], det = C[0][0] * C[1][1] - C[0][1] * C[1][0];
@@ -269,7 +259,7 @@ LatticeRelaxResult LatticeCell::relax(const glm::dmat2& F, const std::vector<glm
             result.converged = true;
             break;
         }
-        Vec d = direction(g, S, Y);
+        Vec d = lbfgsDirection(g, S, Y);
         if (d.dot(g) >= 0) {
             S.clear();
             Y.clear();
@@ -298,16 +288,7 @@ LatticeRelaxResult LatticeCell::relax(const glm::dmat2& F, const std::vector<glm
             continue;
         }
         st.pullBack(gx, gNew);
-        S.push_back(vNew - v);
-        Y.push_back(gNew - g);
-        if (Y.back().dot(S.back()) <= 1e-300) {
-            S.pop_back();
-            Y.pop_back();
-        }
-        if (S.size() > 8) {
-            S.erase(S.begin());
-            Y.erase(Y.begin());
-        }
+        lbfgsRemember(S, Y, vNew - v, gNew - g);
         v.swap(vNew);
         g.swap(gNew);
         e = eNew;
