@@ -176,22 +176,58 @@ TEST(StrainDeformer, displacementIsContinuousAcrossTriangleEdges) {
     }
     bind.offsets = {0, uint32_t(bind.face.size())};
     bind.closed = {0};
-    const StrainDeformer deformer(mesh, s.pattern(), s.placement(), bind, syntheticTable());
     const std::vector<dvec3> pose = posed(s, [](const dvec3& p) { return dvec3(p.x + 6 * p.x * p.x, p.y, 0.0); });
-    MappedYarns y;
-    evaluateBinding(bind, mesh.faces, pose, vertexNormals(pose, mesh.faces), y);
-    const std::vector<dvec3> before = y.curves.points;
-    const DeformStats st = deformer.apply(bind, pose, y);
-    ASSERT_GT(st.vertices, bind.vertexCount() / 2);
-    const double r = s.yarnRadius();
-    double jump = 0, largest = 0;
-    for (size_t i = 0; i + 1 < bind.vertexCount(); i += 2) {
-        const dvec3 d0 = y.curves.points[i] - before[i], d1 = y.curves.points[i + 1] - before[i + 1];
-        jump = std::max(jump, glm::length(d0 - d1));
-        largest = std::max(largest, glm::length(d0));
+    for (const StrainLookupSite site : {StrainLookupSite::MeshVertices, StrainLookupSite::YarnVertices}) {
+        const StrainDeformer deformer(mesh, s.pattern(), s.placement(), bind, syntheticTable(), site);
+        MappedYarns y;
+        evaluateBinding(bind, mesh.faces, pose, vertexNormals(pose, mesh.faces), y);
+        const std::vector<dvec3> before = y.curves.points;
+        const DeformStats st = deformer.apply(bind, pose, y);
+        ASSERT_GT(st.vertices, bind.vertexCount() / 2);
+        const double r = s.yarnRadius();
+        double jump = 0, largest = 0;
+        for (size_t i = 0; i + 1 < bind.vertexCount(); i += 2) {
+            const dvec3 d0 = y.curves.points[i] - before[i], d1 = y.curves.points[i + 1] - before[i + 1];
+            jump = std::max(jump, glm::length(d0 - d1));
+            largest = std::max(largest, glm::length(d0));
+        }
+        EXPECT_GT(largest, 0.05 * r) << int(site);
+        EXPECT_LT(jump, 0.05 * r) << int(site);
     }
-    EXPECT_GT(largest, 0.05 * r);
-    EXPECT_LT(jump, 0.05 * r);
+}
+
+// The two lookup sites agree to a small fraction of the displacement on a smoothly strained pose
+// (and both act); the one-pass evaluate gives the bits of evaluateBinding followed by apply.
+TEST(StrainDeformer, lookupSitesAgreeAndOnePassMatchesTwo) {
+    const Scene s = planeScene(DeformMode::None, nullptr);
+    const BaseMesh& mesh = s.mesh();
+    const Binding& bind = s.binding();
+    const std::vector<dvec3> pose =
+        posed(s, [](const dvec3& p) { return dvec3(1.2 * p.x + 3 * p.x * p.x, 0.95 * p.y + 0.1 * p.x, 0.0); });
+    const std::vector<dvec3> normals = vertexNormals(pose, mesh.faces);
+    MappedYarns geometric;
+    evaluateBinding(bind, mesh.faces, pose, normals, geometric);
+    std::vector<MappedYarns> out;
+    for (const StrainLookupSite site : {StrainLookupSite::MeshVertices, StrainLookupSite::YarnVertices}) {
+        const StrainDeformer deformer(mesh, s.pattern(), s.placement(), bind, syntheticTable(), site);
+        MappedYarns two = geometric, one;
+        const DeformStats a = deformer.apply(bind, pose, two);
+        const DeformStats b = deformer.evaluate(bind, pose, normals, one);
+        EXPECT_EQ(a.vertices, b.vertices);
+        EXPECT_EQ(a.vertices, a.total);
+        ASSERT_EQ(one.curves.points.size(), two.curves.points.size());
+        EXPECT_EQ(std::memcmp(one.curves.points.data(), two.curves.points.data(), one.curves.points.size() * sizeof(dvec3)), 0);
+        EXPECT_EQ(one.curves.offsets, geometric.curves.offsets);
+        EXPECT_EQ(std::memcmp(one.normals.data(), geometric.normals.data(), one.normals.size() * sizeof(dvec3)), 0);
+        out.push_back(std::move(one));
+    }
+    double largest = 0, apart = 0;
+    for (size_t i = 0; i < geometric.curves.points.size(); ++i) {
+        largest = std::max(largest, glm::length(out[1].curves.points[i] - geometric.curves.points[i]));
+        apart = std::max(apart, glm::length(out[0].curves.points[i] - out[1].curves.points[i]));
+    }
+    EXPECT_GT(largest, 0.05 * s.yarnRadius());
+    EXPECT_LT(apart, 0.03 * largest) << apart << " of " << largest;
 }
 
 TEST(StrainDeformer, degenerateTrianglesGetNoDisplacementAndAreCounted) {

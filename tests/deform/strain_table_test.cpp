@@ -15,6 +15,7 @@
 #include "knit/error.hpp"
 #include "knit/generator.hpp"
 #include "knit/strain.hpp"
+#include "deform/strain_lookup.hpp"
 
 namespace knit {
 namespace {

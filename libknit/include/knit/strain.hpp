@@ -59,25 +59,6 @@ struct StrainTable {
 // clamped to them (*clamped set), never extrapolated.
 glm::dvec4 lookupStrainTable(const StrainTable& table, uint32_t vertex, const Strain& s, bool* clamped = nullptr);
 
-// The same lookup prepared once for a table (the per-frame hot loop): evenly spaced axes (as
-// makeStrainTable's) are indexed directly, others searched. Keeps a reference to the table.
-class StrainLookup {
-public:
-    explicit StrainLookup(const StrainTable& table);
-    glm::dvec4 operator()(uint32_t vertex, const Strain& s, bool& clamped) const;
-
-private:
-    struct Axis {
-        const std::vector<double>* values = nullptr;
-        double first = 0, last = 0, inverseStep = 0;
-        size_t stride = 0;  // floats between neighbouring samples
-        bool even = false;
-    };
-    Axis axes_[3];
-    const float* data_ = nullptr;
-    size_t vertexStride_ = 0;
-};
-
 // ---- making tables ---------------------------------------------------------------------------
 
 struct StrainTableOptions {
@@ -145,6 +126,14 @@ struct DeformStats {
     size_t total = 0;       // yarn vertices looked at
 };
 
+// Where a strain deformer looks its table up. MeshVertices: once per UV vertex of the mesh and cell
+// vertex, at the UV vertex's strain, the displacements (through F) then interpolated per yarn vertex
+// (few lookups where many yarn vertices share a triangle, as on any garment at its gauge);
+// YarnVertices: per yarn vertex at its interpolated strain (the reference; fewer lookups on a mesh
+// finer than the pattern's cells). Both are continuous across triangle edges and agree to second
+// order in the strain's change across a triangle. Auto: whichever looks up less.
+enum class StrainLookupSite { Auto, MeshVertices, YarnVertices };
+
 // Strain-aware deformation of one scene's yarns, set up once on the rest mesh and applied per pose.
 class StrainDeformer {
 public:
@@ -152,21 +141,36 @@ public:
     // `binding`: its binding (Binding::source must be filled); the table must fit `pattern`.
     // Throws knit::Error naming the table when it does not fit.
     StrainDeformer(const BaseMesh& mesh, const Pattern& pattern, const PatternPlacement& placement,
-                   const Binding& binding, std::shared_ptr<const StrainTable> table);
+                   const Binding& binding, std::shared_ptr<const StrainTable> table,
+                   StrainLookupSite site = StrainLookupSite::Auto);
 
     // Adds the table's displacement to `yarns` (evaluateBinding(binding, ...) on `positions`, the
     // same connectivity as the rest mesh). Zero strain leaves every point bit for bit.
     DeformStats apply(const Binding& binding, const std::vector<glm::dvec3>& positions, MappedYarns& yarns) const;
 
+    // evaluateBinding and apply in one pass over the yarn vertices (the per-frame path; the same
+    // bits as the two calls). `normals`: the pose's vertex normals.
+    DeformStats evaluate(const Binding& binding, const std::vector<glm::dvec3>& positions,
+                         const std::vector<glm::dvec3>& normals, MappedYarns& out) const;
+
     const StrainTable& table() const { return *table_; }
 
 private:
+    struct Pose;  // per pose: the strain and map per UV vertex, which triangles have one
+    Pose pose(const Binding& binding, const std::vector<glm::dvec3>& positions) const;
+    template <class Point>
+    DeformStats run(const Binding& binding, const Pose& pose, Point point) const;
+    // MeshVertices: per UV vertex and cell vertex, the displacement through F (x, y, z) and along
+    // the normal (w); per UV vertex its flag (moved, clamped).
+    void meshDisplacements(const Pose& pose, std::vector<glm::dvec4>& d, std::vector<uint8_t>& flags) const;
+
     std::vector<glm::uvec3> faces_, faceUvs_;
     std::vector<glm::dvec2> layout_;    // per UV vertex: pattern-space position (metres, object scale)
     std::vector<uint32_t> cellVertex_;  // per yarn vertex: its pattern vertex
     std::vector<glm::dvec4> zero_;      // per pattern vertex: the table at zero strain
     double scale_ = 1;
     size_t uvCount_ = 0, positionCount_ = 0;
+    bool atMeshVertices_ = false;
     std::shared_ptr<const StrainTable> table_;
 };
 

@@ -162,10 +162,11 @@ void Animator::evaluate(const std::vector<dvec3>& positions, AnimationFrame& out
 
     // Step 2: the binding evaluated on the frame.
     t0 = Clock::now();
-    evaluateBinding(rest_.binding(), mesh.faces, positions, out.meshNormals, out.yarns);
     out.deform = {};
-    if (options_.deform && rest_.deformer())
-        out.deform = rest_.deformer()->apply(rest_.binding(), positions, out.yarns);
+    if (options_.deform && rest_.deformer())  // the gather and the displacement in one pass
+        out.deform = rest_.deformer()->evaluate(rest_.binding(), positions, out.meshNormals, out.yarns);
+    else
+        evaluateBinding(rest_.binding(), mesh.faces, positions, out.meshNormals, out.yarns);
     t.evaluate = since(t0);
 
     // Step 3: the centrelines resampled with the rest layouts (for the plies and the statistics).

@@ -13,6 +13,7 @@
 #include <tbb/parallel_for.h>
 
 #include "binding_chain.hpp"
+#include "binding_gather.hpp"
 #include "binding_cut.hpp"
 #include "binding_locate.hpp"
 #include "binding_pieces.hpp"
@@ -104,29 +105,20 @@ BindResult bindYarns(const BaseMesh& mesh, const std::vector<glm::dvec3>& normal
 
 namespace {
 
-// The evaluation kernel shared by the double and the float32 entry points: a flat gather,
-// P = sum b_i x_i + h * normalize(sum b_i n_i), handed to `store(i, P, n)`.
+// The evaluation kernel shared by the double and the float32 entry points: the gather
+// (binding_gather.hpp) over every yarn vertex, handed to `store(i, P, n)`.
 template <class Store>
 void evaluateKernel(const Binding& binding, const std::vector<glm::uvec3>& faces,
                     const std::vector<glm::dvec3>& positions, const std::vector<glm::dvec3>& normals, Store store) {
-    const size_t n = binding.vertexCount();
-    const uint32_t* face = binding.face.data();
-    const glm::dvec2* bary = binding.bary.data();
-    const double* height = binding.height.data();
-    const glm::uvec3* tri = faces.data();
-    const glm::dvec3* X = positions.data();
-    const glm::dvec3* Nv = normals.data();
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 16384), [&](const tbb::blocked_range<size_t>& r) {
-        for (size_t i = r.begin(); i != r.end(); ++i) {
-            const glm::uvec3 f = tri[face[i]];
-            const double b1 = bary[i].x, b2 = bary[i].y, b0 = 1.0 - b1 - b2;
-            const glm::dvec3 p = b0 * X[f.x] + b1 * X[f.y] + b2 * X[f.z];
-            glm::dvec3 nn = b0 * Nv[f.x] + b1 * Nv[f.y] + b2 * Nv[f.z];
-            const double len2 = glm::dot(nn, nn);
-            nn = len2 > 0 ? nn * (1.0 / std::sqrt(len2)) : glm::dvec3(0.0, 0.0, 1.0);
-            store(i, p + height[i] * nn, nn);
-        }
-    });
+    const BindingGather gather(binding, faces, positions, normals);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, binding.vertexCount(), 16384),
+                      [&](const tbb::blocked_range<size_t>& r) {
+                          for (size_t i = r.begin(); i != r.end(); ++i) {
+                              glm::dvec3 p, nn;
+                              gather(i, p, nn);
+                              store(i, p, nn);
+                          }
+                      });
 }
 
 }  // namespace
@@ -134,12 +126,7 @@ void evaluateKernel(const Binding& binding, const std::vector<glm::uvec3>& faces
 void evaluateBinding(const Binding& binding, const std::vector<glm::uvec3>& faces,
                      const std::vector<glm::dvec3>& positions, const std::vector<glm::dvec3>& normals,
                      MappedYarns& out) {
-    const size_t n = binding.vertexCount();
-    out.curves.points.resize(n);
-    out.curves.offsets = binding.offsets;
-    out.curves.closed = binding.closed;
-    out.colour = binding.colour;  // constant per pose; empty without colours
-    out.normals.resize(n);
+    prepareMappedYarns(binding, out);
     glm::dvec3* P = out.curves.points.data();
     glm::dvec3* N = out.normals.data();
     evaluateKernel(binding, faces, positions, normals, [P, N](size_t i, const glm::dvec3& p, const glm::dvec3& nn) {

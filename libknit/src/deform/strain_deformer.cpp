@@ -2,16 +2,21 @@
 // pattern space of every triangle against the pattern-space layout, and its C = F^T F; both
 // averaged to the UV vertices (area weighted); per yarn vertex interpolated barycentrically (so
 // strain and displacement are continuous across triangle edges), C looked up in the table and the
-// displacement added through the interpolated F (and the normal, for dz).
+// displacement added through the interpolated F (and the normal, for dz). The last phase runs in
+// the same pass as the binding's gather (evaluate), so a frame reads and writes its millions of
+// yarn points once.
 #include <algorithm>
 #include <cmath>
 
 #include <glm/geometric.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include "knit/error.hpp"
+#include "binding/binding_gather.hpp"
 #include "knit/strain.hpp"
+#include "strain_lookup.hpp"
 
 namespace knit {
 namespace {
@@ -47,6 +52,14 @@ FaceStrain faceStrain(const glm::dvec2 P[3], const glm::dvec3 X[3]) {
     return f;
 }
 
+enum : uint8_t { kZero = 0, kMoved = 1, kClamped = 2, kDegenerate = 4 };
+
+void count(uint8_t flag, DeformStats& stats) {
+    stats.vertices += (flag & kMoved) ? 1 : 0;
+    stats.clamped += (flag & kClamped) ? 1 : 0;
+    stats.degenerate += (flag & kDegenerate) ? 1 : 0;
+}
+
 bool nearZero(const Strain& s) {
     return std::abs(s.sx) < kZeroStrain && std::abs(s.sa) < kZeroStrain && std::abs(s.sy) < kZeroStrain;
 }
@@ -54,7 +67,8 @@ bool nearZero(const Strain& s) {
 }  // namespace
 
 StrainDeformer::StrainDeformer(const BaseMesh& mesh, const Pattern& pattern, const PatternPlacement& placement,
-                               const Binding& binding, std::shared_ptr<const StrainTable> table)
+                               const Binding& binding, std::shared_ptr<const StrainTable> table,
+                               StrainLookupSite site)
     : faces_(mesh.faces),
       faceUvs_(mesh.faceUvs),
       scale_(placement.scale),
@@ -72,15 +86,27 @@ StrainDeformer::StrainDeformer(const BaseMesh& mesh, const Pattern& pattern, con
     cellVertex_.resize(binding.vertexCount());
     for (size_t i = 0; i < cellVertex_.size(); ++i) cellVertex_[i] = uint32_t(binding.source[i] % n);
     zero_.resize(n);
-    for (size_t v = 0; v < n; ++v) zero_[v] = lookupStrainTable(*table_, uint32_t(v), Strain{});
+    const StrainLookup lookup(*table_);  // the same arithmetic as the per-frame lookups
+    bool clamped = false;
+    for (size_t v = 0; v < n; ++v) zero_[v] = lookup(uint32_t(v), Strain{}, clamped);
+    atMeshVertices_ = site == StrainLookupSite::MeshVertices ||
+                      (site == StrainLookupSite::Auto && uvCount_ * n < binding.vertexCount());
 }
 
-DeformStats StrainDeformer::apply(const Binding& b, const std::vector<glm::dvec3>& positions,
-                                  MappedYarns& yarns) const {
+// Per UV vertex the area-weighted mean of its valid triangles' C and F, and per triangle whether
+// its yarn vertices have a strain (the triangle and its three UV vertices).
+struct StrainDeformer::Pose {
+    struct Uv {
+        double c00 = 0, c01 = 0, c11 = 0;
+        glm::dvec3 fx{0.0}, fy{0.0};
+    };
+    std::vector<Uv> uv;
+    std::vector<uint8_t> ok;
+};
+
+StrainDeformer::Pose StrainDeformer::pose(const Binding& b, const std::vector<glm::dvec3>& positions) const {
     if (b.vertexCount() != cellVertex_.size())
         throw Error("strain-aware deformation: the binding is not the one it was set up with");
-    if (yarns.curves.points.size() != b.vertexCount() || yarns.normals.size() != b.vertexCount())
-        throw Error("strain-aware deformation: the yarns do not match the binding");
     if (positions.size() != positionCount_)
         throw Error("strain-aware deformation: the pose has " + std::to_string(positions.size()) +
                     " vertices, the rest mesh " + std::to_string(positionCount_));
@@ -94,61 +120,174 @@ DeformStats StrainDeformer::apply(const Binding& b, const std::vector<glm::dvec3
             faces[f] = faceStrain(P, X);
         }
     });
-    // 2. Per UV vertex: the area-weighted mean of its valid triangles' C and F (serial: in face
-    //    order, the same sums for any thread count).
-    std::vector<glm::dmat2> C(uvCount_, glm::dmat2(0.0));
-    std::vector<glm::dvec3> Fx(uvCount_, glm::dvec3(0.0)), Fy(uvCount_, glm::dvec3(0.0));
+    // 2. Per UV vertex (serial: in face order, the same sums for any thread count).
+    Pose pose;
+    pose.uv.assign(uvCount_, Pose::Uv{});
     std::vector<double> weight(uvCount_, 0.0);
     for (size_t f = 0; f < faces.size(); ++f) {
         if (!faces[f].valid) continue;
         const FaceStrain& fs = faces[f];
         for (int k = 0; k < 3; ++k) {
             const uint32_t u = faceUvs_[f][k];
-            C[u] += fs.area * fs.C;
-            Fx[u] += fs.area * fs.fx;
-            Fy[u] += fs.area * fs.fy;
+            Pose::Uv& v = pose.uv[u];
+            v.c00 += fs.area * fs.C[0][0];
+            v.c01 += fs.area * fs.C[1][0];
+            v.c11 += fs.area * fs.C[1][1];
+            v.fx += fs.area * fs.fx;
+            v.fy += fs.area * fs.fy;
             weight[u] += fs.area;
         }
     }
     for (size_t u = 0; u < uvCount_; ++u)
         if (weight[u] > 0) {
-            C[u] /= weight[u];
-            Fx[u] /= weight[u];
-            Fy[u] /= weight[u];
+            Pose::Uv& v = pose.uv[u];
+            v.c00 /= weight[u];
+            v.c01 /= weight[u];
+            v.c11 /= weight[u];
+            v.fx /= weight[u];
+            v.fy /= weight[u];
         }
-    // 3. Per yarn vertex.
-    enum : uint8_t { kZero = 0, kMoved = 1, kClamped = 2, kDegenerate = 4 };
-    std::vector<uint8_t> flag(b.vertexCount(), kZero);
+    pose.ok.resize(faces.size());
+    for (size_t f = 0; f < faces.size(); ++f) {
+        const glm::uvec3 t = faceUvs_[f];
+        pose.ok[f] = faces[f].valid && weight[t.x] > 0 && weight[t.y] > 0 && weight[t.z] > 0;
+    }
+    return pose;
+}
+
+void StrainDeformer::meshDisplacements(const Pose& pose, std::vector<glm::dvec4>& d,
+                                        std::vector<uint8_t>& flags) const {
+    const size_t n = zero_.size();
+    d.resize(uvCount_ * n);
+    flags.assign(uvCount_, kZero);
     const StrainLookup lookup(*table_);
-    glm::dvec3* points = yarns.curves.points.data();
-    const glm::dvec3* normals = yarns.normals.data();
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, b.vertexCount(), 16384), [&](const tbb::blocked_range<size_t>& r) {
-        for (size_t i = r.begin(); i != r.end(); ++i) {
-            const uint32_t f = b.face[i];
-            const glm::uvec3 t = faceUvs_[f];
-            if (!faces[f].valid || !(weight[t.x] > 0 && weight[t.y] > 0 && weight[t.z] > 0)) {
-                flag[i] = kDegenerate;
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, uvCount_, 64), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t u = r.begin(); u != r.end(); ++u) {
+            const Pose::Uv& uv = pose.uv[u];
+            glm::dvec4* row = &d[u * n];
+            const Strain s = strainOfC(uv.c00, uv.c01, uv.c11);
+            if (nearZero(s)) {  // also a UV vertex without valid triangles (its C is zero: never read)
+                std::fill(row, row + n, glm::dvec4(0.0));
                 continue;
             }
-            const double b1 = b.bary[i].x, b2 = b.bary[i].y, b0 = 1.0 - b1 - b2;
-            const Strain s = strainOf(b0 * C[t.x] + b1 * C[t.y] + b2 * C[t.z]);
-            if (nearZero(s)) continue;
             bool clamped = false;
-            const glm::dvec4 d = lookup(cellVertex_[i], s, clamped) - zero_[cellVertex_[i]];
-            const glm::dvec3 fx = b0 * Fx[t.x] + b1 * Fx[t.y] + b2 * Fx[t.z];
-            const glm::dvec3 fy = b0 * Fy[t.x] + b1 * Fy[t.y] + b2 * Fy[t.z];
-            points[i] += scale_ * (d.x * fx + d.y * fy + d.z * normals[i]);
-            flag[i] = uint8_t(kMoved | (clamped ? kClamped : 0));
+            for (size_t v = 0; v < n; ++v) {
+                const glm::dvec4 e = lookup(uint32_t(v), s, clamped) - zero_[v];
+                row[v] = glm::dvec4(scale_ * (e.x * uv.fx + e.y * uv.fy), scale_ * e.z);
+            }
+            flags[u] = uint8_t(kMoved | (clamped ? kClamped : 0));
         }
     });
-    DeformStats stats;
+}
+
+// 3. Per yarn vertex: `point(i, p, n)` gives the geometric point and normal of yarn vertex i and
+// returns where the displaced point goes.
+template <class Point>
+DeformStats StrainDeformer::run(const Binding& b, const Pose& pose, Point point) const {
+    const uint32_t* face = b.face.data();
+    const glm::dvec2* bary = b.bary.data();
+    // Per yarn vertex looking its strain up.
+    const StrainLookup lookup(*table_);
+    const auto atYarnVertices = [&](const tbb::blocked_range<size_t>& r, DeformStats stats) {
+        for (size_t i = r.begin(); i != r.end(); ++i) {
+            glm::dvec3 p, n;
+            glm::dvec3& out = point(i, p, n);
+            const uint32_t f = face[i];
+            if (!pose.ok[f]) {
+                count(kDegenerate, stats);
+                out = p;
+                continue;
+            }
+            const glm::uvec3 t = faceUvs_[f];
+            const Pose::Uv &u0 = pose.uv[t.x], &u1 = pose.uv[t.y], &u2 = pose.uv[t.z];
+            const double b1 = bary[i].x, b2 = bary[i].y, b0 = 1.0 - b1 - b2;
+            const Strain s = strainOfC(b0 * u0.c00 + b1 * u1.c00 + b2 * u2.c00, b0 * u0.c01 + b1 * u1.c01 + b2 * u2.c01,
+                                       b0 * u0.c11 + b1 * u1.c11 + b2 * u2.c11);
+            if (nearZero(s)) {
+                out = p;
+                continue;
+            }
+            bool clamped = false;
+            const uint32_t v = cellVertex_[i];
+            const glm::dvec4 d = lookup.at(lookup.vertexOffset(v), s, clamped) - zero_[v];
+            const glm::dvec3 fx = b0 * u0.fx + b1 * u1.fx + b2 * u2.fx;
+            const glm::dvec3 fy = b0 * u0.fy + b1 * u1.fy + b2 * u2.fy;
+            out = p + scale_ * (d.x * fx + d.y * fy + d.z * n);
+            count(uint8_t(kMoved | (clamped ? kClamped : 0)), stats);
+        }
+        return stats;
+    };
+    // Per yarn vertex interpolating its triangle's UV vertices' displacements.
+    std::vector<glm::dvec4> d;
+    std::vector<uint8_t> flags;
+    if (atMeshVertices_) meshDisplacements(pose, d, flags);
+    const size_t cells = zero_.size();
+    const auto atMeshVertices = [&](const tbb::blocked_range<size_t>& r, DeformStats stats) {
+        for (size_t i = r.begin(); i != r.end(); ++i) {
+            glm::dvec3 p, n;
+            glm::dvec3& out = point(i, p, n);
+            const uint32_t f = face[i];
+            if (!pose.ok[f]) {
+                count(kDegenerate, stats);
+                out = p;
+                continue;
+            }
+            const glm::uvec3 t = faceUvs_[f];
+            const uint8_t flag = flags[t.x] | flags[t.y] | flags[t.z];
+            if (flag == kZero) {
+                out = p;
+                continue;
+            }
+            const double b1 = bary[i].x, b2 = bary[i].y, b0 = 1.0 - b1 - b2;
+            const size_t v = cellVertex_[i];
+            const glm::dvec4 e = b0 * d[t.x * cells + v] + b1 * d[t.y * cells + v] + b2 * d[t.z * cells + v];
+            out = p + (glm::dvec3(e) + e.w * n);
+            count(flag, stats);
+        }
+        return stats;
+    };
+    const auto sum = [](DeformStats a, const DeformStats& c) {
+        a.vertices += c.vertices;
+        a.clamped += c.clamped;
+        a.degenerate += c.degenerate;
+        return a;
+    };
+    const tbb::blocked_range<size_t> all(0, b.vertexCount(), 16384);
+    DeformStats stats = atMeshVertices_ ? tbb::parallel_reduce(all, DeformStats{}, atMeshVertices, sum)
+                                        : tbb::parallel_reduce(all, DeformStats{}, atYarnVertices, sum);
     stats.total = b.vertexCount();
-    for (uint8_t fl : flag) {
-        stats.vertices += (fl & kMoved) ? 1 : 0;
-        stats.clamped += (fl & kClamped) ? 1 : 0;
-        stats.degenerate += (fl & kDegenerate) ? 1 : 0;
-    }
     return stats;
+}
+
+DeformStats StrainDeformer::apply(const Binding& b, const std::vector<glm::dvec3>& positions,
+                                  MappedYarns& yarns) const {
+    if (yarns.curves.points.size() != b.vertexCount() || yarns.normals.size() != b.vertexCount())
+        throw Error("strain-aware deformation: the yarns do not match the binding");
+    const Pose p = pose(b, positions);
+    glm::dvec3* points = yarns.curves.points.data();
+    const glm::dvec3* normals = yarns.normals.data();
+    return run(b, p, [points, normals](size_t i, glm::dvec3& q, glm::dvec3& n) -> glm::dvec3& {
+        q = points[i];
+        n = normals[i];
+        return points[i];
+    });
+}
+
+DeformStats StrainDeformer::evaluate(const Binding& b, const std::vector<glm::dvec3>& positions,
+                                     const std::vector<glm::dvec3>& normals, MappedYarns& out) const {
+    if (normals.size() != positionCount_)
+        throw Error("strain-aware deformation: the pose has " + std::to_string(positions.size()) + " vertices but " +
+                    std::to_string(normals.size()) + " normals");
+    const Pose p = pose(b, positions);
+    prepareMappedYarns(b, out);
+    const BindingGather gather(b, faces_, positions, normals);
+    glm::dvec3* points = out.curves.points.data();
+    glm::dvec3* outNormals = out.normals.data();
+    return run(b, p, [&gather, points, outNormals](size_t i, glm::dvec3& q, glm::dvec3& n) -> glm::dvec3& {
+        gather(i, q, n);
+        outNormals[i] = n;
+        return points[i];
+    });
 }
 
 }  // namespace knit

@@ -3,17 +3,11 @@
 #include <cmath>
 
 #include "knit/strain.hpp"
+#include "strain_lookup.hpp"
 
 namespace knit {
 
-Strain strainOf(const glm::dmat2& C) {
-    Strain s;
-    const double a = std::sqrt(std::max(C[0][0], 0.0)), b = std::sqrt(std::max(C[1][1], 0.0));
-    s.sx = a - 1;
-    s.sy = b - 1;
-    s.sa = a > 0 && b > 0 ? C[1][0] / (a * b) : 0.0;
-    return s;
-}
+Strain strainOf(const glm::dmat2& C) { return strainOfC(C[0][0], C[1][0], C[1][1]); }
 
 glm::dmat2 latticeMap(const Strain& s) {
     return glm::dmat2(glm::dvec2(1 + s.sx, 0.0),
@@ -82,6 +76,8 @@ StrainLookup::StrainLookup(const StrainTable& table) : data_(table.data.data()) 
         ax.first = v.front();
         ax.last = v.back();
         ax.stride = stride;
+        ax.count = v.size();
+        ax.lastInterval = v.size() >= 2 ? v.size() - 2 : 0;
         stride *= v.size();
         ax.even = v.size() >= 2;
         const double step = v.size() >= 2 ? (v.back() - v.front()) / double(v.size() - 1) : 0.0;
@@ -92,48 +88,8 @@ StrainLookup::StrainLookup(const StrainTable& table) : data_(table.data.data()) 
     vertexStride_ = stride;
 }
 
-glm::dvec4 StrainLookup::operator()(uint32_t vertex, const Strain& s, bool& clamped) const {
-    const double value[3] = {s.sx, s.sa, s.sy};
-    size_t offset = vertexStride_ * size_t(vertex);
-    double t[3] = {0, 0, 0};
-    size_t step[3] = {0, 0, 0};
-    for (int a = 0; a < 3; ++a) {
-        const Axis& ax = axes_[a];
-        size_t i = 0;
-        if (ax.even) {
-            double v = value[a];
-            if (!(v >= ax.first)) {
-                clamped = clamped || !(v >= ax.first - 1e-9);
-                v = ax.first;
-            } else if (v > ax.last) {
-                clamped = clamped || v > ax.last + 1e-9;
-                v = ax.last;
-            }
-            const size_t n = ax.values->size();
-            const double f = (v - ax.first) * ax.inverseStep;
-            i = std::min(size_t(std::max(f, 0.0)), n - 2);
-            t[a] = std::min(std::max(f - double(i), 0.0), 1.0);
-            step[a] = ax.stride;
-        } else {
-            locate(*ax.values, value[a], i, t[a], clamped);
-            step[a] = ax.values->size() > 1 ? ax.stride : 0;
-        }
-        offset += i * ax.stride;
-    }
-    glm::dvec4 out(0.0);
-    for (int corner = 0; corner < 8; ++corner) {
-        double w = 1;
-        size_t o = offset;
-        for (int a = 0; a < 3; ++a) {
-            const bool up = (corner >> a) & 1;
-            w *= up ? t[a] : 1 - t[a];
-            o += up ? step[a] : 0;
-        }
-        if (w == 0) continue;
-        const float* row = data_ + o;
-        out += w * glm::dvec4(row[0], row[1], row[2], row[3]);
-    }
-    return out;
+void StrainLookup::locateSlow(int axis, double v, size_t& i, double& t, bool& clamped) const {
+    locate(*axes_[axis].values, v, i, t, clamped);
 }
 
 }  // namespace knit
