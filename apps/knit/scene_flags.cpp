@@ -70,7 +70,8 @@ void addSceneFlags(CLI::App& cmd, SceneFlags& f) {
                    "more are refused");
     cmd.add_option("--deform", f.deform,
                    "How yarns follow a strained surface: none (mapped with it, stretching like rubber) or strain (they "
-                   "slide and bend as the pattern's strain table says; made on the spot without --strain-table). "
+                   "slide and bend as the pattern's strain table says; without --strain-table the pattern's table from "
+                   "the cache, made on first use). "
                    "Default: strain with --strain-table, else none")
         ->check(CLI::IsMember({"none", "strain"}));
     cmd.add_option(
@@ -90,25 +91,33 @@ void resolveDeform(const SceneFlags& f, SceneOptions& o) {
         o.deform.table = std::make_shared<const StrainTable>(loadStrainTable(f.strainTable));
         return;
     }
-    if (f.deform == "strain") {
+    if (f.deform == "strain") {  // the pattern's cached table, made now on its first use
         StrainTableStats stats;
         const Pattern pattern = loadPatternFileOrName(o.pattern);
+        const CachedStrainTable c = cachedStrainTable(pattern, StrainTableOptions{}, [&] {
+            return makeTableWithProgress(pattern, StrainTableOptions{}, f.quiet, stats);
+        });
         o.deform.mode = DeformMode::Strain;
-        o.deform.table =
-            std::make_shared<const StrainTable>(makeTableWithProgress(pattern, StrainTableOptions{}, f.quiet, stats));
-        if (!f.quiet)
+        o.deform.table = c.table;
+        if (f.quiet) return;
+        if (!c.made)
+            std::fprintf(stderr, "knit: strain table from the cache: %s\n", c.path.c_str());
+        else if (!c.path.empty())
+            std::fprintf(stderr, "knit: made the strain table in %.1f s and cached it (%s): later runs read it\n",
+                         c.seconds, c.path.c_str());
+        else
             std::fprintf(stderr,
-                         "knit: made the strain table in %.1f s (not kept; `knit strain-table --pattern %s -o T.npy` "
-                         "makes one to reuse with --strain-table T.npy)\n",
-                         stats.seconds, o.pattern.c_str());
+                         "knit: made the strain table in %.1f s (no cache folder to keep it; `knit strain-table "
+                         "--pattern %s -o T.npy` makes one to reuse with --strain-table T.npy)\n",
+                         c.seconds, o.pattern.c_str());
         return;
     }
     if (!f.quiet)
         std::fprintf(
             stderr,
             "knit: note: yarns follow the surface geometrically (--deform none: no strain table given); to let "
-            "them slide and bend as knitted yarn does: `knit strain-table --pattern %s -o T.npy`, then "
-            "--strain-table T.npy (or --deform strain to make one now)\n",
+            "them slide and bend as knitted yarn does: --deform strain (makes the pattern's strain table on first "
+            "use and caches it), or `knit strain-table --pattern %s -o T.npy`, then --strain-table T.npy\n",
             o.pattern.c_str());
 }
 

@@ -69,6 +69,12 @@ class OBJECT_OT_knit_apply(bpy.types.Operator):
                                        description="Length of one ply turn; 0 = 6 yarn radii")
     twist: bpy.props.EnumProperty(name="Twist", items=[("S", "S", "S twist"), ("Z", "Z", "Z twist")], default="S")
     profile_resolution: bpy.props.IntProperty(name="Profile sides", default=6, min=3, max=32)
+    deform: bpy.props.EnumProperty(
+        name="Deform", default="none",
+        items=[("none", "Geometric", "Yarns follow the surface as drawn on it (they stretch where it stretches)"),
+               ("strain", "Strain-aware", "Yarns slide and bend as the pattern's strain table says (made on first "
+                                          "use and cached; libknit docs/deformation.md)")],
+        description="How the yarns follow a stretched, sheared or compressed surface")
 
     @classmethod
     def poll(cls, context):

@@ -158,7 +158,7 @@ def bind(source, options, depsgraph, rest=None):
         pattern = knit.chart_pattern(options["chart_source"], name=options.get("chart_text") or "chart text")
     return knit.build_scene(pattern, mesh, repeats=repeats if repeats[0] > 0 else None,
                             plies=options["plies"], ply_pitch=options["ply_pitch"], twist=options["twist"],
-                            build_plies=False)
+                            deform=options.get("deform", "none"), build_plies=False)
 
 
 # -- Step 3: the ply mesh (edges + radius) --------------------------------------------------------
@@ -298,6 +298,7 @@ PROPERTY_NAMES = [
     ("the number of plies", "Plies"),
     ("the ply pitch", "Ply pitch"),
     ("the twist direction", "Twist"),
+    ("the deform mode", "Deform"),
 ]
 REAPPLY_HINT = "Object > Knit > Re-apply Knit binds it to the source as it is now"
 

@@ -86,6 +86,28 @@ def check_chart_text():
     check("no text block named 'nope'" in str(missing), f"a missing text block is named ({missing})")
 
 
+def check_deform():
+    """Apply Knit's Deform choice: strain-aware yarns equal the geometric ones where the surface is
+    not strained (frame 1, flat) and differ where the bulge stretches it (frame 10)."""
+    os.environ["KNIT_CACHE_DIR"] = tempfile.mkdtemp()  # the table is made here on first use
+    cloth = bpy.data.objects["Cloth"]
+    points = {}
+    for deform in ("strain", "none"):
+        bpy.context.scene.frame_set(1)
+        bpy.ops.object.select_all(action="DESELECT")
+        bpy.context.view_layer.objects.active = cloth
+        result = bpy.ops.object.knit_apply(pattern="stockinette", repeats=(6, 6), plies=2, deform=deform)
+        check(result == {"FINISHED"}, f"knit_apply with Deform {deform} finished")
+        obj = bpy.data.objects["Cloth.knit"]
+        flat = points_of(obj)
+        bpy.context.scene.frame_set(10)
+        points[deform] = (flat, points_of(obj))
+    check(np.array_equal(points["strain"][0], points["none"][0]), "Deform strain on the flat frame: the geometric yarns")
+    moved = float(np.abs(points["strain"][1] - points["none"][1]).max())
+    check(moved > 1e-4, f"Deform strain on the bulged frame moves the yarns ({moved:.2e} m)")
+    check(any(f.startswith("strain-") for f in os.listdir(os.environ["KNIT_CACHE_DIR"])), "the table was cached")
+
+
 def main():
     knit_blender.register()
     make_animated_grid()
@@ -134,6 +156,7 @@ def main():
     obj = bpy.data.objects["Cloth.knit"]
     check(np.array_equal(points_of(obj), moved), "reopened on frame 10 and re-bound: frame 10 is unchanged")
     check_chart_text()
+    check_deform()
     print("knit_blender: all checks passed")
 
 

@@ -38,7 +38,7 @@ struct SceneArgs {
 };
 
 // deform / strain_table as the CLI's --deform / --strain-table: a table given means strain unless
-// deform is "none"; deform "strain" without a table makes one.
+// deform is "none"; deform "strain" without a table uses the pattern's cached one (made on first use).
 void resolveDeform(const SceneArgs& a, const py::object& pattern, knit::SceneOptions& o) {
     if (a.deform != "" && a.deform != "none" && a.deform != "strain")
         throw knit::Error("deform must be 'none' or 'strain', got '" + a.deform + "'");
@@ -55,7 +55,7 @@ void resolveDeform(const SceneArgs& a, const py::object& pattern, knit::SceneOpt
                                     : pattern.cast<knit::Pattern>();
         py::gil_scoped_release release;
         o.deform.mode = knit::DeformMode::Strain;
-        o.deform.table = std::make_shared<const knit::StrainTable>(knit::makeStrainTable(p, {}));
+        o.deform.table = knit::cachedStrainTable(p).table;  // made on first use, cached as charts are
     }
 }
 

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <csignal>
 #include <filesystem>
 #include <string>
@@ -63,6 +64,27 @@ TEST(StrainCli, buildReportsTheDeformModeAndTable) {
     const test::CliRun n = test::runKnit(scene + "--deform none --strain-table t.npy -o n.obj -q", dir.path());
     ASSERT_EQ(n.exitCode, 0) << n.output;
     EXPECT_EQ(test::readText(dir.file("n.obj")), test::readText(dir.file("g.obj")));
+}
+
+// --deform strain without a table: the pattern's table made on first use and cached, read from the
+// cache the next time (the same yarns).
+TEST(StrainCli, deformStrainCachesThePatternsTable) {
+    const test::TempDir dir;
+    ::setenv("KNIT_CACHE_DIR", dir.file("cache").c_str(), 1);  // the child inherits it
+    const std::string scene = "build --mesh plane --mesh-res 4 --repeats 10 20 --export yarns --deform strain ";
+    const test::CliRun a = test::runKnit(scene + "-o a.obj", dir.path());
+    const test::CliRun b = test::runKnit(scene + "-o b.obj", dir.path());
+    ::unsetenv("KNIT_CACHE_DIR");
+    ASSERT_EQ(a.exitCode, 0) << a.output;
+    ASSERT_EQ(b.exitCode, 0) << b.output;
+    EXPECT_NE(a.output.find("cached it ("), std::string::npos) << a.output;
+    EXPECT_NE(b.output.find("strain table from the cache"), std::string::npos) << b.output;
+    EXPECT_EQ(b.output.find("strain samples"), std::string::npos) << b.output;  // not made again
+    size_t entries = 0;
+    for (const auto& e : fs::directory_iterator(dir.file("cache")))
+        entries += e.path().filename().string().rfind("strain-", 0) == 0 ? 1 : 0;
+    EXPECT_EQ(entries, 2U);  // T.npy and T.axes.txt
+    EXPECT_EQ(test::readText(dir.file("a.obj")), test::readText(dir.file("b.obj")));
 }
 
 TEST(StrainCli, mismatchedOrDamagedTablesAreRefusedNamingThem) {

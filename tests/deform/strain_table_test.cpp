@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <limits>
@@ -291,6 +292,53 @@ TEST(StrainTable, failedWriteLeavesNoFile) {
     EXPECT_THROW(writeStrainTable(syntheticTable(3), path), Error);
     EXPECT_FALSE(std::filesystem::exists(path));
     for (const auto& e : std::filesystem::directory_iterator(dir.path())) ADD_FAILURE() << e.path();
+}
+
+}  // namespace
+}  // namespace knit
+
+namespace knit {
+namespace {
+
+// A pattern's table is made on first use and read from the cache folder afterwards; other options
+// are another entry, a renamed pattern the same one, a damaged entry is made again and replaced.
+TEST(StrainTable, cachedTableIsMadeOnceAndReadAfterwards) {
+    const test::TempDir dir;
+    const std::string cache = dir.file("cache");
+    ::setenv("KNIT_CACHE_DIR", cache.c_str(), 1);
+    StrainTableOptions o;
+    o.samples = {2, 1, 2};
+    o.sxRange = {0.0, 0.3};
+    o.syRange = {0.0, 0.2};
+    o.saRange = {0.0, 0.0};
+    Pattern p = generateStockinette();
+    int made = 0;
+    const auto make = [&] {
+        ++made;
+        return makeStrainTable(p, o);
+    };
+    const CachedStrainTable first = cachedStrainTable(p, o, make);
+    EXPECT_TRUE(first.made);
+    EXPECT_EQ(first.path, cache + "/" + strainCacheKey(p, o));
+    EXPECT_EQ(first.table->source, first.path);
+    EXPECT_TRUE(std::filesystem::exists(first.path));
+    EXPECT_TRUE(std::filesystem::exists(strainAxesPath(first.path)));
+    p.name = "renamed";
+    const CachedStrainTable second = cachedStrainTable(p, o, make);
+    EXPECT_FALSE(second.made);
+    EXPECT_EQ(made, 1);
+    EXPECT_EQ(second.table->data, first.table->data);
+    EXPECT_EQ(findCachedStrainTable(p, o).path, first.path);
+    StrainTableOptions other = o;
+    other.samples = {3, 1, 2};
+    EXPECT_NE(strainCacheKey(p, other), strainCacheKey(p, o));
+    EXPECT_EQ(findCachedStrainTable(p, other).table, nullptr);
+    test::writeText(first.path, "damaged");
+    const CachedStrainTable again = cachedStrainTable(p, o, make);
+    EXPECT_TRUE(again.made);
+    EXPECT_EQ(made, 2);
+    EXPECT_EQ(loadStrainTable(first.path).data, first.table->data);
+    ::unsetenv("KNIT_CACHE_DIR");
 }
 
 }  // namespace

@@ -100,6 +100,26 @@ StrainTable parseStrainTable(const std::string& npy, const std::string& axes, co
 // project's own tables its period (relative 1e-6).
 void checkStrainTable(const StrainTable& table, const Pattern& pattern);
 
+// ---- cached tables -----------------------------------------------------------------------------
+
+// A pattern's table kept in the cache folder (knit/chart_cache.hpp's chartCacheDir: $KNIT_CACHE_DIR,
+// $XDG_CACHE_HOME/libknit or ~/.cache/libknit) as strain-<16 hex digits>.npy and its axes file; key:
+// FNV-1a 64 of the pattern (as .pyp text) and every table option.
+struct CachedStrainTable {
+    std::shared_ptr<const StrainTable> table;
+    std::string path;   // the cache entry ("" when there is no cache folder)
+    bool made = false;  // not in the cache: made now (and stored, when it could be)
+    double seconds = 0;  // making it took (wall)
+};
+std::string strainCacheKey(const Pattern& pattern, const StrainTableOptions& options);
+// The pattern's table from the cache, else `make()` (default: makeStrainTable(pattern, options))
+// stored there atomically (a failure to store is not an error; an unreadable or mismatched entry
+// is made again and replaced).
+CachedStrainTable cachedStrainTable(const Pattern& pattern, const StrainTableOptions& options = {},
+                                    const std::function<StrainTable()>& make = {});
+// The cached table if there is one (table empty otherwise); never makes one.
+CachedStrainTable findCachedStrainTable(const Pattern& pattern, const StrainTableOptions& options = {});
+
 // What a bound scene file stores to find the table again (issue 26).
 struct StrainTableRef {
     std::string path;  // table file or MADYPG folder, as given

@@ -11,28 +11,16 @@
 
 #include "knit/error.hpp"
 #include "knit/output_file.hpp"
+#include "util/hash.hpp"
 
 namespace knit {
-namespace {
-
-uint64_t fnv1a(const std::string& s) {
-    uint64_t h = 1469598103934665603ull;
-    for (unsigned char c : s) {
-        h ^= c;
-        h *= 1099511628211ull;
-    }
-    return h;
-}
-
-}  // namespace
-
 std::string chartCacheKey(const std::string& chartText, const ChartPatternOptions& o) {
     std::ostringstream key;
     key.precision(17);
     key << "v6 " << o.radius << ' ' << o.samplesPerStitch << ' ' << o.restLength << ' ' << o.maxIterations << '\n'
         << chartText;
     char name[40];
-    std::snprintf(name, sizeof name, "chart-%016llx.pyp", static_cast<unsigned long long>(fnv1a(key.str())));
+    std::snprintf(name, sizeof name, "chart-%016llx.pyp", static_cast<unsigned long long>(util::fnv1a(key.str())));
     return name;
 }
 
