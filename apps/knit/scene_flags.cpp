@@ -100,8 +100,7 @@ void resolveDeform(const SceneFlags& f, SceneOptions& o) {
         o.deform.mode = DeformMode::Strain;
         o.deform.table = c.table;
         if (f.quiet) return;
-        if (!c.made)
-            std::fprintf(stderr, "knit: strain table from the cache: %s\n", c.path.c_str());
+        if (!c.made) std::fprintf(stderr, "knit: strain table from the cache: %s\n", c.path.c_str());
         else if (!c.path.empty())
             std::fprintf(stderr, "knit: made the strain table in %.1f s and cached it (%s): later runs read it\n",
                          c.seconds, c.path.c_str());

@@ -216,7 +216,9 @@ TEST(StrainDeformer, lookupSitesAgreeAndOnePassMatchesTwo) {
         EXPECT_EQ(a.vertices, b.vertices);
         EXPECT_EQ(a.vertices, a.total);
         ASSERT_EQ(one.curves.points.size(), two.curves.points.size());
-        EXPECT_EQ(std::memcmp(one.curves.points.data(), two.curves.points.data(), one.curves.points.size() * sizeof(dvec3)), 0);
+        EXPECT_EQ(
+            std::memcmp(one.curves.points.data(), two.curves.points.data(), one.curves.points.size() * sizeof(dvec3)),
+            0);
         EXPECT_EQ(one.curves.offsets, geometric.curves.offsets);
         EXPECT_EQ(std::memcmp(one.normals.data(), geometric.normals.data(), one.normals.size() * sizeof(dvec3)), 0);
         out.push_back(std::move(one));

@@ -107,8 +107,8 @@ void checkStrainTable(const StrainTable& table, const Pattern& pattern);
 // FNV-1a 64 of the pattern (as .pyp text) and every table option.
 struct CachedStrainTable {
     std::shared_ptr<const StrainTable> table;
-    std::string path;   // the cache entry ("" when there is no cache folder)
-    bool made = false;  // not in the cache: made now (and stored, when it could be)
+    std::string path;    // the cache entry ("" when there is no cache folder)
+    bool made = false;   // not in the cache: made now (and stored, when it could be)
     double seconds = 0;  // making it took (wall)
 };
 std::string strainCacheKey(const Pattern& pattern, const StrainTableOptions& options);

@@ -165,8 +165,7 @@ void Animator::evaluate(const std::vector<dvec3>& positions, AnimationFrame& out
     out.deform = {};
     if (options_.deform && rest_.deformer())  // the gather and the displacement in one pass
         out.deform = rest_.deformer()->evaluate(rest_.binding(), positions, out.meshNormals, out.yarns);
-    else
-        evaluateBinding(rest_.binding(), mesh.faces, positions, out.meshNormals, out.yarns);
+    else evaluateBinding(rest_.binding(), mesh.faces, positions, out.meshNormals, out.yarns);
     t.evaluate = since(t0);
 
     // Step 3: the centrelines resampled with the rest layouts (for the plies and the statistics).

@@ -7,6 +7,7 @@
 // yarn points once.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <glm/geometric.hpp>
 #include <tbb/blocked_range.h>
@@ -67,8 +68,7 @@ bool nearZero(const Strain& s) {
 }  // namespace
 
 StrainDeformer::StrainDeformer(const BaseMesh& mesh, const Pattern& pattern, const PatternPlacement& placement,
-                               const Binding& binding, std::shared_ptr<const StrainTable> table,
-                               StrainLookupSite site)
+                               const Binding& binding, std::shared_ptr<const StrainTable> table, StrainLookupSite site)
     : faces_(mesh.faces),
       faceUvs_(mesh.faceUvs),
       scale_(placement.scale),
@@ -89,8 +89,10 @@ StrainDeformer::StrainDeformer(const BaseMesh& mesh, const Pattern& pattern, con
     const StrainLookup lookup(*table_);  // the same arithmetic as the per-frame lookups
     bool clamped = false;
     for (size_t v = 0; v < n; ++v) zero_[v] = lookup(uint32_t(v), Strain{}, clamped);
-    atMeshVertices_ = site == StrainLookupSite::MeshVertices ||
-                      (site == StrainLookupSite::Auto && uvCount_ * n < binding.vertexCount());
+    // (Rows of the per-UV-vertex displacements are indexed in 32 bits.)
+    atMeshVertices_ = uvCount_ * n < std::numeric_limits<uint32_t>::max() &&
+                      (site == StrainLookupSite::MeshVertices ||
+                       (site == StrainLookupSite::Auto && uvCount_ * n < binding.vertexCount()));
 }
 
 // Per UV vertex the area-weighted mean of its valid triangles' C and F, and per triangle whether
@@ -156,7 +158,7 @@ StrainDeformer::Pose StrainDeformer::pose(const Binding& b, const std::vector<gl
 }
 
 void StrainDeformer::meshDisplacements(const Pose& pose, std::vector<glm::dvec4>& d,
-                                        std::vector<uint8_t>& flags) const {
+                                       std::vector<uint8_t>& flags) const {
     const size_t n = zero_.size();
     d.resize(uvCount_ * n);
     flags.assign(uvCount_, kZero);
@@ -171,8 +173,9 @@ void StrainDeformer::meshDisplacements(const Pose& pose, std::vector<glm::dvec4>
                 continue;
             }
             bool clamped = false;
+            const StrainLookup::Cell cell = lookup.locate(s, clamped);
             for (size_t v = 0; v < n; ++v) {
-                const glm::dvec4 e = lookup(uint32_t(v), s, clamped) - zero_[v];
+                const glm::dvec4 e = lookup.blend(cell, lookup.vertexOffset(uint32_t(v))) - zero_[v];
                 row[v] = glm::dvec4(scale_ * (e.x * uv.fx + e.y * uv.fy), scale_ * e.z);
             }
             flags[u] = uint8_t(kMoved | (clamped ? kClamped : 0));
@@ -217,32 +220,40 @@ DeformStats StrainDeformer::run(const Binding& b, const Pose& pose, Point point)
         }
         return stats;
     };
-    // Per yarn vertex interpolating its triangle's UV vertices' displacements.
+    // Per yarn vertex interpolating its triangle's UV vertices' displacements: per triangle where
+    // its corners' rows start and what its yarn vertices are (degenerate, or its corners' flags).
     std::vector<glm::dvec4> d;
-    std::vector<uint8_t> flags;
-    if (atMeshVertices_) meshDisplacements(pose, d, flags);
-    const size_t cells = zero_.size();
+    struct Corners {
+        uint32_t row[3];
+        uint8_t flag;
+    };
+    std::vector<Corners> corners;
+    if (atMeshVertices_) {
+        std::vector<uint8_t> flags;
+        meshDisplacements(pose, d, flags);
+        const auto cells = uint32_t(zero_.size());
+        corners.resize(faceUvs_.size());
+        for (size_t f = 0; f < faceUvs_.size(); ++f) {
+            const glm::uvec3 t = faceUvs_[f];
+            corners[f] = {{t.x * cells, t.y * cells, t.z * cells},
+                          pose.ok[f] ? uint8_t(flags[t.x] | flags[t.y] | flags[t.z]) : uint8_t(kDegenerate)};
+        }
+    }
     const auto atMeshVertices = [&](const tbb::blocked_range<size_t>& r, DeformStats stats) {
         for (size_t i = r.begin(); i != r.end(); ++i) {
             glm::dvec3 p, n;
             glm::dvec3& out = point(i, p, n);
-            const uint32_t f = face[i];
-            if (!pose.ok[f]) {
-                count(kDegenerate, stats);
-                out = p;
-                continue;
-            }
-            const glm::uvec3 t = faceUvs_[f];
-            const uint8_t flag = flags[t.x] | flags[t.y] | flags[t.z];
-            if (flag == kZero) {
+            const Corners& c = corners[face[i]];
+            if (!(c.flag & kMoved)) {
+                count(c.flag, stats);
                 out = p;
                 continue;
             }
             const double b1 = bary[i].x, b2 = bary[i].y, b0 = 1.0 - b1 - b2;
-            const size_t v = cellVertex_[i];
-            const glm::dvec4 e = b0 * d[t.x * cells + v] + b1 * d[t.y * cells + v] + b2 * d[t.z * cells + v];
+            const uint32_t v = cellVertex_[i];
+            const glm::dvec4 e = b0 * d[c.row[0] + v] + b1 * d[c.row[1] + v] + b2 * d[c.row[2] + v];
             out = p + (glm::dvec3(e) + e.w * n);
-            count(flag, stats);
+            count(c.flag, stats);
         }
         return stats;
     };

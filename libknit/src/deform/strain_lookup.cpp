@@ -18,7 +18,7 @@ namespace {
 
 // The interval of `axis` holding v (clamped) and the fraction along it. Round-off beyond the end
 // samples (a strain of exactly the largest sample computed from a mesh) is not counted as clamped.
-void locate(const std::vector<double>& axis, double v, size_t& i, double& t, bool& clamped) {
+void locateOnAxis(const std::vector<double>& axis, double v, size_t& i, double& t, bool& clamped) {
     constexpr double kSlack = 1e-9;
     if (axis.size() == 1) {
         i = 0;
@@ -45,9 +45,9 @@ glm::dvec4 lookupStrainTable(const StrainTable& table, uint32_t vertex, const St
     size_t i[3] = {0, 0, 0};
     double t[3] = {0, 0, 0};
     bool c = false;
-    locate(table.axes[0], s.sx, i[0], t[0], c);
-    locate(table.axes[1], s.sa, i[1], t[1], c);
-    locate(table.axes[2], s.sy, i[2], t[2], c);
+    locateOnAxis(table.axes[0], s.sx, i[0], t[0], c);
+    locateOnAxis(table.axes[1], s.sa, i[1], t[1], c);
+    locateOnAxis(table.axes[2], s.sy, i[2], t[2], c);
     if (clamped) *clamped = c;
     const size_t base = nx * na * ny * size_t(vertex);
     glm::dvec4 out(0.0);
@@ -89,7 +89,7 @@ StrainLookup::StrainLookup(const StrainTable& table) : data_(table.data.data()) 
 }
 
 void StrainLookup::locateSlow(int axis, double v, size_t& i, double& t, bool& clamped) const {
-    locate(*axes_[axis].values, v, i, t, clamped);
+    locateOnAxis(*axes_[axis].values, v, i, t, clamped);
 }
 
 }  // namespace knit

@@ -34,12 +34,18 @@ public:
         return at(vertexOffset(vertex), s, clamped);
     }
 
-    // The lookup for the vertex whose rows start at `offset` (vertexOffset); sets `clamped` when a
-    // strain lies outside the axes (round-off beyond the end samples is not counted).
-    glm::dvec4 at(size_t offset, const Strain& s, bool& clamped) const {
+    // Where a strain lies in the table (the same for every cell vertex): the offset of its lower
+    // corner, the fractions along sx, sa, sy and the floats to the upper neighbours.
+    struct Cell {
+        size_t offset = 0;
+        double t[3] = {0, 0, 0};
+        size_t step[3] = {0, 0, 0};
+    };
+    // Sets `clamped` when a strain lies outside the axes (round-off beyond the end samples is not
+    // counted).
+    Cell locate(const Strain& s, bool& clamped) const {
         const double value[3] = {s.sx, s.sa, s.sy};
-        double t[3];
-        size_t step[3];
+        Cell c;
         for (int a = 0; a < 3; ++a) {
             const Axis& ax = axes_[a];
             size_t i = 0;
@@ -54,22 +60,32 @@ public:
                 }
                 const double f = (v - ax.first) * ax.inverseStep;
                 i = std::min(size_t(std::max(f, 0.0)), ax.lastInterval);
-                t[a] = std::min(std::max(f - double(i), 0.0), 1.0);
-                step[a] = ax.stride;
+                c.t[a] = std::min(std::max(f - double(i), 0.0), 1.0);
+                c.step[a] = ax.stride;
             } else {
-                locateSlow(a, value[a], i, t[a], clamped);
-                step[a] = ax.count > 1 ? ax.stride : 0;
+                locateSlow(a, value[a], i, c.t[a], clamped);
+                c.step[a] = ax.count > 1 ? ax.stride : 0;
             }
-            offset += i * ax.stride;
+            c.offset += i * ax.stride;
         }
-        // Along sx, then sa, then sy (each a linear blend of two rows).
-        const float* r = data_ + offset;
-        const size_t s0 = step[0], s1 = step[1], s2 = step[2];
+        return c;
+    }
+
+    // The trilinear blend at `cell` for the vertex whose rows start at `vertexOffset`: along sx,
+    // then sa, then sy (each a linear blend of two rows).
+    glm::dvec4 blend(const Cell& cell, size_t vertexOffset) const {
+        const float* r = data_ + vertexOffset + cell.offset;
+        const size_t s0 = cell.step[0], s1 = cell.step[1], s2 = cell.step[2];
+        const double* t = cell.t;
         const auto row = [r](size_t o) { return glm::dvec4(r[o], r[o + 1], r[o + 2], r[o + 3]); };
         const auto mix = [](const glm::dvec4& a, const glm::dvec4& b, double w) { return a + w * (b - a); };
         const glm::dvec4 c00 = mix(row(0), row(s0), t[0]), c10 = mix(row(s1), row(s1 + s0), t[0]);
         const glm::dvec4 c01 = mix(row(s2), row(s2 + s0), t[0]), c11 = mix(row(s2 + s1), row(s2 + s1 + s0), t[0]);
         return mix(mix(c00, c10, t[1]), mix(c01, c11, t[1]), t[2]);
+    }
+
+    glm::dvec4 at(size_t vertexOffset, const Strain& s, bool& clamped) const {
+        return blend(locate(s, clamped), vertexOffset);
     }
 
 private:
