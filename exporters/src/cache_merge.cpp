@@ -5,8 +5,10 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sstream>
 
 #include <boost/crc.hpp>
@@ -98,13 +100,19 @@ MddChunk readMddChunk(const std::string& path, const std::string& obj) {
                     std::to_string(expected) + (size < expected ? " (truncated)" : ""));
     // "<kTopologyHeader>; MDD frames A-B step S at F fps"
     const std::string line = firstLine(obj, path), tag = std::string(kTopologyHeader) + "; MDD frames ";
-    long long first = 0, last = 0, step = 0;
-    int used = 0;
-    if (line.rfind(tag, 0) != 0 ||
-        std::sscanf(line.c_str() + tag.size(), "%lld-%lld step %lld at %lf fps%n", &first, &last, &step, &c.fps,
-                    &used) != 4 ||
-        tag.size() + size_t(used) != line.size() || step < 1 || last < first || !(c.fps > 0) ||
-        (last - first) % step != 0 || (last - first) / step + 1 != int64_t(c.range.frames))
+    static const std::regex kRange(R"(^(-?[0-9]{1,9})-(-?[0-9]{1,9}) step ([0-9]{1,9}) at ([0-9.eE+-]{1,40}) fps$)");
+    std::smatch m;
+    int64_t first = 0, last = 0, step = 0;
+    char* end = nullptr;
+    const std::string rest = line.rfind(tag, 0) == 0 ? line.substr(tag.size()) : std::string();
+    if (std::regex_match(rest, m, kRange)) {
+        first = std::stoll(m[1]), last = std::stoll(m[2]), step = std::stoll(m[3]);
+        const std::string rate = m[4];
+        c.fps = std::strtod(rate.c_str(), &end);
+        if (end != rate.c_str() + rate.size()) c.fps = 0;
+    }
+    if (step < 1 || last < first || !(c.fps > 0 && std::isfinite(c.fps)) || (last - first) % step != 0 ||
+        (last - first) / step + 1 != int64_t(c.range.frames))
         throw Error("point cache '" + path + "': its topology file '" + obj +
                     "' does not record the MDD's frames (write the chunks with this knit's `animate`)");
     c.range.start = first;
