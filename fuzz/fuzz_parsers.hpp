@@ -240,7 +240,9 @@ inline Outcome runMaterial(const uint8_t* data, size_t size) {
 
 // Bound scene file bytes -> Scene -> an Animator evaluating the rest pose. An input starting
 // with 'P' is a payload: it gets a valid header and checksum first, so the fuzzer reaches the
-// field reader and the consistency checks behind the CRC (any other input is a whole file).
+// field reader and the consistency checks behind the CRC (any other input is a whole file). The
+// Animator adopts the file's stored bind-time state (format version 2: resampling layout, phases,
+// frame seeds) and replays it on the pose, so a state the checks let through must be safe to use.
 inline Outcome runBoundScene(const uint8_t* data, size_t size) {
     if (size > kMaxInput) return Outcome::Rejected;
     std::string bytes(reinterpret_cast<const char*>(data), size);

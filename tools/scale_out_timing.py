@@ -11,7 +11,8 @@ built-in one on frame 1 with `knit bind`, then, one after the other:
   * the same on 2 single-threaded workers,
 checks the bakes' bytes equal the single run's, and prints wall and CPU seconds of each, the
 scheduling overhead per chunk ((workers x wall - sum of the chunks' knit wall times) / chunks,
-merge included), the bind and load CPU seconds (median of 5, in-process), the bound file's size
+merge included), the bind and load CPU seconds (median of 5, in-process; the scene only, without
+the Animator: bench/bound_scene_bench measures both with it), the bound file's size
 and the output bytes per frame. Not a unit test: numbers depend on the machine and its load.
 """
 import argparse

@@ -62,6 +62,9 @@ class CacheSink : public FrameSink {
 public:
     CacheSink(const std::string& path, const Animator& animator, const FrameSequence& seq, double fps, int step)
         : topologyPath_(topologyPathOf(path)), plies_(animator.options().plies) {
+        CacheFormat format = CacheFormat::Pc2;
+        cacheFormatOf(path, format);
+        topologyHeader_ = cacheTopologyHeader(format, seq.frame(0).number, seq.frames().back().number, step, fps);
         CacheInfo info;
         info.points = plies_ ? animator.plyPointCount() : animator.rest().yarns().curves.pointCount();
         info.frames = seq.size();
@@ -76,12 +79,12 @@ public:
         cache_->writeFrame(c.points);
     }
     void commit() override {
-        writeSegmentObj(topologyPath_, first_, "libknit point cache topology: one l record per segment");
+        writeSegmentObj(topologyPath_, first_, topologyHeader_);
         cache_->commit();
     }
 
 private:
-    std::string topologyPath_;
+    std::string topologyPath_, topologyHeader_;
     bool plies_;
     std::unique_ptr<PointCacheWriter> cache_;
     Polylines first_;

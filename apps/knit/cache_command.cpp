@@ -1,4 +1,4 @@
-// `knit cache merge`: chunks -> one PC2 and its topology (knit/cache.hpp mergePointCaches).
+// `knit cache merge`: chunks -> one PC2 or MDD and its topology (knit/cache.hpp mergePointCaches).
 #include "cache_command.hpp"
 
 #include <cstdio>
@@ -13,10 +13,10 @@ void addCacheCommand(CLI::App& app, CacheCommand& c) {
     c.command = app.add_subcommand("cache", "Point cache tools (merge the chunks of a farm bake)");
     c.command->require_subcommand(1);
     c.merge = c.command->add_subcommand(
-        "merge", "Join PC2 chunks (any order) into one cache: they must tile one frame range exactly once and share "
-                 "the topology (each chunk's .obj beside it)");
-    c.merge->add_option("chunks", c.chunks, "The PC2 chunks (e.g. chunk_*.pc2)")->required();
-    c.merge->add_option("-o,--output", c.output, "The merged .pc2 (its topology .obj is written beside it)")
+        "merge", "Join PC2 or MDD chunks (any order) into one cache: they must tile one frame range exactly once and "
+                 "share the topology (each chunk's .obj beside it; an MDD's records its frames)");
+    c.merge->add_option("chunks", c.chunks, "The PC2 or MDD chunks (e.g. chunk_*.pc2)")->required();
+    c.merge->add_option("-o,--output", c.output, "The merged .pc2 or .mdd (its topology .obj is written beside it)")
         ->required();
 }
 

@@ -1,11 +1,14 @@
-// cache_merge.cpp — PC2 chunks of one animation joined into one cache (knit/cache.hpp): the
-// headers read and checked, the frame ranges checked to tile one range exactly once, the
+// cache_merge.cpp — PC2 or MDD chunks of one animation joined into one cache (knit/cache.hpp):
+// the headers (an MDD's frame range from its topology .obj) read and checked, the frame ranges checked to tile one range exactly once, the
 // topologies compared, then the frames copied in order behind one header.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sstream>
 
 #include <boost/crc.hpp>
@@ -54,6 +57,69 @@ std::pair<uint32_t, size_t> topologyKey(const std::string& obj, const std::strin
     return {crc.checksum(), vertices};
 }
 
+uint32_t u32be(const unsigned char* b) {
+    return uint32_t(b[3]) | uint32_t(b[2]) << 8 | uint32_t(b[1]) << 16 | uint32_t(b[0]) << 24;
+}
+
+constexpr const char* kTopologyHeader = "libknit point cache topology: one l record per segment";
+
+// The first line of a topology .obj (without its "# "), and the rest of the file after it.
+std::string firstLine(const std::string& obj, const std::string& chunk) {
+    std::ifstream in(obj);
+    std::string line;
+    if (!in || !std::getline(in, line) || line.rfind("# ", 0) != 0)
+        throw Error("point cache '" + chunk + "': its topology file '" + obj + "' cannot be read or has no header");
+    return line.substr(2);
+}
+
+// An MDD chunk: its header (frame and point counts, the size they need) and the frames and rate
+// its topology .obj records (cacheTopologyHeader).
+struct MddChunk {
+    Pc2Range range;
+    double fps = 0;
+};
+MddChunk readMddChunk(const std::string& path, const std::string& obj) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error("point cache '" + path + "' cannot be read");
+    unsigned char h[8];
+    in.read(reinterpret_cast<char*>(h), 8);
+    if (in.gcount() != 8) throw Error("point cache '" + path + "' is not an MDD file (shorter than its header)");
+    MddChunk c;
+    c.range.path = path;
+    c.range.frames = u32be(h);
+    c.range.points = u32be(h + 4);
+    if (c.range.frames == 0 || c.range.frames > INT32_MAX || c.range.points > INT32_MAX)
+        throw Error("point cache '" + path + "' is not an MDD file of frames (" + std::to_string(c.range.frames) +
+                    " frames, " + std::to_string(c.range.points) + " points)");
+    std::error_code ec;
+    const uint64_t size = std::filesystem::file_size(path, ec);
+    const uint64_t expected = 8 + uint64_t(4) * c.range.frames + uint64_t(12) * c.range.points * c.range.frames;
+    if (ec || size != expected)
+        throw Error("point cache '" + path + "' has " + std::to_string(size) + " bytes, but its header (" +
+                    std::to_string(c.range.points) + " points x " + std::to_string(c.range.frames) + " frames) needs " +
+                    std::to_string(expected) + (size < expected ? " (truncated)" : ""));
+    // "<kTopologyHeader>; MDD frames A-B step S at F fps"
+    const std::string line = firstLine(obj, path), tag = std::string(kTopologyHeader) + "; MDD frames ";
+    static const std::regex kRange(R"(^(-?[0-9]{1,9})-(-?[0-9]{1,9}) step ([0-9]{1,9}) at ([0-9.eE+-]{1,40}) fps$)");
+    std::smatch m;
+    int64_t first = 0, last = 0, step = 0;
+    char* end = nullptr;
+    const std::string rest = line.rfind(tag, 0) == 0 ? line.substr(tag.size()) : std::string();
+    if (std::regex_match(rest, m, kRange)) {
+        first = std::stoll(m[1]), last = std::stoll(m[2]), step = std::stoll(m[3]);
+        const std::string rate = m[4];
+        c.fps = std::strtod(rate.c_str(), &end);
+        if (end != rate.c_str() + rate.size()) c.fps = 0;
+    }
+    if (step < 1 || last < first || !(c.fps > 0 && std::isfinite(c.fps)) || (last - first) % step != 0 ||
+        (last - first) / step + 1 != int64_t(c.range.frames))
+        throw Error("point cache '" + path + "': its topology file '" + obj +
+                    "' does not record the MDD's frames (write the chunks with this knit's `animate`)");
+    c.range.start = first;
+    c.range.step = step;
+    return c;
+}
+
 std::string frameSpan(int64_t a, int64_t b, int64_t step) {
     if (a == b) return "frame " + std::to_string(a);
     return "frames " + std::to_string(a) + "-" + std::to_string(b) + (step != 1 ? " step " + std::to_string(step) : "");
@@ -80,6 +146,14 @@ void checkTiling(const std::vector<Pc2Range>& c) {
 }
 
 }  // namespace
+
+std::string cacheTopologyHeader(CacheFormat format, int64_t first, int64_t last, int64_t step, double fps) {
+    if (format != CacheFormat::Mdd) return kTopologyHeader;
+    char rate[40];
+    std::snprintf(rate, sizeof rate, "%.17g", fps);  // read back exactly
+    return std::string(kTopologyHeader) + "; MDD frames " + std::to_string(first) + "-" + std::to_string(last) +
+           " step " + std::to_string(step) + " at " + rate + " fps";
+}
 
 Pc2Range readPc2Range(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
@@ -115,12 +189,29 @@ Pc2Range readPc2Range(const std::string& path) {
 CacheMergeResult mergePointCaches(const std::vector<std::string>& chunks, const std::string& output) {
     if (chunks.empty()) throw Error("no point caches to merge");
     CacheFormat format;
-    if (!cacheFormatOf(output, format) || format != CacheFormat::Pc2)
-        throw Error("cannot write '" + output + "': merged point caches are PC2 (.pc2)");
-    // Step 1: every header, and the same points, step and topology in each.
+    if (!cacheFormatOf(output, format))
+        throw Error("cannot write '" + output + "': merged point caches are PC2 (.pc2) or MDD (.mdd)");
+    // Step 1: every header, and the same format, points, step (and MDD frame rate) and topology in each.
+    const bool mdd = format == CacheFormat::Mdd;
     std::vector<Pc2Range> c;
+    double fps = 0;
     c.reserve(chunks.size());
-    for (const std::string& path : chunks) c.push_back(readPc2Range(path));
+    for (const std::string& path : chunks) {
+        CacheFormat chunkFormat;
+        if (!cacheFormatOf(path, chunkFormat) || chunkFormat != format)
+            throw Error("point cache '" + path + "' is not " + (mdd ? "an MDD (.mdd)" : "a PC2 (.pc2)") + " like '" +
+                        output + "' (chunks merge into their own format)");
+        if (!mdd) {
+            c.push_back(readPc2Range(path));
+            continue;
+        }
+        const MddChunk m = readMddChunk(path, topologyPathOf(path));
+        if (!c.empty() && m.fps != fps)
+            throw Error("point caches '" + c[0].path + "' and '" + path + "' differ: " + std::to_string(fps) + " and " +
+                        std::to_string(m.fps) + " fps (not chunks of one animation)");
+        fps = m.fps;
+        c.push_back(m.range);
+    }
     const auto key = topologyKey(topologyPathOf(c[0].path), c[0].path);
     for (const Pc2Range& r : c) {
         if (r.points != c[0].points || r.step != c[0].step)
@@ -139,19 +230,28 @@ CacheMergeResult mergePointCaches(const std::vector<std::string>& chunks, const 
     result.points = c[0].points;
     for (const Pc2Range& r : c) result.frames += r.frames;
     if (result.frames > INT32_MAX) throw Error("cannot write '" + output + "': more than 2^31-1 frames");
-    // Step 3: one header, the frames in order, and the first chunk's topology; committed together.
+    // Step 3: one header, the frames in order, and the first chunk's topology (an MDD's range line
+    // set to the merged range); committed together.
     impl::checkOutputFolder(output);
     impl::AtomicFile cache(output, true), topology(topologyPathOf(output), true);
     CacheInfo info;
     info.points = result.points, info.frames = result.frames;
     info.startFrame = double(result.first), info.step = double(result.step);
+    info.fps = fps;
     std::vector<char> header;
-    impl::pc2Header(info, header);
+    if (mdd) impl::mddHeader(info, header);
+    else impl::pc2Header(info, header);
     cache.stream().write(header.data(), std::streamsize(header.size()));
     for (const Pc2Range& r : c)
-        impl::appendFile(cache.stream(), r.path, kPc2Header, uint64_t(12) * r.points * r.frames);
+        impl::appendFile(cache.stream(), r.path, mdd ? 8 + uint64_t(4) * r.frames : kPc2Header,
+                         uint64_t(12) * r.points * r.frames);
     const std::string firstTopology = topologyPathOf(c.front().path);
-    impl::appendFile(topology.stream(), firstTopology, 0, std::filesystem::file_size(firstTopology));
+    uint64_t skip = 0;
+    if (mdd) {
+        skip = firstLine(firstTopology, c.front().path).size() + 3;  // "# " ... "\n"
+        topology.stream() << "# " << cacheTopologyHeader(format, result.first, result.last, result.step, fps) << '\n';
+    }
+    impl::appendFile(topology.stream(), firstTopology, skip, std::filesystem::file_size(firstTopology) - skip);
     topology.close();
     cache.close();
     topology.commit();

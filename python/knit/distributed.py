@@ -23,6 +23,7 @@ else $KNIT_CLI, else `knit` on PATH) and this package.
 import ctypes
 import json
 import os
+import re
 import shutil
 import signal
 import struct
@@ -88,6 +89,21 @@ def _pc2_range(path):
         return None
 
 
+def _mdd_range(path):
+    """(start, frames, step) of a complete MDD file with its topology .obj (which records an MDD's
+    frames: knit cache merge reads them), or None."""
+    try:
+        with open(path, "rb") as f:
+            frames, points = struct.unpack(">ii", f.read(8))
+        if frames < 1 or os.path.getsize(path) != 8 + 4 * frames + 12 * points * frames:
+            return None
+        with open(path[:-4] + ".obj") as f:
+            m = re.search(r"; MDD frames (-?\d+)-(-?\d+) step (\d+) at \S+ fps$", f.readline().rstrip("\n"))
+        return (int(m.group(1)), frames, int(m.group(3))) if m else None
+    except (OSError, struct.error):
+        return None
+
+
 def _check_args(bound, frames, output, chunk, step):
     if not isinstance(bound, str) or not os.path.isfile(bound):
         raise Error("bound: '%s' is not a file (write one with `knit bind`)" % (bound,))
@@ -98,8 +114,8 @@ def _check_args(bound, frames, output, chunk, step):
     if not isinstance(step, int) or isinstance(step, bool) or step < 1:
         raise Error("step: must be a positive integer (got %r)" % (step,))
     per_frame = "%" in os.path.basename(output)
-    if not per_frame and not output.lower().endswith(".pc2"):
-        raise Error("output: '%s': give a .pc2 (merged from the chunks) or a per-frame pattern such as "
+    if not per_frame and not output.lower().endswith((".pc2", ".mdd")):
+        raise Error("output: '%s': give a .pc2 or .mdd (merged from the chunks) or a per-frame pattern such as "
                     "out_%%04d.glb" % output)
     return per_frame
 
@@ -168,8 +184,8 @@ def bake(bound, frames, output, client=None, chunk=10, first=-1, last=-1, step=1
     """Bakes the frames of a bound scene (`knit bind`) into `output` on a Dask cluster.
 
     bound: the bound scene file. frames: the mesh sequence as `knit animate --frames` takes it;
-    first / last / step: its frame numbers (-1: the files found). output: a .pc2 (chunks merged,
-    its topology .obj beside it) or a per-frame pattern such as out_%04d.glb (no merge). client: a
+    first / last / step: its frame numbers (-1: the files found). output: a .pc2 or .mdd (chunks
+    merged, its topology .obj beside it) or a per-frame pattern such as out_%04d.glb (no merge). client: a
     distributed.Client; None starts a LocalCluster of `workers` (default: one per core) single-
     threaded workers and closes it at the end. chunk: frames per task. threads: knit's threads per
     task. export: plies or yarns. progress: True (lines on stderr), False, or a callable taking a
@@ -201,10 +217,12 @@ def bake(bound, frames, output, client=None, chunk=10, first=-1, last=-1, step=1
                     "frames": frames, "numbers": numbers, "chunk": chunk, "fps": fps, "export": export}
         folder = _job_folder(output, manifest)
         for a, b in ranges:
-            path = os.path.join(folder, "chunk_%08d_%08d.pc2" % (a, b))
+            extension = output[-4:].lower()  # the chunks are of the output's format (.pc2 or .mdd)
+            path = os.path.join(folder, "chunk_%08d_%08d%s" % (a, b, extension))
             chunk_files.append(path)
             count = len([n for n in numbers if a <= n <= b])
-            if _pc2_range(path) == (a, count, step) and os.path.exists(path[:-4] + ".obj"):
+            complete = _mdd_range(path) if extension == ".mdd" else _pc2_range(path)
+            if complete == (a, count, step) and os.path.exists(path[:-4] + ".obj"):
                 reused += 1
                 continue
             jobs.append(("frames-%d-%d" % (a, b), base + ["--first", str(a), "--last", str(b), "-o", path], a, b))

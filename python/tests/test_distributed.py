@@ -137,6 +137,12 @@ def test_cluster_bake_equals_knit_animate_and_an_interrupted_bake_resumes(cluste
             export="yarns", progress=False, knit_cli=KNIT, timeout=60)
     for k in range(1, 13):
         assert read(d / ("f_%04d.obj" % k)) == read(d / ("one_%04d.obj" % k)), k
+    # An MDD bake: chunks of MDD merged (their frames recorded in their .obj) to the single run's bytes.
+    run("animate", "-q", "--bound", "g.knitbind", "--frames", "frame_%04d.obj", "-o", "one.mdd", cwd=d)
+    kd.bake(str(d / "g.knitbind"), str(d / "frame_%04d.obj"), str(d / "all.mdd"), client=client, chunk=5,
+            progress=False, knit_cli=KNIT, timeout=60)
+    assert read(d / "all.mdd") == read(d / "one.mdd")
+    assert read(d / "all.obj") == read(d / "one.obj")
 
 
 def test_render_frames_equal_knit_render_of_each_frame(cluster, sequence):

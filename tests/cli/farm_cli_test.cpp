@@ -71,6 +71,16 @@ TEST_F(Farm, chunksOfABoundSceneMergeToTheBytesOfOneRun) {
     ASSERT_EQ(r.exitCode, 0) << r.output;
     chunk(1, 9, "bound.mdd");
     EXPECT_TRUE(bytesOf(dir / "bound.mdd") == bytesOf(dir / "one.mdd"));
+    // MDD chunks (no start frame in MDD: each chunk's .obj records its frames and rate) merge
+    // to the single run's MDD and .obj.
+    chunk(6, 9, "mdd_6.mdd");
+    chunk(1, 5, "mdd_1.mdd");
+    r = knit("cache merge mdd_6.mdd mdd_1.mdd -o mdd.mdd");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("frames 1-9"), std::string::npos) << r.output;
+    EXPECT_TRUE(bytesOf(dir / "mdd.mdd") == bytesOf(dir / "one.mdd"));
+    EXPECT_TRUE(bytesOf(dir / "mdd.obj") == bytesOf(dir / "one.obj"));
+    EXPECT_NE(bytesOf(dir / "mdd_6.obj").find("MDD frames 6-9 step 1 at 24 fps\n"), std::string::npos);
     r = knit("animate -q --frames frame_%04d.obj --repeats 3 3 --export yarns -o one_%04d.obj");
     ASSERT_EQ(r.exitCode, 0) << r.output;
     chunk(4, 6, "part_%04d.obj", "--export yarns");
@@ -116,6 +126,15 @@ TEST_F(Farm, mergeNamesMissingAndDoubledFramesAndWritesNothing) {
     EXPECT_NE(r.output.find("(truncated)"), std::string::npos) << r.output;
     EXPECT_FALSE(fs::exists(dir / "m.pc2"));
     EXPECT_FALSE(fs::exists(dir / "m.obj"));
+    // MDD chunks: a gap named the same way; chunks of another format refused.
+    chunk(1, 3, "a.mdd");
+    chunk(6, 9, "f.mdd");
+    r = knit("cache merge a.mdd f.mdd -o m.mdd");
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.output.find("frames 4-5 missing (between 'a.mdd' and 'f.mdd')"), std::string::npos) << r.output;
+    r = knit("cache merge a.mdd a.pc2 -o m.mdd");
+    EXPECT_NE(r.output.find("point cache 'a.pc2' is not an MDD (.mdd) like 'm.mdd'"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir / "m.mdd"));
 }
 
 TEST_F(Farm, boundFileErrorsNameTheFileAndTheFlag) {

@@ -4,6 +4,8 @@
 
 #include <cmath>
 #include <cstring>
+#include <limits>
+#include <map>
 #include <string>
 
 #include <boost/crc.hpp>
@@ -12,6 +14,7 @@
 #include "knit/bound_scene.hpp"
 #include "knit/error.hpp"
 #include "knit/scene.hpp"
+#include "scene/bound_scene_format.hpp"
 
 namespace knit {
 namespace {
@@ -52,6 +55,65 @@ std::string resealed(std::string bytes) {
     return bytes;
 }
 
+// Where each field's first element lies in a bound scene file (the payload walked with the
+// format's own field list, boundSceneLayout).
+class FieldOffsets {
+public:
+    explicit FieldOffsets(const std::string& file) : bytes_(file) {
+        impl::BoundSceneParts parts;
+        impl::boundSceneLayout(*this, parts);
+    }
+    size_t operator[](const std::string& what) const { return where_.at(what); }
+
+    template <class T>
+    void value(T& v, const char* what) {
+        note(what);
+        take(&v, sizeof v);
+    }
+    template <class T>
+    void array(std::vector<T>& v, const char* what) {
+        uint64_t n = 0;
+        take(&n, sizeof n);
+        note(what);
+        v.resize(n);
+        take(v.data(), n * sizeof(T));
+    }
+    void text(std::string& s, const char* what) {
+        std::vector<char> v;
+        array(v, what);
+        s.assign(v.begin(), v.end());
+    }
+    void blocks(std::map<std::string, std::vector<std::vector<double>>>& b, const char* what) {
+        uint64_t n = 0;
+        take(&n, sizeof n);
+        for (uint64_t i = 0; i < n; ++i) {
+            std::string key;
+            text(key, what);
+            uint64_t rows = 0;
+            take(&rows, sizeof rows);
+            b[key].resize(rows);
+            for (std::vector<double>& row : b[key]) array(row, what);
+        }
+    }
+
+private:
+    void note(const char* what) { where_.emplace(what, at_); }
+    void take(void* to, size_t n) {
+        ASSERT_LE(at_ + n, bytes_.size());
+        std::memcpy(to, bytes_.data() + at_, n);
+        at_ += n;
+    }
+    const std::string& bytes_;
+    size_t at_ = 32;  // the payload follows the header
+    std::map<std::string, size_t> where_;
+};
+
+template <class T>
+std::string withValue(std::string bytes, size_t at, T v) {
+    std::memcpy(bytes.data() + at, &v, sizeof v);
+    return resealed(bytes);
+}
+
 TEST(BoundScene, loadedSceneEvaluatesFramesToTheSameBytes) {
     const Scene rest = restScene();
     BoundSceneInfo info;
@@ -85,7 +147,14 @@ TEST(BoundScene, otherVersionsAndDamagedFilesAreRefusedSayingWhich) {
     const std::string bytes = encodeBoundScene(restScene(), {});
     std::string v = bytes;
     v[8] = 7;  // format version 7
-    EXPECT_NE(errorOf(v).find("has format version 7; this knit reads version 1"), std::string::npos) << errorOf(v);
+    EXPECT_NE(errorOf(v).find("has format version 7 (written by a newer knit); this knit reads version 2 only: bind "
+                              "the scene again with this knit (`knit bind --mesh REST ... -o g.knitbind`)"),
+              std::string::npos)
+        << errorOf(v);
+    v[8] = 1;  // a file of the first format (no Animator state)
+    EXPECT_NE(errorOf(v).find("has format version 1 (written by an older knit); this knit reads version 2 only"),
+              std::string::npos)
+        << errorOf(v);
     EXPECT_NE(errorOf(bytes.substr(0, bytes.size() - 100)).find("is truncated"), std::string::npos);
     EXPECT_NE(errorOf(bytes.substr(0, 20)).find("is truncated"), std::string::npos);
     EXPECT_NE(errorOf(bytes + "x").find("is damaged: 1 bytes follow"), std::string::npos);
@@ -98,6 +167,81 @@ TEST(BoundScene, otherVersionsAndDamagedFilesAreRefusedSayingWhich) {
     const uint64_t n = uint64_t(1) << 60;
     std::memcpy(huge.data() + 32, &n, 8);  // the settings' length
     EXPECT_NE(errorOf(resealed(huge)).find("is damaged: the settings claim"), std::string::npos);
+}
+
+TEST(BoundScene, theAnimatorStateIsStoredAndAdoptedNotRecomputed) {
+    const Scene rest = restScene();
+    const std::string bytes = encodeBoundScene(rest, {});
+    const BoundScene loaded = decodeBoundScene(bytes, "g.knitbind");
+    ASSERT_TRUE(loaded.scene.animatorState());
+    EXPECT_FALSE(rest.animatorState());
+    // What the file holds is what an Animator computes on the rest scene.
+    const PlyGenerator generator(rest.yarns(), rest.plyOptions());
+    const AnimatorBindState fresh = computeAnimatorBindState(rest, generator);
+    const AnimatorBindState& stored = *loaded.scene.animatorState();
+    EXPECT_EQ(stored.kept, fresh.kept);
+    EXPECT_EQ(stored.pieces, fresh.pieces);
+    EXPECT_EQ(stored.centreOffsets, fresh.centreOffsets);
+    EXPECT_EQ(stored.restArc, fresh.restArc);
+    EXPECT_EQ(stored.restPhase, fresh.restPhase);
+    EXPECT_EQ(stored.restPitch, fresh.restPitch);
+    ASSERT_EQ(stored.seeds.size(), fresh.seeds.size());
+    EXPECT_EQ(std::memcmp(stored.seeds.data(), fresh.seeds.data(), fresh.seeds.size() * sizeof fresh.seeds[0]), 0);
+    // The loaded scene's Animator uses the stored twist phases: one changed in the file (and the
+    // checksum resealed) changes that yarn's plies, and only when the phase is the stored one.
+    const FieldOffsets at(bytes);
+    const BoundScene edited =
+        decodeBoundScene(withValue(bytes, at["the rest twist phases"] + 16 * 5, glm::dvec2(0.0, 1.0)), "g.knitbind");
+    const Animator a(loaded.scene), b(edited.scene);
+    AnimationFrame fa, fb;
+    a.evaluate(rest.mesh().positions, fa);
+    b.evaluate(rest.mesh().positions, fb);
+    ASSERT_EQ(fa.plies.curves.points.size(), fb.plies.curves.points.size());
+    EXPECT_NE(fa.plies.curves.points, fb.plies.curves.points);
+    // An Animator of the yarns alone, of the statistics alone and with radial directions works on
+    // the stored state as on a computed one.
+    for (const bool plies : {false, true}) {
+        AnimatorOptions options;
+        options.plies = plies;
+        options.radial = plies;
+        const Animator c(rest, options), d(loaded.scene, options);
+        AnimationFrame fc, fd;
+        const std::vector<glm::dvec3> frame = waved(rest.mesh());
+        c.evaluate(frame, fc);
+        d.evaluate(frame, fd);
+        EXPECT_EQ(fc.plies.curves.points, fd.plies.curves.points);
+        EXPECT_EQ(fc.plies.radial, fd.plies.radial);
+        EXPECT_EQ(fc.stats.minYarnDistance, fd.stats.minYarnDistance);
+        EXPECT_EQ(fc.stats.maxStretch, fd.stats.maxStretch);
+    }
+}
+
+TEST(BoundScene, anInconsistentAnimatorStateIsRefusedNamingTheYarn) {
+    const std::string bytes = encodeBoundScene(restScene(), {});
+    const FieldOffsets at(bytes);
+    const std::string prefix = "bound scene 'g.knitbind' is inconsistent: its Animator state: ";
+    // A kept point beyond its yarn (resampling would read past the yarn's points).
+    std::string e = errorOf(withValue(bytes, at["the resampling layout's kept points"], uint32_t(1) << 30));
+    EXPECT_NE(e.find(prefix + "yarn 0: kept point 0 (1073741824) is not increasing within its"), std::string::npos)
+        << e;
+    // More pieces than the resampled points the yarn has room for (it would write past them).
+    e = errorOf(withValue(bytes, at["the resampling layout's pieces"], uint32_t(1000)));
+    EXPECT_NE(e.find(prefix + "yarn 0: its layout makes"), std::string::npos) << e;
+    e = errorOf(withValue(bytes, at["the resampling layout's pieces"], uint32_t(0)));
+    EXPECT_NE(e.find(prefix + "yarn 0: a segment has 0 pieces"), std::string::npos) << e;
+    // Offsets that do not cover the arrays.
+    e = errorOf(withValue(bytes, at["the resampled point offsets"] + 4, uint32_t(0xFFFFFFFF)));
+    EXPECT_NE(e.find(prefix), std::string::npos) << e;
+    // Values evaluation cannot use.
+    e = errorOf(withValue(bytes, at["the rest twist phases"], std::numeric_limits<double>::quiet_NaN()));
+    EXPECT_NE(e.find(prefix + "a rest arc length, twist phase, pitch or length is not finite"), std::string::npos) << e;
+    e = errorOf(withValue(bytes, at["the frame seeds"] + 120, uint8_t(2)));
+    EXPECT_NE(e.find(prefix + "yarn 0: its frame seed has a bad flag"), std::string::npos) << e;
+    // A count beyond the file in the new fields: refused before allocating.
+    e = errorOf(withValue(bytes, at["the rest twist phases"] - 8, uint64_t(1) << 50));
+    EXPECT_NE(e.find("is damaged: the rest twist phases claim 1125899906842624 elements of 16 bytes"),
+              std::string::npos)
+        << e;
 }
 
 TEST(BoundScene, aSceneMadeFromPartsIsNotSaved) {

@@ -72,9 +72,16 @@ struct Pc2Range {
 // "point cache '<path>': <what is wrong>".
 Pc2Range readPc2Range(const std::string& path);
 
+// The first line (after "# ") of the topology .obj beside a point cache: for an MDD, which has no
+// start frame in its header (its frame times start at 0), the frames it holds and their rate,
+// "... MDD frames 51-100 step 1 at 24 fps", which knit cache merge reads back.
+std::string cacheTopologyHeader(CacheFormat format, int64_t first, int64_t last, int64_t step, double fps);
+
 // Concatenates PC2 chunks (e.g. `knit animate --first A --last B` runs on a farm) into one PC2
-// at `output`, with its topology .obj copied from the first chunk's (the first frame's points,
-// as a single run writes it). The chunks, in any order, must hold the same points and step and
+// at `output`, or MDD chunks into one MDD (their ranges and frame rate read from the first line
+// of each chunk's .obj, cacheTopologyHeader), with its topology .obj copied from the first
+// chunk's (the first frame's points, as a single run writes it; an MDD's range line set to the
+// merged range). The chunks, in any order, must hold the same points and step and
 // tile one contiguous frame range exactly once, each beside its topology .obj with the same
 // segments; otherwise a knit::Error names the missing or doubled frames and their chunks, or the
 // chunk that differs. Both outputs appear whole or not at all.

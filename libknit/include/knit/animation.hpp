@@ -197,7 +197,9 @@ class Animator {
 public:
     // Bind-time work on the rest scene (its mesh, binding and yarns; plyOptions resolved here
     // unless only the yarns are evaluated):
-    // the resampling layouts, rest arc lengths and pitches, rest segment lengths. Keeps a
+    // the resampling layouts, rest arc lengths, pitches and twist phases, frame seeds (adopted,
+    // not recomputed, from a scene loaded from a bound scene file: Scene::animatorState), rest
+    // segment lengths. Keeps a
     // reference to `rest`, which must outlive the Animator. Throws knit::Error for bad ply
     // options, more than 2^32-1 ply points or plies over options.budget.
     explicit Animator(const Scene& rest, const AnimatorOptions& options = {});
@@ -221,31 +223,19 @@ public:
     const Plies& plyTopology() const { return plyTopology_; }
 
 private:
-    // A yarn's first ply frame on the rest pose, with the frame of the triangle it is bound to.
-    struct FrameSeed {
-        glm::dvec3 tangent{0.0}, normal{0.0};
-        glm::dmat3 surface{1.0};
-        bool valid = false;  // false: degenerate triangle (seed with the surface normal)
-    };
-    void bindFrameSeed(size_t y, const std::vector<glm::dvec3>& centre);
     void resample(AnimationFrame& out) const;
     void sweep(const std::vector<glm::dvec3>& positions, AnimationFrame& out) const;
 
     const Scene& rest_;
     AnimatorOptions options_;
     std::optional<PlyGenerator> generator_;  // on the rest yarns: options, spacing, ply phases (plies or stats)
-    // Resampling layout per yarn (CSR over yarns): kept points and pieces per segment.
-    std::vector<uint32_t> keptOffsets_{0}, kept_, pieceOffsets_{0}, pieces_;
-    std::vector<uint32_t> centreOffsets_{0};  // resampled points per yarn (CSR)
-    std::vector<double> restArc_;             // rest arc length per resampled point
-    std::vector<glm::dvec2> restPhase_;       // (cos, sin) of its twist phase, fixed at bind time
-    std::vector<double> restPitch_;           // per yarn
-    std::vector<double> restLength_;          // per yarn: resampled rest length (closed: with the closing segment)
-    std::vector<uint32_t> yarnOfCentre_;      // yarn of each resampled point
-    std::vector<double> restSegment_;         // rest length of the segment from each yarn vertex (0: none)
-    double restTotalLength_ = 0;              // totalYarnLength of the rest yarns
-    std::vector<size_t> plyOfYarn_;           // first ply point of each yarn
-    std::vector<FrameSeed> restSeeds_;        // per yarn
+    // The bind-time decisions (resampling layouts, rest arc lengths, pitches, twist phases, frame
+    // seeds): the rest scene's stored ones (a bound scene file's) or computed here; plies or stats.
+    std::shared_ptr<const AnimatorBindState> bind_;
+    std::vector<uint32_t> yarnOfCentre_;  // yarn of each resampled point (stats)
+    std::vector<double> restSegment_;     // rest length of the segment from each yarn vertex (0: none)
+    double restTotalLength_ = 0;          // totalYarnLength of the rest yarns
+    std::vector<size_t> plyOfYarn_;       // first ply point of each yarn
     Plies plyTopology_;
 };
 

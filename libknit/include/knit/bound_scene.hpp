@@ -5,18 +5,23 @@
 // placement, the yarn radius and UV cell size, the rest mesh (positions, UVs, faces), the binding
 // (triangle, barycentrics, height, twist, colour per yarn vertex; yarn offsets and closed flags),
 // the bind statistics, the ply settings, the settings the scene was built with (JSON, for
-// provenance) and a reference to a strain table (empty: none). Loading rebuilds what is a pure
-// function of those: the rest vertex normals, the rest yarns (the binding evaluated on the rest
-// mesh) and the UV grid, with the same code as binding, so a loaded scene evaluates every frame
-// to the same bytes as the scene that was saved; the Animator's ply layout and rest twist phases
-// are in turn a pure function of the rest yarns and ply settings. Nothing depends on other frames.
+// provenance), a reference to a strain table (empty: none), and (format version 2) what the
+// Animator derives at bind time: the ply layout (each yarn's resampling: kept points, pieces per
+// segment, resampled points), the rest arc length and twist phase of every resampled point, each
+// yarn's rest pitch, length and first ply frame, the resampled points' colours. Loading rebuilds
+// the cheap rest: the rest vertex normals, the rest yarns (the binding evaluated on the rest mesh)
+// and the UV grid, with the same code as binding; the loaded scene carries the stored Animator
+// state (Scene::animatorState), which its Animators adopt instead of resampling the rest yarns.
+// So a loaded scene evaluates every frame to the same bytes as the scene that was saved.
+// Nothing depends on other frames.
 //
 // Layout (little-endian): a 32-byte header
 //   char[8] "KNITBIND", u32 format version, u32 header size (32), u64 payload bytes,
 //   u32 CRC-32 of the payload, u32 zero
 // then the payload: the fields above in a fixed order, arrays as a u64 count and packed
-// elements, strings as a u64 length and bytes. A file of another format version, a truncated
-// or otherwise damaged file (size or checksum wrong, counts beyond the file, indices out of
+// elements, strings as a u64 length and bytes. A file of another format version (version 1:
+// written before the Animator state was stored; bind the scene again), a truncated or otherwise
+// damaged file (size or checksum wrong, counts beyond the file, indices out of
 // range) is refused with a knit::Error saying which.
 #pragma once
 #include <cstdint>
@@ -29,7 +34,7 @@
 namespace knit {
 
 // The format this library writes and reads (a file of any other version is refused).
-constexpr uint32_t kBoundSceneFormatVersion = 1;
+constexpr uint32_t kBoundSceneFormatVersion = 2;
 
 struct BoundSceneInfo {
     uint32_t formatVersion = kBoundSceneFormatVersion;
@@ -44,9 +49,12 @@ struct BoundScene {
 
 // The bytes of a bound scene file of `rest` (a scene built by buildScene without a view;
 // plies are not stored). Throws knit::Error for a scene made from parts or with a view.
-std::string encodeBoundScene(const Scene& rest, const BoundSceneInfo& info);
+// The Animator's bind-time state is computed for the file (its ply points estimated against
+// `budget` first) unless `rest` was loaded from such a file.
+std::string encodeBoundScene(const Scene& rest, const BoundSceneInfo& info, const MemoryBudget& budget = {});
 // Writes them to `path` atomically (knit/output_file.hpp).
-void writeBoundScene(const std::string& path, const Scene& rest, const BoundSceneInfo& info);
+void writeBoundScene(const std::string& path, const Scene& rest, const BoundSceneInfo& info,
+                     const MemoryBudget& budget = {});
 
 // Reads a bound scene from bytes; `name` names them in messages. Sizes are checked against the
 // bytes present before anything is allocated, and the loaded scene's estimated memory against

@@ -2,6 +2,7 @@
 // renderer and benchmarks. Each step is a plain call of a stage function; nothing hidden.
 #pragma once
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -69,6 +70,10 @@ struct SceneStages {
 
 // What a Scene made without the pipeline stages holds (Scene::fromParts): synthetic scenes for
 // renderer and export tests and benchmarks. Parts left empty stay empty in the Scene.
+// What an Animator decides on the rest pose (libknit's own, internal): stored with a bound scene
+// (knit/bound_scene.hpp) so that the Animator of a loaded scene adopts it instead of recomputing it.
+struct AnimatorBindState;
+
 struct SceneParts {
     BaseMesh mesh;
     std::vector<glm::dvec3> normals;  // rest-pose vertex normals
@@ -84,6 +89,8 @@ struct SceneParts {
     Pattern pattern;
     PatternPlacement placement;
     BindStats bindStats;
+    // A loaded bound scene's Animator bind-time state (readBoundScene sets it); none: computed.
+    std::shared_ptr<const AnimatorBindState> animatorState;
 };
 
 // The result of the pipeline: read-only, made by buildScene (or Scene::fromParts).
@@ -121,6 +128,9 @@ public:
     // the scene's own mesh; null / zeros otherwise.
     const std::shared_ptr<const StrainDeformer>& deformer() const { return deformer_; }
     const DeformStats& deformStats() const { return deformStats_; }
+    // A scene loaded from a bound scene file: the Animator's bind-time state it stores (every
+    // Animator of this scene adopts it); null for a scene built here.
+    const std::shared_ptr<const AnimatorBindState>& animatorState() const { return animatorState_; }
 
 private:
     friend class SceneBuilder;  // scene.cpp: runs the stages of buildScene into a Scene
@@ -140,6 +150,7 @@ private:
     std::optional<SceneDetail> detail_;
     std::shared_ptr<const StrainDeformer> deformer_;
     DeformStats deformStats_;
+    std::shared_ptr<const AnimatorBindState> animatorState_;
 };
 
 // Runs: load pattern -> load mesh -> normals -> placement -> UV grid -> tiling -> stitch ->

@@ -30,8 +30,8 @@
 #include <tbb/parallel_for.h>
 
 #include "knit/animation.hpp"
+#include "animation/animator_bind_state.hpp"
 #include "knit/error.hpp"
-#include "plies/frames_curve.hpp"
 #include "plies/plies_kernel.hpp"
 #include "plies/resample_curve.hpp"
 #include "scene/scene_budget.hpp"
@@ -48,70 +48,29 @@ double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock:
 // Yarns per parallel task: small enough to balance, large enough to amortize.
 constexpr size_t kYarnGrain = 64;
 
-// The orthonormal frame (first edge, in-plane perpendicular, normal) of triangle f; false when
-// the triangle is degenerate.
-bool triangleFrame(const std::vector<dvec3>& x, const glm::uvec3& f, glm::dmat3& out) {
-    const dvec3 e = x[f.y] - x[f.x], n = glm::cross(e, x[f.z] - x[f.x]);
-    const double le = glm::length(e), ln = glm::length(n);
-    if (!(le > 0.0) || !(ln > 0.0) || !std::isfinite(ln)) return false;
-    const dvec3 e1 = e / le, e3 = n / ln;
-    out = glm::dmat3(e1, glm::cross(e3, e1), e3);
-    return true;
-}
-
 }  // namespace
 
 Animator::Animator(const Scene& rest, const AnimatorOptions& options) : rest_(rest), options_(options) {
     const Polylines& yarns = rest.yarns().curves;
     const size_t yarnCount = yarns.curveCount();
-    restPitch_.assign(yarnCount, 0.0);
-    restLength_.assign(yarnCount, 0.0);
-    restSeeds_.assign(yarnCount, {});
     plyOfYarn_.assign(yarnCount + 1, 0);
     // The yarns alone are the binding evaluated (step 2 of evaluate): no ply options, no resampling.
     if (!options_.plies && !options_.stats) return;
     const PlyGenerator& generator = generator_.emplace(rest.yarns(), rest.plyOptions());
     impl::checkPlyBudget(rest.yarns(), generator.options(), options_.budget);  // before resampling
-    const double spacing = generator.options().pitch / generator.options().samplesPerTurn;
 
-    // Step 1: resample the rest yarns, recording each layout and the rest arc lengths / pitches.
-    ResampleLayout layout;
-    ResampleScratch resampleScratch;
-    std::vector<double> arc;
-    std::vector<dvec3> centre;
-    std::vector<glm::vec3> centreColour;  // per resampled point, when the yarns have colours
-    for (size_t y = 0; y < yarnCount; ++y) {
-        centre.clear();
-        const size_t m = resampleCurve(rest.yarns(), y, spacing, centre, nullptr, resampleScratch, &layout);
-        if (!rest.yarns().colour.empty())  // the chart's colours, as makePlies gives them
-            resampleColours(rest.yarns().colour.data() + yarns.begin(y), yarns.isClosed(y), layout, centreColour);
-        kept_.insert(kept_.end(), layout.kept.begin(), layout.kept.end());
-        keptOffsets_.push_back(static_cast<uint32_t>(kept_.size()));
-        pieces_.insert(pieces_.end(), layout.pieces.begin(), layout.pieces.end());
-        pieceOffsets_.push_back(static_cast<uint32_t>(pieces_.size()));
-        if (centreOffsets_.back() + m > UINT32_MAX)
-            throw Error("more than 2^32-1 resampled yarn points; raise the ply pitch");
-        centreOffsets_.push_back(static_cast<uint32_t>(centreOffsets_.back() + m));
-        yarnOfCentre_.insert(yarnOfCentre_.end(), m, static_cast<uint32_t>(y));
-        if (m < 2) {
-            restArc_.insert(restArc_.end(), m, 0.0);
-            restPhase_.insert(restPhase_.end(), m, glm::dvec2(1.0, 0.0));
-            continue;
-        }
-        restPitch_[y] = impl::PlyKernel::arcAndPitch(generator, y, centre.data(), m, arc);
-        bindFrameSeed(y, centre);
-        restArc_.insert(restArc_.end(), arc.begin(), arc.end());
-        const double rate = impl::PlyKernel::twistRate(generator, restPitch_[y]);
-        for (const double s : arc) restPhase_.emplace_back(std::cos(rate * s), std::sin(rate * s));
-        restLength_[y] = arc[m - 1] + (yarns.isClosed(y) ? glm::length(centre[0] - centre[m - 1]) : 0.0);
-    }
+    // Step 1: the rest yarns resampled, with each layout and the rest arc lengths / pitches /
+    // phases / frame seeds (animator_bind_state.cpp); a loaded bound scene stores them.
+    bind_ = rest.animatorState();
+    if (!bind_) bind_ = std::make_shared<const AnimatorBindState>(computeAnimatorBindState(rest, generator));
+    const AnimatorBindState& b = *bind_;
 
     // Step 2: the constant ply layout (yarn-major, ply-minor, as makePlies).
     const uint32_t n = static_cast<uint32_t>(generator.options().count);
     size_t total = 0;
     for (size_t y = 0; y < yarnCount && options_.plies; ++y) {
         plyOfYarn_[y] = total;
-        const size_t m = centreOffsets_[y + 1] - centreOffsets_[y];
+        const size_t m = b.centreOffsets[y + 1] - b.centreOffsets[y];
         if (m < 2) continue;
         for (uint32_t i = 0; i < n; ++i) {
             total += m;
@@ -122,9 +81,9 @@ Animator::Animator(const Scene& rest, const AnimatorOptions& options) : rest_(re
             plyTopology_.curves.closed.push_back(yarns.closed[y]);
             plyTopology_.yarnOfCurve.push_back(static_cast<uint32_t>(y));
             plyTopology_.plyOfCurve.push_back(static_cast<uint8_t>(i));
-            if (!centreColour.empty())
-                plyTopology_.colour.insert(plyTopology_.colour.end(), centreColour.begin() + centreOffsets_[y],
-                                           centreColour.begin() + centreOffsets_[y + 1]);
+            if (!b.centreColour.empty())
+                plyTopology_.colour.insert(plyTopology_.colour.end(), b.centreColour.begin() + b.centreOffsets[y],
+                                           b.centreColour.begin() + b.centreOffsets[y + 1]);
         }
     }
     plyOfYarn_[yarnCount] = total;
@@ -132,13 +91,18 @@ Animator::Animator(const Scene& rest, const AnimatorOptions& options) : rest_(re
     plyTopology_.centerRadius = generator.options().centerRadius;
     plyTopology_.pitch = generator.options().pitch;
 
-    // Step 3: rest length of the segment starting at each yarn vertex (the stretch reference).
+    // Step 3: the yarn of each resampled point, the rest length of the segment starting at each
+    // yarn vertex (the stretch reference).
     if (!options_.stats) return;
+    yarnOfCentre_.resize(b.centreOffsets.back());
+    for (size_t y = 0; y < yarnCount; ++y)
+        std::fill(yarnOfCentre_.begin() + b.centreOffsets[y], yarnOfCentre_.begin() + b.centreOffsets[y + 1],
+                  static_cast<uint32_t>(y));
     restSegment_.assign(yarns.pointCount(), 0.0);
     for (size_t y = 0; y < yarnCount; ++y) {
-        const uint32_t b = yarns.begin(y), e = yarns.end(y);
-        for (uint32_t i = b; i < e; ++i) {
-            const uint32_t j = i + 1 < e ? i + 1 : (yarns.isClosed(y) && e - b > 2 ? b : i);
+        const uint32_t first = yarns.begin(y), e = yarns.end(y);
+        for (uint32_t i = first; i < e; ++i) {
+            const uint32_t j = i + 1 < e ? i + 1 : (yarns.isClosed(y) && e - first > 2 ? first : i);
             restSegment_[i] = glm::length(yarns.points[j] - yarns.points[i]);
         }
     }
@@ -183,7 +147,7 @@ void Animator::evaluate(const std::vector<dvec3>& positions, AnimationFrame& out
     if (options_.stats) {
         out.stats.maxStretch = maxYarnStretch(out.yarns.curves, restSegment_);
         out.stats.yarnLengthRatio = restTotalLength_ > 0 ? totalYarnLength(out.yarns.curves) / restTotalLength_ : 1.0;
-        out.stats.minYarnDistance = minYarnDistance(out.centres, yarnOfCentre_, restArc_, restLength_,
+        out.stats.minYarnDistance = minYarnDistance(out.centres, yarnOfCentre_, bind_->restArc, bind_->restLength,
                                                     rest_.yarnRadius(), options_, out.distance);
         t.stats = since(t0);
     }
@@ -191,33 +155,22 @@ void Animator::evaluate(const std::vector<dvec3>& positions, AnimationFrame& out
 }
 
 void Animator::resample(AnimationFrame& out) const {
-    const size_t yarnCount = restPitch_.size();
+    const AnimatorBindState& b = *bind_;
+    const size_t yarnCount = b.restPitch.size();
     Polylines& c = out.centres;
-    if (c.offsets != centreOffsets_) {  // first frame with this buffer
-        c.offsets = centreOffsets_;
+    if (c.offsets != b.centreOffsets) {  // first frame with this buffer
+        c.offsets = b.centreOffsets;
         c.closed = rest_.yarns().curves.closed;
-        c.points.resize(centreOffsets_.back());
+        c.points.resize(b.centreOffsets.back());
     }
     tbb::enumerable_thread_specific<ResampleScratch> scratches;
     tbb::parallel_for(tbb::blocked_range<size_t>(0, yarnCount, kYarnGrain), [&](const tbb::blocked_range<size_t>& r) {
         ResampleScratch& scratch = scratches.local();
         for (size_t y = r.begin(); y < r.end(); ++y)
-            resampleCurveWithLayout(out.yarns.curves, y, kept_.data() + keptOffsets_[y],
-                                    keptOffsets_[y + 1] - keptOffsets_[y], pieces_.data() + pieceOffsets_[y],
-                                    c.points.data() + centreOffsets_[y], scratch);
+            resampleCurveWithLayout(out.yarns.curves, y, b.kept.data() + b.keptOffsets[y],
+                                    b.keptOffsets[y + 1] - b.keptOffsets[y], b.pieces.data() + b.pieceOffsets[y],
+                                    c.points.data() + b.centreOffsets[y], scratch);
     });
-}
-
-void Animator::bindFrameSeed(size_t y, const std::vector<dvec3>& centre) {
-    const Scene& rest = rest_;
-    const size_t m = centre.size(), first = rest.yarns().curves.begin(y);
-    std::vector<dvec3> tangent(m), normal(m);
-    const dvec3* surfaceNormal = rest.yarns().normals.empty() ? nullptr : rest.yarns().normals.data() + first;
-    curveFrames(centre.data(), m, rest.yarns().curves.isClosed(y), surfaceNormal, tangent.data(), normal.data());
-    FrameSeed& s = restSeeds_[y];
-    s.tangent = tangent[0];
-    s.normal = normal[0];
-    s.valid = triangleFrame(rest.mesh().positions, rest.mesh().faces[rest.binding().face[first]], s.surface);
 }
 
 void Animator::sweep(const std::vector<dvec3>& positions, AnimationFrame& out) const {
@@ -227,28 +180,29 @@ void Animator::sweep(const std::vector<dvec3>& positions, AnimationFrame& out) c
         p.curves.points.resize(plyTopology_.curves.offsets.back());
         if (options_.radial) p.radial.resize(plyTopology_.curves.offsets.back());
     }
-    const size_t yarnCount = restPitch_.size();
+    const AnimatorBindState& b = *bind_;
+    const size_t yarnCount = b.restPitch.size();
     const std::vector<glm::uvec3>& faces = rest_.mesh().faces;
     tbb::enumerable_thread_specific<PlyScratch> scratches;
     tbb::parallel_for(tbb::blocked_range<size_t>(0, yarnCount, kYarnGrain), [&](const tbb::blocked_range<size_t>& r) {
         PlyScratch& scratch = scratches.local();
         for (size_t y = r.begin(); y < r.end(); ++y) {
-            const size_t m = centreOffsets_[y + 1] - centreOffsets_[y];
+            const size_t m = b.centreOffsets[y + 1] - b.centreOffsets[y];
             if (m < 2) continue;
             // The rest frame carried by the bound triangle's rotation (see the file comment);
             // a degenerate triangle falls back to the surface normal.
             const size_t first = out.yarns.curves.begin(y);
-            const FrameSeed& s = restSeeds_[y];
+            const AnimatorBindState::Seed& s = b.seeds[y];
             glm::dmat3 now;
             dvec3 seedNormal = out.yarns.normals[first], seedTangent(0.0);
-            const bool carried = s.valid && triangleFrame(positions, faces[rest_.binding().face[first]], now);
+            const bool carried = s.valid != 0 && triangleFrame(positions, faces[rest_.binding().face[first]], now);
             if (carried) {
                 const glm::dmat3 r = now * glm::transpose(s.surface);
                 seedNormal = r * s.normal;
                 seedTangent = r * s.tangent;
             }
-            impl::PlyKernel::sweepWithCosSin(*generator_, y, out.centres.points.data() + centreOffsets_[y], m,
-                                             restPhase_.data() + centreOffsets_[y], &seedNormal,
+            impl::PlyKernel::sweepWithCosSin(*generator_, y, out.centres.points.data() + b.centreOffsets[y], m,
+                                             b.restPhase.data() + b.centreOffsets[y], &seedNormal,
                                              carried ? &seedTangent : nullptr, p.curves.points.data() + plyOfYarn_[y],
                                              scratch, options_.radial ? p.radial.data() + plyOfYarn_[y] : nullptr);
         }

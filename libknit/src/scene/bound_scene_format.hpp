@@ -9,6 +9,7 @@
 
 #include <zlib.h>
 
+#include "animation/animator_bind_state.hpp"
 #include "knit/base_mesh.hpp"
 #include "knit/binding.hpp"
 #include "knit/pattern.hpp"
@@ -37,6 +38,7 @@ struct BoundSceneParts {
     Binding binding;
     BindStats stats;
     PlyOptions plies;
+    AnimatorBindState animator;  // format version 2
 };
 
 // The fields in file order; `io` has value(x, what), array(v, what), text(s, what) and
@@ -84,6 +86,20 @@ void boundSceneLayout(IO& io, P& p) {
     io.value(p.plies.pitch, "the ply pitch");
     io.value(p.plies.twist, "the twist direction");
     io.value(p.plies.samplesPerTurn, "the samples per turn");
+    // The Animator's bind-time state (format version 2): what evaluation derives from the rest
+    // yarns and ply settings, stored so that loading does not resample the rest yarns again.
+    auto& a = p.animator;  // const for the writer
+    io.array(a.keptOffsets, "the resampling layout's kept point offsets");
+    io.array(a.kept, "the resampling layout's kept points");
+    io.array(a.pieceOffsets, "the resampling layout's piece offsets");
+    io.array(a.pieces, "the resampling layout's pieces");
+    io.array(a.centreOffsets, "the resampled point offsets");
+    io.array(a.restArc, "the rest arc lengths");
+    io.array(a.restPhase, "the rest twist phases");
+    io.array(a.restPitch, "the rest pitches");
+    io.array(a.restLength, "the rest yarn lengths");
+    io.array(a.seeds, "the frame seeds");
+    io.array(a.centreColour, "the resampled points' colours");
 }
 
 }  // namespace knit::impl

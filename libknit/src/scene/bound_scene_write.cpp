@@ -8,6 +8,7 @@
 #include "knit/error.hpp"
 #include "knit/output_file.hpp"
 #include "scene/bound_scene_format.hpp"
+#include "scene/scene_budget.hpp"
 
 namespace knit {
 namespace {
@@ -50,7 +51,7 @@ void put(std::string& out, T v) {
 
 }  // namespace
 
-std::string encodeBoundScene(const Scene& rest, const BoundSceneInfo& info) {
+std::string encodeBoundScene(const Scene& rest, const BoundSceneInfo& info, const MemoryBudget& budget) {
     // Step 1: only a scene the pipeline bound (its pattern and placement) can be rebuilt.
     if (rest.pattern().name.empty() || rest.pattern().points.empty())
         throw Error("a bound scene file needs a scene built from a pattern and a mesh (this one was made from parts)");
@@ -64,6 +65,15 @@ std::string encodeBoundScene(const Scene& rest, const BoundSceneInfo& info) {
     parts.binding = rest.binding();
     parts.stats = rest.bindStats();
     parts.plies = rest.plyOptions();
+    // The Animator's bind-time work, as every Animator of the rest scene does it (or the state a
+    // loaded scene brought along).
+    if (rest.animatorState()) {
+        parts.animator = *rest.animatorState();
+    } else {
+        const PlyGenerator generator(rest.yarns(), rest.plyOptions());
+        impl::checkPlyBudget(rest.yarns(), generator.options(), budget);
+        parts.animator = computeAnimatorBindState(rest, generator);
+    }
     // Step 2: the payload, then the header in front of it.
     std::string payload;
     PayloadWriter writer(payload);
@@ -78,9 +88,10 @@ std::string encodeBoundScene(const Scene& rest, const BoundSceneInfo& info) {
     return bytes + payload;
 }
 
-void writeBoundScene(const std::string& path, const Scene& rest, const BoundSceneInfo& info) {
+void writeBoundScene(const std::string& path, const Scene& rest, const BoundSceneInfo& info,
+                     const MemoryBudget& budget) {
     requireWritableFolder(path, "bound scene");
-    const std::string bytes = encodeBoundScene(rest, info);
+    const std::string bytes = encodeBoundScene(rest, info, budget);
     writeFileAtomically(
         path, [&](std::ostream& out) { out.write(bytes.data(), static_cast<std::streamsize>(bytes.size())); }, true);
 }

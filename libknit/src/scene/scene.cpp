@@ -263,6 +263,7 @@ Scene Scene::fromParts(SceneParts parts) {
     s.detail_ = std::move(parts.detail);
     if (parts.plyOptions) s.plyOptions_ = *parts.plyOptions;
     s.plyOptions_.yarnRadius = parts.yarnRadius;
+    s.animatorState_ = std::move(parts.animatorState);
     return s;
 }
 

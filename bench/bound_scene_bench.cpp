@@ -1,0 +1,113 @@
+// bound_scene_bench.cpp — what a farm task saves by loading a bound scene file (`knit bind`)
+// instead of binding: the start-up cost of `knit animate` before its first frame, both ways.
+//
+//   bind: buildScene (stockinette on the built-in drape, as `knit animate` binds its rest pose)
+//         and the Animator's bind-time work (resampling layout, rest arc lengths and twist
+//         phases, frame seeds);
+//   load: readBoundScene of the file `knit bind` would write (from TMPDIR, default /tmp: the page
+//         cache, so the disk is not measured) and the Animator adopting what the file stores.
+// Sizes: the argument is the repeats per side (50, 150, 350; 350 is the ~3M yarn vertex garment).
+// Counters (process CPU seconds, the median of the iterations, so other programs' load does not
+// count; construction only, not the destruction): bindCpuSeconds, loadCpuSeconds, loadOverBind,
+// fileBytes, yarnVertices, centrePoints; the load's parts: readCpuSeconds (the file read, checked
+// and the rest yarns evaluated), animatorCpuSeconds; and what bounds the load: heldBytes (the
+// resident memory the loaded scene and its Animator hold) and touchHeldCpuSeconds (allocating
+// and writing that much fresh memory once: the kernel's page faults and zeroing).
+//
+//   build/bench/bound_scene_bench --benchmark_counters_tabular=true
+#include <algorithm>
+#include <cstdlib>
+#include <ctime>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+
+#include "knit/animation.hpp"
+#include "knit/bound_scene.hpp"
+#include "knit/generator.hpp"
+#include "util/platform.hpp"
+
+namespace {
+
+double cpuSeconds() {
+    timespec t{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+}
+
+void boundSceneLoadVsBind(benchmark::State& state) {
+    knit::SceneOptions options;
+    options.placement.repeats = {double(state.range(0)), double(state.range(0))};
+    options.buildPlies = false;
+    const knit::Pattern pattern = knit::generateStockinette();
+    const knit::BaseMesh drape = knit::makeDrape();
+    const char* tmp = std::getenv("TMPDIR");
+    const std::string path = std::string(tmp ? tmp : "/tmp") + "/knit_bound_scene_bench.knitbind";
+    {
+        const knit::Scene rest = buildScene(pattern, drape, options);
+        knit::writeBoundScene(path, rest, {});
+    }
+    std::vector<double> bind, load, read, animator, floor;
+    size_t yarnVertices = 0, centres = 0, held = 0;
+    for (auto _ : state) {
+        // Construction only: each result is destroyed after its time is taken.
+        std::optional<knit::Scene> rest;
+        std::optional<knit::Animator> boundAnimator;
+        double t0 = cpuSeconds();
+        rest.emplace(buildScene(pattern, drape, options));
+        boundAnimator.emplace(*rest);
+        bind.push_back(cpuSeconds() - t0);
+        boundAnimator.reset();
+        rest.reset();
+
+        std::optional<knit::BoundScene> loaded;
+        std::optional<knit::Animator> loadedAnimator;
+        const size_t before = knit::util::residentBytes();
+        t0 = cpuSeconds();
+        loaded.emplace(knit::readBoundScene(path));
+        const double t1 = cpuSeconds();
+        loadedAnimator.emplace(loaded->scene);
+        const double t2 = cpuSeconds();
+        held = knit::util::residentBytes() - before;
+        read.push_back(t1 - t0);
+        animator.push_back(t2 - t1);
+        load.push_back(t2 - t0);
+        yarnVertices = loaded->scene.yarns().curves.pointCount();
+        centres = loadedAnimator->plyPointCount() / std::max<size_t>(1, loadedAnimator->plyOptions().count);
+        loadedAnimator.reset();
+        loaded.reset();
+
+        // The floor: fresh memory of the size the loaded scene and its Animator hold, allocated
+        // and written once (the kernel's page faults and zeroing).
+        t0 = cpuSeconds();
+        {
+            std::vector<char> fresh(held, 1);
+            benchmark::DoNotOptimize(fresh.data());
+            floor.push_back(cpuSeconds() - t0);
+        }
+    }
+    state.counters["bindCpuSeconds"] = median(bind);
+    state.counters["loadCpuSeconds"] = median(load);
+    state.counters["loadOverBind"] = median(load) / median(bind);
+    state.counters["readCpuSeconds"] = median(read);
+    state.counters["animatorCpuSeconds"] = median(animator);
+    state.counters["heldBytes"] = double(held);
+    state.counters["touchHeldCpuSeconds"] = median(floor);
+    state.counters["fileBytes"] = double(std::filesystem::file_size(path));
+    state.counters["yarnVertices"] = double(yarnVertices);
+    state.counters["centrePoints"] = double(centres);
+    std::filesystem::remove(path);
+}
+BENCHMARK(boundSceneLoadVsBind)->Arg(50)->Arg(150)->Arg(350)->Iterations(3)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
