@@ -464,5 +464,36 @@ TEST_F(CliBadInput, failedSecondOutputLeavesTheExistingFirstOutputUnchanged) {
 #endif
 }
 
+// Found by tools/hostile_cli.py (issue 29): each was accepted with exit 0 (an unusable table, an
+// overwritten input, a non-finite image, a file name from an argument never passed) or silently
+// ignored (a negative --last read as "not set").
+TEST_F(CliBadInput, hostileHuntFindingsAreRefusedNamingTheOption) {
+    fs::create_directories(dir / "f");
+    for (const char* name : {"f/f_0001.obj", "f/f_0002.obj"}) write(name, kTriangleObj);
+    const std::string animate = "animate -q --frames f/f_%04d.obj --repeats 1 1 ";
+    // snprintf over "a_%d_%d.obj" read a second integer that was never passed.
+    expectFailure(animate + "-o a_%d_%d.obj", "a per-frame pattern holds one integer conversion");
+    expectFailure(animate + "-o a_%04d_%s.obj", "no other '%'");
+    // A point cache ignores the rate, but NaN, 0 or a negative rate is a typo.
+    for (const char* fps : {"nan", "0", "-24", "1e308"}) expectFailure(animate + "--fps " + fps + " -o a.pc2", "--fps");
+    // Frame numbers have no sign: -5 meant "not set" and every frame was animated.
+    expectFailure(animate + "--last -5 -o a.pc2", "--last");
+    expectFailure(animate + "--first -1 -o a.pc2", "--first");
+    // The strain table over its own pattern file, or its axes file over it.
+    ASSERT_EQ(knit("generate -o p.pyp", dir).exitCode, 0);
+    const std::string pattern = knit::test::readText((dir / "p.pyp").string());
+    const std::string table = "strain-table -q --samples 2 2 2 --iterations 5 --pattern p.pyp ";
+    expectFailure(table + "-o ./p.pyp", "--pattern 'p.pyp' name the same file");
+    EXPECT_EQ(knit::test::readText((dir / "p.pyp").string()), pattern);
+    // A range of one value over two samples wrote axes no reader accepts ("must increase").
+    expectFailure(table + "--sx-range 0 0 -o t.npy", "the sx range (--sx-range) 0 0 must be increasing");
+#ifdef KNIT_HARD_HAVE_RENDER_CHECK
+    // Radiance near the float range summed to inf: meanRadiance null and a non-finite EXR, exit 0.
+    const std::string render = "render -q --mesh plane --mesh-res 2 --repeats 2 2 --width 8 --height 8 --spp 1 ";
+    expectFailure(render + "--env 1e308 --output r.png", "the environment radiance (--env) 1e+308");
+    expectFailure(render + "--light-irradiance 1e39 --output r.png", "--light-irradiance");
+#endif
+}
+
 }  // namespace
 #endif  // KNIT_CLI
