@@ -487,6 +487,10 @@ TEST_F(CliBadInput, hostileHuntFindingsAreRefusedNamingTheOption) {
     EXPECT_EQ(knit::test::readText((dir / "p.pyp").string()), pattern);
     // A range of one value over two samples wrote axes no reader accepts ("must increase").
     expectFailure(table + "--sx-range 0 0 -o t.npy", "the sx range (--sx-range) 0 0 must be increasing");
+    // An unknown chart token is quoted up to 40 characters (a 20000-character row filled the terminal).
+    write("wide.chart", std::string(20000, 'k') + "\n");
+    expectFailure("chart wide.chart -o c.pyp", "...' (20000 characters; expected k, p");
+    EXPECT_LT(knit("chart wide.chart -o c.pyp", dir).output.size(), 1000u);
 #ifdef KNIT_HARD_HAVE_RENDER_CHECK
     // Radiance near the float range summed to inf: meanRadiance null and a non-finite EXR, exit 0.
     const std::string render = "render -q --mesh plane --mesh-res 2 --repeats 2 2 --width 8 --height 8 --spp 1 ";
