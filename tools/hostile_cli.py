@@ -209,6 +209,10 @@ def cases():
                 "o.OBJ", "mesh.obj", "good.pyp"]:
         add(f"build -o {out or '(empty)'}", ["build", "-q", *SCENE, "--pattern", "good.pyp", "-o", out], "any",
             out if out and out != "/dev/null" else None)
+    add("build -o a 244-byte name", ["build", "-q", *SMALL, "-o", "a" * 240 + ".obj"], "any", "a" * 240 + ".obj")
+    add("animate -o a 244-byte name", ["animate", "-q", "--frames", "frames/f_%04d.obj", "--repeats", "2", "2", "-o",
+                                       "a" * 240 + ".pc2"], "any", "a" * 240 + ".pc2")
+    add("build -o a 304-byte name", ["build", "-q", *SMALL, "-o", "b" * 300 + ".obj"])
     add("build --report dir", ["build", "-q", *SMALL, "-o", "o.obj", "--report", "dir.obj"])
     add("build --report = -o", ["build", "-q", *SMALL, "-o", "o.obj", "--report", "o.obj"])
     add("build -o .gltf beside .bin named as report", ["build", "-q", *SMALL, "-o", "o.gltf", "--report", "o.bin"])

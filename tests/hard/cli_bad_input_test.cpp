@@ -487,6 +487,17 @@ TEST_F(CliBadInput, hostileHuntFindingsAreRefusedNamingTheOption) {
     EXPECT_EQ(knit::test::readText((dir / "p.pyp").string()), pattern);
     // A range of one value over two samples wrote axes no reader accepts ("must increase").
     expectFailure(table + "--sx-range 0 0 -o t.npy", "the sx range (--sx-range) 0 0 must be increasing");
+    // A 244-byte output name is valid, but its temporary ".<name>.<pid>.<n>.tmp" was not (more than
+    // the 255 bytes of a file name): every output of that name failed. Longer names are refused as such.
+    const std::string longName(240, 'a');
+    CliRun r = knit(std::string(kSmall) + "-o " + longName + ".obj", dir);
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(fs::is_regular_file(dir / (longName + ".obj")));
+    r = knit(animate + "-o " + longName + ".pc2", dir);
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(fs::is_regular_file(dir / (longName + ".pc2")));
+    expectFailure(std::string(kSmall) + "-o " + std::string(300, 'b') + ".obj",
+                  "its file name is 304 bytes long, more than the folder's filesystem allows (255)");
     // An unknown chart token is quoted up to 40 characters (a 20000-character row filled the terminal).
     write("wide.chart", std::string(20000, 'k') + "\n");
     expectFailure("chart wide.chart -o c.pyp", "...' (20000 characters; expected k, p");
