@@ -400,6 +400,8 @@ def judge(rc, out, err, peak, new, changed, expect, output, folder):
         if not err.strip():
             why.append("refused without a message")
     if rc == 0:
+        if re.search(r":\s*\[?\s*null", out):  # a JSON report (render prints one) with a non-finite number
+            why.append("exit 0 with null (non-finite) in the printed report")
         if expect == "refuse":
             why.append("accepted (exit 0), expected a refusal")
         if output:
