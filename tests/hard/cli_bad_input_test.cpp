@@ -498,6 +498,21 @@ TEST_F(CliBadInput, hostileHuntFindingsAreRefusedNamingTheOption) {
     EXPECT_TRUE(fs::is_regular_file(dir / (longName + ".pc2")));
     expectFailure(std::string(kSmall) + "-o " + std::string(300, 'b') + ".obj",
                   "its file name is 304 bytes long, more than the folder's filesystem allows (255)");
+    // serve: NaN passed CLI11's range check and became an upload limit of 2^63 bytes; the server
+    // started (`timeout`: a regression would serve until killed).
+    for (const char* flag : {"--max-upload-mb", "--max-result-mb"}) {
+        const std::string cmd =
+            "cd '" + dir.string() + "' && timeout 20 '" KNIT_CLI "' serve --port 0 " + flag + " nan 2>&1";
+        FILE* pipe = popen(cmd.c_str(), "r");
+        ASSERT_NE(pipe, nullptr);
+        char buf[4096];
+        std::string output;
+        while (size_t n = fread(buf, 1, sizeof buf, pipe)) output.append(buf, n);
+        const int status = pclose(pipe);
+        EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 1) << output;
+        EXPECT_NE(output.find(std::string(flag) + " must be a size of 0.001 to 4096 MB, got nan"), std::string::npos)
+            << output;
+    }
     // An unknown chart token is quoted up to 40 characters (a 20000-character row filled the terminal).
     write("wide.chart", std::string(20000, 'k') + "\n");
     expectFailure("chart wide.chart -o c.pyp", "...' (20000 characters; expected k, p");
