@@ -8,10 +8,12 @@
 #include "bind_command.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -44,10 +46,30 @@ bool hasFramePattern(const std::string& path) {
     return p != std::string::npos && name.find('d', p) != std::string::npos;
 }
 
+// A per-frame output pattern split around its one integer conversion (%d, %04d) in the file
+// name; false when the name holds another '%' or a second conversion (snprintf over such a name
+// would read arguments that were never passed), or a width beyond 9 digits.
+bool splitFramePattern(const std::string& path, std::string& head, std::string& spec, std::string& tail) {
+    const std::filesystem::path p(path);
+    const std::string name = p.filename().string();
+    const size_t at = name.find('%');
+    if (at == std::string::npos) return false;
+    size_t end = at + 1;
+    while (end < name.size() && std::isdigit(static_cast<unsigned char>(name[end]))) ++end;
+    if (end >= name.size() || name[end] != 'd' || end - at - 1 > 2 || name.find('%', end) != std::string::npos)
+        return false;
+    head = (p.parent_path() / name.substr(0, at)).string();
+    spec = name.substr(at, end + 1 - at);
+    tail = name.substr(end + 1);
+    return true;
+}
+
 std::string framePath(const std::string& pattern, int number) {
-    char buf[4096];
-    std::snprintf(buf, sizeof buf, pattern.c_str(), number);
-    return buf;
+    std::string head, spec, tail;
+    if (!splitFramePattern(pattern, head, spec, tail)) return pattern;  // refused by checkOutput before
+    char digits[32];
+    std::snprintf(digits, sizeof digits, spec.c_str(), number);
+    return head + digits + tail;
 }
 
 // The constant topology written beside a point cache: same stem, .obj.
@@ -121,6 +143,11 @@ void checkOutput(const ExportOptions& o) {
         requireWritableFolder(o.path, "animated glTF");
         return;
     }
+    std::string head, spec, tail;
+    if (hasFramePattern(o.path) && !splitFramePattern(o.path, head, spec, tail))
+        throw Error("-o '" + o.path +
+                    "': a per-frame pattern holds one integer conversion in its file name (%d, or %04d for four "
+                    "digits; a width of at most 2 digits) and no other '%'");
     if (!hasFramePattern(o.path))
         throw Error("-o '" + o.path +
                     "': give a point cache (out.pc2, out.mdd), one animated out.glb or a per-frame pattern such as "
@@ -224,8 +251,7 @@ nlohmann::json animateReport(double bindSeconds, const std::vector<FrameRecord>&
 
 // Step: every frame read, evaluated and written; the per-frame records.
 std::vector<FrameRecord> runFrames(const FrameSequence& seq, const Animator& animator, FrameSink& sink,
-                                   StageTotals& totals, bool quiet) {
-    const InterruptGuard interrupt;
+                                   StageTotals& totals, bool quiet, const InterruptGuard& interrupt) {
     AnimationFrame frame;
     std::vector<FrameRecord> records;
     for (size_t i = 0; i < seq.size(); ++i) {
@@ -269,8 +295,11 @@ void addAnimateCommand(CLI::App& app, AnimateCommand& a) {
     a.command->add_option("--bound", a.bound,
                           "Bound scene file (`knit bind`): load it instead of binding (no scene flags besides "
                           "--max-memory and -q)");
-    a.command->add_option("--first", a.range.first, "First frame number (default: the smallest found)");
-    a.command->add_option("--last", a.range.last, "Last frame number (default: the largest found)");
+    // Frame numbers come from file names (digits, no sign): a negative one would read as "not set".
+    a.command->add_option("--first", a.range.first, "First frame number (default: the smallest found)")
+        ->check(CLI::Range(0, std::numeric_limits<int>::max()));
+    a.command->add_option("--last", a.range.last, "Last frame number (default: the largest found)")
+        ->check(CLI::Range(0, std::numeric_limits<int>::max()));
     a.command->add_option("--step", a.range.step, "Frame number step")->capture_default_str();
     a.command
         ->add_option("--fps", a.fps,
@@ -307,6 +336,12 @@ int runAnimate(const AnimateCommand& a) {
     if (a.threads > 0) threads.emplace(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(a.threads));
     checkOutput(a.exportOptions);
     checkReportPath(a.report);
+    // NaN passes CLI11's range checks; a point cache ignores the rate, but a rate of 0, -24 or NaN is a typo.
+    if (!(a.fps >= 1e-3 && a.fps <= 1e6)) {
+        char got[32];
+        std::snprintf(got, sizeof got, "%g", a.fps);
+        throw Error(std::string("--fps must be a frame rate of 0.001 to 1e6 frames per second, got ") + got);
+    }
     FrameRange range = a.range;
     if (a.command != nullptr && a.command->count("--fps") > 0) range.fps = a.fps;  // glTF input: sample at --fps
     const FrameSequence seq(a.frames, range);
@@ -333,6 +368,13 @@ int runAnimate(const AnimateCommand& a) {
     // Step 3: the frames, streamed into staged outputs (existing files stay unchanged until the end).
     OutputTransaction outputs;
     const ExportOptions staged = stagedExport(a.exportOptions, sceneOptions.budget, outputs);
+    // SIGINT / SIGTERM from here on set a flag the frame loop checks, so the run unwinds (and the
+    // staging folder goes) with "interrupted by signal N". Installed after the staging folder is
+    // registered (that installs the handler removing temporaries, which this one then replaces and
+    // restores) and before the sink creates the first temporary file: a signal seen while that
+    // file exists always takes this path (before, the guard came only with the frame loop, after
+    // the cache file was created, and a signal in between ended the run by the signal).
+    const InterruptGuard interrupt;
     CacheFormat format;
     std::unique_ptr<FrameSink> sink;
     if (cacheFormatOf(staged.path, format))
@@ -342,13 +384,16 @@ int runAnimate(const AnimateCommand& a) {
     else sink = std::make_unique<FilesSink>(animator, staged);
     StageTotals totals;
     const std::vector<FrameRecord> frames =
-        outputs.run([&] { return runFrames(seq, animator, *sink, totals, a.scene.quiet); });
+        outputs.run([&] { return runFrames(seq, animator, *sink, totals, a.scene.quiet, interrupt); });
     outputs.run([&] { sink->commit(); });
     // Step 4: the report; then every output is committed together; the summary.
     if (!a.report.empty())
         outputs.run(
             [&] { writeReport(outputs.stage(a.report), animateReport(bindSeconds, frames, totals, animator)); });
-    outputs.run([&] { outputs.commit(); });
+    outputs.run([&] {
+        interrupt.check();  // a signal during the last writes: nothing is committed
+        outputs.commit();
+    });
     std::printf("animated %zu frames (%zu yarn vertices, %zu ply vertices per frame): %s %.3f s, wrote %s\n",
                 frames.size(), rest.yarns().curves.pointCount(), animator.plyPointCount(),
                 a.bound.empty() ? "bind" : "load", bindSeconds, a.exportOptions.path.c_str());

@@ -7,7 +7,9 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <string>
 #include <thread>
+#include <utility>
 
 #include "knit/budget.hpp"
 #include "knit/error.hpp"
@@ -41,6 +43,12 @@ int runServe(const ServeCommand& s) {
     o.host = s.host;
     o.port = s.port;
     o.jobs = s.jobs;
+    // NaN passes CLI11's range checks, and converting it to an integer is undefined (on x86 a
+    // limit of 2^63 bytes: uploads of any size).
+    for (const auto& [flag, mb] :
+         {std::pair{"--max-upload-mb", s.maxUploadMb}, std::pair{"--max-result-mb", s.maxResultMb}})
+        if (!(mb >= 0.001 && mb <= 4096.0))
+            throw Error(std::string(flag) + " must be a size of 0.001 to 4096 MB, got " + std::to_string(mb));
     o.maxUploadBytes = uint64_t(s.maxUploadMb * 1048576.0);
     o.maxResultBytes = uint64_t(s.maxResultMb * 1048576.0);
     if (!s.maxMemory.empty()) o.budget = MemoryBudget(parseMemorySize(s.maxMemory));

@@ -34,6 +34,8 @@ const std::vector<SettingSpelling>& settingFlags() {
         {"the field of view", "--fov"},
         {"the image width", "--width"},
         {"the image height", "--height"},
+        {"the environment radiance", "--env"},
+        {"the light irradiance", "--light-irradiance"},
         // The export.
         {"what to export", "--export"},
         {"the number of tube sides", "--sides"},
@@ -51,6 +53,10 @@ const std::vector<SettingSpelling>& settingFlags() {
         {"the frame rate", "--fps"},
         {"the frame step", "--step"},
         {"the last frame", "--last"},
+        // Strain tables.
+        {"the sx range", "--sx-range"},
+        {"the sa range", "--sa-range"},
+        {"the sy range", "--sy-range"},
     };
     return flags;
 }

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "interrupt.hpp"
+#include "path_collisions.hpp"
 #include "knit/error.hpp"
 #include "knit/generator.hpp"
 #include "knit/output_file.hpp"
@@ -66,6 +67,8 @@ StrainTable makeTableWithProgress(const Pattern& pattern, const StrainTableOptio
 int runStrainTable(const StrainTableCommand& c) {
     const Pattern pattern = loadPatternFileOrName(c.pattern);
     requireWritableFolder(c.output, "the strain table");  // before the long work
+    refuseCollidingPaths({{"--pattern", c.pattern}},
+                         {{"-o", c.output}, {"the table's axes file", strainAxesPath(c.output)}});
     StrainTableStats stats;
     const StrainTable t = makeTableWithProgress(pattern, strainTableOptions(c), c.quiet, stats);
     writeStrainTable(t, c.output);

@@ -156,6 +156,10 @@ class OBJECT_OT_knit_bake_pc2(bpy.types.Operator):
 
     def execute(self, context):
         path = bpy.path.abspath(self.filepath or f"//{context.active_object.name}.pc2")
+        if not path.lower().endswith(".pc2"):  # another file (a .blend, a pattern) would be overwritten
+            self.report({"ERROR"}, f"File path: '{path}' is not a .pc2 name (a PC2 point cache is written there); "
+                                   "nothing written")
+            return {"CANCELLED"}
         if self.frame_end < self.frame_start:
             self.report({"ERROR"}, f"End ({self.frame_end}) is before Start ({self.frame_start}); nothing written")
             return {"CANCELLED"}

@@ -156,9 +156,16 @@ def bind(source, options, depsgraph, rest=None):
     pattern = options["pattern"]
     if options.get("chart_source"):  # chart text from a text block (the operator's Chart text)
         pattern = knit.chart_pattern(options["chart_source"], name=options.get("chart_text") or "chart text")
-    return knit.build_scene(pattern, mesh, repeats=repeats if repeats[0] > 0 else None,
-                            plies=options["plies"], ply_pitch=options["ply_pitch"], twist=options["twist"],
-                            deform=options.get("deform", "none"), build_plies=False)
+    try:
+        return knit.build_scene(pattern, mesh, repeats=repeats if repeats[0] > 0 else None,
+                                plies=options["plies"], ply_pitch=options["ply_pitch"], twist=options["twist"],
+                                deform=options.get("deform", "none"), build_plies=False)
+    except knit.Error as e:
+        if not (gauge[0] > 0 and gauge[1] > 0) or getattr(e, "words", None) is None:
+            raise
+        # The repeats came from Gauge, not from the Repeats the user left alone.
+        names = [("the repeats", "from Gauge")] + [n for n in PROPERTY_NAMES if n[0] != "the repeats"]
+        raise ValueError(knit.spell_settings(e.words, names)) from None
 
 
 # -- Step 3: the ply mesh (edges + radius) --------------------------------------------------------

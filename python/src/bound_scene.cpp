@@ -7,6 +7,7 @@
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
+#include "input_files.hpp"
 #include "knit/animation.hpp"
 #include "knit/bound_scene.hpp"
 #include "knit/scene.hpp"
@@ -31,6 +32,9 @@ void registerBoundScene(py::module_& m) {
     m.def(
         "save_bound_scene",
         [](const knit::Scene& scene, const std::string& path, const std::string& settings) {
+            refuseWritingOverInputs(
+                "path", path,
+                {{"the scene's pattern file", scene.pattern().name}, {"the scene's mesh file", scene.mesh().name}});
             knit::BoundSceneInfo info;
             info.settings = settings;
             py::gil_scoped_release release;

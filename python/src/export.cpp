@@ -2,6 +2,7 @@
 #include <vector>
 
 #include "bindings.hpp"
+#include "input_files.hpp"
 #include "knit/budget.hpp"
 #include "knit/error.hpp"
 #include "knit/export.hpp"
@@ -33,6 +34,9 @@ void registerExport(py::module_& m) {
         "export_scene",
         [](const knit::Scene& scene, const std::string& path, const std::string& what, int sides, bool caps, bool draco,
            bool quantize, bool yarnColors, bool meshopt, const std::string& maxMemory) {
+            refuseWritingOverInputs(
+                "path", path,
+                {{"the scene's pattern file", scene.pattern().name}, {"the scene's mesh file", scene.mesh().name}});
             knit::ExportOptions o;
             o.path = path;
             o.what = exportWhat(what);

@@ -4,6 +4,7 @@
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
+#include "input_files.hpp"
 #include "knit/error.hpp"
 #include "knit/generator.hpp"
 #include "knit/strain.hpp"
@@ -52,6 +53,11 @@ void registerStrain(py::module_& m) {
             const knit::Pattern p = py::isinstance<py::str>(pattern)
                                         ? knit::loadPatternFileOrName(pattern.cast<std::string>())
                                         : pattern.cast<knit::Pattern>();
+            if (!path.is_none()) {  // before the long work
+                const std::string out = path.cast<std::string>();
+                refuseWritingOverInputs("path", out, {{"the pattern file", p.name}});
+                refuseWritingOverInputs("path", knit::strainAxesPath(out), {{"the pattern file", p.name}});
+            }
             knit::StrainTableOptions o;
             o.samples = {std::get<0>(samples), std::get<1>(samples), std::get<2>(samples)};
             o.sxRange = range(sxRange);

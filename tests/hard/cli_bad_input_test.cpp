@@ -464,5 +464,66 @@ TEST_F(CliBadInput, failedSecondOutputLeavesTheExistingFirstOutputUnchanged) {
 #endif
 }
 
+// Found by tools/hostile_cli.py (issue 29): each was accepted with exit 0 (an unusable table, an
+// overwritten input, a non-finite image, a file name from an argument never passed) or silently
+// ignored (a negative --last read as "not set").
+TEST_F(CliBadInput, hostileHuntFindingsAreRefusedNamingTheOption) {
+    fs::create_directories(dir / "f");
+    for (const char* name : {"f/f_0001.obj", "f/f_0002.obj"}) write(name, kTriangleObj);
+    const std::string animate = "animate -q --frames f/f_%04d.obj --repeats 1 1 ";
+    // snprintf over "a_%d_%d.obj" read a second integer that was never passed.
+    expectFailure(animate + "-o a_%d_%d.obj", "a per-frame pattern holds one integer conversion");
+    expectFailure(animate + "-o a_%04d_%s.obj", "no other '%'");
+    // A point cache ignores the rate, but NaN, 0 or a negative rate is a typo.
+    for (const char* fps : {"nan", "0", "-24", "1e308"}) expectFailure(animate + "--fps " + fps + " -o a.pc2", "--fps");
+    // Frame numbers have no sign: -5 meant "not set" and every frame was animated.
+    expectFailure(animate + "--last -5 -o a.pc2", "--last");
+    expectFailure(animate + "--first -1 -o a.pc2", "--first");
+    // The strain table over its own pattern file, or its axes file over it.
+    ASSERT_EQ(knit("generate -o p.pyp", dir).exitCode, 0);
+    const std::string pattern = knit::test::readText((dir / "p.pyp").string());
+    const std::string table = "strain-table -q --samples 2 2 2 --iterations 5 --pattern p.pyp ";
+    expectFailure(table + "-o ./p.pyp", "--pattern 'p.pyp' name the same file");
+    EXPECT_EQ(knit::test::readText((dir / "p.pyp").string()), pattern);
+    // A range of one value over two samples wrote axes no reader accepts ("must increase").
+    expectFailure(table + "--sx-range 0 0 -o t.npy", "the sx range (--sx-range) 0 0 must be increasing");
+    // A 244-byte output name is valid, but its temporary ".<name>.<pid>.<n>.tmp" was not (more than
+    // the 255 bytes of a file name): every output of that name failed. Longer names are refused as such.
+    const std::string longName(240, 'a');
+    CliRun r = knit(std::string(kSmall) + "-o " + longName + ".obj", dir);
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(fs::is_regular_file(dir / (longName + ".obj")));
+    r = knit(animate + "-o " + longName + ".pc2", dir);
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(fs::is_regular_file(dir / (longName + ".pc2")));
+    expectFailure(std::string(kSmall) + "-o " + std::string(300, 'b') + ".obj",
+                  "its file name is 304 bytes long, more than the folder's filesystem allows (255)");
+    // serve: NaN passed CLI11's range check and became an upload limit of 2^63 bytes; the server
+    // started (`timeout`: a regression would serve until killed).
+    for (const char* flag : {"--max-upload-mb", "--max-result-mb"}) {
+        const std::string cmd =
+            "cd '" + dir.string() + "' && timeout 20 '" KNIT_CLI "' serve --port 0 " + flag + " nan 2>&1";
+        FILE* pipe = popen(cmd.c_str(), "r");
+        ASSERT_NE(pipe, nullptr);
+        char buf[4096];
+        std::string output;
+        while (size_t n = fread(buf, 1, sizeof buf, pipe)) output.append(buf, n);
+        const int status = pclose(pipe);
+        EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 1) << output;
+        EXPECT_NE(output.find(std::string(flag) + " must be a size of 0.001 to 4096 MB, got nan"), std::string::npos)
+            << output;
+    }
+    // An unknown chart token is quoted up to 40 characters (a 20000-character row filled the terminal).
+    write("wide.chart", std::string(20000, 'k') + "\n");
+    expectFailure("chart wide.chart -o c.pyp", "...' (20000 characters; expected k, p");
+    EXPECT_LT(knit("chart wide.chart -o c.pyp", dir).output.size(), 1000u);
+#ifdef KNIT_HARD_HAVE_RENDER_CHECK
+    // Radiance near the float range summed to inf: meanRadiance null and a non-finite EXR, exit 0.
+    const std::string render = "render -q --mesh plane --mesh-res 2 --repeats 2 2 --width 8 --height 8 --spp 1 ";
+    expectFailure(render + "--env 1e308 --output r.png", "the environment radiance (--env) 1e+308");
+    expectFailure(render + "--light-irradiance 1e39 --output r.png", "--light-irradiance");
+#endif
+}
+
 }  // namespace
 #endif  // KNIT_CLI

@@ -127,7 +127,12 @@ Stitch parseStitch(const Token& token, const std::string& source, int line) {
         }
     bool overPurl = false;
     if (!parseCable(token.text, s, overPurl))
-        fail(source, line, token.column, "unknown stitch '" + token.text + "' (" + kKnownTokens + ")");
+        fail(source, line, token.column,
+             "unknown stitch '" +
+                 (token.text.size() > 40
+                      ? token.text.substr(0, 40) + "...' (" + std::to_string(token.text.size()) + " characters; "
+                      : token.text + "' (") +
+                 kKnownTokens + ")");
     if (overPurl)
         fail(source, line, token.column,
              "cable '" + token.text + "' over purl stitches: the stitches a cable crosses are knit stitches");

@@ -32,17 +32,19 @@ void validateOptions(const StrainTableOptions& o) {
     for (int a = 0; a < 3; ++a)
         if (o.samples[size_t(a)] < 1 || o.samples[size_t(a)] > 64)
             throw Error("the strain samples must be 1 to 64 per axis, got " + std::to_string(o.samples[size_t(a)]));
-    const auto range = [](const std::array<double, 2>& r, double lo, double hi, const char* name) {
-        if (!(r[0] <= r[1]) || !(r[0] > lo) || !(r[1] < hi) || !std::isfinite(r[0]) || !std::isfinite(r[1])) {
+    // Two or more samples need a range that increases (a table's axes must); one sample may sit at one value.
+    const auto range = [](const std::array<double, 2>& r, int samples, double lo, double hi, const char* name) {
+        if (!(samples == 1 ? r[0] <= r[1] : r[0] < r[1]) || !(r[0] > lo) || !(r[1] < hi) || !std::isfinite(r[0]) ||
+            !std::isfinite(r[1])) {
             std::ostringstream m;
             m << "the " << name << " range " << r[0] << " " << r[1] << " must be increasing and within (" << lo << ", "
               << hi << ")";
             throw Error(m.str());
         }
     };
-    range(o.sxRange, -1, 10, "sx");
-    range(o.saRange, -0.95, 0.95, "sa");
-    range(o.syRange, -1, 10, "sy");
+    range(o.sxRange, o.samples[0], -1, 10, "sx");
+    range(o.saRange, o.samples[1], -0.95, 0.95, "sa");
+    range(o.syRange, o.samples[2], -1, 10, "sy");
     if (!(o.stretch > 0) || !(o.bend >= 0) || !(o.contact >= 0) || o.maxIterations < 1)
         throw Error("the strain table's stretch weight must be positive, its bend and contact weights >= 0 and its "
                     "iteration count >= 1");

@@ -8,6 +8,8 @@
 #include <cstdio>
 #include <mutex>
 #include <optional>
+#include <sstream>
+#include <utility>
 
 #include <glm/geometric.hpp>
 
@@ -84,9 +86,15 @@ public:
             throw Error("render: image size " + std::to_string(o_.width) + " x " + std::to_string(o_.height) +
                         " is outside 1..16384");
         if (o_.maxDepth < 1 || o_.maxDepth > 1000) throw Error("render: max depth must be in 1..1000");
-        if (!(o_.environment >= 0) || !(o_.lightIrradiance >= 0) || !std::isfinite(o_.environment) ||
-            !std::isfinite(o_.lightIrradiance))
-            throw Error("render: environment and light irradiance must be finite and >= 0");
+        // The image and its EXR hold 32-bit floats: a radiance near their range (3.4e38) would sum
+        // to inf over the samples of a pixel and leave a non-finite image.
+        for (const auto& [value, words] : {std::pair{o_.environment, "the environment radiance"},
+                                           std::pair{o_.lightIrradiance, "the light irradiance"}})
+            if (!(value >= 0 && value <= 1e30)) {
+                std::ostringstream m;
+                m << "render: " << words << " " << value << " must be a number in 0..1e30 (images hold 32-bit floats)";
+                throw Error(m.str());
+            }
         if (!(o_.fovDegrees > 1 && o_.fovDegrees < 170))
             throw Error("render: field of view must be in (1, 170) degrees");
         if (!(o_.baseAlbedo >= 0 && o_.baseAlbedo <= 1)) throw Error("render: base albedo must be in [0, 1]");

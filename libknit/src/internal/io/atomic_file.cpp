@@ -28,13 +28,25 @@ std::string folderOf(const std::string& path) {
     return parent.empty() ? std::string(".") : parent.string();
 }
 
-// Unique per process and call: <folder>/.<name>.<pid>.<n>.tmp
+// The longest file name the folder's filesystem takes (NAME_MAX, 255 on every Linux filesystem
+// libknit is used on; pathconf tells when the folder exists).
+size_t nameMax(const std::string& folder) {
+    const long n = ::pathconf(folder.c_str(), _PC_NAME_MAX);
+    return n > 16 ? size_t(n) : size_t(255);
+}
+
+// Unique per process and call: <folder>/.<name>.<pid>.<n>.tmp. The name is shortened so that
+// the temporary's name stays within the filesystem's limit (a 240-byte output name is valid, its
+// temporary's 260 bytes were not); the pid and counter keep it unique, and stale_temporaries
+// reads them from the end.
 std::string tempSibling(const std::string& path) {
     static std::atomic<unsigned> counter{0};
     const fs::path p(path);
-    const std::string name = "." + p.filename().string() + "." + std::to_string(::getpid()) + "." +
-                             std::to_string(counter.fetch_add(1)) + ".tmp";
-    return (p.parent_path() / name).string();
+    const std::string tail = "." + std::to_string(::getpid()) + "." + std::to_string(counter.fetch_add(1)) + ".tmp";
+    std::string name = p.filename().string();
+    const size_t room = nameMax(folderOf(path)) - tail.size() - 1;
+    if (name.size() > room) name.resize(room);
+    return (p.parent_path() / ("." + name + tail)).string();
 }
 
 }  // namespace
@@ -45,6 +57,11 @@ void checkOutputFolder(const std::string& path) {
     if (!p.has_filename() || p.filename() == "." || p.filename() == "..")
         throw Error("cannot write '" + path + "': the path names a folder, not a file");
     requireWritableFolder(path);
+    const size_t nameBytes = p.filename().string().size();
+    if (nameBytes > nameMax(folderOf(path)))
+        throw Error("cannot write '" + path + "': its file name is " + std::to_string(nameBytes) +
+                    " bytes long, more than the folder's filesystem allows (" +
+                    std::to_string(nameMax(folderOf(path))) + "); choose a shorter name");
     std::error_code ec;
     if (fs::is_directory(fs::status(path, ec)))
         throw Error("cannot write '" + path + "': a folder with that name exists");

@@ -1,0 +1,125 @@
+"""Headless hostile-input test of the add-on's operators (issue 29; run by ctest as
+blender_addon_hostile: blender -b --factory-startup --python-exit-code 1 --python ...).
+
+Apply Knit with absurd properties (a missing, empty or device pattern file, an unknown chart text
+block or a chart that does not parse, repeats or a gauge far outside any garment, a tiny ply pitch),
+on a mesh without UVs or without faces, and Bake Knit to PC2 into a folder, a missing folder or
+over the source's own file: every one either makes a finite knit or is refused in the interface
+(an ERROR report: RuntimeError in background mode) whose message names the operator's properties,
+never a command-line flag or a Python keyword, with no traceback printed, no object left behind by
+a refusal and no file written."""
+import contextlib
+import io
+import os
+import sys
+import tempfile
+
+import bpy
+import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import knit_blender  # noqa: E402
+from addon_scene import make_animated_grid, points_of  # noqa: E402
+
+FOREIGN = ["--", "res_u", "max_memory", "ply_pitch", "samples_per_turn", "Traceback", "::"]
+
+
+def check(condition, what):
+    print(("ok   " if condition else "FAIL ") + what)
+    if not condition:
+        raise SystemExit(f"knit_blender test failed: {what}")
+
+
+def run(op, **props):
+    """Runs an operator; returns (result, message, printed)."""
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        try:
+            return op(**props), "", out.getvalue() + err.getvalue()
+        except RuntimeError as e:  # an ERROR report in background mode
+            return {"CANCELLED"}, str(e), out.getvalue() + err.getvalue()
+
+
+def select(obj):
+    bpy.ops.object.select_all(action="DESELECT")
+    obj.select_set(True)
+    bpy.context.view_layer.objects.active = obj
+
+
+def expect_refused_or_finite(source, what, words=None, **props):
+    select(source)
+    names = set(bpy.data.objects.keys())
+    result, message, printed = run(bpy.ops.object.knit_apply, **props)
+    check("Traceback" not in printed and "Traceback" not in message, f"{what}: no traceback")
+    if result == {"FINISHED"}:
+        new = [bpy.data.objects[n] for n in set(bpy.data.objects.keys()) - names]
+        check(all(np.all(np.isfinite(points_of(o))) for o in new), f"{what}: a finite knit")
+        check(words is None, f"{what}: refused (it was accepted)")
+        for o in new:
+            bpy.data.objects.remove(o)
+        return
+    check(set(bpy.data.objects.keys()) == names, f"{what}: a refusal leaves no object")
+    check(not any(f in message for f in FOREIGN), f"{what}: the message names no flag or keyword ({message!r})")
+    if words:
+        check(all(w in message for w in words), f"{what}: the message says {words} ({message!r})")
+
+
+def main():
+    knit_blender.register()
+    folder = tempfile.mkdtemp(prefix="knit-blender-hostile-")
+    empty = os.path.join(folder, "empty.pyp")
+    open(empty, "w").close()
+    cloth = make_animated_grid()
+
+    expect_refused_or_finite(cloth, "a missing pattern file", ["missing.pyp"],
+                             pattern=os.path.join(folder, "missing.pyp"))
+    expect_refused_or_finite(cloth, "an empty pattern file", ["empty.pyp"], pattern=empty)
+    expect_refused_or_finite(cloth, "a folder as the pattern", [folder], pattern=folder)
+    expect_refused_or_finite(cloth, "a device as the pattern", ["/dev/zero"], pattern="/dev/zero")
+    expect_refused_or_finite(cloth, "an empty pattern name", [], pattern="")
+    expect_refused_or_finite(cloth, "an unknown chart text block", ["Chart text"], chart_text="no such block")
+    bad = bpy.data.texts.new("bad chart")
+    bad.write("k zz\nk k\n")
+    expect_refused_or_finite(cloth, "a chart that does not parse", ["zz"], chart_text="bad chart")
+    wide = bpy.data.texts.new("wide chart")
+    wide.write("k" * 20000 + "\n")
+    expect_refused_or_finite(cloth, "a 20000-character token", ["20000 characters"], chart_text="wide chart")
+    check(len(run(bpy.ops.object.knit_apply, chart_text="wide chart")[1]) < 1000, "a long token is not echoed whole")
+    expect_refused_or_finite(cloth, "repeats far beyond any garment", ["Repeats"], repeats=(1e9, 1e9))
+    expect_refused_or_finite(cloth, "a gauge far beyond any garment", ["the repeats (from Gauge)"], repeats=(0, 0),
+                             gauge=(1e9, 1e9))
+    expect_refused_or_finite(cloth, "repeats of a billionth", None, repeats=(1e-9, 1e-9))
+    expect_refused_or_finite(cloth, "a ply pitch of a picometre", ["Ply pitch"], ply_pitch=1e-12)
+
+    # Meshes the knit cannot bind to.
+    bpy.ops.mesh.primitive_plane_add(size=1)
+    no_uv = bpy.context.active_object
+    no_uv.data.uv_layers.remove(no_uv.data.uv_layers[0])
+    expect_refused_or_finite(no_uv, "a mesh without UVs", ["UV"])
+    mesh = bpy.data.meshes.new("points only")
+    mesh.from_pydata([(0, 0, 0), (1, 0, 0), (0, 1, 0)], [], [])
+    points = bpy.data.objects.new("Points", mesh)
+    bpy.context.scene.collection.objects.link(points)
+    expect_refused_or_finite(points, "a mesh without faces", [])
+
+    # Bake to PC2 into places it cannot write: nothing written, no traceback.
+    select(cloth)
+    check(run(bpy.ops.object.knit_apply, pattern="stockinette", repeats=(4, 4))[0] == {"FINISHED"}, "a good knit")
+    knit_obj = bpy.data.objects[f"{cloth.name}.knit"]
+    before = sorted(os.listdir(folder))
+    for path, what in [(folder, "a folder"), (os.path.join(folder, "missing", "c.pc2"), "a missing folder"),
+                       (empty, "a file that is not .pc2")]:
+        select(knit_obj)
+        result, message, printed = run(bpy.ops.object.knit_bake_pc2, filepath=path, frame_start=1, frame_end=3)
+        check(result == {"CANCELLED"} and "Traceback" not in printed, f"bake into {what}: refused ({message!r})")
+        check(not any(f in message for f in FOREIGN), f"bake into {what}: names no flag or keyword")
+        check(sorted(os.listdir(folder)) == before, f"bake into {what}: nothing written")
+    select(knit_obj)
+    result, message, _ = run(bpy.ops.object.knit_bake_pc2, filepath=os.path.join(folder, "c.pc2"), frame_start=5,
+                             frame_end=2)
+    check(result == {"CANCELLED"} and "End (2) is before Start (5)" in message, "bake End before Start: refused")
+    print("knit_blender hostile test passed")
+
+
+main()
