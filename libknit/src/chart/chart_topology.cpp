@@ -52,6 +52,7 @@ constexpr double kTuckFoot = 0.6;             // parameter span over which it me
 // Where a stranded yarn's loop meets its float beside another yarn's loop, both feet step back
 // from the shared foot point (inwards and up or down), so the two yarns do not meet there.
 constexpr double kJunctionX = 0.5, kJunctionY = 0.6, kJunctionSpan = 0.8;
+constexpr double kThirdRowYarn = 0.25;         // extra yarn (in plain loops) of a loop held a third row
 constexpr double kTwist0 = 1.3, kTwist1 = 1.9;  // a twisted loop's halves swap sides between these |t|
 constexpr double kTwistDepth = 0.7, kTwistWidth = 0.15;
 
@@ -353,7 +354,11 @@ std::vector<double> liftedRestScale(const ChartCell& cell, double metresPerUnit,
             const PeriodicEdge& e = p.edges[i];
             length += glm::length(p.points[e.v1] + glm::dvec3(e.dx * p.px, e.dy * p.py, 0) - p.points[e.v0]);
         }
-        for (uint32_t i = l.first; i < l.first + l.count; ++i) scale[i] = std::min(1.0, plain / length);
+        // A loop held on a third row draws a quarter of a plain loop's yarn from its neighbours
+        // (with a plain loop's length it pulled three rows so tight that the yarns came to
+        // 1.868 r apart; with this, 1.964 r: docs/charts.md).
+        const double held = plain * (1 + kThirdRowYarn * std::max(0, l.lift - 2));
+        for (uint32_t i = l.first; i < l.first + l.count; ++i) scale[i] = std::min(1.0, held / length);
     }
     // Stranded floats hold a little less yarn than the loose construction gives them (0.95 of
     // it, on top of the relaxation's rest length): with the construction's length the relaxed
