@@ -93,7 +93,7 @@ struct ChartCell {
     int width = 0, height = 0;                   // stitches per period (the chart's size)
     std::vector<StitchLoop> loops;               // row-major, row 0 first
     std::vector<std::array<uint8_t, 3>> colour;  // per loop sRGB; empty without a colour layer
-    std::vector<ChartFloat> floats;              // every float, row by row
+    std::vector<ChartFloat> floats;              // every float (rows of the chart as written)
     int yarns = 0;  // closed yarns (one per row, more when stranded, one per area for intarsia)
     // Per vertex, for the edge leaving it: the yarn length it holds over its length here. 1,
     // except on loops lifted by slipped or tucked stitches (built stretched over two or more

@@ -613,6 +613,13 @@ ChartCell chartToCell(const Chart& chart, const ChartCellOptions& options) {
     const std::vector<char> letter = isIntarsia ? buildIntarsia(in, s, cell) : buildYarns(in, starts, s, cell);
     p.twist.assign(p.points.size(), 0.0);
     cell.restScale = liftedRestScale(cell, s, options.samplesPerStitch);
+    // A chart stacked twice lists the floats of its first copy only (the second repeats them), so
+    // every float's row is a row of the chart as written (Chart::rowLine, the warnings).
+    cell.floats.erase(std::remove_if(cell.floats.begin(), cell.floats.end(),
+                                     [&](const ChartFloat& f) { return f.row >= chart.height; }),
+                      cell.floats.end());
+    std::stable_sort(cell.floats.begin(), cell.floats.end(),
+                     [](const ChartFloat& a, const ChartFloat& b) { return a.row < b.row; });
     colourLayer(ch, letter, cell);
     validatePattern(p, p.name);
     return cell;
