@@ -55,9 +55,7 @@ void BM_RelaxAffineStockinette2x2(benchmark::State& state) {
 void BM_RelaxAffineCable12x16(benchmark::State& state) {
     relax(state, knit::parseChart(cableCell(), "cable12x16"), true);
 }
-void BM_RelaxAffineBuiltin(benchmark::State& state, const char* name) {
-    relax(state, knit::builtinChart(name), true);
-}
+void BM_RelaxAffineBuiltin(benchmark::State& state, const char* name) { relax(state, knit::builtinChart(name), true); }
 
 }  // namespace
 

@@ -70,7 +70,7 @@ struct StitchLoop {
     int lift = 0;          // rows its upper part is lifted (slipped or tucked above it)
     int stackIndex = 0;    // place among the loops one stitch is pulled through (0 = top / front)
     int stackSize = 1;
-    bool madeLoop = true;  // false for sl / sl-wyif: the course floats past
+    bool madeLoop = true;   // false for sl / sl-wyif: the course floats past
     bool reversed = false;  // its vertices run right to left (intarsia's odd rows, knitted back)
     // The loops this loop is pulled through, top (front) first: none for yo, tuck and sl.
     std::vector<LoopRef> through;

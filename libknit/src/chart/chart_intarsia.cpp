@@ -64,7 +64,8 @@ std::vector<glm::dvec3> turnPoints(const Turn& turn, double spacing) {
                                           {nearX, high, -kNearDepth},
                                           turn.to};
     std::vector<double> along{0.0};  // arc length at each corner
-    for (size_t k = 1; k < corners.size(); ++k) along.push_back(along.back() + glm::length(corners[k] - corners[k - 1]));
+    for (size_t k = 1; k < corners.size(); ++k)
+        along.push_back(along.back() + glm::length(corners[k] - corners[k - 1]));
     const int count = std::max(6, int(std::lround(along.back() / spacing)));
     std::vector<glm::dvec3> out;
     size_t leg = 1;

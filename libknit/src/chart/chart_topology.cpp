@@ -52,7 +52,7 @@ constexpr double kTuckFoot = 0.6;             // parameter span over which it me
 // Where a stranded yarn's loop meets its float beside another yarn's loop, both feet step back
 // from the shared foot point (inwards and up or down), so the two yarns do not meet there.
 constexpr double kJunctionX = 0.5, kJunctionY = 0.6, kJunctionSpan = 0.8;
-constexpr double kThirdRowYarn = 0.25;         // extra yarn (in plain loops) of a loop held a third row
+constexpr double kThirdRowYarn = 0.25;          // extra yarn (in plain loops) of a loop held a third row
 constexpr double kTwist0 = 1.3, kTwist1 = 1.9;  // a twisted loop's halves swap sides between these |t|
 constexpr double kTwistDepth = 0.7, kTwistWidth = 0.15;
 

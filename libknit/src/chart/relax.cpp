@@ -369,10 +369,8 @@ RelaxResult relaxYarn(const Pattern& initial, const RelaxOptions& options) {
         }
         // Step 4: memory update; the pair list is rebuilt when two points may have come closer by
         // half the skin since it was built.
-        if (affine)
-            lbfgsRemember(S, Y, affineInverse(pb, v, vNew - v), affineGradient(pb, v, gNew) - gw);
-        else
-            lbfgsRemember(S, Y, vNew - v, gNew - g);
+        if (affine) lbfgsRemember(S, Y, affineInverse(pb, v, vNew - v), affineGradient(pb, v, gNew) - gw);
+        else lbfgsRemember(S, Y, vNew - v, gNew - g);
         v.swap(vNew);
         g.swap(gNew);
         e = eNew;
