@@ -460,8 +460,8 @@ const BuiltinChart kBuiltinCharts[] = {
      "A A A A\nA B A B\nB A B A\nA A A A\nA=#f2e8d5 B=#1d3557\nstranded\n"},
     {"chart:intarsia-blocks",
      "# intarsia: two colour blocks side by side, each knitted back and forth with its own yarn,\n"
-     "# the two yarns interlocked where the blocks meet\nk k k k k k\nk k k k k k\nk k k k k k\nk k k k k k\n\n"
-     "A A A B B B\nA A A B B B\nA A A B B B\nA A A B B B\nA=#f2e8d5 B=#c1121f\nintarsia\n"},
+     "# the two yarns interlocked where the blocks meet\nk k k k\nk k k k\n\n"
+     "A A B B\nA A B B\nA=#f2e8d5 B=#c1121f\nintarsia\n"},
 };
 
 }  // namespace
