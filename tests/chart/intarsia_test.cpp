@@ -15,6 +15,7 @@
 #include "knit/chart_pattern.hpp"
 #include "knit/chart_topology.hpp"
 #include "knit/error.hpp"
+#include "knit/relax.hpp"
 
 namespace knit {
 namespace {
@@ -204,6 +205,19 @@ TEST(Intarsia, turnsInterlockAndTheBoundaryHoldsAfterRelaxation) {
     const double plain = test::largestOpening(relaxChart(builtinChart("chart:stockinette")).relaxed.pattern).radius;
     std::printf("intarsia-blocks: largest opening %.3f r (stockinette %.3f r)\n", opening, plain);
     EXPECT_LT(opening, plain + 0.25);
+}
+
+// Lace, twisted stitches and a cable across the boundary: the turns still hook into each other,
+// and the loose construction keeps the yarns apart (the relaxation starts untangled).
+TEST(Intarsia, turnsInterlockBesideLaceTwistedAndCabledStitches) {
+    const ChartCell cell = chartToCell(parseChart("k k k k k k\nk c2/2f k\nk k k k k k\nk yo k2tog ktbl k k\n\n"
+                                                  "A A A B B B\nA A A B B B\nA A A B B B\nA A A B B B\n"
+                                                  "A=#ffffff B=#000000\nintarsia\n",
+                                                  "mixed.chart"));
+    const Interlock il = interlock(cell, cell.pattern);
+    ASSERT_EQ(il.linkedWith.size(), 8u);
+    for (const int n : il.linkedWith) EXPECT_EQ(n, 2);
+    EXPECT_GT(minYarnDistance(cell.pattern), 0.3);
 }
 
 TEST(Intarsia, layoutsAPeriodicCellCannotKnitAreRefusedWithTheirPlace) {
