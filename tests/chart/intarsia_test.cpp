@@ -178,6 +178,23 @@ TEST(Intarsia, oddChartsAreStackedTwiceAndAreasMayWrapRoundThePeriod) {
     for (const int n : il.linkedWith) EXPECT_EQ(n, 2);
 }
 
+// A slipped stitch inside an area floats as usual; a chart of odd height is stacked twice, and
+// the cell lists the floats of its first copy only, at the chart's rows (the warnings index the
+// chart's lines with them).
+TEST(Intarsia, floatsInsideAnAreaAreListedOnceAtTheChartsRows) {
+    const Chart chart = parseChart("k k k k k\nk sl sl k k\nk k k k k\n\nA A A A B\nA A A A B\nA A A A B\n"
+                                   "A=#ffffff B=#000000\nintarsia\n",
+                                   "float.chart");
+    const ChartCell cell = chartToCell(chart);
+    EXPECT_EQ(cell.height, 6);
+    ASSERT_EQ(cell.floats.size(), 1u);
+    EXPECT_EQ(cell.floats[0].row, 1);
+    EXPECT_EQ(cell.floats[0].firstColumn, 1);
+    EXPECT_EQ(cell.floats[0].columns, 2);
+    EXPECT_FALSE(cell.floats[0].stranded);
+    EXPECT_FALSE(cell.floats[0].front);
+}
+
 // Each turn is hooked through the neighbouring yarn's turns above and below it (a chain along
 // the boundary), before and after relaxation; the relaxation keeps the yarns apart, the
 // boundary stitches held by the stitches above them, and no hole opens at the boundary.
