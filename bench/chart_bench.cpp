@@ -1,6 +1,6 @@
 // Chart relaxation targets of issue 13: a 2 x 2 stockinette in <= 2 s, a 12-stitch x 16-row
 // cable cell in <= 60 s (2 cores); issue 25: every built-in of round 2 (lace, slip stitch, tuck,
-// stranded) in <= 60 s. Counters: iterations, min distance (radii), L r / A.
+// stranded, intarsia) in <= 60 s; RelaxOptions::affinePeriod against the default. Counters: iterations, min distance (radii), L r / A.
 #include <benchmark/benchmark.h>
 
 #include <string>
@@ -30,9 +30,11 @@ std::string cableCell() {
     return text;
 }
 
-void relax(benchmark::State& state, const knit::Chart& chart) {
+void relax(benchmark::State& state, const knit::Chart& chart, bool affine = false) {
     knit::ChartPattern cp;
-    for (auto _ : state) cp = knit::relaxChart(chart);
+    knit::ChartPatternOptions options;
+    options.affinePeriod = affine;
+    for (auto _ : state) cp = knit::relaxChart(chart, options);
     state.counters["iterations"] = cp.relaxed.iterations;
     state.counters["evaluations"] = cp.relaxed.evaluations;
     state.counters["pair_rebuilds"] = cp.relaxed.pairRebuilds;
@@ -46,6 +48,14 @@ void BM_RelaxStockinette2x2(benchmark::State& state) { relax(state, knit::builti
 void BM_RelaxCable12x16(benchmark::State& state) { relax(state, knit::parseChart(cableCell(), "cable12x16")); }
 
 void BM_RelaxBuiltin(benchmark::State& state, const char* name) { relax(state, knit::builtinChart(name)); }
+// RelaxOptions::affinePeriod (faster, for previews; off by default).
+void BM_RelaxAffineStockinette2x2(benchmark::State& state) {
+    relax(state, knit::builtinChart("chart:stockinette"), true);
+}
+void BM_RelaxAffineCable12x16(benchmark::State& state) {
+    relax(state, knit::parseChart(cableCell(), "cable12x16"), true);
+}
+void BM_RelaxAffineBuiltin(benchmark::State& state, const char* name) { relax(state, knit::builtinChart(name), true); }
 
 }  // namespace
 
@@ -53,6 +63,13 @@ BENCHMARK_CAPTURE(BM_RelaxBuiltin, eyelet_mesh, "chart:eyelet-mesh")->Unit(bench
 BENCHMARK_CAPTURE(BM_RelaxBuiltin, honeycomb, "chart:honeycomb")->Unit(benchmark::kSecond)->Iterations(1);
 BENCHMARK_CAPTURE(BM_RelaxBuiltin, fishermans_rib, "chart:fishermans-rib")->Unit(benchmark::kSecond)->Iterations(1);
 BENCHMARK_CAPTURE(BM_RelaxBuiltin, fair_isle, "chart:fair-isle")->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK_CAPTURE(BM_RelaxBuiltin, intarsia_blocks, "chart:intarsia-blocks")->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK_CAPTURE(BM_RelaxAffineBuiltin, eyelet_mesh, "chart:eyelet-mesh")->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK_CAPTURE(BM_RelaxAffineBuiltin, intarsia_blocks, "chart:intarsia-blocks")
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1);
 BENCHMARK(BM_RelaxStockinette2x2)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_RelaxAffineStockinette2x2)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_RelaxCable12x16)->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK(BM_RelaxAffineCable12x16)->Unit(benchmark::kSecond)->Iterations(1);
 BENCHMARK_MAIN();

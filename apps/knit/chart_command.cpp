@@ -88,6 +88,10 @@ nlohmann::json reportOf(const Chart& chart, const ChartPattern& cp, int maxFloat
             {"min_distance_radii", cp.relaxed.minDistance},
             {"seconds", cp.seconds},
             {"yarns", cp.cell.yarns},
+            {"colourwork", chart.colourwork == Colourwork::Stranded   ? "stranded"
+                           : chart.colourwork == Colourwork::Intarsia ? "intarsia"
+                                                                      : "painted"},
+            {"cell_rows", cp.cell.height},  // an odd intarsia chart's cell has its rows twice
             {"max_float", maxFloat},
             {"floats", floatsOf(chart, cp, maxFloat)}};
 }

@@ -2,7 +2,9 @@
 // an eyelet stays open, stranded floats stay behind the stitches they pass.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <string>
 #include <map>
 
 #include "crossings.hpp"
@@ -153,6 +155,27 @@ TEST(ChartConstructsRelaxed, roundTwoBuiltinsAfterRelaxation) {
     expectEyeletOpen();
     expectHoneycombDensityNearHylc();
     expectStrandedFloatsBehind();
+}
+
+}  // namespace
+}  // namespace knit
+
+namespace knit {
+namespace {
+
+// A loop held on three rows draws extra yarn from its neighbours (chart_topology.cpp,
+// kThirdRowYarn): with a plain loop's length it pulled the rows so tight that the yarns came to
+// 1.868 r apart.
+TEST(ChartConstructsRelaxed, loopsHeldThreeRowsKeepTheYarnsApart) {
+    for (const char* text : {"k k\nk sl\nk sl\nk sl\n", "k k\nk tuck\nk tuck\nk tuck\n"}) {
+        const ChartPattern cp = relaxChart(parseChart(text, "held.chart"));
+        std::string label(text);
+        std::replace(label.begin(), label.end(), '\n', '/');
+        std::printf("%-32s min distance %.3f r, %d iterations\n", label.c_str(), cp.relaxed.minDistance,
+                    cp.relaxed.iterations);
+        EXPECT_GE(cp.relaxed.minDistance, 1.9) << text;
+        EXPECT_GT(cp.relaxed.closestApproach, 0.2) << text;
+    }
 }
 
 }  // namespace

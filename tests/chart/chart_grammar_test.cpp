@@ -91,7 +91,8 @@ TEST(ChartGrammar, aLoopSlippedOnEveryRowIsRefusedSayingWhy) {
 TEST(ChartGrammar, colourworkLineAfterThePalette) {
     const char* body = "k k\nk k\n\nA B\nB A\nA=#ffffff B=#000000\n";
     EXPECT_EQ(parseChart(std::string(body) + "stranded\n", "t").colourwork, Colourwork::Stranded);
-    EXPECT_EQ(parseChart(std::string(body) + "intarsia\n", "t").colourwork, Colourwork::Intarsia);
+    EXPECT_EQ(parseChart("k k\nk k\n\nA B\nA B\nA=#ffffff B=#000000\nintarsia\n", "t").colourwork,
+              Colourwork::Intarsia);
     EXPECT_EQ(parseChart(body, "t").colourwork, Colourwork::Painted);
     EXPECT_EQ(chartError("k k\nstranded\n"),
               "bad.chart:2:1: 'stranded' needs a colour block and a palette: it says how their colours are knitted");

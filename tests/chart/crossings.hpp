@@ -81,7 +81,7 @@ inline std::vector<Crossing> crossingsBetween(const Pattern& p, uint32_t a0, uin
 }
 
 // The local frame of stitch (row, column), made of the stitch's own axes: the course (from the
-// loop's first vertex to its last, foot to foot) and the wale (from the centre of the loop below,
+// loop's left foot to its right one) and the wale (from the centre of the loop below,
 // moved to the image this loop is pulled through, to this loop's centre). n = course x wale
 // (+z for a flat cell: courses run in +x, wales in +y), not flipped towards +z, so a stitch
 // folded by 90 degrees or more, as the purl columns beside a cable do, keeps its own front;
@@ -101,7 +101,7 @@ inline Frame stitchFrame(const ChartCell& cell, int row, int column) {
     const glm::dvec3 cl = centre(l), cb = centre(below);
     const glm::dvec3 shift(-std::round((cb.x - cl.x) / p.px) * p.px, row == 0 ? -p.py : 0.0, 0);
     const glm::dvec3 wale = glm::normalize(cl - (cb + shift));
-    const glm::dvec3 course = p.points[l.first + l.count - 1] - p.points[l.first];
+    const glm::dvec3 course = (l.reversed ? -1.0 : 1.0) * (p.points[l.first + l.count - 1] - p.points[l.first]);
     const glm::dvec3 n = glm::normalize(glm::cross(course, wale));
     Frame f;
     f.n = n;

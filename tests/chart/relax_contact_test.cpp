@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <tuple>
 
 #include <glm/geometric.hpp>
@@ -19,14 +20,15 @@ using relax::Seg;
 
 bool before(const Pair& a, const Pair& b) { return std::tie(a.s, a.t, a.ix, a.iy) < std::tie(b.s, b.t, b.ix, b.iy); }
 
-// Every pair (s < t, or s == t with a positive image) within the cutoff, images up to two periods.
+// Every pair (s < t, or s == t with a positive image) within the cutoff, images up to `images`
+// periods away.
 std::vector<Pair> bruteForcePairs(const std::vector<glm::dvec3>& x, double px, double py, const std::vector<Seg>& segs,
-                                  const relax::YarnIndex& yi, double cutoff) {
+                                  const relax::YarnIndex& yi, double cutoff, int images = 2) {
     std::vector<Pair> out;
     for (uint32_t s = 0; s < segs.size(); ++s)
         for (uint32_t t = s; t < segs.size(); ++t)
-            for (int iy = -2; iy <= 2; ++iy)
-                for (int ix = -2; ix <= 2; ++ix) {
+            for (int iy = -images; iy <= images; ++iy)
+                for (int ix = -images; ix <= images; ++ix) {
                     const Pair pr{s, t, ix, iy};
                     if (t == s && (iy < 0 || (iy == 0 && ix <= 0))) continue;
                     if (relax::nearAlongYarn(yi, segs, pr, 3)) continue;
@@ -41,6 +43,33 @@ std::vector<Pair> bruteForcePairs(const std::vector<glm::dvec3>& x, double px, d
                 }
     std::sort(out.begin(), out.end(), before);
     return out;
+}
+
+void expectSamePairs(std::vector<Pair> found, const std::vector<Pair>& expected) {
+    std::sort(found.begin(), found.end(), before);
+    ASSERT_EQ(found.size(), expected.size());
+    for (size_t k = 0; k < found.size(); ++k) {
+        EXPECT_EQ(found[k].s, expected[k].s);
+        EXPECT_EQ(found[k].t, expected[k].t);
+        EXPECT_EQ(found[k].ix, expected[k].ix);
+        EXPECT_EQ(found[k].iy, expected[k].iy);
+    }
+}
+
+// A cutoff wider than the period (one stitch, 7.9 x 5.6 r, against 9 r): pairs two and three
+// periods apart are found too (a search of the neighbouring hash cells alone missed them).
+TEST(RelaxContact, pairsBeyondTheNeighbouringPeriodsAreFound) {
+    const Pattern p = chartToCell(parseChart("k\n", "k")).pattern;
+    std::vector<Seg> segs(p.points.size());
+    for (const PeriodicEdge& e : p.edges) segs[e.v0] = {e.v0, e.v1, e.dx, e.dy};
+    const relax::YarnIndex yi = relax::indexYarns(p, segs);
+    std::vector<glm::dvec3> x;
+    for (const glm::dvec3& q : p.points) x.push_back(q / p.radius);
+    const double px = p.px / p.radius, py = p.py / p.radius, cutoff = 9.0;
+    ASSERT_LT(px, cutoff);
+    const std::vector<Pair> expected = bruteForcePairs(x, px, py, segs, yi, cutoff, 4);
+    ASSERT_TRUE(std::any_of(expected.begin(), expected.end(), [](const Pair& q) { return std::abs(q.iy) >= 2; }));
+    expectSamePairs(relax::findPairs(x, px, py, segs, yi, cutoff), expected);
 }
 
 // The cable cell's stretched rows have legs several times longer than the other segments: they

@@ -72,6 +72,21 @@ TEST(ChartCommand, longFloatsAreWarnedAboutAndReported) {
     EXPECT_NE(test::runKnit("chart band.chart -o cell3.pyp --max-float 0", dir.path()).exitCode, 0);
 }
 
+// Intarsia: one yarn per colour area, no floats; a chart of odd height makes a cell of twice its
+// rows (the report says both).
+TEST(ChartCommand, intarsiaReportsItsYarnsAndRows) {
+    test::TempDir dir;
+    dir.write("ia.chart", "k k k k\n\nA A B B\nA=#ffffff B=#000000\nintarsia\n");
+    const test::CliRun r = test::runKnit("chart ia.chart -o cell.pyp --report r.json", dir.path());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_EQ(r.output.find("warning"), std::string::npos) << r.output;
+    const std::string report = test::readText(dir.file("r.json"));
+    for (const char* field :
+         {"\"yarns\": 2", "\"colourwork\": \"intarsia\"", "\"rows\": 1", "\"cell_rows\": 2", "\"floats\": []"})
+        EXPECT_NE(report.find(field), std::string::npos) << field << "\n" << report;
+    EXPECT_EQ(loadPyp(dir.file("cell.pyp")).rowsPerPeriod, 2);
+}
+
 TEST(ChartCommand, buildAcceptsAChartFileAndCachesIt) {
     test::TempDir dir;
     dir.write("seed.chart", "k p\np k\n");

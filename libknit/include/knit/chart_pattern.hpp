@@ -17,6 +17,7 @@ struct ChartPatternOptions {
     // stockinette's yarn length per area within 7%, see docs/charts.md).
     double restLength = 0.8;
     int maxIterations = 4000;
+    bool affinePeriod = false;  // RelaxOptions::affinePeriod: faster, for previews (part of the cache key)
     // Progress and cancellation of the relaxation (RelaxOptions::onStep); not part of the
     // cache key, since it does not change the result.
     RelaxStepFn onStep;

@@ -28,6 +28,10 @@
 //     rising from the left foot (to the right leg) in front;
 //   * stranded colourwork: one yarn per colour a row uses; a yarn makes the loops of its colour
 //     and floats behind (-z) everywhere else, at the height of the course's lower half.
+//   * intarsia: one yarn per colour area (vertical bands), knitted back and forth: a serpentine
+//     up the period that turns at the area's boundaries behind the work, each turn hooked through
+//     the neighbouring yarn's turns above and below (an odd-height chart is stacked twice, so the
+//     cell has an even number of rows).
 //
 // The loop shape in the plane is the plain-knit curve of generateStockinette (K. Crane's model),
 // one stitch per 2 pi of the parameter; heights follow the rule above. The result is a starting
@@ -66,7 +70,8 @@ struct StitchLoop {
     int lift = 0;          // rows its upper part is lifted (slipped or tucked above it)
     int stackIndex = 0;    // place among the loops one stitch is pulled through (0 = top / front)
     int stackSize = 1;
-    bool madeLoop = true;  // false for sl / sl-wyif: the course floats past
+    bool madeLoop = true;   // false for sl / sl-wyif: the course floats past
+    bool reversed = false;  // its vertices run right to left (intarsia's odd rows, knitted back)
     // The loops this loop is pulled through, top (front) first: none for yo, tuck and sl.
     std::vector<LoopRef> through;
 };
@@ -88,8 +93,8 @@ struct ChartCell {
     int width = 0, height = 0;                   // stitches per period (the chart's size)
     std::vector<StitchLoop> loops;               // row-major, row 0 first
     std::vector<std::array<uint8_t, 3>> colour;  // per loop sRGB; empty without a colour layer
-    std::vector<ChartFloat> floats;              // every float, row by row
-    int yarns = 0;                               // closed yarns (one per row, more when stranded)
+    std::vector<ChartFloat> floats;              // every float (rows of the chart as written)
+    int yarns = 0;  // closed yarns (one per row, more when stranded, one per area for intarsia)
     // Per vertex, for the edge leaving it: the yarn length it holds over its length here. 1,
     // except on loops lifted by slipped or tucked stitches (built stretched over two or more
     // rows, they hold a plain loop's length) — RelaxOptions::restScale.
@@ -101,8 +106,8 @@ struct ChartCell {
 // A cell holds at most this many yarn vertices (a chart is one period: a few hundred stitches).
 constexpr uint64_t kMaxChartVertices = uint64_t(1) << 22;
 
-// Throws knit::Error for a non-positive radius, fewer than 8 samples per stitch, intarsia
-// colourwork (parsed, not built yet) or more than kMaxChartVertices vertices.
+// Throws knit::Error for a non-positive radius, fewer than 8 samples per stitch or more than
+// kMaxChartVertices vertices.
 ChartCell chartToCell(const Chart& chart, const ChartCellOptions& options = {});
 
 }  // namespace knit

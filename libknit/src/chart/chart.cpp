@@ -297,6 +297,39 @@ void readColours(const Block& block, const std::string& source, Chart& chart) {
     }
 }
 
+// Intarsia in a periodic cell: each colour area's yarn knits back and forth and turns at the
+// area's boundaries (chart_intarsia.hpp), so the areas are vertical bands, at least two, and the
+// stitches either side of a boundary are knit-face loops the turns can leave from behind.
+void checkIntarsia(const std::string& source, const Chart& chart) {
+    const int w = chart.width;
+    for (int r = 1; r < chart.height; ++r)
+        for (int c = 0; c < w; ++c)
+            if (chart.colourAt(r, c) != chart.colourAt(0, c))
+                fail(source, chart.rowLine[size_t(r)], 1,
+                     "intarsia: column " + std::to_string(c + 1) + " is colour " + chart.colourAt(r, c) +
+                         " on this row and " + chart.colourAt(0, c) +
+                         " on the bottom row; intarsia areas here are vertical bands (each column keeps its colour "
+                         "on every row), since a motif inside the repeat needs a yarn with two ends, which a "
+                         "periodic cell cannot hold (use `stranded` for motifs)");
+    bool boundary = false;
+    for (int c = 0; c < w; ++c) boundary = boundary || chart.colourAt(0, c) != chart.colourAt(0, (c + 1) % w);
+    if (!boundary)
+        fail(source, chart.rowLine[0], 1,
+             "intarsia needs at least two colour areas along a row (this chart has one colour in every column)");
+    for (int r = 0; r < chart.height; ++r)
+        for (int c = 0; c < w; ++c) {
+            const bool edge = chart.colourAt(0, c) != chart.colourAt(0, (c + 1) % w) ||
+                              chart.colourAt(0, c) != chart.colourAt(0, (c + w - 1) % w);
+            const StitchOp op = chart.opAt(r, c);
+            if (edge && (chart.at(r, c) != StitchKind::Knit || op == StitchOp::Slip || op == StitchOp::SlipFront ||
+                         op == StitchOp::Tuck))
+                fail(source, chart.rowLine[size_t(r)], 1,
+                     "intarsia: the stitch in column " + std::to_string(c + 1) +
+                         " lies beside a colour boundary and must be a knit-face loop (k, ktbl, a decrease, yo or a "
+                         "cable), not purl, slipped or tucked: the yarns turn there behind the work");
+        }
+}
+
 // A line holding just `stranded` or `intarsia`, after the palette line, once, with a colour block.
 void readColourwork(const Layout& layout, const std::string& source, Chart& chart) {
     if (layout.colourwork.empty()) return;
@@ -325,6 +358,7 @@ void readColourwork(const Layout& layout, const std::string& source, Chart& char
                          "at most " +
                          std::to_string(kMaxStrandedColours) + " yarns along a row");
         }
+    if (chart.colourwork == Colourwork::Intarsia) checkIntarsia(source, chart);
 }
 
 }  // namespace
@@ -429,6 +463,10 @@ const BuiltinChart kBuiltinCharts[] = {
     {"chart:fair-isle",
      "# a two-colour stranded band: checks between plain rows\nk k k k\nk k k k\nk k k k\nk k k k\n\n"
      "A A A A\nA B A B\nB A B A\nA A A A\nA=#f2e8d5 B=#1d3557\nstranded\n"},
+    {"chart:intarsia-blocks",
+     "# intarsia: two colour blocks side by side, each knitted back and forth with its own yarn,\n"
+     "# the two yarns interlocked where the blocks meet\nk k k k\nk k k k\n\n"
+     "A A B B\nA A B B\nA=#f2e8d5 B=#c1121f\nintarsia\n"},
 };
 
 }  // namespace

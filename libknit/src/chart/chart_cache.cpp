@@ -17,7 +17,8 @@ namespace knit {
 std::string chartCacheKey(const std::string& chartText, const ChartPatternOptions& o) {
     std::ostringstream key;
     key.precision(17);
-    key << "v6 " << o.radius << ' ' << o.samplesPerStitch << ' ' << o.restLength << ' ' << o.maxIterations << '\n'
+    key << "v6 " << o.radius << ' ' << o.samplesPerStitch << ' ' << o.restLength << ' ' << o.maxIterations
+        << (o.affinePeriod ? " affine" : "") << '\n'  // the default's keys as before the option
         << chartText;
     char name[40];
     std::snprintf(name, sizeof name, "chart-%016llx.pyp", static_cast<unsigned long long>(util::fnv1a(key.str())));

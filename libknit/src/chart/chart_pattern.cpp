@@ -17,6 +17,7 @@ ChartPattern relaxChart(const Chart& chart, const ChartPatternOptions& options) 
     relax.restLength = options.restLength;
     relax.restScale = out.cell.restScale;
     relax.maxIterations = options.maxIterations;
+    relax.affinePeriod = options.affinePeriod;
     relax.onStep = options.onStep;
     relax.stepInterval = options.stepInterval;
     const auto start = std::chrono::steady_clock::now();

@@ -8,6 +8,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "chart_intarsia.hpp"
 #include "knit/error.hpp"
 #include "util/checks.hpp"
 #include "util/math.hpp"
@@ -51,6 +52,7 @@ constexpr double kTuckFoot = 0.6;             // parameter span over which it me
 // Where a stranded yarn's loop meets its float beside another yarn's loop, both feet step back
 // from the shared foot point (inwards and up or down), so the two yarns do not meet there.
 constexpr double kJunctionX = 0.5, kJunctionY = 0.6, kJunctionSpan = 0.8;
+constexpr double kThirdRowYarn = 0.25;          // extra yarn (in plain loops) of a loop held a third row
 constexpr double kTwist0 = 1.3, kTwist1 = 1.9;  // a twisted loop's halves swap sides between these |t|
 constexpr double kTwistDepth = 0.7, kTwistWidth = 0.15;
 
@@ -64,13 +66,24 @@ bool held(StitchOp op) { return op == StitchOp::Slip || op == StitchOp::SlipFron
 bool makesLoop(StitchOp op) { return op != StitchOp::Slip && op != StitchOp::SlipFront; }
 
 // Step 1: the yarns of each row. One per row, or for stranded colourwork one per colour the row
-// uses (in order of first use); yarnOf[c] is the row's yarn that works column c.
+// uses (in order of first use), for intarsia one per colour area (the same in every row);
+// yarnOf[c] is the row's yarn that works column c.
 struct RowYarns {
     std::vector<char> colours;
     std::vector<int> yarnOf;
 };
 std::vector<RowYarns> rowYarns(const Chart& chart) {
     std::vector<RowYarns> rows(size_t(chart.height));
+    if (chart.colourwork == Colourwork::Intarsia) {
+        RowYarns y;
+        y.yarnOf.assign(size_t(chart.width), 0);
+        for (const intarsia::Area& a : intarsia::areas(chart)) {
+            for (int k = 0; k < a.count; ++k) y.yarnOf[size_t((a.first + k) % chart.width)] = int(y.colours.size());
+            y.colours.push_back(a.colour);
+        }
+        rows.assign(size_t(chart.height), y);
+        return rows;
+    }
     const bool stranded = chart.colourwork == Colourwork::Stranded;
     for (int r = 0; r < chart.height; ++r) {
         RowYarns& y = rows[size_t(r)];
@@ -176,6 +189,8 @@ struct CellGeometry {
     const std::vector<Plan>* plan = nullptr;
     const RowYarns* yarns = nullptr;
     int yarn = 0;  // the row's yarn (index into yarns->colours)
+    // How far a foot beside another yarn's loop steps back from the shared foot point.
+    double junctionX = kJunctionX, junctionY = kJunctionY;
     const Plan& at(int r, int c) const { return (*plan)[size_t(r) * size_t(chart->width) + size_t(c)]; }
     bool loopOf(int r, int c) const {  // does this yarn make a loop at column c of row r?
         return yarns->yarnOf[size_t(c)] == yarn && makesLoop(chart->opAt(r, c));
@@ -213,9 +228,9 @@ glm::dvec3 loopPoint(const CellGeometry& g, const StitchLoop& l, double t) {
     const double half = (l.stackSize - 1) / 2.0;
     const double twist = l.op == StitchOp::ThroughBack ? 2 * smooth(kTwist0, kTwist1, at) - 1 : 1.0;
     const double x = util::kTwoPi * (l.column + l.headShift * upper) + (half - p.stackRank) * kStackShift * upper +
-                     twist * (t + kLoopWidth * std::sin(2 * t)) - (t < 0 ? -1 : 1) * kJunctionX * junctionOf(g, l, t);
+                     twist * (t + kLoopWidth * std::sin(2 * t)) - (t < 0 ? -1 : 1) * g.junctionX * junctionOf(g, l, t);
     double y = rows.y[size_t(l.row)] + kLoopHeight * std::cos(t) + upper * rows.headRise(l.row, l.lift);
-    y += (t < 0 ? -1 : 1) * kJunctionY * junctionOf(g, l, t);
+    y += (t < 0 ? -1 : 1) * g.junctionY * junctionOf(g, l, t);
     // Height: the upper half follows the stitch pulled through this loop, the lower half this
     // stitch; at the feet the neighbouring column's kind takes over half-way.
     const double neighbour = neighbourSign(g, l, t < 0 ? -1 : 1);
@@ -339,7 +354,11 @@ std::vector<double> liftedRestScale(const ChartCell& cell, double metresPerUnit,
             const PeriodicEdge& e = p.edges[i];
             length += glm::length(p.points[e.v1] + glm::dvec3(e.dx * p.px, e.dy * p.py, 0) - p.points[e.v0]);
         }
-        for (uint32_t i = l.first; i < l.first + l.count; ++i) scale[i] = std::min(1.0, plain / length);
+        // A loop held on a third row draws a quarter of a plain loop's yarn from its neighbours
+        // (with a plain loop's length it pulled three rows so tight that the yarns came to
+        // 1.868 r apart; with this, 1.964 r: docs/charts.md).
+        const double held = plain * (1 + kThirdRowYarn * std::max(0, l.lift - 2));
+        for (uint32_t i = l.first; i < l.first + l.count; ++i) scale[i] = std::min(1.0, held / length);
     }
     // Stranded floats hold a little less yarn than the loose construction gives them (0.95 of
     // it, on top of the relaxation's rest length): with the construction's length the relaxed
@@ -360,6 +379,35 @@ struct CellInputs {
     int n = 0;  // samples per loop
 };
 
+// The record of the cell (r, c) on yarn `yarn`: its vertices [first, first + count).
+StitchLoop stitchLoop(const CellInputs& in, int r, int c, int yarn, uint32_t first, uint32_t count) {
+    const Plan& p = in.plan[size_t(r) * size_t(in.chart.width) + size_t(c)];
+    StitchLoop l;
+    l.row = r;
+    l.column = c;
+    l.yarn = yarn;
+    l.first = first;
+    l.count = count;
+    l.kind = in.chart.at(r, c);
+    l.op = in.chart.opAt(r, c);
+    l.madeLoop = makesLoop(l.op);
+    l.sourceColumn = in.chart.sourceColumn(r, c);
+    l.headShift = p.consumerColumn - c;
+    l.lift = p.lift;
+    l.stackIndex = p.stackIndex;
+    l.stackSize = p.stackSize;
+    l.through = p.through;
+    return l;
+}
+
+// Refuses a chart that would make more than kMaxChartVertices vertices (before allocating them).
+void checkVertexCount(const Chart& chart, uint64_t count) {
+    if (count > kMaxChartVertices)
+        throw Error(chart.name + ": the chart makes more than " + std::to_string(kMaxChartVertices) +
+                    " yarn vertices (" + std::to_string(chart.width) + " x " + std::to_string(chart.height) +
+                    " stitches): a chart is one period of the fabric");
+}
+
 // Step 5: each yarn's columns (a loop: n vertices, a float: fewer), rows in order, and the
 // stitch record: which yarn's vertices make each cell. Returns the columns' first vertices.
 std::vector<std::vector<uint32_t>> stitchRecord(const CellInputs& in, ChartCell& cell) {
@@ -374,31 +422,14 @@ std::vector<std::vector<uint32_t>> stitchRecord(const CellInputs& in, ChartCell&
             // The vertex count, bounded before anything is allocated for it.
             uint64_t count = 0;
             for (int c = 0; c < chart.width; ++c) count += uint64_t(g.loopOf(r, c) ? in.n : floatSamples(in.n));
-            if (next + count > kMaxChartVertices)
-                throw Error(chart.name + ": the chart makes more than " + std::to_string(kMaxChartVertices) +
-                            " yarn vertices (" + std::to_string(chart.width) + " x " + std::to_string(chart.height) +
-                            " stitches): a chart is one period of the fabric");
+            checkVertexCount(chart, next + count);
             starts.push_back(columnStarts(g, r, in.n, uint32_t(next)));
             next = starts.back().back();
         }
         for (int c = 0; c < chart.width; ++c) {
-            const Plan& p = in.plan[size_t(r) * size_t(chart.width) + size_t(c)];
-            StitchLoop l;
-            l.row = r;
-            l.column = c;
-            l.yarn = firstYarn + ry.yarnOf[size_t(c)];
-            l.first = starts[size_t(l.yarn)][size_t(c)];
-            l.count = starts[size_t(l.yarn)][size_t(c) + 1] - l.first;
-            l.kind = chart.at(r, c);
-            l.op = chart.opAt(r, c);
-            l.madeLoop = makesLoop(l.op);
-            l.sourceColumn = chart.sourceColumn(r, c);
-            l.headShift = p.consumerColumn - c;
-            l.lift = p.lift;
-            l.stackIndex = p.stackIndex;
-            l.stackSize = p.stackSize;
-            l.through = p.through;
-            cell.loops.push_back(l);
+            const int yarn = firstYarn + ry.yarnOf[size_t(c)];
+            const uint32_t first = starts[size_t(yarn)][size_t(c)];
+            cell.loops.push_back(stitchLoop(in, r, c, yarn, first, starts[size_t(yarn)][size_t(c) + 1] - first));
         }
     }
     cell.yarns = int(starts.size());
@@ -443,6 +474,103 @@ std::vector<char> buildYarns(const CellInputs& in, const std::vector<std::vector
     return letter;
 }
 
+// The length (model units) of a plain loop sampled with n vertices.
+double plainLoopLength(int n) {
+    double length = 0;
+    for (int i = 0; i < n; ++i) {
+        auto at = [&](int k) {
+            const double t = -util::kPi + util::kTwoPi * k / n;
+            return glm::dvec3(t + kLoopWidth * std::sin(2 * t), kLoopHeight * std::cos(t), -kDepth * std::cos(2 * t));
+        };
+        length += glm::length(at(i + 1) - at(i));
+    }
+    return length;
+}
+
+// One intarsia yarn being built: its vertices' tiles along x (a column of an area that wraps round
+// the period is built where it is, one period back) and its floats.
+struct IntarsiaYarn {
+    std::vector<int> tile;
+    std::vector<ChartFloat> floats;
+};
+
+// One row of an intarsia area's yarn, in its direction (left to right on even rows): loops (or a
+// float past a slipped stitch), then the turn at the boundary up into the next row.
+void intarsiaRow(const CellInputs& in, const intarsia::Area& area, int a, int r, double scale, ChartCell& cell,
+                 IntarsiaYarn& yarn, std::vector<char>& letter) {
+    const Chart& chart = in.chart;
+    const int W = chart.width, H = chart.height, n = in.n;
+    Pattern& p = cell.pattern;
+    auto add = [&](const glm::dvec3& q, int ox) {
+        p.points.push_back(q * scale);
+        yarn.tile.push_back(ox);
+        letter.push_back(area.colour);
+    };
+    const CellGeometry g{&chart, &in.rows, &in.plan, &in.yarns[size_t(r)], a, intarsia::kBoundaryInset, 0.0};
+    const bool rightwards = r % 2 == 0;
+    const double dir = rightwards ? 1.0 : -1.0;
+    bool floating = false;
+    for (int k = 0; k < area.count; ++k) {
+        const int u = area.first + (rightwards ? k : area.count - 1 - k);  // unwrapped column
+        const int c = u % W, ox = u / W;
+        const bool loop = g.loopOf(r, c);
+        const int m = loop ? n : floatSamples(n);
+        StitchLoop& l = cell.loops[size_t(r) * size_t(W) + size_t(c)];
+        l = stitchLoop(in, r, c, a, uint32_t(p.points.size()), uint32_t(m));
+        l.reversed = !rightwards;
+        if (!loop) {  // a slipped stitch inside the area: the yarn floats past it
+            if (!floating) yarn.floats.push_back({r, c, 0, a, area.colour, true, false, {}});
+            ChartFloat& f = yarn.floats.back();
+            f.firstColumn = rightwards ? f.firstColumn : c;
+            f.columns += 1;
+            f.front = f.front && l.op == StitchOp::SlipFront;
+            for (uint32_t i = 0; i < uint32_t(m); ++i) f.vertices.push_back(l.first + i);
+        }
+        floating = !loop;
+        for (int i = 0; i < m; ++i) {
+            const double t = dir * (loop ? loopParameter(in.rows, l, i, m) : -util::kPi + util::kTwoPi * i / m);
+            add(loop ? loopPoint(g, l, t) : floatPoint(g, r, c, t), ox);
+        }
+    }
+    // The turn: from this row's last foot to the next row's first (the next period's row 0 after
+    // the last row), at the boundary beside the row's last column.
+    const int u = rightwards ? area.first + area.count - 1 : area.first;
+    const int c = u % W, next = (r + 1) % H;
+    const CellGeometry gn{&chart, &in.rows, &in.plan, &in.yarns[size_t(next)], a, intarsia::kBoundaryInset, 0.0};
+    intarsia::Turn turn;
+    turn.from = loopPoint(g, cell.loops[size_t(r) * size_t(W) + size_t(c)], dir * util::kPi);
+    turn.to = loopPoint(gn, stitchLoop(in, next, c, a, 0, 0), dir * util::kPi) +
+              glm::dvec3(0, r + 1 == H ? in.rows.period : 0.0, 0);
+    turn.boundary = util::kTwoPi * c + dir * util::kPi;
+    turn.side = rightwards ? -1 : 1;
+    for (const glm::dvec3& q : intarsia::turnPoints(turn, plainLoopLength(n) / n)) add(q, u / W);
+}
+
+// Steps 5-6 for intarsia: each area's yarn, a serpentine up the period (chart_intarsia.hpp),
+// closing through +y after the last row's turn. Returns the palette letter of every vertex.
+std::vector<char> buildIntarsia(const CellInputs& in, double scale, ChartCell& cell) {
+    const Chart& chart = in.chart;
+    const int W = chart.width, H = chart.height;
+    // A loop per stitch plus a turn per area and row (shorter than two loops), bounded first.
+    checkVertexCount(chart, uint64_t(W) * uint64_t(H) * uint64_t(in.n) * 3);
+    const std::vector<intarsia::Area> areas = intarsia::areas(chart);
+    cell.loops.assign(size_t(W) * size_t(H), {});
+    Pattern& p = cell.pattern;
+    std::vector<char> letter;
+    for (size_t a = 0; a < areas.size(); ++a) {
+        const uint32_t first = uint32_t(p.points.size());
+        IntarsiaYarn yarn;
+        for (int r = 0; r < H; ++r) intarsiaRow(in, areas[a], int(a), r, scale, cell, yarn, letter);
+        const uint32_t last = uint32_t(p.points.size()) - 1;
+        for (uint32_t i = first; i < last; ++i)
+            p.edges.push_back({i, i + 1, yarn.tile[i + 1 - first] - yarn.tile[i - first], 0});
+        p.edges.push_back({last, first, yarn.tile.front() - yarn.tile.back(), 1});
+        cell.floats.insert(cell.floats.end(), yarn.floats.begin(), yarn.floats.end());
+    }
+    cell.yarns = int(areas.size());
+    return letter;
+}
+
 // Step 7: the colour layer, per loop (sRGB) and per vertex (linear).
 void colourLayer(const Chart& chart, const std::vector<char>& letter, ChartCell& cell) {
     if (chart.colour.empty()) return;
@@ -461,30 +589,38 @@ void colourLayer(const Chart& chart, const std::vector<char>& letter, ChartCell&
 ChartCell chartToCell(const Chart& chart, const ChartCellOptions& options) {
     if (!util::positiveFinite(options.radius)) throw Error("knitting chart: the yarn radius must be positive");
     if (options.samplesPerStitch < 8) throw Error("knitting chart: the samples per stitch must be >= 8");
-    if (chart.colourwork == Colourwork::Intarsia)
-        throw Error(chart.name +
-                    ": intarsia colourwork is parsed but not built yet (use `stranded`, or leave the line out to "
-                    "paint the colours on one yarn per row)");
+    // Intarsia is knitted back and forth: each yarn's serpentine closes after an even number of rows.
+    const bool isIntarsia = chart.colourwork == Colourwork::Intarsia;
+    const Chart even = isIntarsia ? intarsia::evenRows(chart) : Chart{};
+    const Chart& ch = isIntarsia ? even : chart;
     const double s = options.radius / kModelRadius;  // metres per model unit
     ChartCell cell;
-    cell.width = chart.width;
-    cell.height = chart.height;
-    const std::vector<RowYarns> yarns = rowYarns(chart);
-    const std::vector<Plan> plan = planLoops(chart);
-    const RowLayout rows = rowLayout(chart, plan);
-    const CellInputs in{chart, yarns, plan, rows, options.samplesPerStitch};
-    const std::vector<std::vector<uint32_t>> starts = stitchRecord(in, cell);
+    cell.width = ch.width;
+    cell.height = ch.height;
+    const std::vector<RowYarns> yarns = rowYarns(ch);
+    const std::vector<Plan> plan = planLoops(ch);
+    const RowLayout rows = rowLayout(ch, plan);
+    const CellInputs in{ch, yarns, plan, rows, options.samplesPerStitch};
+    const std::vector<std::vector<uint32_t>> starts =
+        isIntarsia ? std::vector<std::vector<uint32_t>>{} : stitchRecord(in, cell);
     Pattern& p = cell.pattern;
     p.name = chart.name;
-    p.stitchesPerPeriod = chart.width;
-    p.rowsPerPeriod = chart.height;
-    p.px = util::kTwoPi * chart.width * s;
+    p.stitchesPerPeriod = ch.width;
+    p.rowsPerPeriod = ch.height;
+    p.px = util::kTwoPi * ch.width * s;
     p.py = rows.period * s;
     p.radius = options.radius;
-    const std::vector<char> letter = buildYarns(in, starts, s, cell);
+    const std::vector<char> letter = isIntarsia ? buildIntarsia(in, s, cell) : buildYarns(in, starts, s, cell);
     p.twist.assign(p.points.size(), 0.0);
     cell.restScale = liftedRestScale(cell, s, options.samplesPerStitch);
-    colourLayer(chart, letter, cell);
+    // A chart stacked twice lists the floats of its first copy only (the second repeats them), so
+    // every float's row is a row of the chart as written (Chart::rowLine, the warnings).
+    cell.floats.erase(std::remove_if(cell.floats.begin(), cell.floats.end(),
+                                     [&](const ChartFloat& f) { return f.row >= chart.height; }),
+                      cell.floats.end());
+    std::stable_sort(cell.floats.begin(), cell.floats.end(),
+                     [](const ChartFloat& a, const ChartFloat& b) { return a.row < b.row; });
+    colourLayer(ch, letter, cell);
     validatePattern(p, p.name);
     return cell;
 }

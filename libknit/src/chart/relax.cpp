@@ -253,6 +253,39 @@ double collisionFreeStep(const Problem& pb, const Vec& d, double dmin, double cu
     return 0.9 * std::min(dmin, cutoff) / std::max(8.0 * largestMove(pb, d), 1e-300);
 }
 
+// Affine period coordinates (RelaxOptions::affinePeriod): in them a change of the period carries
+// every vertex with it (x -> A x, A = diag(px'/px, py'/py, 1)), so the cell shrinking or growing
+// as a whole is one variable instead of a slow drift of every vertex, which L-BFGS followed over
+// thousands of iterations. T is the map from a step in these coordinates to a step of v, at v;
+// the search direction is found in them and applied as T dw.
+Vec affineStep(const Problem& pb, const Vec& v, const Vec& dw) {  // T dw
+    const Eigen::Index px = Eigen::Index(3 * pb.n), py = px + 1;
+    Vec d = dw;
+    for (Eigen::Index i = 0; i < px; i += 3) {
+        d[i] += v[i] * dw[px] / v[px];
+        d[i + 1] += v[i + 1] * dw[py] / v[py];
+    }
+    return d;
+}
+Vec affineGradient(const Problem& pb, const Vec& v, const Vec& g) {  // T^T g
+    const Eigen::Index px = Eigen::Index(3 * pb.n), py = px + 1;
+    Vec gw = g;
+    for (Eigen::Index i = 0; i < px; i += 3) {
+        gw[px] += g[i] * v[i] / v[px];
+        gw[py] += g[i + 1] * v[i + 1] / v[py];
+    }
+    return gw;
+}
+Vec affineInverse(const Problem& pb, const Vec& v, const Vec& dv) {  // T^-1 dv
+    const Eigen::Index px = Eigen::Index(3 * pb.n), py = px + 1;
+    Vec dw = dv;
+    for (Eigen::Index i = 0; i < px; i += 3) {
+        dw[i] -= v[i] * dv[px] / v[px];
+        dw[i + 1] -= v[i + 1] * dv[py] / v[py];
+    }
+    return dw;
+}
+
 // Stop: the largest gradient entry is below the absolute tolerance or below the relative one
 // times its value at the start, or the energy fell by less than relativeEnergyTolerance times
 // the whole decrease so far over the last energyWindow iterations (the stretched, slowly sliding
@@ -305,13 +338,17 @@ RelaxResult relaxYarn(const Pattern& initial, const RelaxOptions& options) {
             result.stopped = true;
             break;
         }
-        // Step 2: direction (L-BFGS, steepest descent when it is not a descent direction).
-        Vec d = lbfgsDirection(g, S, Y);
-        if (d.dot(g) >= 0) {
+        // Step 2: direction (L-BFGS, steepest descent when it is not a descent direction), in
+        // affine period coordinates when asked.
+        const bool affine = options.affinePeriod && options.freePeriod;
+        const Vec gw = affine ? affineGradient(pb, v, g) : g;
+        Vec dw = lbfgsDirection(gw, S, Y);
+        if (dw.dot(gw) >= 0) {
             S.clear();
             Y.clear();
-            d = -g;
+            dw = -gw;
         }
+        const Vec d = affine ? affineStep(pb, v, dw) : dw;
         // Step 3: backtracking line search from a step capped at maxStep per vertex and by the
         // continuous collision bound (no two segments can pass through each other).
         double step = std::min({1.0, options.maxStep / std::max(largestMove(pb, d), 1e-300),
@@ -332,7 +369,8 @@ RelaxResult relaxYarn(const Pattern& initial, const RelaxOptions& options) {
         }
         // Step 4: memory update; the pair list is rebuilt when two points may have come closer by
         // half the skin since it was built.
-        lbfgsRemember(S, Y, vNew - v, gNew - g);
+        if (affine) lbfgsRemember(S, Y, affineInverse(pb, v, vNew - v), affineGradient(pb, v, gNew) - gw);
+        else lbfgsRemember(S, Y, vNew - v, gNew - g);
         v.swap(vNew);
         g.swap(gNew);
         e = eNew;

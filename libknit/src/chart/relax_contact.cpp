@@ -165,14 +165,17 @@ std::vector<Pair> findPairs(const std::vector<glm::dvec3>& x, double px, double 
     std::nth_element(sorted.begin(), sorted.begin() + std::ptrdiff_t(9 * m / 10), sorted.end());
     const double typical = m ? sorted[9 * m / 10] : 0.0;
     auto excess = [&](size_t i) { return std::max(0.0, half[i] - typical); };
-    // Step 2: the hash. Two segments closer than the cutoff have boxes less than a cell apart along
-    // x and y (|mid_s - mid_t| <= cutoff + half_s + half_t), so their cells are neighbours.
+    // Step 2: the hash. Two segments closer than the cutoff have boxes less than `width` apart
+    // along x and y (|mid_s - mid_t| <= cutoff + half_s + half_t), so their cells are at most
+    // `reach` cells apart: 1 when the period holds a cell of that width, more when the period is
+    // narrower than it (a cutoff beyond the period: pairs with images two or more periods away).
     const double width = cutoff + 2 * typical;
     Grid g;
     g.nx = std::max(1, int(px / width));
     g.ny = std::max(1, int(py / width));
     g.wx = px / g.nx;
     g.wy = py / g.ny;
+    const int reachX = std::max(1, int(std::ceil(width / g.wx))), reachY = std::max(1, int(std::ceil(width / g.wy)));
     g.cells.assign(size_t(g.nx) * size_t(g.ny), {});
     for (size_t t = 0; t < m; ++t) {
         const CellRange r = cellsOf(g, wrapped[t], excess(t));
@@ -191,8 +194,8 @@ std::vector<Pair> findPairs(const std::vector<glm::dvec3>& x, double px, double 
         for (size_t s = range.begin(); s != range.end(); ++s) {
             candidates.clear();
             const CellRange r = cellsOf(g, wrapped[s], excess(s));
-            for (int cj = r.j0 - 1; cj <= r.j1 + 1; ++cj)
-                for (int ci = r.i0 - 1; ci <= r.i1 + 1; ++ci) {
+            for (int cj = r.j0 - reachY; cj <= r.j1 + reachY; ++cj)
+                for (int ci = r.i0 - reachX; ci <= r.i1 + reachX; ++ci) {
                     const int wrapX = floorDiv(ci, g.nx), wrapY = floorDiv(cj, g.ny);
                     for (const Entry& en :
                          g.cells[size_t(cj - wrapY * g.ny) * size_t(g.nx) + size_t(ci - wrapX * g.nx)]) {

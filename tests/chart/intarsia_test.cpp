@@ -1,0 +1,264 @@
+// Intarsia colourwork (issue 25): one yarn per colour area, knitted back and forth, the yarns'
+// turns interlocked at the area boundaries (libknit/src/chart/chart_intarsia.hpp), before and
+// after relaxation.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <set>
+
+#include <glm/geometric.hpp>
+
+#include "chart/crossings.hpp"
+#include "chart/openings.hpp"
+#include "knit/chart.hpp"
+#include "knit/chart_pattern.hpp"
+#include "knit/chart_topology.hpp"
+#include "knit/error.hpp"
+#include "knit/relax.hpp"
+
+namespace knit {
+namespace {
+
+// Gauss linking number of two closed polylines (exact per pair of segments: the solid angle
+// formula of Klenin and Langowski, Biopolymers 54 (2000) 307).
+double linking(const std::vector<glm::dvec3>& a, const std::vector<glm::dvec3>& b) {
+    auto unit = [](glm::dvec3 v) {
+        const double l = glm::length(v);
+        return l > 0 ? v / l : v;
+    };
+    auto asinClamped = [](double x) { return std::asin(std::clamp(x, -1.0, 1.0)); };
+    double sum = 0;
+    for (size_t i = 0; i < a.size(); ++i)
+        for (size_t j = 0; j < b.size(); ++j) {
+            const glm::dvec3 p1 = a[i], p2 = a[(i + 1) % a.size()], p3 = b[j], p4 = b[(j + 1) % b.size()];
+            const glm::dvec3 r13 = p3 - p1, r14 = p4 - p1, r23 = p3 - p2, r24 = p4 - p2;
+            const glm::dvec3 n1 = unit(glm::cross(r13, r14)), n2 = unit(glm::cross(r14, r24)),
+                             n3 = unit(glm::cross(r24, r23)), n4 = unit(glm::cross(r23, r13));
+            const double omega = asinClamped(glm::dot(n1, n2)) + asinClamped(glm::dot(n2, n3)) +
+                                 asinClamped(glm::dot(n3, n4)) + asinClamped(glm::dot(n4, n1));
+            const double s = glm::dot(glm::cross(p4 - p3, p2 - p1), r13);
+            sum += s > 0 ? omega : (s < 0 ? -omega : 0.0);
+        }
+    return sum / (4 * M_PI);
+}
+
+// A yarn's turn between two rows: its vertices not in any stitch, with the feet either side
+// (the last vertex of the row's last loop and the first of the next row's), the yarn's
+// periodic offsets applied so it is one connected curve, closed by the chord between the feet.
+struct TurnCurve {
+    int yarn = 0;
+    std::vector<glm::dvec3> points;
+    glm::dvec3 centre{0.0};
+};
+std::vector<TurnCurve> turnsOf(const ChartCell& cell, const Pattern& p) {
+    std::vector<bool> inStitch(p.points.size(), false);
+    std::vector<int> yarnOf(p.points.size(), -1);
+    for (const StitchLoop& l : cell.loops)
+        for (uint32_t i = l.first; i < l.first + l.count; ++i) {
+            inStitch[i] = true;
+            yarnOf[i] = l.yarn;
+        }
+    std::vector<TurnCurve> turns;
+    for (const PeriodicEdge& e : p.edges) {  // an edge from a stitch into a turn starts one
+        if (!inStitch[e.v0] || inStitch[e.v1]) continue;
+        TurnCurve t;
+        t.yarn = yarnOf[e.v0];
+        t.points.push_back(p.points[e.v0]);
+        glm::dvec3 offset(e.dx * p.px, e.dy * p.py, 0);
+        const PeriodicEdge* at = &e;
+        while (true) {
+            t.points.push_back(p.points[at->v1] + offset);
+            at = &p.edges[at->v1];  // edges[i] leaves vertex i
+            offset += glm::dvec3(at->dx * p.px, at->dy * p.py, 0);
+            if (inStitch[at->v1]) break;
+        }
+        t.points.push_back(p.points[at->v1] + offset);
+        for (const glm::dvec3& q : t.points) t.centre += q / double(t.points.size());
+        turns.push_back(t);
+    }
+    return turns;
+}
+
+// For every turn: how many turns of other yarns it is linked with (|linking number| near 1),
+// and the largest |linking number| with any turn it is not linked with.
+struct Interlock {
+    std::vector<int> linkedWith;
+    double worstUnlinked = 0, worstLinked = 1;
+};
+Interlock interlock(const ChartCell& cell, const Pattern& p) {
+    const std::vector<TurnCurve> turns = turnsOf(cell, p);
+    Interlock out;
+    for (const TurnCurve& a : turns) {
+        int linked = 0;
+        for (const TurnCurve& b : turns) {
+            if (b.yarn == a.yarn) continue;
+            // b's image nearest to a, and the ones a period above and below it (a two-row cell
+            // has one turn per yarn and boundary: the one above a turn and the one below are images)
+            const glm::dvec3 d = a.centre - b.centre;
+            for (int iy = -1; iy <= 1; ++iy) {
+                const glm::dvec3 shift(std::round(d.x / p.px) * p.px, (std::round(d.y / p.py) + iy) * p.py, 0);
+                std::vector<glm::dvec3> moved;
+                for (const glm::dvec3& q : b.points) moved.push_back(q + shift);
+                const double lk = std::abs(linking(a.points, moved));
+                if (lk > 0.5) {
+                    ++linked;
+                    out.worstLinked = std::min(out.worstLinked, lk);
+                } else {
+                    out.worstUnlinked = std::max(out.worstUnlinked, lk);
+                }
+            }
+        }
+        out.linkedWith.push_back(linked);
+    }
+    return out;
+}
+
+// The columns beside a colour boundary.
+std::vector<int> boundaryColumns(const Chart& chart) {
+    std::vector<int> out;
+    for (int c = 0; c < chart.width; ++c)
+        if (chart.colourAt(0, c) != chart.colourAt(0, (c + 1) % chart.width) ||
+            chart.colourAt(0, c) != chart.colourAt(0, (c + chart.width - 1) % chart.width))
+            out.push_back(c);
+    return out;
+}
+
+TEST(Intarsia, oneYarnPerAreaKnittedBackAndForth) {
+    const Chart chart = builtinChart("chart:intarsia-blocks");
+    const ChartCell cell = chartToCell(chart);
+    ASSERT_EQ(cell.yarns, 2);
+    EXPECT_TRUE(cell.floats.empty());
+    // Each loop on its area's yarn (A: columns 0-1, B: 2-3), odd rows knitted back.
+    for (const StitchLoop& l : cell.loops) {
+        EXPECT_EQ(l.yarn, l.column < 2 ? 0 : 1) << l.row << ", " << l.column;
+        EXPECT_EQ(l.reversed, l.row % 2 == 1);
+    }
+    // Two closed yarns, each climbing one period: the edges from a yarn's first vertex come back
+    // to it after one period in y and none in x.
+    std::set<uint32_t> seen;
+    int chains = 0;
+    for (uint32_t start = 0; start < cell.pattern.points.size(); ++start) {
+        if (seen.count(start)) continue;
+        ++chains;
+        int dx = 0, dy = 0;
+        uint32_t v = start;
+        do {
+            seen.insert(v);
+            dx += cell.pattern.edges[v].dx;
+            dy += cell.pattern.edges[v].dy;
+            v = cell.pattern.edges[v].v1;
+        } while (v != start);
+        EXPECT_EQ(dx, 0);
+        EXPECT_EQ(dy, 1);
+    }
+    EXPECT_EQ(chains, 2);
+    // Each yarn keeps its colour: two colours, one per yarn.
+    ASSERT_EQ(cell.pattern.colour.size(), cell.pattern.points.size());
+    std::map<int, std::set<std::tuple<float, float, float>>> colours;
+    for (const StitchLoop& l : cell.loops)
+        for (uint32_t i = l.first; i < l.first + l.count; ++i)
+            colours[l.yarn].insert({cell.pattern.colour[i].x, cell.pattern.colour[i].y, cell.pattern.colour[i].z});
+    EXPECT_EQ(colours[0].size(), 1u);
+    EXPECT_EQ(colours[1].size(), 1u);
+    EXPECT_NE(*colours[0].begin(), *colours[1].begin());
+    // The stitches are the plain stitches: legs over the head below, feet behind its legs.
+    for (int r = 0; r < cell.height; ++r)
+        for (int c = 0; c < cell.width; ++c) EXPECT_EQ(test::checkStitch(cell, r, c), "");
+}
+
+TEST(Intarsia, oddChartsAreStackedTwiceAndAreasMayWrapRoundThePeriod) {
+    // One row; the A area wraps round the period (columns 4, 0, 1).
+    const ChartCell cell = chartToCell(parseChart("k k k k k\n\nA A B B A\nA=#ffffff B=#000000\nintarsia\n", "t"));
+    EXPECT_EQ(cell.height, 2);
+    EXPECT_EQ(cell.pattern.rowsPerPeriod, 2);
+    EXPECT_EQ(cell.yarns, 2);
+    const Interlock il = interlock(cell, cell.pattern);
+    ASSERT_EQ(il.linkedWith.size(), 4u);  // each yarn turns once per row
+    for (const int n : il.linkedWith) EXPECT_EQ(n, 2);
+}
+
+// A slipped stitch inside an area floats as usual; a chart of odd height is stacked twice, and
+// the cell lists the floats of its first copy only, at the chart's rows (the warnings index the
+// chart's lines with them).
+TEST(Intarsia, floatsInsideAnAreaAreListedOnceAtTheChartsRows) {
+    const Chart chart = parseChart("k k k k k\nk sl sl k k\nk k k k k\n\nA A A A B\nA A A A B\nA A A A B\n"
+                                   "A=#ffffff B=#000000\nintarsia\n",
+                                   "float.chart");
+    const ChartCell cell = chartToCell(chart);
+    EXPECT_EQ(cell.height, 6);
+    ASSERT_EQ(cell.floats.size(), 1u);
+    EXPECT_EQ(cell.floats[0].row, 1);
+    EXPECT_EQ(cell.floats[0].firstColumn, 1);
+    EXPECT_EQ(cell.floats[0].columns, 2);
+    EXPECT_FALSE(cell.floats[0].stranded);
+    EXPECT_FALSE(cell.floats[0].front);
+}
+
+// Each turn is hooked through the neighbouring yarn's turns above and below it (a chain along
+// the boundary), before and after relaxation; the relaxation keeps the yarns apart, the
+// boundary stitches held by the stitches above them, and no hole opens at the boundary.
+TEST(Intarsia, turnsInterlockAndTheBoundaryHoldsAfterRelaxation) {
+    const Chart chart = builtinChart("chart:intarsia-blocks");
+    const ChartPattern cp = relaxChart(chart);
+    for (const Pattern* p : {&cp.cell.pattern, &cp.relaxed.pattern}) {
+        const Interlock il = interlock(cp.cell, *p);
+        ASSERT_EQ(il.linkedWith.size(), 4u);  // each of the 2 yarns turns once per row
+        for (const int n : il.linkedWith) EXPECT_EQ(n, 2);
+        EXPECT_GT(il.worstLinked, 0.9);
+        EXPECT_LT(il.worstUnlinked, 0.1);
+    }
+    std::printf("intarsia-blocks: min distance %.3f r, closest approach %.3f r, %d iterations\n",
+                cp.relaxed.minDistance, cp.relaxed.closestApproach, cp.relaxed.iterations);
+    EXPECT_TRUE(cp.relaxed.converged);
+    EXPECT_GE(cp.relaxed.minDistance, 1.9);
+    EXPECT_GT(cp.relaxed.closestApproach, 0.2);
+    ChartCell relaxed = cp.cell;
+    relaxed.pattern = cp.relaxed.pattern;
+    for (const int c : boundaryColumns(chart))
+        for (int r = 0; r < relaxed.height; ++r) EXPECT_EQ(test::checkStitchEnds(relaxed, r, c), "");
+    // No slit: the largest opening seen along z is no larger than plain knitting's.
+    const double opening = test::largestOpening(cp.relaxed.pattern).radius;
+    const double plain = test::largestOpening(relaxChart(builtinChart("chart:stockinette")).relaxed.pattern).radius;
+    std::printf("intarsia-blocks: largest opening %.3f r (stockinette %.3f r)\n", opening, plain);
+    EXPECT_LT(opening, plain + 0.25);
+}
+
+// Lace, twisted stitches and a cable across the boundary: the turns still hook into each other,
+// and the loose construction keeps the yarns apart (the relaxation starts untangled).
+TEST(Intarsia, turnsInterlockBesideLaceTwistedAndCabledStitches) {
+    const ChartCell cell = chartToCell(parseChart("k k k k k k\nk c2/2f k\nk k k k k k\nk yo k2tog ktbl k k\n\n"
+                                                  "A A A B B B\nA A A B B B\nA A A B B B\nA A A B B B\n"
+                                                  "A=#ffffff B=#000000\nintarsia\n",
+                                                  "mixed.chart"));
+    const Interlock il = interlock(cell, cell.pattern);
+    ASSERT_EQ(il.linkedWith.size(), 8u);
+    for (const int n : il.linkedWith) EXPECT_EQ(n, 2);
+    EXPECT_GT(minYarnDistance(cell.pattern), 0.3);
+}
+
+TEST(Intarsia, layoutsAPeriodicCellCannotKnitAreRefusedWithTheirPlace) {
+    auto error = [](const std::string& text) {
+        try {
+            parseChart(text, "t.chart");
+        } catch (const Error& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    // A motif inside the repeat (its yarn would have two ends).
+    EXPECT_NE(error("k k k\nk k k\n\nA B A\nA A A\nA=#ffffff B=#000000\nintarsia\n")
+                  .find("t.chart:1:1: intarsia: column 2 is colour B on this row and A on the bottom row"),
+              std::string::npos);
+    EXPECT_NE(error("k k\n\nA A\nA=#ffffff B=#000000\nintarsia\n").find("t.chart:1:1: intarsia needs at least two"),
+              std::string::npos);
+    // Purl beside the boundary: the turn leaves a knit foot from behind.
+    EXPECT_NE(error("k p k k\nk k k k\n\nA A B B\nA A B B\nA=#ffffff B=#000000\nintarsia\n")
+                  .find("t.chart:1:1: intarsia: the stitch in column 2 lies beside a colour boundary"),
+              std::string::npos);
+    // Purl inside an area is fine.
+    EXPECT_EQ(error("k p k k k k\nk k k k k k\n\nA A A B B B\nA A A B B B\nA=#ffffff B=#000000\nintarsia\n"), "");
+}
+
+}  // namespace
+}  // namespace knit
