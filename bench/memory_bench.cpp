@@ -55,7 +55,9 @@ void BM_TriadAllCores(benchmark::State& state) {
     for (auto _ : state) {
         tbb::parallel_for(
             tbb::blocked_range<size_t>(0, n, size_t(1) << 20),
-            [&](const tbb::blocked_range<size_t>& r) { triad(x.a.data(), x.b.data(), x.c.data(), s, r.begin(), r.end()); },
+            [&](const tbb::blocked_range<size_t>& r) {
+                triad(x.a.data(), x.b.data(), x.c.data(), s, r.begin(), r.end());
+            },
             part);
         benchmark::DoNotOptimize(x.a.data());
         benchmark::ClobberMemory();

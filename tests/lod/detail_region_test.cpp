@@ -122,7 +122,8 @@ TEST(DetailRegion, regionBuildIsTheFullScenesPliesBitForBit) {
     for (size_t c = 0; c < rp.curveCount(); ++c) {
         const size_t w = wholeCurve.at({uint32_t(fullOf[region.plies().yarnOfCurve[c]]), region.plies().plyOfCurve[c]});
         const Polylines& wp = fullPlies.curves;
-        const auto first = std::find(wp.points.begin() + wp.begin(w), wp.points.begin() + wp.end(w), rp.points[rp.begin(c)]);
+        const auto first =
+            std::find(wp.points.begin() + wp.begin(w), wp.points.begin() + wp.end(w), rp.points[rp.begin(c)]);
         ASSERT_NE(first, wp.points.begin() + wp.end(w)) << "ply curve " << c;
         const size_t off = size_t(first - (wp.points.begin() + wp.begin(w)));
         ASSERT_LE(off + rp.size(c), wp.size(w)) << "ply curve " << c;

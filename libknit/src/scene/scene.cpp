@@ -190,9 +190,9 @@ private:
                         impl::checkRegionYarnBudget(kept, physicalSize(), options_.budget);
                     };
                 }
-                appendIslandYarns(
-                    st.uvYarns, stitchYarns(s_.pattern_, adjacency, st.islandTilings[c], s_.placement_, filter.get()),
-                    uint32_t(c));
+                appendIslandYarns(st.uvYarns,
+                                  stitchYarns(s_.pattern_, adjacency, st.islandTilings[c], s_.placement_, filter.get()),
+                                  uint32_t(c));
             }
         }
     }
