@@ -33,6 +33,23 @@ const Fixture& fixture() {
     return f;
 }
 
+// Bytes each evaluation streams per yarn vertex (the mesh it gathers from, 131k triangles and
+// 66k vertices, ~5 MB, stays in the caches): read face (4), bary (16), height (8); write the
+// position and normal in double (24 + 24), or the float32 position (12). The hardware also reads
+// each written line first (write allocate): 48 / 12 more. With MeasureProcessCPUTime the CPU
+// column is the CPU time of every thread (for a loaded machine: vertices per CPU second).
+constexpr double kEvaluateBytes = 4 + 16 + 8 + 24 + 24;  // 76
+constexpr double kEvaluateFloatBytes = 4 + 16 + 8 + 12;  // 40
+constexpr double kEvaluatePackedBytes = 16 + 12;         // 28: one packed record in, the position out
+
+// Counters: bytes per vertex and the streamed bytes per second (compare with memory_bench's
+// triad, the machine's limit).
+void streamedBytes(benchmark::State& state, size_t vertices, double perVertex) {
+    state.counters["bytes_per_vertex"] = perVertex;
+    state.counters["streamed_bytes_per_second"] =
+        benchmark::Counter(double(state.iterations()) * double(vertices) * perVertex, benchmark::Counter::kIsRate);
+}
+
 void BM_TilingStitch(benchmark::State& state) {
     const knit::Scene& s = fixture().scene;
     const knit::PatternAdjacency adj = knit::buildAdjacency(s.pattern());
@@ -83,8 +100,9 @@ void BM_Evaluate(benchmark::State& state) {
     }
     state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(s.binding().vertexCount()));
     state.counters["yarn_vertices"] = double(s.binding().vertexCount());
+    streamedBytes(state, s.binding().vertexCount(), kEvaluateBytes);
 }
-BENCHMARK(BM_Evaluate)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_Evaluate)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime();
 
 // Per-frame re-posing for a renderer: float32 positions relative to a local origin.
 void BM_EvaluateFloat(benchmark::State& state) {
@@ -95,8 +113,23 @@ void BM_EvaluateFloat(benchmark::State& state) {
         benchmark::DoNotOptimize(out.data());
     }
     state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(s.binding().vertexCount()));
+    streamedBytes(state, s.binding().vertexCount(), kEvaluateFloatBytes);
 }
-BENCHMARK(BM_EvaluateFloat)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_EvaluateFloat)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime();
+
+// The same from the packed binding (16 bytes per vertex, float32 arithmetic).
+void BM_EvaluatePackedFloat(benchmark::State& state) {
+    const knit::Scene& s = fixture().scene;
+    const knit::PackedBinding packed = knit::packBinding(s.binding());
+    std::vector<glm::vec3> out;
+    for (auto _ : state) {
+        knit::evaluatePackedFloat(packed, s.mesh().faces, s.mesh().positions, s.normals(), glm::dvec3(0.0), out);
+        benchmark::DoNotOptimize(out.data());
+    }
+    state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(s.binding().vertexCount()));
+    streamedBytes(state, s.binding().vertexCount(), kEvaluatePackedBytes);
+}
+BENCHMARK(BM_EvaluatePackedFloat)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime();
 
 }  // namespace
 

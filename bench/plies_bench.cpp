@@ -3,7 +3,8 @@
 // Input: 1000 open knit-like yarns (Crane's plain-knit curve) of 1000 vertices each (1M yarn
 // vertices), vertex spacing about twice the resampling spacing (pitch / samplesPerTurn with the
 // default pitch of 6 yarn radii and 12 samples per turn), surface normal +z.
-// items_per_second = output points per second (ply vertices for makePlies), wall-clock time.
+// items_per_second = output points per second (ply vertices for makePlies), wall-clock time; the
+// CPU column of makePlies is the process's (every thread), for a loaded machine.
 // Arguments: makePlies/<plies>/<threads> (threads 0 = TBB default, all cores).
 #include <cmath>
 #include <memory>
@@ -68,8 +69,19 @@ void BM_MakePlies(benchmark::State& state) {
     state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * plyVertices));
     state.counters["yarnVertices"] = static_cast<double>(yarns.curves.pointCount());
     state.counters["plyVertices"] = static_cast<double>(plyVertices);
+    // Output bytes per ply vertex (point and radial direction in double), and their rate against
+    // memory_bench's triad: makePlies is bound by its arithmetic (frames, sines), not by memory.
+    state.counters["bytes_per_vertex"] = 48;
+    state.counters["written_bytes_per_second"] = benchmark::Counter(
+        static_cast<double>(state.iterations()) * static_cast<double>(plyVertices) * 48.0, benchmark::Counter::kIsRate);
 }
-BENCHMARK(BM_MakePlies)->Args({2, 0})->Args({4, 0})->Args({2, 1})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_MakePlies)
+    ->Args({2, 0})
+    ->Args({4, 0})
+    ->Args({2, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MeasureProcessCPUTime();
 
 void BM_Resample(benchmark::State& state) {
     const knit::MappedYarns& yarns = benchYarns();

@@ -205,5 +205,38 @@ TEST(Mapping, floatEvaluationFarFromOriginKeepsPrecision) {
     EXPECT_LT(worst, 1e-3 * s.yarnRadius());
 }
 
+// The packed float32 evaluation agrees with the double one to float32 rounding at the garment's
+// size, far from the origin too, and a pose that moves the mesh moves its yarns the same way.
+TEST(Mapping, packedFloatEvaluationIsTheDoubleOneToFloatRounding) {
+    ProceduralMeshOptions mo;
+    mo.resU = mo.resV = 16;
+    BaseMesh far = makeDrape(mo);
+    const glm::dvec3 offset(1e5, -2e5, 3e4);
+    for (glm::dvec3& x : far.positions) x += offset;
+    const Scene s = buildScene(generateStockinette(), far, yarnsOnly({20, 20}));
+    const PackedBinding packed = packBinding(s.binding());
+    ASSERT_EQ(packed.vertices.size(), s.binding().vertexCount());
+    std::vector<glm::vec3> local;
+    evaluatePackedFloat(packed, s.mesh().faces, s.mesh().positions, s.normals(), offset, local);
+    ASSERT_EQ(local.size(), s.yarns().curves.pointCount());
+    double worst = 0;
+    for (size_t i = 0; i < local.size(); ++i)
+        worst = std::max(worst, glm::distance(glm::dvec3(local[i]) + offset, s.yarns().curves.points[i]));
+    EXPECT_LT(worst, 2e-6 * 0.5);  // float32 arithmetic on ~0.5 m coordinates
+    EXPECT_LT(worst, 2e-3 * s.yarnRadius());
+    // A moved pose: the packed evaluation follows it as the double one does.
+    std::vector<glm::dvec3> moved = s.mesh().positions;
+    for (glm::dvec3& x : moved) x += glm::dvec3(0.0, 0.0, 0.05 * std::sin(8.0 * (x.x - offset.x)));
+    const std::vector<glm::dvec3> movedNormals = vertexNormals(moved, s.mesh().faces);
+    MappedYarns exact;
+    evaluateBinding(s.binding(), s.mesh().faces, moved, movedNormals, exact);
+    evaluatePackedFloat(packed, s.mesh().faces, moved, movedNormals, offset, local);
+    worst = 0;
+    for (size_t i = 0; i < local.size(); ++i)
+        worst = std::max(worst, glm::distance(glm::dvec3(local[i]) + offset, exact.curves.points[i]));
+    EXPECT_LT(worst, 2e-3 * s.yarnRadius());
+    EXPECT_THROW(evaluatePackedFloat(packed, s.mesh().faces, moved, {}, offset, local), Error);
+}
+
 }  // namespace
 }  // namespace knit

@@ -1,8 +1,10 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <numeric>
 
 #include "common/fixtures.hpp"
+#include "knit/error.hpp"
 #include "knit/generator.hpp"
 #include "knit/stitch.hpp"
 #include "knit/tiling.hpp"
@@ -132,6 +134,45 @@ TEST(Stitch, alignmentPutsPatternOriginAtUvZero) {
         EXPECT_DOUBLE_EQ(y.uv[i].y, (q.y + 1 * p.py) / (2 * p.py));
         EXPECT_DOUBLE_EQ(y.height[i], q.z * 0.5);
     }
+}
+
+// A filter keeps exactly the yarns with a vertex in a kept tile, each the unfiltered yarn vertex
+// for vertex and in the same order, and tells the kept count before allocating their data.
+TEST(Stitch, filterKeepsTheYarnsThroughKeptTilesUnchanged) {
+    const Pattern p = generateStockinette();
+    const Tiling tiling = tilesForRegion({0, 0}, {11, 9});
+    PatternPlacement placement;
+    placement.repeats = {12, 10};
+    const PatternAdjacency adj = buildAdjacency(p);
+    const UvYarns all = stitchYarns(p, adj, tiling, placement);
+    StitchFilter filter;
+    filter.keepTile.assign(tiling.tiles.size(), 0);
+    filter.keepTile[size_t(tiling.slotOf({4, 3}))] = 1;
+    filter.keepTile[size_t(tiling.slotOf({5, 7}))] = 1;
+    uint64_t told = 0;
+    filter.beforeAllocate = [&](uint64_t n) { told = n; };
+    const UvYarns kept = stitchYarns(p, adj, tiling, placement, &filter);
+    const uint32_t n = uint32_t(p.points.size());
+    size_t k = 0;
+    for (size_t y = 0; y < all.yarnCount(); ++y) {
+        const auto b = all.source.begin() + all.offsets[y], e = all.source.begin() + all.offsets[y + 1];
+        if (!std::any_of(b, e, [&](uint32_t id) { return filter.keepTile[id / n] != 0; })) continue;
+        ASSERT_LT(k, kept.yarnCount());
+        const auto kb = kept.source.begin() + kept.offsets[k];
+        EXPECT_TRUE(std::equal(b, e, kb, kept.source.begin() + kept.offsets[k + 1])) << "yarn " << y;
+        EXPECT_TRUE(std::equal(all.uv.begin() + all.offsets[y], all.uv.begin() + all.offsets[y + 1],
+                               kept.uv.begin() + kept.offsets[k]));
+        EXPECT_EQ(kept.closed[k], all.closed[y]);
+        ++k;
+    }
+    EXPECT_EQ(k, kept.yarnCount());
+    EXPECT_GT(k, 0u);
+    EXPECT_LT(kept.vertexCount(), all.vertexCount() / 2);
+    EXPECT_EQ(told, kept.vertexCount());
+    EXPECT_EQ(kept.uv.size(), kept.vertexCount());
+    // A filter for another tiling is refused.
+    filter.keepTile.pop_back();
+    EXPECT_THROW(stitchYarns(p, adj, tiling, placement, &filter), Error);
 }
 
 }  // namespace

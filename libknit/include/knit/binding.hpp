@@ -87,4 +87,25 @@ void evaluateBindingFloat(const Binding& binding, const std::vector<glm::uvec3>&
                           const std::vector<glm::dvec3>& positions, const std::vector<glm::dvec3>& normals,
                           glm::dvec3 origin, std::vector<glm::vec3>& out);
 
+// A binding packed for per-frame float32 evaluation (src/binding_packed.cpp): one 16-byte record
+// per vertex (face, b1, b2, height as float32) instead of 28 bytes in three arrays, so a frame
+// streams 16 bytes in and 12 out per vertex (evaluateBindingFloat: 28 in, 12 out). The
+// barycentrics and heights lose what float32 drops (about 1e-7 of a triangle's size and of the
+// height), far below the float32 output's own rounding at the garment's size.
+struct PackedBindingVertex {
+    uint32_t face;
+    float b1, b2, height;
+};
+struct PackedBinding {
+    std::vector<PackedBindingVertex> vertices;
+};
+PackedBinding packBinding(const Binding& binding);
+
+// evaluateBindingFloat on a packed binding, in float32 throughout: the mesh's positions
+// (relative to `origin`) and normals are converted once per call, then every vertex is one fused
+// gather, normalize and store.
+void evaluatePackedFloat(const PackedBinding& binding, const std::vector<glm::uvec3>& faces,
+                         const std::vector<glm::dvec3>& positions, const std::vector<glm::dvec3>& normals,
+                         glm::dvec3 origin, std::vector<glm::vec3>& out);
+
 }  // namespace knit

@@ -61,6 +61,10 @@ struct DetailOptions {
     Hysteresis yarnPixels{0.5, 0.4};
     // false: cells of the yarn level get plies (for consumers that cannot draw yarn curves).
     bool yarnLevel = true;
+    // buildScene: build only the yarns through the view's ply- and yarn-level cells (yarnRegion),
+    // each whole, so their plies are the full scene's point for point; false: every yarn of the
+    // mesh (Scene::yarns() then holds them all).
+    bool region = true;
     // The levels of a previous view of the same grid (hysteresis); nullptr: none.
     const CellLevels* previous = nullptr;
 };
@@ -85,6 +89,13 @@ double yarnMargin(const Pattern& pattern, double scale, double yarnRadius);
 // option). Culled: the cell's triangles, grown by margin + shadowMargin yarn radii, lie outside one
 // frustum plane; or (cullBackFaces, not backLit, closed mesh) every triangle faces away from the eye.
 CellLevels classifyCells(const DetailInputs& in, const View& view, const DetailOptions& options);
+
+// The cells a view builds yarns for (buildScene with SceneOptions::detail): every cell at the ply
+// or yarn level, grown by `ring` cells on each side (binding clamps a vertex just outside its
+// cell onto it), row-major, each once. buildScene keeps the whole yarns that pass through them
+// (stitched over every tile, so each is the full scene's yarn vertex for vertex) and drops the
+// others before binding; their pieces and plies are then the full scene's.
+std::vector<glm::ivec2> yarnRegion(const CellLevels& levels, int ring = 1);
 
 // The mapped yarns cut per level: each run of vertices in cells of one level is a piece; where two
 // runs meet, both pieces end at the same point, where the yarn leaves the cell of the last vertex

@@ -2,6 +2,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -39,10 +40,21 @@ struct UvYarns {
     size_t vertexCount() const { return uv.size(); }
 };
 
-// Every tiled vertex appears exactly once. A yarn ends where its next tile is not in the tiling;
-// curves entered from their end are reversed. Deterministic for any thread count.
+// Which of the stitched yarns to keep (level of detail: only the yarns through a view's region).
+// The walk still runs over the whole tiling, so every kept yarn is the one the unfiltered stitch
+// makes, vertex for vertex; only the yarns with no vertex in a kept tile are dropped (before
+// their per-vertex data is made).
+struct StitchFilter {
+    std::vector<uint8_t> keepTile;  // per tile slot of the tiling: 1 = keep every yarn through it
+    // Called with the kept vertex count before their data is allocated (a memory check may throw).
+    std::function<void(uint64_t keptVertices)> beforeAllocate;
+};
+
+// Every tiled vertex appears exactly once (without a filter). A yarn ends where its next tile is
+// not in the tiling; curves entered from their end are reversed. Deterministic for any thread
+// count.
 UvYarns stitchYarns(const Pattern& pattern, const PatternAdjacency& adjacency, const Tiling& tiling,
-                    const PatternPlacement& placement);
+                    const PatternPlacement& placement, const StitchFilter* filter = nullptr);
 
 // Appends the yarns of `more` (tiled for `island`) to `yarns`, restricted to that island.
 void appendIslandYarns(UvYarns& yarns, const UvYarns& more, uint32_t island);

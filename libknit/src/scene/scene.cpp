@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <utility>
 
 #include "knit/error.hpp"
@@ -129,14 +130,17 @@ private:
     }
 
     // Step: tiles over the covered cells (and over each island's cells when islands overlap).
+    // With a view that keeps yarns somewhere (and DetailOptions::region), the tiles whose yarns
+    // are kept are marked too: those reaching the cells of yarnRegion.
     void tile() {
         // Vertices within binding's clamp tolerance of the covered cells are tiled too (they are
         // clamped onto the UV boundary, not dropped because their own cell is empty).
         const glm::dvec2 metresPerUv = uvToMetreScale(s_.mesh_);
         const double tolUv = options_.bind.clampTolerance * s_.yarnRadius_ / std::max(metresPerUv.x, metresPerUv.y);
         const glm::dvec2 margin = tolUv * s_.placement_.repeats * glm::dvec2(s_.pattern_.px, s_.pattern_.py);
+        const bool region = regionBuild();
         impl::checkTilingBudget(s_.pattern_, s_.grid_.cells.size(), s_.grid_.dims, tileReach(s_.pattern_, margin),
-                                physicalSize(), options_.budget);
+                                physicalSize(), options_.budget, region);
         SceneStages& st = s_.stages_;
         st.tiling = tilesForCells(s_.pattern_, s_.grid_.cells, margin);
         // Overlapping UV islands: each island is also tiled over its own cells, so that each gets
@@ -146,21 +150,50 @@ private:
             for (const std::vector<glm::ivec2>& c : cells)
                 st.islandTilings.push_back(c.empty() ? Tiling{} : tilesForCells(s_.pattern_, c, margin));
         }
+        if (region) regionTiles_ = tilesForCells(s_.pattern_, yarnRegion(s_.detail_->levels), margin);
     }
 
-    // Step: the tiles' segments walked into yarns (per island when islands overlap).
+    // A view's region build: the yarns of the view's region only (see tile()).
+    bool regionBuild() const { return s_.detail_ && options_.detail && options_.detail->region; }
+
+    // The stitch filter of a region build for `tiling`: its tiles that are region tiles, and the
+    // memory check of the yarns kept. Null without a region build.
+    std::unique_ptr<StitchFilter> regionFilter(const Tiling& tiling) const {
+        if (!regionBuild()) return nullptr;
+        auto f = std::make_unique<StitchFilter>();
+        f->keepTile.resize(tiling.tiles.size());
+        for (size_t k = 0; k < tiling.tiles.size(); ++k) f->keepTile[k] = regionTiles_.slotOf(tiling.tiles[k]) >= 0;
+        const bool physical = physicalSize();
+        const MemoryBudget& budget = options_.budget;
+        f->beforeAllocate = [physical, &budget](uint64_t vertices) {
+            impl::checkRegionYarnBudget(vertices, physical, budget);
+        };
+        return f;
+    }
+
+    // Step: the tiles' segments walked into yarns (per island when islands overlap); a region
+    // build keeps the yarns through its region.
     void stitch() {
         const PatternAdjacency adjacency = buildAdjacency(s_.pattern_);
         SceneStages& st = s_.stages_;
         if (st.islandTilings.empty()) {
-            st.uvYarns = stitchYarns(s_.pattern_, adjacency, st.tiling, s_.placement_);
+            st.uvYarns = stitchYarns(s_.pattern_, adjacency, st.tiling, s_.placement_, regionFilter(st.tiling).get());
         } else {
             st.uvYarns = UvYarns{};
-            for (size_t c = 0; c < st.islandTilings.size(); ++c)
-                if (!st.islandTilings[c].tiles.empty())
-                    appendIslandYarns(st.uvYarns,
-                                      stitchYarns(s_.pattern_, adjacency, st.islandTilings[c], s_.placement_),
-                                      uint32_t(c));
+            uint64_t kept = 0;  // a region build checks the yarns of all islands together
+            for (size_t c = 0; c < st.islandTilings.size(); ++c) {
+                if (st.islandTilings[c].tiles.empty()) continue;
+                std::unique_ptr<StitchFilter> filter = regionFilter(st.islandTilings[c]);
+                if (filter) {
+                    filter->beforeAllocate = [this, &kept](uint64_t vertices) {
+                        kept += vertices;
+                        impl::checkRegionYarnBudget(kept, physicalSize(), options_.budget);
+                    };
+                }
+                appendIslandYarns(st.uvYarns,
+                                  stitchYarns(s_.pattern_, adjacency, st.islandTilings[c], s_.placement_, filter.get()),
+                                  uint32_t(c));
+            }
         }
     }
 
@@ -224,6 +257,7 @@ private:
 
     const SceneOptions& options_;
     Scene s_;
+    Tiling regionTiles_;  // a region build: the tiles whose yarns are kept
     int total_;
     int index_ = 0;
 };

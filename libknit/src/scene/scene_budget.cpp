@@ -48,7 +48,7 @@ void checkGridBudget(const BaseMesh& mesh, const PatternPlacement& placement, bo
 }
 
 void checkTilingBudget(const Pattern& pattern, size_t coveredCells, glm::ivec2 cellSpan, const TileReach& reach,
-                       bool physicalSize, const MemoryBudget& budget) {
+                       bool physicalSize, const MemoryBudget& budget, bool regionOnly) {
     const glm::dvec2 reachSize = glm::dvec2(reach.hi) - glm::dvec2(reach.lo) + 1.0;
     // tilesForCells' marks over the cells' box grown by the reach, and the tiles it marks.
     const double marks = (double(cellSpan.x) + reachSize.x) * (double(cellSpan.y) + reachSize.y);
@@ -59,7 +59,13 @@ void checkTilingBudget(const Pattern& pattern, size_t coveredCells, glm::ivec2 c
                   : repeatsOption(physicalSize);
     budget.require(marks * 4 + tiles * 8, count(tiles, "pattern tiles"), option);
     const double vertices = tiles * double(pattern.points.size());
-    budget.require(vertices * kBytesPerYarnVertex, count(vertices, "yarn vertices"), option);
+    budget.require(vertices * (regionOnly ? kBytesPerWalkedVertex : kBytesPerYarnVertex),
+                   count(vertices, regionOnly ? "tiled yarn vertices to walk" : "yarn vertices"), option);
+}
+
+void checkRegionYarnBudget(uint64_t vertices, bool physicalSize, const MemoryBudget& budget) {
+    budget.require(double(vertices) * kBytesPerYarnVertex, count(double(vertices), "yarn vertices through the view"),
+                   std::string(repeatsOption(physicalSize)) + " (or move the camera back)");
 }
 
 void checkPlyBudget(const MappedYarns& yarns, const PlyOptions& resolved, const MemoryBudget& budget) {

@@ -3,7 +3,9 @@
 
 #include "knit/error.hpp"
 
+#include <algorithm>
 #include <cassert>
+#include <string>
 #include <optional>
 
 #include <tbb/blocked_range.h>
@@ -47,11 +49,36 @@ struct Walker {
     }
 };
 
+// Step 3 of stitchYarns: drops the walked yarns (ids, offsets, closed flags, ghosts) with no
+// vertex in a tile marked in `keepTile`, in place, keeping the others in order.
+void keepFiltered(UvYarns& out, const std::vector<uint8_t>& keepTile, uint32_t n) {
+    size_t kept = 0, at = 0;
+    for (size_t y = 0; y < out.yarnCount(); ++y) {
+        const uint32_t b = out.offsets[y], e = out.offsets[y + 1];
+        const bool keep = std::any_of(out.source.begin() + b, out.source.begin() + e,
+                                      [&](uint32_t id) { return keepTile[id / n] != 0; });
+        if (!keep) continue;
+        if (at != b) std::copy(out.source.begin() + b, out.source.begin() + e, out.source.begin() + long(at));
+        at += e - b;
+        out.closed[kept] = out.closed[y];
+        out.ghosts[kept] = out.ghosts[y];
+        out.offsets[++kept] = uint32_t(at);
+    }
+    out.source.resize(at);
+    out.source.shrink_to_fit();
+    out.offsets.resize(kept + 1);
+    out.closed.resize(kept);
+    out.ghosts.resize(kept);
+}
+
 }  // namespace
 
 UvYarns stitchYarns(const Pattern& pattern, const PatternAdjacency& adj, const Tiling& tiling,
-                    const PatternPlacement& placement) {
+                    const PatternPlacement& placement, const StitchFilter* filter) {
     UvYarns out;
+    if (filter != nullptr && filter->keepTile.size() != tiling.tiles.size())
+        throw Error("stitching: the filter has " + std::to_string(filter->keepTile.size()) + " tile marks for " +
+                    std::to_string(tiling.tiles.size()) + " tiles");
     const uint32_t n = uint32_t(pattern.points.size());
     const uint64_t total = uint64_t(tiling.tiles.size()) * n;
     if (total == 0) return out;
@@ -127,7 +154,11 @@ UvYarns stitchYarns(const Pattern& pattern, const PatternAdjacency& adj, const T
         const bool closed = walk(id, 0);
         finishYarn(closed, GhostVertex{});
     }
-    // 3. Per-vertex data of every walked id, in parallel.
+    std::vector<uint8_t>().swap(visited);
+    // 3. With a filter: only the yarns with a vertex in a kept tile (their order kept).
+    if (filter != nullptr) keepFiltered(out, filter->keepTile, n);
+    if (filter != nullptr && filter->beforeAllocate) filter->beforeAllocate(out.source.size());
+    // 4. Per-vertex data of every kept id, in parallel.
     const size_t count = out.source.size();
     const bool coloured = !pattern.colour.empty();
     tbb::parallel_invoke([&] { out.uv.resize(count); }, [&] { out.height.resize(count); },
