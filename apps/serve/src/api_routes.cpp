@@ -40,12 +40,6 @@ std::shared_ptr<JobTicket> startJob(ServerState& state, const std::string& sessi
     return std::shared_ptr<JobTicket>(std::move(ticket));
 }
 
-// Samples per stitch of the swatch's preview: the cell relaxed at 10 instead of `knit chart`'s 24
-// converges several times sooner (the charts up to 4 x 4 of docs/serve.md in 0.01-0.11 s of CPU,
-// against 0.06-0.66 s and three at the 4000-iteration cap), so the page shows relaxed yarns while
-// the full relaxation runs. At 12 it took up to twice as long (eyelet-mesh 3232 iterations); at 8
-// the 3 x 3 moss did not converge.
-constexpr int kPreviewSamples = 10;
 
 // A "step" line every 20 iterations of the relaxation `stage`; with `swatchRepeats`, the swatch
 // of the cell so far, the first after 400 ms (a small chart's preview is done sooner: streaming

@@ -83,6 +83,13 @@ private:
 // its yarn-overs open. `cell` is the chart's cell (chartToCell), relaxed or not.
 void addDesignWarnings(const Chart& chart, const ChartCell& cell, nlohmann::json& warnings);
 
+// Samples per stitch of the swatch's preview: the cell relaxed at 10 instead of `knit chart`'s 24
+// converges several times sooner (bench/serve_bench.cpp: the charts up to 4 x 4 of docs/serve.md
+// in 0.01-0.11 s of CPU, against 0.06-0.66 s with three at the 4000-iteration cap), so the page
+// shows relaxed yarns while the full relaxation runs. At 12 it took up to twice as long
+// (eyelet-mesh 3232 iterations); at 8 the 3 x 3 moss did not converge.
+constexpr int kPreviewSamples = 10;
+
 // The initial cell relaxChart builds with `options`.
 ChartCellOptions cellOptions(const ChartPatternOptions& options);
 
