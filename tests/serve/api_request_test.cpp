@@ -61,8 +61,8 @@ TEST(ServeChart, aColourOrCommentEditReusesTheCellsRelaxation) {
     EXPECT_NE(keyOf(plain, options), keyOf(plain, preview));
 
     const Chart chart = parsePageChart(coloured, 400);
-    const RelaxedChart reused =
-        relaxedChart(chart, chartToCell(chart, cellOptions(options)), relaxPageCell(parsePageChart(plain, 400), options));
+    const RelaxedChart reused = relaxedChart(chart, chartToCell(chart, cellOptions(options)),
+                                             relaxPageCell(parsePageChart(plain, 400), options));
     const Pattern direct = relaxChart(chart, options).relaxed.pattern;
     ASSERT_FALSE(direct.colour.empty());
     EXPECT_EQ(reused.pattern.points, direct.points);

@@ -40,7 +40,6 @@ std::shared_ptr<JobTicket> startJob(ServerState& state, const std::string& sessi
     return std::shared_ptr<JobTicket>(std::move(ticket));
 }
 
-
 // A "step" line every 20 iterations of the relaxation `stage`; with `swatchRepeats`, the swatch
 // of the cell so far, the first after 400 ms (a small chart's preview is done sooner: streaming
 // and drawing intermediate cells would only slow it down), then every 300 ms.

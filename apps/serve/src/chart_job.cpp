@@ -54,8 +54,9 @@ std::string relaxationKey(const ChartCell& cell, const ChartPatternOptions& opti
     const Pattern& p = cell.pattern;
     std::string key;
     key.reserve(64 + p.points.size() * (sizeof(glm::dvec3) + sizeof(PeriodicEdge) + sizeof(double)));
-    const double numbers[] = {options.radius, double(options.samplesPerStitch), options.restLength,
-                              double(options.maxIterations), p.px, p.py, p.radius};
+    const double numbers[] = {
+        options.radius, double(options.samplesPerStitch), options.restLength, double(options.maxIterations), p.px, p.py,
+        p.radius};
     appendBytes(key, numbers, std::size(numbers));
     const uint64_t counts[] = {p.points.size(), p.edges.size(), cell.restScale.size()};
     appendBytes(key, counts, std::size(counts));
