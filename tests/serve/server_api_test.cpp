@@ -107,6 +107,7 @@ TEST_F(ServerApi, swatchStreamsStepsAndEndsWithTheYarns) {
     ASSERT_NE(preview, lines.end());
     EXPECT_EQ((*preview)["stats"]["samples_per_stitch"], 10);
     EXPECT_TRUE((*preview)["stats"]["converged"]);
+    EXPECT_EQ((*preview)["warnings"], json::array());
     for (auto it = lines.begin(); it != preview; ++it) EXPECT_EQ((*it)["stage"], "preview");
     for (auto it = preview + 1; it + 1 != lines.end(); ++it) EXPECT_EQ((*it)["stage"], "relax");
     const json& done = lines.back();

@@ -70,7 +70,7 @@ CellRelaxation cellRelaxation(ServerState& state, const Chart& chart, const Char
 }
 
 // The preview: the chart relaxed at kPreviewSamples, its intermediate swatches streamed, then a
-// "preview" line with the relaxed swatch.
+// "preview" line with the relaxed swatch and the chart's design warnings.
 void preview(ServerState& state, const Chart& chart, const CancelToken& token, const Emit& emit,
              const std::array<double, 2>& repeats) {
     ChartPatternOptions options;
@@ -80,7 +80,10 @@ void preview(ServerState& state, const Chart& chart, const CancelToken& token, c
     const ChartCell cell = chartToCell(chart, cellOptions(options));
     const RelaxedChart c = relaxedChart(chart, cell, cellRelaxation(state, chart, cell, options));
     token.check();
-    emit({{"type", "preview"}, {"swatch", swatchJson(c.pattern, repeats)}, {"stats", c.stats}});
+    // The chart's own warnings (floats, eyelets); the relaxation's wait for the full one.
+    json warnings = json::array();
+    addDesignWarnings(chart, cell, warnings);
+    emit({{"type", "preview"}, {"swatch", swatchJson(c.pattern, repeats)}, {"stats", c.stats}, {"warnings", warnings}});
 }
 
 // The relaxed chart, as `knit chart` relaxes it: from memory (by its cell, so an edit of the

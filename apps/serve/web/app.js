@@ -67,6 +67,8 @@ async function updateSwatch() {
                                         : `preview shown; relaxing at full detail… iteration ${line.iteration}`);
         if (line.swatch) show(line.swatch, 'relaxing');
       } else if (line.type === 'preview') {
+        editor.setError(null);
+        showWarnings(line.warnings);
         show(line.swatch, 'preview');
         status(`preview: relaxed at ${line.stats.samples_per_stitch} samples per stitch in ` +
                `${line.stats.iterations} iterations; relaxing at full detail…`);
