@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # AddressSanitizer + UndefinedBehaviorSanitizer build of the test suite (-DKNIT_SANITIZE=ON) in
 # build-asan (the folder scripts/fuzz.sh builds its fuzzers in, configured by scripts/lib/asan_tree.sh),
-# then ctest over the core, mesh, plies, cli, export and hard tests. Any sanitizer
+# then ctest over the core, mesh, plies, cli, export, hard and serve tests. Any sanitizer
 # report fails the test that triggered it (UBSan is built with -fno-sanitize-recover).
 #
 # Usage: scripts/sanitize.sh [extra ctest arguments]
@@ -26,11 +26,14 @@ case "$step" in build|test|all) ;; *) echo "sanitize: KNIT_SANITIZE_STEP must be
 build_suite() {
   bash "$root/scripts/setup.sh" || echo "sanitize: warning: scripts/setup.sh failed; continuing with the installed packages"
   configure_asan_tree "$build" "$cxx" "$render_check"
-  local targets=(knit_core_tests knit_mesh_tests knit_plies_tests knit_cli_tests knit_export_tests knit_hard_tests)
+  local targets=(knit_core_tests knit_mesh_tests knit_plies_tests knit_cli_tests knit_export_tests knit_hard_tests
+                 knit_serve_tests)
   [ "${KNIT_SANITIZE_RENDER:-OFF}" = ON ] && [ "$render_check" = ON ] && targets+=(knit_render_tests)
   cmake --build "$build" -j"$jobs" --target "${targets[@]}"
   # The export tests run the Khronos glTF-Validator (npm) from this build folder.
   [ -d "$build/node/node_modules/gltf-validator" ] || cmake --build "$build" --target gltf_validator
+  # `knit serve` (ServeCommand.ctrlCStopsItCleanly) starts only with three.js (npm) to serve.
+  [ -d "$build/node/node_modules/three" ] || cmake --build "$build" --target three_js
 }
 [ "$step" = test ] || build_suite
 [ "$step" = build ] && exit 0

@@ -32,37 +32,6 @@ View reportView(const Scene& scene, const BuildCommand& b) {
     return frameMesh(scene.mesh(), scene.yarnMargin(), settings);
 }
 
-// Appends the yarns of `more` to `to` (points, normals and colours; curve offsets shifted).
-void appendYarns(MappedYarns& to, const MappedYarns& more) {
-    to.curves.append(more.curves);
-    to.normals.insert(to.normals.end(), more.normals.begin(), more.normals.end());
-    to.colour.insert(to.colour.end(), more.colour.begin(), more.colour.end());
-}
-
-// What a scene built for a view exports as curves: the yarn pieces of its ply-level cells and of
-// its yarn-level cells, all with plies (files have no yarn-level shading: a yarn-level cell keeps
-// its plies, more than the view needs but nothing lost), cut from their yarns' plies so they are
-// the full scene's plies point for point (piecePlies).
-Scene curveLevelsScene(const Scene& s, bool withPlies) {
-    const LevelPieces& pieces = s.detail()->pieces;
-    SceneParts parts;
-    parts.mesh = s.mesh();
-    parts.normals = s.normals();
-    parts.yarnRadius = s.yarnRadius();
-    parts.grid = s.grid();
-    parts.yarns = pieces.plies;
-    appendYarns(parts.yarns, pieces.yarns);
-    parts.plyOptions = s.plyOptions();
-    if (withPlies) {
-        std::vector<YarnSpan> spans = pieces.plySpans;
-        spans.insert(spans.end(), pieces.yarnSpans.begin(), pieces.yarnSpans.end());
-        std::stable_sort(spans.begin(), spans.end(),
-                         [](const YarnSpan& a, const YarnSpan& b) { return a.yarn < b.yarn; });
-        parts.plies = piecePlies(s.yarns(), spans, s.plyOptions());
-    }
-    return Scene::fromParts(std::move(parts));
-}
-
 // The view's surface level: the base-mesh triangles of its surface-level cells with the pattern
 // baked as for --surface-only (null when the view has none). Needs a glTF output.
 std::unique_ptr<SurfaceLayer> surfaceLevel(const Scene& built, const SceneOptions& options, const BuildCommand& b) {
@@ -96,7 +65,7 @@ nlohmann::json buildReportJson(const Scene& scene, const SceneStats& numbers, co
     if (exportMadePlies) levels.plies.plyVertices = stats.vertices, levels.plies.bytes = 16 * stats.vertices;
     report["camera"] = cameraJson(view);
     report["levels"] = levelsJson(levels, surfaceTextured);
-    // Files have no yarn-level shading: those cells are written with their plies (curveLevelsScene),
+    // Files have no yarn-level shading: those cells are written with their plies (viewPiecesScene),
     // counted with the ply level's plyVertices.
     if (scene.detail()) report["levels"]["yarns"]["exportedAs"] = "plies";
     if (streamed) {
@@ -234,7 +203,8 @@ int runBuild(const BuildCommand& b) {
     options.detail = detailOptions(b.view, b.view.image, false, true);
     if (options.detail) options.buildPlies = false;  // the export generates the plies of the pieces it writes
     const Scene built = buildScene(options);
-    const Scene scene = built.detail() ? curveLevelsScene(built, b.exportOptions.what != ExportWhat::Yarns) : Scene();
+    // A view's pieces are exported as curves (knit/scene.hpp viewPiecesScene).
+    const Scene scene = built.detail() ? viewPiecesScene(built, b.exportOptions.what != ExportWhat::Yarns) : Scene();
     const Scene& exported = built.detail() ? scene : built;
     printWarnings(built);
     const std::unique_ptr<SurfaceLayer> surface = surfaceLevel(built, options, b);

@@ -9,6 +9,7 @@
 
 #include "api_request.hpp"
 #include "chart_job.hpp"
+#include "knit/chart_pattern.hpp"
 
 namespace knit::serve {
 namespace {
@@ -40,6 +41,37 @@ TEST(ServeChart, longFloatsAndEyeletsAreWarnedAbout) {
     EXPECT_EQ(warningsOf("k sl sl sl sl sl k k\nk k k k k k k k\n"), "[]");  // 5 stitches: the rule allows it
     const std::string lace = warningsOf("k yo k2tog k\nk k k k\n");
     EXPECT_NE(lace.find("1 yarn-over opens an eyelet"), std::string::npos) << lace;
+}
+
+// A relaxation depends on the chart's cell, not its text: a comment or colour edit keeps its key
+// (the server does not relax it again) and the chart made from the other text's relaxation is
+// exactly relaxChart's; another stitch, stranded colours or the preview's samples change the key.
+TEST(ServeChart, aColourOrCommentEditReusesTheCellsRelaxation) {
+    const ChartPatternOptions options;
+    const auto keyOf = [](const std::string& text, const ChartPatternOptions& o) {
+        return relaxationKey(chartToCell(parsePageChart(text, 400), cellOptions(o)), o);
+    };
+    const std::string plain = "k p\nk p\n";
+    const std::string coloured = "# striped\nk p\nk p\n\nA A\nB B\nA=#c8553d B=#2a6f97\n";
+    EXPECT_EQ(keyOf(plain, options), keyOf(coloured, options));
+    EXPECT_NE(keyOf(plain, options), keyOf("k p\np k\n", options));
+    EXPECT_NE(keyOf("k k\nk k\n", options), keyOf("k k\nk k\n\nA B\nA B\nA=#c8553d B=#2a6f97\nstranded\n", options));
+    ChartPatternOptions preview = options;
+    preview.samplesPerStitch = 10;
+    EXPECT_NE(keyOf(plain, options), keyOf(plain, preview));
+
+    const Chart chart = parsePageChart(coloured, 400);
+    const RelaxedChart reused = relaxedChart(chart, chartToCell(chart, cellOptions(options)),
+                                             relaxPageCell(parsePageChart(plain, 400), options));
+    const Pattern direct = relaxChart(chart, options).relaxed.pattern;
+    ASSERT_FALSE(direct.colour.empty());
+    EXPECT_EQ(reused.pattern.points, direct.points);
+    EXPECT_EQ(reused.pattern.colour, direct.colour);
+    EXPECT_EQ(reused.pattern.twist, direct.twist);
+    EXPECT_EQ(reused.pattern.edges.size(), direct.edges.size());
+    EXPECT_EQ(reused.pattern.px, direct.px);
+    EXPECT_EQ(reused.pattern.py, direct.py);
+    EXPECT_EQ(reused.stats["samples_per_stitch"], 24);
 }
 
 TEST(ServeRequest, swatchRequestIsParsed) {

@@ -68,36 +68,56 @@ try {
   await page.waitForFunction(() => Number(document.getElementById('view').dataset.yarns) > 0, {timeout: 20000});
   check(errors.length === 0, `page loads without console errors ${errors.join(' | ')}`);
 
-  // Typing a chart: its yarns appear; the latency from the last keystroke to the yarns drawn.
+  // Typing a chart: its yarns appear, first relaxed at the preview's resolution, then at full
+  // detail; the latencies from the last keystroke to each.
   const typeChart = async (text) => {
     await page.click('#chart', {clickCount: 3});
     await page.keyboard.down('Control');
     await page.keyboard.press('a');
     await page.keyboard.up('Control');
     await page.keyboard.press('Backspace');
-    await page.evaluate(() => { document.getElementById('view').dataset.yarns = '0'; delete document.body.dataset.swatchYarns; });
+    await page.evaluate(() => {
+      const view = document.getElementById('view');
+      view.dataset.yarns = '0';
+      delete view.dataset.state;
+      delete document.body.dataset.swatchYarns;
+    });
     await page.type('#chart', text);
     const typed = Date.now();
+    // Relaxed yarns on screen: the preview's or the full relaxation's (data-state).
+    await page.waitForFunction(() => {
+      const view = document.getElementById('view');
+      return Number(view.dataset.yarns) > 0 && (view.dataset.state === 'preview' || view.dataset.state === 'relaxed');
+    }, {timeout: 20000, polling: 'raf'});
+    const relaxedState = await page.$eval('#view', (c) => c.dataset.state);
     await page.waitForFunction(() => Number(document.getElementById('view').dataset.yarns) > 0 &&
+                                     document.getElementById('view').dataset.state === 'relaxed' &&
                                      document.body.dataset.swatchYarns === document.getElementById('view').dataset.yarns,
                                {timeout: 20000, polling: 'raf'});
-    return Date.now() - typed;
+    return {relaxedState, total: Date.now() - typed};
   };
-  const charts = ['k p\nk p', 'k k p p\nk k p p\np p k k\np p k k', 'k p k\np k p\nk p k'];
+  // Charts up to 4 x 4, each a new cell for the server (beyond nine runs they come from memory).
+  const charts = ['k p\nk p', 'k k p p\nk k p p\np p k k\np p k k', 'k p k\np k p\nk p k', 'k p\np k',
+                  'k k p p\np k k p\np p k k\nk p p k', 'k k k\np p p\nk p k', 'k p p\np k p\np p k',
+                  'k k p p\nk k p p', 'k p k p\np k p k\nk k p p\np p k k'];
   const runs = Number(args['latency-runs'] ?? 1);
   const latencies = [];
+  let lastBody = '';
   for (let k = 0; k < runs; k++) {
-    // A chart the server has not seen yet (a comment makes the text new), so it is relaxed.
-    const chart = `# run ${k} ${Date.now()}\n` + charts[k % charts.length];
-    await typeChart(chart);
+    const body = charts[k % charts.length];
+    const chart = `# run ${k}\n` + body;
+    lastBody = body;
+    const {relaxedState} = await typeChart(chart);
     const t = await page.evaluate(() => ({...document.body.dataset}));
-    console.log(`  ${chart.split('\n').slice(1).join(' / ')}: first yarns ${t.editToFirstYarnsMs} ms, converged yarns ` +
-                `${t.editToYarnsMs} ms after the last edit (request to answer ${t.serverMs} ms)`);
-    latencies.push([Number(t.editToFirstYarnsMs), Number(t.editToYarnsMs)]);
+    console.log(`  ${body.split("\n").join(" / ")}: shown ${t.swatchStates}; first yarns ${t.editToFirstYarnsMs} ms, relaxed yarns (${relaxedState}) ` +
+                `${t.editToRelaxedMs} ms, full relaxation ${t.editToYarnsMs} ms after the last edit ` +
+                `(request to answer ${t.serverMs} ms)`);
+    latencies.push([Number(t.editToFirstYarnsMs), Number(t.editToRelaxedMs), Number(t.editToYarnsMs)]);
     const shown = await yarnsShown();
     check(shown === await serverYarns(chart), `typed chart ${k}: data-yarns ${shown} equals the server's count`);
   }
-  console.log(`edit-to-yarns latency (ms, last edit to first / converged yarns drawn): ${latencies.map((l) => l.join('/')).join(' ')}`);
+  console.log('edit-to-yarns latency (ms, last edit to first / relaxed (preview) / fully relaxed yarns drawn): ' +
+              latencies.map((l) => l.join('/')).join(' '));
   // Not blank: the canvas has many pixels away from the background colour.
   const lit = await page.evaluate(() => {
     const c = document.getElementById('view');
@@ -111,6 +131,7 @@ try {
   });
   check(lit > 0.05, `the canvas is not blank (${(100 * lit).toFixed(1)}% of pixels show yarn)`);
   // A chart error: underlined at its line and column, shown as LINE:COLUMN: message.
+  await page.evaluate(() => { delete document.body.dataset.swatchYarns; });
   await page.click('#chart');
   await page.keyboard.type('\nk q');
   await page.waitForSelector('.error-mark', {timeout: 10000});
@@ -121,7 +142,24 @@ try {
         `the error is underlined at line ${mark.line}, column ${mark.column} ('${mark.text}')`);
   check(message.startsWith(`${lines.length}:3: unknown stitch 'q'`), `the message reads "${message}"`);
   for (let k = 0; k < 4; k++) await page.keyboard.press('Backspace');  // back to the valid chart
-  await page.waitForFunction(() => !document.querySelector('.error-mark'), {timeout: 10000});
+  await page.waitForFunction(() => !document.querySelector('.error-mark') && document.body.dataset.swatchYarns,
+                             {timeout: 10000});
+
+  // A colour-only edit of the same stitches is not relaxed again (the server keeps relaxations
+  // by cell): its yarns come fully relaxed at once, with the new colour.
+  const colourRows = lastBody.split('\n').map((row) => row.split(' ').map(() => 'A').join(' ')).join('\n');
+  await page.evaluate((colours) => {
+    for (const key of ['editToYarnsMs', 'swatchYarns', 'swatchStates']) delete document.body.dataset[key];
+    const chart = document.getElementById('chart');
+    chart.value = chart.value.replace(/^# run \d+\n/, '# recoloured\n') + `\n\n${colours}\nA=#c8553d\n`;
+    chart.dispatchEvent(new Event('input'));
+  }, colourRows);
+  await page.waitForFunction(() => document.body.dataset.editToYarnsMs && document.body.dataset.swatchYarns,
+                             {timeout: 20000, polling: 'raf'});
+  const recoloured = await page.evaluate(() => ({...document.body.dataset}));
+  check(recoloured.swatchStates === 'relaxed' && recoloured.swatchYarns === String(await yarnsShown()),
+        `a colour-only edit shows only the fully relaxed yarns (shown: ${recoloured.swatchStates}), ` +
+        `${recoloured.editToYarnsMs} ms after the edit`);
 
   // The garment: the drape with the chart, its yarn count as the server reported it.
   await page.click('input[name=mode][value=garment]');

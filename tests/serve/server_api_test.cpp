@@ -99,8 +99,17 @@ TEST_F(ServerApi, infoListsTheBuiltinChartsAndMeshes) {
 TEST_F(ServerApi, swatchStreamsStepsAndEndsWithTheYarns) {
     start();
     const std::vector<json> lines = stream("/api/swatch", {{"session", "s1"}, {"chart", "k p\nk p\n"}});
-    ASSERT_GE(lines.size(), 2u);
+    ASSERT_GE(lines.size(), 3u);
     EXPECT_EQ(lines.front()["type"], "step");
+    EXPECT_EQ(lines.front()["stage"], "preview");
+    // The preview (relaxed at fewer samples per stitch) comes before the full relaxation's steps.
+    const auto preview = std::find_if(lines.begin(), lines.end(), [](const json& l) { return l["type"] == "preview"; });
+    ASSERT_NE(preview, lines.end());
+    EXPECT_EQ((*preview)["stats"]["samples_per_stitch"], 10);
+    EXPECT_TRUE((*preview)["stats"]["converged"]);
+    EXPECT_EQ((*preview)["warnings"], json::array());
+    for (auto it = lines.begin(); it != preview; ++it) EXPECT_EQ((*it)["stage"], "preview");
+    for (auto it = preview + 1; it + 1 != lines.end(); ++it) EXPECT_EQ((*it)["stage"], "relax");
     const json& done = lines.back();
     ASSERT_EQ(done["type"], "done") << done.dump();
     EXPECT_EQ(done["stats"]["width"], 2);
@@ -109,10 +118,21 @@ TEST_F(ServerApi, swatchStreamsStepsAndEndsWithTheYarns) {
     EXPECT_GT(swatch["yarns"].get<int>(), 4);
     EXPECT_EQ(swatch["curves"].size(), swatch["yarns"].get<size_t>());
     for (const json& c : swatch["curves"]) EXPECT_EQ(c["points"].size() % 3, 0u);
+    EXPECT_EQ(done["stats"]["samples_per_stitch"], 24);
+    // Its own swatch (its period differs a little, so the square cuts other yarn pieces).
+    EXPECT_GT((*preview)["swatch"]["yarns"].get<int>(), 4);
     // The second time the chart comes from memory: no relaxation steps, the same yarns.
     const std::vector<json> again = stream("/api/swatch", {{"session", "s1"}, {"chart", "k p\nk p\n"}});
     ASSERT_EQ(again.size(), 1u);
     EXPECT_EQ(again[0]["swatch"], swatch);
+    // A colour edit of the same stitches is not relaxed again either: its yarns take the colours.
+    const std::vector<json> recoloured =
+        stream("/api/swatch", {{"session", "s1"}, {"chart", "k p\nk p\n\nA A\nA A\nA=#c8553d\n"}});
+    ASSERT_EQ(recoloured.size(), 1u);
+    ASSERT_EQ(recoloured[0]["type"], "done");
+    EXPECT_EQ(recoloured[0]["swatch"]["yarns"], swatch["yarns"]);
+    EXPECT_TRUE(recoloured[0]["swatch"]["curves"][0].contains("colours"));
+    EXPECT_EQ(recoloured[0]["swatch"]["curves"][0]["points"], swatch["curves"][0]["points"]);
 }
 
 TEST_F(ServerApi, statusCodesOfBadRequests) {

@@ -40,27 +40,67 @@ std::shared_ptr<JobTicket> startJob(ServerState& state, const std::string& sessi
     return std::shared_ptr<JobTicket>(std::move(ticket));
 }
 
-// The relaxed chart: from memory, or relaxed now with a "step" line every 20 iterations and the
-// swatch of the cell so far, the first after 100 ms, then every 300 ms (`swatchRepeats` null: no
-// intermediate swatches). A small chart is mostly at rest after a few hundred iterations, so the
-// page shows its yarns early; the converged ones replace them.
-RelaxedChart relaxed(ServerState& state, const Chart& chart, const std::string& text, const CancelToken& token,
-                     const Emit& emit, const std::array<double, 2>* swatchRepeats) {
-    RelaxedChart out;
-    if (state.charts.find(text, out)) return out;
-    Clock::time_point nextSwatch = Clock::now() + std::chrono::milliseconds(100);
-    out = relaxPageChart(chart, [&](const RelaxStep& step) {
+// A "step" line every 20 iterations of the relaxation `stage`; with `swatchRepeats`, the swatch
+// of the cell so far, the first after 400 ms (a small chart's preview is done sooner: streaming
+// and drawing intermediate cells would only slow it down), then every 300 ms.
+RelaxStepFn stepLines(const char* stage, const CancelToken& token, const Emit& emit,
+                      const std::array<double, 2>* swatchRepeats) {
+    auto nextSwatch = std::make_shared<Clock::time_point>(Clock::now() + std::chrono::milliseconds(400));
+    return [stage, &token, &emit, swatchRepeats, nextSwatch](const RelaxStep& step) {
         if (token.cancelled()) return false;
-        json line = {{"type", "step"}, {"iteration", step.iteration}, {"energy", step.energy}};
-        if (swatchRepeats && Clock::now() > nextSwatch) {
+        json line = {{"type", "step"}, {"stage", stage}, {"iteration", step.iteration}, {"energy", step.energy}};
+        if (swatchRepeats && Clock::now() > *nextSwatch) {
             line["swatch"] = swatchJson(step.pattern, *swatchRepeats);
-            nextSwatch = Clock::now() + std::chrono::milliseconds(300);
+            *nextSwatch = Clock::now() + std::chrono::milliseconds(300);
         }
         emit(line);
         return !token.cancelled();
-    });
-    state.charts.put(text, out);
-    return out;
+    };
+}
+
+// The cell's relaxation with `options`: from memory, or relaxed now (and kept).
+CellRelaxation cellRelaxation(ServerState& state, const Chart& chart, const ChartCell& cell,
+                              const ChartPatternOptions& options) {
+    const std::string key = relaxationKey(cell, options);
+    CellRelaxation r;
+    if (state.charts.find(key, r)) return r;
+    r = relaxPageCell(chart, options);
+    state.charts.put(key, r);
+    return r;
+}
+
+// The preview: the chart relaxed at kPreviewSamples, its intermediate swatches streamed, then a
+// "preview" line with the relaxed swatch and the chart's design warnings.
+void preview(ServerState& state, const Chart& chart, const CancelToken& token, const Emit& emit,
+             const std::array<double, 2>& repeats) {
+    ChartPatternOptions options;
+    options.samplesPerStitch = kPreviewSamples;
+    options.onStep = stepLines("preview", token, emit, &repeats);
+    options.stepInterval = 20;
+    const ChartCell cell = chartToCell(chart, cellOptions(options));
+    const RelaxedChart c = relaxedChart(chart, cell, cellRelaxation(state, chart, cell, options));
+    token.check();
+    // The chart's own warnings (floats, eyelets); the relaxation's wait for the full one.
+    json warnings = json::array();
+    addDesignWarnings(chart, cell, warnings);
+    emit({{"type", "preview"}, {"swatch", swatchJson(c.pattern, repeats)}, {"stats", c.stats}, {"warnings", warnings}});
+}
+
+// The relaxed chart, as `knit chart` relaxes it: from memory (by its cell, so an edit of the
+// comments or colours alone is not relaxed again), or relaxed now with "step" lines. With
+// `swatchRepeats` (the swatch), a preview comes first.
+RelaxedChart relaxed(ServerState& state, const Chart& chart, const CancelToken& token, const Emit& emit,
+                     const std::array<double, 2>* swatchRepeats) {
+    ChartPatternOptions options;
+    options.onStep = stepLines("relax", token, emit, nullptr);
+    options.stepInterval = 20;
+    const ChartCell cell = chartToCell(chart, cellOptions(options));
+    CellRelaxation r;
+    if (!state.charts.find(relaxationKey(cell, options), r)) {
+        if (swatchRepeats) preview(state, chart, token, emit, *swatchRepeats);
+        r = cellRelaxation(state, chart, cell, options);
+    }
+    return relaxedChart(chart, cell, r);
 }
 
 void handleInfo(const httplib::Request&, httplib::Response& res, ServerState& state) {
@@ -85,7 +125,7 @@ void handleSwatch(const httplib::Request& req, httplib::Response& res, ServerSta
     const Chart chart = parsePageChart(r.chart, state.options.limits.maxChartStitches);
     std::shared_ptr<JobTicket> ticket = startJob(state, r.session);
     streamJob(res, ticket, [&state, r, chart, token = ticket->sharedToken()](const Emit& emit) {
-        const RelaxedChart c = relaxed(state, chart, r.chart, *token, emit, &r.repeats);
+        const RelaxedChart c = relaxed(state, chart, *token, emit, &r.repeats);
         token->check();
         emit({{"type", "done"},
               {"swatch", swatchJson(c.pattern, r.repeats)},
@@ -110,7 +150,7 @@ void handleGarment(const httplib::Request& req, httplib::Response& res, ServerSt
     BaseMesh mesh = state.mesh(r.mesh);
     std::shared_ptr<JobTicket> ticket = startJob(state, r.session + "/garment");
     streamJob(res, ticket, [&state, r, chart, mesh, token = ticket->sharedToken()](const Emit& emit) {
-        const RelaxedChart c = relaxed(state, chart, r.chart, *token, emit, nullptr);
+        const RelaxedChart c = relaxed(state, chart, *token, emit, nullptr);
         const std::string path = state.temp.newFile("garment", "glb");
         json stats = writeGarmentGlb(
             c.pattern, mesh, garmentSettings(state, r), path, [&](const std::string& stage, int index, int total) {
@@ -150,7 +190,7 @@ void handleDownload(const httplib::Request& req, httplib::Response& res, ServerS
     BaseMesh mesh = r.format == DownloadFormat::Pyp ? BaseMesh() : state.mesh(r.mesh);
     std::shared_ptr<JobTicket> ticket = startJob(state, r.session + "/download");
     const Emit quiet = [&](const json&) { ticket->token().check(); };
-    const RelaxedChart c = relaxed(state, chart, r.chart, ticket->token(), quiet, nullptr);
+    const RelaxedChart c = relaxed(state, chart, ticket->token(), quiet, nullptr);
     std::string bytes, file, type;
     if (r.format == DownloadFormat::Pyp) {
         std::ostringstream out;

@@ -1,7 +1,10 @@
 // Parsing and relaxing the page's chart (chart_job.hpp).
 #include "chart_job.hpp"
 
+#include <iterator>
 #include <regex>
+
+#include <tbb/task_arena.h>
 
 #include "jobs.hpp"
 #include "knit/error.hpp"
@@ -38,10 +41,38 @@ Chart parsePageChart(const std::string& text, int maxStitches) {
     return chart;
 }
 
-bool RelaxedCharts::find(const std::string& text, RelaxedChart& out) {
+namespace {
+
+template <class T>
+void appendBytes(std::string& key, const T* data, size_t count) {
+    key.append(reinterpret_cast<const char*>(data), count * sizeof(T));
+}
+
+}  // namespace
+
+std::string relaxationKey(const ChartCell& cell, const ChartPatternOptions& options) {
+    const Pattern& p = cell.pattern;
+    std::string key;
+    key.reserve(64 + p.points.size() * (sizeof(glm::dvec3) + sizeof(PeriodicEdge) + sizeof(double)));
+    const double numbers[] = {
+        options.radius, double(options.samplesPerStitch), options.restLength, double(options.maxIterations), p.px, p.py,
+        p.radius};
+    appendBytes(key, numbers, std::size(numbers));
+    const uint64_t counts[] = {p.points.size(), p.edges.size(), cell.restScale.size()};
+    appendBytes(key, counts, std::size(counts));
+    appendBytes(key, p.points.data(), p.points.size());
+    for (const PeriodicEdge& e : p.edges) {
+        const int32_t edge[] = {int32_t(e.v0), int32_t(e.v1), int32_t(e.dx), int32_t(e.dy)};
+        appendBytes(key, edge, std::size(edge));
+    }
+    appendBytes(key, cell.restScale.data(), cell.restScale.size());
+    return key;
+}
+
+bool RelaxedCharts::find(const std::string& key, CellRelaxation& out) {
     std::lock_guard<std::mutex> lock(mutex_);
     for (auto it = entries_.begin(); it != entries_.end(); ++it) {
-        if (it->first != text) continue;
+        if (it->first != key) continue;
         entries_.splice(entries_.begin(), entries_, it);
         out = entries_.front().second;
         return true;
@@ -49,9 +80,9 @@ bool RelaxedCharts::find(const std::string& text, RelaxedChart& out) {
     return false;
 }
 
-void RelaxedCharts::put(const std::string& text, const RelaxedChart& relaxed) {
+void RelaxedCharts::put(const std::string& key, const CellRelaxation& relaxation) {
     std::lock_guard<std::mutex> lock(mutex_);
-    entries_.emplace_front(text, relaxed);
+    entries_.emplace_front(key, relaxation);
     while (entries_.size() > capacity_) entries_.pop_back();
 }
 
@@ -74,29 +105,57 @@ void addDesignWarnings(const Chart& chart, const ChartCell& cell, nlohmann::json
                            " (holes) per repeat");
 }
 
-RelaxedChart relaxPageChart(const Chart& chart, const RelaxStepFn& onStep) {
-    ChartPatternOptions options;
-    options.onStep = onStep;
-    options.stepInterval = 20;
-    const ChartPattern relaxed = relaxChart(chart, options);
+ChartCellOptions cellOptions(const ChartPatternOptions& options) {
+    ChartCellOptions o;
+    o.radius = options.radius;
+    o.samplesPerStitch = options.samplesPerStitch;
+    return o;
+}
+
+CellRelaxation relaxPageCell(const Chart& chart, const ChartPatternOptions& options) {
+    ChartPattern relaxed;
+    tbb::task_arena oneCore(1);
+    oneCore.execute([&] { relaxed = relaxChart(chart, options); });
     if (relaxed.relaxed.stopped) throw JobCancelled();
+    CellRelaxation out;
+    out.points = std::move(relaxed.relaxed.pattern.points);
+    out.px = relaxed.relaxed.pattern.px;
+    out.py = relaxed.relaxed.pattern.py;
+    out.iterations = relaxed.relaxed.iterations;
+    out.converged = relaxed.relaxed.converged;
+    out.seconds = relaxed.seconds;
+    out.minDistance = relaxed.relaxed.minDistance;
+    out.samplesPerStitch = options.samplesPerStitch;
+    return out;
+}
+
+RelaxedChart relaxedChart(const Chart& chart, const ChartCell& cell, const CellRelaxation& r) {
+    if (r.points.size() != cell.pattern.points.size())
+        throw std::logic_error("a cell relaxation used for another cell");
     RelaxedChart out;
-    out.pattern = relaxed.relaxed.pattern;
-    out.stats = {{"iterations", relaxed.relaxed.iterations},
-                 {"converged", relaxed.relaxed.converged},
-                 {"seconds", relaxed.seconds},
-                 {"min_distance", relaxed.relaxed.minDistance},
+    // As relaxYarn returns it: the initial cell with the relaxed points and period, twist 0.
+    out.pattern = cell.pattern;
+    out.pattern.points = r.points;
+    out.pattern.px = r.px;
+    out.pattern.py = r.py;
+    out.pattern.twist.assign(r.points.size(), 0.0);
+    out.pattern.extraBlocks.clear();
+    out.stats = {{"iterations", r.iterations},
+                 {"converged", r.converged},
+                 {"seconds", r.seconds},
+                 {"min_distance", r.minDistance},
                  {"width", chart.width},
-                 {"height", chart.height}};
-    addDesignWarnings(chart, relaxed.cell, out.warnings);
-    if (!relaxed.relaxed.converged)
-        out.warnings.push_back("the relaxation stopped at its iteration cap (" +
-                               std::to_string(relaxed.relaxed.iterations) + "): the stitches may not be at rest yet");
+                 {"height", chart.height},
+                 {"samples_per_stitch", r.samplesPerStitch}};
+    addDesignWarnings(chart, cell, out.warnings);
+    if (!r.converged)
+        out.warnings.push_back("the relaxation stopped at its iteration cap (" + std::to_string(r.iterations) +
+                               "): the stitches may not be at rest yet");
     // Yarns pressed into each other (the contact settles just inside 2.05 radii; the tests of
     // every built-in chart stay above 1.9).
-    if (relaxed.relaxed.minDistance < 1.9)
+    if (r.minDistance < 1.9)
         out.warnings.push_back("yarns press into each other (closest centrelines " +
-                               std::to_string(relaxed.relaxed.minDistance).substr(0, 4) +
+                               std::to_string(r.minDistance).substr(0, 4) +
                                " yarn radii apart, under 1.9): the fabric is packed too tight here");
     return out;
 }

@@ -1,5 +1,5 @@
 // chart_job.hpp — a chart from the page: parsed (errors at their line and column), relaxed once
-// (kept in memory by text), and its relaxation's warnings.
+// (kept in memory by its cell's geometry), and its relaxation's warnings.
 #pragma once
 #include <functional>
 #include <list>
@@ -7,6 +7,9 @@
 #include <stdexcept>
 #include <string>
 #include <utility>
+#include <vector>
+
+#include <glm/vec3.hpp>
 
 #include <nlohmann/json.hpp>
 
@@ -40,20 +43,39 @@ Chart parsePageChart(const std::string& text, int maxStitches);
 struct RelaxedChart {
     Pattern pattern;
     nlohmann::json warnings = nlohmann::json::array();  // strings
-    nlohmann::json stats;                               // iterations, converged, seconds, min distance
+    // iterations, converged, seconds, min_distance, width, height, samples_per_stitch
+    nlohmann::json stats;
 };
 
-// The last few relaxed charts by text (a page toggling between two charts relaxes each once).
+// What the relaxation of a chart's cell gave: the relaxed points and period, and how it went.
+// It depends only on the cell's geometry and rest scales and the options (relaxationKey), not
+// on the chart's text: comments, spacing and, outside stranded colourwork, the colours do not
+// change it.
+struct CellRelaxation {
+    std::vector<glm::dvec3> points;
+    double px = 0, py = 0;
+    int iterations = 0;
+    bool converged = false;
+    double seconds = 0, minDistance = 0;
+    int samplesPerStitch = 0;
+};
+
+// The key of a cell's relaxation: the relaxation options and the initial cell's period, radius,
+// points, edges and rest scales, byte for byte.
+std::string relaxationKey(const ChartCell& cell, const ChartPatternOptions& options);
+
+// The last few cell relaxations by key (a page toggling between two charts, or changing only
+// colours or comments, relaxes each cell once).
 class RelaxedCharts {
 public:
     explicit RelaxedCharts(size_t capacity = 32) : capacity_(capacity) {}
-    bool find(const std::string& text, RelaxedChart& out);
-    void put(const std::string& text, const RelaxedChart& relaxed);
+    bool find(const std::string& key, CellRelaxation& out);
+    void put(const std::string& key, const CellRelaxation& relaxation);
 
 private:
     size_t capacity_;
     std::mutex mutex_;
-    std::list<std::pair<std::string, RelaxedChart>> entries_;  // most recent first
+    std::list<std::pair<std::string, CellRelaxation>> entries_;  // most recent first
 };
 
 // What a designer is warned about in the chart itself, appended to `warnings` (strings): floats
@@ -61,7 +83,24 @@ private:
 // its yarn-overs open. `cell` is the chart's cell (chartToCell), relaxed or not.
 void addDesignWarnings(const Chart& chart, const ChartCell& cell, nlohmann::json& warnings);
 
-// Relaxes `chart`; `onStep` as in ChartPatternOptions (return false to stop: then JobCancelled).
-RelaxedChart relaxPageChart(const Chart& chart, const RelaxStepFn& onStep);
+// Samples per stitch of the swatch's preview: the cell relaxed at 10 instead of `knit chart`'s 24
+// converges several times sooner (bench/serve_bench.cpp: the charts up to 4 x 4 of docs/serve.md
+// in 0.01-0.11 s of CPU, against 0.06-0.66 s with three at the 4000-iteration cap), so the page
+// shows relaxed yarns while the full relaxation runs. At 12 it took up to twice as long
+// (eyelet-mesh 3232 iterations); at 8 the 3 x 3 moss did not converge.
+constexpr int kPreviewSamples = 10;
+
+// The initial cell relaxChart builds with `options`.
+ChartCellOptions cellOptions(const ChartPatternOptions& options);
+
+// Relaxes `chart` as relaxChart does with `options` (onStep as in ChartPatternOptions: return
+// false to stop, then JobCancelled), on the calling thread only: a job is one core (on this
+// 2-core machine the relaxation of a 4 x 4 chart took 0.67 s on one thread and 0.86 s on two,
+// docs/serve.md).
+CellRelaxation relaxPageCell(const Chart& chart, const ChartPatternOptions& options);
+
+// The chart relaxed: `cell` (chartToCell of `chart`) with the points and period of its
+// `relaxation`, exactly the pattern relaxChart would give, and the page's warnings.
+RelaxedChart relaxedChart(const Chart& chart, const ChartCell& cell, const CellRelaxation& relaxation);
 
 }  // namespace knit::serve

@@ -24,21 +24,6 @@ SceneOptions sceneOptions(const GarmentSettings& settings, const StageFn& stage)
     return options;
 }
 
-// The yarn pieces of the cells the view keeps, as a scene of their own (the export's input).
-Scene visiblePieces(const Scene& s) {
-    const LevelPieces& pieces = s.detail()->pieces;
-    SceneParts parts;
-    parts.mesh = s.mesh();
-    parts.normals = s.normals();
-    parts.yarnRadius = s.yarnRadius();
-    parts.grid = s.grid();
-    parts.yarns = pieces.yarns;
-    parts.yarns.curves.append(pieces.plies.curves);
-    parts.yarns.normals.insert(parts.yarns.normals.end(), pieces.plies.normals.begin(), pieces.plies.normals.end());
-    parts.yarns.colour.insert(parts.yarns.colour.end(), pieces.plies.colour.begin(), pieces.plies.colour.end());
-    return Scene::fromParts(std::move(parts));
-}
-
 nlohmann::json cameraJson(const View& v) {
     return {{"eye", {v.eye.x, v.eye.y, v.eye.z}},
             {"target", {v.target.x, v.target.y, v.target.z}},
@@ -51,7 +36,8 @@ nlohmann::json cameraJson(const View& v) {
 nlohmann::json writeGarmentGlb(const Pattern& pattern, const BaseMesh& mesh, const GarmentSettings& settings,
                                const std::string& glbPath, const StageFn& stage) {
     const Scene built = buildScene(pattern, mesh, sceneOptions(settings, stage));
-    const Scene visible = visiblePieces(built);
+    // The yarn pieces of the cells the view keeps (no cell is at the ply level: no ply pieces).
+    const Scene visible = viewPiecesScene(built, false);
     const Polylines& curves = visible.yarns().curves;
     // A line-strip point is 12 bytes of position, 4 of radius and 4 of colour; closed curves
     // repeat their first point.

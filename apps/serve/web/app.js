@@ -32,42 +32,56 @@ function refreshPalette() {
   $('add-colour').hidden = Object.keys(colours).length > 0;
 }
 
-// The swatch: relaxed on the server, intermediate cells shown as they arrive.
+// The swatch: relaxed on the server, intermediate cells shown as they arrive, then the preview
+// (the chart relaxed at half the samples per stitch, at rest), then the full relaxation.
+// canvas#view's data-state says which: relaxing, preview or relaxed.
 async function updateSwatch() {
   swatchRequest?.abort();
   const controller = swatchRequest = new AbortController();
   const started = performance.now();
-  let firstShown = false;
-  delete document.body.dataset.editToFirstYarnsMs;
+  const edited = lastEdit;
+  const shown = {first: false, relaxed: false};
+  const states = [];
+  for (const key of ['editToFirstYarnsMs', 'editToRelaxedMs', 'editToYarnsMs']) delete document.body.dataset[key];
+  // Measured on the page: the last edit to the animation frame that draws the yarns (view.draw()
+  // renders in the next frame, before this callback; docs/serve.md).
+  const stamp = (key) => requestAnimationFrame(() => {
+    if (!controller.signal.aborted) document.body.dataset[key] = String(Math.round(performance.now() - edited));
+  });
+  const show = (swatch, state) => {
+    if (mode !== 'swatch') return;
+    view.showSwatch(swatch, !framed);
+    framed = true;
+    $('view').dataset.state = state;
+    if (states.at(-1) !== state) states.push(state);
+    document.body.dataset.swatchStates = states.join(' ');
+    if (!shown.first) { shown.first = true; stamp('editToFirstYarnsMs'); }
+    if (state !== 'relaxing' && !shown.relaxed) { shown.relaxed = true; stamp('editToRelaxedMs'); }
+  };
   status('relaxing…');
   try {
     const last = await postStream('/api/swatch', {session, chart: editor.text}, (line) => {
       if (controller.signal.aborted) return;
-      if (line.type === 'step') status(`relaxing… iteration ${line.iteration}`);
-      if (line.swatch && mode === 'swatch') {
-        view.showSwatch(line.swatch, !framed);
-        framed = true;
-        if (!firstShown) {
-          firstShown = true;
-          const edited = lastEdit;
-          requestAnimationFrame(() => {
-            document.body.dataset.editToFirstYarnsMs = String(Math.round(performance.now() - edited));
-          });
-        }
+      if (line.type === 'step') {
+        status(line.stage === 'preview' ? `relaxing… iteration ${line.iteration}`
+                                        : `preview shown; relaxing at full detail… iteration ${line.iteration}`);
+        if (line.swatch) show(line.swatch, 'relaxing');
+      } else if (line.type === 'preview') {
+        editor.setError(null);
+        showWarnings(line.warnings);
+        show(line.swatch, 'preview');
+        status(`preview: relaxed at ${line.stats.samples_per_stitch} samples per stitch in ` +
+               `${line.stats.iterations} iterations; relaxing at full detail…`);
       }
     }, controller.signal);
     if (controller.signal.aborted) return;
     if (last.type === 'done') {
       editor.setError(null);
       showWarnings(last.warnings);
-      const requested = performance.now() - started, edited = lastEdit;
-      if (mode === 'swatch') { view.showSwatch(last.swatch, !framed); framed = true; }
-      // The frame with the yarns: view.draw() renders in the next animation frame, before this.
+      show(last.swatch, 'relaxed');
+      stamp('editToYarnsMs');
       await new Promise(requestAnimationFrame);
-      if (!firstShown) document.body.dataset.editToFirstYarnsMs = String(Math.round(performance.now() - edited));
-      // Measured on the page: the last edit to the frame with its yarns (docs/serve.md).
-      document.body.dataset.editToYarnsMs = String(Math.round(performance.now() - edited));
-      document.body.dataset.serverMs = String(Math.round(requested));
+      document.body.dataset.serverMs = String(Math.round(performance.now() - started));
       document.body.dataset.swatchYarns = String(last.swatch.yarns);
       status(`${last.swatch.yarns} yarns, ${last.stats.width} × ${last.stats.height} stitches, ` +
              `${last.stats.iterations} iterations; shown ${Math.round(performance.now() - started)} ms after the request`);

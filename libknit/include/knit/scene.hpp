@@ -159,6 +159,13 @@ Scene buildScene(const SceneOptions& options);
 // The same from an in-memory pattern and mesh (options.pattern / options.mesh are ignored).
 Scene buildScene(Pattern pattern, BaseMesh mesh, const SceneOptions& options);
 
+// What a scene built for a view (SceneOptions::detail) exports as curves: the yarn pieces of its
+// ply-level cells, then those of its yarn-level cells (points, normals, colours), with its mesh,
+// grid and ply options; with `withPlies` also the plies of every piece, cut from their yarns'
+// plies so they are the full scene's plies point for point (piecePlies). Files have no yarn-level
+// shading: a yarn-level cell keeps its plies there. Throws knit::Error for a scene without a view.
+Scene viewPiecesScene(const Scene& built, bool withPlies);
+
 // Lengths of the segments of a curve set (closed curves count their closing segment).
 struct SegmentStats {
     size_t segments = 0;
