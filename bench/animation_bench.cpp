@@ -9,10 +9,14 @@
 //   frameOverBuild          Animator::evaluate (with plies and stats) / buildScene of that frame
 //   frameWithoutStatsOverBuild  the same without the frame statistics (statsSeconds)
 //   residentGrowthBytes     resident memory after frame 10 minus after frame 2 (flat: ~0)
+//   plyVerticesPerCpuSecond resampling + frames + helices per second of process CPU time (all
+//                           threads; the machine is shared, so this is the comparable rate): the
+//                           median CPU time of a frame with plies minus one without (no stats)
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <ctime>
 #include <vector>
 
 #include <benchmark/benchmark.h>
@@ -25,6 +29,17 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+double cpuSeconds() {  // this process, all threads
+    timespec t{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+}
 
 knit::SceneOptions garmentOptions() {
     knit::SceneOptions o;
@@ -79,6 +94,25 @@ void animationFrame(benchmark::State& state) {
     state.counters["yarnVerticesPerSecond"] = yarnVertices / evaluate[evaluate.size() / 2];
     state.counters["plyVerticesPerSecond"] = double(animator.plyPointCount()) / plies[plies.size() / 2];
     state.counters["medianFrameSeconds"] = whole[whole.size() / 2];
+
+    // Process CPU time of the plies: frames with plies (no stats) minus frames without.
+    knit::AnimatorOptions withPlies, withoutPlies;
+    withPlies.stats = withoutPlies.stats = withoutPlies.plies = false;
+    withPlies.plies = true;
+    const knit::Animator plyAnimator(rest, withPlies), yarnAnimator(rest, withoutPlies);
+    std::vector<double> cpuWith, cpuWithout;
+    for (int f = 0; f < 7; ++f) {
+        const std::vector<glm::dvec3> p = waveFrame(rest.mesh(), f);
+        double c0 = cpuSeconds();
+        plyAnimator.evaluate(p, frame);
+        cpuWith.push_back(cpuSeconds() - c0);
+        c0 = cpuSeconds();
+        yarnAnimator.evaluate(p, frame);
+        cpuWithout.push_back(cpuSeconds() - c0);
+    }
+    state.counters["plyCpuSeconds"] = median(cpuWith) - median(cpuWithout);
+    state.counters["plyVerticesPerCpuSecond"] =
+        double(animator.plyPointCount()) / (median(cpuWith) - median(cpuWithout));
     if (k >= 10) state.counters["residentGrowthBytes"] = double(residentAt10) - double(residentAt2);
 
     // One full build of a frame at equal settings (with plies), for the ratio.

@@ -111,12 +111,14 @@ void curveFrames(const glm::dvec3* x, size_t n, bool closed, const glm::dvec3* s
     // repeated point get the same tangent (cyclically on closed curves; zero = none on open).
     const size_t segs = n < 2 ? 0 : (closed ? n : n - 1);
     size_t firstValid = segs, lastValid = segs;
+    bool anyZero = false;
     for (size_t k = 0; k < segs; ++k) {
         const dvec3& p = x[k];
         const dvec3& q = x[k + 1 == n ? 0 : k + 1];
         const dvec3 v = q - p;
         if (zeroSegment(p, q, v)) {
             T[k] = N[k] = dvec3(0.0);
+            anyZero = true;
         } else {
             T[k] = N[k] = v / glm::length(v);
             if (firstValid == segs) firstValid = k;
@@ -134,17 +136,18 @@ void curveFrames(const glm::dvec3* x, size_t n, bool closed, const glm::dvec3* s
         return;
     }
     const dvec3 zero(0.0);
-    for (size_t j = 1; j < segs; ++j) {  // forward fill of the previous directions (N)
+    for (size_t j = 1; j < segs && anyZero; ++j) {  // forward fill of the previous directions (N)
         const size_t k = closed ? (firstValid + j) % segs : j;
         if (!closed && k <= firstValid) continue;
         if (N[k] == zero) N[k] = N[(k + segs - 1) % segs];
     }
-    for (size_t j = 1; j < segs; ++j) {  // backward fill of the next directions (T)
+    for (size_t j = 1; j < segs && anyZero; ++j) {  // backward fill of the next directions (T)
         const size_t k = closed ? (lastValid + segs - j) % segs : segs - 1 - j;
         if (!closed && k >= lastValid) continue;
         if (T[k] == zero) T[k] = T[(k + 1) % segs];
     }
 
+    // (Both fills only replace zero directions: without a zero-length segment they are skipped.)
     // Step 2: point tangents from the nearest real directions on either side (in place: point
     // i reads N[i-1] and T[i], which are still directions when it is computed).
     for (size_t i = 0; i < n; ++i) {

@@ -36,16 +36,18 @@ using glm::dvec3;
 // One cubic piece p(u) = ((a u + b) u + c) u + d, u in [0, 1], from p1 (u = 0) to p2 (u = 1).
 struct Cubic {
     dvec3 a, b, c, d;
-    double maxLeg;   // longest leg of the Bezier control polygon
-    double polygon;  // control polygon length (upper bound of the arc length)
+    double maxLeg = 0.0;   // longest leg of the Bezier control polygon
+    double polygon = 0.0;  // control polygon length (upper bound of the arc length)
     dvec3 eval(double u) const { return ((a * u + b) * u + c) * u + d; }
 };
 
 // Centripetal Catmull-Rom piece between p1 and p2 (Barry-Goldman tangents in Hermite form),
 // given the centripetal knot intervals t_ij = |p_j - p_i|^(1/2). All are > 0 because
 // consecutive duplicates were merged and reflected end points differ from their neighbours.
-Cubic makeCubic(const dvec3& p0, const dvec3& p1, const dvec3& p2, const dvec3& p3, double t01, double t12,
-                double t23) {
+// Without `bounds` the control polygon's lengths (maxLeg, polygon: three square roots, only
+// the adaptive split needs them) are left at 0.
+Cubic makeCubic(const dvec3& p0, const dvec3& p1, const dvec3& p2, const dvec3& p3, double t01, double t12, double t23,
+                bool bounds) {
     const double i01 = 1.0 / t01, i12 = 1.0 / t12, i23 = 1.0 / t23;
     const double i02 = 1.0 / (t01 + t12), i13 = 1.0 / (t12 + t23);
     const dvec3 d12 = (p2 - p1) * i12;
@@ -56,6 +58,7 @@ Cubic makeCubic(const dvec3& p0, const dvec3& p1, const dvec3& p2, const dvec3& 
     c.b = 3.0 * (p2 - p1) - 2.0 * m1 - m2;
     c.c = m1;
     c.d = p1;
+    if (!bounds) return c;
     constexpr double third = 1.0 / 3.0;
     const double l0 = glm::length(m1) * third;
     const double l1 = glm::length((p2 - p1) - (m1 + m2) * third);
@@ -68,7 +71,7 @@ Cubic makeCubic(const dvec3& p0, const dvec3& p1, const dvec3& p2, const dvec3& 
 // The piece of segment s (from pts[s] to the next point) of a curve of n >= 2 merged points
 // with centripetal knot intervals `knot` (one per segment). Open ends use the reflected
 // neighbour (same knot interval as the end segment); closed curves wrap around.
-Cubic segmentCubic(const dvec3* pts, const double* knot, size_t n, bool closed, size_t s) {
+Cubic segmentCubic(const dvec3* pts, const double* knot, size_t n, bool closed, size_t s, bool bounds = true) {
     const size_t segments = closed ? n : n - 1;
     const size_t s1 = s + 1 == n ? 0 : s + 1;
     const dvec3& p1 = pts[s];
@@ -90,7 +93,7 @@ Cubic segmentCubic(const dvec3* pts, const double* knot, size_t n, bool closed, 
         p3 = 2.0 * p2 - p1;
         t23 = knot[s];
     }
-    return makeCubic(p0, p1, p2, p3, t01, knot[s], t23);
+    return makeCubic(p0, p1, p2, p3, t01, knot[s], t23, bounds);
 }
 
 // Normal interpolated linearly between n1 and n2 at fraction f, renormalized. Opposite
@@ -263,7 +266,7 @@ size_t resampleCurveWithLayout(const Polylines& curves, size_t c, const uint32_t
         out[o++] = pts[s];
         const size_t k = pieces[s];
         if (k <= 1) continue;
-        const Cubic cubic = segmentCubic(pts.data(), knot.data(), n, closed, s);
+        const Cubic cubic = segmentCubic(pts.data(), knot.data(), n, closed, s, false);  // fixed pieces: no bounds
         const double du = 1.0 / static_cast<double>(k);
         for (size_t j = 1; j < k; ++j) out[o++] = cubic.eval(static_cast<double>(j) * du);
     }
