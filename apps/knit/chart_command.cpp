@@ -1,6 +1,7 @@
 // `knit chart`: parse the chart, relax it, write the .pyp cell and an optional JSON report.
 #include "chart_command.hpp"
 
+#include <chrono>
 #include <cstdio>
 
 #include <nlohmann/json.hpp>
@@ -96,6 +97,24 @@ nlohmann::json reportOf(const Chart& chart, const ChartPattern& cp, int maxFloat
             {"floats", floatsOf(chart, cp, maxFloat)}};
 }
 
+// A long relaxation (a large chart) shows its progress on stderr every 10 s; short ones are silent.
+RelaxStepFn progressLines(const Chart& chart, int maxIterations) {
+    using Clock = std::chrono::steady_clock;
+    const auto start = Clock::now();
+    auto shown = start;
+    const std::string name = chart.name;
+    const int width = chart.width, height = chart.height;
+    return [=](const RelaxStep& step) mutable {
+        const auto now = Clock::now();
+        if (now - shown < std::chrono::seconds(10)) return true;
+        shown = now;
+        std::fprintf(stderr, "knit: relaxing %s (%d rows x %d stitches): iteration %d of at most %d, %.0f s\n",
+                     name.c_str(), height, width, step.iteration, maxIterations,
+                     std::chrono::duration<double>(now - start).count());
+        return true;
+    };
+}
+
 }  // namespace
 
 int runChart(const ChartCommand& c) {
@@ -109,6 +128,7 @@ int runChart(const ChartCommand& c) {
     const Chart chart = builtin ? builtinChart(c.chart) : loadChart(c.chart);
     ChartPatternOptions options;
     options.radius = c.yarnRadius;
+    options.onStep = progressLines(chart, options.maxIterations);
     const ChartPattern cp = relaxChart(chart, options);
     warnLongFloats(chart, cp, c.maxFloat);
     OutputTransaction outputs;  // the pattern and its report are committed together

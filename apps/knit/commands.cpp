@@ -1,6 +1,8 @@
 // Every subcommand registered and dispatched (commands.hpp).
 #include "commands.hpp"
 
+#include <string>
+
 namespace knit::cli {
 
 void addCommands(CLI::App& app, Commands& c) {
@@ -19,6 +21,18 @@ void addCommands(CLI::App& app, Commands& c) {
 #ifdef KNIT_HAVE_FIT
     addFitCommand(app, c.fit);
 #endif
+}
+
+std::string unknownCommand(const CLI::App& app, int argc, const char* const* argv) {
+    if (argc < 2 || argv[1][0] == '-') return {};
+    const std::string word = argv[1];
+    std::string names;
+    for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
+        if (sub->check_name(word)) return {};
+        names += (names.empty() ? "" : ", ") + sub->get_name();
+    }
+    const std::string shown = word.size() > 40 ? word.substr(0, 40) + "..." : word;
+    return "'" + shown + "' is not a knit command; the commands are " + names + " (knit --help describes them)";
 }
 
 int runCommand(const Commands& c) {

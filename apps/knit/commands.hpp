@@ -2,6 +2,8 @@
 // them, and the dispatch to the one that was given. main.cpp and the flag tests (tests/cli) use
 // the same registration, so a test sees exactly the options a user can type.
 #pragma once
+#include <string>
+
 #include <CLI/CLI.hpp>
 
 #include "animate_command.hpp"
@@ -42,6 +44,10 @@ struct Commands {
 
 // Adds every subcommand to `app`; `commands` receives their parsed values.
 void addCommands(CLI::App& app, Commands& commands);
+
+// The refusal of a command line whose first word is not a subcommand (naming the word and listing
+// the subcommands); empty when the first word is a flag or a subcommand.
+std::string unknownCommand(const CLI::App& app, int argc, const char* const* argv);
 
 // Runs the subcommand that was parsed (its exit code); 0 when none was.
 int runCommand(const Commands& commands);

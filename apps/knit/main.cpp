@@ -5,6 +5,7 @@
 // CLI11's codes for bad flags.
 #include <cstdio>
 #include <exception>
+#include <string>
 
 #include <CLI/CLI.hpp>
 
@@ -19,11 +20,16 @@ int runKnit(int argc, char** argv) {
     using namespace knit::cli;
     CLI::App app{"knit: ply-level knitted fabric on a UV-mapped triangle mesh (libknit)"};
     app.require_subcommand(1);
-    app.footer(kSceneHelp);
 
-    // Subcommands, in the order --help lists them.
+    // Subcommands, in the order --help lists them. Those that take a scene set the scene footer
+    // themselves; it is set here after them, so the others do not inherit it.
     Commands commands;
     addCommands(app, commands);
+    app.footer(kSceneHelp);
+    if (const std::string unknown = unknownCommand(app, argc, argv); !unknown.empty()) {
+        std::fprintf(stderr, "knit: error: %s\n", unknown.c_str());
+        return static_cast<int>(CLI::ExitCodes::ExtrasError);
+    }
 
     try {
         app.parse(argc, argv);

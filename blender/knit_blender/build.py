@@ -4,6 +4,7 @@ the geometry-nodes modifier, re-evaluate on frame change, bake PC2.
 Every pose, the bind pose included, is evaluated by Scene.evaluate_plies: the library's Animator,
 the one `knit animate` runs, so frame k here is frame k of `knit animate` on the same meshes and
 options (the point layout, twist phase and ply frames are fixed at bind time)."""
+import itertools
 import json
 import os
 import struct
@@ -399,13 +400,26 @@ def on_frame_change(scene, depsgraph=None):
         update_knit(obj, depsgraph)
 
 
+_temporaries = itertools.count()
+
+
+def temporary_sibling(path):
+    """The hidden sibling `.NAME.PID.N.tmp` that libknit's writers use for `path` (the name cut to
+    fit the 255-byte limit): a Blender killed mid-bake leaves it hidden, and the next knit write
+    into that folder (the add-on, the Python module or the command line) removes it as stale."""
+    folder, name = os.path.split(path)
+    tail = f".{os.getpid()}.{next(_temporaries)}.tmp"
+    encoded = name.encode()[:255 - len(tail) - 1].decode(errors="ignore")
+    return os.path.join(folder, "." + encoded + tail)
+
+
 def bake_pc2(context, obj, path, first, last):
     """Writes frames first..last of the knit object's points to a PC2 file; returns the frame count.
     Raises ValueError (nothing written) when a frame cannot follow the source (its status)."""
     scene = context.scene
     current = scene.frame_current
     count = len(obj.data.vertices)
-    tmp = path + ".tmp"
+    tmp = temporary_sibling(path)
     try:
         with open(tmp, "wb") as f:
             f.write(struct.pack("<12siiffi", b"POINTCACHE2\0", 1, count, float(first), 1.0, last - first + 1))

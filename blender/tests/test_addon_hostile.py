@@ -7,10 +7,14 @@ on a mesh without UVs or without faces, and Bake Knit to PC2 into a folder, a mi
 over the source's own file: every one either makes a finite knit or is refused in the interface
 (an ERROR report: RuntimeError in background mode) whose message names the operator's properties,
 never a command-line flag or a Python keyword, with no traceback printed, no object left behind by
-a refusal and no file written."""
+a refusal and no file written. A Blender killed mid-bake (a child Blender, SIGKILL at frame 3)
+leaves only a hidden temporary, which the next knit write into that folder removes."""
 import contextlib
 import io
 import os
+import re
+import signal
+import subprocess
 import sys
 import tempfile
 
@@ -119,7 +123,37 @@ def main():
     result, message, _ = run(bpy.ops.object.knit_bake_pc2, filepath=os.path.join(folder, "c.pc2"), frame_start=5,
                              frame_end=2)
     check(result == {"CANCELLED"} and "End (2) is before Start (5)" in message, "bake End before Start: refused")
+    killed_bake(folder)
     print("knit_blender hostile test passed")
 
 
-main()
+def bake_and_die(folder):
+    """The child Blender: Apply Knit, then Bake to PC2 killed by SIGKILL at frame 3."""
+    knit_blender.register()
+    cloth = make_animated_grid()
+    select(cloth)
+    bpy.ops.object.knit_apply(pattern="stockinette", repeats=(4, 4))
+    select(bpy.data.objects[f"{cloth.name}.knit"])
+    bpy.app.handlers.frame_change_post.append(
+        lambda scene, *_: os.kill(os.getpid(), signal.SIGKILL) if scene.frame_current == 3 else None)
+    bpy.ops.object.knit_bake_pc2(filepath=os.path.join(folder, "c.pc2"), frame_start=1, frame_end=6)
+
+
+def killed_bake(folder):
+    killed = os.path.join(folder, "killed")
+    os.mkdir(killed)
+    child = subprocess.run([bpy.app.binary_path, "-b", "--factory-startup", "--python", os.path.abspath(__file__),
+                            "--", "bake-and-die", killed], capture_output=True, text=True, timeout=120)
+    left = os.listdir(killed)
+    check(child.returncode == -signal.SIGKILL, f"the child Blender was killed mid-bake ({child.returncode})")
+    check(len(left) == 1 and re.fullmatch(r"\.c\.pc2\.[0-9]+\.0\.tmp", left[0]) is not None,
+          f"a killed bake leaves only a hidden .c.pc2.PID.N.tmp ({left})")
+    knit = knit_blender.build.knit_module()
+    knit.export_scene(knit.build_scene("stockinette", "plane", repeats=(2, 2)), os.path.join(killed, "y.obj"))
+    check(os.listdir(killed) == ["y.obj"], f"the next knit write into the folder removed it ({os.listdir(killed)})")
+
+
+if sys.argv[-2:-1] == ["bake-and-die"]:
+    bake_and_die(sys.argv[-1])
+else:
+    main()

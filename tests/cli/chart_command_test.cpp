@@ -50,6 +50,22 @@ TEST(ChartCommand, badChartFailsWithLineAndColumn) {
     EXPECT_FALSE(std::filesystem::exists(dir.file("cell.pyp")));
 }
 
+// A chart far taller than one repeat (3000 rows: a relaxation of about 15 minutes) is refused
+// before relaxing, naming the file, its size and the limit, and saying to repeat one repeat.
+TEST(ChartCommand, aChartTooLargeToRelaxIsRefusedBeforeTheWork) {
+    test::TempDir dir;
+    std::string rows;
+    for (int r = 0; r < 3000; ++r) rows += "k k\n";
+    dir.write("tall.chart", rows);
+    const test::CliRun r = test::runKnit("chart tall.chart -o cell.pyp", dir.path());
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    for (const char* words : {"tall.chart: 3000 rows x 2 stitches", "144000 yarn vertices", "more than 48000",
+                              "a chart is one repeat", "--repeats"})
+        EXPECT_NE(r.output.find(words), std::string::npos) << words << "\n" << r.output;
+    EXPECT_EQ(r.output.find("relaxing"), std::string::npos) << r.output;  // no relaxation started
+    EXPECT_FALSE(std::filesystem::exists(dir.file("cell.pyp")));
+}
+
 // Stranded floats longer than --max-float (default 5) are warned about with the chart's line,
 // the row and the columns, and listed in the report; the cell is written all the same.
 TEST(ChartCommand, longFloatsAreWarnedAboutAndReported) {

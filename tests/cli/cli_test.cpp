@@ -295,6 +295,36 @@ TEST_F(Cli, helpExplainsTheAlignment) {
     EXPECT_NE(r.output.find("uv ((x + i px)/(U px)"), std::string::npos) << r.output;
 }
 
+// The scene footer ("Scene: a pattern ... tiled over a base mesh") only on commands that take a scene.
+TEST_F(Cli, sceneHelpOnlyOnCommandsThatTakeAScene) {
+    const std::string footer = "Scene: a pattern";
+    for (const char* command : {"--help", "build --help", "animate --help", "bind --help"}) {
+        const CliRun r = knit(command, dir);
+        EXPECT_EQ(r.exitCode, 0) << command;
+        EXPECT_NE(r.output.find(footer), std::string::npos) << command << "\n" << r.output;
+    }
+    for (const char* command : {"chart --help", "generate --help", "info --help", "serve --help", "strain-table --help",
+                                "cache --help", "cache merge --help"}) {
+        const CliRun r = knit(command, dir);
+        EXPECT_EQ(r.exitCode, 0) << command;
+        EXPECT_EQ(r.output.find(footer), std::string::npos) << command << "\n" << r.output;
+    }
+}
+
+// An unknown subcommand is named, with the list of commands; no subcommand at all still says so.
+TEST_F(Cli, unknownCommandIsNamedWithTheCommands) {
+    for (const char* word : {"views", "frobnicate"}) {
+        const CliRun r = knit(std::string(word) + " -o x.obj", dir);
+        EXPECT_NE(r.exitCode, 0) << word;
+        EXPECT_NE(r.output.find(std::string("'") + word + "' is not a knit command"), std::string::npos) << r.output;
+        for (const char* command : {"build", "animate", "chart", "strain-table", "serve"})
+            EXPECT_NE(r.output.find(command), std::string::npos) << command << "\n" << r.output;
+        EXPECT_EQ(r.output.find("A subcommand is required"), std::string::npos) << r.output;
+    }
+    EXPECT_NE(knit("", dir).output.find("A subcommand is required"), std::string::npos);
+    EXPECT_EQ(fileCount(), 0u);
+}
+
 TEST_F(Cli, generateReproducesTheShippedPattern) {
     const CliRun r = knit("generate stockinette -o s.pyp", dir);
     ASSERT_EQ(r.exitCode, 0) << r.output;

@@ -30,7 +30,13 @@ struct ChartPattern {
     double seconds = 0;   // relaxation wall time
 };
 
-// Throws knit::Error for bad options (radius, samples) or an invalid chart cell.
+// The relaxation's cost grows with the cell's yarn vertices (stitches x samples per stitch):
+// about 0.14 s per stitch at 24 samples on one loaded core (docs/charts.md, "Size limit"). A
+// cell with more vertices than this is refused before relaxing: 2000 stitches at 24 samples.
+constexpr size_t kMaxRelaxedChartVertices = 48000;
+
+// Throws knit::Error for bad options (radius, samples), an invalid chart cell or one of more
+// than kMaxRelaxedChartVertices vertices (before relaxing it).
 ChartPattern relaxChart(const Chart& chart, const ChartPatternOptions& options = {});
 
 }  // namespace knit

@@ -2,8 +2,27 @@
 #include "knit/chart_pattern.hpp"
 
 #include <chrono>
+#include <string>
+
+#include "knit/error.hpp"
 
 namespace knit {
+
+namespace {
+
+// Refuses a cell whose relaxation would run for many minutes, before it starts.
+void checkRelaxCost(const Chart& chart, const ChartCell& cell, int samplesPerStitch) {
+    const size_t vertices = cell.pattern.points.size();
+    if (vertices <= kMaxRelaxedChartVertices) return;
+    throw Error(chart.name + ": " + std::to_string(chart.height) + " rows x " + std::to_string(chart.width) +
+                " stitches at " + std::to_string(samplesPerStitch) + " samples per stitch make " +
+                std::to_string(vertices) + " yarn vertices to relax, more than " +
+                std::to_string(kMaxRelaxedChartVertices) +
+                " (about 2000 stitches; the relaxation would run for many minutes): a chart is one repeat of "
+                "the fabric, so chart one repeat and tile it over the garment with the repeats");
+}
+
+}  // namespace
 
 ChartPattern relaxChart(const Chart& chart, const ChartPatternOptions& options) {
     ChartPattern out;
@@ -12,6 +31,7 @@ ChartPattern relaxChart(const Chart& chart, const ChartPatternOptions& options) 
     cellOptions.radius = options.radius;
     cellOptions.samplesPerStitch = options.samplesPerStitch;
     out.cell = chartToCell(chart, cellOptions);
+    checkRelaxCost(chart, out.cell, options.samplesPerStitch);
     // Step 2: the yarn comes to rest with the period free.
     RelaxOptions relax;
     relax.restLength = options.restLength;

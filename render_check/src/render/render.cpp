@@ -40,7 +40,7 @@ double secondsSince(std::chrono::steady_clock::time_point t) {
 // An image path whose extension is not the format written to it (a .jpg holding PNG bytes).
 void checkImageName(const std::string& path, const char* ext, const char* setting, const char* format) {
     if (util::lowerExtension(path) != ext)
-        throw Error(std::string("render: ") + setting + " '" + path + "': only " + format +
+        throw Error(std::string("cannot render: ") + setting + " '" + path + "': only " + format +
                     " is written there (use a ." + ext + " name)");
 }
 
@@ -74,36 +74,38 @@ public:
     // budget before any work.
     void validate() {
         if (o_.light != LightPlacement::Front && o_.light != LightPlacement::Back)
-            throw Error("render: unknown light placement " + std::to_string(int(o_.light)) +
+            throw Error("cannot render: unknown light placement " + std::to_string(int(o_.light)) +
                         " (expected front or back)");
         const GeometryMode mode = o_.mode;
         if (mode != GeometryMode::Curves && mode != GeometryMode::Tubes && mode != GeometryMode::Grid)
-            throw Error("render: unknown geometry mode " + std::to_string(int(mode)) +
+            throw Error("cannot render: unknown geometry mode " + std::to_string(int(mode)) +
                         " (expected curves, tubes or grid)");
         if (o_.spp < 1)
-            throw Error("render: samples per pixel must be at least 1 (got " + std::to_string(o_.spp) + ")");
+            throw Error("cannot render: samples per pixel must be at least 1 (got " + std::to_string(o_.spp) + ")");
         if (o_.width < 1 || o_.height < 1 || o_.width > 16384 || o_.height > 16384)
-            throw Error("render: image size " + std::to_string(o_.width) + " x " + std::to_string(o_.height) +
+            throw Error("cannot render: image size " + std::to_string(o_.width) + " x " + std::to_string(o_.height) +
                         " is outside 1..16384");
-        if (o_.maxDepth < 1 || o_.maxDepth > 1000) throw Error("render: max depth must be in 1..1000");
+        if (o_.maxDepth < 1 || o_.maxDepth > 1000) throw Error("cannot render: max depth must be in 1..1000");
         // The image and its EXR hold 32-bit floats: a radiance near their range (3.4e38) would sum
         // to inf over the samples of a pixel and leave a non-finite image.
         for (const auto& [value, words] : {std::pair{o_.environment, "the environment radiance"},
                                            std::pair{o_.lightIrradiance, "the light irradiance"}})
             if (!(value >= 0 && value <= 1e30)) {
                 std::ostringstream m;
-                m << "render: " << words << " " << value << " must be a number in 0..1e30 (images hold 32-bit floats)";
+                m << "cannot render: " << words << " " << value
+                  << " must be a number in 0..1e30 (images hold 32-bit floats)";
                 throw Error(m.str());
             }
         if (!(o_.fovDegrees > 1 && o_.fovDegrees < 170))
-            throw Error("render: field of view must be in (1, 170) degrees");
-        if (!(o_.baseAlbedo >= 0 && o_.baseAlbedo <= 1)) throw Error("render: base albedo must be in [0, 1]");
-        if (mode == GeometryMode::Tubes && o_.tubeSides < 3) throw Error("render: tube sides must be >= 3");
+            throw Error("cannot render: field of view must be in (1, 170) degrees");
+        if (!(o_.baseAlbedo >= 0 && o_.baseAlbedo <= 1)) throw Error("cannot render: base albedo must be in [0, 1]");
+        if (mode == GeometryMode::Tubes && o_.tubeSides < 3) throw Error("cannot render: tube sides must be >= 3");
         res_.material = resolveMaterial(o_);
         if (!o_.surface && !scene_.detail() &&
             (scene_.plies().curves.curveCount() == 0 || scene_.plies().curves.pointCount() == 0))
-            throw Error("render: the scene has no ply curves (nothing to render; were plies built?)");
-        if (o_.surface && scene_.mesh().faces.empty()) throw Error("render: the surface level needs a base mesh");
+            throw Error("cannot render: the scene has no ply curves (nothing to render; were plies built?)");
+        if (o_.surface && scene_.mesh().faces.empty())
+            throw Error("cannot render: the surface level needs a base mesh");
         frame_ = impl::tracedFrame(scene_, traced_->mesh(), scale_, o_);
         if (!o_.output.empty()) checkImageName(o_.output, "png", "the output image", "PNG");
         if (!o_.exr.empty()) checkImageName(o_.exr, "exr", "the EXR image", "EXR");
@@ -126,8 +128,9 @@ public:
         res_.surfaceTriangles = surface_.faces.size();
         base_ = o_.baseMesh || o_.surface ? &traced_->mesh() : (surface_.faces.empty() ? nullptr : &surface_);
         if (geometry_.segmentCount() == 0 && base_ == nullptr)
-            throw Error("render: the view sees none of the cloth (every cell is culled; check the eye position and the "
-                        "target position)");
+            throw Error(
+                "cannot render: the view sees none of the cloth (every cell is culled; check the eye position and the "
+                "target position)");
     }
 
     // A view's surface level: the pattern baked with the render's material, as --surface-only.

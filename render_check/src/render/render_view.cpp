@@ -51,7 +51,8 @@ TracedFrame tracedFrame(const Scene& scene, const BaseMesh& tracedMesh, const Tr
     View v = scene.detail() ? scale.view(scene.detail()->view) : o.view ? scale.view(*o.view) : View{};
     v.fovDegrees = o.fovDegrees, v.width = o.width, v.height = o.height;
     if (!scene.detail() && !o.view) v = frameMesh(tracedMesh, margin, v);
-    if (v.orthographic) throw Error("render: orthographic views are not rendered (the tracer's camera is a pinhole)");
+    if (v.orthographic)
+        throw Error("cannot render: orthographic views are not rendered (the tracer's camera is a pinhole)");
     validateView(v);
     TracedFrame f;
     f.view = v;
