@@ -24,15 +24,30 @@ void addCommands(CLI::App& app, Commands& c) {
 }
 
 std::string unknownCommand(const CLI::App& app, int argc, const char* const* argv) {
-    if (argc < 2 || argv[1][0] == '-') return {};
-    const std::string word = argv[1];
-    std::string names;
-    for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
-        if (sub->check_name(word)) return {};
-        names += (names.empty() ? "" : ", ") + sub->get_name();
+    // Walk the words down the command tree (knit, knit cache, ...) while each level has
+    // subcommands; the first word that names none of them is the unknown one.
+    const CLI::App* level = &app;
+    std::string path = "knit";
+    for (int i = 1; i < argc; ++i) {
+        const std::string word = argv[i];
+        if (word.empty() || word[0] == '-') return {};
+        const auto subs = level->get_subcommands([](const CLI::App*) { return true; });
+        if (subs.empty()) return {};
+        const CLI::App* found = nullptr;
+        std::string names;
+        for (const CLI::App* sub : subs) {
+            if (sub->check_name(word)) found = sub;
+            names += (names.empty() ? "" : ", ") + sub->get_name();
+        }
+        if (found == nullptr) {
+            const std::string shown = word.size() > 40 ? word.substr(0, 40) + "..." : word;
+            return "'" + shown + "' is not a " + path + " command; the commands are " + names + " (" + path +
+                   " --help describes them)";
+        }
+        level = found;
+        path += " " + found->get_name();
     }
-    const std::string shown = word.size() > 40 ? word.substr(0, 40) + "..." : word;
-    return "'" + shown + "' is not a knit command; the commands are " + names + " (knit --help describes them)";
+    return {};
 }
 
 int runCommand(const Commands& c) {

@@ -45,8 +45,9 @@ struct Commands {
 // Adds every subcommand to `app`; `commands` receives their parsed values.
 void addCommands(CLI::App& app, Commands& commands);
 
-// The refusal of a command line whose first word is not a subcommand (naming the word and listing
-// the subcommands); empty when the first word is a flag or a subcommand.
+// The refusal of a command line with a word where a subcommand belongs (`knit views`,
+// `knit cache frobnicate`), naming the word and listing that level's subcommands; empty when every
+// such word is a subcommand or a flag comes first.
 std::string unknownCommand(const CLI::App& app, int argc, const char* const* argv);
 
 // Runs the subcommand that was parsed (its exit code); 0 when none was.

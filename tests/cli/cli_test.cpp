@@ -322,6 +322,11 @@ TEST_F(Cli, unknownCommandIsNamedWithTheCommands) {
         EXPECT_EQ(r.output.find("A subcommand is required"), std::string::npos) << r.output;
     }
     EXPECT_NE(knit("", dir).output.find("A subcommand is required"), std::string::npos);
+    // A word under a command with subcommands of its own is named the same way.
+    const CliRun nested = knit("cache frobnicate a.pc2 -o all.pc2", dir);
+    EXPECT_NE(nested.exitCode, 0);
+    EXPECT_NE(nested.output.find("'frobnicate' is not a knit cache command; the commands are merge"), std::string::npos)
+        << nested.output;
     EXPECT_EQ(fileCount(), 0u);
 }
 
