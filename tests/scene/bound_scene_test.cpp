@@ -100,6 +100,7 @@ private:
     void note(const char* what) { where_.emplace(what, at_); }
     void take(void* to, size_t n) {
         ASSERT_LE(at_ + n, bytes_.size());
+        if (n == 0) return;  // an empty array's data() may be null, which memcpy must not get
         std::memcpy(to, bytes_.data() + at_, n);
         at_ += n;
     }
