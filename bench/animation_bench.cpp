@@ -12,6 +12,7 @@
 //   plyVerticesPerCpuSecond resampling + frames + helices per second of process CPU time (all
 //                           threads; the machine is shared, so this is the comparable rate): the
 //                           median CPU time of a frame with plies minus one without (no stats)
+#include "bench_clock.hpp"
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -30,16 +31,8 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
-double cpuSeconds() {  // this process, all threads
-    timespec t{};
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-    return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
-}
-
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v[v.size() / 2];
-}
+using knit::bench::cpuSeconds;
+using knit::bench::median;
 
 knit::SceneOptions garmentOptions() {
     knit::SceneOptions o;

@@ -15,6 +15,7 @@
 // and writing that much fresh memory once: the kernel's page faults and zeroing).
 //
 //   build/bench/bound_scene_bench --benchmark_counters_tabular=true
+#include "bench_clock.hpp"
 #include <algorithm>
 #include <cstdlib>
 #include <ctime>
@@ -32,16 +33,8 @@
 
 namespace {
 
-double cpuSeconds() {
-    timespec t{};
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-    return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
-}
-
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v[v.size() / 2];
-}
+using knit::bench::cpuSeconds;
+using knit::bench::median;
 
 void boundSceneLoadVsBind(benchmark::State& state) {
     knit::SceneOptions options;
