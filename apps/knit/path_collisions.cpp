@@ -1,28 +1,16 @@
 // Output paths checked against the inputs and each other (see path_collisions.hpp).
 #include "path_collisions.hpp"
 
-#include <sys/stat.h>
-
 #include <filesystem>
 
 #include "knit/error.hpp"
+#include "knit/same_file.hpp"
 #include "util/platform.hpp"
 
 namespace knit::cli {
 namespace {
 
 namespace fs = std::filesystem;
-
-bool sameFile(const std::string& a, const std::string& b) {
-    struct stat sa {
-    }, sb{};
-    const bool ea = ::stat(a.c_str(), &sa) == 0, eb = ::stat(b.c_str(), &sb) == 0;
-    if (ea && eb) return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
-    if (ea != eb) return false;
-    std::error_code ec1, ec2;
-    const fs::path ca = fs::weakly_canonical(fs::absolute(a), ec1), cb = fs::weakly_canonical(fs::absolute(b), ec2);
-    return !ec1 && !ec2 && ca == cb;
-}
 
 [[noreturn]] void refuse(const NamedPath& out, const NamedPath& other) {
     throw Error(out.role + " '" + out.path + "' and " + other.role + " '" + other.path +

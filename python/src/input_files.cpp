@@ -1,11 +1,12 @@
-// Same file: device and inode (std::filesystem::equivalent), so "./p.pyp", "sub/../p.pyp" and a
-// hard link or symlink to it all count.
+// Same file: knit::sameFile (device and inode), so "./p.pyp", "sub/../p.pyp" and a hard link or
+// symlink to it all count, as on the command line.
 #include "input_files.hpp"
 
 #include <filesystem>
 #include <system_error>
 
 #include "knit/error.hpp"
+#include "knit/same_file.hpp"
 
 namespace knitpy {
 
@@ -15,7 +16,7 @@ void refuseWritingOverInputs(const std::string& keyword, const std::string& path
     for (const auto& [what, input] : inputs) {
         std::error_code ec;
         if (input.empty() || !fs::is_regular_file(input, ec) || !fs::exists(path, ec)) continue;
-        if (fs::equivalent(path, input, ec) && !ec)
+        if (knit::sameFile(path, input))
             throw knit::Error(keyword + " '" + path + "' is " + what + " ('" + input +
                               "'): writing there would replace it; choose another " + keyword);
     }
