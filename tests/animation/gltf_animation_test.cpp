@@ -65,6 +65,17 @@ TEST(GltfAnimation, skinnedJointRotationTurnsTheMesh) {
     }
 }
 
+// Joint indices stored as signed bytes (-64): the spec allows only unsigned types, and the old
+// reader turned -64 into a size_t (the fuzzer's UBSan finding in CI, stop 32).
+TEST(GltfAnimation, signedJointIndicesAreRefusedNamingTheAttribute) {
+    const std::string path = writeSkinnedQuad(scratch("signed_joints"), /*signedJoints=*/true);
+    const std::string e = test::errorOf([&] { GltfAnimation(path, 2.0).sample(1); });
+    EXPECT_NE(e.find("JOINTS_0 must hold unsigned bytes or unsigned shorts (componentType 5121 or 5123), not "
+                     "componentType 5120"),
+              std::string::npos)
+        << e;
+}
+
 TEST(GltfAnimation, frameSequenceOverOneAnimatedFileKeepsRestConnectivityAndUvs) {
     const std::string path = writeMorphQuad(scratch("sequence"));
     FrameRange range;

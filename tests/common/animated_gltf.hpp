@@ -91,10 +91,12 @@ inline std::string writeMorphQuad(const std::string& dir) {
 
 // Skin: every vertex fully on joint 0 (node 1, identity inverse bind); node 1 turns 0 -> 90
 // degrees about z over one second.
-inline std::string writeSkinnedQuad(const std::string& dir) {
+// `signedJoints` stores JOINTS_0 as signed bytes holding -64 (the spec allows only unsigned types).
+inline std::string writeSkinnedQuad(const std::string& dir, bool signedJoints = false) {
     GltfText g;
     nlohmann::json prim = quadPrimitive(g);
-    prim["attributes"]["JOINTS_0"] = g.add(std::vector<uint8_t>(16, 0), kU8, "VEC4", 4);
+    prim["attributes"]["JOINTS_0"] = signedJoints ? g.add(std::vector<int8_t>(16, int8_t(-64)), 5120, "VEC4", 4)
+                                                  : g.add(std::vector<uint8_t>(16, 0), kU8, "VEC4", 4);
     prim["attributes"]["WEIGHTS_0"] =
         g.add(std::vector<float>{1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0}, kF, "VEC4", 4);
     const std::vector<float> identity = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};

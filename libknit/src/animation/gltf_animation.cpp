@@ -310,9 +310,17 @@ BaseMesh GltfAnimation::sample(size_t i, const MeshLoadOptions& options) const {
             if (ja.count != P.count || wa.count != P.count || ja.components != 4 || wa.components != 4)
                 d.fail(p.what + ": JOINTS_" + std::to_string(set) + " / WEIGHTS_" + std::to_string(set) +
                        " do not match POSITION");
+            // glTF 2.0 (3.7.3.1): joint indices are unsigned bytes or shorts, never normalized.
+            if ((ja.componentType != 5121 && ja.componentType != 5123) || ja.normalized)
+                d.fail(p.what + ": JOINTS_" + std::to_string(set) +
+                       " must hold unsigned bytes or unsigned shorts (componentType 5121 or 5123), not componentType " +
+                       std::to_string(ja.componentType) + (ja.normalized ? " normalized" : ""));
             for (size_t k = 0; k < P.count; ++k)
                 for (int c = 0; c < 4; ++c) {
                     const double wt = wa.get(k, c);
+                    if (!std::isfinite(wt))
+                        d.fail(p.what + ": vertex " + std::to_string(k) +
+                               " has a weight that is not finite in WEIGHTS_" + std::to_string(set));
                     if (wt == 0) continue;
                     const size_t j = size_t(ja.get(k, c));
                     if (j >= joint.size())
