@@ -15,6 +15,7 @@
 #include "binding_chain.hpp"
 #include "binding_gather.hpp"
 #include "binding_cut.hpp"
+#include "binding_evaluate_simd.hpp"
 #include "binding_locate.hpp"
 #include "binding_pieces.hpp"
 #include "binding_weld.hpp"
@@ -106,14 +107,20 @@ BindResult bindYarns(const BaseMesh& mesh, const std::vector<glm::dvec3>& normal
 namespace {
 
 // The evaluation kernel shared by the double and the float32 entry points: the gather
-// (binding_gather.hpp) over every yarn vertex, handed to `store(i, P, n)`.
-template <class Store>
+// (binding_gather.hpp) over every yarn vertex, four at a time in AVX2 where the CPU has it
+// (binding_evaluate_simd.cpp, bit for bit the same), the rest by `store(i, P, n)`.
+template <class Simd, class Store>
 void evaluateKernel(const Binding& binding, const std::vector<glm::uvec3>& faces,
-                    const std::vector<glm::dvec3>& positions, const std::vector<glm::dvec3>& normals, Store store) {
+                    const std::vector<glm::dvec3>& positions, const std::vector<glm::dvec3>& normals, Simd simd,
+                    Store store) {
     const BindingGather gather(binding, faces, positions, normals);
+    const impl::GatherArrays arrays{binding.face.data(), binding.bary.data(), binding.height.data(),
+                                    faces.data(),        positions.data(),    normals.data()};
+    const bool useSimd = impl::evaluateSimdAvailable();
     tbb::parallel_for(tbb::blocked_range<size_t>(0, binding.vertexCount(), 16384),
                       [&](const tbb::blocked_range<size_t>& r) {
-                          for (size_t i = r.begin(); i != r.end(); ++i) {
+                          size_t i = useSimd ? simd(arrays, r.begin(), r.end()) : r.begin();
+                          for (; i != r.end(); ++i) {
                               glm::dvec3 p, nn;
                               gather(i, p, nn);
                               store(i, p, nn);
@@ -129,10 +136,15 @@ void evaluateBinding(const Binding& binding, const std::vector<glm::uvec3>& face
     prepareMappedYarns(binding, out);
     glm::dvec3* P = out.curves.points.data();
     glm::dvec3* N = out.normals.data();
-    evaluateKernel(binding, faces, positions, normals, [P, N](size_t i, const glm::dvec3& p, const glm::dvec3& nn) {
-        P[i] = p;
-        N[i] = nn;
-    });
+    evaluateKernel(
+        binding, faces, positions, normals,
+        [P, N](const impl::GatherArrays& a, size_t begin, size_t end) {
+            return impl::evaluateDoubleSimd(a, begin, end, P, N);
+        },
+        [P, N](size_t i, const glm::dvec3& p, const glm::dvec3& nn) {
+            P[i] = p;
+            N[i] = nn;
+        });
 }
 
 void evaluateBindingFloat(const Binding& binding, const std::vector<glm::uvec3>& faces,
@@ -140,8 +152,12 @@ void evaluateBindingFloat(const Binding& binding, const std::vector<glm::uvec3>&
                           glm::dvec3 origin, std::vector<glm::vec3>& out) {
     out.resize(binding.vertexCount());
     glm::vec3* P = out.data();
-    evaluateKernel(binding, faces, positions, normals,
-                   [P, origin](size_t i, const glm::dvec3& p, const glm::dvec3&) { P[i] = glm::vec3(p - origin); });
+    evaluateKernel(
+        binding, faces, positions, normals,
+        [P, origin](const impl::GatherArrays& a, size_t begin, size_t end) {
+            return impl::evaluateFloatSimd(a, begin, end, origin, P);
+        },
+        [P, origin](size_t i, const glm::dvec3& p, const glm::dvec3&) { P[i] = glm::vec3(p - origin); });
 }
 
 }  // namespace knit
