@@ -14,20 +14,17 @@
 #include "binding_evaluate_simd.hpp"
 
 #include <algorithm>
-#include <cstdlib>
-#include <cstring>
 
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-#define KNIT_HAVE_AVX2_KERNEL 1
+#include "util/simd.hpp"
+
+#if KNIT_HAVE_AVX2_KERNELS
 #include <immintrin.h>
 #endif
 
 namespace knit::impl {
 
-#if KNIT_HAVE_AVX2_KERNEL
+#if KNIT_HAVE_AVX2_KERNELS
 namespace {
-
-#define KNIT_AVX2 __attribute__((target("avx2")))
 
 // One vertex's interpolated position and normal (x, y, z, 0).
 struct Corner {
@@ -149,21 +146,9 @@ KNIT_AVX2 size_t evaluateGroups(const GatherArrays& a, size_t begin, size_t end,
     return i;
 }
 
-#undef KNIT_AVX2
-
-bool detectAvx2() {
-    const char* env = std::getenv("KNIT_SIMD");
-    if (env && std::strcmp(env, "0") == 0) return false;
-    __builtin_cpu_init();
-    return __builtin_cpu_supports("avx2") != 0;
-}
-
 }  // namespace
 
-bool evaluateSimdAvailable() {
-    static const bool available = detectAvx2();
-    return available;
-}
+bool evaluateSimdAvailable() { return util::avx2Kernels(); }
 
 size_t evaluateDoubleSimd(const GatherArrays& a, size_t begin, size_t end, glm::dvec3* P, glm::dvec3* N) {
     return evaluateGroups<false>(a, begin, end, glm::dvec3(0.0), P, N, nullptr);

@@ -20,9 +20,8 @@ struct GatherArrays {
     const glm::dvec3* N;
 };
 
-// True when this CPU runs the AVX2 kernels (checked once; the build itself assumes only
-// x86-64's SSE2, so the same binary runs everywhere). KNIT_SIMD=0 in the environment turns
-// them off (to compare against the scalar loop).
+// True when this CPU runs the AVX2 kernels (util::avx2Kernels: checked once; the build itself
+// assumes only x86-64's SSE2, so the same binary runs everywhere; KNIT_SIMD=0 turns them off).
 bool evaluateSimdAvailable();
 
 // Vertices [begin, end) four at a time: P[i] = sum b x + h n, N[i] = n = the normalized

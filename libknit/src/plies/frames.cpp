@@ -7,7 +7,8 @@
 //      at an exact hairpin (the sum vanishes) the outgoing direction is used;
 //   3. seed normal = seedNormals[first point] projected perpendicular to the tangent, or the
 //      coordinate axis least aligned with the tangent when there is no usable seed;
-//   4. double-reflection transport point to point (skipping the first reflection on
+//   4. double-reflection transport point to point (per block of steps, the parts that do not
+//      depend on the normal first: frames_transport.cpp; skipping the first reflection on
 //      zero-length segments, the second when the tangent is unchanged), re-orthonormalized
 //      every 16 steps and at the end so no drift accumulates; turns of more than 90 degrees
 //      between two samples (unresolved hairpins, tangent reversals) project the normal
@@ -30,6 +31,7 @@
 #include <tbb/parallel_for.h>
 
 #include "frames_curve.hpp"
+#include "frames_transport.hpp"
 #include "knit/error.hpp"
 #include "util/checks.hpp"
 #include "util/csr.hpp"
@@ -176,10 +178,34 @@ void curveFrames(const glm::dvec3* x, size_t n, bool closed, const glm::dvec3* s
         N[0] = len > 1e-6 ? r / len : util::anyPerpendicular(T[0]);
     }
 
-    // Step 4: double-reflection transport.
-    for (size_t i = 0; i + 1 < n; ++i) {
-        const bool renormalize = (i & 15u) == 15u || i + 2 == n;
-        N[i + 1] = transport(x[i], T[i], N[i], x[i + 1], T[i + 1], renormalize);
+    // Step 4: double-reflection transport, a block of steps at a time: first what does not
+    // depend on the normal (frames_transport.cpp; four steps at a time in AVX2), then the chain
+    // of the normal, which is left with dot products and scaled subtractions. Steps that
+    // renormalize or reverse the tangent run transport() whole. Bit for bit transport() on
+    // every step.
+    impl::TransportBlock block;
+    for (size_t first = 0; first + 1 < n; first += impl::kTransportBlock) {
+        const size_t count = std::min(impl::kTransportBlock, n - 1 - first);
+        impl::transportCoefficients(x, T, first, count, block);
+        for (size_t k = 0; k < count; ++k) {
+            const size_t i = first + k;
+            const bool renormalize = (i & 15u) == 15u || i + 2 == n;
+            const uint8_t flags = block.flags[k];
+            if (renormalize || (flags & impl::TransportBlock::kReversal)) {
+                N[i + 1] = transport(x[i], T[i], N[i], x[i + 1], T[i + 1], renormalize);
+                continue;
+            }
+            dvec3 r = N[i];
+            if (!(flags & impl::TransportBlock::kZeroSegment)) {
+                const dvec3 v1(block.v1[0][k], block.v1[1][k], block.v1[2][k]);
+                r = r - (block.a1[k] * glm::dot(v1, r)) * v1;
+            }
+            if (!(flags & impl::TransportBlock::kStraight)) {
+                const dvec3 v2(block.v2[0][k], block.v2[1][k], block.v2[2][k]);
+                r = r - (block.b2[k] * glm::dot(v2, r)) * v2;
+            }
+            N[i + 1] = r;
+        }
     }
 
     // Step 5: close loops by spreading the signed closing angle along arc length.
