@@ -36,6 +36,7 @@
 #include "util/checks.hpp"
 #include "util/csr.hpp"
 #include "util/math.hpp"
+#include "util/simd.hpp"
 
 namespace knit {
 namespace {
@@ -96,6 +97,7 @@ inline dvec3 minimalRotation(const dvec3& a, const dvec3& b, const dvec3& v) {
 void curveFrames(const glm::dvec3* x, size_t n, bool closed, const glm::dvec3* seedNormal, glm::dvec3* T, glm::dvec3* N,
                  const FrameOptions& options, const glm::dvec3* seedTangent) {
     if (n == 0) return;
+    const bool simd = util::avx2Kernels();
 
     // Seed candidate (the surface normal at the first point), if usable.
     dvec3 seed(0.0);
@@ -114,7 +116,9 @@ void curveFrames(const glm::dvec3* x, size_t n, bool closed, const glm::dvec3* s
     const size_t segs = n < 2 ? 0 : (closed ? n : n - 1);
     size_t firstValid = segs, lastValid = segs;
     bool anyZero = false;
-    for (size_t k = 0; k < segs; ++k) {
+    const size_t simdSegments = impl::unitDirections(x, n, T, N, simd);  // [0, simdSegments): real directions
+    if (simdSegments > 0) firstValid = 0, lastValid = simdSegments - 1;
+    for (size_t k = simdSegments; k < segs; ++k) {
         const dvec3& p = x[k];
         const dvec3& q = x[k + 1 == n ? 0 : k + 1];
         const dvec3 v = q - p;
@@ -152,7 +156,13 @@ void curveFrames(const glm::dvec3* x, size_t n, bool closed, const glm::dvec3* s
     // (Both fills only replace zero directions: without a zero-length segment they are skipped.)
     // Step 2: point tangents from the nearest real directions on either side (in place: point
     // i reads N[i-1] and T[i], which are still directions when it is computed).
+    // Without zero-length segments the points between the first and the last segment have a
+    // real direction on both sides: four at a time in AVX2 (frames_transport.cpp).
     for (size_t i = 0; i < n; ++i) {
+        if (i == 1 && !anyZero) {
+            i = impl::pointTangents(N, T, 1, segs, simd);
+            if (i >= n) break;
+        }
         const dvec3 prev = (closed || i > 0) ? N[(i + segs - 1) % segs] : zero;
         const dvec3 next = i < segs ? T[i] : zero;
         if (prev == zero) {
@@ -178,33 +188,26 @@ void curveFrames(const glm::dvec3* x, size_t n, bool closed, const glm::dvec3* s
         N[0] = len > 1e-6 ? r / len : util::anyPerpendicular(T[0]);
     }
 
-    // Step 4: double-reflection transport, a block of steps at a time: first what does not
-    // depend on the normal (frames_transport.cpp; four steps at a time in AVX2), then the chain
-    // of the normal, which is left with dot products and scaled subtractions. Steps that
-    // renormalize or reverse the tangent run transport() whole. Bit for bit transport() on
-    // every step.
+    // Step 4: double-reflection transport, a block of steps at a time: first each step's two
+    // reflections as one matrix (frames_transport.cpp; four steps at a time in AVX2), then the
+    // chain of the normal through them. Steps that renormalize or reverse the tangent run
+    // transport() whole. The matrix rounds differently from the two reflections one after the
+    // other (relative differences ~1e-16 per step, undone by the renormalization every 16 steps;
+    // docs/memory-limit.md) and makes the chain four times shorter.
     impl::TransportBlock block;
     for (size_t first = 0; first + 1 < n; first += impl::kTransportBlock) {
         const size_t count = std::min(impl::kTransportBlock, n - 1 - first);
-        impl::transportCoefficients(x, T, first, count, block);
+        impl::transportCoefficients(x, T, first, count, block, simd);
         for (size_t k = 0; k < count; ++k) {
             const size_t i = first + k;
             const bool renormalize = (i & 15u) == 15u || i + 2 == n;
-            const uint8_t flags = block.flags[k];
-            if (renormalize || (flags & impl::TransportBlock::kReversal)) {
+            if (renormalize || block.reversal[k]) {
                 N[i + 1] = transport(x[i], T[i], N[i], x[i + 1], T[i + 1], renormalize);
                 continue;
             }
-            dvec3 r = N[i];
-            if (!(flags & impl::TransportBlock::kZeroSegment)) {
-                const dvec3 v1(block.v1[0][k], block.v1[1][k], block.v1[2][k]);
-                r = r - (block.a1[k] * glm::dot(v1, r)) * v1;
-            }
-            if (!(flags & impl::TransportBlock::kStraight)) {
-                const dvec3 v2(block.v2[0][k], block.v2[1][k], block.v2[2][k]);
-                r = r - (block.b2[k] * glm::dot(v2, r)) * v2;
-            }
-            N[i + 1] = r;
+            const dvec3 r = N[i];
+            const auto row = [&](int e) { return (block.m[e][k] * r.x + block.m[e + 1][k] * r.y) + block.m[e + 2][k] * r.z; };
+            N[i + 1] = dvec3(row(0), row(3), row(6));
         }
     }
 

@@ -42,11 +42,13 @@
 #include <tbb/parallel_invoke.h>
 
 #include "frames_curve.hpp"
+#include "helices_simd.hpp"
 #include "knit/error.hpp"
 #include "plies_kernel.hpp"
 #include "resample_curve.hpp"
 #include "util/checks.hpp"
 #include "util/math.hpp"
+#include "util/simd.hpp"
 
 namespace knit {
 namespace {
@@ -170,10 +172,10 @@ namespace {
 // `phase(j)` gives (cos theta, sin theta) of point j.
 template <class Phase>
 void helices(const PlyOptions& opt, const dvec3* X, const dvec3* T, const dvec3* N, size_t m, const double* cosPly,
-             const double* sinPly, Phase phase, dvec3* P, dvec3* D) {
+             const double* sinPly, Phase phase, dvec3* P, dvec3* D, size_t first = 0) {
     const uint32_t n = static_cast<uint32_t>(opt.count);
     const double R = opt.centerRadius;
-    for (size_t j = 0; j < m; ++j) {
+    for (size_t j = first; j < m; ++j) {
         const glm::dvec2 cs = phase(j);
         const double ct = cs.x, st = cs.y;
         const dvec3 nj = N[j];
@@ -222,9 +224,13 @@ void PlyKernel::sweepWithCosSin(const PlyGenerator& g, size_t y, const dvec3* X,
                                 dvec3* radial) {
     PlyScratch::Buffers& buf = buffers(scratch);
     frames(g, y, X, m, seed, seedTangent, buf);
+    // Four points at a time in AVX2 (helices_simd.cpp, bit for bit), the rest here.
+    const HelixInput in{X, buf.tangent.data(), buf.normal.data(), phase, m, static_cast<uint32_t>(g.options_.count),
+                        g.cosPly_, g.sinPly_, g.options_.centerRadius};
+    const size_t done = helicesCosSin(in, P, radial, util::avx2Kernels());
     helices(
         g.options_, X, buf.tangent.data(), buf.normal.data(), m, g.cosPly_, g.sinPly_,
-        [&](size_t j) { return phase[j]; }, P, radial);
+        [&](size_t j) { return phase[j]; }, P, radial, done);
 }
 
 }  // namespace impl
