@@ -254,7 +254,7 @@ TEST(Mapping, evaluationIsTheScalarGatherBitForBit) {
     for (glm::dvec3& x : moved) x += glm::dvec3(0.0, 0.0, 0.05 * std::sin(8.0 * x.x));
     std::vector<glm::dvec3> normals = vertexNormals(moved, s.mesh().faces);
     for (size_t v = 0; v < normals.size(); v += 3) normals[v] = -normals[v];  // some sums near zero
-    std::vector<glm::dvec3> zero(normals.size(), glm::dvec3(0.0));             // every sum zero: (0, 0, 1)
+    std::vector<glm::dvec3> zero(normals.size(), glm::dvec3(0.0));            // every sum zero: (0, 0, 1)
     const glm::dvec3 origin(0.1, -0.2, 0.3);
     const auto same = [](const auto& a, const auto& b) { return std::memcmp(&a, &b, sizeof a) == 0; };
     for (const std::vector<glm::dvec3>* n : {&normals, &zero}) {

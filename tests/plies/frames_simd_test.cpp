@@ -30,8 +30,8 @@ std::vector<dvec3> testCurve(size_t n) {
         const double s = 0.05 * double(i);
         p.emplace_back(0.002 * std::cos(s), 0.002 * std::sin(s) + 1e-4 * std::sin(7.3 * s), 3e-4 * s);
     }
-    p[40] = p[39];                               // zero-length segment
-    p[81] = p[79];                               // back onto an earlier point: a reversal
+    p[40] = p[39];  // zero-length segment
+    p[81] = p[79];  // back onto an earlier point: a reversal
     for (size_t i = 120; i < 140; ++i) p[i] = p[119] + dvec3(0.0, 0.0, 1e-4 * double(i - 119));  // straight
     return p;
 }

@@ -206,7 +206,9 @@ void curveFrames(const glm::dvec3* x, size_t n, bool closed, const glm::dvec3* s
                 continue;
             }
             const dvec3 r = N[i];
-            const auto row = [&](int e) { return (block.m[e][k] * r.x + block.m[e + 1][k] * r.y) + block.m[e + 2][k] * r.z; };
+            const auto row = [&](int e) {
+                return (block.m[e][k] * r.x + block.m[e + 1][k] * r.y) + block.m[e + 2][k] * r.z;
+            };
             N[i + 1] = dvec3(row(0), row(3), row(6));
         }
     }

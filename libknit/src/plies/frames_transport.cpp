@@ -138,8 +138,7 @@ size_t pointTangents(const dvec3* N, dvec3* T, size_t begin, size_t end, bool si
     return begin;
 }
 
-void transportCoefficients(const dvec3* x, const dvec3* t, size_t first, size_t count, TransportBlock& b,
-                           bool simd) {
+void transportCoefficients(const dvec3* x, const dvec3* t, size_t first, size_t count, TransportBlock& b, bool simd) {
     size_t k = 0;
 #if KNIT_HAVE_AVX2_KERNELS
     if (simd)

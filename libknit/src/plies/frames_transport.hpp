@@ -20,8 +20,8 @@ constexpr size_t kTransportBlock = 64;
 // normal is three dot products (one multiply-add deep) instead of two reflections one after the
 // other (two dot products, two scalings and two subtractions deep).
 struct TransportBlock {
-    double m[9][kTransportBlock];      // M row-major, per step
-    bool reversal[kTransportBlock];    // t0.t1 < 0: transport() decides (projects the normal)
+    double m[9][kTransportBlock];    // M row-major, per step
+    bool reversal[kTransportBlock];  // t0.t1 < 0: transport() decides (projects the normal)
 };
 // Fills steps [0, count) of `b` (count <= kTransportBlock) for the steps from point `first`,
 // four at a time in AVX2 when `simd` (bit for bit the same either way).

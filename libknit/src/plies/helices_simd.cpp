@@ -39,9 +39,9 @@ KNIT_AVX2 size_t helicesAvx2(const HelixInput& in, glm::dvec3* P, glm::dvec3* D)
             const Lanes radial = {_mm256_add_pd(_mm256_mul_pd(c, n.x), _mm256_mul_pd(s, b.x)),
                                   _mm256_add_pd(_mm256_mul_pd(c, n.y), _mm256_mul_pd(s, b.y)),
                                   _mm256_add_pd(_mm256_mul_pd(c, n.z), _mm256_mul_pd(s, b.z))};
-            store4(P + i * in.m + j, {_mm256_add_pd(x.x, _mm256_mul_pd(R, radial.x)),
-                                      _mm256_add_pd(x.y, _mm256_mul_pd(R, radial.y)),
-                                      _mm256_add_pd(x.z, _mm256_mul_pd(R, radial.z))});
+            store4(P + i * in.m + j,
+                   {_mm256_add_pd(x.x, _mm256_mul_pd(R, radial.x)), _mm256_add_pd(x.y, _mm256_mul_pd(R, radial.y)),
+                    _mm256_add_pd(x.z, _mm256_mul_pd(R, radial.z))});
             if (D) store4(D + i * in.m + j, radial);
         }
     }

@@ -225,8 +225,9 @@ void PlyKernel::sweepWithCosSin(const PlyGenerator& g, size_t y, const dvec3* X,
     PlyScratch::Buffers& buf = buffers(scratch);
     frames(g, y, X, m, seed, seedTangent, buf);
     // Four points at a time in AVX2 (helices_simd.cpp, bit for bit), the rest here.
-    const HelixInput in{X, buf.tangent.data(), buf.normal.data(), phase, m, static_cast<uint32_t>(g.options_.count),
-                        g.cosPly_, g.sinPly_, g.options_.centerRadius};
+    const HelixInput in{
+        X,         buf.tangent.data(), buf.normal.data(),      phase, m, static_cast<uint32_t>(g.options_.count),
+        g.cosPly_, g.sinPly_,          g.options_.centerRadius};
     const size_t done = helicesCosSin(in, P, radial, util::avx2Kernels());
     helices(
         g.options_, X, buf.tangent.data(), buf.normal.data(), m, g.cosPly_, g.sinPly_,
