@@ -49,7 +49,7 @@ KNIT_AVX2 inline Corner interpolate(const GatherArrays& a, size_t i, __m256i mas
 }
 
 // The four vertices' (x x + y y) + z z, one per lane.
-KNIT_AVX2 inline __m256d squaredLengths(const Corner (&c)[4]) {
+KNIT_AVX2 inline __m256d squaredLengths(const Corner* c) {
     const __m256d m0 = _mm256_mul_pd(c[0].n, c[0].n), m1 = _mm256_mul_pd(c[1].n, c[1].n);
     const __m256d m2 = _mm256_mul_pd(c[2].n, c[2].n), m3 = _mm256_mul_pd(c[3].n, c[3].n);
     const __m256d t0 = _mm256_unpacklo_pd(m0, m1), t1 = _mm256_unpackhi_pd(m0, m1);  // (x0 x1 z0 z1), (y0 y1 . .)
@@ -101,7 +101,7 @@ KNIT_AVX2 inline void interpolateChunk(const GatherArrays& a, size_t i, size_t g
         cg[1] = interpolate(a, v + 1, mask3);
         cg[2] = interpolate(a, v + 2, mask3);
         cg[3] = interpolate(a, v + 3, mask3);
-        const __m256d len2 = squaredLengths(*reinterpret_cast<const Corner(*)[4]>(cg));
+        const __m256d len2 = squaredLengths(cg);
         inv[g] = exactInverseRoot(len2);
         ok[g] = _mm256_cmp_pd(len2, _mm256_setzero_pd(), _CMP_GT_OQ);
     }
