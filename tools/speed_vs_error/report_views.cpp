@@ -41,8 +41,11 @@ void reportDistance(Report& rep, const json& j, const std::vector<std::string>& 
     md << "### What a view costs against the camera's distance\n\n"
        << "The default view (thresholds x1, seed 1) of each camera against `--detail full` (peak "
        << gib(j["full_peak_bytes"]) << " GiB for any camera: every ply of the garment is built and traced). "
-       << "The view's peak memory is the process's peak resident memory, reset before the view's scene is built; "
-          "its time is its scene plus its render, the full render's the shared scene plus the camera's render.\n\n"
+       << "The view's peak memory is the process's peak resident memory, reset before the view's scene is built: "
+          "it still counts what the process holds after the full renders (the reference images, and freed memory "
+          "the allocator keeps), so it is an upper bound; `knit render --detail view` in a process of its own "
+          "peaks lower (docs/views.md, \"Peak memory against camera distance\"). The view's time is its scene "
+          "plus its render, the full render's the shared scene plus the camera's render.\n\n"
        << "| camera | distance to target | view peak (MiB) | full peak (GiB) | less memory | view time (s) | full "
           "time (s) | faster | block RMSE (full at seed 2) |\n|---|---:|---:|---:|---:|---:|---:|---:|---|\n";
     std::ostringstream dd;
