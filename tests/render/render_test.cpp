@@ -278,7 +278,34 @@ TEST(Render, frontLightNeverHidesTheViewInANarrowField) {
     int black = 0;
     for (int y = 0; y < image.height; ++y)
         for (int x = 0; x < image.width; ++x) black += luminance(image.pixel(x, y)) <= 0;
-    EXPECT_EQ(black, 0);  // every pixel sees at least the environment (0.05) or lit cloth
+    // Every pixel sees the environment (0.05) or lit cloth, unless all 4 of its paths stay in
+    // shadowed cloth (the environment is found only by scattered rays): a few scattered pixels,
+    // never the light's square over the image.
+    EXPECT_LE(black, image.width * image.height / 100) << black << " black pixels";
+}
+
+TEST(Render, pixelStrataMakeTwoSeedsCloserThanIndependentSamplesWould) {
+    // A pixel's samples cover it by strata (render_image.hpp), so two seeds differ by less than
+    // the variance of independent samples (Image::variance, from the samples' spread) predicts:
+    // the expected ratio is 1 for independent points in the pixel. Black plies before a white
+    // environment: a pixel's value is the part of it the plies leave open, all of its noise is
+    // where the samples fall in it.
+    const Scene scene = makeSyntheticPlyScene(wavyCloth());
+    RenderOptions o = smallRender();
+    o.environment = 1, o.lightIrradiance = 0;
+    o.material.bodyAlbedo = o.material.kR = o.material.kTT = Rgb(0.0);
+    const Image a = renderScene(scene, o).image;
+    o.seed = 2;
+    const Image b = renderScene(scene, o).image;
+    double diff = 0, predicted = 0;
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x) {
+            const double d = luminance(a.pixel(x, y)) - luminance(b.pixel(x, y));
+            diff += d * d;
+            predicted += a.variance[size_t(y) * a.width + x] + b.variance[size_t(y) * a.width + x];
+        }
+    std::printf("squared difference of two seeds / independent samples' variance: %.3f\n", diff / predicted);
+    EXPECT_LT(diff, 0.6 * predicted);  // 0.24 measured; 0.99 with independent points
 }
 
 TEST(Render, deterministicForSeedAndThreadCount) {

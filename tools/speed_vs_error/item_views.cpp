@@ -1,12 +1,14 @@
 // item_views.cpp — item 7: level of detail for a view (knit/detail.hpp) against `--detail full`.
 // The garment of issue 11 (the drape at 256 x 256 quads, the stockinette 660 x 660) rendered
-// front-lit at 320 x 240, 32 samples per pixel, from three cameras: far (the default framing),
-// mid (a grazing view ~6 cm from the cloth) and close (eye 2.3 cm above it). Per camera: one
+// front-lit at 320 x 240, 32 samples per pixel, from four cameras: far (the default framing),
+// mid (a grazing view ~6 cm from the cloth), close (eye 2.3 cm above it) and 1cm (eye 1 cm from
+// the top of the drape, looking at it as close does). Per camera: one
 // full-detail reference render, then `--detail view` renders with the level thresholds scaled by
 // 0.5, 1 (the default) and 2 (a cell keeps a finer level down to half / twice the projected size),
 // plus the default at a second seed (the noise floor of the view render), and the full render at a
 // second seed (the noise floor of the comparison: how close another full render comes). Each gives the geometry
-// kept (curve segments traced, surface triangles), wall time of scene + render, peak memory, and
+// kept (curve segments traced, surface triangles), wall time of scene + render, peak memory (the
+// view's own: reset before each view render), the camera's distance to its target, and
 // the image error against the reference: mean radiance per channel and the RMSE of 4 x 4 block
 // mean luminances, both relative to the reference's mean.
 // Built only with render_check (KNIT_BUILD_RENDER_CHECK).
@@ -15,6 +17,8 @@
 #include <cstdio>
 #include <string>
 #include <vector>
+
+#include <glm/geometric.hpp>
 
 #include "items.hpp"
 #include "knit/base_mesh.hpp"
@@ -118,7 +122,8 @@ json measureViews() {
     const glm::dvec3 top(0, 0.1667, 0);  // the top of the drape
     std::vector<Camera> cameras{{"far", true, {}},
                                 {"mid", false, {{0.04, 0.22, 0.0}, top, {0, 0, -1}, 30, 320, 240}},
-                                {"close", false, {{0.015, 0.19, 0.0}, top, {0, 0, -1}, 30, 320, 240}}};
+                                {"close", false, {{0.015, 0.19, 0.0}, top, {0, 0, -1}, 30, 320, 240}},
+                                {"1cm", false, {{0.00541, 0.17511, 0.0}, top, {0, 0, -1}, 30, 320, 240}}};
     // Step 1: the full-detail references (one scene with every ply, rendered from each camera).
     std::vector<knit::Image> references;
     json out;
@@ -139,6 +144,7 @@ json measureViews() {
                                    {"mean", {m.r, m.g, m.b}},
                                    {"eye", {r.view.eye.x, r.view.eye.y, r.view.eye.z}},
                                    {"target", {r.view.target.x, r.view.target.y, r.view.target.z}}};
+            out[c.name]["distance_m"] = glm::length(r.view.eye - r.view.target);
             std::fprintf(stderr, "  %s full: %.1f s render, %zu segments\n", c.name, seconds(tr), r.segments);
             // The noise floor: the same full render at another seed against the reference.
             const json noise = imageError(knit::renderScene(full, renderOptions(c, 2)).image, r.image);

@@ -1,5 +1,7 @@
 // report_views.cpp — the report's section for item 7 (item_views.cpp): level of detail for a view
-// against `--detail full` on the garment, from three cameras.
+// against `--detail full` on the garment, from four cameras; then what a view costs against the
+// camera's distance (memory and time of the default view beside the full render's).
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -13,16 +15,79 @@ std::string percent(const json& v) { return (v.get<double>() >= 0 ? "+" : "") + 
 
 std::string meanText(const json& rel) { return percent(rel[0]) + ", " + percent(rel[1]) + ", " + percent(rel[2]); }
 
+// The camera's distance to its target in metres (results from before it was recorded: from the
+// full render's eye and target).
+double cameraDistance(const json& cam) {
+    if (cam.contains("distance_m")) return cam["distance_m"];
+    const json& e = cam["full"]["eye"];
+    const json& t = cam["full"]["target"];
+    double d2 = 0;
+    for (int k = 0; k < 3; ++k) d2 += std::pow(e[k].get<double>() - t[k].get<double>(), 2);
+    return std::sqrt(d2);
+}
+
+// The default view's run (thresholds x1, seed 1) of a camera; null when it is missing.
+const json* defaultView(const json& cam) {
+    for (const json& v : cam["view"])
+        if (v["threshold_scale"].get<double>() == 1.0 && v["seed"].get<int>() == 1) return &v;
+    return nullptr;
+}
+
+// Memory and time of the default view against the camera's distance, beside the full render's
+// (its scene is shared by the cameras: its time is that scene plus the camera's render).
+void reportDistance(Report& rep, const json& j, const std::vector<std::string>& cameras) {
+    std::ostringstream& md = rep.md;
+    const double fullScene = j["full_scene_seconds"];
+    md << "### What a view costs against the camera's distance\n\n"
+       << "The default view (thresholds x1, seed 1) of each camera against `--detail full` (peak "
+       << gib(j["full_peak_bytes"]) << " GiB for any camera: every ply of the garment is built and traced). "
+       << "The view's peak memory is the process's peak resident memory, reset before the view's scene is built: "
+          "it still counts what the process holds after the full renders (the reference images, and freed memory "
+          "the allocator keeps), so it is an upper bound; `knit render --detail view` in a process of its own "
+          "peaks lower (docs/views.md, \"Peak memory against camera distance\"). The view's time is its scene "
+          "plus its render, the full render's the shared scene plus the camera's render.\n\n"
+       << "| camera | distance to target | view peak (MiB) | full peak (GiB) | less memory | view time (s) | full "
+          "time (s) | faster | block RMSE (full at seed 2) |\n|---|---:|---:|---:|---:|---:|---:|---:|---|\n";
+    std::ostringstream dd;
+    dd << "# camera distance_m view_peak_mib full_peak_mib\n";
+    for (const std::string& c : cameras) {
+        if (!j.contains(c)) continue;
+        const json* v = defaultView(j[c]);
+        if (v == nullptr) continue;
+        const double distance = cameraDistance(j[c]);
+        const double viewPeak = (*v)["peak_bytes"], fullPeak = j["full_peak_bytes"];
+        const double viewTime = (*v)["seconds"], fullTime = fullScene + j[c]["full"]["render_seconds"].get<double>();
+        const json& full = j[c]["full"];
+        md << "| " << c << " | " << (distance >= 0.1 ? fixed(distance, 2) + " m" : fixed(100 * distance, 1) + " cm")
+           << " | " << fixed(viewPeak / (1 << 20), 0) << " | " << gib(fullPeak) << " | "
+           << fixed(fullPeak / viewPeak, 0) << "x | " << fixed(viewTime, 1) << " | " << fixed(fullTime, 1) << " | "
+           << fixed(fullTime / viewTime, 1) << "x | " << fixed(100 * (*v)["block_rmse_relative"].get<double>(), 1)
+           << "% ("
+           << (full.contains("seed2") ? fixed(100 * full["seed2"]["block_rmse_relative"].get<double>(), 1) + "%"
+                                      : std::string("-"))
+           << ") |\n";
+        dd << c << " " << distance << " " << viewPeak / (1 << 20) << " " << fullPeak / (1 << 20) << "\n";
+    }
+    rep.data("views_memory.dat", dd.str());
+    rep.plotHeader("views-memory.svg", "Peak memory of a view against the camera's distance",
+                   "camera distance to its target (m)", "peak resident memory (MiB)", true, true);
+    rep.gp << "plot " << rep.dat("views_memory.dat") << " using 2:3 with linespoints pt 7 title '--detail view', \\\n  "
+           << rep.dat("views_memory.dat") << " using 2:3:1 with labels offset 1.5,0.7 notitle, \\\n  "
+           << rep.dat("views_memory.dat") << " using 2:4 with lines dt 2 title '--detail full'\n";
+    md << "\n" << rep.image("views-memory.svg", "peak memory of a view against the camera's distance") << "\n";
+}
+
 }  // namespace
 
 void reportViews(Report& rep, const json& j) {
     std::ostringstream& md = rep.md;
-    const std::vector<std::string> cameras{"far", "mid", "close"};
+    const std::vector<std::string> cameras{"far", "mid", "close", "1cm"};
     const double fullScene = j["full_scene_seconds"];
     md << "## 7. Level of detail for a view (`--detail view` against `--detail full`)\n\n"
        << "The garment of item 6 (the drape at 256 x 256 quads, the stockinette 660 x 660), front-lit, 320 x 240, "
-          "32 samples per pixel, from three cameras: far (the default framing), mid (eye (0.04, 0.22, 0) looking at "
-          "the top of the drape, ~6.7 cm away, grazing) and close (eye (0.015, 0.19, 0), ~2.7 cm). The full scene "
+          "32 samples per pixel, from up to four cameras: far (the default framing), mid (eye (0.04, 0.22, 0) "
+          "looking at the top of the drape, ~6.7 cm away, grazing), close (eye (0.015, 0.19, 0), ~2.7 cm) and 1cm "
+          "(eye (0.00541, 0.17511, 0), 1 cm; results from before it was added have three). The full scene "
           "(every ply, "
        << fmt(j["far"]["full"]["segments"].get<double>(), 4) << " segments) is built once (" << fixed(fullScene, 1)
        << " s, peak " << gib(j["full_peak_bytes"]) << " GiB) and rendered from each camera at seed 1 (the reference) "
@@ -71,6 +136,7 @@ void reportViews(Report& rep, const json& j) {
        << "Peak memory of a view is the process's peak resident memory, reset before each view (the full scene is "
           "gone by then). A view render is within the render noise of `--detail full` when its block RMSE is no "
           "larger than the noise floor's.\n\n";
+    reportDistance(rep, j, cameras);
 }
 
 }  // namespace sve

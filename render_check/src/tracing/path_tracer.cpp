@@ -1,5 +1,6 @@
-// Path tracer: camera rays, NEE to the area light and the environment with MIS, sampling of the
-// scattering at each hit (bsdf/scattering.hpp: ply BSDF, surface table or diffuse base mesh).
+// Path tracer: camera rays, NEE to the area light with MIS, the environment where a scattered ray
+// escapes, sampling of the scattering at each hit (bsdf/scattering.hpp: ply BSDF, surface table or
+// diffuse base mesh).
 #include "knit/path_tracer.hpp"
 
 #include <algorithm>
@@ -7,6 +8,8 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <utility>
+#include <vector>
 
 #include <glm/geometric.hpp>
 #include <tbb/blocked_range.h>
@@ -49,6 +52,36 @@ struct Rng {
         return (xs >> rot) | (xs << ((-rot) & 31));
     }
     double uniform() { return next() * (1.0 / 4294967296.0); }
+};
+
+// The points in a pixel of its spp samples: a jittered cols x rows grid of spp strata (cols the
+// largest divisor of spp <= sqrt(spp)), visited in a random order per pixel. Each sample is uniform
+// in the pixel on its own; together they cover the pixel evenly, which takes most of the noise out
+// of the yarn's edges and highlights. Only the pixel is stratified: strata for the light point and
+// the first scattering too lowered the close-up's noise a little more but made the material fit
+// (knit/fit.hpp, whose renders share one seed across materials) miss its albedo on 2 of 4 seeds.
+class PixelStrata {
+public:
+    explicit PixelStrata(int spp) : cols_(1), order_(size_t(spp)) {
+        for (int c = 1; c * c <= spp; ++c)
+            if (spp % c == 0) cols_ = c;
+    }
+    void shuffle(Rng& rng) {
+        const uint32_t n = uint32_t(order_.size());
+        for (uint32_t k = 0; k < n; ++k) order_[k] = k;
+        for (uint32_t k = n - 1; k > 0; --k) std::swap(order_[k], order_[rng.next() % (k + 1)]);
+    }
+    // The point of sample k in the pixel, in [0, 1)^2.
+    glm::dvec2 point(int k, Rng& rng) const {
+        const uint32_t st = order_[size_t(k)];
+        const int rows = int(order_.size()) / cols_;
+        const double x = (int(st % cols_) + rng.uniform()) / cols_, y = (int(st / cols_) + rng.uniform()) / rows;
+        return {x, y};
+    }
+
+private:
+    int cols_;
+    std::vector<uint32_t> order_;
 };
 
 double power(double a, double b) { return a * a / (a * a + b * b); }
@@ -143,7 +176,7 @@ struct Tracer {
             TraceHit h;
             ++*rays;
             const bool hit = scene.intersect(o, d, 0.f, kInf, h, depth > 0 ? &prev : nullptr);
-            // Step 1: emission from the light or the environment (MIS against the light samples).
+            // Step 1: emission from the light (MIS against the light samples) or the environment.
             bool front = false;
             const float tl = hitLight(light, o, d, front);
             if (front && tl < (hit ? h.t : kInf)) {  // the light's back is not there
@@ -156,8 +189,12 @@ struct Tracer {
                 L += beta * light.radiance * w;
                 break;
             }
+            // The constant environment is found only by the paths' own scattered rays: sampling the
+            // scattering already follows f |cos| (a Lambertian body's weight is its albedo whatever
+            // the direction), while a shadow ray to a uniform direction of the sphere cost a
+            // quarter of all rays and lowered the close-up's noise by less than it cost (docs/views.md).
             if (!hit) {
-                if (env) L += beta * s.environment * (depth == 0 ? 1.0 : power(prevPdf, 1.0 / (4 * kPi)));
+                if (env) L += beta * s.environment;
                 break;
             }
             if (depth >= s.maxDepth) break;
@@ -189,33 +226,14 @@ struct Tracer {
                     }
                 }
             }
-            // Step 4: next-event estimation to the environment (uniform sphere).
-            if (env) {
-                const double z = 1 - 2 * rng.uniform(), r = std::sqrt(std::max(0.0, 1 - z * z)),
-                             phi = 2 * kPi * rng.uniform();
-                const glm::dvec3 wi(r * std::cos(phi), r * std::sin(phi), z);
-                double pdfB;
-                const Rgb f = evalScattering(sh, woL, wi, h.ng, pdfB);
-                if (f != Rgb(0.0)) {
-                    const glm::vec3 wf(wi);
-                    const glm::vec3 org = scene.spawn(h, p, wf);
-                    bool fr = false;
-                    ++*rays;
-                    const bool lightInFront = hitLight(light, org, wf, fr) < kInf && fr;  // emits instead
-                    if (!lightInFront && !scene.occluded(org, wf, 0.f, kInf, &h)) {
-                        const double pdfE = 1.0 / (4 * kPi);
-                        L += beta * f * s.environment * (power(pdfE, pdfB) / pdfE);
-                    }
-                }
-            }
-            // Step 5: continue the path by sampling the scattering.
+            // Step 4: continue the path by sampling the scattering.
             const impl::ScatterSample next = sh.scattering.sample(woL, rng);
             if (!next.valid) break;
             const glm::vec3 wi = glm::normalize(glm::vec3(sh.frame.toWorld(next.wi)));
             if ((glm::dot(wi, h.ng) > 0) != (next.wi.z > 0)) break;
             beta *= next.weight;
             prevPdf = next.pdf;
-            // Step 6: Russian roulette.
+            // Step 5: Russian roulette.
             if (depth >= 3) {
                 const double q = std::min(0.95, std::max({beta.x, beta.y, beta.z}));
                 if (rng.uniform() >= q) break;
@@ -279,17 +297,20 @@ Image renderImage(const TraceScene& scene, const PlyMaterial& material, const Fi
         uint64_t& localRays = rays.local();
         Tracer t = tr;
         t.rays = &localRays;
+        PixelStrata strata(s.spp);
         for (int ti = range.begin(); ti < range.end(); ++ti) {
             const int x0 = (ti % tx) * tile, y0 = (ti / tx) * tile;
             for (int y = y0; y < std::min(s.height, y0 + tile); ++y)
                 for (int x = x0; x < std::min(s.width, x0 + tile); ++x) {
                     const uint64_t index = uint64_t(y) * s.width + x;
                     Rng rng(splitmix(s.seed ^ splitmix(index)), splitmix(index + 0x1234567ull));
+                    strata.shuffle(rng);
                     Rgb sum(0.0);
                     double lum = 0, lum2 = 0;
                     for (int k = 0; k < s.spp; ++k) {
-                        const double sx = (2 * (x + rng.uniform()) / s.width - 1) * t.tanHalf * t.aspect;
-                        const double sy = (1 - 2 * (y + rng.uniform()) / s.height) * t.tanHalf;
+                        const glm::dvec2 px = strata.point(k, rng);
+                        const double sx = (2 * (x + px.x) / s.width - 1) * t.tanHalf * t.aspect;
+                        const double sy = (1 - 2 * (y + px.y) / s.height) * t.tanHalf;
                         const glm::vec3 d = glm::normalize(t.fwd + float(sx) * t.right + float(sy) * t.up);
                         Rgb L = t.radiance(t.eye, d, rng);
                         if (!std::isfinite(L.x) || !std::isfinite(L.y) || !std::isfinite(L.z)) L = Rgb(0.0);

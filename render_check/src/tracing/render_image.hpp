@@ -1,6 +1,9 @@
 // render_image.hpp (internal) — the path tracer (path_tracer.cpp): pinhole camera, rectangular
-// area light + constant environment, unidirectional path tracing with next-event estimation and
-// MIS (power heuristic), on a TraceScene.
+// area light + constant environment, unidirectional path tracing with next-event estimation to the
+// light and MIS (power heuristic), on a TraceScene. The environment is reached by the scattered
+// rays alone. A pixel's samples are stratified over the pixel (a jittered grid of spp strata visited
+// in a random order per pixel); every other number is plain random. Image::variance is the
+// variance of independent samples: with the strata it is an upper bound.
 //
 // Deterministic for a seed and any thread count: every pixel has its own random stream seeded from
 // (seed, pixel index); tiles are rendered in parallel with TBB. Each hit scatters with one of the
