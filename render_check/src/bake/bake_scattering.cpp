@@ -95,7 +95,10 @@ Escape PlyPaths::follow(TraceHit h, glm::vec3 p, glm::vec3 d, BakeRandom& rng, i
         const glm::dvec3 woL = frame.toLocal(-glm::dvec3(d));
         if ((glm::dot(-d, h.ng) > 0) != (woL.z > 0)) return e;
         const PlyBsdf bsdf(material_, frame.shadow);
-        const BsdfSample bs = bsdf.sample(woL, rng.uniform(), glm::dvec2(rng.uniform(), rng.uniform()));
+        // The three numbers drawn in a set order (a braced list is sequenced; call arguments are not,
+        // so the image for a seed would depend on the compiler).
+        const double u[3] = {rng.uniform(), rng.uniform(), rng.uniform()};
+        const BsdfSample bs = bsdf.sample(woL, u[0], glm::dvec2(u[1], u[2]));
         if (!bs.valid) return e;
         const glm::vec3 wi = glm::normalize(glm::vec3(frame.toWorld(bs.wi)));
         if ((glm::dot(wi, h.ng) > 0) != (bs.wi.z > 0)) return e;

@@ -40,7 +40,10 @@ struct PlyScattering {
     }
     template <class Random>
     ScatterSample sample(const glm::dvec3& wo, Random& rng) const {
-        const BsdfSample bs = bsdf.sample(wo, rng.uniform(), glm::dvec2(rng.uniform(), rng.uniform()));
+        // The three numbers drawn in a set order (a braced list is sequenced; call arguments are not,
+        // so the image for a seed would depend on the compiler).
+        const double u[3] = {rng.uniform(), rng.uniform(), rng.uniform()};
+        const BsdfSample bs = bsdf.sample(wo, u[0], glm::dvec2(u[1], u[2]));
         return {bs.wi, bs.weight, bs.pdf, bs.valid};
     }
 };
