@@ -1,14 +1,20 @@
 // Chart relaxation targets of issue 13: a 2 x 2 stockinette in <= 2 s, a 12-stitch x 16-row
-// cable cell in <= 60 s (2 cores); issue 25: every built-in of round 2 (lace, slip stitch, tuck,
-// stranded, intarsia) in <= 60 s; RelaxOptions::affinePeriod against the default. Counters: iterations, min distance (radii), L r / A.
+// cable cell in <= 60 s (2 cores); issue 25: every built-in chart (BM_RelaxBuiltin/NAME, all of
+// builtinChartNames()) and the small lace charts that were slow to settle (BM_RelaxLace) in
+// <= 60 s with the yarns >= 1.9 r apart; RelaxOptions::affinePeriod against the default.
+// Counters: iterations, evaluations, converged, min distance (radii), L r / A, energy and the
+// process CPU seconds of one relaxation (all threads; the machine may be shared).
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <string>
 
 #include <glm/geometric.hpp>
 
 #include "knit/chart.hpp"
 #include "knit/chart_pattern.hpp"
+
+#include "bench_clock.hpp"
 
 namespace {
 
@@ -34,7 +40,14 @@ void relax(benchmark::State& state, const knit::Chart& chart, bool affine = fals
     knit::ChartPattern cp;
     knit::ChartPatternOptions options;
     options.affinePeriod = affine;
-    for (auto _ : state) cp = knit::relaxChart(chart, options);
+    double cpu = 0;
+    for (auto _ : state) {
+        const double start = knit::bench::cpuSeconds();
+        cp = knit::relaxChart(chart, options);
+        cpu = knit::bench::cpuSeconds() - start;
+    }
+    state.counters["cpu_s"] = cpu;
+    state.counters["energy"] = cp.relaxed.energy;
     state.counters["iterations"] = cp.relaxed.iterations;
     state.counters["evaluations"] = cp.relaxed.evaluations;
     state.counters["pair_rebuilds"] = cp.relaxed.pairRebuilds;
@@ -47,29 +60,51 @@ void relax(benchmark::State& state, const knit::Chart& chart, bool affine = fals
 void BM_RelaxStockinette2x2(benchmark::State& state) { relax(state, knit::builtinChart("chart:stockinette")); }
 void BM_RelaxCable12x16(benchmark::State& state) { relax(state, knit::parseChart(cableCell(), "cable12x16")); }
 
-void BM_RelaxBuiltin(benchmark::State& state, const char* name) { relax(state, knit::builtinChart(name)); }
-// RelaxOptions::affinePeriod (faster, for previews; off by default).
-void BM_RelaxAffineStockinette2x2(benchmark::State& state) {
-    relax(state, knit::builtinChart("chart:stockinette"), true);
-}
-void BM_RelaxAffineCable12x16(benchmark::State& state) {
-    relax(state, knit::parseChart(cableCell(), "cable12x16"), true);
-}
-void BM_RelaxAffineBuiltin(benchmark::State& state, const char* name) { relax(state, knit::builtinChart(name), true); }
+// Lace charts whose cells settled slowly (a slow narrowing of the period): k3tog and sssk
+// between yarn-overs over a plain row.
+const char* const kLaceCharts[][2] = {
+    {"yo_k3tog_yo_k", "yo k3tog yo k\nk k k k\n"},
+    {"k_yo_sssk_yo", "k yo sssk yo\nk k k k\n"},
+};
 
 }  // namespace
 
-BENCHMARK_CAPTURE(BM_RelaxBuiltin, eyelet_mesh, "chart:eyelet-mesh")->Unit(benchmark::kSecond)->Iterations(1);
-BENCHMARK_CAPTURE(BM_RelaxBuiltin, honeycomb, "chart:honeycomb")->Unit(benchmark::kSecond)->Iterations(1);
-BENCHMARK_CAPTURE(BM_RelaxBuiltin, fishermans_rib, "chart:fishermans-rib")->Unit(benchmark::kSecond)->Iterations(1);
-BENCHMARK_CAPTURE(BM_RelaxBuiltin, fair_isle, "chart:fair-isle")->Unit(benchmark::kSecond)->Iterations(1);
-BENCHMARK_CAPTURE(BM_RelaxBuiltin, intarsia_blocks, "chart:intarsia-blocks")->Unit(benchmark::kSecond)->Iterations(1);
-BENCHMARK_CAPTURE(BM_RelaxAffineBuiltin, eyelet_mesh, "chart:eyelet-mesh")->Unit(benchmark::kSecond)->Iterations(1);
-BENCHMARK_CAPTURE(BM_RelaxAffineBuiltin, intarsia_blocks, "chart:intarsia-blocks")
-    ->Unit(benchmark::kSecond)
-    ->Iterations(1);
-BENCHMARK(BM_RelaxStockinette2x2)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_RelaxAffineStockinette2x2)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_RelaxCable12x16)->Unit(benchmark::kSecond)->Iterations(1);
-BENCHMARK(BM_RelaxAffineCable12x16)->Unit(benchmark::kSecond)->Iterations(1);
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+    const auto seconds = [](benchmark::internal::Benchmark* b) { b->Unit(benchmark::kSecond)->Iterations(1); };
+    for (const std::string& name : knit::builtinChartNames()) {
+        std::string label = name.substr(name.find(':') + 1);
+        std::replace(label.begin(), label.end(), '-', '_');
+        seconds(benchmark::RegisterBenchmark(("BM_RelaxBuiltin/" + label).c_str(),
+                                             [name](benchmark::State& s) { relax(s, knit::builtinChart(name)); }));
+    }
+    for (const auto& lace : kLaceCharts) {
+        const std::string text = lace[1], label = lace[0];
+        seconds(benchmark::RegisterBenchmark(("BM_RelaxLace/" + label).c_str(), [text, label](benchmark::State& s) {
+            relax(s, knit::parseChart(text, label));
+        }));
+    }
+    // RelaxOptions::affinePeriod (faster, for previews; off by default).
+    for (const char* name : {"chart:eyelet-mesh", "chart:intarsia-blocks"}) {
+        std::string label = std::string(name).substr(6);
+        std::replace(label.begin(), label.end(), '-', '_');
+        seconds(benchmark::RegisterBenchmark(("BM_RelaxAffineBuiltin/" + label).c_str(), [name](benchmark::State& s) {
+            relax(s, knit::builtinChart(name), true);
+        }));
+    }
+    benchmark::RegisterBenchmark("BM_RelaxStockinette2x2", [](benchmark::State& s) {
+        relax(s, knit::builtinChart("chart:stockinette"));
+    })->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark("BM_RelaxAffineStockinette2x2", [](benchmark::State& s) {
+        relax(s, knit::builtinChart("chart:stockinette"), true);
+    })->Unit(benchmark::kMillisecond);
+    seconds(benchmark::RegisterBenchmark(
+        "BM_RelaxCable12x16", [](benchmark::State& s) { relax(s, knit::parseChart(cableCell(), "cable12x16")); }));
+    seconds(benchmark::RegisterBenchmark("BM_RelaxAffineCable12x16", [](benchmark::State& s) {
+        relax(s, knit::parseChart(cableCell(), "cable12x16"), true);
+    }));
+    benchmark::Initialize(&argc, argv);
+    if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+    benchmark::RunSpecifiedBenchmarks();
+    benchmark::Shutdown();
+    return 0;
+}

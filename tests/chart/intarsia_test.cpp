@@ -246,9 +246,20 @@ TEST(Intarsia, layoutsAPeriodicCellCannotKnitAreRefusedWithTheirPlace) {
         }
         return std::string();
     };
-    // A motif inside the repeat (its yarn would have two ends).
-    EXPECT_NE(error("k k k\nk k k\n\nA B A\nA A A\nA=#ffffff B=#000000\nintarsia\n")
-                  .find("t.chart:1:1: intarsia: column 2 is colour B on this row and A on the bottom row"),
+    // A motif inside the repeat (its yarn would have two ends), named where the colour block draws
+    // it, with what to do instead.
+    const std::string motif = error("k k k\nk k k\n\nA B A\nA A A\nA=#ffffff B=#000000\nintarsia\n");
+    EXPECT_NE(motif.find("t.chart:4:3: intarsia: the colour B area in row 2, column 2 is a motif"), std::string::npos)
+        << motif;
+    EXPECT_NE(motif.find("knit it `stranded`"), std::string::npos) << motif;
+    // A block of 2 x 2 on a background, not on the bottom row: the smaller colour is the motif.
+    EXPECT_NE(error("k k k k\nk k k k\nk k k k\nk k k k\n\nA A A A\nA B B A\nA B B A\nA A A A\n"
+                    "A=#ffffff B=#000000\nintarsia\n")
+                  .find("t.chart:7:3: intarsia: the colour B area in rows 2-3, columns 2-3 is a motif"),
+              std::string::npos);
+    // A stepped boundary: every colour on every row, in other columns.
+    EXPECT_NE(error("k k k k\nk k k k\n\nA B B B\nA A B B\nA=#ffffff B=#000000\nintarsia\n")
+                  .find("t.chart:4:3: intarsia: the colour B area in row 2, column 2 moves between columns"),
               std::string::npos);
     EXPECT_NE(error("k k\n\nA A\nA=#ffffff B=#000000\nintarsia\n").find("t.chart:1:1: intarsia needs at least two"),
               std::string::npos);

@@ -9,7 +9,9 @@
 //     periodic image) closer than D = contactDistance radii, d their centreline distance;
 //     pairs come from a spatial hash over the periodic images (a Verlet list rebuilt when two
 //     points may have come closer by half the skin, measured against the period-scaled cell).
-// Solver: L-BFGS (Nocedal & Wright, Numerical Optimization, algorithm 7.4, memory 8) with a
+// Solver: L-BFGS (Nocedal & Wright, Numerical Optimization, algorithm 7.4; for cells of up to
+// 1000 vertices memory 20, started from the inverse of the energy's projected Hessian,
+// RelaxOptions::hessianPreconditioner; else memory 8 and a scaled identity) with a
 // backtracking Armijo line search, a cap on how far a vertex may move per step, and a continuous
 // collision bound: no step moves two segments by more than 0.9 of their smallest distance, so
 // yarns cannot pass through each other. It stops on an absolute or relative gradient tolerance,
@@ -49,6 +51,14 @@ struct RelaxOptions {
     // intarsia and cable cells converge before the cap), but some settle in a different rest
     // state (docs/charts.md, "Relaxation"): off by default, for previews that want speed.
     bool affinePeriod = false;
+    // L-BFGS preconditioned by the energy's Hessian (each term's part made positive
+    // semidefinite, contact pairs near D included; a sparse LDLT factorisation every 10 steps):
+    // the slow modes of a cell (the period narrowing under lace decreases, basketweave's and
+    // cable4's ridges) settle in hundreds to about 2000 iterations instead of running into the
+    // cap (docs/charts.md, "Relaxation"). Cells of up to 1000 vertices (about 40 stitches; above,
+    // the factorisation costs more than it saves); false: plain L-BFGS (memory 8), as before.
+    // Ignored with affinePeriod.
+    bool hessianPreconditioner = true;
     int maxIterations = 4000;
     double gradientTolerance = 1e-4;          // stop when the largest gradient entry is below this,
     double relativeGradientTolerance = 1e-6;  // or below this times its value at the start,

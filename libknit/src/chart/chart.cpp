@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cctype>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "knit/error.hpp"
@@ -297,20 +298,70 @@ void readColours(const Block& block, const std::string& source, Chart& chart) {
     }
 }
 
+// An intarsia chart whose colour areas are not vertical bands, refused naming the area where the
+// colour block draws it (rows from 1 at the bottom, columns from 1 at the left): a motif (a colour
+// missing from some row: a block, a diamond; the one with the fewest stitches), else a boundary
+// that moves between columns from row to row.
+[[noreturn]] void refuseNonBandAreas(const std::string& source, const Chart& chart, const Block& colours) {
+    const int w = chart.width, h = chart.height;
+    std::map<char, int> stitches, rows;
+    for (int r = 0; r < h; ++r) {
+        std::string seen;
+        for (int c = 0; c < w; ++c) {
+            ++stitches[chart.colourAt(r, c)];
+            if (seen.find(chart.colourAt(r, c)) == std::string::npos) seen += chart.colourAt(r, c);
+        }
+        for (const char letter : seen) ++rows[letter];
+    }
+    char motif = 0;
+    for (const auto& [letter, count] : stitches)
+        if (rows[letter] < h && (motif == 0 || count < stitches[motif])) motif = letter;
+    // The area: the motif's stitches, or those of the top row's colour in the columns that change.
+    std::vector<bool> in(chart.colour.size(), false);
+    for (int r = 0; r < h; ++r)
+        for (int c = 0; c < w; ++c) {
+            bool changes = false;
+            for (int k = 1; k < h; ++k) changes = changes || chart.colourAt(k, c) != chart.colourAt(0, c);
+            in[size_t(r * w + c)] =
+                motif ? chart.colourAt(r, c) == motif : changes && chart.colourAt(r, c) == chart.colourAt(h - 1, c);
+        }
+    int rowLo = h, rowHi = -1, colLo = w, colHi = -1;
+    for (int r = 0; r < h; ++r)
+        for (int c = 0; c < w; ++c)
+            if (in[size_t(r * w + c)]) {
+                rowLo = std::min(rowLo, r), rowHi = std::max(rowHi, r);
+                colLo = std::min(colLo, c), colHi = std::max(colHi, c);
+            }
+    int first = colLo;  // the area's first stitch on its top row (its first line in the text)
+    while (!in[size_t(rowHi * w + first)]) ++first;
+    const Line& line = colours[size_t(h - 1 - rowHi)];
+    const auto span = [](const char* noun, int lo, int hi) {
+        return lo == hi ? std::string(noun) + " " + std::to_string(lo + 1)
+                        : std::string(noun) + "s " + std::to_string(lo + 1) + "-" + std::to_string(hi + 1);
+    };
+    const std::string area = "intarsia: the colour " + std::string(1, chart.colourAt(rowHi, first)) + " area in " +
+                             span("row", rowLo, rowHi) + ", " + span("column", colLo, colHi);
+    const std::string what =
+        motif ? " is a motif (it does not run the full height of the repeat). In intarsia a motif's yarn starts and "
+                "ends inside the repeat with its tails woven in, and a relaxed periodic cell holds only yarns that "
+                "close through the repeat, so motifs are not built"
+              : " moves between columns from row to row (a diagonal or stepped boundary); the yarns' turns would "
+                "move with it, which is not built";
+    fail(source, line.number, line.tokens[size_t(first)].column,
+         area + what +
+             ": knit it `stranded` (the other yarn floats behind it), leave out the `intarsia` line to paint the "
+             "colours on one yarn per row (the look of duplicate stitch), or make every colour area a vertical band "
+             "over all rows of the repeat");
+}
+
 // Intarsia in a periodic cell: each colour area's yarn knits back and forth and turns at the
 // area's boundaries (chart_intarsia.hpp), so the areas are vertical bands, at least two, and the
 // stitches either side of a boundary are knit-face loops the turns can leave from behind.
-void checkIntarsia(const std::string& source, const Chart& chart) {
+void checkIntarsia(const std::string& source, const Chart& chart, const Block& colours) {
     const int w = chart.width;
     for (int r = 1; r < chart.height; ++r)
         for (int c = 0; c < w; ++c)
-            if (chart.colourAt(r, c) != chart.colourAt(0, c))
-                fail(source, chart.rowLine[size_t(r)], 1,
-                     "intarsia: column " + std::to_string(c + 1) + " is colour " + chart.colourAt(r, c) +
-                         " on this row and " + chart.colourAt(0, c) +
-                         " on the bottom row; intarsia areas here are vertical bands (each column keeps its colour "
-                         "on every row), since a motif inside the repeat needs a yarn with two ends, which a "
-                         "periodic cell cannot hold (use `stranded` for motifs)");
+            if (chart.colourAt(r, c) != chart.colourAt(0, c)) refuseNonBandAreas(source, chart, colours);
     bool boundary = false;
     for (int c = 0; c < w; ++c) boundary = boundary || chart.colourAt(0, c) != chart.colourAt(0, (c + 1) % w);
     if (!boundary)
@@ -358,7 +409,7 @@ void readColourwork(const Layout& layout, const std::string& source, Chart& char
                          "at most " +
                          std::to_string(kMaxStrandedColours) + " yarns along a row");
         }
-    if (chart.colourwork == Colourwork::Intarsia) checkIntarsia(source, chart);
+    if (chart.colourwork == Colourwork::Intarsia) checkIntarsia(source, chart, layout.blocks[1]);
 }
 
 }  // namespace

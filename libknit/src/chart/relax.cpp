@@ -3,10 +3,13 @@
 #include "knit/relax.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
 #include <Eigen/Core>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <glm/geometric.hpp>
@@ -166,6 +169,139 @@ double energy(const Problem& pb, const std::vector<Pair>& pairs, const Vec& v, V
     return e;
 }
 
+// ---- The Hessian preconditioner (RelaxOptions::hessianPreconditioner) ----------------------------
+// L-BFGS starts each direction from H0 = (H + shift)^-1 instead of a multiple of the identity,
+// H the energy's Hessian with each term's part made positive semidefinite: an edge's stretch
+// keeps its along-edge stiffness and its transverse one only while stretched; bending is
+// quadratic; a contact keeps its normal stiffness 2 c n n^T (dropping the negative transverse
+// part), and so do pairs up to kContactMargin beyond D, which a step may bring into contact (a
+// direction that ignores them runs into the contact wall and the line search backtracks). The
+// remembered steps correct what the projection leaves out. The stiff terms (stretch 200,
+// contact 400 against bending 1) then no longer set the step for the soft modes (the period
+// narrowing under lace decreases, basketweave's ridges). Each term is a 3 x 3 matrix M on a
+// combination u = sum_k c_k p_k of periodic points p_k (vertex i in tile (ox, oy): x_i + (ox px,
+// oy py, 0)), so it adds c_k c_l M to the block of points k and l, the period's share included.
+// Tuned on basketweave, cable4, eyelet-mesh and two lace cells (docs/charts.md, "Relaxation").
+constexpr double kContactMargin = 1.0;  // radii beyond D
+constexpr double kShift = 1e-3;         // H + kShift x mean diagonal (removes the free translation)
+constexpr int kRefactorEvery = 25;      // steps between factorisations (H changes slowly)
+constexpr size_t kPreconditionedMemory = 20;
+// Larger cells keep plain L-BFGS: the factorisation's fill grows faster than the cell (a 12 x 16
+// cable cell, 4608 vertices, ran for minutes of CPU instead of 12.6 s).
+constexpr size_t kMaxPreconditionedVertices = 1000;
+// The first steps stay plain L-BFGS: while the loose cell pulls tight it chooses its rest state,
+// and preconditioned from the start some cells settled in another one (garter at energy 26.2
+// against 23.4, with a stitch that lost a crossing); from there on the preconditioner speeds the
+// slow tail (most built-ins end in plain L-BFGS's states; docs/charts.md lists them).
+constexpr int kPlainStart = 300;
+
+struct PointRef {
+    uint32_t i = 0;
+    int ox = 0, oy = 0;
+};
+
+struct HessianBuilder {
+    size_t n = 0;
+    bool freePeriod = true;
+    std::vector<Eigen::Triplet<double>> entries;
+    // The variables of coordinate c of point p and their factors; returns how many.
+    int dofs(const PointRef& p, int c, Eigen::Index idx[2], double w[2]) const {
+        idx[0] = Eigen::Index(3 * p.i) + c;
+        w[0] = 1;
+        const int off = c == 0 ? p.ox : c == 1 ? p.oy : 0;
+        if (off == 0 || !freePeriod) return 1;
+        idx[1] = Eigen::Index(3 * n) + c;
+        w[1] = off;
+        return 2;
+    }
+    template <size_t K>
+    void add(const std::array<PointRef, K>& pts, const std::array<double, K>& coef, const Eigen::Matrix3d& M) {
+        Eigen::Index ia[2], ib[2];
+        double wa[2], wb[2];
+        for (size_t k = 0; k < K; ++k)
+            for (size_t l = 0; l < K; ++l) {
+                const double cc = coef[k] * coef[l];
+                if (cc == 0) continue;
+                for (int c1 = 0; c1 < 3; ++c1)
+                    for (int c2 = 0; c2 < 3; ++c2) {
+                        const double m = cc * M(c1, c2);
+                        if (m == 0) continue;
+                        const int na = dofs(pts[k], c1, ia, wa), nb = dofs(pts[l], c2, ib, wb);
+                        for (int x = 0; x < na; ++x)
+                            for (int y = 0; y < nb; ++y) entries.emplace_back(ia[x], ib[y], m * wa[x] * wb[y]);
+                    }
+            }
+    }
+};
+
+Eigen::Matrix3d outer(const glm::dvec3& a) {
+    Eigen::Matrix3d m;
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) m(r, c) = a[r] * a[c];
+    return m;
+}
+
+// The projected Hessian at v; the contact part from the pairs of the last evaluation at v
+// (Problem::scratch, their closest-point parameters).
+Eigen::SparseMatrix<double> hessian(const Problem& pb, const std::vector<Pair>& pairs, const Vec& v) {
+    HessianBuilder h;
+    h.n = pb.n;
+    h.freePeriod = pb.opt.freePeriod;
+    for (size_t k = 0; k < pb.segs.size(); ++k) {
+        const Seg& s = pb.segs[k];
+        const glm::dvec3 d = at(v, pb.n, s.b, s.dx, s.dy) - vertex(v, s.a);
+        const double l = std::max(glm::length(d), 1e-12), L0 = pb.rest[k];
+        const glm::dvec3 t = d / l;
+        const Eigen::Matrix3d tt = outer(t);
+        const double transverse = std::max(0.0, 1 - L0 / l);
+        const Eigen::Matrix3d M = (2 * pb.opt.stretch / L0) * (tt + transverse * (Eigen::Matrix3d::Identity() - tt));
+        h.add<2>({PointRef{s.a, 0, 0}, PointRef{s.b, s.dx, s.dy}}, {-1.0, 1.0}, M);
+    }
+    const double w = pb.opt.bend / (pb.meanRest * pb.meanRest * pb.meanRest);
+    for (size_t vtx = 0; vtx < pb.n; ++vtx) {
+        const Seg &in = pb.before[vtx], &out = pb.segs[vtx];
+        h.add<3>({PointRef{in.a, -in.dx, -in.dy}, PointRef{uint32_t(vtx), 0, 0}, PointRef{out.b, out.dx, out.dy}},
+                 {1.0, -2.0, 1.0}, 2 * w * Eigen::Matrix3d::Identity());
+    }
+    for (size_t k = 0; k < pairs.size(); ++k) {
+        const PairForce& f = pb.scratch[k];
+        // Pairs in contact, and pairs up to kContactMargin beyond D (their exact distance is
+        // known; D exactly is a far pair's bound), which a step may bring into contact.
+        if (f.dist >= pb.opt.contactDistance + kContactMargin || f.dist == pb.opt.contactDistance) continue;
+        const Pair& pr = pairs[k];
+        const Seg &s = pb.segs[pr.s], &t = pb.segs[pr.t];
+        const glm::dvec3 shift(pr.ix * v[Eigen::Index(3 * pb.n)], pr.iy * v[Eigen::Index(3 * pb.n + 1)], 0);
+        const SegmentNow &sn = pb.now[pr.s], &tn = pb.now[pr.t];
+        const glm::dvec3 dv = (sn.p0 + f.a * (sn.p1 - sn.p0)) - (tn.p0 + shift + f.b * (tn.p1 - tn.p0));
+        const glm::dvec3 n = dv / std::max(glm::length(dv), 1e-300);
+        h.add<4>({PointRef{s.a, 0, 0}, PointRef{s.b, s.dx, s.dy}, PointRef{t.a, pr.ix, pr.iy},
+                  PointRef{t.b, t.dx + pr.ix, t.dy + pr.iy}},
+                 {1 - f.a, f.a, -(1 - f.b), -f.b}, 2 * pb.opt.contact * outer(n));
+    }
+    const Eigen::Index size = v.size();
+    if (!pb.opt.freePeriod)
+        for (Eigen::Index i = size - 2; i < size; ++i) h.entries.emplace_back(i, i, 1.0);
+    Eigen::SparseMatrix<double> H(size, size);
+    H.setFromTriplets(h.entries.begin(), h.entries.end());
+    return H;
+}
+
+// Factorises H + shift s I, s the mean diagonal of H (the shift also removes the cell's free
+// translation), raising the shift tenfold until the factorisation is positive definite. Returns
+// false when it never is (the step is then plain L-BFGS).
+using Factor = Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>;
+bool factorise(const Eigen::SparseMatrix<double>& H, Factor& ldlt) {
+    const double scale = std::max(H.diagonal().mean(), 1e-12);
+    for (int attempt = 0; attempt < 8; ++attempt) {
+        const double lambda = kShift * std::pow(10.0, attempt);
+        Eigen::SparseMatrix<double> A = H;
+        for (Eigen::Index i = 0; i < A.rows(); ++i) A.coeffRef(i, i) += lambda * scale;
+        ldlt.compute(A);
+        if (ldlt.info() == Eigen::Success && ldlt.vectorD().minCoeff() > 0) return true;
+    }
+    return false;
+}
+
 // Step 1: the problem in yarn radii, segments indexed by their first vertex.
 Problem setUp(const Pattern& p, const RelaxOptions& opt, Vec& v) {
     validatePattern(p, p.name);
@@ -323,6 +459,8 @@ RelaxResult relaxYarn(const Pattern& initial, const RelaxOptions& options) {
     double dmin = 0, dminNew = 0;  // smallest pair distance now and after the trial step
     double e = energy(pb, pairs, v, g, &dmin);
     std::vector<Vec> S, Y;
+    Factor ldlt;
+    bool haveFactor = false;  // ldlt holds the preconditioner (refactorised every kRefactorEvery steps)
     RelaxResult result;
     result.closestApproach = dmin;
     const double gStart = g.lpNorm<Eigen::Infinity>(), eStart = e;
@@ -338,11 +476,18 @@ RelaxResult relaxYarn(const Pattern& initial, const RelaxOptions& options) {
             result.stopped = true;
             break;
         }
-        // Step 2: direction (L-BFGS, steepest descent when it is not a descent direction), in
-        // affine period coordinates when asked.
+        // Step 2: direction (L-BFGS, preconditioned by the Hessian when asked, steepest descent
+        // when it is not a descent direction), in affine period coordinates when asked.
         const bool affine = options.affinePeriod && options.freePeriod;
+        const bool preconditioned =
+            options.hessianPreconditioner && !affine && pb.n <= kMaxPreconditionedVertices && it >= kPlainStart;
         const Vec gw = affine ? affineGradient(pb, v, g) : g;
-        Vec dw = lbfgsDirection(gw, S, Y);
+        Vec dw;
+        if (preconditioned && (it % kRefactorEvery == 0 || !haveFactor))
+            haveFactor = factorise(hessian(pb, pairs, v), ldlt);
+        if (preconditioned && haveFactor)
+            dw = lbfgsDirection(gw, S, Y, [&ldlt](const Vec& q) -> Vec { return ldlt.solve(q); });
+        else dw = lbfgsDirection(gw, S, Y);
         if (dw.dot(gw) >= 0) {
             S.clear();
             Y.clear();
@@ -365,12 +510,16 @@ RelaxResult relaxYarn(const Pattern& initial, const RelaxOptions& options) {
             if (S.empty()) break;  // no descent even along -g: at a minimum to round-off
             S.clear();
             Y.clear();
+            if (preconditioned) {
+                e = energy(pb, pairs, v, g, &dmin);  // Problem::scratch at v again, for the Hessian
+                haveFactor = false;
+            }
             continue;
         }
         // Step 4: memory update; the pair list is rebuilt when two points may have come closer by
         // half the skin since it was built.
         if (affine) lbfgsRemember(S, Y, affineInverse(pb, v, vNew - v), affineGradient(pb, v, gNew) - gw);
-        else lbfgsRemember(S, Y, vNew - v, gNew - g);
+        else lbfgsRemember(S, Y, vNew - v, gNew - g, preconditioned ? kPreconditionedMemory : 8);
         v.swap(vNew);
         g.swap(gNew);
         e = eNew;
