@@ -132,9 +132,10 @@ def check(file, db, build, logs, cache, clang, version):
         return "cached"
     result = subprocess.run(["clang-tidy", "-p", build] + TIDY_ARGS + [file], capture_output=True)
     if result.returncode == 0:
-        if stamp:
-            os.makedirs(os.path.dirname(stamp), exist_ok=True)
-            open(stamp, "wb").close()
+        if not stamp:
+            return "clean, no key" if cache else "clean"
+        os.makedirs(os.path.dirname(stamp), exist_ok=True)
+        open(stamp, "wb").close()
         return "clean"
     rel = os.path.relpath(file)
     with open(os.path.join(logs, rel.replace("/", "_") + ".log"), "wb") as f:
@@ -177,6 +178,10 @@ def main():
     cached = verdicts.count("cached")
     where = f"cache {cache}" if cache else "no cache"
     print(f"  clang-tidy: {len(files)} files: {cached} clean in the cache, {len(files) - cached} checked ({where})")
+    unkeyed = verdicts.count("clean, no key")
+    if unkeyed:
+        print(f"  clang-tidy: warning: {unkeyed} clean files could not be preprocessed for their cache key; "
+              "they are checked on every run")
     return 0
 
 
