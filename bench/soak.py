@@ -21,6 +21,9 @@ import sys
 import tempfile
 import time
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tools"))
+from grid_obj import grid_obj  # noqa: E402 - the tools folder first
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
@@ -34,20 +37,9 @@ def rss_and_fds(pid="self"):
 
 
 def write_sheet(path, phase):
-    n = 16
+    """A 0.2 m sheet of 16 x 16 quads with a wave of phase `phase` (tools/grid_obj.py)."""
     with open(path, "w") as f:
-        for j in range(n + 1):
-            for i in range(n + 1):
-                x, y = i / n * 0.2, j / n * 0.2
-                f.write(f"v {x!r} {y!r} {0.01 * math.sin(6 * x + phase)!r}\n")
-        for j in range(n + 1):
-            for i in range(n + 1):
-                f.write(f"vt {i / n!r} {j / n!r}\n")
-        for j in range(n):
-            for i in range(n):
-                a = j * (n + 1) + i + 1
-                b, c, d = a + 1, a + n + 2, a + n + 1
-                f.write(f"f {a}/{a} {b}/{b} {c}/{c}\nf {a}/{a} {c}/{c} {d}/{d}\n")
+        f.write(grid_obj(16, 0.2, lambda x, y: 0.01 * math.sin(6 * x + phase)))
 
 
 def verdict(name, samples):

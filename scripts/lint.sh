@@ -6,7 +6,10 @@
 #   2. tidy: clang-tidy (.clang-tidy at the root) with every warning an error, over the sources of
 #      the libraries, the CLI and the tools (libknit/src, exporters/src, render_check/src,
 #      apps/knit, tools). It reads the compile database of a configure-only CMake run in
-#      build-lint (nothing is compiled; tests and benchmarks are left out).
+#      build-lint (nothing is compiled; tests and benchmarks are left out). Clean results are
+#      cached outside the checkout (scripts/lib/tidy_cache.py: keyed on the preprocessed file with
+#      its comments, its flags, .clang-tidy and the clang-tidy version; a file with findings is
+#      always checked again), so a run after a small change checks only the files it affects.
 # Both steps always run; the script exits non-zero when either found something. The result
 # depends on the tool versions: CI uses Debian 12's clang-format and clang-tidy 14, installed
 # here through scripts/setup.sh.
@@ -16,7 +19,8 @@
 #   --format-only  skip clang-tidy (seconds instead of minutes)
 #   --tidy-only    skip the format check
 # Environment: KNIT_LINT_BUILD_DIR (default build-lint), KNIT_JOBS (parallel clang-tidy runs,
-#   default 2).
+#   default 2), KNIT_TIDY_CACHE=OFF (no cache), KNIT_TIDY_CACHE_DIR (default
+#   ${XDG_CACHE_HOME:-~/.cache}/knit-clang-tidy).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${KNIT_LINT_BUILD_DIR:-"$root/build-lint"}
@@ -59,11 +63,11 @@ if [ "$run_tidy" = 1 ]; then
   echo "== clang-tidy ($(clang-tidy --version | grep -oE '[0-9]+\.[0-9.]+' | head -1)): ${#units[@]} files, $jobs at a time"
   logs=$(mktemp -d)
   trap 'rm -rf "$logs"' EXIT
-  # One log per file, kept when clang-tidy fails on it and printed once all have run.
-  printf '%s\n' "${units[@]}" | xargs -P "$jobs" -I{} sh -c \
-    'log="$2/$(printf %s "$3" | tr / _).log"
-     clang-tidy -p "$1" --quiet --warnings-as-errors="*" "$3" > "$log" 2>&1 && rm -f "$log"' \
-    _ "$build" "$logs" {} || true
+  # One log per file clang-tidy fails on, printed once all have run. Files found clean before with
+  # the same preprocessed source, flags, .clang-tidy and clang-tidy are not checked again
+  # (scripts/lib/tidy_cache.py; KNIT_TIDY_CACHE=OFF checks every file).
+  python3 "$root/scripts/lib/tidy_cache.py" --build "$build" --logs "$logs" --jobs "$jobs" "${units[@]}" ||
+    failed+=(tidy-cache)
   mapfile -t tidy_logs < <(find "$logs" -name '*.log' | sort)
   if [ ${#tidy_logs[@]} -gt 0 ]; then
     grep -hv 'warnings\? generated\.$' "${tidy_logs[@]}" || true

@@ -25,6 +25,9 @@ import subprocess
 import sys
 import tempfile
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from grid_obj import grid_obj  # noqa: E402 - the tools folder first
+
 GB = 1 << 30
 
 # Spellings of other front ends (Python keywords, Blender property labels) and library internals.
@@ -41,31 +44,13 @@ def write(path, data):
         f.write(data)
 
 
-def plane_obj(n=4, scale=1.0, z=lambda x, y: 0.0):
-    lines = []
-    for j in range(n + 1):
-        for i in range(n + 1):
-            x, y = i / n, j / n
-            lines.append(f"v {x * scale} {y * scale} {z(x, y)}")
-    for j in range(n + 1):
-        for i in range(n + 1):
-            lines.append(f"vt {i / n} {j / n}")
-    for j in range(n):
-        for i in range(n):
-            a = j * (n + 1) + i + 1
-            b, c, d = a + 1, a + n + 2, a + n + 1
-            lines.append(f"f {a}/{a} {b}/{b} {c}/{c}")
-            lines.append(f"f {a}/{a} {c}/{c} {d}/{d}")
-    return "\n".join(lines) + "\n"
-
-
 def make_fixtures(knit, root):
     """Valid small inputs made with knit itself, and damaged copies of each format."""
     run = lambda *a: subprocess.run([knit, *a], cwd=root, capture_output=True, text=True, check=True)
-    write(os.path.join(root, "mesh.obj"), plane_obj())
+    write(os.path.join(root, "mesh.obj"), grid_obj())
     os.mkdir(os.path.join(root, "frames"))
     for k in range(1, 4):
-        write(os.path.join(root, "frames", f"f_{k:04d}.obj"), plane_obj(z=lambda x, y, k=k: 0.02 * k * x))
+        write(os.path.join(root, "frames", f"f_{k:04d}.obj"), grid_obj(z=lambda x, y, k=k: 0.02 * k * x))
     run("generate", "-o", "good.pyp")
     run("build", "-q", "--mesh", "mesh.obj", "--repeats", "2", "2", "-o", "mesh_out.ply")
     run("build", "-q", "--mesh", "plane", "--mesh-res", "2", "--repeats", "1", "1", "--export", "tubes", "-o",
@@ -98,8 +83,8 @@ def make_fixtures(knit, root):
     os.mkdir(os.path.join(root, "ro"))
     os.chmod(os.path.join(root, "ro"), 0o555)
     # Meshes with absurd geometry but valid syntax.
-    write(os.path.join(root, "huge.obj"), plane_obj(scale=1e30))
-    write(os.path.join(root, "tiny.obj"), plane_obj(scale=1e-30))
+    write(os.path.join(root, "huge.obj"), grid_obj(size=1e30))
+    write(os.path.join(root, "tiny.obj"), grid_obj(size=1e-30))
     write(os.path.join(root, "flat_uv.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 0 0\nvt 0 0\nf 1/1 2/2 3/3\n")
     write(os.path.join(root, "no_uv.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
     write(os.path.join(root, "no_faces.obj"), "v 0 0 0\nv 1 0 0\nvt 0 0\n")
@@ -113,11 +98,11 @@ def make_fixtures(knit, root):
     write(os.path.join(root, "notfound.pyp"), pyp.replace("\n", "\n", 1))
     # Frame sequences: one frame of another topology, a frame with a NaN.
     os.mkdir(os.path.join(root, "badframes"))
-    write(os.path.join(root, "badframes", "f_0001.obj"), plane_obj())
-    write(os.path.join(root, "badframes", "f_0002.obj"), plane_obj(n=3))
+    write(os.path.join(root, "badframes", "f_0001.obj"), grid_obj())
+    write(os.path.join(root, "badframes", "f_0002.obj"), grid_obj(n=3))
     os.mkdir(os.path.join(root, "nanframes"))
-    write(os.path.join(root, "nanframes", "f_0001.obj"), plane_obj())
-    write(os.path.join(root, "nanframes", "f_0002.obj"), plane_obj().replace("v 0.25 0.0 0.0", "v nan 0.0 0.0"))
+    write(os.path.join(root, "nanframes", "f_0001.obj"), grid_obj())
+    write(os.path.join(root, "nanframes", "f_0002.obj"), grid_obj().replace("v 0.25 0.0 0.0", "v nan 0.0 0.0"))
     os.mkdir(os.path.join(root, "emptyframes"))
     # Point cache chunks.
     shutil.copy(os.path.join(root, "good.pc2"), os.path.join(root, "dup.pc2"))

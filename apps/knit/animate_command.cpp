@@ -394,6 +394,7 @@ int runAnimate(const AnimateCommand& a) {
         interrupt.check();  // a signal during the last writes: nothing is committed
         outputs.commit();
     });
+    if (a.scene.quiet) return 0;  // -q: only errors and warnings
     std::printf("animated %zu frames (%zu yarn vertices, %zu ply vertices per frame): %s %.3f s, wrote %s\n",
                 frames.size(), rest.yarns().curves.pointCount(), animator.plyPointCount(),
                 a.bound.empty() ? "bind" : "load", bindSeconds, a.exportOptions.path.c_str());

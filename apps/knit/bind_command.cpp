@@ -81,6 +81,7 @@ int runBind(const BindCommand& b) {
     BoundSceneInfo info;
     info.settings = settingsJson(options).dump();
     writeBoundScene(b.output, rest, info, options.budget);
+    if (b.scene.quiet) return 0;  // -q: only errors and warnings
     std::printf("bound %zu yarn vertices of %zu yarns on %zu triangles in %.3f s: wrote %s (%ju bytes)\n",
                 rest.binding().vertexCount(), rest.binding().yarnCount(), rest.mesh().faceCount(), bindSeconds,
                 b.output.c_str(), static_cast<uintmax_t>(std::filesystem::file_size(b.output)));

@@ -230,8 +230,8 @@ int runBuild(const BuildCommand& b) {
         outputs.run([&] { writeReport(outputs.stage(b.report), report); });
     }
     outputs.run([&] { outputs.commit(); });
-    // Step 4: the summary on stdout.
-    printSummary(built, sceneNumbers, stats, b.exportOptions.path, streamed);
+    // Step 4: the summary on stdout (none with -q: only errors and warnings then).
+    if (!b.scene.quiet) printSummary(built, sceneNumbers, stats, b.exportOptions.path, streamed);
     return 0;
 }
 

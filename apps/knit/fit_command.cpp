@@ -136,9 +136,10 @@ int runFit(const FitCommand& f) {
     for (const std::string& w : result.warnings) std::fprintf(stderr, "knit fit: warning: %s\n", w.c_str());
     writeReport(f.output, nlohmann::json::parse(materialJsonText(result.material)));
     if (!f.report.empty()) writeFitReport(f.report, result, front.image, back.image, scene);
-    std::fprintf(stderr, "fit: %s after %d renders in %.1f s; loss %.4g (front SSIM %.3f, back SSIM %.3f)\n",
-                 result.stopReason.c_str(), result.renders, result.seconds, result.loss, result.front.ssim,
-                 result.back.ssim);
+    if (!f.scene.quiet)
+        std::fprintf(stderr, "fit: %s after %d renders in %.1f s; loss %.4g (front SSIM %.3f, back SSIM %.3f)\n",
+                     result.stopReason.c_str(), result.renders, result.seconds, result.loss, result.front.ssim,
+                     result.back.ssim);
     return 0;
 }
 

@@ -31,7 +31,7 @@ int finishRender(const RenderCommand& r, OutputTransaction& outputs, const std::
     for (const auto& [key, value] : more.items()) report[key] = value;
     if (!r.report.empty()) outputs.run([&] { writeReport(outputs.stage(r.report), report); });
     outputs.run([&] { outputs.commit(); });
-    std::printf("%s\n", report.dump().c_str());
+    if (!r.scene.quiet) std::printf("%s\n", report.dump().c_str());  // -q: only errors and warnings
     return 0;
 }
 

@@ -77,7 +77,9 @@ void addSceneFlags(CLI::App& cmd, SceneFlags& f) {
     cmd.add_option(
         "--strain-table", f.strainTable,
         "Strain table of the pattern: a file made by `knit strain-table` (T.npy) or a MADYPG sxsasy/ folder");
-    cmd.add_flag("-q,--quiet", f.quiet, "No progress output on stderr");
+    cmd.add_flag(
+        "-q,--quiet", f.quiet,
+        "Quiet: print nothing but errors and warnings (no progress on stderr, no summary or report on stdout)");
 }
 
 namespace {

@@ -30,7 +30,8 @@ void addStrainTableCommand(CLI::App& app, StrainTableCommand& c) {
     c.command
         ->add_option("--iterations", c.maxIterations, "Largest relaxation iteration count per sample (default 600)")
         ->check(CLI::Range(1, 1000000));
-    c.command->add_flag("-q,--quiet", c.quiet, "No estimate or progress on stderr");
+    c.command->add_flag("-q,--quiet", c.quiet,
+                        "Quiet: print nothing but errors (no estimate, progress or summary on stderr)");
 }
 
 StrainTableOptions strainTableOptions(const StrainTableCommand& c) {

@@ -405,8 +405,9 @@ _temporaries = itertools.count()
 
 def temporary_sibling(path):
     """The hidden sibling `.NAME.PID.N.tmp` that libknit's writers use for `path` (the name cut to
-    fit the 255-byte limit): a Blender killed mid-bake leaves it hidden, and the next knit write
-    into that folder (the add-on, the Python module or the command line) removes it as stale."""
+    fit the 255-byte limit): a Blender killed mid-bake leaves it hidden, and the next bake into that
+    folder (bake_pc2, through knit.remove_stale_temporaries) or any other knit write there removes
+    it as stale."""
     folder, name = os.path.split(path)
     tail = f".{os.getpid()}.{next(_temporaries)}.tmp"
     encoded = name.encode()[:255 - len(tail) - 1].decode(errors="ignore")
@@ -419,6 +420,8 @@ def bake_pc2(context, obj, path, first, last):
     scene = context.scene
     current = scene.frame_current
     count = len(obj.data.vertices)
+    # What a bake killed before left here (its process gone), as every knit writer does.
+    knit_module().remove_stale_temporaries(os.path.dirname(path))
     tmp = temporary_sibling(path)
     try:
         with open(tmp, "wb") as f:

@@ -45,26 +45,26 @@ const char* whatName(ExportWhat w) {
 // points; checked for all curves before any point is read.
 void validateOffsets(const Polylines& c) {
     if (!util::offsetEnds(c.offsets, c.curveCount(), c.pointCount()))
-        throw Error("export: inconsistent curve offsets (" + std::to_string(c.offsets.size()) + " offsets, " +
+        throw Error("cannot export: inconsistent curve offsets (" + std::to_string(c.offsets.size()) + " offsets, " +
                     std::to_string(c.closed.size()) + " curves, " + std::to_string(c.points.size()) + " points)");
     for (size_t k = 0; k < c.curveCount(); ++k) {
         if (c.offsets[k + 1] > c.pointCount())
-            throw Error("export: curve " + std::to_string(k) + " ends at offset " + std::to_string(c.offsets[k + 1]) +
-                        ", past the " + std::to_string(c.pointCount()) + " points");
+            throw Error("cannot export: curve " + std::to_string(k) + " ends at offset " +
+                        std::to_string(c.offsets[k + 1]) + ", past the " + std::to_string(c.pointCount()) + " points");
         if (c.offsets[k + 1] < c.offsets[k])
-            throw Error("export: curve " + std::to_string(k) + " has decreasing offsets");
+            throw Error("cannot export: curve " + std::to_string(k) + " has decreasing offsets");
     }
 }
 
 // Step: every point finite (user data problems are reported before any numeric loop runs).
 // Generated plies were validated by their PlyGenerator.
 void validateInput(const ExportInput& in, bool tubes) {
-    if (!in.curves && !in.plies) throw Error("export: no curves given");
-    if (in.curves && in.plies) throw Error("export: both curves and a ply generator given; pass one");
+    if (!in.curves && !in.plies) throw Error("cannot export: no curves given");
+    if (in.curves && in.plies) throw Error("cannot export: both curves and a ply generator given; pass one");
     impl::parseMaterialExtras(in.materialExtrasJson);  // throws unless empty or a JSON object
     if (in.plies) {
         if (!util::positiveFinite(in.radius))
-            throw Error("export: radius must be a positive number, got " + std::to_string(in.radius));
+            throw Error("cannot export: radius must be a positive number, got " + std::to_string(in.radius));
         return;
     }
     const Polylines& c = *in.curves;
@@ -72,21 +72,21 @@ void validateInput(const ExportInput& in, bool tubes) {
     for (size_t k = 0; k < c.curveCount(); ++k) {
         for (uint32_t i = c.begin(k); i < c.end(k); ++i) {
             if (!util::finite(c.points[i]))
-                throw Error("export: curve " + std::to_string(k) + " point " + std::to_string(i - c.begin(k)) +
+                throw Error("cannot export: curve " + std::to_string(k) + " point " + std::to_string(i - c.begin(k)) +
                             " is not finite");
         }
     }
     (void)tubes;
     if (!util::positiveFinite(in.radius))
-        throw Error("export: radius must be a positive number, got " + std::to_string(in.radius));
+        throw Error("cannot export: radius must be a positive number, got " + std::to_string(in.radius));
     if (in.yarnOfCurve && in.yarnOfCurve->size() != c.curveCount())
-        throw Error("export: " + std::to_string(in.yarnOfCurve->size()) + " yarn indices for " +
+        throw Error("cannot export: " + std::to_string(in.yarnOfCurve->size()) + " yarn indices for " +
                     std::to_string(c.curveCount()) + " curves");
     if (in.seedNormals && in.seedNormals->size() != c.points.size())
-        throw Error("export: " + std::to_string(in.seedNormals->size()) + " surface normals for " +
+        throw Error("cannot export: " + std::to_string(in.seedNormals->size()) + " surface normals for " +
                     std::to_string(c.points.size()) + " points");
     if (in.colours && in.colours->size() != c.points.size())
-        throw Error("export: colours have " + std::to_string(in.colours->size()) + " entries for " +
+        throw Error("cannot export: colours have " + std::to_string(in.colours->size()) + " entries for " +
                     std::to_string(c.points.size()) + " points");
 }
 
@@ -107,7 +107,7 @@ bool streamsPlies(const ExportOptions& o) { return o.what == ExportWhat::Plies &
 
 void validateExportOptions(const ExportOptions& o) {
     const std::string ext = util::lowerExtension(o.path);
-    if (o.path.empty()) throw Error("export: no output path given");
+    if (o.path.empty()) throw Error("cannot export: no output path given");
     const impl::Format* format = sceneFormat(o.path);
     if (!format)
         throw Error("cannot export '" + o.path + "': unknown extension '" + (ext.empty() ? "" : "." + ext) +
@@ -117,7 +117,7 @@ void validateExportOptions(const ExportOptions& o) {
         throw Error("cannot export '" + o.path + "': ." + ext + " holds curves only: what to export must be yarns or " +
                     "plies (tubes need " + impl::sceneFormatList("/", true) + ")");
     if (o.sides < 3 || o.sides > 1024)
-        throw Error("export: the number of tube sides must be in [3, 1024], got " + std::to_string(o.sides));
+        throw Error("cannot export: the number of tube sides must be in [3, 1024], got " + std::to_string(o.sides));
     if (o.draco) {
         if (!format->gltf)
             throw Error("cannot export '" + o.path + "': Draco compression needs a .glb or .gltf output, not ." + ext);
@@ -136,16 +136,16 @@ void validateExportOptions(const ExportOptions& o) {
                         "': Draco compression and meshopt compression are alternatives; choose one");
     }
     if (o.dracoBits < 1 || o.dracoBits > 30)
-        throw Error("export: the Draco position bits must be in [1, 30], got " + std::to_string(o.dracoBits));
+        throw Error("cannot export: the Draco position bits must be in [1, 30], got " + std::to_string(o.dracoBits));
     if (o.dracoNormalBits < 1 || o.dracoNormalBits > 30 || o.dracoTexcoordBits < 1 || o.dracoTexcoordBits > 30)
-        throw Error("export: Draco normal/texcoord bits must be in [1, 30]");
+        throw Error("cannot export: Draco normal/texcoord bits must be in [1, 30]");
     if (o.dracoLevel < 0 || o.dracoLevel > 10)
-        throw Error("export: the Draco level must be in [0, 10], got " + std::to_string(o.dracoLevel));
+        throw Error("cannot export: the Draco level must be in [0, 10], got " + std::to_string(o.dracoLevel));
     if (o.chunkVertices != 0 && o.chunkVertices < 16)
-        throw Error("export: the vertices per chunk must be 0 (auto) or at least 16, got " +
+        throw Error("cannot export: the vertices per chunk must be 0 (auto) or at least 16, got " +
                     std::to_string(o.chunkVertices));
     if (o.maxBufferBytes < 1024 || o.maxBufferBytes > 0xFFFFFFF0ull)
-        throw Error("export: the glTF buffer size limit must be in [1024, 4294967280] bytes");
+        throw Error("cannot export: the glTF buffer size limit must be in [1024, 4294967280] bytes");
 }
 
 ExportStats exportCurves(const ExportInput& input, const ExportOptions& requested) {

@@ -11,9 +11,9 @@ nlohmann::json parseMaterialExtras(const std::string& text) {
     try {
         extras = nlohmann::json::parse(text);
     } catch (const nlohmann::json::exception& e) {
-        throw Error(std::string("export: the glTF material extras are not valid JSON: ") + e.what());
+        throw Error(std::string("cannot export: the glTF material extras are not valid JSON: ") + e.what());
     }
-    if (!extras.is_object()) throw Error("export: the glTF material extras must be a JSON object");
+    if (!extras.is_object()) throw Error("cannot export: the glTF material extras must be a JSON object");
     return extras;
 }
 

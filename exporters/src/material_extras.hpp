@@ -7,8 +7,8 @@
 namespace knit::impl {
 
 // The extras text as a JSON object (an empty text: an empty object). Throws knit::Error unless
-// the text is one JSON object: "export: materialExtrasJson is not valid JSON: ..." or
-// "export: materialExtrasJson must be a JSON object".
+// the text is one JSON object: "cannot export: the glTF material extras are not valid JSON: ..." or
+// "cannot export: the glTF material extras must be a JSON object".
 nlohmann::json parseMaterialExtras(const std::string& text);
 
 }  // namespace knit::impl

@@ -58,7 +58,7 @@ bool littleEndianHost() {
 }  // namespace
 
 void exportPly(const FormatJob& job) {
-    if (!littleEndianHost()) throw Error("export: PLY writer needs a little-endian host");
+    if (!littleEndianHost()) throw Error("cannot export: PLY writer needs a little-endian host");
     const Polylines& curves = *job.input.curves;
     const std::vector<glm::vec3>* colours = job.input.colours;
     AtomicFile file(job.options.path, true);

@@ -32,6 +32,7 @@ from ._knit import (  # noqa: F401
     load_pattern,
     load_strain_table,
     make_plies,
+    remove_stale_temporaries,
     strain_table,
     spell_settings,
     save_bound_scene,
@@ -42,6 +43,6 @@ from ._knit import (  # noqa: F401
 __all__ = [
     "Binding", "Curves", "Error", "Mesh", "Pattern", "Plies", "Scene", "Yarns",
     "build_scene", "builtin_meshes", "builtin_patterns", "export_scene", "frame_numbers",
-    "load_bound_scene", "load_mesh", "load_pattern", "make_plies", "save_bound_scene", "uv_to_metre_scale",
+    "load_bound_scene", "load_mesh", "load_pattern", "make_plies", "remove_stale_temporaries", "save_bound_scene", "uv_to_metre_scale",
     "vertex_normals",
 ]

@@ -7,6 +7,7 @@
 
 #include "bindings.hpp"
 #include "knit/error.hpp"
+#include "knit/output_file.hpp"
 #include "knit/setting_spelling.hpp"
 
 namespace knitpy {
@@ -75,6 +76,13 @@ PYBIND11_MODULE(_knit, m) {
         "A library message (knit.Error.words) with a front end's spelling of each setting after its first "
         "mention: spellings is [(words, spelling)], e.g. [('the repeats', 'Repeats')]. knit.Error's own "
         "message is this with the module's keywords.");
+    m.def(
+        "remove_stale_temporaries", [](const std::string& folder) { return knit::removeStaleTemporaries(folder); },
+        pybind11::arg("folder"),
+        "Removes the temporaries killed runs left in folder ('' = the working folder): hidden "
+        "'.NAME.PID.N.tmp' files and '.knit-staging.PID.N.tmp' folders of this user whose process is gone and "
+        "whose lock nobody holds. Every knit writer does this before writing into a folder; a writer of its "
+        "own (the Blender add-on's bake) calls it. Returns how many it removed; never raises.");
     knitpy::registerPatternAndMesh(m);
     knitpy::registerCurves(m);
     knitpy::registerStrain(m);

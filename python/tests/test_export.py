@@ -1,5 +1,6 @@
 # export_scene: formats by extension, stats, errors.
 import os
+import subprocess
 
 import pytest
 
@@ -74,3 +75,19 @@ def test_export_of_an_empty_result_raises_and_writes_nothing(tmp_path):
             knit.export_scene(empty, str(path), what="yarns")
         assert not path.exists()
     assert list(tmp_path.iterdir()) == []
+
+
+def test_remove_stale_temporaries_removes_only_those_of_dead_processes(tmp_path):
+    gone = subprocess.Popen(["true"])
+    gone.wait()  # its pid names no process now
+    dead = tmp_path / f".c.pc2.{gone.pid}.0.tmp"
+    staging = tmp_path / f".knit-staging.{gone.pid}.3.tmp"
+    alive = tmp_path / f".d.pc2.{os.getpid()}.0.tmp"
+    for f in (dead, alive):
+        f.write_bytes(b"partial")
+    staging.mkdir()
+    (staging / "x.obj").write_text("v 0 0 0\n")
+    (tmp_path / "keep.obj").write_text("v 0 0 0\n")
+    assert knit.remove_stale_temporaries(str(tmp_path)) == 2
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted([alive.name, "keep.obj"])
+    assert knit.remove_stale_temporaries(str(tmp_path / "missing")) == 0  # never raises

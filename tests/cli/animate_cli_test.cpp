@@ -85,6 +85,25 @@ TEST_F(Animate, statisticsAreComputedForTheReportOnly) {
     EXPECT_NE(r.output.find("min yarn distance"), std::string::npos) << r.output;
 }
 
+// -q prints nothing but errors and warnings, on every command that takes it: no progress, and
+// no summary line on stdout either (animate printed its "animated ... wrote" line).
+TEST_F(Animate, quietPrintsNothingButErrors) {
+    writeWaveSequence(dir, 2, 8);
+    CliRun r = runKnit("animate --no-stats --frames frame_%04d.obj --repeats 3 3 -o loud.pc2", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("animated 2 frames"), std::string::npos) << r.output;
+    for (const char* quiet : {"animate -q --no-stats --frames frame_%04d.obj --repeats 3 3 -o q.pc2",
+                              "bind -q --mesh frame_0001.obj --repeats 3 3 -o q.knitbind",
+                              "build -q --mesh frame_0001.obj --repeats 3 3 --export yarns -o q.obj"}) {
+        r = runKnit(quiet, dir);
+        EXPECT_EQ(r.exitCode, 0) << quiet;
+        EXPECT_EQ(r.output, "") << quiet;
+    }
+    r = runKnit("animate -q --frames frame_%04d.obj --repeats 3 3 --step 0 -o q.pc2", dir);
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.output.find("--step"), std::string::npos) << r.output;  // errors still say what is wrong
+}
+
 TEST_F(Animate, pointCacheHoldsEveryFramesPliesAndTheTopology) {
     writeWaveSequence(dir, 4, 8);
     const CliRun r = runKnit("animate -q --frames . --repeats 3 3 -o c.pc2", dir);

@@ -125,11 +125,11 @@ TEST(ExportErrors, offsetsPastTheEndAreRefusedBeforeReading) {
     o.path = dir + "/x.obj";
     o.what = ExportWhat::Yarns;
     const std::string e = errorOf(c, o);
-    EXPECT_EQ(e, "export: curve 0 ends at offset 10, past the 6 points");
+    EXPECT_EQ(e, "cannot export: curve 0 ends at offset 10, past the 6 points");
     EXPECT_TRUE(test::listDir(dir).empty());
     // Within the points but decreasing: named as before.
     c.offsets = {0, 4, 3, 6};
-    EXPECT_EQ(errorOf(c, o), "export: curve 1 has decreasing offsets");
+    EXPECT_EQ(errorOf(c, o), "cannot export: curve 1 has decreasing offsets");
 }
 
 TEST(ExportErrors, materialExtrasThatAreNotAJsonObjectAreRefused) {
@@ -137,9 +137,9 @@ TEST(ExportErrors, materialExtrasThatAreNotAJsonObjectAreRefused) {
     ExportOptions o;
     o.path = dir + "/x.glb";
     EXPECT_EQ(errorOf(test::mixedCurves(), o, 0.001, "[1, 2]"),
-              "export: the glTF material extras must be a JSON object");
+              "cannot export: the glTF material extras must be a JSON object");
     const std::string e = errorOf(test::mixedCurves(), o, 0.001, "{\"generator\": ");
-    EXPECT_TRUE(contains(e, "export: the glTF material extras are not valid JSON: ")) << e;
+    EXPECT_TRUE(contains(e, "cannot export: the glTF material extras are not valid JSON: ")) << e;
     EXPECT_TRUE(test::listDir(dir).empty());
 }
 

@@ -268,6 +268,12 @@ TEST(GltfMesh, badFilesAreRefusedWithAReason) {
                  g.accessor(std::vector<uint32_t>{0, 1, 7}, 5125, "SCALAR", 3);
          },
          "index 2 is 7"},
+        {"normalizedIndices",  // each would read as a fraction of 255: 0 or 1
+         [](GltfBuilder& g) {
+             g.doc["meshes"][0]["primitives"][0]["indices"] =
+                 g.accessor(std::vector<uint8_t>{0, 1, 2, 0, 2, 3}, 5121, "SCALAR", 6, true);
+         },
+         "indices must be unsigned byte, short or int scalars, not normalized"},
         {"accessorPastItsView", [](GltfBuilder& g) { g.doc["accessors"][1]["count"] = 400; }, ""},
         {"draco",
          [](GltfBuilder& g) {

@@ -207,9 +207,9 @@ TEST(TraceGeometry, factoryRejectsTooFewTubeSidesAndMissingGridCells) {
         }
         return "";
     };
-    EXPECT_EQ(errorOf(modeOptions(GeometryMode::Tubes, cells, 2)), "render: tube sides must be >= 3");
+    EXPECT_EQ(errorOf(modeOptions(GeometryMode::Tubes, cells, 2)), "cannot render: tube sides must be >= 3");
     EXPECT_EQ(errorOf(modeOptions(GeometryMode::Tubes, cells, 3)), "");
-    const std::string noCells = "render: grid mode needs a UV-grid cell for every ply segment";
+    const std::string noCells = "cannot render: grid mode needs a UV-grid cell for every ply segment";
     EXPECT_EQ(errorOf(modeOptions(GeometryMode::Grid, tooFew)), noCells);
     TraceSceneOptions none = modeOptions(GeometryMode::Grid, cells);
     none.segmentCells = nullptr;
@@ -221,7 +221,7 @@ TEST(TraceGeometry, factoryRejectsTooFewTubeSidesAndMissingGridCells) {
         const TraceScene scene(device, g, modeOptions(GeometryMode::Tubes, cells, 2));
         ADD_FAILURE() << "tube sides 2 accepted";
     } catch (const Error& e) {
-        EXPECT_STREQ(e.what(), "render: tube sides must be >= 3");
+        EXPECT_STREQ(e.what(), "cannot render: tube sides must be >= 3");
     }
 }
 

@@ -2,6 +2,7 @@
 // project (the exporters, the renderer's images, the chart cache, the CLI's reports) writes
 // through a temporary sibling file renamed when complete, and checks the folder first.
 #pragma once
+#include <cstddef>
 #include <functional>
 #include <ostream>
 #include <string>
@@ -18,5 +19,12 @@ void writeFileAtomically(const std::string& path, const std::function<void(std::
 // not a folder", "folder '<folder>' is not writable"); with an empty `what`, "cannot write '<path>': ...".
 // Every writer checks its output with it; callers use it to fail before long work.
 void requireWritableFolder(const std::string& path, const std::string& what = "");
+
+// Removes what killed runs left in `folder` ("" = the working folder): hidden `.<name>.<pid>.<n>.tmp`
+// files and `.knit-staging.<pid>.<n>.tmp` folders of this user whose process is gone and whose
+// lock nobody holds (a live writer's, or one of another machine sharing the folder, stay). Every
+// writer of the library does this once per folder before writing there; a front end with a writer
+// of its own (the Blender add-on's PC2 bake) calls it. Returns how many it removed; never throws.
+size_t removeStaleTemporaries(const std::string& folder);
 
 }  // namespace knit

@@ -94,8 +94,8 @@ std::vector<DetailLevel> previousLevels(const UvGrid& grid, const CellLevels* pr
     std::vector<DetailLevel> out(grid.cells.size(), DetailLevel::Culled);
     if (previous == nullptr) return out;
     if (previous->cells.size() != previous->level.size())
-        throw Error("detail: the previous levels have " + std::to_string(previous->level.size()) + " levels for " +
-                    std::to_string(previous->cells.size()) + " cells");
+        throw Error("cannot build the view: the previous levels have " + std::to_string(previous->level.size()) +
+                    " levels for " + std::to_string(previous->cells.size()) + " cells");
     std::unordered_map<glm::ivec2, DetailLevel, IvecHash> byCell;
     for (size_t k = 0; k < previous->cells.size(); ++k) byCell[previous->cells[k]] = previous->level[k];
     for (size_t k = 0; k < grid.cells.size(); ++k) {
@@ -131,12 +131,13 @@ double yarnMargin(const Pattern& pattern, double scale, double yarnRadius) {
 
 CellLevels classifyCells(const DetailInputs& in, const View& view, const DetailOptions& o) {
     validateView(view);
-    if (in.mesh == nullptr || in.grid == nullptr) throw Error("detail: no mesh or grid to classify");
+    if (in.mesh == nullptr || in.grid == nullptr) throw Error("cannot build the view: no mesh or grid to classify");
     if (!util::positiveFinite(in.yarnRadius) || !util::positiveFinite(in.plyRadius) || !(in.margin >= 0))
-        throw Error("detail: the yarn and ply radii must be positive and the margin not negative");
+        throw Error("cannot build the view: the yarn and ply radii must be positive and the margin not negative");
     if (!(o.shadowMargin >= 0) || !(o.plyPixels.leave <= o.plyPixels.enter) ||
         !(o.yarnPixels.leave <= o.yarnPixels.enter))
-        throw Error("detail: the shadow margin must be >= 0 and each leave threshold <= its enter threshold");
+        throw Error(
+            "cannot build the view: the shadow margin must be >= 0 and each leave threshold <= its enter threshold");
     const BaseMesh& mesh = *in.mesh;
     const UvGrid& grid = *in.grid;
     const std::array<Plane, 5> planes = frustumPlanes(view);

@@ -9,9 +9,9 @@ namespace knit {
 
 std::vector<glm::ivec2> yarnRegion(const CellLevels& levels, int ring) {
     if (levels.cells.size() != levels.level.size())
-        throw Error("detail: " + std::to_string(levels.level.size()) + " levels for " +
+        throw Error("cannot build the view: " + std::to_string(levels.level.size()) + " levels for " +
                     std::to_string(levels.cells.size()) + " cells");
-    if (ring < 0) throw Error("detail: the region's ring of cells must not be negative");
+    if (ring < 0) throw Error("cannot build the view: the region's ring of cells must not be negative");
     std::vector<glm::ivec2> out;
     for (size_t k = 0; k < levels.cells.size(); ++k) {
         if (levels.level[k] != DetailLevel::Plies && levels.level[k] != DetailLevel::Yarns) continue;

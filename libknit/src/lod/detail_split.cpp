@@ -122,10 +122,11 @@ void splitYarn(const MappedYarns& yarns, uint32_t y, const std::vector<DetailLev
 LevelPieces splitByLevel(const MappedYarns& yarns, const Binding& binding, const BaseMesh& mesh, const UvGrid& grid,
                          const CellLevels& levels) {
     if (binding.offsets != yarns.curves.offsets || yarns.normals.size() != yarns.curves.pointCount())
-        throw Error("detail: the yarns are not the evaluation of the binding (vertex counts differ)");
+        throw Error("cannot build the view: the yarns are not the evaluation of the binding (vertex counts differ)");
     if (levels.level.size() != grid.cells.size())
-        throw Error("detail: the cell levels are not those of the grid (" + std::to_string(levels.level.size()) +
-                    " levels for " + std::to_string(grid.cells.size()) + " cells)");
+        throw Error("cannot build the view: the cell levels are not those of the grid (" +
+                    std::to_string(levels.level.size()) + " levels for " + std::to_string(grid.cells.size()) +
+                    " cells)");
     LevelPieces out;
     std::vector<glm::dvec2> uv;
     const std::vector<DetailLevel> level = vertexLevels(binding, mesh, grid, levels, uv);

@@ -137,9 +137,12 @@ private:
             return idx;
         }
         const gltf::Accessor I = doc_.accessor(*indices, p.what + " indices");
-        if (I.components != 1 || (I.componentType != gltf::kUnsignedByte && I.componentType != gltf::kUnsignedShort &&
-                                  I.componentType != gltf::kUnsignedInt))
-            doc_.fail(p.what + ": indices must be unsigned byte, short or int scalars");
+        // glTF 2.0 (3.7.2.1): never normalized; a normalized accessor would read every index as
+        // a fraction (0 .. 1) of the type's range, not as a vertex number.
+        if (I.components != 1 || I.normalized ||
+            (I.componentType != gltf::kUnsignedByte && I.componentType != gltf::kUnsignedShort &&
+             I.componentType != gltf::kUnsignedInt))
+            doc_.fail(p.what + ": indices must be unsigned byte, short or int scalars, not normalized");
         idx.resize(I.count);
         for (size_t i = 0; i < I.count; ++i) {
             const double v = I.get(i, 0);

@@ -157,16 +157,16 @@ private:
     bool regionBuild() const { return s_.detail_ && options_.detail && options_.detail->region; }
 
     // The stitch filter of a region build for `tiling`: its tiles that are region tiles, and the
-    // memory check of the yarns kept. Null without a region build.
-    std::unique_ptr<StitchFilter> regionFilter(const Tiling& tiling) const {
+    // memory check of the yarns kept, added to `kept` (the yarns kept so far by the filters of the
+    // other islands: all islands' yarns are checked together). Null without a region build.
+    std::unique_ptr<StitchFilter> regionFilter(const Tiling& tiling, uint64_t& kept) const {
         if (!regionBuild()) return nullptr;
         auto f = std::make_unique<StitchFilter>();
         f->keepTile.resize(tiling.tiles.size());
         for (size_t k = 0; k < tiling.tiles.size(); ++k) f->keepTile[k] = regionTiles_.slotOf(tiling.tiles[k]) >= 0;
-        const bool physical = physicalSize();
-        const MemoryBudget& budget = options_.budget;
-        f->beforeAllocate = [physical, &budget](uint64_t vertices) {
-            impl::checkRegionYarnBudget(vertices, physical, budget);
+        f->beforeAllocate = [this, &kept](uint64_t vertices) {
+            kept += vertices;
+            impl::checkRegionYarnBudget(kept, physicalSize(), options_.budget);
         };
         return f;
     }
@@ -176,20 +176,15 @@ private:
     void stitch() {
         const PatternAdjacency adjacency = buildAdjacency(s_.pattern_);
         SceneStages& st = s_.stages_;
+        uint64_t kept = 0;  // a region build's yarn vertices so far (of all islands together)
         if (st.islandTilings.empty()) {
-            st.uvYarns = stitchYarns(s_.pattern_, adjacency, st.tiling, s_.placement_, regionFilter(st.tiling).get());
+            st.uvYarns =
+                stitchYarns(s_.pattern_, adjacency, st.tiling, s_.placement_, regionFilter(st.tiling, kept).get());
         } else {
             st.uvYarns = UvYarns{};
-            uint64_t kept = 0;  // a region build checks the yarns of all islands together
             for (size_t c = 0; c < st.islandTilings.size(); ++c) {
                 if (st.islandTilings[c].tiles.empty()) continue;
-                std::unique_ptr<StitchFilter> filter = regionFilter(st.islandTilings[c]);
-                if (filter) {
-                    filter->beforeAllocate = [this, &kept](uint64_t vertices) {
-                        kept += vertices;
-                        impl::checkRegionYarnBudget(kept, physicalSize(), options_.budget);
-                    };
-                }
+                std::unique_ptr<StitchFilter> filter = regionFilter(st.islandTilings[c], kept);
                 appendIslandYarns(st.uvYarns,
                                   stitchYarns(s_.pattern_, adjacency, st.islandTilings[c], s_.placement_, filter.get()),
                                   uint32_t(c));

@@ -77,8 +77,8 @@ UvYarns stitchYarns(const Pattern& pattern, const PatternAdjacency& adj, const T
                     const PatternPlacement& placement, const StitchFilter* filter) {
     UvYarns out;
     if (filter != nullptr && filter->keepTile.size() != tiling.tiles.size())
-        throw Error("stitching: the filter has " + std::to_string(filter->keepTile.size()) + " tile marks for " +
-                    std::to_string(tiling.tiles.size()) + " tiles");
+        throw Error("cannot stitch the pattern tiles: the filter has " + std::to_string(filter->keepTile.size()) +
+                    " tile marks for " + std::to_string(tiling.tiles.size()) + " tiles");
     const uint32_t n = uint32_t(pattern.points.size());
     const uint64_t total = uint64_t(tiling.tiles.size()) * n;
     if (total == 0) return out;

@@ -76,13 +76,14 @@ std::optional<TracingScale> tracingScale(const Scene& scene) {
     // The plies' bounds: their radius decides whether to scale.
     glm::dvec3 lo(points[0]), hi(points[0]);
     for (const glm::dvec3& p : points) lo = glm::min(lo, p), hi = glm::max(hi, p);
-    if (!util::finite(lo) || !util::finite(hi)) throw Error("render: the ply curves have points that are not finite");
+    if (!util::finite(lo) || !util::finite(hi))
+        throw Error("cannot render: the ply curves have points that are not finite");
     const glm::dvec3 centre = 0.5 * lo + 0.5 * hi;
     const glm::dvec3 half = 0.5 * hi - 0.5 * lo;  // halves first: no overflow near 1e308
     const double e = std::max(half.x, std::max(half.y, half.z));
     const double radius = e > 0 ? e * glm::length(half / e) : 0.0;  // scaled: no overflow of the squares
     if (radius >= kMinTracedRadius && radius <= kMaxTracedRadius) return std::nullopt;
-    if (!(radius > 0)) throw Error("render: the ply curves have no extent (all points coincide)");
+    if (!(radius > 0)) throw Error("cannot render: the ply curves have no extent (all points coincide)");
     return TracingScale{centre, 1.0 / radius};
 }
 

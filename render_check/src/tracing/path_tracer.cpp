@@ -262,8 +262,9 @@ Rgb Image::mean() const {
 
 Image renderImage(const TraceScene& scene, const PlyMaterial& material, const FiberTables& tables,
                   const TraceSettings& s, TraceStats* stats) {
-    if (s.width < 1 || s.height < 1) throw Error("render: image size must be at least 1 x 1");
-    if (s.spp < 1) throw Error("render: samples per pixel must be at least 1 (got " + std::to_string(s.spp) + ")");
+    if (s.width < 1 || s.height < 1) throw Error("cannot render: image size must be at least 1 x 1");
+    if (s.spp < 1)
+        throw Error("cannot render: samples per pixel must be at least 1 (got " + std::to_string(s.spp) + ")");
     const auto start = std::chrono::steady_clock::now();
     const PlyGeometry& g = scene.plies();
     Tracer tr{scene, material, tables, s, {}, {}, {}, {}, {}, 0, 0, false, nullptr};

@@ -28,14 +28,14 @@ size_t PlyGeometry::shadingBytes() const {
 PlyGeometry buildPlyGeometry(const Plies& plies, const glm::dvec3& origin, double fiberTwist) {
     const Polylines& c = plies.curves;
     if (c.curveCount() == 0 || c.pointCount() == 0)
-        throw Error("render: the scene has no ply curves (nothing to render)");
+        throw Error("cannot render: the scene has no ply curves (nothing to render)");
     if (!(plies.plyRadius > 0) || !std::isfinite(plies.plyRadius))
-        throw Error("render: ply radius must be positive (got " + std::to_string(plies.plyRadius) + ")");
+        throw Error("cannot render: ply radius must be positive (got " + std::to_string(plies.plyRadius) + ")");
     if (plies.radial.size() != c.pointCount())
-        throw Error("render: plies have " + std::to_string(plies.radial.size()) + " radial directions for " +
+        throw Error("cannot render: plies have " + std::to_string(plies.radial.size()) + " radial directions for " +
                     std::to_string(c.pointCount()) + " points");
     if (!plies.colour.empty() && plies.colour.size() != c.pointCount())
-        throw Error("render: plies have " + std::to_string(plies.colour.size()) + " colours for " +
+        throw Error("cannot render: plies have " + std::to_string(plies.colour.size()) + " colours for " +
                     std::to_string(c.pointCount()) + " points");
     PlyGeometry g;
     g.origin = origin;
@@ -48,8 +48,8 @@ PlyGeometry buildPlyGeometry(const Plies& plies, const glm::dvec3& origin, doubl
         for (uint32_t p = c.begin(k); p < c.end(k); ++p) {
             const glm::dvec3& q = c.points[p];
             if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z))
-                throw Error("render: ply curve " + std::to_string(k) + " point " + std::to_string(p - c.begin(k)) +
-                            " is not finite");
+                throw Error("cannot render: ply curve " + std::to_string(k) + " point " +
+                            std::to_string(p - c.begin(k)) + " is not finite");
             if (idx.empty() || c.points[idx.back()] != q) idx.push_back(p);
         }
         const bool closed = c.isClosed(k) && idx.size() >= 3;
@@ -103,7 +103,7 @@ PlyGeometry buildPlyGeometry(const Plies& plies, const glm::dvec3& origin, doubl
         }
         g.curveSegments.push_back(static_cast<uint32_t>(g.segments.size()));
     }
-    if (g.segments.empty()) throw Error("render: the ply curves have no segment of non-zero length");
+    if (g.segments.empty()) throw Error("cannot render: the ply curves have no segment of non-zero length");
     return g;
 }
 
@@ -112,17 +112,19 @@ std::vector<int64_t> segmentCells(const Scene& scene, const PlyGeometry& g) {
     const MappedYarns& yarns = scene.yarns();
     const BaseMesh& mesh = scene.mesh();
     const glm::dvec2 cell = scene.grid().cellSize;
-    if (!(cell.x > 0) || !(cell.y > 0)) throw Error("render: grid mode needs the scene's UV grid (cell size is zero)");
+    if (!(cell.x > 0) || !(cell.y > 0))
+        throw Error("cannot render: grid mode needs the scene's UV grid (cell size is zero)");
     if (b.vertexCount() == 0 || b.vertexCount() != yarns.curves.pointCount() || b.offsets != yarns.curves.offsets)
-        throw Error("render: grid mode needs the binding of the scene's yarns (binding and mapped yarns differ)");
+        throw Error(
+            "cannot render: grid mode needs the binding of the scene's yarns (binding and mapped yarns differ)");
     if (scene.plies().yarnOfCurve.size() != scene.plies().curves.curveCount())
-        throw Error("render: grid mode needs the yarn of every ply curve");
+        throw Error("cannot render: grid mode needs the yarn of every ply curve");
     // Step 1: UV cell of every yarn vertex from its binding.
     std::vector<int64_t> vertexCell(b.vertexCount());
     for (size_t v = 0; v < b.vertexCount(); ++v) {
         const uint32_t f = b.face[v];
         if (f >= mesh.faceUvs.size())
-            throw Error("render: binding vertex " + std::to_string(v) + " names face " + std::to_string(f) +
+            throw Error("cannot render: binding vertex " + std::to_string(v) + " names face " + std::to_string(f) +
                         " outside the mesh");
         const glm::uvec3 t = mesh.faceUvs[f];
         const glm::dvec2 w = b.bary[v];
@@ -140,13 +142,14 @@ std::vector<int64_t> segmentCells(const Scene& scene, const PlyGeometry& g) {
     const std::vector<uint32_t>* pieceYarn = scene.detail() ? &scene.detail()->pieces.yarnPieceYarn : nullptr;
     for (size_t k = 0; k + 1 < g.curveSegments.size(); ++k) {
         if (k >= plyCurves && (pieceYarn == nullptr || k - plyCurves >= pieceYarn->size()))
-            throw Error("render: grid mode needs the yarn of every curve (curve " + std::to_string(k) + " has none)");
+            throw Error("cannot render: grid mode needs the yarn of every curve (curve " + std::to_string(k) +
+                        " has none)");
         const uint32_t y = k < plyCurves ? scene.plies().yarnOfCurve[k] : (*pieceYarn)[k - plyCurves];
         if (y >= yarns.curves.curveCount())
-            throw Error("render: ply curve " + std::to_string(k) + " names yarn " + std::to_string(y) +
+            throw Error("cannot render: ply curve " + std::to_string(k) + " names yarn " + std::to_string(y) +
                         " that does not exist");
         const int64_t y0 = yarns.curves.begin(y), n = yarns.curves.size(y);
-        if (n == 0) throw Error("render: yarn " + std::to_string(y) + " has no vertices");
+        if (n == 0) throw Error("cannot render: yarn " + std::to_string(y) + " has no vertices");
         int64_t last = -1;
         for (uint32_t s = g.curveSegments[k]; s < g.curveSegments[k + 1]; ++s) {
             const glm::vec4 a = g.points[g.segments[s]], c = g.points[g.segments[s] + 1];

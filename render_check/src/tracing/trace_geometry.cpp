@@ -13,7 +13,7 @@ std::unique_ptr<TraceGeometry> makeTraceGeometry(const PlyGeometry& plies, const
         case GeometryMode::Tubes: return makeTubeGeometry(plies, options.tubeSides);
         case GeometryMode::Grid: return makeGridGeometry(plies, options.segmentCells);
     }
-    throw Error("render: unknown geometry mode");
+    throw Error("cannot render: unknown geometry mode");
 }
 
 }  // namespace knit

@@ -341,7 +341,7 @@ class GridGeometry final : public TraceGeometry {
 public:
     GridGeometry(const PlyGeometry& plies, const std::vector<int64_t>* segmentCells) {
         if (!segmentCells || segmentCells->size() != plies.segmentCount())
-            throw Error("render: grid mode needs a UV-grid cell for every ply segment");
+            throw Error("cannot render: grid mode needs a UV-grid cell for every ply segment");
         grid_ = buildGrid(plies, *segmentCells);
     }
 

@@ -18,7 +18,7 @@ GeometryMode parseMode(const std::string& name) {
     if (name == "curves") return GeometryMode::Curves;
     if (name == "tubes") return GeometryMode::Tubes;
     if (name == "grid") return GeometryMode::Grid;
-    throw Error("render: unknown geometry mode '" + name + "' (expected curves, tubes or grid)");
+    throw Error("cannot render: unknown geometry mode '" + name + "' (expected curves, tubes or grid)");
 }
 
 }  // namespace knit

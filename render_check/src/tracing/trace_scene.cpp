@@ -16,8 +16,8 @@ namespace knit {
 EmbreeDevice::EmbreeDevice(const char* config) {
     device_ = rtcNewDevice(config);
     if (!device_)
-        throw Error("render: cannot create an Embree device (error " + std::to_string(rtcGetDeviceError(nullptr)) +
-                    ")");
+        throw Error("cannot render: cannot create an Embree device (error " +
+                    std::to_string(rtcGetDeviceError(nullptr)) + ")");
     rtcSetDeviceMemoryMonitorFunction(device_, &EmbreeDevice::monitor, this);
 }
 
@@ -32,7 +32,8 @@ TraceScene::TraceScene(EmbreeDevice& device, const PlyGeometry& plies, const Tra
     : plies_(plies), options_(options) {
     // A view may leave no curves (every visible cell at the surface level): the base mesh alone.
     const bool hasBase = options.baseMesh && !options.baseMesh->faces.empty();
-    if (plies.segmentCount() == 0 && !hasBase) throw Error("render: the scene has no ply segments (nothing to render)");
+    if (plies.segmentCount() == 0 && !hasBase)
+        throw Error("cannot render: the scene has no ply segments (nothing to render)");
     const int64_t before = device.allocatedBytes();
     RTCDevice dev = device.get();
     scene_ = rtcNewScene(dev);
@@ -53,7 +54,7 @@ TraceScene::TraceScene(EmbreeDevice& device, const PlyGeometry& plies, const Tra
     baseOffset_ = 1e-3f * plies.radius;
     // Step 3: build the BVH and measure what Embree allocated for it.
     rtcCommitScene(scene_);
-    if (rtcGetDeviceError(dev) != RTC_ERROR_NONE) throw Error("render: Embree failed to build the scene");
+    if (rtcGetDeviceError(dev) != RTC_ERROR_NONE) throw Error("cannot render: Embree failed to build the scene");
     memory_.embreeBytes = device.allocatedBytes() - before;
     memory_.shadingBytes = static_cast<int64_t>(plies.shadingBytes());
 }
@@ -68,7 +69,7 @@ void TraceScene::attachBaseMesh(RTCDevice device, const BaseMesh& m) {
     baseFaces_ = m.faces;
     for (const glm::uvec3& f : m.faces)
         if (f.x >= m.positions.size() || f.y >= m.positions.size() || f.z >= m.positions.size())
-            throw Error("render: base mesh face refers to a vertex that does not exist");
+            throw Error("cannot render: base mesh face refers to a vertex that does not exist");
     RTCGeometry bg = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
     rtcSetSharedGeometryBuffer(bg, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, basePositions_.data(), 0,
                                sizeof(glm::vec3), basePositions_.size() - 1);

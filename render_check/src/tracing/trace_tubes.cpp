@@ -68,7 +68,7 @@ TubeData outwardTubes(const PlyGeometry& pg, const TubeMesh& mesh) {
     for (const glm::vec3& q : mesh.positions) t.positions.push_back(q * inv);
     t.triangles = mesh.triangles;
     if (mesh.curveOfVertex.size() != mesh.positions.size() || mesh.normals.size() != mesh.positions.size())
-        throw Error("render: the swept tubes have no curve index or normal per vertex");
+        throw Error("cannot render: the swept tubes have no curve index or normal per vertex");
     for (glm::uvec3& tri : t.triangles) {
         const glm::vec3 f =
             glm::cross(t.positions[tri.y] - t.positions[tri.x], t.positions[tri.z] - t.positions[tri.x]);
@@ -169,7 +169,7 @@ void addEndCaps(const PlyGeometry& pg, const PlyPolylines& lines, const TubeMesh
         const bool closed = lines.curves.isClosed(c);
         const size_t count = tubeVertexCount(n, closed, to);
         if (firstVertex + count > mesh.positions.size() || mesh.curveOfVertex[firstVertex] != c)
-            throw Error("render: the swept tubes are not one ring of vertices per ply sample (internal error)");
+            throw Error("cannot render: the swept tubes are not one ring of vertices per ply sample (internal error)");
         const uint32_t k = lines.sourceCurve[c];
         const uint32_t s0 = pg.curveSegments[k], s1 = pg.curveSegments[k + 1];
         for (int end = 0; end < 2 && !closed; ++end) {
@@ -257,7 +257,7 @@ void tubeEntryFilter(const RTCFilterFunctionNArguments* a) {
 class TubeGeometry final : public TraceGeometry {
 public:
     TubeGeometry(const PlyGeometry& plies, int sides) {
-        if (sides < 3) throw Error("render: tube sides must be >= 3");
+        if (sides < 3) throw Error("cannot render: tube sides must be >= 3");
         tubes_ = buildTubes(plies, sides);
         inscribed_ = std::cos(float(util::kPi) / float(std::max(3, sides)));
     }

@@ -52,7 +52,7 @@ std::string tempSibling(const std::string& path) {
 }  // namespace
 
 void checkOutputFolder(const std::string& path) {
-    if (path.empty()) throw Error("export: no output path given");
+    if (path.empty()) throw Error("cannot write: no output path given");
     const fs::path p(path);
     if (!p.has_filename() || p.filename() == "." || p.filename() == "..")
         throw Error("cannot write '" + path + "': the path names a folder, not a file");
@@ -137,7 +137,7 @@ void AtomicFile::undoCommit() {
 
 void appendFile(std::ostream& out, const std::string& from, uint64_t offset, uint64_t bytes) {
     std::ifstream in(from, std::ios::binary);
-    if (!in) throw Error("export: cannot reopen temporary file '" + from + "'");
+    if (!in) throw Error("cannot reopen temporary file '" + from + "'");
     in.seekg(std::streamoff(offset));
     std::unique_ptr<char[]> block(new char[kStreamBuffer * 4]);
     uint64_t copied = 0;
@@ -150,7 +150,7 @@ void appendFile(std::ostream& out, const std::string& from, uint64_t offset, uin
         copied += uint64_t(got);
     }
     if (copied != bytes)
-        throw Error("export: temporary file '" + from + "' ended after " + std::to_string(copied) + " of " +
+        throw Error("the temporary file '" + from + "' ended after " + std::to_string(copied) + " of " +
                     std::to_string(bytes) + " bytes");
 }
 
@@ -174,5 +174,7 @@ void requireWritableFolder(const std::string& path, const std::string& what) {
     if (!fs::is_directory(st)) throw Error(cannot + "'" + folder + "' is not a folder");
     if (::access(folder.c_str(), W_OK) != 0) throw Error(cannot + "folder '" + folder + "' is not writable");
 }
+
+size_t removeStaleTemporaries(const std::string& folder) { return impl::removeStaleTemporaries(folder); }
 
 }  // namespace knit
