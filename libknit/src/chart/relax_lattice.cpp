@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
@@ -331,7 +332,7 @@ struct Stage {
 // while the step fails, lowered while it succeeds), a backtracking line search, and every step
 // capped so that no two segments move by more than 0.9 of their distance (the lattice is fixed
 // here, so two points of two segments come closer by at most twice the largest vertex move).
-Stage newton(State& st, Vec& v, int maxIterations) {
+Stage newton(State& st, Vec& v, int maxIterations, double tolerance) {
     const Impl& c = st.c;
     const LatticeRelaxOptions& o = c.opt;
     const double skin = 1.0, cutoff = o.contactDistance + skin;
@@ -345,21 +346,31 @@ Stage newton(State& st, Vec& v, int maxIterations) {
     std::vector<Eigen::Triplet<double>> triplets;
     Eigen::SparseMatrix<double> H(Eigen::Index(3 * c.n), Eigen::Index(3 * c.n));
     Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver;
+    const bool dense = c.n <= 200;
+    Eigen::MatrixXd Hd(dense ? Eigen::Index(3 * c.n) : 0, dense ? Eigen::Index(3 * c.n) : 0);
+    Eigen::LLT<Eigen::MatrixXd> denseSolver;
     Stage stage;
     double mu = 1e-6;
     double drift = 0;
     int it = 0;
     for (; it < maxIterations; ++it) {
-        if (g.lpNorm<Eigen::Infinity>() < o.gradientTolerance) {
+        if (g.lpNorm<Eigen::Infinity>() < tolerance) {
             stage.converged = true;
             break;
         }
         st.hessian(triplets);
         for (Eigen::Index i = 0; i < Eigen::Index(3 * c.n); ++i) triplets.emplace_back(i, i, mu);
-        H.setFromTriplets(triplets.begin(), triplets.end());
-        solver.compute(H);
         Vec d;
-        if (solver.info() == Eigen::Success) d = -solver.solve(g);
+        if (dense) {  // small cells: a dense Cholesky factorisation is cheaper than the sparse analysis
+            Hd.setZero();
+            for (const Eigen::Triplet<double>& t : triplets) Hd(t.row(), t.col()) += t.value();
+            denseSolver.compute(Hd);
+            if (denseSolver.info() == Eigen::Success) d = -denseSolver.solve(g);
+        } else {
+            H.setFromTriplets(triplets.begin(), triplets.end());
+            solver.compute(H);
+            if (solver.info() == Eigen::Success) d = -solver.solve(g);
+        }
         if (d.size() != 0) {  // a translation of the whole cell changes nothing: not part of the step
             const Eigen::Vector3d mean = d.reshaped(3, Eigen::Index(c.n)).rowwise().mean();
             d.reshaped(3, Eigen::Index(c.n)).colwise() -= mean;
@@ -440,7 +451,10 @@ LatticeRelaxResult LatticeCell::relax(const glm::dmat2& F, const std::vector<glm
     Stage stage;
     for (int k = 1; k <= stages; ++k) {
         setLattice(st, startLattice + (double(k) / double(stages)) * change);
-        stage = newton(st, v, c.opt.maxIterations);
+        // The stages on the way only need to follow the lattice: a looser tolerance.
+        const bool last = k == stages;
+        stage = newton(st, v, last ? c.opt.maxIterations : c.opt.maxIterations / 4 + 1,
+                       last ? c.opt.gradientTolerance : 10 * c.opt.gradientTolerance);
         result.iterations += stage.iterations;
     }
     result.converged = stage.converged;
