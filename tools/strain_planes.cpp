@@ -3,6 +3,7 @@
 // uniformly by F (sx, sa, sy) and prints, per strain, the total yarn length over the rest plane's
 // and the closest distance between yarns (radii) for `--deform none` and `--deform strain`.
 //   strain_planes [--pattern P] [--table T.npy] [--samples NX NA NY] [--size METRES] [--json]
+//                 [--stretch W] [--bend W] [--contact W] [--barrier W] [--iterations N]  (the table's solver)
 #include <chrono>
 #include <cstdio>
 #include <ctime>
@@ -18,7 +19,6 @@
 #include "knit/animation.hpp"
 #include "knit/error.hpp"
 #include "knit/generator.hpp"
-#include "knit/relax.hpp"
 #include "knit/scene.hpp"
 #include "knit/strain.hpp"
 
@@ -75,27 +75,27 @@ int run(int argc, char** argv) {
     std::string patternName = "stockinette", tablePath;
     std::vector<int> samples{9, 9, 9};
     double size = 0.06;
-    bool json = false, relaxPattern = false;
+    bool json = false;
+    knit::StrainTableOptions tableOptions;
     app.add_option("--pattern", patternName, "Pattern file or built-in name")->capture_default_str();
     app.add_option("--table", tablePath, "Read this table instead of making one");
     app.add_option("--samples", samples, "Samples along sx, sa, sy when making the table")->expected(3);
     app.add_option("--size", size, "Side of the plane (metres)")->capture_default_str();
+    app.add_option("--stretch", tableOptions.stretch, "The table solver's stretch weight")->capture_default_str();
+    app.add_option("--bend", tableOptions.bend, "The table solver's bending weight")->capture_default_str();
+    app.add_option("--contact", tableOptions.contact, "The table solver's contact weight")->capture_default_str();
+    app.add_option("--barrier", tableOptions.barrier, "The table solver's contact barrier weight")
+        ->capture_default_str();
+    app.add_option("--iterations", tableOptions.maxIterations, "The table solver's iteration cap per sample")
+        ->capture_default_str();
     app.add_flag("--json", json, "JSON instead of a Markdown table");
-    app.add_flag("--relax-pattern", relaxPattern,
-                 "Relax the pattern first (knit::relaxYarn, period fixed: the table's own energy), so that its rest "
-                 "shape is the table's rest cell");
     CLI11_PARSE(app, argc, argv);
     try {
-        knit::Pattern pattern = knit::loadPatternFileOrName(patternName);
-        if (relaxPattern) {
-            knit::RelaxOptions ro;
-            ro.freePeriod = false;
-            pattern = knit::relaxYarn(pattern, ro).pattern;
-        }
+        const knit::Pattern pattern = knit::loadPatternFileOrName(patternName);
         nlohmann::json out;
         std::shared_ptr<const knit::StrainTable> table;
         if (tablePath.empty()) {
-            knit::StrainTableOptions to;
+            knit::StrainTableOptions to = tableOptions;
             to.samples = {samples[0], samples[1], samples[2]};
             knit::StrainTableStats st;
             const std::clock_t c0 = std::clock();

@@ -16,6 +16,7 @@
 #include "knit/error.hpp"
 #include "knit/generator.hpp"
 #include "knit/strain.hpp"
+#include "chart/relax_lattice.hpp"
 #include "deform/strain_lookup.hpp"
 
 namespace knit {
@@ -119,6 +120,32 @@ TEST(StrainTable, samplesWarmStartFromZeroAndMatchSingleRuns) {
         moved = std::max(moved, double(std::abs(t.data[4 * (0 + 3 * v)])) + std::abs(t.data[4 * (2 + 3 * v)]));
     }
     EXPECT_GT(moved, 1e-5);
+}
+
+// The built-in stockinette is the tables' rest cell: Crane's curve, whose yarns press 0.16 radii
+// into each other, brought to rest under the tables' energy (period fixed). Relaxing it again
+// moves it by no more than the solver's tolerance, so a table's zero strain is the pattern.
+TEST(StrainTable, builtInStockinetteIsTheTablesRestCell) {
+    StockinetteParams craneOnly;
+    craneOnly.relax = false;
+    const Pattern crane = generateStockinette(craneOnly), rest = generateStockinette();
+    const auto largestMove = [](const Pattern& p) {
+        const std::vector<glm::dvec3> again = impl::restCell(p);
+        double m = 0;
+        for (size_t i = 0; i < again.size(); ++i) m = std::max(m, glm::length(again[i] - p.points[i]));
+        return m / p.radius;
+    };
+    EXPECT_LT(largestMove(rest), 5e-3);  // the solver's tolerance: a few thousandths of a radius
+    EXPECT_GT(largestMove(crane), 0.05);
+    const auto closest = [](const Pattern& p) {
+        impl::LatticeRelaxOptions o;
+        o.maxIterations = 0;  // measured as it is
+        return impl::LatticeCell(p, o).relax(glm::dmat2(1.0), {}).minDistance;
+    };
+    EXPECT_LT(closest(crane), 1.9);
+    EXPECT_GE(closest(rest), 1.98);
+    EXPECT_EQ(crane.px, rest.px);
+    EXPECT_EQ(crane.py, rest.py);
 }
 
 TEST(StrainTable, refusesBadOptionsNamingThem) {

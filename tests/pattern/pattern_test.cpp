@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <glm/geometric.hpp>
+
 #include <sstream>
 
 #include "common/fixtures.hpp"
@@ -145,12 +147,17 @@ TEST(Generator, stockinetteIsOneClosedCoursePerCell) {
     EXPECT_GT(info.boundsMax.y - info.boundsMin.y, p.py);
 }
 
+// The generator relaxes Crane's curve to the solver's tolerance; another compiler's round-off may
+// stop it elsewhere within that (far below a micrometre here), so the comparison allows that.
 TEST(Generator, shippedStockinetteIsWhatTheGeneratorMakes) {
     const Pattern shipped = loadPyp(std::string(KNIT_SOURCE_DIR) + "/patterns/stockinette.pyp");
     const Pattern made = generateStockinette();
     ASSERT_EQ(shipped.points.size(), made.points.size());
-    for (size_t i = 0; i < made.points.size(); ++i) EXPECT_EQ(shipped.points[i], made.points[i]);
+    for (size_t i = 0; i < made.points.size(); ++i)
+        EXPECT_LT(glm::length(shipped.points[i] - made.points[i]), 1e-6) << "vertex " << i;
     EXPECT_EQ(shipped.edges, made.edges);
+    EXPECT_EQ(shipped.px, made.px);
+    EXPECT_EQ(shipped.py, made.py);
 }
 
 // *GAUGE: stitches and rows per period, written only when not 1 x 1 and read back; files

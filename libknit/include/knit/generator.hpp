@@ -11,7 +11,11 @@ namespace knit {
 // Plain-knit (stockinette) course after K. Crane, "A Simple Parametric Model of Plain-Knit
 // Yarns": in model units gamma(t) = (t + a sin 2t, h cos t, d cos 2t), t in [0, 2pi) per stitch,
 // one stitch per period, rows spaced h + rowGap apart. The model is scaled so that the yarn
-// radius (in model units `modelRadius`) becomes `radius` metres.
+// radius (in model units `modelRadius`) becomes `radius` metres. With `relax` (the default) the
+// curve is then brought to rest, period fixed, under the energy the strain tables use
+// (knit/strain.hpp: nearly inextensible yarn, bending, contact): the model's yarns press 0.16
+// radii into each other, and a pattern that is not at rest under that energy moves when it is
+// strained by nothing but its own tension.
 struct StockinetteParams {
     double a = 1.5;            // loop width (sideways bulge of the loop legs)
     double h = 4.0;            // loop height
@@ -20,6 +24,7 @@ struct StockinetteParams {
     double modelRadius = 0.8;  // yarn radius in model units (0.8 gives a snug fit)
     double radius = 0.001;     // yarn radius in metres
     int samplesPerStitch = 24;
+    bool relax = true;  // false: the model's curve as it is
     // The pattern's memory (from samplesPerStitch) is checked against it before allocating.
     MemoryBudget budget;
 };

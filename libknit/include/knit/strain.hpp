@@ -64,8 +64,10 @@ glm::dvec4 lookupStrainTable(const StrainTable& table, uint32_t vertex, const St
 struct StrainTableOptions {
     std::array<int, 3> samples{9, 9, 9};  // along sx, sa, sy
     std::array<double, 2> sxRange{-0.2, 1.0}, saRange{-0.7, 0.7}, syRange{-0.2, 1.0};
-    // The yarn-level solver (chart relaxation's energy on the deformed lattice, period fixed).
-    double stretch = 200, bend = 1, contact = 400;
+    // The yarn-level solver on the deformed lattice, period fixed (docs/deformation.md): the yarn's
+    // stretch weight (ten times chart relaxation's: close to inextensible), bending, the contact
+    // penalty below 2.05 radii and the contact barrier below 1.25 radii.
+    double stretch = 2000, bend = 1, contact = 400, barrier = 2000;
     int maxIterations = 600;
     // Called after each sample with the samples done and the total (from worker threads, serialised).
     std::function<void(size_t done, size_t total)> progress;

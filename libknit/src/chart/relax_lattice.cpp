@@ -6,18 +6,18 @@
 #include <cmath>
 #include <limits>
 
+#include <Eigen/Cholesky>
 #include <Eigen/Core>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
 
 #include "knit/error.hpp"
-#include "lbfgs.hpp"
 #include "relax_contact.hpp"
 
 namespace knit::impl {
 
-using relax::lbfgsDirection;
-using relax::lbfgsRemember;
 using relax::Pair;
 using relax::Seg;
 using Vec = Eigen::VectorXd;
@@ -37,6 +37,36 @@ struct LatticeCell::Impl {
 namespace {
 
 using Impl = LatticeCell::Impl;
+
+// The contact energy of two segments whose centrelines are `dist` apart (radii), with its first
+// and second derivatives: the penalty o.contact (D - dist)^2 below the contact distance D, plus a
+// barrier below o.barrierDistance (IPC's, -kappa (dist - d^)^2 ln(dist / d^), which grows without
+// bound as the yarns' centrelines meet): the yarn's cross-section gives way under load, but not
+// to nothing, however hard the yarn is pulled.
+struct ContactTerm {
+    double e = 0, de = 0, d2e = 0;
+};
+ContactTerm contactTerm(const LatticeRelaxOptions& o, double dist) {
+    ContactTerm t;
+    const double D = o.contactDistance;
+    if (dist < D) {
+        t.e = o.contact * (D - dist) * (D - dist);
+        t.de = -2 * o.contact * (D - dist);
+        t.d2e = 2 * o.contact;
+    }
+    const double h = o.barrierDistance, k = o.barrier;
+    if (dist < h && k > 0) {
+        if (!(dist > 1e-12)) {
+            t.e = std::numeric_limits<double>::infinity();
+            return t;
+        }
+        const double r = dist - h, lg = std::log(dist / h);
+        t.e += -k * r * r * lg;
+        t.de += -k * (2 * r * lg + r * r / dist);
+        t.d2e += -k * (2 * lg + 4 * r / dist - r * r / (dist * dist));
+    }
+    return t;
+}
 
 // One relaxation: the map, the lattice and the contact pairs.
 struct State {
@@ -145,14 +175,71 @@ struct State {
             const double dist = glm::length(d);
             dmin = std::min(dmin, dist);
             if (dist >= D) continue;
-            e += o.contact * (D - dist) * (D - dist);
-            const glm::dvec3 gd = (-2 * o.contact * (D - dist) / std::max(dist, 1e-12)) * d;
+            const ContactTerm ct = contactTerm(o, dist);
+            e += ct.e;
+            const glm::dvec3 gd = (ct.de / std::max(dist, 1e-12)) * d;
             gx[s.a] += (1 - a) * gd;
             gx[s.b] += a * gd;
             gx[t.a] -= (1 - b) * gd;
             gx[t.b] -= b * gd;
         }
         return e;
+    }
+
+    // The energy's Hessian with respect to the reference-space unknowns at the last evaluation
+    // (its x), each term's deformed-space block pulled back through M (M^T A M). Projected to be
+    // positive semi-definite per term: a compressed segment's and a contact's transverse
+    // (negative) parts are left out, so that a Newton step is a descent direction.
+    void hessian(std::vector<Eigen::Triplet<double>>& h) const {
+        h.clear();
+        const LatticeRelaxOptions& o = c.opt;
+        const glm::dmat3 Mt = glm::transpose(M);
+        const auto block = [&](uint32_t i, uint32_t j, double coef, const glm::dmat3& A) {
+            for (int r = 0; r < 3; ++r)
+                for (int q = 0; q < 3; ++q) {
+                    const double value = coef * A[q][r];  // glm is column-major: A[column][row]
+                    if (value != 0)
+                        h.emplace_back(Eigen::Index(3 * i + uint32_t(r)), Eigen::Index(3 * j + uint32_t(q)), value);
+                }
+        };
+        const auto outer = [](const glm::dvec3& a) { return glm::outerProduct(a, a); };
+        for (size_t k = 0; k < c.n; ++k) {  // inextensibility
+            const Seg& sg = c.segs[k];
+            const glm::dvec3 d = segEnd(sg) - x[sg.a];
+            const double l = std::max(glm::length(d), 1e-12);
+            const glm::dvec3 u = d / l;
+            const double along = 2 * o.stretch / c.rest[k];
+            const double across = along * std::max(0.0, (l - c.rest[k]) / l);
+            const glm::dmat3 A = Mt * (along * outer(u) + across * (glm::dmat3(1.0) - outer(u))) * M;
+            block(sg.a, sg.a, 1, A);
+            block(sg.b, sg.b, 1, A);
+            block(sg.a, sg.b, -1, A);
+            block(sg.b, sg.a, -1, A);
+        }
+        const double w = o.bend / (c.meanRest * c.meanRest * c.meanRest);
+        const glm::dmat3 B = Mt * glm::dmat3(2 * w) * M;
+        for (size_t i = 0; i < c.n; ++i) {  // bending: b = x_in - 2 x_i + x_out
+            const uint32_t idx[3] = {c.before[i].a, uint32_t(i), c.segs[i].b};
+            const double coef[3] = {1, -2, 1};
+            for (int r = 0; r < 3; ++r)
+                for (int q = 0; q < 3; ++q) block(idx[r], idx[q], coef[r] * coef[q], B);
+        }
+        const double D = o.contactDistance;
+        for (const Pair& pr : pairs) {  // contact, with the closest points' parameters held fixed
+            const Seg &sa = c.segs[pr.s], &tb = c.segs[pr.t];
+            const glm::dvec3 p0 = x[sa.a], p1 = segEnd(sa), q0 = x[tb.a] + shift(pr.ix, pr.iy),
+                             q1 = segEnd(tb) + shift(pr.ix, pr.iy);
+            double a = 0, b = 0;
+            relax::closestParameters(p0, p1, q0, q1, a, b);
+            const glm::dvec3 d = (p0 + a * (p1 - p0)) - (q0 + b * (q1 - q0));
+            const double dist = glm::length(d);
+            if (dist >= D || dist < 1e-12) continue;
+            const glm::dmat3 A = Mt * (contactTerm(o, dist).d2e * outer(d / dist)) * M;
+            const uint32_t idx[4] = {sa.a, sa.b, tb.a, tb.b};
+            const double coef[4] = {1 - a, a, -(1 - b), -b};
+            for (int r = 0; r < 4; ++r)
+                for (int q = 0; q < 4; ++q) block(idx[r], idx[q], coef[r] * coef[q], A);
+        }
     }
 
     // The gradient with respect to the reference-space unknowns: M^T gx.
@@ -225,22 +312,28 @@ LatticeCell::~LatticeCell() = default;
 
 size_t LatticeCell::vertexCount() const { return impl_->n; }
 
-LatticeRelaxResult LatticeCell::relax(const glm::dmat2& F, const std::vector<glm::dvec3>& startPoints) const {
-    const Impl& c = *impl_;
-    if (!startPoints.empty() && startPoints.size() != c.n)
-        throw Error("lattice relaxation: " + std::to_string(startPoints.size()) + " start points for " +
-                    std::to_string(c.n) + " vertices");
-    if (!(std::abs(glm::determinant(F)) > 1e-9)) throw Error("lattice relaxation: the lattice map is singular");
-    State st(c);
+namespace {
+
+// Sets the lattice map of a relaxation.
+void setLattice(State& st, const glm::dmat2& F) {
     st.M = glm::dmat3(glm::dvec3(F[0], 0.0), glm::dvec3(F[1], 0.0), glm::dvec3(0, 0, 1));
-    st.a1 = st.M * glm::dvec3(c.px, 0, 0);
-    st.a2 = st.M * glm::dvec3(0, c.py, 0);
+    st.a1 = st.M * glm::dvec3(st.c.px, 0, 0);
+    st.a2 = st.M * glm::dvec3(0, st.c.py, 0);
     st.sigmaMin = smallestSingularValue(F);
-    Vec v(Eigen::Index(3 * c.n));
-    for (size_t i = 0; i < c.n; ++i) {
-        const glm::dvec3 p = startPoints.empty() ? c.start[i] : startPoints[i] / c.radius;
-        for (int k = 0; k < 3; ++k) v[Eigen::Index(3 * i + size_t(k))] = p[k];
-    }
+}
+
+struct Stage {
+    int iterations = 0;
+    bool converged = false;
+    double energy = 0;
+};
+
+// Damped Newton on one lattice from v: the projected Hessian (State::hessian) plus mu I (mu raised
+// while the step fails, lowered while it succeeds), a backtracking line search, and every step
+// capped so that no two segments move by more than 0.9 of their distance (the lattice is fixed
+// here, so two points of two segments come closer by at most twice the largest vertex move).
+Stage newton(State& st, Vec& v, int maxIterations, double tolerance) {
+    const Impl& c = st.c;
     const LatticeRelaxOptions& o = c.opt;
     const double skin = 1.0, cutoff = o.contactDistance + skin;
     st.deform(v);
@@ -250,45 +343,64 @@ LatticeRelaxResult LatticeCell::relax(const glm::dmat2& F, const std::vector<glm
     Vec g, gNew, vNew;
     double e = st.energy(v, gx, dmin);
     st.pullBack(gx, g);
-    std::vector<Vec> S, Y;
-    LatticeRelaxResult result;
-    int it = 0;
+    std::vector<Eigen::Triplet<double>> triplets;
+    Eigen::SparseMatrix<double> H(Eigen::Index(3 * c.n), Eigen::Index(3 * c.n));
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver;
+    const bool dense = c.n <= 200;
+    Eigen::MatrixXd Hd(dense ? Eigen::Index(3 * c.n) : 0, dense ? Eigen::Index(3 * c.n) : 0);
+    Eigen::LLT<Eigen::MatrixXd> denseSolver;
+    Stage stage;
+    double mu = 1e-6;
     double drift = 0;
-    for (; it < o.maxIterations; ++it) {
-        if (g.lpNorm<Eigen::Infinity>() < o.gradientTolerance) {
-            result.converged = true;
+    int it = 0;
+    for (; it < maxIterations; ++it) {
+        if (g.lpNorm<Eigen::Infinity>() < tolerance) {
+            stage.converged = true;
             break;
         }
-        Vec d = lbfgsDirection(g, S, Y);
-        if (d.dot(g) >= 0) {
-            S.clear();
-            Y.clear();
-            d = -g;
+        st.hessian(triplets);
+        for (Eigen::Index i = 0; i < Eigen::Index(3 * c.n); ++i) triplets.emplace_back(i, i, mu);
+        Vec d;
+        if (dense) {  // small cells: a dense Cholesky factorisation is cheaper than the sparse analysis
+            Hd.setZero();
+            for (const Eigen::Triplet<double>& t : triplets) Hd(t.row(), t.col()) += t.value();
+            denseSolver.compute(Hd);
+            if (denseSolver.info() == Eigen::Success) d = -denseSolver.solve(g);
+        } else {
+            H.setFromTriplets(triplets.begin(), triplets.end());
+            solver.compute(H);
+            if (solver.info() == Eigen::Success) d = -solver.solve(g);
         }
-        // Capped by the largest move and by the collision bound: two points of two segments come
-        // closer by at most 2 x the largest vertex move (the lattice is fixed).
+        if (d.size() != 0) {  // a translation of the whole cell changes nothing: not part of the step
+            const Eigen::Vector3d mean = d.reshaped(3, Eigen::Index(c.n)).rowwise().mean();
+            d.reshaped(3, Eigen::Index(c.n)).colwise() -= mean;
+        }
+        if (d.size() == 0 || !d.allFinite() || d.dot(g) >= 0) {
+            mu = std::max(mu * 10, 1e-3);
+            if (mu > 1e12) break;
+            continue;
+        }
         const double move = std::max(st.largestMove(d), 1e-300);
         double step = std::min({1.0, o.maxStep / move, 0.45 * std::min(dmin, cutoff - drift) / move});
         double eNew = e;
         bool accepted = false;
-        for (int k = 0; k < 40 && !accepted; ++k) {
+        for (int k = 0; k < 30 && !accepted; ++k) {
             if (k > 0) step *= 0.5;
             vNew = v + step * d;
             eNew = st.energy(vNew, gx, dminNew);
             accepted = eNew <= e + 1e-4 * step * d.dot(g);
         }
         if (!accepted) {
-            if (S.empty()) {
-                result.converged = true;  // no descent even along -g: a minimum to round-off
+            st.energy(v, gx, dmin);  // restore the state of v
+            mu = std::max(mu * 10, 1e-3);
+            if (mu > 1e12) {
+                stage.converged = true;  // no descent even along a gradient step: a minimum to round-off
                 break;
             }
-            S.clear();
-            Y.clear();
-            st.energy(v, gx, dmin);  // restore the state of v
             continue;
         }
+        mu = std::max(mu * 0.3, 1e-6);
         st.pullBack(gx, gNew);
-        lbfgsRemember(S, Y, vNew - v, gNew - g);
         v.swap(vNew);
         g.swap(gNew);
         e = eNew;
@@ -306,8 +418,47 @@ LatticeRelaxResult LatticeCell::relax(const glm::dmat2& F, const std::vector<glm
             st.pullBack(gx, g);
         }
     }
-    result.iterations = it;
-    result.energy = e;
+    stage.iterations = it;
+    stage.energy = e;
+    return stage;
+}
+
+}  // namespace
+
+LatticeRelaxResult LatticeCell::relax(const glm::dmat2& F, const std::vector<glm::dvec3>& startPoints,
+                                      const glm::dmat2& startLattice) const {
+    const Impl& c = *impl_;
+    if (!startPoints.empty() && startPoints.size() != c.n)
+        throw Error("lattice relaxation: " + std::to_string(startPoints.size()) + " start points for " +
+                    std::to_string(c.n) + " vertices");
+    if (!(std::abs(glm::determinant(F)) > 1e-9) || !(std::abs(glm::determinant(startLattice)) > 1e-9))
+        throw Error("lattice relaxation: the lattice map is singular");
+    State st(c);
+    Vec v(Eigen::Index(3 * c.n));
+    for (size_t i = 0; i < c.n; ++i) {
+        const glm::dvec3 p = startPoints.empty() ? c.start[i] : startPoints[i] / c.radius;
+        for (int k = 0; k < 3; ++k) v[Eigen::Index(3 * i + size_t(k))] = p[k];
+    }
+    // The lattice moves from the start's to F in stages, each relaxed: a stage changes the map by
+    // at most a tenth of its smallest singular value, so that it brings no two points closer than
+    // 90 % of their distance (the crossings are kept while the lattice moves, not only within a
+    // relaxation).
+    const glm::dmat2 change = F - startLattice;
+    const double size = std::sqrt(glm::dot(change[0], change[0]) + glm::dot(change[1], change[1]));
+    const double sigma = std::min({smallestSingularValue(F), smallestSingularValue(startLattice), 1.0});
+    const int stages = std::max(1, int(std::ceil(size / (0.1 * sigma))));
+    LatticeRelaxResult result;
+    Stage stage;
+    for (int k = 1; k <= stages; ++k) {
+        setLattice(st, startLattice + (double(k) / double(stages)) * change);
+        // The stages on the way only need to follow the lattice: a looser tolerance.
+        const bool last = k == stages;
+        stage = newton(st, v, last ? c.opt.maxIterations : c.opt.maxIterations / 4 + 1,
+                       last ? c.opt.gradientTolerance : 10 * c.opt.gradientTolerance);
+        result.iterations += stage.iterations;
+    }
+    result.converged = stage.converged;
+    result.energy = stage.energy;
     st.deform(v);
     st.findPairs(v, 6.0);
     double closest = std::numeric_limits<double>::infinity();
@@ -318,6 +469,15 @@ LatticeRelaxResult LatticeCell::relax(const glm::dmat2& F, const std::vector<glm
         result.points[i] =
             glm::dvec3(v[Eigen::Index(3 * i)], v[Eigen::Index(3 * i + 1)], v[Eigen::Index(3 * i + 2)]) * c.radius;
     return result;
+}
+
+std::vector<glm::dvec3> restCell(const Pattern& pattern, const LatticeRelaxOptions& options) {
+    LatticeRelaxOptions o = options;
+    o.maxIterations = 8 * options.maxIterations;
+    // Far below the samples' tolerance: the rest shape is a minimum to round-off, the same (to
+    // far below a micrometre) whichever compiler made it.
+    o.gradientTolerance = 1e-3 * options.gradientTolerance;
+    return LatticeCell(pattern, o).relax(glm::dmat2(1.0), {}).points;
 }
 
 }  // namespace knit::impl

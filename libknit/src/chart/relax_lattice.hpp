@@ -21,12 +21,14 @@
 namespace knit::impl {
 
 struct LatticeRelaxOptions {
-    double stretch = 200;           // inextensibility weight (as RelaxOptions)
+    double stretch = 2000;          // inextensibility weight
     double bend = 1;                // bending weight
     double contact = 400;           // contact penalty weight
     double contactDistance = 2.05;  // in yarn radii
+    double barrier = 2000;          // weight of the contact barrier (see contactTerm)
+    double barrierDistance = 1.25;  // where the barrier starts, in yarn radii
     int maxIterations = 600;
-    double gradientTolerance = 1e-4;  // largest gradient entry, in the energy's units per radius
+    double gradientTolerance = 1e-3;  // largest gradient entry, in the energy's units per radius
     double maxStep = 0.25;            // largest vertex move per step, in yarn radii
 };
 
@@ -48,10 +50,12 @@ public:
     LatticeCell(const LatticeCell&) = delete;
     LatticeCell& operator=(const LatticeCell&) = delete;
 
-    // Relaxes from `start` (reference-space vertices in metres; empty: the pattern's own) on the
-    // lattice deformed by F (columns: where the pattern's x and y axes go). Thread-safe: each call
+    // Relaxes from `start` (reference-space vertices in metres, at rest on `startLattice`; empty:
+    // the pattern's own, on the undeformed lattice) on the lattice deformed by F (columns: where
+    // the pattern's x and y axes go), moving the lattice there in stages. Thread-safe: each call
     // has its own state.
-    LatticeRelaxResult relax(const glm::dmat2& F, const std::vector<glm::dvec3>& start) const;
+    LatticeRelaxResult relax(const glm::dmat2& F, const std::vector<glm::dvec3>& start,
+                             const glm::dmat2& startLattice = glm::dmat2(1.0)) const;
 
     size_t vertexCount() const;
 
@@ -60,5 +64,11 @@ public:
 private:
     std::unique_ptr<Impl> impl_;
 };
+
+// The pattern's cell at rest on its own (undeformed) lattice under the default options, relaxed
+// with 8 x the iteration cap and a thousandth of the gradient tolerance: the rest cell every strain table measures against (the built-in
+// stockinette is made this way, so that zero strain moves nothing). Reference-space vertices in
+// metres.
+std::vector<glm::dvec3> restCell(const Pattern& pattern, const LatticeRelaxOptions& options = {});
 
 }  // namespace knit::impl

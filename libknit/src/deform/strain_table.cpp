@@ -45,7 +45,7 @@ void validateOptions(const StrainTableOptions& o) {
     range(o.sxRange, o.samples[0], -1, 10, "sx");
     range(o.saRange, o.samples[1], -0.95, 0.95, "sa");
     range(o.syRange, o.samples[2], -1, 10, "sy");
-    if (!(o.stretch > 0) || !(o.bend >= 0) || !(o.contact >= 0) || o.maxIterations < 1)
+    if (!(o.stretch > 0) || !(o.bend >= 0) || !(o.contact >= 0) || !(o.barrier >= 0) || o.maxIterations < 1)
         throw Error("the strain table's stretch weight must be positive, its bend and contact weights >= 0 and its "
                     "iteration count >= 1");
 }
@@ -55,6 +55,7 @@ impl::LatticeRelaxOptions solverOptions(const StrainTableOptions& o) {
     lo.stretch = o.stretch;
     lo.bend = o.bend;
     lo.contact = o.contact;
+    lo.barrier = o.barrier;
     lo.maxIterations = o.maxIterations;
     return lo;
 }
@@ -107,10 +108,6 @@ StrainTable makeStrainTable(const Pattern& pattern, const StrainTableOptions& op
     validateOptions(options);
     const auto t0 = std::chrono::steady_clock::now();
     const impl::LatticeCell cell(pattern, solverOptions(options));
-    // The rest cell is what every displacement is measured against: relaxed longer.
-    impl::LatticeRelaxOptions restOptions = solverOptions(options);
-    restOptions.maxIterations = 8 * options.maxIterations;
-    const impl::LatticeCell restCell(pattern, restOptions);
     const size_t nv = cell.vertexCount();
     StrainTable table;
     table.source = pattern.name;
@@ -128,7 +125,9 @@ StrainTable makeStrainTable(const Pattern& pattern, const StrainTableOptions& op
     };
 
     // 1. The rest cell: relaxed on the undeformed lattice; every displacement is against it.
-    const impl::LatticeRelaxResult rest = restCell.relax(glm::dmat2(1.0), {});
+    impl::LatticeRelaxResult rest;
+    rest.points = impl::restCell(pattern, solverOptions(options));
+    rest = cell.relax(glm::dmat2(1.0), rest.points);  // its closest distance (a few steps at most)
     // 2. The samples, outwards from zero strain (a sample at zero strain is the rest cell itself).
     const Index3 zero = nearestZero(table.axes);
     std::vector<impl::LatticeRelaxResult> result(total);
@@ -137,9 +136,12 @@ StrainTable makeStrainTable(const Pattern& pattern, const StrainTableOptions& op
     for (const std::vector<Index3>& layer : walkFrom(zero, n).layers)
         tbb::parallel_for(size_t(0), layer.size(), [&](size_t k) {
             const Index3& i = layer[k];
-            const std::vector<glm::dvec3>& start = i == zero ? rest.points : result[flat(parentOf(i, zero))].points;
+            const Index3 parent = parentOf(i, zero);
+            const std::vector<glm::dvec3>& start = i == zero ? rest.points : result[flat(parent)].points;
+            const glm::dmat2 startLattice = i == zero ? glm::dmat2(1.0) : latticeMap(strainAt(table.axes, parent));
             const Strain s = strainAt(table.axes, i);
-            result[flat(i)] = s.sx == 0 && s.sa == 0 && s.sy == 0 ? rest : cell.relax(latticeMap(s), start);
+            result[flat(i)] =
+                s.sx == 0 && s.sa == 0 && s.sy == 0 ? rest : cell.relax(latticeMap(s), start, startLattice);
             if (options.progress) {
                 const std::lock_guard<std::mutex> lock(progressMutex);
                 options.progress(++done, total);

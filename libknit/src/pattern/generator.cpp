@@ -9,6 +9,7 @@
 
 #include "knit/chart.hpp"
 #include "knit/chart_cache.hpp"
+#include "chart/relax_lattice.hpp"
 #include "knit/error.hpp"
 #include "util/math.hpp"
 
@@ -78,6 +79,7 @@ Pattern generateStockinette(const StockinetteParams& prm) {
     for (int i = 0; i + 1 < n; ++i) p.edges.push_back({uint32_t(i), uint32_t(i + 1), 0, 0});
     p.edges.push_back({uint32_t(n - 1), 0, 1, 0});
     validatePattern(p, p.name);
+    if (prm.relax) p.points = impl::restCell(p);
     return p;
 }
 
