@@ -246,6 +246,7 @@ nlohmann::json animateReport(double bindSeconds, const std::vector<FrameRecord>&
     } else {
         report["deform"] = {{"mode", "none"}};
     }
+    report["deform"]["why"] = deformWhy(animator.rest().deformOptions());
     return report;
 }
 
