@@ -51,17 +51,19 @@ nlohmann::json gaugeReport(const Pattern& p, const PatternPlacement& placement) 
 std::string deformWhy(const DeformOptions& d) {
     char buf[160];
     switch (d.reason) {
-    case DeformReason::TableGiven: return "--strain-table given";
-    case DeformReason::Cached: return "the pattern's strain table was in the cache";
-    case DeformReason::Made:
-        std::snprintf(buf, sizeof buf, "the pattern's strain table was made now (%.1f s) and cached", d.tableSeconds);
-        return buf;
-    case DeformReason::TooSlowToMake:
-        std::snprintf(buf, sizeof buf,
-                      "no strain table at hand and making one takes about %.0f s (knit strain-table, or --deform strain)",
-                      d.tableSeconds);
-        return buf;
-    case DeformReason::Asked: break;
+        case DeformReason::TableGiven: return "--strain-table given";
+        case DeformReason::Cached: return "the pattern's strain table was in the cache";
+        case DeformReason::Made:
+            std::snprintf(buf, sizeof buf, "the pattern's strain table was made now (%.1f s) and cached",
+                          d.tableSeconds);
+            return buf;
+        case DeformReason::TooSlowToMake:
+            std::snprintf(
+                buf, sizeof buf,
+                "no strain table at hand and making one takes about %.0f s (knit strain-table, or --deform strain)",
+                d.tableSeconds);
+            return buf;
+        case DeformReason::Asked: break;
     }
     return d.mode == DeformMode::Strain ? "--deform strain" : "--deform none";
 }

@@ -94,37 +94,37 @@ void resolveDeform(const SceneFlags& f, SceneOptions& o) {
     if (!f.strainTable.empty()) given = std::make_shared<const StrainTable>(loadStrainTable(f.strainTable));
     const Pattern pattern = given ? Pattern{} : loadPatternFileOrName(o.pattern);
     StrainTableStats stats;
-    const DeformDecision d = decideDeform(pattern, choice, given, [&] {
-        return makeTableWithProgress(pattern, StrainTableOptions{}, f.quiet, stats);
-    });
+    const DeformDecision d = decideDeform(
+        pattern, choice, given, [&] { return makeTableWithProgress(pattern, StrainTableOptions{}, f.quiet, stats); });
     o.deform = d.deform;
     if (f.quiet || given) return;
     const CachedStrainTable& c = d.cached;
     switch (d.deform.reason) {
-    case DeformReason::Cached:
-        std::fprintf(stderr, "knit: deform: strain (the pattern's strain table from the cache: %s)\n", c.path.c_str());
-        break;
-    case DeformReason::Made:
-        if (!c.path.empty())
+        case DeformReason::Cached:
+            std::fprintf(stderr, "knit: deform: strain (the pattern's strain table from the cache: %s)\n",
+                         c.path.c_str());
+            break;
+        case DeformReason::Made:
+            if (!c.path.empty())
+                std::fprintf(stderr,
+                             "knit: deform: strain (made the pattern's strain table in %.1f s and cached it: %s; later "
+                             "runs read it)\n",
+                             c.seconds, c.path.c_str());
+            else
+                std::fprintf(stderr,
+                             "knit: deform: strain (made the pattern's strain table in %.1f s; no cache folder to keep "
+                             "it: `knit strain-table --pattern %s -o T.npy` makes one to reuse with --strain-table "
+                             "T.npy)\n",
+                             c.seconds, o.pattern.c_str());
+            break;
+        case DeformReason::TooSlowToMake:
             std::fprintf(stderr,
-                         "knit: deform: strain (made the pattern's strain table in %.1f s and cached it: %s; later "
-                         "runs read it)\n",
-                         c.seconds, c.path.c_str());
-        else
-            std::fprintf(stderr,
-                         "knit: deform: strain (made the pattern's strain table in %.1f s; no cache folder to keep "
-                         "it: `knit strain-table --pattern %s -o T.npy` makes one to reuse with --strain-table "
-                         "T.npy)\n",
-                         c.seconds, o.pattern.c_str());
-        break;
-    case DeformReason::TooSlowToMake:
-        std::fprintf(stderr,
-                     "knit: deform: none (yarns follow the surface geometrically): the pattern has no strain table "
-                     "yet and making one takes about %.0f s; `knit strain-table --pattern %s -o T.npy` makes it "
-                     "(then --strain-table T.npy), or --deform strain makes and caches it on this run\n",
-                     d.deform.tableSeconds, o.pattern.c_str());
-        break;
-    default: break;
+                         "knit: deform: none (yarns follow the surface geometrically): the pattern has no strain table "
+                         "yet and making one takes about %.0f s; `knit strain-table --pattern %s -o T.npy` makes it "
+                         "(then --strain-table T.npy), or --deform strain makes and caches it on this run\n",
+                         d.deform.tableSeconds, o.pattern.c_str());
+            break;
+        default: break;
     }
 }
 

@@ -52,9 +52,10 @@ void resolveDeform(const SceneArgs& a, const py::object& pattern, knit::SceneOpt
     if (choice == knit::DeformChoice::None) return;
     std::shared_ptr<const knit::StrainTable> given;
     if (!a.strainTable.is_none())
-        given = py::isinstance<py::str>(a.strainTable)
-                    ? std::make_shared<const knit::StrainTable>(knit::loadStrainTable(a.strainTable.cast<std::string>()))
-                    : std::shared_ptr<const knit::StrainTable>(a.strainTable.cast<std::shared_ptr<knit::StrainTable>>());
+        given =
+            py::isinstance<py::str>(a.strainTable)
+                ? std::make_shared<const knit::StrainTable>(knit::loadStrainTable(a.strainTable.cast<std::string>()))
+                : std::shared_ptr<const knit::StrainTable>(a.strainTable.cast<std::shared_ptr<knit::StrainTable>>());
     const knit::Pattern p = given || !py::isinstance<py::str>(pattern)
                                 ? (given ? knit::Pattern{} : pattern.cast<knit::Pattern>())
                                 : knit::loadPatternFileOrName(pattern.cast<std::string>());
@@ -66,18 +67,19 @@ void resolveDeform(const SceneArgs& a, const py::object& pattern, knit::SceneOpt
 std::string deformWhy(const knit::DeformOptions& d) {
     char buf[200];
     switch (d.reason) {
-    case knit::DeformReason::TableGiven: return "strain_table given";
-    case knit::DeformReason::Cached: return "the pattern's strain table was in the cache";
-    case knit::DeformReason::Made:
-        std::snprintf(buf, sizeof buf, "the pattern's strain table was made now (%.1f s) and cached", d.tableSeconds);
-        return buf;
-    case knit::DeformReason::TooSlowToMake:
-        std::snprintf(buf, sizeof buf,
-                      "no strain table at hand and making one takes about %.0f s: knit.strain_table(pattern, path) "
-                      "makes it (then strain_table=path), or deform='strain' makes and caches it",
-                      d.tableSeconds);
-        return buf;
-    case knit::DeformReason::Asked: break;
+        case knit::DeformReason::TableGiven: return "strain_table given";
+        case knit::DeformReason::Cached: return "the pattern's strain table was in the cache";
+        case knit::DeformReason::Made:
+            std::snprintf(buf, sizeof buf, "the pattern's strain table was made now (%.1f s) and cached",
+                          d.tableSeconds);
+            return buf;
+        case knit::DeformReason::TooSlowToMake:
+            std::snprintf(buf, sizeof buf,
+                          "no strain table at hand and making one takes about %.0f s: knit.strain_table(pattern, path) "
+                          "makes it (then strain_table=path), or deform='strain' makes and caches it",
+                          d.tableSeconds);
+            return buf;
+        case knit::DeformReason::Asked: break;
     }
     return d.mode == knit::DeformMode::Strain ? "deform='strain'" : "deform='none'";
 }

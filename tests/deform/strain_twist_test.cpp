@@ -32,8 +32,7 @@ std::shared_ptr<const StrainTable> twistTable() {
     t->vertexCount = generateStockinette().points.size();
     const size_t nx = 4, na = 2, ny = 2;
     t->data.assign(4 * t->vertexCount * nx * na * ny, 0.0F);
-    for (size_t row = 0; row < t->data.size() / 4; ++row)
-        t->data[4 * row + 3] = row % nx >= 2 ? float(kTwist) : 0.0F;
+    for (size_t row = 0; row < t->data.size() / 4; ++row) t->data[4 * row + 3] = row % nx >= 2 ? float(kTwist) : 0.0F;
     return t;
 }
 

@@ -224,9 +224,9 @@ void Animator::sweep(const std::vector<dvec3>& positions, AnimationFrame& out) c
                 seedTangent = r * s.tangent;
             }
             impl::PlyKernel::sweepWithCosSin(*generator_, y, out.centres.points.data() + b.centreOffsets[y], m, phase,
-                                             &seedNormal,
-                                             carried ? &seedTangent : nullptr, p.curves.points.data() + plyOfYarn_[y],
-                                             scratch, options_.radial ? p.radial.data() + plyOfYarn_[y] : nullptr);
+                                             &seedNormal, carried ? &seedTangent : nullptr,
+                                             p.curves.points.data() + plyOfYarn_[y], scratch,
+                                             options_.radial ? p.radial.data() + plyOfYarn_[y] : nullptr);
         }
     });
 }
