@@ -63,6 +63,7 @@ std::string deformWhy(const DeformOptions& d) {
                 "no strain table at hand and making one takes about %.0f s (knit strain-table, or --deform strain)",
                 d.tableSeconds);
             return buf;
+        case DeformReason::CannotMake: return "the pattern cannot have a strain table (its yarns cannot be relaxed)";
         case DeformReason::Asked: break;
     }
     return d.mode == DeformMode::Strain ? "--deform strain" : "--deform none";

@@ -124,6 +124,12 @@ void resolveDeform(const SceneFlags& f, SceneOptions& o) {
                          "(then --strain-table T.npy), or --deform strain makes and caches it on this run\n",
                          d.deform.tableSeconds, o.pattern.c_str());
             break;
+        case DeformReason::CannotMake:
+            std::fprintf(stderr,
+                         "knit: deform: none (yarns follow the surface geometrically): no strain table can be made "
+                         "for this pattern (%s)\n",
+                         d.whyNot.c_str());
+            break;
         default: break;
     }
 }

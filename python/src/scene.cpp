@@ -79,6 +79,8 @@ std::string deformWhy(const knit::DeformOptions& d) {
                           "makes it (then strain_table=path), or deform='strain' makes and caches it",
                           d.tableSeconds);
             return buf;
+        case knit::DeformReason::CannotMake:
+            return "the pattern cannot have a strain table (its yarns cannot be relaxed)";
         case knit::DeformReason::Asked: break;
     }
     return d.mode == knit::DeformMode::Strain ? "deform='strain'" : "deform='none'";

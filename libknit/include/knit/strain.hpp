@@ -139,6 +139,7 @@ enum class DeformReason {
     Cached,         // strain: the pattern's table was in the cache
     Made,           // strain: the pattern's table was made now (asked for, or quick to make) and cached
     TooSlowToMake,  // none: no table at hand and making one would take minutes
+    CannotMake,     // none: the pattern cannot be relaxed into a table (open yarns, too few vertices)
 };
 
 // How a scene deforms its yarns (SceneOptions::deform): `None` maps them geometrically; `Strain`
@@ -166,6 +167,7 @@ bool strainTableIsQuick(const Pattern& pattern, const StrainTableOptions& option
 struct DeformDecision {
     DeformOptions deform;      // the mode, its table and why
     CachedStrainTable cached;  // Cached / Made: the cache entry, whether it was made and how long it took
+    std::string whyNot;        // CannotMake: what the table maker said
 };
 
 // The one rule behind every front end's default (`--deform`, Python's deform=, Blender's Deform):
@@ -174,7 +176,7 @@ struct DeformDecision {
 //  * Strain: the pattern's cached table, else made now and cached (Cached / Made);
 //  * Auto: the cached table if there is one (Cached), else made now when strainTableIsQuick
 //    (Made), else none with the estimate (TooSlowToMake; the caller names the command that makes
-//    the table).
+//    the table); none also for a pattern no table can be made for (CannotMake).
 // A table made for a pattern is the same bytes whether made now or read from the cache, so Auto's
 // output does not depend on what is cached. `make` makes the table (default: makeStrainTable),
 // for progress output.

@@ -1,5 +1,6 @@
 // The deformation a scene gets when its caller leaves the choice open (knit/strain.hpp,
 // decideDeform): one rule for the command line, Python and Blender.
+#include "knit/error.hpp"
 #include "knit/strain.hpp"
 
 namespace knit {
@@ -19,16 +20,25 @@ DeformDecision decideDeform(const Pattern& pattern, DeformChoice choice, std::sh
         return d;
     }
     const StrainTableOptions options;
-    if (choice == DeformChoice::Auto && !strainTableIsQuick(pattern, options)) {
+    if (choice == DeformChoice::Auto) {
         d.cached = findCachedStrainTable(pattern, options);
         if (!d.cached.table) {
-            d.deform.tableSeconds = estimateStrainTableSeconds(pattern, options);
-            d.deform.reason = DeformReason::TooSlowToMake;
-            return d;
+            // The estimate relaxes the rest cell and one sample: it also finds a pattern that
+            // cannot have a table (open yarns), which Auto leaves geometric instead of failing.
+            try {
+                d.deform.tableSeconds = estimateStrainTableSeconds(pattern, options);
+            } catch (const Error& e) {
+                d.deform.reason = DeformReason::CannotMake;
+                d.whyNot = e.what();
+                return d;
+            }
+            if (!strainTableIsQuick(pattern, options)) {
+                d.deform.reason = DeformReason::TooSlowToMake;
+                return d;
+            }
         }
-    } else {
-        d.cached = cachedStrainTable(pattern, options, make);
     }
+    if (!d.cached.table) d.cached = cachedStrainTable(pattern, options, make);
     d.deform = {DeformMode::Strain, d.cached.table, d.cached.made ? DeformReason::Made : DeformReason::Cached,
                 d.cached.seconds};
     return d;
