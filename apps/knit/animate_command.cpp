@@ -246,6 +246,9 @@ nlohmann::json animateReport(double bindSeconds, const std::vector<FrameRecord>&
     } else {
         report["deform"] = {{"mode", "none"}};
     }
+    const bool bound = animator.rest().animatorState() != nullptr;  // loaded from a bound scene file
+    report["deform"]["why"] = bound ? "a bound scene file carries no strain table (knit bind binds geometrically)"
+                                    : deformWhy(animator.rest().deformOptions());
     return report;
 }
 
@@ -349,7 +352,9 @@ int runAnimate(const AnimateCommand& a) {
     // Step 2: bind once on the rest pose, or load the scene bound by `knit bind`.
     if (!a.bound.empty() && a.command != nullptr) refuseSceneFlagsWithBound(*a.command);
     const auto t0 = Clock::now();
-    const SceneOptions sceneOptions = resolveScene(a.scene);
+    SceneFlags flags = a.scene;
+    if (!a.bound.empty()) flags.deform = "none";  // a bound scene file carries no strain table (knit bind)
+    const SceneOptions sceneOptions = resolveScene(flags);
     const Scene rest = a.bound.empty() ? bindRestPose(sceneOptions, a.rest.empty() ? seq.frame(0).path : a.rest)
                                        : readBoundScene(a.bound, sceneOptions.budget).scene;
     printWarnings(rest);

@@ -55,6 +55,8 @@ const char* const kBoundSceneFlags[] = {"--pattern",
                                         "--clamp-tolerance",
                                         "--weld-tolerance",
                                         "--no-weld",
+                                        "--deform",
+                                        "--strain-table",
                                         "--rest"};
 
 }  // namespace
@@ -72,8 +74,17 @@ int runBind(const BindCommand& b) {
     requireWritableFolder(b.output, "bound scene");
     refuseCollidingPaths({{"--mesh", b.scene.scene.mesh}, {"--pattern", b.scene.scene.pattern}}, {{"-o", b.output}});
     // Step 2: bind on the rest mesh, as `knit animate` does.
+    // A bound scene file holds no strain table: its frames are evaluated geometrically, so the
+    // rest scene is bound that way too (the default deformation does not apply; asking for strain
+    // is refused).
+    if (b.scene.deform == "strain" || !b.scene.strainTable.empty())
+        throw Error(std::string(b.scene.strainTable.empty() ? "--deform strain" : "--strain-table") +
+                    ": a bound scene file does not carry strain-aware deformation yet; `knit animate` without "
+                    "--bound binds and deforms in one run");
+    SceneFlags flags = b.scene;
+    flags.deform = "none";
     const auto t0 = std::chrono::steady_clock::now();
-    const SceneOptions options = resolveScene(b.scene);
+    const SceneOptions options = resolveScene(flags);
     const Scene rest = bindRestPose(options, options.mesh);
     printWarnings(rest);
     const double bindSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

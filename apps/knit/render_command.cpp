@@ -126,7 +126,9 @@ int runRender(const RenderCommand& r) {
     options.view = givenView(r.view, image);
     options.output = outputs.stage(r.options.output);
     options.exr = outputs.stage(r.options.exr);
-    SceneOptions sceneOptions = resolveScene(r.scene);
+    SceneFlags flags = r.scene;
+    if (!r.bound.empty()) flags.deform = "none";  // a bound scene file carries no strain table (knit bind)
+    SceneOptions sceneOptions = resolveScene(flags);
     options.budget = sceneOptions.budget;  // --max-memory
     // The surface level of --detail view: --bake-size when given, else the width the view needs.
     options.viewBakeSize = r.surface.bakeSizeGiven() ? r.surface.bakeSize : 0;

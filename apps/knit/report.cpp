@@ -48,6 +48,27 @@ nlohmann::json gaugeReport(const Pattern& p, const PatternPlacement& placement) 
 
 }  // namespace
 
+std::string deformWhy(const DeformOptions& d) {
+    char buf[160];
+    switch (d.reason) {
+        case DeformReason::TableGiven: return "--strain-table given";
+        case DeformReason::Cached: return "the pattern's strain table was in the cache";
+        case DeformReason::Made:
+            std::snprintf(buf, sizeof buf, "the pattern's strain table was made now (%.1f s) and cached",
+                          d.tableSeconds);
+            return buf;
+        case DeformReason::TooSlowToMake:
+            std::snprintf(
+                buf, sizeof buf,
+                "no strain table at hand and making one takes about %.0f s (knit strain-table, or --deform strain)",
+                d.tableSeconds);
+            return buf;
+        case DeformReason::CannotMake: return "the pattern cannot have a strain table (its yarns cannot be relaxed)";
+        case DeformReason::Asked: break;
+    }
+    return d.mode == DeformMode::Strain ? "--deform strain" : "--deform none";
+}
+
 nlohmann::json sceneReport(const Scene& s, const SceneStats& st) {
     // Step 1: the inputs and their placement.
     nlohmann::json j;
@@ -103,6 +124,7 @@ nlohmann::json sceneReport(const Scene& s, const SceneStats& st) {
     } else {
         j["deform"] = {{"mode", "none"}};
     }
+    j["deform"]["why"] = deformWhy(s.deformOptions());
     // Step 3: wall time per stage and in all.
     nlohmann::json times = nlohmann::json::object();
     for (const StageTime& t : st.stageTimes) times[t.stage] = t.seconds;

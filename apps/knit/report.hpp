@@ -19,6 +19,8 @@ void writeReport(const std::string& path, const nlohmann::json& report);
 // The `knit build` report of a scene: pattern, mesh, placement, and its statistics (counts,
 // vertices per level, segment lengths, stage times).
 nlohmann::json sceneReport(const Scene& scene, const SceneStats& stats);
+// Why the scene deforms as it does, in the command line's words (the reports' deform.why).
+std::string deformWhy(const DeformOptions& deform);
 
 // What the user should know about a built scene that is not an error (stderr): overlapping
 // UV charts.

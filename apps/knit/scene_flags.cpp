@@ -72,7 +72,9 @@ void addSceneFlags(CLI::App& cmd, SceneFlags& f) {
                    "How yarns follow a strained surface: none (mapped with it, stretching like rubber) or strain (they "
                    "slide and bend as the pattern's strain table says; without --strain-table the pattern's table from "
                    "the cache, made on first use). "
-                   "Default: strain with --strain-table, else none")
+                   "Default: strain where the pattern's table is at hand (--strain-table, cached, or made in seconds: "
+                   "cell vertices x samples <= 96 x 729), else none with a note naming the command that makes it "
+                   "(docs/deformation.md)")
         ->check(CLI::IsMember({"none", "strain"}));
     cmd.add_option(
         "--strain-table", f.strainTable,
@@ -84,42 +86,54 @@ void addSceneFlags(CLI::App& cmd, SceneFlags& f) {
 
 namespace {
 
-// The deform mode and its table: given, made now (--deform strain alone), or none with a note
-// naming the command that makes one.
+// The deform mode and its table (knit::decideDeform: the same rule as Python's and Blender's
+// default), and a line on stderr saying which mode runs and why.
 void resolveDeform(const SceneFlags& f, SceneOptions& o) {
-    if (f.deform == "none") return;
-    if (!f.strainTable.empty()) {
-        o.deform.mode = DeformMode::Strain;
-        o.deform.table = std::make_shared<const StrainTable>(loadStrainTable(f.strainTable));
-        return;
-    }
-    if (f.deform == "strain") {  // the pattern's cached table, made now on its first use
-        StrainTableStats stats;
-        const Pattern pattern = loadPatternFileOrName(o.pattern);
-        const CachedStrainTable c = cachedStrainTable(pattern, StrainTableOptions{}, [&] {
-            return makeTableWithProgress(pattern, StrainTableOptions{}, f.quiet, stats);
-        });
-        o.deform.mode = DeformMode::Strain;
-        o.deform.table = c.table;
-        if (f.quiet) return;
-        if (!c.made) std::fprintf(stderr, "knit: strain table from the cache: %s\n", c.path.c_str());
-        else if (!c.path.empty())
-            std::fprintf(stderr, "knit: made the strain table in %.1f s and cached it (%s): later runs read it\n",
-                         c.seconds, c.path.c_str());
-        else
+    const DeformChoice choice =
+        f.deform == "none" ? DeformChoice::None : (f.deform == "strain" ? DeformChoice::Strain : DeformChoice::Auto);
+    if (choice == DeformChoice::None) return;  // asked for: no note
+    std::shared_ptr<const StrainTable> given;
+    if (!f.strainTable.empty()) given = std::make_shared<const StrainTable>(loadStrainTable(f.strainTable));
+    const Pattern pattern = given ? Pattern{} : loadPatternFileOrName(o.pattern);
+    StrainTableStats stats;
+    const DeformDecision d = decideDeform(
+        pattern, choice, given, [&] { return makeTableWithProgress(pattern, StrainTableOptions{}, f.quiet, stats); });
+    o.deform = d.deform;
+    if (f.quiet || given) return;
+    const CachedStrainTable& c = d.cached;
+    switch (d.deform.reason) {
+        case DeformReason::Cached:
+            std::fprintf(stderr, "knit: deform: strain (the pattern's strain table from the cache: %s)\n",
+                         c.path.c_str());
+            break;
+        case DeformReason::Made:
+            if (!c.path.empty())
+                std::fprintf(stderr,
+                             "knit: deform: strain (made the pattern's strain table in %.1f s and cached it: %s; later "
+                             "runs read it)\n",
+                             c.seconds, c.path.c_str());
+            else
+                std::fprintf(stderr,
+                             "knit: deform: strain (made the pattern's strain table in %.1f s; no cache folder to keep "
+                             "it: `knit strain-table --pattern %s -o T.npy` makes one to reuse with --strain-table "
+                             "T.npy)\n",
+                             c.seconds, o.pattern.c_str());
+            break;
+        case DeformReason::TooSlowToMake:
             std::fprintf(stderr,
-                         "knit: made the strain table in %.1f s (no cache folder to keep it; `knit strain-table "
-                         "--pattern %s -o T.npy` makes one to reuse with --strain-table T.npy)\n",
-                         c.seconds, o.pattern.c_str());
-        return;
+                         "knit: deform: none (yarns follow the surface geometrically): the pattern has no strain table "
+                         "yet and making one takes about %.0f s; `knit strain-table --pattern %s -o T.npy` makes it "
+                         "(then --strain-table T.npy), or --deform strain makes and caches it on this run\n",
+                         d.deform.tableSeconds, o.pattern.c_str());
+            break;
+        case DeformReason::CannotMake:
+            std::fprintf(stderr,
+                         "knit: deform: none (yarns follow the surface geometrically): no strain table can be made "
+                         "for this pattern (%s)\n",
+                         d.whyNot.c_str());
+            break;
+        default: break;
     }
-    if (!f.quiet)
-        std::fprintf(
-            stderr,
-            "knit: note: yarns follow the surface geometrically (--deform none: no strain table given); to let "
-            "them slide and bend as knitted yarn does: --deform strain (makes the pattern's strain table on first "
-            "use and caches it), or `knit strain-table --pattern %s -o T.npy`, then --strain-table T.npy\n",
-            o.pattern.c_str());
 }
 
 }  // namespace

@@ -23,7 +23,7 @@ struct SceneFlags {
     bool noWeld = false;
     bool quiet = false;
     std::string maxMemory;    // empty: MemoryBudget's default
-    std::string deform;       // empty (none unless a table is given), "none" or "strain"
+    std::string deform;       // empty (knit::decideDeform's Auto), "none" or "strain"
     std::string strainTable;  // empty, or a table file / MADYPG sxsasy/ folder
 };
 

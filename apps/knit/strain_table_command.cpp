@@ -83,9 +83,11 @@ int runStrainTable(const StrainTableCommand& c) {
 }
 
 void printStrainTableInfo(const StrainTable& t, bool json) {
-    double largest = 0;
-    for (size_t i = 0; i < t.data.size(); ++i)
-        if (i % 4 != 3) largest = std::max(largest, double(std::abs(t.data[i])));
+    double largest = 0, twist = 0;  // the largest |displacement| and |twist| anywhere in the table
+    for (size_t i = 0; i < t.data.size(); ++i) {
+        double& m = i % 4 == 3 ? twist : largest;
+        m = std::max(m, double(std::abs(t.data[i])));
+    }
     if (json) {
         nlohmann::json j = {{"strain_table", t.source},
                             {"vertices", t.vertexCount},
@@ -93,7 +95,8 @@ void printStrainTableInfo(const StrainTable& t, bool json) {
                             {"sx", t.axes[0]},
                             {"sa", t.axes[1]},
                             {"sy", t.axes[2]},
-                            {"largest_displacement", largest}};
+                            {"largest_displacement", largest},
+                            {"largest_twist", twist}};
         if (t.px > 0) j["pattern"] = {{"name", t.pattern}, {"period", {t.px, t.py}}, {"radius", t.radius}};
         std::cout << j.dump(2) << '\n';
         return;
@@ -107,6 +110,7 @@ void printStrainTableInfo(const StrainTable& t, bool json) {
     const char* names[3] = {"sx", "sa", "sy"};
     for (size_t a = 0; a < 3; ++a) std::printf("%-13s [%.6g, %.6g]\n", names[a], t.axes[a].front(), t.axes[a].back());
     std::printf("largest |d|   %.6g (pattern units)\n", largest);
+    std::printf("largest twist %.6g rad%s\n", twist, twist > 0 ? " (added to the ply phase)" : "");
 }
 
 }  // namespace knit::cli

@@ -70,8 +70,10 @@ class OBJECT_OT_knit_apply(bpy.types.Operator):
     twist: bpy.props.EnumProperty(name="Twist", items=[("S", "S", "S twist"), ("Z", "Z", "Z twist")], default="S")
     profile_resolution: bpy.props.IntProperty(name="Profile sides", default=6, min=3, max=32)
     deform: bpy.props.EnumProperty(
-        name="Deform", default="none",
-        items=[("none", "Geometric", "Yarns follow the surface as drawn on it (they stretch where it stretches)"),
+        name="Deform", default="auto",
+        items=[("auto", "Automatic", "Strain-aware where the pattern's strain table is cached or made in seconds, "
+                                     "else geometric (libknit's default; docs/deformation.md)"),
+               ("none", "Geometric", "Yarns follow the surface as drawn on it (they stretch where it stretches)"),
                ("strain", "Strain-aware", "Yarns slide and bend as the pattern's strain table says (made on first "
                                           "use and cached; libknit docs/deformation.md)")],
         description="How the yarns follow a stretched, sheared or compressed surface")

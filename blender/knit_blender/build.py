@@ -160,7 +160,8 @@ def bind(source, options, depsgraph, rest=None):
     try:
         return knit.build_scene(pattern, mesh, repeats=repeats if repeats[0] > 0 else None,
                                 plies=options["plies"], ply_pitch=options["ply_pitch"], twist=options["twist"],
-                                deform=options.get("deform", "none"), build_plies=False)
+                                deform={"auto": ""}.get(options.get("deform", "auto"), options.get("deform", "auto")),
+                                build_plies=False)
     except knit.Error as e:
         if not (gauge[0] > 0 and gauge[1] > 0) or getattr(e, "words", None) is None:
             raise

@@ -95,7 +95,7 @@ def check_deform():
     pattern = build.knit_module().load_pattern("stockinette")
     repeats = (6.0, 6.0 * pattern.px / pattern.py)  # the flat square grid at the pattern's own shape
     points = {}
-    for deform in ("strain", "none"):
+    for deform in ("strain", "auto", "none"):
         bpy.context.scene.frame_set(1)
         bpy.ops.object.select_all(action="DESELECT")
         bpy.context.view_layer.objects.active = cloth
@@ -110,6 +110,10 @@ def check_deform():
     moved = float(np.abs(points["strain"][1] - points["none"][1]).max())
     check(moved > 1e-4, f"Deform strain on the bulged frame moves the yarns ({moved:.2e} m)")
     check(any(f.startswith("strain-") for f in os.listdir(os.environ["KNIT_CACHE_DIR"])), "the table was cached")
+    # Automatic, the default, is strain-aware for the default pattern (its table is made in seconds).
+    check(bpy.ops.object.knit_apply.get_rna_type().properties["deform"].default == "auto", "Deform defaults to Automatic")
+    same = all(np.array_equal(a, b) for a, b in zip(points["auto"], points["strain"]))
+    check(same, "Deform Automatic gives the strain-aware yarns for the default pattern")
 
 
 def main():

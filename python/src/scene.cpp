@@ -2,6 +2,7 @@
 // per-frame evaluation on new vertex positions, through the library's Animator (the path
 // `knit animate` takes: layout, twist phase and frame seeds fixed when the scene is bound).
 #include <chrono>
+#include <cstdio>
 #include <cmath>
 #include <memory>
 #include <mutex>
@@ -37,26 +38,52 @@ struct SceneArgs {
     py::object strainTable;   // None, a path or a StrainTable
 };
 
-// deform / strain_table as the CLI's --deform / --strain-table: a table given means strain unless
-// deform is "none"; deform "strain" without a table uses the pattern's cached one (made on first use).
+// deform / strain_table as the CLI's --deform / --strain-table (knit::decideDeform, the one rule):
+// a table given means strain unless deform is "none"; "strain" without one uses the pattern's
+// cached table (made on first use); "" (the default) does so where the table is cached or made in
+// seconds, else none (Scene.stats["deform_why"] says so and names knit.strain_table).
 void resolveDeform(const SceneArgs& a, const py::object& pattern, knit::SceneOptions& o) {
     if (a.deform != "" && a.deform != "none" && a.deform != "strain")
-        throw knit::Error("deform must be 'none' or 'strain', got '" + a.deform + "'");
-    if (a.deform == "none") return;
-    if (!a.strainTable.is_none()) {
-        o.deform.mode = knit::DeformMode::Strain;
-        o.deform.table =
+        throw knit::Error("deform must be 'none', 'strain' or '' (strain where the table is at hand), got '" +
+                          a.deform + "'");
+    const knit::DeformChoice choice = a.deform == "none"     ? knit::DeformChoice::None
+                                      : a.deform == "strain" ? knit::DeformChoice::Strain
+                                                             : knit::DeformChoice::Auto;
+    if (choice == knit::DeformChoice::None) return;
+    std::shared_ptr<const knit::StrainTable> given;
+    if (!a.strainTable.is_none())
+        given =
             py::isinstance<py::str>(a.strainTable)
                 ? std::make_shared<const knit::StrainTable>(knit::loadStrainTable(a.strainTable.cast<std::string>()))
                 : std::shared_ptr<const knit::StrainTable>(a.strainTable.cast<std::shared_ptr<knit::StrainTable>>());
-    } else if (a.deform == "strain") {
-        const knit::Pattern p = py::isinstance<py::str>(pattern)
-                                    ? knit::loadPatternFileOrName(pattern.cast<std::string>())
-                                    : pattern.cast<knit::Pattern>();
-        py::gil_scoped_release release;
-        o.deform.mode = knit::DeformMode::Strain;
-        o.deform.table = knit::cachedStrainTable(p).table;  // made on first use, cached as charts are
+    const knit::Pattern p = given || !py::isinstance<py::str>(pattern)
+                                ? (given ? knit::Pattern{} : pattern.cast<knit::Pattern>())
+                                : knit::loadPatternFileOrName(pattern.cast<std::string>());
+    py::gil_scoped_release release;
+    o.deform = knit::decideDeform(p, choice, given).deform;
+}
+
+// Why the scene deforms as it does, in Python's words (Scene.stats["deform_why"]).
+std::string deformWhy(const knit::DeformOptions& d) {
+    char buf[200];
+    switch (d.reason) {
+        case knit::DeformReason::TableGiven: return "strain_table given";
+        case knit::DeformReason::Cached: return "the pattern's strain table was in the cache";
+        case knit::DeformReason::Made:
+            std::snprintf(buf, sizeof buf, "the pattern's strain table was made now (%.1f s) and cached",
+                          d.tableSeconds);
+            return buf;
+        case knit::DeformReason::TooSlowToMake:
+            std::snprintf(buf, sizeof buf,
+                          "no strain table at hand and making one takes about %.0f s: knit.strain_table(pattern, path) "
+                          "makes it (then strain_table=path), or deform='strain' makes and caches it",
+                          d.tableSeconds);
+            return buf;
+        case knit::DeformReason::CannotMake:
+            return "the pattern cannot have a strain table (its yarns cannot be relaxed)";
+        case knit::DeformReason::Asked: break;
     }
+    return d.mode == knit::DeformMode::Strain ? "deform='strain'" : "deform='none'";
 }
 
 knit::SceneOptions toSceneOptions(const SceneArgs& a) {
@@ -201,7 +228,8 @@ py::dict sceneStatsDict(const knit::Scene& scene) {
     py::dict d("cells"_a = s.cells, "tiles"_a = s.tiles, "yarns"_a = s.yarns, "yarn_vertices"_a = s.yarnVertices,
                "ply_vertices"_a = s.plyVertices, "closed_loops"_a = s.bind.closedLoops, "open_ends"_a = s.bind.openEnds,
                "cut_vertices"_a = s.bind.cutVertices, "clamped_vertices"_a = s.bind.clampedVertices,
-               "welded_ends"_a = s.bind.weldedEnds, "total_seconds"_a = s.totalSeconds);
+               "welded_ends"_a = s.bind.weldedEnds, "total_seconds"_a = s.totalSeconds,
+               "deform"_a = scene.deformer() ? "strain" : "none", "deform_why"_a = deformWhy(scene.deformOptions()));
     py::dict stages;
     for (const knit::StageTime& t : s.stageTimes) stages[py::str(t.stage)] = t.seconds;
     d["stage_seconds"] = stages;
@@ -325,9 +353,10 @@ void registerScene(py::module_& m) {
         "repeats: (U, V) pattern periods across the UV square, None = the pattern's physical size. "
         "plies: plies per yarn; ply_pitch 0 = 6 yarn radii; twist 'S' or 'Z'. max_memory: the memory budget "
         "as a size ('8G', '512M'; '' = min(4 GiB, half the physical memory)): a step whose "
-        "estimated size is over it raises knit.Error before allocating. deform: 'none', 'strain' or '' (strain when "
-        "strain_table is given, else none); strain_table: a path (T.npy or a MADYPG sxsasy/ folder) or a "
-        "StrainTable; deform='strain' without one makes a table first. Raises knit.Error.");
+        "estimated size is over it raises knit.Error before allocating. deform: 'none', 'strain' or '' (the "
+        "default: strain where the pattern's table is at hand: strain_table given, cached, or made in seconds; else "
+        "none; stats['deform'] and stats['deform_why'] say which and why); strain_table: a path (T.npy or a MADYPG "
+        "sxsasy/ folder) or a StrainTable; deform='strain' without one makes a table first. Raises knit.Error.");
     m.def("_evaluate_seconds_in_cpp", &evaluateSecondsInCpp, "scene"_a, "positions"_a, "repeats"_a = 1,
           "Timing aid: seconds of `repeats` evaluations made in C++ (what Scene.evaluate runs).");
 }

@@ -46,11 +46,29 @@ def test_evaluate_deform_modes(table):
     assert np.abs(strained.points - geometric.points).max() > 0.1 * scene.yarn_radius
     # At rest (isometric layout) the strain is zero: the same points.
     assert np.array_equal(scene.evaluate(rest).points, scene.evaluate(rest, deform="none").points)
-    plain = knit.build_scene("stockinette", square(), build_plies=False)
+    plain = knit.build_scene("stockinette", square(), build_plies=False, deform="none")
+    assert plain.stats["deform"] == "none" and plain.stats["deform_why"] == "deform='none'"
     with pytest.raises(knit.Error, match="strain table"):
         plain.evaluate(pose, deform="strain")
     with pytest.raises(knit.Error, match="deform"):
         plain.evaluate(pose, deform="sideways")
+
+
+def test_default_deform_is_strain_for_the_default_pattern(tmp_path, monkeypatch):
+    """deform='' (the default): the default pattern's table is made in seconds, so strain; it is
+    cached, and the next scene reads it with the same result."""
+    monkeypatch.setenv("KNIT_CACHE_DIR", str(tmp_path))
+    first = knit.build_scene("stockinette", square(), build_plies=False)
+    assert first.stats["deform"] == "strain"
+    assert "made now" in first.stats["deform_why"]
+    second = knit.build_scene("stockinette", square(), build_plies=False)
+    assert second.stats["deform_why"] == "the pattern's strain table was in the cache"
+    rest = np.array(first.mesh.positions)
+    pose = rest * np.array([1.4, 1.0, 1.0])
+    assert np.array_equal(first.evaluate(pose).points, second.evaluate(pose).points)
+    assert np.array_equal(first.evaluate(pose).points, first.evaluate(pose, deform="strain").points)
+    # Isometric at rest: the geometric yarns, bit for bit.
+    assert np.array_equal(first.evaluate(rest).points, first.evaluate(rest, deform="none").points)
 
 
 def test_mismatched_table_is_refused(table, tmp_path):

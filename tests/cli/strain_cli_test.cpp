@@ -41,6 +41,7 @@ TEST(StrainCli, strainTableWritesATableInfoDescribes) {
     EXPECT_EQ(j["samples"], nlohmann::json({3, 2, 3}));
     EXPECT_EQ(j["pattern"]["name"], "stockinette");
     EXPECT_GT(j["largest_displacement"].get<double>(), 0.0);
+    EXPECT_EQ(j["largest_twist"].get<double>(), 0.0);  // the project's own tables have no twist
 }
 
 TEST(StrainCli, buildReportsTheDeformModeAndTable) {
@@ -55,10 +56,12 @@ TEST(StrainCli, buildReportsTheDeformModeAndTable) {
     EXPECT_EQ(rs["deform"]["strain_table"], "t.npy");
     EXPECT_EQ(rs["deform"]["samples"], nlohmann::json({3, 2, 3}));
     EXPECT_GT(rs["deform"]["displaced_vertices"].get<size_t>(), 0U);
-    const test::CliRun g = test::runKnit(scene + "-o g.obj --report g.json", dir.path());
+    EXPECT_EQ(rs["deform"]["why"], "--strain-table given");
+    const test::CliRun g = test::runKnit(scene + "--deform none -o g.obj --report g.json", dir.path());
     ASSERT_EQ(g.exitCode, 0) << g.output;
-    EXPECT_EQ(nlohmann::json::parse(test::readText(dir.file("g.json")))["deform"]["mode"], "none");
-    EXPECT_NE(g.output.find("knit strain-table --pattern stockinette"), std::string::npos) << g.output;
+    const nlohmann::json rg = nlohmann::json::parse(test::readText(dir.file("g.json")));
+    EXPECT_EQ(rg["deform"]["mode"], "none");
+    EXPECT_EQ(rg["deform"]["why"], "--deform none");
     EXPECT_NE(test::readText(dir.file("s.obj")), test::readText(dir.file("g.obj")));
     // --deform none with a table given: the geometric mapping, as without one.
     const test::CliRun n = test::runKnit(scene + "--deform none --strain-table t.npy -o n.obj -q", dir.path());
@@ -66,25 +69,56 @@ TEST(StrainCli, buildReportsTheDeformModeAndTable) {
     EXPECT_EQ(test::readText(dir.file("n.obj")), test::readText(dir.file("g.obj")));
 }
 
-// --deform strain without a table: the pattern's table made on first use and cached, read from the
-// cache the next time (the same yarns).
-TEST(StrainCli, deformStrainCachesThePatternsTable) {
+// The default (no --deform) for the default pattern is strain: its table is made on first use
+// (seconds) and cached, then read from the cache (--deform strain reads the same entry), and the
+// yarns are the same either way. The report says which mode ran and why.
+TEST(StrainCli, defaultDeformMakesCachesAndReadsThePatternsTable) {
     const test::TempDir dir;
     ::setenv("KNIT_CACHE_DIR", dir.file("cache").c_str(), 1);  // the child inherits it
-    const std::string scene = "build --mesh plane --mesh-res 4 --repeats 10 20 --export yarns --deform strain ";
-    const test::CliRun a = test::runKnit(scene + "-o a.obj", dir.path());
-    const test::CliRun b = test::runKnit(scene + "-o b.obj", dir.path());
+    const std::string scene = "build --mesh plane --mesh-res 4 --repeats 10 20 --export yarns ";
+    const test::CliRun a = test::runKnit(scene + "-o a.obj --report a.json", dir.path());
+    const test::CliRun b = test::runKnit(scene + "--deform strain -o b.obj", dir.path());
+    const test::CliRun c = test::runKnit(scene + "-o c.obj --report c.json", dir.path());
     ::unsetenv("KNIT_CACHE_DIR");
     ASSERT_EQ(a.exitCode, 0) << a.output;
     ASSERT_EQ(b.exitCode, 0) << b.output;
-    EXPECT_NE(a.output.find("cached it ("), std::string::npos) << a.output;
+    ASSERT_EQ(c.exitCode, 0) << c.output;
+    EXPECT_NE(a.output.find("deform: strain (made the pattern's strain table in"), std::string::npos) << a.output;
     EXPECT_NE(b.output.find("strain table from the cache"), std::string::npos) << b.output;
+    const nlohmann::json ra = nlohmann::json::parse(test::readText(dir.file("a.json")));
+    const nlohmann::json rc = nlohmann::json::parse(test::readText(dir.file("c.json")));
+    EXPECT_EQ(ra["deform"]["mode"], "strain");
+    EXPECT_NE(ra["deform"]["why"].get<std::string>().find("made now"), std::string::npos) << ra["deform"];
+    EXPECT_EQ(rc["deform"]["why"], "the pattern's strain table was in the cache");
+    EXPECT_GT(rc["deform"]["displaced_vertices"].get<size_t>(), 0U);  // --repeats 10 20 strains the layout
+    EXPECT_EQ(test::readText(dir.file("a.obj")), test::readText(dir.file("c.obj")));
     EXPECT_EQ(b.output.find("strain samples"), std::string::npos) << b.output;  // not made again
     size_t entries = 0;
     for (const auto& e : fs::directory_iterator(dir.file("cache")))
         entries += e.path().filename().string().rfind("strain-", 0) == 0 ? 1 : 0;
     EXPECT_EQ(entries, 2U);  // T.npy and T.axes.txt
     EXPECT_EQ(test::readText(dir.file("a.obj")), test::readText(dir.file("b.obj")));
+}
+
+// A pattern whose table would take a minute or more (120 cell vertices): the default is none, with
+// a note naming the command that makes the table and its estimated time; nothing is made.
+TEST(StrainCli, defaultDeformIsNoneWhereMakingTheTableIsSlow) {
+    const test::TempDir dir;
+    ASSERT_EQ(test::runKnit("generate stockinette --samples 120 -o big.pyp", dir.path()).exitCode, 0);
+    ::setenv("KNIT_CACHE_DIR", dir.file("cache").c_str(), 1);
+    const test::CliRun r =
+        test::runKnit("build --pattern big.pyp --mesh plane --mesh-res 2 --repeats 2 4 --export yarns -o b.obj "
+                      "--report b.json",
+                      dir.path());
+    ::unsetenv("KNIT_CACHE_DIR");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("deform: none"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("`knit strain-table --pattern big.pyp -o T.npy`"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("takes about"), std::string::npos) << r.output;
+    const nlohmann::json j = nlohmann::json::parse(test::readText(dir.file("b.json")));
+    EXPECT_EQ(j["deform"]["mode"], "none");
+    EXPECT_NE(j["deform"]["why"].get<std::string>().find("no strain table at hand"), std::string::npos);
+    EXPECT_FALSE(fs::exists(dir.file("cache")) && !fs::is_empty(dir.file("cache")));
 }
 
 TEST(StrainCli, mismatchedOrDamagedTablesAreRefusedNamingThem) {

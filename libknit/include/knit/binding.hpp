@@ -72,6 +72,9 @@ struct MappedYarns {
     Polylines curves;
     std::vector<glm::dvec3> normals;
     std::vector<glm::vec3> colour;  // linear yarn colour per point; empty without colours
+    // Per point: the twist change (radians) a strain table gives it, added to the ply phase
+    // (knit/strain.hpp); empty without strain-aware deformation or when the table has no twist.
+    std::vector<float> twist;
 };
 
 // The hot loop: a flat gather over the binding. `positions`/`normals` are per mesh vertex

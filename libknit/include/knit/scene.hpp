@@ -128,6 +128,8 @@ public:
     // the scene's own mesh; null / zeros otherwise.
     const std::shared_ptr<const StrainDeformer>& deformer() const { return deformer_; }
     const DeformStats& deformStats() const { return deformStats_; }
+    // SceneOptions::deform as built: the mode, its table and why (knit::decideDeform).
+    const DeformOptions& deformOptions() const { return deformOptions_; }
     // A scene loaded from a bound scene file: the Animator's bind-time state it stores (every
     // Animator of this scene adopts it); null for a scene built here.
     const std::shared_ptr<const AnimatorBindState>& animatorState() const { return animatorState_; }
@@ -150,6 +152,7 @@ private:
     std::optional<SceneDetail> detail_;
     std::shared_ptr<const StrainDeformer> deformer_;
     DeformStats deformStats_;
+    DeformOptions deformOptions_;
     std::shared_ptr<const AnimatorBindState> animatorState_;
 };
 

@@ -134,12 +134,56 @@ StrainTableRef strainTableRef(const StrainTable& table);
 
 enum class DeformMode { None, Strain };
 
+// Why a scene deforms as it does (decideDeform; reports say it in their own words).
+enum class DeformReason {
+    Asked,          // the caller chose the mode (none, or strain with a table it gave)
+    TableGiven,     // a table given, no mode asked: strain
+    Cached,         // strain: the pattern's table was in the cache
+    Made,           // strain: the pattern's table was made now (asked for, or quick to make) and cached
+    TooSlowToMake,  // none: no table at hand and making one would take minutes
+    CannotMake,     // none: the pattern cannot be relaxed into a table (open yarns, too few vertices)
+};
+
 // How a scene deforms its yarns (SceneOptions::deform): `None` maps them geometrically; `Strain`
 // adds `table`'s displacements (which must then be given).
 struct DeformOptions {
     DeformMode mode = DeformMode::None;
     std::shared_ptr<const StrainTable> table;
+    DeformReason reason = DeformReason::Asked;  // for reports; does not change the result
+    double tableSeconds = 0;  // for reports: Made, the seconds making the table took; TooSlowToMake, the estimate
 };
+
+// ---- choosing the deformation (one rule for every front end) ----------------------------------
+
+// What the caller asked for: Auto (the default), None or Strain.
+enum class DeformChoice { Auto, None, Strain };
+
+// A pattern's table is quick to make (seconds, so Auto makes it on first use) when its cell
+// vertices times its samples are at most this: 96 cell vertices at the default 9 x 9 x 9. A
+// count, not a timing, so that the choice (and the output) is the same on any machine and under
+// any load. Measured estimates (`knit strain-table`, 2-core machine): stockinette (24 vertices)
+// 3 s, basket.pyp (80) 7 s, satin.pyp (130) 22 s, slip_stitch_honeycomb.pyp (182) 68 s.
+constexpr double kQuickStrainTableWork = 96.0 * 729.0;
+bool strainTableIsQuick(const Pattern& pattern, const StrainTableOptions& options = {});
+
+struct DeformDecision {
+    DeformOptions deform;      // the mode, its table and why
+    CachedStrainTable cached;  // Cached / Made: the cache entry, whether it was made and how long it took
+    std::string whyNot;        // CannotMake: what the table maker said
+};
+
+// The one rule behind every front end's default (`--deform`, Python's deform=, Blender's Deform):
+//  * None: geometric (Asked);
+//  * a table given: strain with it (Asked when Strain was chosen, else TableGiven);
+//  * Strain: the pattern's cached table, else made now and cached (Cached / Made);
+//  * Auto: the cached table if there is one (Cached), else made now when strainTableIsQuick
+//    (Made), else none with the estimate (TooSlowToMake; the caller names the command that makes
+//    the table); none also for a pattern no table can be made for (CannotMake).
+// A table made for a pattern is the same bytes whether made now or read from the cache, so Auto's
+// output does not depend on what is cached. `make` makes the table (default: makeStrainTable),
+// for progress output.
+DeformDecision decideDeform(const Pattern& pattern, DeformChoice choice, std::shared_ptr<const StrainTable> given = {},
+                            const std::function<StrainTable()>& make = {});
 
 struct DeformStats {
     size_t vertices = 0;    // yarn vertices displaced (strain away from zero)
@@ -167,7 +211,8 @@ public:
                    StrainLookupSite site = StrainLookupSite::Auto);
 
     // Adds the table's displacement to `yarns` (evaluateBinding(binding, ...) on `positions`, the
-    // same connectivity as the rest mesh). Zero strain leaves every point bit for bit.
+    // same connectivity as the rest mesh), and its twist change to yarns.twist (the plies add it to
+    // their phase; empty when the table has no twist). Zero strain leaves every point bit for bit.
     DeformStats apply(const Binding& binding, const std::vector<glm::dvec3>& positions, MappedYarns& yarns) const;
 
     // evaluateBinding and apply in one pass over the yarn vertices (the per-frame path; the same
@@ -185,6 +230,9 @@ private:
     // MeshVertices: per UV vertex and cell vertex, the displacement through F (x, y, z) and along
     // the normal (w); per UV vertex its flag (moved, clamped).
     void meshDisplacements(const Pose& pose, std::vector<glm::dvec4>& d, std::vector<uint8_t>& flags) const;
+    // Per yarn vertex the table's twist change at its strain (into yarns.twist), when the table
+    // has any (else yarns.twist is left empty).
+    void twist(const Binding& binding, const Pose& pose, MappedYarns& yarns) const;
 
     std::vector<glm::uvec3> faces_, faceUvs_;
     std::vector<glm::dvec2> layout_;    // per UV vertex: pattern-space position (metres, object scale)
@@ -193,6 +241,7 @@ private:
     double scale_ = 1;
     size_t uvCount_ = 0, positionCount_ = 0;
     bool atMeshVertices_ = false;
+    bool hasTwist_ = false;  // some twist in the table differs from its vertex's zero-strain twist
     std::shared_ptr<const StrainTable> table_;
 };
 

@@ -23,6 +23,8 @@
 #include <chrono>
 #include <cmath>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <glm/geometric.hpp>
 #include <tbb/blocked_range.h>
@@ -187,11 +189,28 @@ void Animator::sweep(const std::vector<dvec3>& positions, AnimationFrame& out) c
     const size_t yarnCount = b.restPitch.size();
     const std::vector<glm::uvec3>& faces = rest_.mesh().faces;
     tbb::enumerable_thread_specific<PlyScratch> scratches;
+    // The strain table's twist (when it has any): the rest phase turned by the frame's twist.
+    const std::vector<float>& twist = out.yarns.twist;
+    tbb::enumerable_thread_specific<std::pair<std::vector<double>, std::vector<glm::dvec2>>> twisted;
     tbb::parallel_for(tbb::blocked_range<size_t>(0, yarnCount, kYarnGrain), [&](const tbb::blocked_range<size_t>& r) {
         PlyScratch& scratch = scratches.local();
         for (size_t y = r.begin(); y < r.end(); ++y) {
             const size_t m = b.centreOffsets[y + 1] - b.centreOffsets[y];
             if (m < 2) continue;
+            const glm::dvec2* phase = b.restPhase.data() + b.centreOffsets[y];
+            if (!twist.empty()) {
+                auto& [angle, turned] = twisted.local();
+                angle.resize(m);
+                turned.resize(m);
+                resampleTwist(twist.data() + out.yarns.curves.begin(y), out.yarns.curves.isClosed(y),
+                              b.kept.data() + b.keptOffsets[y], b.keptOffsets[y + 1] - b.keptOffsets[y],
+                              b.pieces.data() + b.pieceOffsets[y], angle.data());
+                for (size_t j = 0; j < m; ++j) {
+                    const double c = std::cos(angle[j]), s = std::sin(angle[j]);
+                    turned[j] = {phase[j].x * c - phase[j].y * s, phase[j].y * c + phase[j].x * s};
+                }
+                phase = turned.data();
+            }
             // The rest frame carried by the bound triangle's rotation (see the file comment);
             // a degenerate triangle falls back to the surface normal.
             const size_t first = out.yarns.curves.begin(y);
@@ -204,10 +223,10 @@ void Animator::sweep(const std::vector<dvec3>& positions, AnimationFrame& out) c
                 seedNormal = r * s.normal;
                 seedTangent = r * s.tangent;
             }
-            impl::PlyKernel::sweepWithCosSin(*generator_, y, out.centres.points.data() + b.centreOffsets[y], m,
-                                             b.restPhase.data() + b.centreOffsets[y], &seedNormal,
-                                             carried ? &seedTangent : nullptr, p.curves.points.data() + plyOfYarn_[y],
-                                             scratch, options_.radial ? p.radial.data() + plyOfYarn_[y] : nullptr);
+            impl::PlyKernel::sweepWithCosSin(*generator_, y, out.centres.points.data() + b.centreOffsets[y], m, phase,
+                                             &seedNormal, carried ? &seedTangent : nullptr,
+                                             p.curves.points.data() + plyOfYarn_[y], scratch,
+                                             options_.radial ? p.radial.data() + plyOfYarn_[y] : nullptr);
         }
     });
 }

@@ -48,6 +48,7 @@ inline void prepareMappedYarns(const Binding& binding, MappedYarns& out) {
     out.curves.offsets = binding.offsets;
     out.curves.closed = binding.closed;
     out.colour = binding.colour;  // constant per pose; empty without colours
+    out.twist.clear();            // only a strain deformer gives twist
     out.normals.resize(n);
 }
 

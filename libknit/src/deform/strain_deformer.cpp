@@ -89,6 +89,8 @@ StrainDeformer::StrainDeformer(const BaseMesh& mesh, const Pattern& pattern, con
     const StrainLookup lookup(*table_);  // the same arithmetic as the per-frame lookups
     bool clamped = false;
     for (size_t v = 0; v < n; ++v) zero_[v] = lookup(uint32_t(v), Strain{}, clamped);
+    for (size_t r = 0; r < table_->data.size() / 4 && !hasTwist_; ++r)
+        hasTwist_ = double(table_->data[4 * r + 3]) != zero_[r / table_->samples()].w;
     // (Rows of the per-UV-vertex displacements are indexed in 32 bits.)
     atMeshVertices_ = uvCount_ * n < std::numeric_limits<uint32_t>::max() &&
                       (site == StrainLookupSite::MeshVertices ||
@@ -270,6 +272,31 @@ DeformStats StrainDeformer::run(const Binding& b, const Pose& pose, Point point)
     return stats;
 }
 
+// Per yarn vertex, the table read at its interpolated strain (as atYarnVertices) for the twist
+// column alone; zero where the strain is zero or undefined.
+void StrainDeformer::twist(const Binding& b, const Pose& pose, MappedYarns& yarns) const {
+    yarns.twist.clear();
+    if (!hasTwist_) return;
+    yarns.twist.resize(b.vertexCount());
+    const StrainLookup lookup(*table_);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, b.vertexCount(), 16384), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t i = r.begin(); i != r.end(); ++i) {
+            yarns.twist[i] = 0.0F;
+            const uint32_t f = b.face[i];
+            if (!pose.ok[f]) continue;
+            const glm::uvec3 t = faceUvs_[f];
+            const Pose::Uv &u0 = pose.uv[t.x], &u1 = pose.uv[t.y], &u2 = pose.uv[t.z];
+            const double b1 = b.bary[i].x, b2 = b.bary[i].y, b0 = 1.0 - b1 - b2;
+            const Strain s = strainOfC(b0 * u0.c00 + b1 * u1.c00 + b2 * u2.c00, b0 * u0.c01 + b1 * u1.c01 + b2 * u2.c01,
+                                       b0 * u0.c11 + b1 * u1.c11 + b2 * u2.c11);
+            if (nearZero(s)) continue;
+            bool clamped = false;
+            const uint32_t v = cellVertex_[i];
+            yarns.twist[i] = float(lookup.at(lookup.vertexOffset(v), s, clamped).w - zero_[v].w);
+        }
+    });
+}
+
 DeformStats StrainDeformer::apply(const Binding& b, const std::vector<glm::dvec3>& positions,
                                   MappedYarns& yarns) const {
     if (yarns.curves.points.size() != b.vertexCount() || yarns.normals.size() != b.vertexCount())
@@ -277,6 +304,7 @@ DeformStats StrainDeformer::apply(const Binding& b, const std::vector<glm::dvec3
     const Pose p = pose(b, positions);
     glm::dvec3* points = yarns.curves.points.data();
     const glm::dvec3* normals = yarns.normals.data();
+    twist(b, p, yarns);
     return run(b, p, [points, normals](size_t i, glm::dvec3& q, glm::dvec3& n) -> glm::dvec3& {
         q = points[i];
         n = normals[i];
@@ -291,6 +319,7 @@ DeformStats StrainDeformer::evaluate(const Binding& b, const std::vector<glm::dv
                     std::to_string(normals.size()) + " normals");
     const Pose p = pose(b, positions);
     prepareMappedYarns(b, out);
+    twist(b, p, out);
     const BindingGather gather(b, faces_, positions, normals);
     glm::dvec3* points = out.curves.points.data();
     glm::dvec3* outNormals = out.normals.data();

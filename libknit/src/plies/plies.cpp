@@ -110,6 +110,9 @@ PlyGenerator::PlyGenerator(const MappedYarns& yarns, const PlyOptions& options)
     ResampleOptions ro;
     ro.spacing = spacing_;
     validateResampleInput(yarns_, ro);
+    if (!yarns_.twist.empty() && yarns_.twist.size() != yarns_.curves.points.size())
+        throw Error("the yarns have " + std::to_string(yarns_.twist.size()) + " twist values for " +
+                    std::to_string(yarns_.curves.points.size()) + " points");
 }
 
 size_t PlyGenerator::estimatePoints(size_t y) const {
@@ -130,14 +133,20 @@ PlyScratch::Buffers& PlyKernel::buffers(PlyScratch& scratch) {
 }
 
 size_t PlyKernel::centreline(const PlyGenerator& g, size_t y, std::vector<dvec3>& centre, PlyScratch& scratch,
-                             std::vector<glm::vec3>* colour) {
+                             std::vector<glm::vec3>* colour, std::vector<double>* twist) {
     PlyScratch::Buffers& buf = buffers(scratch);
     const std::vector<glm::vec3>& in = g.yarns_.colour;
-    const bool withColour = colour && !in.empty();
-    const size_t m =
-        resampleCurve(g.yarns_, y, g.spacing_, centre, nullptr, buf.resample, withColour ? &buf.layout : nullptr);
+    const bool withColour = colour && !in.empty(), withTwist = twist && !g.yarns_.twist.empty();
+    const size_t m = resampleCurve(g.yarns_, y, g.spacing_, centre, nullptr, buf.resample,
+                                   withColour || withTwist ? &buf.layout : nullptr);
     if (withColour)
         resampleColours(in.data() + g.yarns_.curves.begin(y), g.yarns_.curves.isClosed(y), buf.layout, *colour);
+    if (withTwist) {
+        const size_t start = twist->size();
+        twist->resize(start + m);
+        resampleTwist(g.yarns_.twist.data() + g.yarns_.curves.begin(y), g.yarns_.curves.isClosed(y),
+                      buf.layout.kept.data(), buf.layout.kept.size(), buf.layout.pieces.data(), twist->data() + start);
+    }
     return m;
 }
 
@@ -156,14 +165,14 @@ double PlyKernel::arcAndPitch(const PlyGenerator& g, size_t y, const dvec3* X, s
 }
 
 void PlyKernel::sweep(const PlyGenerator& g, size_t y, const dvec3* X, size_t m, dvec3* P, dvec3* D,
-                      PlyScratch& scratch) {
+                      PlyScratch& scratch, const double* twist) {
     // Arc length; closed yarns get an integer number of turns so the helix closes.
     PlyScratch::Buffers& buf = buffers(scratch);
     const double pitch = arcAndPitch(g, y, X, m, buf.arc);
     // The frame seed is the surface normal at the first point, which resampling keeps unchanged
     // (no normals need interpolating).
     const dvec3* seed = g.yarns_.normals.empty() ? nullptr : g.yarns_.normals.data() + g.yarns_.curves.begin(y);
-    sweepWithPhase(g, y, X, m, buf.arc.data(), pitch, seed, P, D, scratch);
+    sweepWithPhase(g, y, X, m, buf.arc.data(), pitch, seed, P, D, scratch, twist);
 }
 
 namespace {
@@ -205,7 +214,8 @@ double PlyKernel::twistRate(const PlyGenerator& g, double pitch) {
 }
 
 void PlyKernel::sweepWithPhase(const PlyGenerator& g, size_t y, const dvec3* X, size_t m, const double* arc,
-                               double pitch, const dvec3* seed, dvec3* P, dvec3* D, PlyScratch& scratch) {
+                               double pitch, const dvec3* seed, dvec3* P, dvec3* D, PlyScratch& scratch,
+                               const double* twist) {
     // Step 1: rotation-minimizing frames; step 2: the helices.
     PlyScratch::Buffers& buf = buffers(scratch);
     frames(g, y, X, m, seed, nullptr, buf);
@@ -213,7 +223,7 @@ void PlyKernel::sweepWithPhase(const PlyGenerator& g, size_t y, const dvec3* X, 
     helices(
         g.options_, X, buf.tangent.data(), buf.normal.data(), m, g.cosPly_, g.sinPly_,
         [&](size_t j) {
-            const double theta = rate * arc[j];
+            const double theta = twist ? rate * arc[j] + twist[j] : rate * arc[j];  // strain tables' twist
             return glm::dvec2(std::cos(theta), std::sin(theta));
         },
         P, D);
@@ -252,11 +262,13 @@ void PlyGenerator::generate(size_t first, size_t last, Plies& out, PlyScratch& s
 
     std::vector<dvec3>& centre = impl::PlyKernel::buffers(scratch).centre;
     std::vector<glm::vec3>& colour = impl::PlyKernel::buffers(scratch).colour;
+    std::vector<double>& twist = impl::PlyKernel::buffers(scratch).twist;
     for (size_t y = first; y < last; ++y) {
         // Step 2: resample the centreline (and its colours).
         centre.clear();
         colour.clear();
-        const size_t m = impl::PlyKernel::centreline(*this, y, centre, scratch, &colour);
+        twist.clear();
+        const size_t m = impl::PlyKernel::centreline(*this, y, centre, scratch, &colour, &twist);
         if (m < 2) continue;  // degenerate yarn: no plies
         // Step 3: n curves of m points (yarn-major, ply-minor) swept around it.
         const size_t base = out.curves.points.size();
@@ -269,7 +281,8 @@ void PlyGenerator::generate(size_t first, size_t last, Plies& out, PlyScratch& s
             out.plyOfCurve.push_back(static_cast<uint8_t>(i));
         }
         impl::PlyKernel::sweep(*this, y, centre.data(), m, out.curves.points.data() + base,
-                               withRadial ? out.radial.data() + base : nullptr, scratch);
+                               withRadial ? out.radial.data() + base : nullptr, scratch,
+                               twist.empty() ? nullptr : twist.data());
         if (!colour.empty()) {
             out.colour.resize(base + n * m);
             impl::PlyKernel::plyColours(colour.data(), m, n, out.colour.data() + base);
@@ -308,12 +321,13 @@ Plies makePlies(const PlyGenerator& generator) {
     const size_t batches = batchStart.size() - 1;
     std::vector<std::vector<dvec3>> centres(batches);
     std::vector<std::vector<glm::vec3>> colours(batches);  // empty without colours
+    std::vector<std::vector<double>> twists(batches);      // empty without twist
     std::vector<size_t> samples(C.curveCount(), 0);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, batches, 1), [&](const tbb::blocked_range<size_t>& r) {
         PlyScratch scratch;
         for (size_t k = r.begin(); k < r.end(); ++k)
             for (size_t y = batchStart[k]; y < batchStart[k + 1]; ++y)
-                samples[y] = impl::PlyKernel::centreline(generator, y, centres[k], scratch, &colours[k]);
+                samples[y] = impl::PlyKernel::centreline(generator, y, centres[k], scratch, &colours[k], &twists[k]);
     });
 
     // Step 3: layout, yarn-major and ply-minor (yarns with < 2 samples get no plies).
@@ -346,18 +360,21 @@ Plies makePlies(const PlyGenerator& generator) {
         for (size_t k = r.begin(); k < r.end(); ++k) {
             const dvec3* X = centres[k].data();
             const glm::vec3* colour = colours[k].data();
+            const double* twist = twists[k].empty() ? nullptr : twists[k].data();
             for (size_t y = batchStart[k]; y < batchStart[k + 1]; ++y) {
                 const size_t m = samples[y];
                 if (m >= 2) {
                     impl::PlyKernel::sweep(generator, y, X, m, out.curves.points.data() + firstPoint[y],
-                                           out.radial.data() + firstPoint[y], scratch);
+                                           out.radial.data() + firstPoint[y], scratch, twist);
                     if (withColour) impl::PlyKernel::plyColours(colour, m, n, out.colour.data() + firstPoint[y]);
                 }
                 X += m;
                 if (withColour) colour += m;
+                if (twist) twist += m;
             }
             std::vector<dvec3>().swap(centres[k]);  // release memory early
             std::vector<glm::vec3>().swap(colours[k]);
+            std::vector<double>().swap(twists[k]);
         }
     });
     return out;

@@ -19,6 +19,7 @@ struct PlyScratch::Buffers {
     std::vector<glm::dvec3> centre, tangent, normal;
     std::vector<glm::vec3> colour;  // per centre point, when the yarns have colours
     std::vector<double> arc;
+    std::vector<double> twist;  // per centre point, when the yarns have twist (MappedYarns::twist)
 };
 
 namespace impl {
@@ -31,15 +32,19 @@ struct PlyKernel {
     // The resampled centreline of yarn `y`, appended to `centre`, and its colours appended to
     // `colour` (when not null and the yarns have colours); returns its point count (< 2 means no
     // plies).
+    // Likewise its twist (radians, per centre point) appended to `twist` when not null and the
+    // yarns have twist.
     static size_t centreline(const PlyGenerator& generator, size_t y, std::vector<glm::dvec3>& centre,
-                             PlyScratch& scratch, std::vector<glm::vec3>* colour = nullptr);
+                             PlyScratch& scratch, std::vector<glm::vec3>* colour = nullptr,
+                             std::vector<double>* twist = nullptr);
     // The centre colours (m per yarn) repeated for each of the `count` plies: ply i's point j
     // goes to out[i * m + j].
     static void plyColours(const glm::vec3* colour, size_t m, uint32_t count, glm::vec3* out);
     // The `count` plies of yarn `y` swept around its m-point centreline: ply i's point j goes to
-    // points[i * m + j] (and its unit radial direction to radial[i * m + j] unless radial is null).
+    // points[i * m + j] (and its unit radial direction to radial[i * m + j] unless radial is null);
+    // `twist` (m values, or null) is added to the ply phase.
     static void sweep(const PlyGenerator& generator, size_t y, const glm::dvec3* centre, size_t m, glm::dvec3* points,
-                      glm::dvec3* radial, PlyScratch& scratch);
+                      glm::dvec3* radial, PlyScratch& scratch, const double* twist = nullptr);
     // sweep's two parts (animation replays the second with the rest pose's phase): the arc length
     // of each centre point (written to `arc`) and the twist pitch (closed yarns: a whole number of
     // turns) ...
@@ -49,7 +54,7 @@ struct PlyKernel {
     // surface normal at the first point, or null).
     static void sweepWithPhase(const PlyGenerator& generator, size_t y, const glm::dvec3* centre, size_t m,
                                const double* arc, double pitch, const glm::dvec3* seed, glm::dvec3* points,
-                               glm::dvec3* radial, PlyScratch& scratch);
+                               glm::dvec3* radial, PlyScratch& scratch, const double* twist = nullptr);
     // Rotation-minimizing frames of a centreline into buf.tangent / buf.normal (seeds as below).
     static void frames(const PlyGenerator& generator, size_t y, const glm::dvec3* centre, size_t m,
                        const glm::dvec3* seed, const glm::dvec3* seedTangent, PlyScratch::Buffers& buf);

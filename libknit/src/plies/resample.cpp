@@ -239,6 +239,24 @@ size_t resampleColours(const glm::vec3* in, bool closed, const ResampleLayout& l
     return out.size() - start;
 }
 
+size_t resampleTwist(const float* in, bool closed, const uint32_t* kept, size_t keptCount, const uint32_t* pieces,
+                     double* out) {
+    if (keptCount < 2) {
+        for (size_t i = 0; i < keptCount; ++i) out[i] = in[kept[i]];
+        return keptCount;
+    }
+    size_t o = 0;
+    const size_t segments = closed ? keptCount : keptCount - 1;
+    for (size_t s = 0; s < segments; ++s) {
+        const double a = in[kept[s]], b = in[kept[s + 1 == keptCount ? 0 : s + 1]];
+        const uint32_t k = pieces[s];
+        out[o++] = a;
+        for (uint32_t j = 1; j < k; ++j) out[o++] = a + (b - a) * (double(j) / double(k));
+    }
+    if (!closed) out[o++] = in[kept[keptCount - 1]];
+    return o;
+}
+
 size_t resampleCurveWithLayout(const Polylines& curves, size_t c, const uint32_t* kept, size_t keptCount,
                                const uint32_t* pieces, dvec3* out, ResampleScratch& scratch) {
     const bool closed = curves.isClosed(c);

@@ -43,6 +43,12 @@ size_t resampleCurve(const MappedYarns& yarns, size_t c, double spacing, std::ve
 // of the nearer end of its piece (colours change between stitches, never blend). Returns the
 // number appended (what resampleCurve appended to its points).
 size_t resampleColours(const glm::vec3* in, bool closed, const ResampleLayout& layout, std::vector<glm::vec3>& out);
+// The per-point twist `in` (curve's first point at in[0], radians; MappedYarns::twist) of a curve
+// resampled with a layout (its kept points and pieces, as resampleCurveWithLayout), written to
+// `out`: linear in the piece parameter j / k between kept points (twist changes smoothly with the
+// strain). Returns the number written (what resampling writes).
+size_t resampleTwist(const float* in, bool closed, const uint32_t* kept, size_t keptCount, const uint32_t* pieces,
+                     double* out);
 // Resamples curve `c` of `curves` (a deformed pose of the curve a layout was recorded on) with
 // that layout's kept points and piece counts, writing sum(pieces) + (open ? 1 : 0) points (or the
 // 0 / 1 kept points of a degenerate curve) to `out`. On the recording pose it gives

@@ -84,6 +84,7 @@ public:
                 throw Error("strain-aware deformation needs a strain table (the deform mode is strain)");
             checkStrainTable(*options_.deform.table, s_.pattern_);
         }
+        s_.deformOptions_ = options_.deform;
         run("normals", [&] { s_.normals_ = vertexNormals(s_.mesh_.positions, s_.mesh_.faces); });
         run("uv_grid", [&] { placeAndGrid(); });
         // With a view, the level of every cell comes first (it needs only the mesh, the grid and
