@@ -68,13 +68,14 @@ void addSceneFlags(CLI::App& cmd, SceneFlags& f) {
     cmd.add_option("--max-memory", f.maxMemory,
                    "Memory budget (8G, 512M, ...; default min(4G, half the physical memory)): steps estimated to need "
                    "more are refused");
-    cmd.add_option("--deform", f.deform,
-                   "How yarns follow a strained surface: none (mapped with it, stretching like rubber) or strain (they "
-                   "slide and bend as the pattern's strain table says; without --strain-table the pattern's table from "
-                   "the cache, made on first use). "
-                   "Default: strain where the pattern's table is at hand (--strain-table, cached, or made in seconds: "
-                   "cell vertices x samples <= 96 x 729), else none with a note naming the command that makes it "
-                   "(docs/deformation.md)")
+    cmd.add_option(
+           "--deform", f.deform,
+           "How yarns follow a strained surface: none (mapped with it, stretching like rubber) or strain (they "
+           "slide and bend as the pattern's strain table says; without --strain-table the pattern's table from "
+           "the cache, made on first use). "
+           "Default: strain where the pattern's table is at hand (--strain-table, cached, or made in under a "
+           "minute: cell vertices x samples <= 32 x 729), else none with a note naming the command that makes it "
+           "(docs/deformation.md)")
         ->check(CLI::IsMember({"none", "strain"}));
     cmd.add_option(
         "--strain-table", f.strainTable,

@@ -104,9 +104,9 @@ TEST(DeformChoice, autoIsStrainWhereTheTableIsQuickOrCachedElseNoneWithAnEstimat
     EXPECT_EQ(given.deform.reason, DeformReason::TableGiven);
     EXPECT_EQ(given.deform.table, first.deform.table);
 
-    // A pattern of 120 cell vertices: its 9 x 9 x 9 table would take a minute or more.
+    // A pattern of 48 cell vertices: its 9 x 9 x 9 table would take minutes.
     StockinetteParams big;
-    big.samplesPerStitch = 120;
+    big.samplesPerStitch = 48;
     const Pattern slow = generateStockinette(big);
     ASSERT_FALSE(strainTableIsQuick(slow));
     const DeformDecision none = decideDeform(slow, DeformChoice::Auto, {}, make);

@@ -158,12 +158,15 @@ struct DeformOptions {
 // What the caller asked for: Auto (the default), None or Strain.
 enum class DeformChoice { Auto, None, Strain };
 
-// A pattern's table is quick to make (seconds, so Auto makes it on first use) when its cell
-// vertices times its samples are at most this: 96 cell vertices at the default 9 x 9 x 9. A
+// A pattern's table is quick to make (under a minute, so Auto makes it on first use) when its cell
+// vertices times its samples are at most this: 32 cell vertices at the default 9 x 9 x 9. A
 // count, not a timing, so that the choice (and the output) is the same on any machine and under
-// any load. Measured estimates (`knit strain-table`, 2-core machine): stockinette (24 vertices)
-// 3 s, basket.pyp (80) 7 s, satin.pyp (130) 22 s, slip_stitch_honeycomb.pyp (182) 68 s.
-constexpr double kQuickStrainTableWork = 96.0 * 729.0;
+// any load. The table solver's cost grows about as the cube of the cell's vertices (dense damped
+// Newton). Measured on this 2-core machine with the stiff-yarn solver: the default stockinette
+// (24 vertices) 13.0 s CPU, 29.5 s wall at load 3.5 (`knit strain-table --pattern stockinette -o
+// T.npy`); estimates printed by `knit build --pattern satin.pyp` (130 vertices): about 2200 s.
+// (The first threshold, 96 vertices, was set against the earlier, ~9x cheaper solver.)
+constexpr double kQuickStrainTableWork = 32.0 * 729.0;
 bool strainTableIsQuick(const Pattern& pattern, const StrainTableOptions& options = {});
 
 struct DeformDecision {
