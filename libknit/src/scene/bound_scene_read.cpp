@@ -160,7 +160,9 @@ void checkDeformParts(const impl::BoundSceneParts& p) {
     if (!std::isfinite(p.tableSeconds)) throw Error("the strain table's seconds are not finite");
     const size_t n = p.binding.face.size();
     if (p.deformMode == static_cast<uint32_t>(DeformMode::None)) {
-        if (!p.binding.source.empty() || !p.table.data.empty() || p.table.vertexCount != 0 || p.table.samples() != 0)
+        const StrainTable& t = p.table;
+        if (!p.binding.source.empty() || !t.data.empty() || t.vertexCount != 0 || !t.axes[0].empty() ||
+            !t.axes[1].empty() || !t.axes[2].empty())
             throw Error("the deform mode is none, but a strain table or pattern vertices follow");
         return;
     }
