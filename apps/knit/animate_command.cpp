@@ -247,7 +247,7 @@ nlohmann::json animateReport(double bindSeconds, const std::vector<FrameRecord>&
         report["deform"] = {{"mode", "none"}};
     }
     const bool bound = animator.rest().animatorState() != nullptr;  // loaded from a bound scene file
-    report["deform"]["why"] = bound ? "a bound scene file carries no strain table (knit bind binds geometrically)"
+    report["deform"]["why"] = bound ? "as bound (knit bind): " + deformWhy(animator.rest().deformOptions())
                                     : deformWhy(animator.rest().deformOptions());
     return report;
 }
@@ -353,7 +353,8 @@ int runAnimate(const AnimateCommand& a) {
     if (!a.bound.empty() && a.command != nullptr) refuseSceneFlagsWithBound(*a.command);
     const auto t0 = Clock::now();
     SceneFlags flags = a.scene;
-    if (!a.bound.empty()) flags.deform = "none";  // a bound scene file carries no strain table (knit bind)
+    // A bound scene file carries its deformation (and strain table): nothing is decided here.
+    if (!a.bound.empty()) flags.deform = "none";
     const SceneOptions sceneOptions = resolveScene(flags);
     const Scene rest = a.bound.empty() ? bindRestPose(sceneOptions, a.rest.empty() ? seq.frame(0).path : a.rest)
                                        : readBoundScene(a.bound, sceneOptions.budget).scene;

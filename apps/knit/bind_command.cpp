@@ -18,7 +18,7 @@ namespace knit::cli {
 namespace {
 
 // The settings the scene is bound with, for provenance (the file itself holds their results).
-nlohmann::json settingsJson(const SceneOptions& o) {
+nlohmann::json settingsJson(const SceneOptions& o, const Scene& rest) {
     nlohmann::json j = {
         {"writer", "knit bind"},
         {"pattern", o.pattern},
@@ -33,6 +33,8 @@ nlohmann::json settingsJson(const SceneOptions& o) {
           {"samplesPerTurn", o.plies.samplesPerTurn}}},
         {"bind",
          {{"clampTolerance", o.bind.clampTolerance}, {"weldTolerance", o.bind.weldTolerance}, {"weld", o.bind.weld}}}};
+    j["deform"] = {{"mode", rest.deformer() ? "strain" : "none"}, {"why", deformWhy(rest.deformOptions())}};
+    if (rest.deformer()) j["deform"]["strain_table"] = rest.deformer()->table().source;
     if (o.placement.gauge)
         j["gauge"] = {{"stitches", o.placement.gauge->stitches},
                       {"rows", o.placement.gauge->rows},
@@ -73,29 +75,24 @@ int runBind(const BindCommand& b) {
     // Step 1: fail before long work.
     requireWritableFolder(b.output, "bound scene");
     refuseCollidingPaths({{"--mesh", b.scene.scene.mesh}, {"--pattern", b.scene.scene.pattern}}, {{"-o", b.output}});
-    // Step 2: bind on the rest mesh, as `knit animate` does.
-    // A bound scene file holds no strain table: its frames are evaluated geometrically, so the
-    // rest scene is bound that way too (the default deformation does not apply; asking for strain
-    // is refused).
-    if (b.scene.deform == "strain" || !b.scene.strainTable.empty())
-        throw Error(std::string(b.scene.strainTable.empty() ? "--deform strain" : "--strain-table") +
-                    ": a bound scene file does not carry strain-aware deformation yet; `knit animate` without "
-                    "--bound binds and deforms in one run");
-    SceneFlags flags = b.scene;
-    flags.deform = "none";
+    // Step 2: bind on the rest mesh, as `knit animate` does, with the deformation it would use
+    // (--deform, --strain-table, else the default: knit::decideDeform through resolveScene). The
+    // file records it, with a strain table whole, so `animate --bound` deforms as `animate` does.
     const auto t0 = std::chrono::steady_clock::now();
-    const SceneOptions options = resolveScene(flags);
+    const SceneOptions options = resolveScene(b.scene);
     const Scene rest = bindRestPose(options, options.mesh);
     printWarnings(rest);
     const double bindSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     // Step 3: the file.
     BoundSceneInfo info;
-    info.settings = settingsJson(options).dump();
+    info.settings = settingsJson(options, rest).dump();
     writeBoundScene(b.output, rest, info, options.budget);
     if (b.scene.quiet) return 0;  // -q: only errors and warnings
-    std::printf("bound %zu yarn vertices of %zu yarns on %zu triangles in %.3f s: wrote %s (%ju bytes)\n",
+    const std::string deform =
+        rest.deformer() ? "strain, its table embedded: " + rest.deformer()->table().source : std::string("none");
+    std::printf("bound %zu yarn vertices of %zu yarns on %zu triangles in %.3f s (deform: %s): wrote %s (%ju bytes)\n",
                 rest.binding().vertexCount(), rest.binding().yarnCount(), rest.mesh().faceCount(), bindSeconds,
-                b.output.c_str(), static_cast<uintmax_t>(std::filesystem::file_size(b.output)));
+                deform.c_str(), b.output.c_str(), static_cast<uintmax_t>(std::filesystem::file_size(b.output)));
     return 0;
 }
 

@@ -127,7 +127,8 @@ int runRender(const RenderCommand& r) {
     options.output = outputs.stage(r.options.output);
     options.exr = outputs.stage(r.options.exr);
     SceneFlags flags = r.scene;
-    if (!r.bound.empty()) flags.deform = "none";  // a bound scene file carries no strain table (knit bind)
+    // A bound scene file carries its deformation (and strain table): nothing is decided here.
+    if (!r.bound.empty()) flags.deform = "none";
     SceneOptions sceneOptions = resolveScene(flags);
     options.budget = sceneOptions.budget;  // --max-memory
     // The surface level of --detail view: --bake-size when given, else the width the view needs.

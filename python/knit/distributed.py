@@ -8,7 +8,10 @@ The frames are cut into chunks of `chunk` consecutive frame numbers; each chunk 
 that runs `knit animate --bound BOUND --frames FRAMES --first A --last B --threads T -o CHUNK` (the
 command line a farm runs, so the bytes are the CLI's), and `knit cache merge` joins the chunks.
 A frame is a pure function of the bound scene and its own mesh, so the merged cache equals one
-`knit animate --bound BOUND --frames FRAMES -o OUT` run byte for byte, whatever the chunking.
+`knit animate --bound BOUND --frames FRAMES -o OUT` run byte for byte, whatever the chunking, and
+so the plain `knit animate --frames FRAMES [the bind's scene flags]` run: the bound file carries the
+deformation `knit bind` chose as `knit animate` chooses it (--deform, --strain-table, the default),
+with the strain table embedded, so workers need no strain table cache and take no deform options.
 
 Failures: a chunk whose worker dies is run again by Dask on another worker (the knit process dies
 with its worker: PR_SET_PDEATHSIG); a chunk that fails on bad input fails the bake with knit's

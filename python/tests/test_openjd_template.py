@@ -230,9 +230,9 @@ def test_the_template_run_as_a_farm_runs_it_equals_one_knit_animate(tmp_path):
     assert [r[0] for r in ran] == ["Bind", "Bake", "Bake", "Merge"]
     assert sorted(os.listdir(job["ChunkDir"])) == ["chunk_00000001_00000006.obj", "chunk_00000001_00000006.pc2",
                                                     "chunk_00000007_00000012.obj", "chunk_00000007_00000012.pc2"]
-    # --deform none: a bound scene file carries no strain table, so the farm's frames are geometric
-    # (the default of a single run is strain-aware where the pattern's table is at hand).
-    single = subprocess.run([KNIT, "animate", "-q", "--deform", "none", "--frames", job["Frames"], "--repeats", "4", "4",
+    # The default deformation on both sides: `knit bind` decides it as `knit animate` does and the
+    # bound file carries it (with the strain table), so the farm's frames are the single run's.
+    single = subprocess.run([KNIT, "animate", "-q", "--frames", job["Frames"], "--repeats", "4", "4",
                              "-o", str(tmp_path / "one.pc2")], capture_output=True, text=True, timeout=120)
     assert single.returncode == 0, single.stderr
     assert read(job["Output"]) == read(tmp_path / "one.pc2")

@@ -1,13 +1,15 @@
 // Farm bakes end to end (issue 26): `knit bind` once, `knit animate --bound --first A --last B`
-// per chunk, `knit cache merge`: the same bytes as one `knit animate --deform none` run, whatever
-// the chunks (a bound scene file carries no strain table: its frames are geometric, so the single
-// runs compared with them are too).
+// per chunk, `knit cache merge`: the same bytes as one `knit animate` run, whatever the chunks,
+// with the deformation `knit bind` chose as `knit animate` chooses it (the file carries it, with
+// the strain table whole). The chunking tests bind and animate with --deform none (no table).
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "animate_sequence.hpp"
 #include "common/run_knit.hpp"
@@ -33,8 +35,8 @@ protected:
     }
     void TearDown() override { fs::remove_all(dir); }
     CliRun knit(const std::string& args) const { return runKnit(args, dir); }
-    void bind() const {
-        const CliRun r = knit("bind -q --mesh frame_0001.obj --repeats 3 3 -o g.knitbind");
+    void bind(const std::string& deform = "--deform none") const {
+        const CliRun r = knit("bind -q --mesh frame_0001.obj --repeats 3 3 " + deform + " -o g.knitbind");
         ASSERT_EQ(r.exitCode, 0) << r.output;
     }
     // `animate --bound` over frames first..last into `out`.
@@ -151,19 +153,62 @@ TEST_F(Farm, boundFileErrorsNameTheFileAndTheFlag) {
     EXPECT_FALSE(fs::exists(dir / "c.pc2"));
     // A frame of another mesh is refused naming the frame.
     writeWaveFrame(dir / "other_0001.obj", 1, 5);
-    r = knit("bind -q --mesh frame_0001.obj --repeats 3 3 -o g.knitbind");
+    r = knit("bind -q --mesh frame_0001.obj --repeats 3 3 --deform none -o g.knitbind");
     ASSERT_EQ(r.exitCode, 0) << r.output;
     r = knit("animate -q --bound g.knitbind --frames other_%04d.obj -o c.pc2");
     EXPECT_EQ(r.exitCode, 1);
     EXPECT_NE(r.output.find("frame 1"), std::string::npos) << r.output;
 }
 
+// `knit bind` makes the deform decision `knit animate` makes (the same flags, the same default:
+// knit::decideDeform) and the file carries it with the strain table whole, so a farm worker
+// without the cache deforms the frames as one `knit animate` run does, byte for byte; with
+// --deform none too. Repeats of 3 x 5 on the square strain the layout (the wave, the frames).
+TEST_F(Farm, aBoundSceneDeformsItsFramesAsOneAnimateRunDoes) {
+    CliRun r = knit("bind --mesh frame_0001.obj --repeats 3 5 -o s.knitbind");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("(deform: strain, its table embedded: "), std::string::npos) << r.output;
+    r = knit("animate -q --frames frame_%04d.obj --repeats 3 5 -o one.pc2");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    ::setenv("KNIT_CACHE_DIR", (dir / "worker_cache").c_str(), 1);  // a worker without the cache
+    r = knit("animate -q --bound s.knitbind --frames frame_%04d.obj --report b.json -o bound.pc2");
+    ::unsetenv("KNIT_CACHE_DIR");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const std::string one = bytesOf(dir / "one.pc2");
+    ASSERT_GT(one.size(), 9 * 12 * 1000u);
+    EXPECT_TRUE(bytesOf(dir / "bound.pc2") == one);
+    EXPECT_TRUE(bytesOf(dir / "bound.obj") == bytesOf(dir / "one.obj"));
+    EXPECT_FALSE(fs::exists(dir / "worker_cache"));  // nothing looked up or made there
+    const nlohmann::json report = nlohmann::json::parse(bytesOf(dir / "b.json"));
+    EXPECT_EQ(report["deform"]["mode"], "strain");
+    EXPECT_EQ(report["deform"]["why"].get<std::string>().rfind("as bound (knit bind): ", 0), 0u) << report["deform"];
+    // --deform none on both: geometric frames, the same bytes, and not the strain-aware ones.
+    r = knit("bind -q --mesh frame_0001.obj --repeats 3 5 --deform none -o n.knitbind");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    r = knit("animate -q --frames frame_%04d.obj --repeats 3 5 --deform none -o one_none.pc2");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    r = knit("animate -q --bound n.knitbind --frames frame_%04d.obj -o bound_none.pc2");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(bytesOf(dir / "bound_none.pc2") == bytesOf(dir / "one_none.pc2"));
+    EXPECT_FALSE(bytesOf(dir / "bound_none.pc2") == one);
+    EXPECT_GT(fs::file_size(dir / "s.knitbind"), fs::file_size(dir / "n.knitbind") + 200000);  // the table
+    // A damaged table (the last field of the file) is refused naming the file; nothing is written.
+    std::string damaged = bytesOf(dir / "s.knitbind");
+    damaged[damaged.size() - 3] ^= 0x20;
+    std::ofstream(dir / "s.knitbind", std::ios::binary | std::ios::trunc) << damaged;
+    r = knit("animate -q --bound s.knitbind --frames frame_%04d.obj -o c.pc2");
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.output.find("bound scene 's.knitbind' is damaged: its checksum does not match"), std::string::npos)
+        << r.output;
+    EXPECT_FALSE(fs::exists(dir / "c.pc2"));
+}
+
 #ifdef KNIT_HAVE_RENDER_CHECK
+// With the default deformation on both sides: the bound scene renders as the single run does.
 TEST_F(Farm, renderOfABoundSceneSkipsBindingAndPosesItAsAnimate) {
-    bind();
+    bind("");
     const std::string size = " --width 48 --height 36 --spp 2";
-    CliRun r =
-        knit("render -q --mesh frame_0001.obj --repeats 3 3 --deform none --detail full" + size + " --output full.png");
+    CliRun r = knit("render -q --mesh frame_0001.obj --repeats 3 3 --detail full" + size + " --output full.png");
     ASSERT_EQ(r.exitCode, 0) << r.output;
     r = knit("render -q --bound g.knitbind" + size + " --output rest.png");
     ASSERT_EQ(r.exitCode, 0) << r.output;

@@ -1,5 +1,6 @@
 // Bound scene files (knit/bound_scene.hpp): a loaded scene evaluates frames to the same bytes as
-// the scene that was saved; other versions and damaged files are refused saying which.
+// the scene that was saved, with its strain table when it has one; other versions and damaged
+// files are refused saying which.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -13,7 +14,9 @@
 #include "knit/animation.hpp"
 #include "knit/bound_scene.hpp"
 #include "knit/error.hpp"
+#include "knit/generator.hpp"
 #include "knit/scene.hpp"
+#include "knit/strain.hpp"
 #include "scene/bound_scene_format.hpp"
 
 namespace knit {
@@ -148,12 +151,12 @@ TEST(BoundScene, otherVersionsAndDamagedFilesAreRefusedSayingWhich) {
     const std::string bytes = encodeBoundScene(restScene(), {});
     std::string v = bytes;
     v[8] = 7;  // format version 7
-    EXPECT_NE(errorOf(v).find("has format version 7 (written by a newer knit); this knit reads version 2 only: bind "
+    EXPECT_NE(errorOf(v).find("has format version 7 (written by a newer knit); this knit reads version 3 only: bind "
                               "the scene again with this knit (`knit bind --mesh REST ... -o g.knitbind`)"),
               std::string::npos)
         << errorOf(v);
     v[8] = 1;  // a file of the first format (no Animator state)
-    EXPECT_NE(errorOf(v).find("has format version 1 (written by an older knit); this knit reads version 2 only"),
+    EXPECT_NE(errorOf(v).find("has format version 1 (written by an older knit); this knit reads version 3 only"),
               std::string::npos)
         << errorOf(v);
     EXPECT_NE(errorOf(bytes.substr(0, bytes.size() - 100)).find("is truncated"), std::string::npos);
@@ -243,6 +246,111 @@ TEST(BoundScene, anInconsistentAnimatorStateIsRefusedNamingTheYarn) {
     EXPECT_NE(e.find("is damaged: the rest twist phases claim 1125899906842624 elements of 16 bytes"),
               std::string::npos)
         << e;
+}
+
+// A strain table written here (the default pattern's vertex count, no period: any stockinette
+// fits): displacements and a twist that grow with the strain, different per cell vertex.
+std::shared_ptr<const StrainTable> testTable() {
+    auto t = std::make_shared<StrainTable>();
+    t->source = "tables/test.npy";
+    t->axes = {std::vector<double>{-0.2, 0.3, 1.0}, std::vector<double>{-0.7, 0.7}, std::vector<double>{-0.2, 1.0}};
+    const Pattern p = generateStockinette();
+    t->vertexCount = p.points.size();
+    const size_t nx = 3, na = 2, ny = 2;
+    for (size_t row = 0; row < t->vertexCount * nx * na * ny; ++row) {
+        const size_t isx = row % nx, isa = row / nx % na, isy = row / (nx * na) % ny, v = row / (nx * na * ny);
+        const double k = 0.5 + double(v % 5) / 4;
+        t->data.insert(t->data.end(), {float(0.03 * p.px * k * double(isx)), float(0.02 * p.py * k * double(isy)),
+                                       float(0.01 * p.px * k * double(isa)), float(0.2 * double(isx))});
+    }
+    return t;
+}
+
+// The default pattern on the drape, placed more densely along u than v (a strained layout).
+Scene strainedRestScene(const std::shared_ptr<const StrainTable>& table) {
+    SceneOptions o;
+    o.meshOptions.resU = o.meshOptions.resV = 8;
+    o.placement.repeats = {4, 7};
+    o.buildPlies = false;
+    o.plies.count = 3;
+    o.deform.mode = table ? DeformMode::Strain : DeformMode::None;
+    o.deform.table = table;
+    o.deform.reason = DeformReason::TableGiven;
+    return buildScene(o);
+}
+
+TEST(BoundScene, aStrainSceneCarriesItsTableAndDeformsFramesToTheSameBytes) {
+    const Scene rest = strainedRestScene(testTable()), geometric = strainedRestScene(nullptr);
+    ASSERT_TRUE(rest.deformer());
+    ASSERT_GT(rest.deformStats().vertices, 0u);  // the layout is strained: the table moves the yarns
+    const std::string bytes = encodeBoundScene(rest, {});
+    const BoundScene loaded = decodeBoundScene(bytes, "g.knitbind");
+    // The table itself is in the file (the one given is not read again), and why it was used.
+    ASSERT_TRUE(loaded.scene.deformer());
+    const StrainTable& t = loaded.scene.deformer()->table();
+    EXPECT_EQ(t.data, testTable()->data);
+    EXPECT_EQ(t.axes, testTable()->axes);
+    EXPECT_EQ(t.source, "tables/test.npy");
+    EXPECT_EQ(loaded.info.strainTable, "tables/test.npy");
+    EXPECT_EQ(loaded.scene.deformOptions().mode, DeformMode::Strain);
+    EXPECT_EQ(loaded.scene.deformOptions().reason, DeformReason::TableGiven);
+    EXPECT_EQ(loaded.scene.deformStats().vertices, rest.deformStats().vertices);
+    EXPECT_EQ(loaded.scene.yarns().curves.points, rest.yarns().curves.points);
+    EXPECT_EQ(loaded.scene.yarns().twist, rest.yarns().twist);
+    EXPECT_GT(bytes.size(), encodeBoundScene(geometric, {}).size() + t.data.size() * sizeof(float));
+    // A frame through an Animator of each: the yarns and plies bit for bit, and not the
+    // geometric ones.
+    const Animator a(rest), b(loaded.scene), g(geometric);
+    AnimationFrame fa, fb, fg;
+    const std::vector<glm::dvec3> frame = waved(rest.mesh());
+    a.evaluate(frame, fa);
+    b.evaluate(frame, fb);
+    g.evaluate(frame, fg);
+    ASSERT_GT(fa.deform.vertices, 0u);
+    EXPECT_EQ(fa.yarns.curves.points, fb.yarns.curves.points);
+    EXPECT_EQ(fa.plies.curves.points, fb.plies.curves.points);
+    EXPECT_EQ(fa.deform.clamped, fb.deform.clamped);
+    ASSERT_EQ(fa.yarns.curves.points.size(), fg.yarns.curves.points.size());
+    EXPECT_NE(fa.yarns.curves.points, fg.yarns.curves.points);
+    // A geometric scene stores no table nor pattern vertices, and loads without a deformer.
+    const BoundScene none = decodeBoundScene(encodeBoundScene(geometric, {}), "n.knitbind");
+    EXPECT_FALSE(none.scene.deformer());
+    EXPECT_TRUE(none.scene.binding().source.empty());
+    // The file round-trips to the same bytes.
+    EXPECT_EQ(encodeBoundScene(loaded.scene, loaded.info), bytes);
+}
+
+TEST(BoundScene, aDamagedOrMismatchedEmbeddedTableIsRefusedNamingTheFile) {
+    const std::string bytes = encodeBoundScene(strainedRestScene(testTable()), {});
+    const FieldOffsets at(bytes);
+    const size_t data = at["the strain table's data"];
+    // A flipped bit in the table: the checksum covers it.
+    std::string flipped = bytes;
+    flipped[data + 5] ^= 0x04;
+    std::string e = errorOf(flipped);
+    EXPECT_NE(e.find("bound scene 'g.knitbind' is damaged: its checksum does not match"), std::string::npos) << e;
+    // Checksum resealed: values, shape and fit are checked.
+    const std::string prefix = "bound scene 'g.knitbind' is inconsistent: its strain table ('tables/test.npy'): ";
+    e = errorOf(withValue(bytes, data + 4 * 9, std::numeric_limits<float>::quiet_NaN()));
+    EXPECT_NE(e.find(prefix + "the strain table's value 9 (vertex 0) is not finite"), std::string::npos) << e;
+    e = errorOf(withValue(bytes, at["the strain table's vertex count"], uint64_t(7)));
+    EXPECT_NE(e.find(prefix + "the strain table's data holds"), std::string::npos) << e;
+    e = errorOf(withValue(bytes, at["the strain table's sa samples"], 0.9));
+    EXPECT_NE(e.find(prefix + "the strain table's sa samples are not finite and increasing"), std::string::npos) << e;
+    e = errorOf(withValue(bytes, at["the strain table's period"], 0.5));  // made for another period
+    EXPECT_NE(e.find(prefix + "the strain table 'tables/test.npy' was made for the period"), std::string::npos) << e;
+    e = errorOf(withValue(bytes, at["the deform mode"], uint32_t(7)));
+    EXPECT_NE(e.find("is inconsistent: the deform mode 7 is unknown"), std::string::npos) << e;
+    e = errorOf(withValue(bytes, at["the deform mode"], uint32_t(0)));  // none, with a table
+    EXPECT_NE(e.find("is inconsistent: the deform mode is none, but a strain table"), std::string::npos) << e;
+    e = errorOf(withValue(bytes, at["the binding's pattern vertices"] - 8, uint64_t(3)));
+    EXPECT_NE(e.find("bound scene 'g.knitbind' is"), std::string::npos) << e;  // the fields after it no longer line up
+    // A file of the previous format (before the table was stored) says so.
+    std::string v2 = bytes;
+    v2[8] = 2;
+    EXPECT_NE(errorOf(v2).find("has format version 2 (written by an older knit); this knit reads version 3 only"),
+              std::string::npos)
+        << errorOf(v2);
 }
 
 TEST(BoundScene, aSceneMadeFromPartsIsNotSaved) {

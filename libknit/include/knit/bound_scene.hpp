@@ -5,24 +5,30 @@
 // placement, the yarn radius and UV cell size, the rest mesh (positions, UVs, faces), the binding
 // (triangle, barycentrics, height, twist, colour per yarn vertex; yarn offsets and closed flags),
 // the bind statistics, the ply settings, the settings the scene was built with (JSON, for
-// provenance), a reference to a strain table (empty: none), and (format version 2) what the
+// provenance), where its strain table came from (provenance; empty: none), and (format version 2) what the
 // Animator derives at bind time: the ply layout (each yarn's resampling: kept points, pieces per
 // segment, resampled points), the rest arc length and twist phase of every resampled point, each
-// yarn's rest pitch, length and first ply frame, the resampled points' colours. Loading rebuilds
-// the cheap rest: the rest vertex normals, the rest yarns (the binding evaluated on the rest mesh)
-// and the UV grid, with the same code as binding; the loaded scene carries the stored Animator
-// state (Scene::animatorState), which its Animators adopt instead of resampling the rest yarns.
-// So a loaded scene evaluates every frame to the same bytes as the scene that was saved.
-// Nothing depends on other frames.
+// yarn's rest pitch, length and first ply frame, the resampled points' colours; and (format
+// version 3) the scene's deformation (SceneOptions::deform as knit::decideDeform chose it: the
+// mode and why) with, for strain, the strain table itself (float32, the whole table: a farm
+// worker needs no cache and no path of the machine that bound the scene; covered by the
+// checksum) and each yarn vertex's pattern vertex (Binding::source). Loading rebuilds
+// the cheap rest: the rest vertex normals, the rest yarns (the binding evaluated on the rest mesh,
+// with strain displaced by the table as buildScene does) and the UV grid, with the same code as
+// binding; the loaded scene carries the stored Animator state (Scene::animatorState), which its
+// Animators adopt instead of resampling the rest yarns, and its strain deformer
+// (Scene::deformer), which they apply on every frame. So a loaded scene evaluates every frame to
+// the same bytes as the scene that was saved. Nothing depends on other frames.
 //
 // Layout (little-endian): a 32-byte header
 //   char[8] "KNITBIND", u32 format version, u32 header size (32), u64 payload bytes,
 //   u32 CRC-32 of the payload, u32 zero
 // then the payload: the fields above in a fixed order, arrays as a u64 count and packed
 // elements, strings as a u64 length and bytes. A file of another format version (version 1:
-// written before the Animator state was stored; bind the scene again), a truncated or otherwise
-// damaged file (size or checksum wrong, counts beyond the file, indices out of
-// range) is refused with a knit::Error saying which.
+// written before the Animator state was stored; version 2: before the deformation and its table
+// were; bind the scene again), a truncated or otherwise damaged file (size or checksum wrong,
+// counts beyond the file, indices out of range, an embedded table that is not finite or does not
+// fit the pattern) is refused with a knit::Error saying which.
 #pragma once
 #include <cstdint>
 #include <string>
@@ -34,12 +40,15 @@
 namespace knit {
 
 // The format this library writes and reads (a file of any other version is refused).
-constexpr uint32_t kBoundSceneFormatVersion = 2;
+constexpr uint32_t kBoundSceneFormatVersion = 3;
 
 struct BoundSceneInfo {
     uint32_t formatVersion = kBoundSceneFormatVersion;
-    std::string settings;     // JSON text: the settings the scene was bound with (provenance)
-    std::string strainTable;  // reference to a strain table the evaluation uses; empty: none
+    std::string settings;  // JSON text: the settings the scene was bound with (provenance)
+    // Where the scene's strain table came from (its file or cache entry; provenance only: the
+    // table itself is in the file and loads with the scene). Written: the table's source when
+    // left empty. Empty: no strain table.
+    std::string strainTable;
 };
 
 struct BoundScene {
@@ -48,7 +57,7 @@ struct BoundScene {
 };
 
 // The bytes of a bound scene file of `rest` (a scene built by buildScene without a view;
-// plies are not stored). Throws knit::Error for a scene made from parts or with a view.
+// plies are not stored; its deformation, SceneOptions::deform, is: with strain its table). Throws knit::Error for a scene made from parts or with a view.
 // The Animator's bind-time state is computed for the file (its ply points estimated against
 // `budget` first) unless `rest` was loaded from such a file.
 std::string encodeBoundScene(const Scene& rest, const BoundSceneInfo& info, const MemoryBudget& budget = {});

@@ -91,6 +91,12 @@ struct SceneParts {
     BindStats bindStats;
     // A loaded bound scene's Animator bind-time state (readBoundScene sets it); none: computed.
     std::shared_ptr<const AnimatorBindState> animatorState;
+    // A loaded bound scene's deformation (readBoundScene sets them): the mode, table and why it
+    // was chosen, the strain deformer (`yarns` already displaced by it) and what it did on the
+    // rest mesh; none: geometric.
+    DeformOptions deform;
+    std::shared_ptr<const StrainDeformer> deformer;
+    DeformStats deformStats;
 };
 
 // The result of the pipeline: read-only, made by buildScene (or Scene::fromParts).

@@ -14,12 +14,14 @@
 #include "knit/binding.hpp"
 #include "knit/pattern.hpp"
 #include "knit/plies.hpp"
+#include "knit/strain.hpp"
 #include "knit/tiling.hpp"
 
 namespace knit::impl {
 
 // Packed arrays are copied as bytes: the file is little-endian.
 static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "bound scene files are written on little-endian hosts");
+static_assert(sizeof(size_t) == 8, "counts are stored as 64-bit values");
 
 constexpr char kBoundSceneMagic[8] = {'K', 'N', 'I', 'T', 'B', 'I', 'N', 'D'};
 constexpr size_t kBoundSceneHeaderBytes = 32;
@@ -39,6 +41,13 @@ struct BoundSceneParts {
     BindStats stats;
     PlyOptions plies;
     AnimatorBindState animator;  // format version 2
+    // Format version 3: the deformation the scene was bound with (knit::decideDeform), and with
+    // strain its table, embedded whole, and each yarn vertex's pattern vertex (Binding::source,
+    // which the deformer looks the table up by; empty with none).
+    uint32_t deformMode = 0;    // DeformMode
+    uint32_t deformReason = 0;  // DeformReason
+    double tableSeconds = 0;    // DeformOptions::tableSeconds
+    StrainTable table;          // empty (no samples, no data) with none
 };
 
 // The fields in file order; `io` has value(x, what), array(v, what), text(s, what) and
@@ -100,6 +109,24 @@ void boundSceneLayout(IO& io, P& p) {
     io.array(a.restLength, "the rest yarn lengths");
     io.array(a.seeds, "the frame seeds");
     io.array(a.centreColour, "the resampled points' colours");
+    // The deformation (format version 3): the mode and why it was chosen, the binding's pattern
+    // vertices, and the strain table the frames are deformed with (the whole table: a farm worker
+    // needs no cache and no path of the machine that bound the scene).
+    io.value(p.deformMode, "the deform mode");
+    io.value(p.deformReason, "the deform reason");
+    io.value(p.tableSeconds, "the strain table's seconds");
+    io.array(p.binding.source, "the binding's pattern vertices");
+    auto& t = p.table;  // const for the writer
+    io.text(t.source, "the strain table's source");
+    io.text(t.pattern, "the strain table's pattern");
+    io.value(t.px, "the strain table's period");
+    io.value(t.py, "the strain table's period");
+    io.value(t.radius, "the strain table's yarn radius");
+    io.value(t.vertexCount, "the strain table's vertex count");
+    io.array(t.axes[0], "the strain table's sx samples");
+    io.array(t.axes[1], "the strain table's sa samples");
+    io.array(t.axes[2], "the strain table's sy samples");
+    io.array(t.data, "the strain table's data");
 }
 
 }  // namespace knit::impl

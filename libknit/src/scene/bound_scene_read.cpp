@@ -128,6 +128,57 @@ std::string_view checkHeader(std::string_view bytes, const std::string& name) {
 
 bool positiveFinite(double v) { return std::isfinite(v) && v > 0; }
 
+// The embedded strain table in itself (what parseStrainTable checks of a table file): sample
+// axes finite and increasing, data of the size they and the vertex count give, finite values.
+void checkEmbeddedTable(const StrainTable& t) {
+    static const char* const kAxis[3] = {"sx", "sa", "sy"};
+    for (int a = 0; a < 3; ++a) {
+        const std::vector<double>& v = t.axes[a];
+        if (v.empty() || v.size() > 4096)
+            throw Error("the strain table has " + std::to_string(v.size()) + " " + kAxis[a] + " samples (1 to 4096)");
+        for (size_t i = 0; i < v.size(); ++i)
+            if (!std::isfinite(v[i]) || (i > 0 && !(v[i] > v[i - 1])))
+                throw Error(std::string("the strain table's ") + kAxis[a] + " samples are not finite and increasing");
+    }
+    if (t.vertexCount == 0 || t.vertexCount > t.data.size() / 4 / t.samples() ||
+        t.data.size() != 4 * t.vertexCount * t.samples())
+        throw Error("the strain table's data holds " + std::to_string(t.data.size()) + " values, not 4 x " +
+                    std::to_string(t.vertexCount) + " vertices x " + std::to_string(t.samples()) + " samples");
+    for (size_t i = 0; i < t.data.size(); ++i)
+        if (!std::isfinite(t.data[i]))
+            throw Error("the strain table's value " + std::to_string(i) + " (vertex " +
+                        std::to_string(i / 4 / t.samples()) + ") is not finite");
+    if (!(t.px >= 0 && t.py >= 0 && std::isfinite(t.px) && std::isfinite(t.py) && std::isfinite(t.radius)))
+        throw Error("the strain table's period or radius is not finite and non-negative");
+}
+
+// Format version 3: the deform mode and why, and with strain the table (fitting the pattern) and
+// a pattern vertex per yarn vertex; with none, neither.
+void checkDeformParts(const impl::BoundSceneParts& p) {
+    if (p.deformReason > static_cast<uint32_t>(DeformReason::CannotMake))
+        throw Error("the deform reason " + std::to_string(p.deformReason) + " is unknown");
+    if (!std::isfinite(p.tableSeconds)) throw Error("the strain table's seconds are not finite");
+    const size_t n = p.binding.face.size();
+    if (p.deformMode == static_cast<uint32_t>(DeformMode::None)) {
+        const StrainTable& t = p.table;
+        if (!p.binding.source.empty() || !t.data.empty() || t.vertexCount != 0 || !t.axes[0].empty() ||
+            !t.axes[1].empty() || !t.axes[2].empty())
+            throw Error("the deform mode is none, but a strain table or pattern vertices follow");
+        return;
+    }
+    if (p.deformMode != static_cast<uint32_t>(DeformMode::Strain))
+        throw Error("the deform mode " + std::to_string(p.deformMode) + " is unknown (0 none, 1 strain)");
+    if (p.binding.source.size() != n)
+        throw Error("the deform mode is strain, but " + std::to_string(p.binding.source.size()) +
+                    " pattern vertices follow for " + std::to_string(n) + " yarn vertices");
+    try {
+        checkEmbeddedTable(p.table);
+        checkStrainTable(p.table, p.pattern);
+    } catch (const Error& e) {
+        throw Error(std::string("its strain table ('") + p.table.source + "'): " + e.what());
+    }
+}
+
 // Step 3: the invariants the evaluation relies on (a file with a valid checksum that another
 // writer made inconsistent).
 void checkParts(const impl::BoundSceneParts& p) {
@@ -157,6 +208,7 @@ void checkParts(const impl::BoundSceneParts& p) {
     PlyOptions plies = p.plies;
     plies.yarnRadius = p.pattern.radius * pl.scale;
     (void)resolvePlyOptions(plies);  // throws for settings the evaluation would refuse
+    checkDeformParts(p);
 }
 
 }  // namespace
@@ -176,8 +228,13 @@ BoundScene decodeBoundScene(std::string_view bytes, const std::string& name, con
         throw Error(boundName(name) + " is inconsistent: " + e.what());
     }
     const double vertices = static_cast<double>(p.binding.face.size());
+    const bool strain = p.deformMode == static_cast<uint32_t>(DeformMode::Strain);
+    // The strain deformer: a pattern vertex per yarn vertex; per UV vertex its pattern-space
+    // position, and per pose its strain and map.
+    const double deformerBytes =
+        strain ? 4.0 * vertices + 96.0 * static_cast<double>(p.mesh.uvs.size() + p.mesh.positions.size()) : 0.0;
     budget.require(static_cast<double>(payload.size()) + impl::kBytesPerYarnVertex * vertices +
-                       48.0 * static_cast<double>(p.mesh.positions.size()),
+                       48.0 * static_cast<double>(p.mesh.positions.size()) + deformerBytes,
                    "loading " + boundName(name), "the scene's size (bind fewer repeats)");
     impl::checkGridBudget(p.mesh, p.placement, false, budget);
     // Step 4: the rest normals, UV grid and rest yarns, as buildScene makes them; the Animator
@@ -190,6 +247,22 @@ BoundScene decodeBoundScene(std::string_view bytes, const std::string& name, con
     gridOptions.maxEntries = std::numeric_limits<uint64_t>::max();  // bounded by the memory budget above
     parts.grid = buildUvGrid(p.mesh, gridOptions);
     evaluateBinding(p.binding, p.mesh.faces, p.mesh.positions, parts.normals, parts.yarns);
+    // Step 5: with strain, the deformer on the rest mesh and its displacements on the rest yarns,
+    // as buildScene's deform stage makes them (the Animator state was computed on those yarns).
+    if (strain) {
+        parts.deform = {DeformMode::Strain, std::make_shared<const StrainTable>(std::move(p.table)),
+                        static_cast<DeformReason>(p.deformReason), p.tableSeconds};
+        try {
+            parts.deformer =
+                std::make_shared<const StrainDeformer>(p.mesh, p.pattern, p.placement, p.binding, parts.deform.table);
+        } catch (const Error& e) {
+            throw Error(boundName(name) + " is inconsistent: its strain table: " + e.what());
+        }
+        parts.deformStats = parts.deformer->apply(p.binding, p.mesh.positions, parts.yarns);
+    } else {
+        parts.deform.reason = static_cast<DeformReason>(p.deformReason);
+        parts.deform.tableSeconds = p.tableSeconds;
+    }
     try {
         checkAnimatorBindState(p.animator, parts.yarns);
     } catch (const Error& e) {

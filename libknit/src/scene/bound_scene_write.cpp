@@ -49,6 +49,24 @@ void put(std::string& out, T v) {
     out.append(reinterpret_cast<const char*>(&v), sizeof(T));
 }
 
+// The deformation the scene was built with (format version 3): with strain, its table whole and
+// the binding's pattern vertices; with none, neither.
+void deformParts(const Scene& rest, impl::BoundSceneParts& parts) {
+    const DeformOptions& d = rest.deformOptions();
+    parts.deformReason = static_cast<uint32_t>(d.reason);
+    parts.tableSeconds = d.tableSeconds;
+    if (!rest.deformer()) {  // geometric (a view's scene without yarns never reaches here)
+        parts.deformMode = static_cast<uint32_t>(DeformMode::None);
+        parts.binding.source.clear();
+        return;
+    }
+    parts.deformMode = static_cast<uint32_t>(DeformMode::Strain);
+    parts.table = rest.deformer()->table();
+    if (parts.strainTable.empty()) parts.strainTable = parts.table.source;  // where it came from
+    if (parts.binding.source.size() != parts.binding.vertexCount())
+        throw Error("a bound scene file of a strain-deformed scene needs the binding's pattern vertices");
+}
+
 }  // namespace
 
 std::string encodeBoundScene(const Scene& rest, const BoundSceneInfo& info, const MemoryBudget& budget) {
@@ -63,6 +81,7 @@ std::string encodeBoundScene(const Scene& rest, const BoundSceneInfo& info, cons
     parts.placement = rest.placement();
     parts.mesh = rest.mesh();
     parts.binding = rest.binding();
+    deformParts(rest, parts);
     parts.stats = rest.bindStats();
     parts.plies = rest.plyOptions();
     // The Animator's bind-time work, as every Animator of the rest scene does it (or the state a

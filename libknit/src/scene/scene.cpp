@@ -294,6 +294,9 @@ Scene Scene::fromParts(SceneParts parts) {
     if (parts.plyOptions) s.plyOptions_ = *parts.plyOptions;
     s.plyOptions_.yarnRadius = parts.yarnRadius;
     s.animatorState_ = std::move(parts.animatorState);
+    s.deformOptions_ = std::move(parts.deform);
+    s.deformer_ = std::move(parts.deformer);
+    s.deformStats_ = parts.deformStats;
     return s;
 }
 
