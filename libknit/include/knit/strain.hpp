@@ -122,14 +122,6 @@ CachedStrainTable cachedStrainTable(const Pattern& pattern, const StrainTableOpt
 // The cached table if there is one (table empty otherwise); never makes one.
 CachedStrainTable findCachedStrainTable(const Pattern& pattern, const StrainTableOptions& options = {});
 
-// What a bound scene file stores to find the table again (issue 26).
-struct StrainTableRef {
-    std::string path;  // table file or MADYPG folder, as given
-    size_t vertexCount = 0;
-    std::array<size_t, 3> samples{0, 0, 0};
-};
-StrainTableRef strainTableRef(const StrainTable& table);
-
 // ---- applying tables ---------------------------------------------------------------------------
 
 enum class DeformMode { None, Strain };

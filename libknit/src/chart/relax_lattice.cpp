@@ -127,14 +127,25 @@ struct State {
                     }
     }
 
-    double distance(const Pair& pr) const {
+    // The closest points of a listed pair's segments: their parameters a (on pr.s) and b (on pr.t),
+    // the vector between them and its length.
+    struct Closest {
+        double a = 0, b = 0;
+        glm::dvec3 d{0.0};
+        double dist = 0;
+    };
+    Closest closest(const Pair& pr) const {
         const Seg &s = c.segs[pr.s], &t = c.segs[pr.t];
         const glm::dvec3 p0 = x[s.a], p1 = segEnd(s), q0 = x[t.a] + shift(pr.ix, pr.iy),
                          q1 = segEnd(t) + shift(pr.ix, pr.iy);
-        double a = 0, b = 0;
-        relax::closestParameters(p0, p1, q0, q1, a, b);
-        return glm::length((p0 + a * (p1 - p0)) - (q0 + b * (q1 - q0)));
+        Closest k;
+        relax::closestParameters(p0, p1, q0, q1, k.a, k.b);
+        k.d = (p0 + k.a * (p1 - p0)) - (q0 + k.b * (q1 - q0));
+        k.dist = glm::length(k.d);
+        return k;
     }
+
+    double distance(const Pair& pr) const { return closest(pr).dist; }
 
     // Energy and its gradient with respect to the deformed vertices (gx); *dmin the smallest
     // distance of a listed pair.
@@ -167,12 +178,7 @@ struct State {
         const double D = o.contactDistance;
         for (const Pair& pr : pairs) {  // contact
             const Seg &s = c.segs[pr.s], &t = c.segs[pr.t];
-            const glm::dvec3 p0 = x[s.a], p1 = segEnd(s), q0 = x[t.a] + shift(pr.ix, pr.iy),
-                             q1 = segEnd(t) + shift(pr.ix, pr.iy);
-            double a = 0, b = 0;
-            relax::closestParameters(p0, p1, q0, q1, a, b);
-            const glm::dvec3 d = (p0 + a * (p1 - p0)) - (q0 + b * (q1 - q0));
-            const double dist = glm::length(d);
+            const auto [a, b, d, dist] = closest(pr);
             dmin = std::min(dmin, dist);
             if (dist >= D) continue;
             const ContactTerm ct = contactTerm(o, dist);
@@ -227,12 +233,7 @@ struct State {
         const double D = o.contactDistance;
         for (const Pair& pr : pairs) {  // contact, with the closest points' parameters held fixed
             const Seg &sa = c.segs[pr.s], &tb = c.segs[pr.t];
-            const glm::dvec3 p0 = x[sa.a], p1 = segEnd(sa), q0 = x[tb.a] + shift(pr.ix, pr.iy),
-                             q1 = segEnd(tb) + shift(pr.ix, pr.iy);
-            double a = 0, b = 0;
-            relax::closestParameters(p0, p1, q0, q1, a, b);
-            const glm::dvec3 d = (p0 + a * (p1 - p0)) - (q0 + b * (q1 - q0));
-            const double dist = glm::length(d);
+            const auto [a, b, d, dist] = closest(pr);
             if (dist >= D || dist < 1e-12) continue;
             const glm::dmat3 A = Mt * (contactTerm(o, dist).d2e * outer(d / dist)) * M;
             const uint32_t idx[4] = {sa.a, sa.b, tb.a, tb.b};

@@ -280,8 +280,4 @@ void checkStrainTable(const StrainTable& table, const Pattern& pattern) {
     }
 }
 
-StrainTableRef strainTableRef(const StrainTable& table) {
-    return {table.source, table.vertexCount, {table.axes[0].size(), table.axes[1].size(), table.axes[2].size()}};
-}
-
 }  // namespace knit
