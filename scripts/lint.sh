@@ -8,8 +8,9 @@
 #      apps/knit, tools). It reads the compile database of a configure-only CMake run in
 #      build-lint (nothing is compiled; tests and benchmarks are left out). Clean results are
 #      cached outside the checkout (scripts/lib/tidy_cache.py: keyed on the preprocessed file with
-#      its comments, its flags, .clang-tidy and the clang-tidy version; a file with findings is
-#      always checked again), so a run after a small change checks only the files it affects.
+#      its comments, its flags, .clang-tidy and the clang-tidy version, with the checkout's path
+#      left out so a clone elsewhere shares it; a file with findings is always checked again), so a
+#      run after a small change checks only the files it affects.
 # Both steps always run; the script exits non-zero when either found something. The result
 # depends on the tool versions: CI uses Debian 12's clang-format and clang-tidy 14, installed
 # here through scripts/setup.sh.
@@ -66,7 +67,7 @@ if [ "$run_tidy" = 1 ]; then
   # One log per file clang-tidy fails on, printed once all have run. Files found clean before with
   # the same preprocessed source, flags, .clang-tidy and clang-tidy are not checked again
   # (scripts/lib/tidy_cache.py; KNIT_TIDY_CACHE=OFF checks every file).
-  python3 "$root/scripts/lib/tidy_cache.py" --build "$build" --logs "$logs" --jobs "$jobs" "${units[@]}" ||
+  python3 "$root/scripts/lib/tidy_cache.py" --build "$build" --logs "$logs" --root "$root" --jobs "$jobs" "${units[@]}" ||
     failed+=(tidy-cache)
   mapfile -t tidy_logs < <(find "$logs" -name '*.log' | sort)
   if [ ${#tidy_logs[@]} -gt 0 ]; then

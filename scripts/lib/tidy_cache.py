@@ -11,12 +11,15 @@ of a file is a SHA-256 over everything clang-tidy's verdict depends on:
   - every .clang-tidy from the file's folder up to the root (the one clang-tidy uses is among them);
   - `clang-tidy --version` and the clang-tidy arguments;
   - the version of this key (KEY_VERSION).
+Paths inside the checkout (--root) enter the key relative to it, in the preprocessed text too (line
+markers, __FILE__), so a clone of the same commit at another path (CI's) finds the results of this one.
 Only clean results are stored (an empty file named by the key): a file with any finding, or one
 clang-tidy or the preprocessor failed on, has no entry and is checked on every run. A cache hit
 refreshes the entry's time; entries not used for 30 days are removed.
 
-Usage: tidy_cache.py --build DIR --logs DIR [--jobs N] [--cache DIR | --no-cache] FILE...
+Usage: tidy_cache.py --build DIR --logs DIR [--root DIR] [--jobs N] [--cache DIR | --no-cache] FILE...
   --build   folder with compile_commands.json
+  --root    the checkout, whose path the key leaves out (default: the current folder)
   --logs    folder for one log per file clang-tidy failed on (name: path with '/' as '_', .log)
   --cache   default $KNIT_TIDY_CACHE_DIR, else ${XDG_CACHE_HOME:-~/.cache}/knit-clang-tidy
   --no-cache  check every file (also KNIT_TIDY_CACHE=OFF)
@@ -34,7 +37,7 @@ import subprocess
 import sys
 import time
 
-KEY_VERSION = b"knit-tidy-cache 1\n"
+KEY_VERSION = b"knit-tidy-cache 2\n"
 TIDY_ARGS = ["--quiet", "--warnings-as-errors=*"]
 MAX_AGE_DAYS = 30
 
@@ -105,27 +108,39 @@ def config_files(file):
         folder = parent
 
 
-def key_of(file, entry, clang, version):
+def relative_to(root):
+    """bytes -> bytes with the checkout's path (as given and resolved) replaced by a placeholder:
+    every path below it, and the path itself as a whole string; a sibling folder whose name starts
+    with the root's name is left alone."""
+    roots = {os.path.abspath(root).encode(), os.path.realpath(root).encode()}
+
+    def rewrite(data):
+        for r in roots:
+            data = data.replace(r + b"/", b"<root>/").replace(b'"' + r + b'"', b'"<root>"')
+        return b"<root>" if data in roots else data
+    return rewrite
+
+
+def key_of(file, entry, clang, version, rewrite):
     """The cache key of a file, or None when it cannot be preprocessed (then it is always checked)."""
     directory, args = entry
     h = hashlib.sha256()
     h.update(KEY_VERSION)
     h.update(version)
-    h.update(json.dumps([TIDY_ARGS, file, directory, args]).encode())
+    h.update(rewrite(json.dumps([TIDY_ARGS, file, directory, args]).encode()))
     for part in config_files(file):
-        h.update(b"\0config\0" + part)
-    proc = subprocess.Popen(preprocess_args(clang, args), cwd=directory, stdout=subprocess.PIPE,
-                            stderr=subprocess.DEVNULL)
+        h.update(b"\0config\0" + rewrite(part))
+    proc = subprocess.run(preprocess_args(clang, args), cwd=directory, stdout=subprocess.PIPE,
+                          stderr=subprocess.DEVNULL, check=False)
     h.update(b"\0unit\0")
-    for chunk in iter(lambda: proc.stdout.read(1 << 20), b""):
-        h.update(chunk)
-    return h.hexdigest() if proc.wait() == 0 else None
+    h.update(rewrite(proc.stdout))
+    return h.hexdigest() if proc.returncode == 0 else None
 
 
-def check(file, db, build, logs, cache, clang, version):
+def check(file, db, build, logs, cache, clang, version, rewrite):
     """'cached', 'clean' or 'failed' for one file."""
     entry = db.get(file)
-    key = key_of(file, entry, clang, version) if (cache and entry) else None
+    key = key_of(file, entry, clang, version, rewrite) if (cache and entry) else None
     stamp = os.path.join(cache, key[:2], key) if key else None
     if stamp and os.path.exists(stamp):
         os.utime(stamp)
@@ -159,6 +174,7 @@ def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("--build", required=True)
     p.add_argument("--logs", required=True)
+    p.add_argument("--root", default=".")
     p.add_argument("--jobs", type=int, default=2)
     p.add_argument("--cache", default=default_cache())
     p.add_argument("--no-cache", action="store_true")
@@ -171,8 +187,9 @@ def main():
     version = tidy_version()
     clang = clang_for(version)
     files = [os.path.abspath(f) for f in a.files]
+    rewrite = relative_to(a.root)
     with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, a.jobs)) as pool:
-        verdicts = list(pool.map(lambda f: check(f, db, build, a.logs, cache, clang, version), files))
+        verdicts = list(pool.map(lambda f: check(f, db, build, a.logs, cache, clang, version, rewrite), files))
     if cache:
         prune(cache)
     cached = verdicts.count("cached")

@@ -2,12 +2,15 @@
 # scripts/lib/tidy_cache.py never hides a finding: on a two-file project with its own .clang-tidy,
 # a file found clean is taken from the cache on the next run, and is checked again (and fails)
 # once a header it includes gains a finding, once a NOLINT comment that hid a finding is removed,
-# or once .clang-tidy turns on a check that finds something; a failing file is never cached.
+# or once .clang-tidy turns on a check that finds something; a failing file is never cached. A copy
+# of the project at another path (a CI clone) finds the results of the first, and still fails once
+# its header gains a finding.
 # Usage: tidy_cache_test.sh SCRIPTS_LIB_DIR
 set -euo pipefail
 lib=$(cd "$1" && pwd)
 work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
+clone=$(mktemp -d)
+trap 'rm -rf "$work" "$clone"' EXIT
 cd "$work"
 mkdir src
 printf "Checks: '-*,modernize-use-nullptr'\nHeaderFilterRegex: '.*'\n" > src/.clang-tidy
@@ -27,7 +30,7 @@ run() {
   shift
   step=$((step + 1))
   rm -rf logs && mkdir logs
-  got=$(python3 "$lib/tidy_cache.py" --build "$work" --logs logs --cache "$work/cache" --jobs 2 src/a.cpp src/b.cpp)
+  got=$(python3 "$lib/tidy_cache.py" --build "$PWD" --logs logs --cache "$work/cache" --jobs 2 src/a.cpp src/b.cpp)
   logs=$(cd logs && ls | sed 's/\.log$//' | tr '\n' ' ')
   if [[ "$got" != *"$want"* ]] || [ "$logs" != "$*${*:+ }" ]; then
     echo "step $step: expected '$want' and failing files '$*', got '$got' and '$logs'"
@@ -52,4 +55,13 @@ printf "Checks: '-*,modernize-use-nullptr'\nHeaderFilterRegex: '.*'\n" > src/.cl
 run "2 files: 1 clean in the cache, 1 checked" src_a.cpp
 echo 'int other() { int* p = 0; return p ? 1 : 0; }' > src/b.cpp  # the checked file itself
 run "2 files: 0 clean in the cache, 2 checked" src_a.cpp src_b.cpp
+echo 'int other() { return 1; }' > src/b.cpp
+echo 'inline int* first() { return nullptr; }' > src/h.hpp
+run "2 files: 2 clean in the cache, 0 checked"           # both as in the first run
+cp -r src "$clone/"
+sed "s|$work|$clone|g" compile_commands.json > "$clone/compile_commands.json"
+cd "$clone"
+run "2 files: 2 clean in the cache, 0 checked"           # the clone elsewhere hits
+echo 'inline int* first() { return 0; }' > src/h.hpp
+run "2 files: 1 clean in the cache, 1 checked" src_a.cpp
 echo "tidy cache: $step runs as expected"
