@@ -2,7 +2,7 @@
 # it). A second build of the same sources with the same flags, in this checkout or in another
 # clone at the same path (CI's), takes the objects from the cache instead of compiling them again;
 # paths inside the checkout are hashed relative to it (CCACHE_BASEDIR), so a clone elsewhere
-# still hits for the library (the tests embed their absolute data paths and compile again).
+# still hits (the tests read their paths from one generated source, tests/common/test_paths.hpp).
 # KNIT_CCACHE=OFF builds without it. Sets ccache_launcher: the CMake arguments to pass.
 ccache_launcher=()
 if [ "${KNIT_CCACHE:-ON}" != OFF ] && command -v ccache >/dev/null 2>&1; then

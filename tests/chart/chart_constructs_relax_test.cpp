@@ -13,6 +13,7 @@
 #include "knit/chart_topology.hpp"
 #include "knit/relax.hpp"
 #include "openings.hpp"
+#include "common/test_paths.hpp"
 
 namespace knit {
 namespace {
@@ -101,7 +102,7 @@ void expectHoneycombDensityNearHylc() {
             L += glm::length(p.points[e.v1] + glm::dvec3(e.dx * p.px, e.dy * p.py, 0) - p.points[e.v0]);
         return L * p.radius / (p.px * p.py);
     };
-    const Pattern hylc = loadPyp(std::string(KNIT_SHARED_DIR) + "/patterns/hylc/slip_stitch_honeycomb.pyp");
+    const Pattern hylc = loadPyp(std::string(test::sharedDir()) + "/patterns/hylc/slip_stitch_honeycomb.pyp");
     const double ours = lengthPerArea(relaxedBuiltin("chart:honeycomb").relaxed.pattern), theirs = lengthPerArea(hylc);
     std::printf("L r / A: honeycomb %.3f, HYLC slip-stitch honeycomb %.3f\n", ours, theirs);
     EXPECT_NEAR(ours / theirs, 1.0, 0.15);

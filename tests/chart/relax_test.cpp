@@ -16,6 +16,7 @@
 #include "knit/chart_topology.hpp"
 #include "knit/error.hpp"
 #include "knit/relax.hpp"
+#include "common/test_paths.hpp"
 
 namespace knit {
 namespace {
@@ -162,7 +163,7 @@ TEST(Relax, everyBuiltinChartTilesSeamlessly) {
 }
 
 TEST(Relax, stockinetteYarnLengthPerAreaIsNearTheHylcStockinette) {
-    const Pattern hylc = loadPyp(std::string(KNIT_SHARED_DIR) + "/patterns/hylc/stockinette.pyp");
+    const Pattern hylc = loadPyp(std::string(test::sharedDir()) + "/patterns/hylc/stockinette.pyp");
     const ChartPattern cp = relaxChart(builtinChart("chart:stockinette"));
     const double ours = lengthPerArea(cp.relaxed.pattern), theirs = lengthPerArea(hylc);
     std::printf("L r / A: ours %.3f, HYLC stockinette %.3f\n", ours, theirs);

@@ -18,6 +18,7 @@
 #include "export/gltf_read.hpp"
 #include "export/gltf_validator.hpp"
 #include "test_util.hpp"
+#include "common/test_paths.hpp"
 
 namespace fs = std::filesystem;
 
@@ -163,7 +164,8 @@ TEST_F(Animate, sigtermMidRunLeavesNoPartialCacheAndNoTempFile) {
     const std::vector<std::string> before = files();
     // Start the run, wait for its temporary cache to appear (in the outputs' staging folder), then send SIGTERM.
     const std::string script =
-        "'" KNIT_CLI "' animate -q --frames frame_%04d.obj --repeats 6 6 -o c.pc2 > log.txt 2>&1 & "
+        "'" + std::string(test::knitCli()) +
+        "' animate -q --frames frame_%04d.obj --repeats 6 6 -o c.pc2 > log.txt 2>&1 & "
         "pid=$!; for i in $(seq 1 2000); do ls .knit-staging.*/.c.pc2.*.tmp >/dev/null 2>&1 && break; sleep 0.005; "
         "done; "
         "kill -TERM $pid; wait $pid; echo rc=$?";
@@ -181,7 +183,8 @@ TEST_F(Animate, sigtermMidRunLeavesNoPartialCacheAndNoTempFile) {
 // untouched, and the next run writing into that folder removes the dead run's staging folder.
 TEST_F(Animate, sigkillMidCacheKeepsThePreviousCacheAndTheNextRunCleansUp) {
     writeWaveSequence(dir, 400, 16);
-    const std::string run = "'" KNIT_CLI "' animate -q --no-stats --frames frame_%04d.obj --repeats 6 6 -o c.pc2";
+    const std::string run =
+        "'" + std::string(test::knitCli()) + "' animate -q --no-stats --frames frame_%04d.obj --repeats 6 6 -o c.pc2";
     CliRun r = runShell(run + " --last 3", dir);
     ASSERT_EQ(r.exitCode, 0) << r.output;
     const std::string previous = readText((dir / "c.pc2").string());

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "animate_sequence.hpp"
+#include "common/test_paths.hpp"
 
 namespace fs = std::filesystem;
 
@@ -30,7 +31,7 @@ TEST(BlenderMeshCache, reproducesEveryFrameOfThePc2Cache) {
     ASSERT_EQ(r.exitCode, 0) << r.output;
     r = runKnit("animate -q --frames frame_%04d.obj --repeats 3 3 -o f_%04d.obj", dir);
     ASSERT_EQ(r.exitCode, 0) << r.output;
-    const std::string script = std::string(KNIT_SOURCE_DIR) + "/tests/cli/blender_mesh_cache.py";
+    const std::string script = std::string(test::sourceDir()) + "/tests/cli/blender_mesh_cache.py";
     r = runShell(
         "blender -b --factory-startup --python-exit-code 1 --python '" + script + "' -- c.obj c.pc2 1 f_%04d.obj 1 4",
         dir);

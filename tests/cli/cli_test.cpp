@@ -15,6 +15,7 @@
 
 #include "common/run_knit.hpp"
 #include "knit/pattern.hpp"
+#include "common/test_paths.hpp"
 
 namespace fs = std::filesystem;
 
@@ -37,7 +38,7 @@ protected:
     fs::path dir;
 };
 
-std::string shared(const std::string& f) { return std::string(KNIT_SHARED_DIR) + "/patterns/hylc/" + f; }
+std::string shared(const std::string& f) { return std::string(knit::test::sharedDir()) + "/patterns/hylc/" + f; }
 
 TEST_F(Cli, buildWithNoArgumentsWritesDefaultPlies) {
     const CliRun r = knit("build", dir);  // with -q it would print nothing
@@ -339,7 +340,7 @@ TEST_F(Cli, generateReproducesTheShippedPattern) {
     const CliRun r = knit("generate stockinette -o s.pyp", dir);
     ASSERT_EQ(r.exitCode, 0) << r.output;
     const knit::Pattern made = knit::loadPyp((dir / "s.pyp").string()),
-                        shipped = knit::loadPyp(std::string(KNIT_SOURCE_DIR) + "/patterns/stockinette.pyp");
+                        shipped = knit::loadPyp(std::string(knit::test::sourceDir()) + "/patterns/stockinette.pyp");
     ASSERT_EQ(made.points.size(), shipped.points.size());
     for (size_t i = 0; i < made.points.size(); ++i)
         EXPECT_LT(glm::length(made.points[i] - shipped.points[i]), 1e-6) << "vertex " << i;

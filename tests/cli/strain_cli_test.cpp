@@ -16,6 +16,7 @@
 
 #include "common/run_knit.hpp"
 #include "test_util.hpp"
+#include "common/test_paths.hpp"
 
 namespace knit {
 namespace {
@@ -124,7 +125,7 @@ TEST(StrainCli, defaultDeformIsNoneWhereMakingTheTableIsSlow) {
 TEST(StrainCli, mismatchedOrDamagedTablesAreRefusedNamingThem) {
     const test::TempDir dir;
     smallTable(dir);
-    const std::string pattern = std::string(KNIT_SHARED_DIR) + "/patterns/hylc/stocktiny.pyp";
+    const std::string pattern = std::string(test::sharedDir()) + "/patterns/hylc/stocktiny.pyp";
     const test::CliRun m =
         test::runKnit("build -q --mesh plane --pattern '" + pattern + "' --strain-table t.npy -o m.obj", dir.path());
     EXPECT_NE(m.exitCode, 0);
@@ -147,7 +148,7 @@ TEST(StrainCli, interruptedTableRunLeavesNoFile) {
     const pid_t pid = ::fork();
     if (pid == 0) {
         if (::chdir(dir.path().c_str()) != 0) ::_exit(127);
-        ::execl(KNIT_CLI, KNIT_CLI, "strain-table", "-q", "--samples", "40", "40", "40", "-o", "t.npy",
+        ::execl(test::knitCli(), test::knitCli(), "strain-table", "-q", "--samples", "40", "40", "40", "-o", "t.npy",
                 static_cast<char*>(nullptr));
         ::_exit(127);
     }

@@ -10,11 +10,12 @@
 
 #include "knit/base_mesh.hpp"
 #include "knit/pattern.hpp"
+#include "common/test_paths.hpp"
 
 namespace knit::test {
 
 inline std::string sharedPattern(const std::string& file) {
-    return std::string(KNIT_SHARED_DIR) + "/patterns/hylc/" + file;
+    return std::string(test::sharedDir()) + "/patterns/hylc/" + file;
 }
 
 inline const std::vector<std::string>& sharedPatternFiles() {

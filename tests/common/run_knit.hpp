@@ -1,10 +1,11 @@
-// Runs the `knit` command line (path from the KNIT_CLI compile definition) in a folder and
+// Runs the `knit` command line (test_paths.hpp) in a folder and
 // captures its exit code and combined stdout/stderr; shared by the CLI-level tests.
 #pragma once
 #include <cstdio>
 #include <filesystem>
 #include <string>
 #include <sys/wait.h>
+#include "common/test_paths.hpp"
 
 namespace knit::test {
 
@@ -14,7 +15,7 @@ struct CliRun {
 };
 
 inline CliRun runKnit(const std::string& args, const std::filesystem::path& cwd) {
-    const std::string cmd = "cd '" + cwd.string() + "' && '" KNIT_CLI "' " + args + " 2>&1";
+    const std::string cmd = "cd '" + cwd.string() + "' && '" + test::knitCli() + "' " + args + " 2>&1";
     CliRun r;
     FILE* pipe = popen(cmd.c_str(), "r");
     if (!pipe) return r;

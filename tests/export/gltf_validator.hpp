@@ -13,6 +13,7 @@
 #include <string>
 
 #include <nlohmann/json.hpp>
+#include "common/test_paths.hpp"
 
 namespace knit::test {
 
@@ -31,7 +32,7 @@ struct ValidatorReport {
 
 inline std::string validatorModuleDir() {
     if (const char* env = std::getenv("KNIT_GLTF_VALIDATOR"); env && *env) return env;
-    return (std::filesystem::path(KNIT_BINARY_DIR) / "node" / "node_modules" / "gltf-validator").string();
+    return (std::filesystem::path(test::binaryDir()) / "node" / "node_modules" / "gltf-validator").string();
 }
 
 inline std::string nodeExecutable() {
@@ -58,7 +59,7 @@ inline std::string shellQuote(const std::string& s) {
 inline ValidatorReport runGltfValidator(const std::string& file) {
     ValidatorReport r;
     const std::string module = validatorModuleDir();
-    const std::string script = std::string(KNIT_SOURCE_DIR) + "/tests/export/validate_gltf.js";
+    const std::string script = std::string(test::sourceDir()) + "/tests/export/validate_gltf.js";
     const bool nodeOk = std::system((nodeExecutable() + " --version > /dev/null 2>&1").c_str()) == 0;
     if (!nodeOk || !std::filesystem::exists(std::filesystem::path(module) / "package.json")) {
         const std::string why = "glTF-Validator not available (node: " + std::string(nodeOk ? "ok" : "missing") +

@@ -10,6 +10,7 @@
 #include "knit/polylines.hpp"
 #include "test_util.hpp"
 #include "util/math.hpp"
+#include "common/test_paths.hpp"
 
 namespace knit::test {
 
@@ -62,7 +63,7 @@ inline Polylines mixedCurves(glm::dvec3 offset = glm::dvec3(0)) {
 
 // A fresh empty folder under the build tree for one test's files.
 inline std::string scratchDir(const std::string& name) {
-    const std::filesystem::path dir = std::filesystem::path(KNIT_BINARY_DIR) / "test_output" / "export" / name;
+    const std::filesystem::path dir = std::filesystem::path(test::binaryDir()) / "test_output" / "export" / name;
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
     return dir.string();

@@ -14,6 +14,7 @@
 #include "knit/generator.hpp"
 #include "knit/pattern.hpp"
 #include "test_util.hpp"
+#include "common/test_paths.hpp"
 
 namespace knit::hard {
 namespace {
@@ -186,7 +187,7 @@ TEST_F(BadFiles, binaryPlyPropertyTypesOpenMeshCannotConvertAreRefused) {
     }
     // The fuzzer's original input.
     const std::string found =
-        std::string(KNIT_SOURCE_DIR) + "/tests/fuzz_corpus/ply/timeout-59d571a8a34814063d48c0bfebbefaf90db350f1";
+        std::string(test::sourceDir()) + "/tests/fuzz_corpus/ply/timeout-59d571a8a34814063d48c0bfebbefaf90db350f1";
     const std::string bytes = test::readText(found);
     ASSERT_FALSE(bytes.empty());
     EXPECT_FALSE(loadsOrNamesFile(Kind::Mesh, write("found.ply", bytes)));

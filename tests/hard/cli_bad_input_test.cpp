@@ -1,6 +1,6 @@
 // Bad input and unwritable outputs through the `knit` command line: exit code != 0, a message
 // naming the problem, and no output file (nor a leftover temporary file) in the output folder.
-#ifdef KNIT_CLI
+#ifdef KNIT_HARD_HAVE_CLI
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -15,6 +15,7 @@
 #include "common/run_knit.hpp"
 #include "mesh/gltf_builder.hpp"
 #include "test_util.hpp"
+#include "common/test_paths.hpp"
 
 namespace {
 
@@ -435,7 +436,7 @@ TEST_F(CliBadInput, extremeScalesRenderTheKnitLikeAMetreSizedOne) {
 TEST_F(CliBadInput, failedSecondOutputLeavesTheExistingFirstOutputUnchanged) {
     const auto runLimited = [&](const std::string& args, int blocks) {
         const std::string cmd = "cd '" + dir.string() + "' && trap '' XFSZ && ulimit -f " + std::to_string(blocks) +
-                                " && exec '" KNIT_CLI "' " + args + " 2>&1";
+                                " && exec '" + knit::test::knitCli() + "' " + args + " 2>&1";
         FILE* pipe = popen(cmd.c_str(), "r");
         char buf[4096];
         std::string output;
@@ -501,8 +502,8 @@ TEST_F(CliBadInput, hostileHuntFindingsAreRefusedNamingTheOption) {
     // serve: NaN passed CLI11's range check and became an upload limit of 2^63 bytes; the server
     // started (`timeout`: a regression would serve until killed).
     for (const char* flag : {"--max-upload-mb", "--max-result-mb"}) {
-        const std::string cmd =
-            "cd '" + dir.string() + "' && timeout 20 '" KNIT_CLI "' serve --port 0 " + flag + " nan 2>&1";
+        const std::string cmd = "cd '" + dir.string() + "' && timeout 20 '" + knit::test::knitCli() +
+                                "' serve --port 0 " + flag + " nan 2>&1";
         FILE* pipe = popen(cmd.c_str(), "r");
         ASSERT_NE(pipe, nullptr);
         char buf[4096];
@@ -526,4 +527,4 @@ TEST_F(CliBadInput, hostileHuntFindingsAreRefusedNamingTheOption) {
 }
 
 }  // namespace
-#endif  // KNIT_CLI
+#endif  // KNIT_HARD_HAVE_CLI

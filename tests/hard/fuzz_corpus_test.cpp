@@ -13,6 +13,7 @@
 #endif
 #include "../../fuzz/fuzz_parsers.hpp"
 #include "test_util.hpp"
+#include "common/test_paths.hpp"
 
 namespace knit::fuzz {
 namespace {
@@ -22,7 +23,7 @@ using Harness = Outcome (*)(const uint8_t*, size_t);
 
 std::vector<fs::path> corpus(const std::string& parser) {
     std::vector<fs::path> files;
-    const fs::path dir = fs::path(KNIT_SOURCE_DIR) / "tests" / "fuzz_corpus" / parser;
+    const fs::path dir = fs::path(test::sourceDir()) / "tests" / "fuzz_corpus" / parser;
     for (const auto& entry : fs::directory_iterator(dir))
         if (entry.is_regular_file()) files.push_back(entry.path());
     std::sort(files.begin(), files.end());

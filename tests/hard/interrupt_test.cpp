@@ -1,6 +1,6 @@
 // Interrupts (docs/hard-cases.md, "Interrupts"): SIGTERM or SIGINT during an export removes the
 // temporary file; no output is left and the CLI ends by the signal.
-#ifdef KNIT_CLI
+#ifdef KNIT_HARD_HAVE_CLI
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include "test_util.hpp"
+#include "common/test_paths.hpp"
 
 namespace {
 
@@ -29,8 +30,8 @@ int interruptedExport(const fs::path& d, int sig) {
     const pid_t pid = ::fork();
     if (pid == 0) {
         if (::chdir(d.c_str()) != 0) ::_exit(127);
-        ::execl(KNIT_CLI, KNIT_CLI, "build", "-q", "--mesh", "plane", "--repeats", "300", "300", "--export", "tubes",
-                "--sides", "64", "-o", "big.obj", static_cast<char*>(nullptr));
+        ::execl(knit::test::knitCli(), knit::test::knitCli(), "build", "-q", "--mesh", "plane", "--repeats", "300",
+                "300", "--export", "tubes", "--sides", "64", "-o", "big.obj", static_cast<char*>(nullptr));
         ::_exit(127);
     }
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
@@ -60,4 +61,4 @@ INSTANTIATE_TEST_SUITE_P(Hard, Interrupts, ::testing::Values(SIGTERM, SIGINT),
                          });
 
 }  // namespace
-#endif  // KNIT_CLI
+#endif  // KNIT_HARD_HAVE_CLI

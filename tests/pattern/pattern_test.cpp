@@ -8,6 +8,7 @@
 #include "knit/error.hpp"
 #include "knit/generator.hpp"
 #include "knit/pattern.hpp"
+#include "common/test_paths.hpp"
 
 namespace knit {
 namespace {
@@ -133,7 +134,7 @@ TEST(Pattern, garbageAndEmptyInputAreRejected) {
 
 TEST(Pattern, missingFileAndDirectoryAreRejected) {
     EXPECT_THROW(loadPyp("/nonexistent/x.pyp"), Error);
-    EXPECT_THROW(loadPyp(KNIT_SHARED_DIR), Error);
+    EXPECT_THROW(loadPyp(test::sharedDir()), Error);
 }
 
 TEST(Generator, stockinetteIsOneClosedCoursePerCell) {
@@ -150,7 +151,7 @@ TEST(Generator, stockinetteIsOneClosedCoursePerCell) {
 // The generator relaxes Crane's curve to the solver's tolerance; another compiler's round-off may
 // stop it elsewhere within that (far below a micrometre here), so the comparison allows that.
 TEST(Generator, shippedStockinetteIsWhatTheGeneratorMakes) {
-    const Pattern shipped = loadPyp(std::string(KNIT_SOURCE_DIR) + "/patterns/stockinette.pyp");
+    const Pattern shipped = loadPyp(std::string(test::sourceDir()) + "/patterns/stockinette.pyp");
     const Pattern made = generateStockinette();
     ASSERT_EQ(shipped.points.size(), made.points.size());
     for (size_t i = 0; i < made.points.size(); ++i)

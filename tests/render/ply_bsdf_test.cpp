@@ -16,6 +16,7 @@
 #include "knit/fiber_tables.hpp"
 #include "knit/ply_bsdf.hpp"
 #include "test_util.hpp"
+#include "common/test_paths.hpp"
 
 namespace knit {
 namespace {
@@ -481,7 +482,7 @@ TEST(PlyMaterial, textErrorsNameTheSource) {
 }
 
 TEST(PlyMaterial, fileErrorsNameTheFile) {
-    const std::string path = std::string(KNIT_BINARY_DIR) + "/render_test_bad_material.json";
+    const std::string path = std::string(test::binaryDir()) + "/render_test_bad_material.json";
     {
         std::ofstream out(path);
         out << "{\"kR\": 0.9, \"bodyAlbedo\": 0.5}";
@@ -505,7 +506,7 @@ TEST(PlyMaterial, fileErrorsNameTheFile) {
 TEST(PlyMaterial, folderGivenAsMaterialFileIsAnError) {
     // A folder opens as a stream on Linux and fails only when read (it escaped as a
     // std::ios_base::failure, i.e. an internal error of the CLI).
-    const std::string dir = std::string(KNIT_BINARY_DIR) + "/render_test_material_folder.json";
+    const std::string dir = std::string(test::binaryDir()) + "/render_test_material_folder.json";
     std::filesystem::create_directories(dir);
     try {
         loadMaterialFile(dir);

@@ -20,6 +20,7 @@
 #include "knit/render.hpp"
 #include "knit/synthetic_scene.hpp"
 #include "tracing/trace_scene.hpp"
+#include "common/test_paths.hpp"
 
 namespace knit {
 namespace {
@@ -38,7 +39,7 @@ SyntheticSceneOptions wavyCloth() {
     return o;
 }
 
-std::string tmpFile(const std::string& name) { return std::string(KNIT_BINARY_DIR) + "/render_test_" + name; }
+std::string tmpFile(const std::string& name) { return std::string(test::binaryDir()) + "/render_test_" + name; }
 
 struct Built {
     Scene scene;

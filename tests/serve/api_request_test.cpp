@@ -10,6 +10,7 @@
 #include "api_request.hpp"
 #include "chart_job.hpp"
 #include "knit/chart_pattern.hpp"
+#include "common/test_paths.hpp"
 
 namespace knit::serve {
 namespace {
@@ -138,7 +139,7 @@ TEST(ServeRequest, garmentViewGaugeAndFormatAreChecked) {
 // The fuzzer's regression corpus (fuzz/serve_request_fuzzer.cpp), replayed in every build: each
 // body is accepted or refused with 400 / 413, and a parsed chart fails only at a line and column.
 TEST(ServeRequest, fuzzCorpusIsAcceptedOrRefusedAsBadRequest) {
-    const std::filesystem::path folder = KNIT_SOURCE_DIR "/tests/fuzz_corpus/serve_request";
+    const std::filesystem::path folder = std::string(test::sourceDir()) + "/tests/fuzz_corpus/serve_request";
     RequestLimits limits;
     limits.maxChartStitches = 64;
     size_t files = 0;

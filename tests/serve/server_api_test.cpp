@@ -21,6 +21,7 @@
 
 #include "knit/chart.hpp"
 #include "server.hpp"
+#include "common/test_paths.hpp"
 
 namespace knit::serve {
 namespace {
@@ -35,8 +36,9 @@ protected:
     void start(ServeOptions o = {}) {
         o.host = "127.0.0.1";
         o.port = 0;
-        o.web.page = KNIT_SOURCE_DIR "/apps/serve/web";
-        o.web.three = KNIT_SOURCE_DIR "/apps/serve/web";  // static files are not what these tests check
+        o.web.page = std::string(test::sourceDir()) + "/apps/serve/web";
+        o.web.three =
+            std::string(test::sourceDir()) + "/apps/serve/web";  // static files are not what these tests check
         server_ = std::make_unique<Server>(o);
         port_ = server_->bind();
         thread_ = std::thread([this] { server_->run(); });
@@ -321,7 +323,8 @@ TEST_F(ServerApi, aClientLeavingMidJobStopsTheJobAndTheServerCarriesOn) {
 // removes its temporary folder. It refuses to start without three.js (npm, a step of its own per
 // build folder): skipped then, saying so, except in CI (CI=true), where it fails as the page tests do.
 TEST(ServeCommand, ctrlCStopsItCleanly) {
-    const std::string three = KNIT_BUILD_THREE;
+    // `knit` in a build folder looks for three.js there (apps/serve/CMakeLists.txt).
+    const std::string three = std::string(test::binaryDir()) + "/node/node_modules/three";
     if (!std::filesystem::is_regular_file(three + "/build/three.module.js")) {
         const char* ci = std::getenv("CI");
         if (ci != nullptr && std::string(ci) == "true") FAIL() << "three.js is missing in " << three;
@@ -335,7 +338,7 @@ TEST(ServeCommand, ctrlCStopsItCleanly) {
     if (pid == 0) {
         dup2(out[1], 1);
         close(out[0]);
-        execl(KNIT_CLI, KNIT_CLI, "serve", "--port", "0", static_cast<char*>(nullptr));
+        execl(test::knitCli(), test::knitCli(), "serve", "--port", "0", static_cast<char*>(nullptr));
         _exit(127);
     }
     close(out[1]);
