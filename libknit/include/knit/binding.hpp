@@ -85,12 +85,16 @@ void evaluateBinding(const Binding& binding, const std::vector<glm::uvec3>& face
 
 // The same evaluation for a renderer or GPU upload per animation frame: positions only, as
 // float32 relative to `origin` (a local origin near the garment keeps sub-micron precision),
-// computed in double.
+// computed in float32 from the mesh converted once per call (positions minus the origin in
+// double, then rounded; barycentrics and heights rounded as read): a few float32 roundings of
+// the coordinates' size (4e-8 m on a garment of ~0.5 m around the origin; test
+// Mapping.floatEvaluationFarFromOriginKeepsPrecision). Bit for bit evaluatePackedFloat on
+// packBinding(binding).
 void evaluateBindingFloat(const Binding& binding, const std::vector<glm::uvec3>& faces,
                           const std::vector<glm::dvec3>& positions, const std::vector<glm::dvec3>& normals,
                           glm::dvec3 origin, std::vector<glm::vec3>& out);
 
-// A binding packed for per-frame float32 evaluation (src/binding_packed.cpp): one 16-byte record
+// A binding packed for per-frame float32 evaluation (src/binding/binding_float.cpp): one 16-byte record
 // per vertex (face, b1, b2, height as float32) instead of 28 bytes in three arrays, so a frame
 // streams 16 bytes in and 12 out per vertex (evaluateBindingFloat: 28 in, 12 out). The
 // barycentrics and heights lose what float32 drops (about 1e-7 of a triangle's size and of the
@@ -104,9 +108,9 @@ struct PackedBinding {
 };
 PackedBinding packBinding(const Binding& binding);
 
-// evaluateBindingFloat on a packed binding, in float32 throughout: the mesh's positions
-// (relative to `origin`) and normals are converted once per call, then every vertex is one fused
-// gather, normalize and store.
+// evaluateBindingFloat on a packed binding (the same float32 kernel, so the same bits): the
+// mesh's positions (relative to `origin`) and normals are converted once per call, then every
+// vertex is one fused gather, normalize and store.
 void evaluatePackedFloat(const PackedBinding& binding, const std::vector<glm::uvec3>& faces,
                          const std::vector<glm::dvec3>& positions, const std::vector<glm::dvec3>& normals,
                          glm::dvec3 origin, std::vector<glm::vec3>& out);

@@ -104,60 +104,24 @@ BindResult bindYarns(const BaseMesh& mesh, const std::vector<glm::dvec3>& normal
     return result;
 }
 
-namespace {
-
-// The evaluation kernel shared by the double and the float32 entry points: the gather
-// (binding_gather.hpp) over every yarn vertex, four at a time in AVX2 where the CPU has it
-// (binding_evaluate_simd.cpp, bit for bit the same), the rest by `store(i, P, n)`.
-template <class Simd, class Store>
-void evaluateKernel(const Binding& binding, const std::vector<glm::uvec3>& faces,
-                    const std::vector<glm::dvec3>& positions, const std::vector<glm::dvec3>& normals, Simd simd,
-                    Store store) {
-    const BindingGather gather(binding, faces, positions, normals);
-    const impl::GatherArrays arrays{binding.face.data(), binding.bary.data(), binding.height.data(),
-                                    faces.data(),        positions.data(),    normals.data()};
-    const bool useSimd = impl::evaluateSimdAvailable();
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, binding.vertexCount(), 16384),
-                      [&](const tbb::blocked_range<size_t>& r) {
-                          size_t i = useSimd ? simd(arrays, r.begin(), r.end()) : r.begin();
-                          for (; i != r.end(); ++i) {
-                              glm::dvec3 p, nn;
-                              gather(i, p, nn);
-                              store(i, p, nn);
-                          }
-                      });
-}
-
-}  // namespace
-
+// The gather (binding_gather.hpp) over every yarn vertex, four at a time in AVX2 where the CPU
+// has it (binding_evaluate_simd.cpp, bit for bit the same). The float32 evaluation is in
+// binding_float.cpp.
 void evaluateBinding(const Binding& binding, const std::vector<glm::uvec3>& faces,
                      const std::vector<glm::dvec3>& positions, const std::vector<glm::dvec3>& normals,
                      MappedYarns& out) {
     prepareMappedYarns(binding, out);
     glm::dvec3* P = out.curves.points.data();
     glm::dvec3* N = out.normals.data();
-    evaluateKernel(
-        binding, faces, positions, normals,
-        [P, N](const impl::GatherArrays& a, size_t begin, size_t end) {
-            return impl::evaluateDoubleSimd(a, begin, end, P, N);
-        },
-        [P, N](size_t i, const glm::dvec3& p, const glm::dvec3& nn) {
-            P[i] = p;
-            N[i] = nn;
-        });
-}
-
-void evaluateBindingFloat(const Binding& binding, const std::vector<glm::uvec3>& faces,
-                          const std::vector<glm::dvec3>& positions, const std::vector<glm::dvec3>& normals,
-                          glm::dvec3 origin, std::vector<glm::vec3>& out) {
-    out.resize(binding.vertexCount());
-    glm::vec3* P = out.data();
-    evaluateKernel(
-        binding, faces, positions, normals,
-        [P, origin](const impl::GatherArrays& a, size_t begin, size_t end) {
-            return impl::evaluateFloatSimd(a, begin, end, origin, P);
-        },
-        [P, origin](size_t i, const glm::dvec3& p, const glm::dvec3&) { P[i] = glm::vec3(p - origin); });
+    const BindingGather gather(binding, faces, positions, normals);
+    const impl::GatherArrays arrays{binding.face.data(), binding.bary.data(), binding.height.data(),
+                                    faces.data(),        positions.data(),    normals.data()};
+    const bool simd = impl::evaluateSimdAvailable();
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, binding.vertexCount(), 16384),
+                      [&](const tbb::blocked_range<size_t>& r) {
+                          size_t i = simd ? impl::evaluateDoubleSimd(arrays, r.begin(), r.end(), P, N) : r.begin();
+                          for (; i != r.end(); ++i) gather(i, P[i], N[i]);
+                      });
 }
 
 }  // namespace knit

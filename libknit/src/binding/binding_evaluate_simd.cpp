@@ -73,14 +73,10 @@ KNIT_AVX2 inline void finish(const GatherArrays& a, size_t i, const Corner& c, _
     p = _mm256_add_pd(c.p, _mm256_mul_pd(_mm256_broadcast_sd(&a.height[i + J]), n));
 }
 
-// The exact three doubles / floats of the group's last vertex.
+// The exact three doubles of the group's last vertex.
 KNIT_AVX2 inline void store3(double* out, __m256d v) {
     _mm_storeu_pd(out, _mm256_castpd256_pd128(v));
     _mm_store_sd(out + 2, _mm256_extractf128_pd(v, 1));
-}
-KNIT_AVX2 inline void store3(float* out, __m128 v) {
-    _mm_storel_pi(reinterpret_cast<__m64*>(out), v);
-    _mm_store_ss(out + 2, _mm_movehl_ps(v, v));
 }
 
 // Vertices per chunk: the chunk's interpolations and inverse normal lengths are computed first
@@ -107,11 +103,8 @@ KNIT_AVX2 inline void interpolateChunk(const GatherArrays& a, size_t i, size_t g
     }
 }
 
-template <bool kFloat>
-KNIT_AVX2 size_t evaluateGroups(const GatherArrays& a, size_t begin, size_t end, glm::dvec3 origin, glm::dvec3* P,
-                                glm::dvec3* N, glm::vec3* F) {
+KNIT_AVX2 size_t evaluateGroups(const GatherArrays& a, size_t begin, size_t end, glm::dvec3* P, glm::dvec3* N) {
     const __m256i mask3 = _mm256_setr_epi64x(-1, -1, -1, 0);
-    const __m256d o = _mm256_setr_pd(origin.x, origin.y, origin.z, 0.0);
     Corner c[kChunk];
     __m256d inv[kChunk / 4], ok[kChunk / 4];
     size_t i = begin;
@@ -125,22 +118,14 @@ KNIT_AVX2 size_t evaluateGroups(const GatherArrays& a, size_t begin, size_t end,
             finish<1>(a, i, cg[1], inv[g], ok[g], p[1], n[1]);
             finish<2>(a, i, cg[2], inv[g], ok[g], p[2], n[2]);
             finish<3>(a, i, cg[3], inv[g], ok[g], p[3], n[3]);
-            if constexpr (kFloat) {
-                float* out = &F[i].x;
-                _mm_storeu_ps(out, _mm256_cvtpd_ps(_mm256_sub_pd(p[0], o)));
-                _mm_storeu_ps(out + 3, _mm256_cvtpd_ps(_mm256_sub_pd(p[1], o)));
-                _mm_storeu_ps(out + 6, _mm256_cvtpd_ps(_mm256_sub_pd(p[2], o)));
-                store3(out + 9, _mm256_cvtpd_ps(_mm256_sub_pd(p[3], o)));
-            } else {
-                double* outP = &P[i].x;
-                double* outN = &N[i].x;
-                for (int j = 0; j < 3; ++j) {
-                    _mm256_storeu_pd(outP + 3 * j, p[j]);
-                    _mm256_storeu_pd(outN + 3 * j, n[j]);
-                }
-                store3(outP + 9, p[3]);
-                store3(outN + 9, n[3]);
+            double* outP = &P[i].x;
+            double* outN = &N[i].x;
+            for (int j = 0; j < 3; ++j) {
+                _mm256_storeu_pd(outP + 3 * j, p[j]);
+                _mm256_storeu_pd(outN + 3 * j, n[j]);
             }
+            store3(outP + 9, p[3]);
+            store3(outN + 9, n[3]);
         }
     }
     return i;
@@ -151,18 +136,13 @@ KNIT_AVX2 size_t evaluateGroups(const GatherArrays& a, size_t begin, size_t end,
 bool evaluateSimdAvailable() { return util::avx2Kernels(); }
 
 size_t evaluateDoubleSimd(const GatherArrays& a, size_t begin, size_t end, glm::dvec3* P, glm::dvec3* N) {
-    return evaluateGroups<false>(a, begin, end, glm::dvec3(0.0), P, N, nullptr);
-}
-
-size_t evaluateFloatSimd(const GatherArrays& a, size_t begin, size_t end, glm::dvec3 origin, glm::vec3* F) {
-    return evaluateGroups<true>(a, begin, end, origin, nullptr, nullptr, F);
+    return evaluateGroups(a, begin, end, P, N);
 }
 
 #else  // not x86-64 with GCC or Clang: the scalar loop only
 
 bool evaluateSimdAvailable() { return false; }
 size_t evaluateDoubleSimd(const GatherArrays&, size_t begin, size_t, glm::dvec3*, glm::dvec3*) { return begin; }
-size_t evaluateFloatSimd(const GatherArrays&, size_t begin, size_t, glm::dvec3, glm::vec3*) { return begin; }
 
 #endif
 

@@ -31,7 +31,4 @@ bool evaluateSimdAvailable();
 // evaluateSimdAvailable().
 size_t evaluateDoubleSimd(const GatherArrays& a, size_t begin, size_t end, glm::dvec3* P, glm::dvec3* N);
 
-// The same with only the positions, stored as float32 of (P[i] - origin).
-size_t evaluateFloatSimd(const GatherArrays& a, size_t begin, size_t end, glm::dvec3 origin, glm::vec3* F);
-
 }  // namespace knit::impl
