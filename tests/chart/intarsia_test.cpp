@@ -374,12 +374,11 @@ TEST(Intarsia, aTailKeepsClearOfAFloatInItsRow) {
     EXPECT_GT(minYarnDistance(cell.pattern), 0.3);
 }
 
-// Relaxed (open yarns, their tail ends anchored where they are woven in): the yarns apart, the
-// turns still hooked, every stitch but the motif yarn's first and last held by the stitch above
-// as knitting holds it, the tails still behind the work, and no hole at the boundary. The
-// motif's first and last stitches, where its tails pull, keep their place but lose a crossing
-// with the head below in projection (docs/charts.md, "Motifs"), and the largest opening seen
-// along z is 0.70 r against stockinette's 0.44 r (free tails: 2.26 r; an eyelet: 1.6 r).
+// Relaxed (open yarns, their tails anchored where they are woven in): converged, the yarns apart,
+// the turns still hooked, every stitch held by the stitch above as knitting holds it (with only
+// the tails' ends anchored the motif's first and last stitches lost a crossing with the head
+// below), the tails still behind the work, and no hole at the boundary (free tails opened
+// 2.26 r, an eyelet 1.6 r).
 TEST(Intarsia, aMotifRelaxesWithItsBoundaryClosed) {
     const ChartPattern cp = relaxChart(builtinChart("chart:intarsia-motif"));
     const Pattern& p = cp.relaxed.pattern;
@@ -395,20 +394,26 @@ TEST(Intarsia, aMotifRelaxesWithItsBoundaryClosed) {
     EXPECT_LT(il.worstUnlinked, 0.1);
     ChartCell relaxed = cp.cell;
     relaxed.pattern = p;
-    const std::set<std::pair<int, int>> tailStitches{{1, 1}, {3, 1}};
     for (int r = 0; r < relaxed.height; ++r)
-        for (int c = 0; c < relaxed.width; ++c)
-            if (!tailStitches.count({r, c})) EXPECT_EQ(test::checkStitchEnds(relaxed, r, c), "") << r << ", " << c;
-    // The tails: each end behind the mean of the cell's z.
+        for (int c = 0; c < relaxed.width; ++c) EXPECT_EQ(test::checkStitchEnds(relaxed, r, c), "") << r << ", " << c;
+    // The tails (the anchored vertices, the open yarns' two ends among them): behind the cell's
+    // mean z.
     double zMean = 0;
     for (const glm::dvec3& q : p.points) zMean += q.z / double(p.points.size());
-    ASSERT_EQ(cp.cell.anchors.size(), 4u);
-    for (const uint32_t v : cp.cell.anchors) EXPECT_LT((p.points[v].z - zMean) / p.radius, -1.5) << v;
+    const std::set<uint32_t> anchored(cp.cell.anchors.begin(), cp.cell.anchors.end());
+    size_t ends = 0;
+    for (const YarnPath& y : yarnPaths(p))
+        if (y.open)
+            for (const uint32_t v : {y.vertices.front(), y.vertices.back()}) {
+                ends += anchored.count(v);
+                EXPECT_LT((p.points[v].z - zMean) / p.radius, -1.5) << v;
+            }
+    EXPECT_EQ(ends, 4u);
+    for (const uint32_t v : cp.cell.anchors) EXPECT_LT((p.points[v].z - zMean) / p.radius, -0.5) << v;
     const double opening = test::largestOpening(p).radius;
     const double plain = test::largestOpening(relaxChart(builtinChart("chart:stockinette")).relaxed.pattern).radius;
     std::printf("intarsia-motif: largest opening %.3f r (stockinette %.3f r)\n", opening, plain);
-    EXPECT_LT(opening, 1.0);
-    EXPECT_GT(plain, 0.3);
+    EXPECT_LT(opening, plain + 0.25);
 }
 
 }  // namespace

@@ -99,7 +99,8 @@ struct ChartCell {
     // except on loops lifted by slipped or tucked stitches (built stretched over two or more
     // rows, they hold a plain loop's length) — RelaxOptions::restScale.
     std::vector<double> restScale;
-    // The two ends of each open yarn (an intarsia motif's tails) — RelaxOptions::anchors.
+    // The vertices of each open yarn's two tails (an intarsia motif's), woven in behind the
+    // work — RelaxOptions::anchors.
     std::vector<uint32_t> anchors;
 
     const StitchLoop& loop(int row, int column) const { return loops[size_t(row) * size_t(width) + size_t(column)]; }

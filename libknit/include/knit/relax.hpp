@@ -45,12 +45,11 @@ struct RelaxOptions {
     // all): a chart's slipped and tucked loops are built stretched over two or more rows but
     // hold a plain loop's yarn (knit/chart_topology.hpp, ChartCell::restScale).
     std::vector<double> restScale;
-    // Optional anchored vertices (an intarsia motif's tail ends, woven in behind the work and
-    // held there by friction): each is drawn to where it started, carried with the period
+    // Optional anchored vertices (an intarsia motif's tails, woven in behind the work and held
+    // there by friction): each is drawn to where it started, carried with the period
     // (x0 px / px0, y0 py / py0, z0), by anchorWeight * squared distance in yarn radii. Free
-    // tails wandered to the front of the work and opened holes; tied to the nearest stitch
-    // instead, they pulled harder on the motif's first and last stitches (docs/charts.md,
-    // "Motifs").
+    // tails wandered to the front of the work and opened holes; with only their ends anchored
+    // they slid, and wider motifs crept on to the iteration cap (docs/charts.md, "Motifs").
     std::vector<uint32_t> anchors;
     double anchorWeight = 10;
     bool freePeriod = true;  // the period (px, py) is a variable

@@ -501,6 +501,7 @@ double plainLoopLength(int n) {
 struct IntarsiaYarn {
     std::vector<int> tileX, tileY;
     std::vector<ChartFloat> floats;
+    std::vector<uint32_t> tail;  // the vertices of its tails (ChartCell::anchors)
 };
 
 // A row of an area's serpentine: the area, its index among its row's yarns, the global yarn, the
@@ -539,7 +540,10 @@ void intarsiaRow(const CellInputs& in, const SerpentineRow& sr, double scale, Ch
         const glm::dvec3 foot = loopPoint(g, stitchLoop(in, r, firstU % W, sr.yarn, 0, 0), -dir * util::kPi);
         std::vector<glm::dvec3> tail =
             intarsia::tailPoints(foot, in.rows.y[size_t(r)], int(dir), tailStitches(firstU, int(dir)), spacing);
-        for (auto q = tail.rbegin(); q != tail.rend(); ++q) add(*q, firstU / W);
+        for (auto q = tail.rbegin(); q != tail.rend(); ++q) {
+            yarn.tail.push_back(uint32_t(p.points.size()));
+            add(*q, firstU / W);
+        }
     }
     bool floating = false;
     for (int k = 0; k < area.count; ++k) {
@@ -570,8 +574,10 @@ void intarsiaRow(const CellInputs& in, const SerpentineRow& sr, double scale, Ch
     if (sr.endTail) {  // from the row's last foot back behind its last stitches
         add(lastFoot, u / W);
         for (const glm::dvec3& q :
-             intarsia::tailPoints(lastFoot, in.rows.y[size_t(r)], -int(dir), tailStitches(u, -int(dir)), spacing))
+             intarsia::tailPoints(lastFoot, in.rows.y[size_t(r)], -int(dir), tailStitches(u, -int(dir)), spacing)) {
+            yarn.tail.push_back(uint32_t(p.points.size()));
             add(q, u / W);
+        }
     }
     if (!sr.turns) return;
     // The turn: from this row's last foot to the next row's first (the next period's row 0 after
@@ -645,7 +651,7 @@ std::vector<char> buildIntarsia(const CellInputs& in, double scale, ChartCell& c
                 intarsiaRow(in, sr, scale, cell, yarn, letter);
             }
             intarsiaEdges(yarn, first, bands, p);
-            if (!bands) cell.anchors.insert(cell.anchors.end(), {first, uint32_t(p.points.size()) - 1});
+            cell.anchors.insert(cell.anchors.end(), yarn.tail.begin(), yarn.tail.end());
             cell.floats.insert(cell.floats.end(), yarn.floats.begin(), yarn.floats.end());
             ++cell.yarns;
         }
