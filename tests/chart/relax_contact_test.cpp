@@ -10,6 +10,7 @@
 
 #include "knit/chart.hpp"
 #include "knit/chart_topology.hpp"
+#include "knit/error.hpp"
 #include "chart/relax_contact.hpp"
 
 namespace knit {
@@ -94,6 +95,30 @@ TEST(RelaxContact, pairsMatchBruteForceWithLongCableLegs) {
         EXPECT_EQ(found[k].ix, expected[k].ix);
         EXPECT_EQ(found[k].iy, expected[k].iy);
     }
+}
+
+// An open yarn does not wrap: its first and last segments are far apart along it (an intarsia
+// motif's two tails may touch), while on the same yarn closed they are neighbours.
+TEST(RelaxContact, anOpenYarnsEndsAreNotNeighbours) {
+    Pattern p;
+    p.name = "hook";
+    p.px = p.py = 50;
+    p.radius = 1;
+    p.points = {{0, 0, 0}, {2, 0, 0}, {4, 0, 0}, {4, 2, 0}, {2, 2, 0}, {0, 2, 0}};
+    p.twist.assign(6, 0.0);
+    std::vector<Seg> segs;
+    for (uint32_t i = 0; i < 5; ++i) segs.push_back({i, i + 1, 0, 0});
+    const relax::YarnIndex open = relax::indexYarns(p, segs, true);
+    ASSERT_EQ(open.length.size(), 1u);
+    EXPECT_TRUE(open.open[0]);
+    EXPECT_EQ(open.length[0], 6);
+    EXPECT_FALSE(relax::nearAlongYarn(open, segs, {0, 4, 0, 0}, 3));
+    EXPECT_TRUE(relax::nearAlongYarn(open, segs, {0, 3, 0, 0}, 3));
+    EXPECT_THROW(relax::indexYarns(p, segs), Error);  // open yarns only when asked for
+    segs.push_back({5, 0, 0, 0});
+    const relax::YarnIndex closed = relax::indexYarns(p, segs);
+    EXPECT_FALSE(closed.open[0]);
+    EXPECT_TRUE(relax::nearAlongYarn(closed, segs, {0, 4, 0, 0}, 3));
 }
 
 }  // namespace

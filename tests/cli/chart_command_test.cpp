@@ -1,9 +1,14 @@
 // `knit chart` and chart patterns on `knit build`: files written, errors with line and column.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <iterator>
+#include <map>
+#include <set>
+#include <sstream>
 
 #include "common/run_knit.hpp"
 #include "knit/pattern.hpp"
@@ -101,6 +106,53 @@ TEST(ChartCommand, intarsiaReportsItsYarnsAndRows) {
          {"\"yarns\": 2", "\"colourwork\": \"intarsia\"", "\"rows\": 1", "\"cell_rows\": 2", "\"floats\": []"})
         EXPECT_NE(report.find(field), std::string::npos) << field << "\n" << report;
     EXPECT_EQ(loadPyp(dir.file("cell.pyp")).rowsPerPeriod, 2);
+}
+
+// An intarsia motif's open yarns through tiling and the PLY export: every yarn (a connected
+// component of the edges) keeps one colour, and the two colours are the palette's (sRGB bytes).
+TEST(ChartCommand, intarsiaMotifYarnsKeepTheirColourThroughTheExport) {
+    test::TempDir dir;
+    ::setenv("KNIT_CACHE_DIR", dir.file("cache").c_str(), 1);
+    const test::CliRun r = test::runKnit(
+        "build --pattern chart:intarsia-motif --mesh plane --repeats 2 2 --mesh-res 4 -q -o m.ply --export yarns "
+        "--deform none",
+        dir.path());
+    ::unsetenv("KNIT_CACHE_DIR");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const std::string text = test::readText(dir.file("m.ply"));
+    size_t vertices = 0, edges = 0;
+    std::istringstream header(text.substr(0, text.find("end_header\n")));
+    for (std::string word; header >> word;)
+        if (word == "element") {
+            std::string what;
+            size_t count = 0;
+            header >> what >> count;
+            (what == "vertex" ? vertices : edges) = count;
+        }
+    const size_t body = text.find("end_header\n") + 11, record = 3 * 8 + 3;
+    ASSERT_EQ(text.size(), body + vertices * record + edges * 8);
+    std::vector<size_t> root(vertices);
+    for (size_t i = 0; i < vertices; ++i) root[i] = i;
+    auto find = [&](size_t i) {
+        while (root[i] != i) i = root[i] = root[root[i]];
+        return i;
+    };
+    for (size_t e = 0; e < edges; ++e) {
+        int32_t ab[2];
+        std::memcpy(ab, text.data() + body + vertices * record + 8 * e, 8);
+        root[find(size_t(ab[0]))] = find(size_t(ab[1]));
+    }
+    std::map<size_t, std::set<std::array<int, 3>>> coloursOf;
+    std::set<std::array<int, 3>> all;
+    for (size_t v = 0; v < vertices; ++v) {
+        const char* c = text.data() + body + v * record + 24;
+        const std::array<int, 3> rgb{uint8_t(c[0]), uint8_t(c[1]), uint8_t(c[2])};
+        coloursOf[find(v)].insert(rgb);
+        all.insert(rgb);
+    }
+    EXPECT_GT(coloursOf.size(), 8u);
+    for (const auto& [yarn, colours] : coloursOf) EXPECT_EQ(colours.size(), 1u) << "yarn of vertex " << yarn;
+    EXPECT_EQ(all, (std::set<std::array<int, 3>>{{0xf2, 0xe8, 0xd5}, {0xc1, 0x12, 0x1f}}));
 }
 
 TEST(ChartCommand, buildAcceptsAChartFileAndCachesIt) {

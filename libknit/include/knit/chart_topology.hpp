@@ -94,11 +94,14 @@ struct ChartCell {
     std::vector<StitchLoop> loops;               // row-major, row 0 first
     std::vector<std::array<uint8_t, 3>> colour;  // per loop sRGB; empty without a colour layer
     std::vector<ChartFloat> floats;              // every float (rows of the chart as written)
-    int yarns = 0;  // closed yarns (one per row, more when stranded, one per area for intarsia)
+    int yarns = 0;  // yarns (one per row, more when stranded, one per area for intarsia, open for motifs)
     // Per vertex, for the edge leaving it: the yarn length it holds over its length here. 1,
     // except on loops lifted by slipped or tucked stitches (built stretched over two or more
     // rows, they hold a plain loop's length) — RelaxOptions::restScale.
     std::vector<double> restScale;
+    // The vertices of each open yarn's two tails (an intarsia motif's), woven in behind the
+    // work — RelaxOptions::anchors.
+    std::vector<uint32_t> anchors;
 
     const StitchLoop& loop(int row, int column) const { return loops[size_t(row) * size_t(width) + size_t(column)]; }
 };

@@ -45,6 +45,13 @@ struct RelaxOptions {
     // all): a chart's slipped and tucked loops are built stretched over two or more rows but
     // hold a plain loop's yarn (knit/chart_topology.hpp, ChartCell::restScale).
     std::vector<double> restScale;
+    // Optional anchored vertices (an intarsia motif's tails, woven in behind the work and held
+    // there by friction): each is drawn to where it started, carried with the period
+    // (x0 px / px0, y0 py / py0, z0), by anchorWeight * squared distance in yarn radii. Free
+    // tails wandered to the front of the work and opened holes; with only their ends anchored
+    // they slid, and wider motifs crept on to the iteration cap (docs/charts.md, "Motifs").
+    std::vector<uint32_t> anchors;
+    double anchorWeight = 10;
     bool freePeriod = true;  // the period (px, py) is a variable
     // Search directions in affine period coordinates: a change of the period carries every vertex
     // with it. Most cells stop in far fewer iterations (stockinette 90 instead of 1050, the
@@ -87,7 +94,11 @@ struct RelaxResult {
     bool stopped = false;  // onStep returned false: `pattern` is the state at that iteration
 };
 
-// Throws knit::Error when the pattern is invalid or a yarn has fewer than 4 vertices.
+// Yarns may be closed (through the period or within the cell) or open: an open yarn (an
+// intarsia motif's, with its two tails) has two free ends, which bend nothing and are held only
+// by the stretch of their one segment and by contact (a tail woven in behind the work).
+// Throws knit::Error when the pattern is invalid, a vertex starts or ends two edges (yarns must
+// be consistently oriented paths or cycles) or a yarn has fewer than 4 vertices.
 RelaxResult relaxYarn(const Pattern& initial, const RelaxOptions& options = {});
 
 // Smallest centreline distance between distinct, non-adjacent segments (along a yarn: more

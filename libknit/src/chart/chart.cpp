@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "knit/error.hpp"
+#include "chart_intarsia.hpp"
 #include "io/special_file.hpp"
 
 namespace knit {
@@ -298,79 +299,47 @@ void readColours(const Block& block, const std::string& source, Chart& chart) {
     }
 }
 
-// An intarsia chart whose colour areas are not vertical bands, refused naming the area where the
-// colour block draws it (rows from 1 at the bottom, columns from 1 at the left): a motif (a colour
-// missing from some row: a block, a diamond; the one with the fewest stitches), else a boundary
-// that moves between columns from row to row.
-[[noreturn]] void refuseNonBandAreas(const std::string& source, const Chart& chart, const Block& colours) {
-    const int w = chart.width, h = chart.height;
-    std::map<char, int> stitches, rows;
-    for (int r = 0; r < h; ++r) {
-        std::string seen;
-        for (int c = 0; c < w; ++c) {
-            ++stitches[chart.colourAt(r, c)];
-            if (seen.find(chart.colourAt(r, c)) == std::string::npos) seen += chart.colourAt(r, c);
-        }
-        for (const char letter : seen) ++rows[letter];
-    }
-    char motif = 0;
-    for (const auto& [letter, count] : stitches)
-        if (rows[letter] < h && (motif == 0 || count < stitches[motif])) motif = letter;
-    // The area: the motif's stitches, or those of the top row's colour in the columns that change.
-    std::vector<bool> in(chart.colour.size(), false);
-    for (int r = 0; r < h; ++r)
-        for (int c = 0; c < w; ++c) {
-            bool changes = false;
-            for (int k = 1; k < h; ++k) changes = changes || chart.colourAt(k, c) != chart.colourAt(0, c);
-            in[size_t(r * w + c)] =
-                motif ? chart.colourAt(r, c) == motif : changes && chart.colourAt(r, c) == chart.colourAt(h - 1, c);
-        }
-    int rowLo = h, rowHi = -1, colLo = w, colHi = -1;
-    for (int r = 0; r < h; ++r)
-        for (int c = 0; c < w; ++c)
-            if (in[size_t(r * w + c)]) {
-                rowLo = std::min(rowLo, r), rowHi = std::max(rowHi, r);
-                colLo = std::min(colLo, c), colHi = std::max(colHi, c);
-            }
-    int first = colLo;  // the area's first stitch on its top row (its first line in the text)
-    while (!in[size_t(rowHi * w + first)]) ++first;
-    const Line& line = colours[size_t(h - 1 - rowHi)];
-    const auto span = [](const char* noun, int lo, int hi) {
-        return lo == hi ? std::string(noun) + " " + std::to_string(lo + 1)
-                        : std::string(noun) + "s " + std::to_string(lo + 1) + "-" + std::to_string(hi + 1);
+// A block of rows with several colour areas that lasts one row only (a diagonal boundary, or one
+// that steps every row, or a motif one row tall), refused naming its smallest area where the
+// colour block draws it (rows from 1 at the bottom, columns from 1 at the left).
+[[noreturn]] void refuseOneRowBlock(const std::string& source, const Chart& chart, const Block& colours,
+                                    const intarsia::RowBlock& block) {
+    const intarsia::Area* small = &block.areas.front();
+    for (const intarsia::Area& a : block.areas)
+        if (a.count < small->count) small = &a;
+    const auto span = [](int lo, int count) {
+        return count == 1 ? "column " + std::to_string(lo + 1)
+                          : "columns " + std::to_string(lo + 1) + "-" + std::to_string(lo + count);
     };
-    const std::string area = "intarsia: the colour " + std::string(1, chart.colourAt(rowHi, first)) + " area in " +
-                             span("row", rowLo, rowHi) + ", " + span("column", colLo, colHi);
-    const std::string what =
-        motif ? " is a motif (it does not run the full height of the repeat). In intarsia a motif's yarn starts and "
-                "ends inside the repeat with its tails woven in, and a relaxed periodic cell holds only yarns that "
-                "close through the repeat, so motifs are not built"
-              : " moves between columns from row to row (a diagonal or stepped boundary); the yarns' turns would "
-                "move with it, which is not built";
-    fail(source, line.number, line.tokens[size_t(first)].column,
-         area + what +
-             ": knit it `stranded` (the other yarn floats behind it), leave out the `intarsia` line to paint the "
-             "colours on one yarn per row (the look of duplicate stitch), or make every colour area a vertical band "
-             "over all rows of the repeat");
+    const Line& line = colours[size_t(chart.height - 1 - block.first)];
+    fail(source, line.number, line.tokens[size_t(small->first)].column,
+         "intarsia: the colour " + std::string(1, small->colour) + " area in row " + std::to_string(block.first + 1) +
+             ", " + span(small->first, small->count) +
+             " lasts one row (its boundaries are not those of the row below or above: a diagonal, a boundary "
+             "that moves between columns every row, or a motif one row tall). Each area's yarn knits back and "
+             "forth over at least two rows with the same areas, turning round its neighbours' yarns, so make "
+             "every run of rows with the same colour areas at least two rows tall, or knit it `stranded`");
 }
 
-// Intarsia in a periodic cell: each colour area's yarn knits back and forth and turns at the
-// area's boundaries (chart_intarsia.hpp), so the areas are vertical bands, at least two, and the
-// stitches either side of a boundary are knit-face loops the turns can leave from behind.
+// Intarsia in a periodic cell (chart_intarsia.hpp): at least one row with two colour areas; the
+// rows with the same areas form blocks, each of several areas at least two rows tall (the areas'
+// yarns turn round each other), unless the areas are vertical bands over every row; the stitches
+// either side of a boundary are knit-face loops the turns and tails can leave from behind.
 void checkIntarsia(const std::string& source, const Chart& chart, const Block& colours) {
     const int w = chart.width;
-    for (int r = 1; r < chart.height; ++r)
-        for (int c = 0; c < w; ++c)
-            if (chart.colourAt(r, c) != chart.colourAt(0, c)) refuseNonBandAreas(source, chart, colours);
-    bool boundary = false;
-    for (int c = 0; c < w; ++c) boundary = boundary || chart.colourAt(0, c) != chart.colourAt(0, (c + 1) % w);
-    if (!boundary)
+    const std::vector<intarsia::RowBlock> blocks = intarsia::rowBlocks(chart);
+    bool several = false;
+    for (const intarsia::RowBlock& b : blocks) several = several || b.areas.size() > 1;
+    if (!several)
         fail(source, chart.rowLine[0], 1,
-             "intarsia needs at least two colour areas along a row (this chart has one colour in every column)");
+             "intarsia needs at least two colour areas along a row (this chart has one colour in every row)");
+    if (blocks.size() > 1)
+        for (const intarsia::RowBlock& b : blocks)
+            if (b.areas.size() > 1 && b.rows < 2) refuseOneRowBlock(source, chart, colours, b);
     for (int r = 0; r < chart.height; ++r)
         for (int c = 0; c < w; ++c) {
-            const bool edge = chart.colourAt(0, c) != chart.colourAt(0, (c + 1) % w) ||
-                              chart.colourAt(0, c) != chart.colourAt(0, (c + w - 1) % w);
+            const bool edge = chart.colourAt(r, c) != chart.colourAt(r, (c + 1) % w) ||
+                              chart.colourAt(r, c) != chart.colourAt(r, (c + w - 1) % w);
             const StitchOp op = chart.opAt(r, c);
             if (edge && (chart.at(r, c) != StitchKind::Knit || op == StitchOp::Slip || op == StitchOp::SlipFront ||
                          op == StitchOp::Tuck))
@@ -518,6 +487,11 @@ const BuiltinChart kBuiltinCharts[] = {
      "# intarsia: two colour blocks side by side, each knitted back and forth with its own yarn,\n"
      "# the two yarns interlocked where the blocks meet\nk k k k\nk k k k\n\n"
      "A A B B\nA A B B\nA=#f2e8d5 B=#c1121f\nintarsia\n"},
+    {"chart:intarsia-motif",
+     "# intarsia: a motif one stitch wide and three rows tall on a plain background; the motif and the\n"
+     "# background beside it each knitted back and forth with their own yarn (tails woven in behind),\n"
+     "# interlocked where they meet; the rows above and below in the background's yarn\n"
+     "k k k\nk k k\nk k k\nk k k\nk k k\n\nA A A\nA B A\nA B A\nA B A\nA A A\nA=#f2e8d5 B=#c1121f\nintarsia\n"},
 };
 
 }  // namespace

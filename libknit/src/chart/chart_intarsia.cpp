@@ -7,6 +7,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "util/math.hpp"
+
 namespace knit::intarsia {
 namespace {
 
@@ -18,12 +20,17 @@ constexpr double kFarReach = 0.9;
 constexpr double kOvershoot = 1.0;
 constexpr double kNearDepth = 1.5;
 constexpr double kFarDepth = 4.5;
+// A tail: below its row's loop centres and behind the work as a stranded float (the stitches'
+// lower legs and the heads below lie in front of it), its end this far short of the far boundary.
+constexpr double kTailDrop = 2.5;
+constexpr double kTailDepth = 2.4;
+constexpr double kTailClear = 2.0;
 
 }  // namespace
 
-std::vector<Area> areas(const Chart& chart) {
+std::vector<Area> areas(const Chart& chart, int row) {
     const int w = chart.width;
-    auto colour = [&](int c) { return chart.colourAt(0, ((c % w) + w) % w); };
+    auto colour = [&](int c) { return chart.colourAt(row, ((c % w) + w) % w); };
     int start = 0;
     while (start < w && colour(start) == colour(start - 1)) ++start;
     if (start == w) return {{colour(0), 0, w}};  // one colour: one area round the period
@@ -34,6 +41,22 @@ std::vector<Area> areas(const Chart& chart) {
         out.push_back(a);
     }
     std::sort(out.begin(), out.end(), [](const Area& a, const Area& b) { return a.first < b.first; });
+    return out;
+}
+
+std::vector<RowBlock> rowBlocks(const Chart& chart) {
+    const int H = chart.height;
+    std::vector<std::vector<Area>> rows(static_cast<size_t>(H));
+    for (int r = 0; r < H; ++r) rows[size_t(r)] = areas(chart, r);
+    int start = 0;
+    while (start < H && rows[size_t(start)] == rows[size_t((start + H - 1) % H)]) ++start;
+    if (start == H) return {{0, H, rows[0]}};
+    std::vector<RowBlock> out;
+    for (int k = 0; k < H; ++k) {
+        const int r = start + k;
+        if (out.empty() || rows[size_t(r % H)] != out.back().areas) out.push_back({r % H, 0, rows[size_t(r % H)]});
+        ++out.back().rows;
+    }
     return out;
 }
 
@@ -74,6 +97,23 @@ std::vector<glm::dvec3> turnPoints(const Turn& turn, double spacing) {
         while (leg + 1 < along.size() && along[leg] < s) ++leg;
         const double u = (s - along[leg - 1]) / std::max(1e-12, along[leg] - along[leg - 1]);
         out.push_back(corners[leg - 1] + u * (corners[leg] - corners[leg - 1]));
+    }
+    return out;
+}
+
+std::vector<glm::dvec3> tailPoints(const glm::dvec3& foot, double rowY, int inward, int stitches, double spacing) {
+    // Behind the work at the height and depth of a float behind its row's stitches, reaching to
+    // kTailClear short of the far boundary (which lies 2 pi stitches - kBoundaryInset from the foot).
+    const double reach = util::kTwoPi * stitches - kBoundaryInset - kTailClear;
+    const std::vector<glm::dvec3> corners{foot,
+                                          {foot.x + inward * 1.0, rowY - kTailDrop, -kTailDepth},
+                                          {foot.x + inward * reach, rowY - kTailDrop, -kTailDepth}};
+    std::vector<glm::dvec3> out;
+    for (size_t k = 1; k < corners.size(); ++k) {
+        const double length = glm::length(corners[k] - corners[k - 1]);
+        const int count = std::max(2, int(std::lround(length / spacing)));
+        for (int i = 1; i <= count; ++i)
+            out.push_back(corners[k - 1] + (double(i) / count) * (corners[k] - corners[k - 1]));
     }
     return out;
 }

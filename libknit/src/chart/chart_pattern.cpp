@@ -36,6 +36,7 @@ ChartPattern relaxChart(const Chart& chart, const ChartPatternOptions& options) 
     RelaxOptions relax;
     relax.restLength = options.restLength;
     relax.restScale = out.cell.restScale;
+    relax.anchors = out.cell.anchors;
     relax.maxIterations = options.maxIterations;
     relax.affinePeriod = options.affinePeriod;
     relax.onStep = options.onStep;

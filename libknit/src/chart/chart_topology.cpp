@@ -66,7 +66,7 @@ bool held(StitchOp op) { return op == StitchOp::Slip || op == StitchOp::SlipFron
 bool makesLoop(StitchOp op) { return op != StitchOp::Slip && op != StitchOp::SlipFront; }
 
 // Step 1: the yarns of each row. One per row, or for stranded colourwork one per colour the row
-// uses (in order of first use), for intarsia one per colour area (the same in every row);
+// uses (in order of first use), for intarsia one per colour area of the row;
 // yarnOf[c] is the row's yarn that works column c.
 struct RowYarns {
     std::vector<char> colours;
@@ -75,13 +75,14 @@ struct RowYarns {
 std::vector<RowYarns> rowYarns(const Chart& chart) {
     std::vector<RowYarns> rows(size_t(chart.height));
     if (chart.colourwork == Colourwork::Intarsia) {
-        RowYarns y;
-        y.yarnOf.assign(size_t(chart.width), 0);
-        for (const intarsia::Area& a : intarsia::areas(chart)) {
-            for (int k = 0; k < a.count; ++k) y.yarnOf[size_t((a.first + k) % chart.width)] = int(y.colours.size());
-            y.colours.push_back(a.colour);
+        for (int r = 0; r < chart.height; ++r) {
+            RowYarns& y = rows[size_t(r)];
+            y.yarnOf.assign(size_t(chart.width), 0);
+            for (const intarsia::Area& a : intarsia::areas(chart, r)) {
+                for (int k = 0; k < a.count; ++k) y.yarnOf[size_t((a.first + k) % chart.width)] = int(y.colours.size());
+                y.colours.push_back(a.colour);
+            }
         }
-        rows.assign(size_t(chart.height), y);
         return rows;
     }
     const bool stranded = chart.colourwork == Colourwork::Stranded;
@@ -436,6 +437,33 @@ std::vector<std::vector<uint32_t>> stitchRecord(const CellInputs& in, ChartCell&
     return starts;
 }
 
+// Step 6a: the vertices of row r's yarn k (global index `yarn`) whose columns start at `at` (model
+// units times `scale`), closing through +x, with its floats; `letter` gets each vertex's
+// palette letter. cell.loops holds the row's stitch record.
+void addCourse(const CellInputs& in, int r, int k, int yarn, const std::vector<uint32_t>& at, double scale,
+               ChartCell& cell, std::vector<char>& letter) {
+    const Chart& chart = in.chart;
+    const RowYarns& ry = in.yarns[size_t(r)];
+    Pattern& p = cell.pattern;
+    const CellGeometry g{&chart, &in.rows, &in.plan, &ry, k};
+    for (int c = 0; c < chart.width; ++c) {
+        const StitchLoop& l = cell.loop(r, c);
+        const bool mine = g.loopOf(r, c);
+        const int m = int(at[size_t(c) + 1] - at[size_t(c)]);
+        for (int i = 0; i < m; ++i) {
+            const double t = mine ? loopParameter(in.rows, l, i, m) : -util::kPi + util::kTwoPi * i / m;
+            p.points.push_back((mine ? loopPoint(g, l, t) : floatPoint(g, r, c, t)) * scale);
+            letter.push_back(chart.colour.empty()                       ? char(0)
+                             : chart.colourwork == Colourwork::Stranded ? ry.colours[size_t(k)]
+                                                                        : chart.colourAt(r, c));
+        }
+    }
+    const uint32_t first = at.front(), last = at.back() - 1;
+    for (uint32_t i = first; i < last; ++i) p.edges.push_back({i, i + 1, 0, 0});
+    p.edges.push_back({last, first, 1, 0});
+    addFloats(g, r, yarn, at, cell.floats);
+}
+
 // Step 6: the vertices (model units times `scale`), yarn by yarn along each row; every yarn
 // closes through +x. Returns the palette letter of every vertex.
 std::vector<char> buildYarns(const CellInputs& in, const std::vector<std::vector<uint32_t>>& starts, double scale,
@@ -448,29 +476,9 @@ std::vector<char> buildYarns(const CellInputs& in, const std::vector<std::vector
     p.edges.reserve(vertices);
     letter.reserve(vertices);
     int yarn = 0;
-    for (int r = 0; r < chart.height; ++r) {
-        const RowYarns& ry = in.yarns[size_t(r)];
-        for (size_t k = 0; k < ry.colours.size(); ++k, ++yarn) {
-            const CellGeometry g{&chart, &in.rows, &in.plan, &ry, int(k)};
-            const std::vector<uint32_t>& at = starts[size_t(yarn)];
-            for (int c = 0; c < chart.width; ++c) {
-                const StitchLoop& l = cell.loop(r, c);
-                const bool mine = g.loopOf(r, c);
-                const int m = int(at[size_t(c) + 1] - at[size_t(c)]);
-                for (int i = 0; i < m; ++i) {
-                    const double t = mine ? loopParameter(in.rows, l, i, m) : -util::kPi + util::kTwoPi * i / m;
-                    p.points.push_back((mine ? loopPoint(g, l, t) : floatPoint(g, r, c, t)) * scale);
-                    letter.push_back(chart.colour.empty()                       ? char(0)
-                                     : chart.colourwork == Colourwork::Stranded ? ry.colours[k]
-                                                                                : chart.colourAt(r, c));
-                }
-            }
-            const uint32_t first = at.front(), last = at.back() - 1;
-            for (uint32_t i = first; i < last; ++i) p.edges.push_back({i, i + 1, 0, 0});
-            p.edges.push_back({last, first, 1, 0});
-            addFloats(g, r, yarn, at, cell.floats);
-        }
-    }
+    for (int r = 0; r < chart.height; ++r)
+        for (size_t k = 0; k < in.yarns[size_t(r)].colours.size(); ++k, ++yarn)
+            addCourse(in, r, int(k), yarn, starts[size_t(yarn)], scale, cell, letter);
     return letter;
 }
 
@@ -487,41 +495,69 @@ double plainLoopLength(int n) {
     return length;
 }
 
-// One intarsia yarn being built: its vertices' tiles along x (a column of an area that wraps round
-// the period is built where it is, one period back) and its floats.
+// One intarsia yarn being built: its vertices' tiles (a column of an area that wraps round the
+// period is built where it is, one period back in x; a row of a block that runs past the chart's
+// last row one period up in y) and its floats.
 struct IntarsiaYarn {
-    std::vector<int> tile;
+    std::vector<int> tileX, tileY;
     std::vector<ChartFloat> floats;
+    std::vector<uint32_t> tail;  // the vertices of its tails (ChartCell::anchors)
 };
 
-// One row of an intarsia area's yarn, in its direction (left to right on even rows): loops (or a
-// float past a slipped stitch), then the turn at the boundary up into the next row.
-void intarsiaRow(const CellInputs& in, const intarsia::Area& area, int a, int r, double scale, ChartCell& cell,
-                 IntarsiaYarn& yarn, std::vector<char>& letter) {
+// A row of an area's serpentine: the area, its index among its row's yarns, the global yarn, the
+// unwrapped row, the direction, and what follows the row (a turn up into the next row, or the
+// block ends with a tail); and whether a tail comes before it (the block's first row).
+struct SerpentineRow {
+    const intarsia::Area* area = nullptr;
+    int local = 0, yarn = 0, row = 0;
+    bool rightwards = true, turns = true, startTail = false, endTail = false;
+};
+
+// One row of an intarsia area's yarn, in its direction: (the starting tail,) loops (or a float
+// past a slipped stitch), then the turn at the boundary up into the next row or the end tail.
+void intarsiaRow(const CellInputs& in, const SerpentineRow& sr, double scale, ChartCell& cell, IntarsiaYarn& yarn,
+                 std::vector<char>& letter) {
     const Chart& chart = in.chart;
-    const int W = chart.width, H = chart.height, n = in.n;
+    const intarsia::Area& area = *sr.area;
+    const int W = chart.width, H = chart.height, n = in.n, r = sr.row % H, oy = sr.row / H;
+    const double spacing = plainLoopLength(n) / n;
     Pattern& p = cell.pattern;
     auto add = [&](const glm::dvec3& q, int ox) {
         p.points.push_back(q * scale);
-        yarn.tile.push_back(ox);
+        yarn.tileX.push_back(ox);
+        yarn.tileY.push_back(oy);
         letter.push_back(area.colour);
     };
-    const CellGeometry g{&chart, &in.rows, &in.plan, &in.yarns[size_t(r)], a, intarsia::kBoundaryInset, 0.0};
-    const bool rightwards = r % 2 == 0;
-    const double dir = rightwards ? 1.0 : -1.0;
+    const CellGeometry g{&chart, &in.rows, &in.plan, &in.yarns[size_t(r)], sr.local, intarsia::kBoundaryInset, 0.0};
+    const double dir = sr.rightwards ? 1.0 : -1.0;
+    // A tail lies behind two stitches of its row, or one when the second is not a loop of this
+    // yarn (a slipped stitch's float lies where the tail would).
+    auto tailStitches = [&](int fromU, int inward) {
+        return area.count >= 2 && g.loopOf(r, wrap(fromU + inward, W)) ? 2 : 1;
+    };
+    const int firstU = sr.rightwards ? area.first : area.first + area.count - 1;
+    if (sr.startTail) {  // behind the row's first stitches, ending at its first foot
+        const glm::dvec3 foot = loopPoint(g, stitchLoop(in, r, firstU % W, sr.yarn, 0, 0), -dir * util::kPi);
+        std::vector<glm::dvec3> tail =
+            intarsia::tailPoints(foot, in.rows.y[size_t(r)], int(dir), tailStitches(firstU, int(dir)), spacing);
+        for (auto q = tail.rbegin(); q != tail.rend(); ++q) {
+            yarn.tail.push_back(uint32_t(p.points.size()));
+            add(*q, firstU / W);
+        }
+    }
     bool floating = false;
     for (int k = 0; k < area.count; ++k) {
-        const int u = area.first + (rightwards ? k : area.count - 1 - k);  // unwrapped column
+        const int u = area.first + (sr.rightwards ? k : area.count - 1 - k);  // unwrapped column
         const int c = u % W, ox = u / W;
         const bool loop = g.loopOf(r, c);
         const int m = loop ? n : floatSamples(n);
         StitchLoop& l = cell.loops[size_t(r) * size_t(W) + size_t(c)];
-        l = stitchLoop(in, r, c, a, uint32_t(p.points.size()), uint32_t(m));
-        l.reversed = !rightwards;
+        l = stitchLoop(in, r, c, sr.yarn, uint32_t(p.points.size()), uint32_t(m));
+        l.reversed = !sr.rightwards;
         if (!loop) {  // a slipped stitch inside the area: the yarn floats past it
-            if (!floating) yarn.floats.push_back({r, c, 0, a, area.colour, true, false, {}});
+            if (!floating) yarn.floats.push_back({r, c, 0, sr.yarn, area.colour, true, false, {}});
             ChartFloat& f = yarn.floats.back();
-            f.firstColumn = rightwards ? f.firstColumn : c;
+            f.firstColumn = sr.rightwards ? f.firstColumn : c;
             f.columns += 1;
             f.front = f.front && l.op == StitchOp::SlipFront;
             for (uint32_t i = 0; i < uint32_t(m); ++i) f.vertices.push_back(l.first + i);
@@ -532,42 +568,94 @@ void intarsiaRow(const CellInputs& in, const intarsia::Area& area, int a, int r,
             add(loop ? loopPoint(g, l, t) : floatPoint(g, r, c, t), ox);
         }
     }
+    const int u = sr.rightwards ? area.first + area.count - 1 : area.first;
+    const int c = u % W;
+    const glm::dvec3 lastFoot = loopPoint(g, cell.loops[size_t(r) * size_t(W) + size_t(c)], dir * util::kPi);
+    if (sr.endTail) {  // from the row's last foot back behind its last stitches
+        add(lastFoot, u / W);
+        for (const glm::dvec3& q :
+             intarsia::tailPoints(lastFoot, in.rows.y[size_t(r)], -int(dir), tailStitches(u, -int(dir)), spacing)) {
+            yarn.tail.push_back(uint32_t(p.points.size()));
+            add(q, u / W);
+        }
+    }
+    if (!sr.turns) return;
     // The turn: from this row's last foot to the next row's first (the next period's row 0 after
     // the last row), at the boundary beside the row's last column.
-    const int u = rightwards ? area.first + area.count - 1 : area.first;
-    const int c = u % W, next = (r + 1) % H;
-    const CellGeometry gn{&chart, &in.rows, &in.plan, &in.yarns[size_t(next)], a, intarsia::kBoundaryInset, 0.0};
+    const int next = (r + 1) % H;
+    const CellGeometry gn{&chart, &in.rows, &in.plan, &in.yarns[size_t(next)], sr.local, intarsia::kBoundaryInset, 0.0};
     intarsia::Turn turn;
-    turn.from = loopPoint(g, cell.loops[size_t(r) * size_t(W) + size_t(c)], dir * util::kPi);
-    turn.to = loopPoint(gn, stitchLoop(in, next, c, a, 0, 0), dir * util::kPi) +
+    turn.from = lastFoot;
+    turn.to = loopPoint(gn, stitchLoop(in, next, c, sr.yarn, 0, 0), dir * util::kPi) +
               glm::dvec3(0, r + 1 == H ? in.rows.period : 0.0, 0);
     turn.boundary = util::kTwoPi * c + dir * util::kPi;
-    turn.side = rightwards ? -1 : 1;
-    for (const glm::dvec3& q : intarsia::turnPoints(turn, plainLoopLength(n) / n)) add(q, u / W);
+    turn.side = sr.rightwards ? -1 : 1;
+    for (const glm::dvec3& q : intarsia::turnPoints(turn, spacing)) add(q, u / W);
 }
 
-// Steps 5-6 for intarsia: each area's yarn, a serpentine up the period (chart_intarsia.hpp),
-// closing through +y after the last row's turn. Returns the palette letter of every vertex.
+// The edges of an intarsia yarn built from vertex `first` on: along it, and (closed) from its
+// last vertex back to its first one period up.
+void intarsiaEdges(const IntarsiaYarn& yarn, uint32_t first, bool closed, Pattern& p) {
+    const uint32_t last = uint32_t(p.points.size()) - 1;
+    for (uint32_t i = first; i < last; ++i)
+        p.edges.push_back({i, i + 1, yarn.tileX[i + 1 - first] - yarn.tileX[i - first],
+                           yarn.tileY[i + 1 - first] - yarn.tileY[i - first]});
+    if (closed)
+        p.edges.push_back(
+            {last, first, yarn.tileX.front() - yarn.tileX.back(), 1 + yarn.tileY.front() - yarn.tileY.back()});
+}
+
+// A block of one colour: each row a plain course of the background's yarn, closing through +x.
+void intarsiaCourses(const CellInputs& in, const intarsia::RowBlock& block, double scale, ChartCell& cell,
+                     std::vector<char>& letter) {
+    const int W = in.chart.width, H = in.chart.height;
+    for (int k = 0; k < block.rows; ++k) {
+        const int r = (block.first + k) % H;
+        const CellGeometry g{&in.chart, &in.rows, &in.plan, &in.yarns[size_t(r)], 0};
+        const std::vector<uint32_t> at = columnStarts(g, r, in.n, uint32_t(cell.pattern.points.size()));
+        for (int c = 0; c < W; ++c)
+            cell.loops[size_t(r) * size_t(W) + size_t(c)] =
+                stitchLoop(in, r, c, cell.yarns, at[size_t(c)], at[size_t(c) + 1] - at[size_t(c)]);
+        addCourse(in, r, 0, cell.yarns++, at, scale, cell, letter);
+    }
+}
+
+// Steps 5-6 for intarsia: each area's yarn a serpentine over its block's rows (chart_intarsia.hpp),
+// closing through +y after the last row's turn when the areas are vertical bands, else open with a
+// tail at each end; blocks of one colour as plain courses. Returns the palette letter of every
+// vertex.
 std::vector<char> buildIntarsia(const CellInputs& in, double scale, ChartCell& cell) {
     const Chart& chart = in.chart;
     const int W = chart.width, H = chart.height;
-    // A loop per stitch plus a turn per area and row (shorter than two loops), bounded first.
-    checkVertexCount(chart, uint64_t(W) * uint64_t(H) * uint64_t(in.n) * 3);
-    const std::vector<intarsia::Area> areas = intarsia::areas(chart);
+    // A loop per stitch, a turn per area and row (shorter than two loops) and two tails per area
+    // and block (each shorter than a loop), bounded first.
+    checkVertexCount(chart, uint64_t(W) * uint64_t(H) * uint64_t(in.n) * 5);
+    const std::vector<intarsia::RowBlock> blocks = intarsia::rowBlocks(chart);
+    const bool bands = blocks.size() == 1;
     cell.loops.assign(size_t(W) * size_t(H), {});
+    cell.yarns = 0;
     Pattern& p = cell.pattern;
     std::vector<char> letter;
-    for (size_t a = 0; a < areas.size(); ++a) {
-        const uint32_t first = uint32_t(p.points.size());
-        IntarsiaYarn yarn;
-        for (int r = 0; r < H; ++r) intarsiaRow(in, areas[a], int(a), r, scale, cell, yarn, letter);
-        const uint32_t last = uint32_t(p.points.size()) - 1;
-        for (uint32_t i = first; i < last; ++i)
-            p.edges.push_back({i, i + 1, yarn.tile[i + 1 - first] - yarn.tile[i - first], 0});
-        p.edges.push_back({last, first, yarn.tile.front() - yarn.tile.back(), 1});
-        cell.floats.insert(cell.floats.end(), yarn.floats.begin(), yarn.floats.end());
+    for (const intarsia::RowBlock& block : blocks) {
+        if (block.areas.size() == 1 && !bands) {
+            intarsiaCourses(in, block, scale, cell, letter);
+            continue;
+        }
+        for (size_t a = 0; a < block.areas.size(); ++a) {
+            const uint32_t first = uint32_t(p.points.size());
+            IntarsiaYarn yarn;
+            for (int k = 0; k < block.rows; ++k) {
+                const bool last = k + 1 == block.rows;
+                const SerpentineRow sr{&block.areas[a], int(a),         cell.yarns,       block.first + k,
+                                       k % 2 == 0,      bands || !last, !bands && k == 0, !bands && last};
+                intarsiaRow(in, sr, scale, cell, yarn, letter);
+            }
+            intarsiaEdges(yarn, first, bands, p);
+            cell.anchors.insert(cell.anchors.end(), yarn.tail.begin(), yarn.tail.end());
+            cell.floats.insert(cell.floats.end(), yarn.floats.begin(), yarn.floats.end());
+            ++cell.yarns;
+        }
     }
-    cell.yarns = int(areas.size());
     return letter;
 }
 
@@ -589,9 +677,10 @@ void colourLayer(const Chart& chart, const std::vector<char>& letter, ChartCell&
 ChartCell chartToCell(const Chart& chart, const ChartCellOptions& options) {
     if (!util::positiveFinite(options.radius)) throw Error("knitting chart: the yarn radius must be positive");
     if (options.samplesPerStitch < 8) throw Error("knitting chart: the samples per stitch must be >= 8");
-    // Intarsia is knitted back and forth: each yarn's serpentine closes after an even number of rows.
+    // Intarsia is knitted back and forth: in vertical bands each yarn's serpentine closes after an
+    // even number of rows (motifs' yarns are open: any number).
     const bool isIntarsia = chart.colourwork == Colourwork::Intarsia;
-    const Chart even = isIntarsia ? intarsia::evenRows(chart) : Chart{};
+    const Chart even = isIntarsia && intarsia::rowBlocks(chart).size() == 1 ? intarsia::evenRows(chart) : chart;
     const Chart& ch = isIntarsia ? even : chart;
     const double s = options.radius / kModelRadius;  // metres per model unit
     ChartCell cell;

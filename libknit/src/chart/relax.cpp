@@ -42,10 +42,19 @@ struct SegmentNow {
 // The cell in yarn radii: segments, rest lengths, bending stencils and the yarn index.
 struct Problem {
     size_t n = 0;
-    std::vector<Seg> segs;
+    std::vector<Seg> segs;  // ordered by their first vertex (closed yarns: segs[v] leaves v)
     std::vector<double> rest;
     double meanRest = 1;
-    std::vector<Seg> before;  // per vertex: the segment arriving at it (a = previous vertex)
+    // The bending stencils: each vertex with a segment arriving and one leaving (every vertex
+    // of a closed yarn; an open yarn's two ends bend nothing): the two segments.
+    struct Bend {
+        uint32_t v = 0;
+        Seg in, out;  // in.a -> v (v in tile (in.dx, in.dy) of in.a), v -> out.b
+    };
+    std::vector<Bend> bends;
+    // Anchored vertices (RelaxOptions::anchors): their starting points and the starting period.
+    std::vector<glm::dvec3> anchorAt;
+    double px0 = 1, py0 = 1;
     relax::YarnIndex yarns;
     RelaxOptions opt;
     mutable std::vector<PairForce> scratch;  // per-pair forces of the last evaluation
@@ -87,9 +96,9 @@ double stretchEnergy(const Problem& pb, const Vec& v, Vec& g) {
 double bendEnergy(const Problem& pb, const Vec& v, Vec& g) {
     const double w = pb.opt.bend / (pb.meanRest * pb.meanRest * pb.meanRest);
     double e = 0;
-    for (size_t vtx = 0; vtx < pb.n; ++vtx) {
-        const Seg& in = pb.before[vtx];  // in.a -> vtx, vtx in tile (in.dx, in.dy) of in.a
-        const Seg& out = pb.segs[vtx];   // vtx -> out.b (segments are indexed by their first vertex)
+    for (const Problem::Bend& bd : pb.bends) {
+        const Seg &in = bd.in, &out = bd.out;
+        const uint32_t vtx = bd.v;
         const glm::dvec3 b =
             at(v, pb.n, in.a, -in.dx, -in.dy) - 2.0 * vertex(v, vtx) + at(v, pb.n, out.b, out.dx, out.dy);
         e += w * glm::dot(b, b);
@@ -124,6 +133,24 @@ PairForce pairForce(const Problem& pb, const Pair& pr, const Vec& v) {
     f.energy = pb.opt.contact * (D - f.dist) * (D - f.dist);
     f.gd = (-2 * pb.opt.contact * (D - f.dist) / std::max(f.dist, 1e-12)) * d;
     return f;
+}
+
+// Anchored vertices: weight * |x - A x0|^2, A = diag(px / px0, py / py0, 1) (the start carried
+// with the period).
+double anchorEnergy(const Problem& pb, const Vec& v, Vec& g) {
+    const Eigen::Index px = Eigen::Index(3 * pb.n), py = px + 1;
+    double e = 0;
+    for (size_t k = 0; k < pb.opt.anchors.size(); ++k) {
+        const uint32_t i = pb.opt.anchors[k];
+        const glm::dvec3 a0 = pb.anchorAt[k];
+        const glm::dvec3 d = vertex(v, i) - glm::dvec3(a0.x * v[px] / pb.px0, a0.y * v[py] / pb.py0, a0.z);
+        e += pb.opt.anchorWeight * glm::dot(d, d);
+        const glm::dvec3 gd = 2 * pb.opt.anchorWeight * d;
+        addVertex(g, i, gd);
+        g[px] -= gd.x * a0.x / pb.px0;
+        g[py] -= gd.y * a0.y / pb.py0;
+    }
+    return e;
 }
 
 // The pairs' forces are computed in parallel, each into its own slot, then summed and scattered
@@ -164,7 +191,8 @@ double energy(const Problem& pb, const std::vector<Pair>& pairs, const Vec& v, V
     ++pb.evaluations;
     g.setZero(v.size());
     if (minDistance) *minDistance = std::numeric_limits<double>::infinity();
-    const double e = stretchEnergy(pb, v, g) + bendEnergy(pb, v, g) + contactEnergy(pb, pairs, v, g, minDistance);
+    const double e = stretchEnergy(pb, v, g) + bendEnergy(pb, v, g) + contactEnergy(pb, pairs, v, g, minDistance) +
+                     anchorEnergy(pb, v, g);
     if (!pb.opt.freePeriod) g[3 * pb.n] = g[3 * pb.n + 1] = 0;
     return e;
 }
@@ -258,9 +286,9 @@ Eigen::SparseMatrix<double> hessian(const Problem& pb, const std::vector<Pair>& 
         h.add<2>({PointRef{s.a, 0, 0}, PointRef{s.b, s.dx, s.dy}}, {-1.0, 1.0}, M);
     }
     const double w = pb.opt.bend / (pb.meanRest * pb.meanRest * pb.meanRest);
-    for (size_t vtx = 0; vtx < pb.n; ++vtx) {
-        const Seg &in = pb.before[vtx], &out = pb.segs[vtx];
-        h.add<3>({PointRef{in.a, -in.dx, -in.dy}, PointRef{uint32_t(vtx), 0, 0}, PointRef{out.b, out.dx, out.dy}},
+    for (const Problem::Bend& bd : pb.bends) {
+        const Seg &in = bd.in, &out = bd.out;
+        h.add<3>({PointRef{in.a, -in.dx, -in.dy}, PointRef{bd.v, 0, 0}, PointRef{out.b, out.dx, out.dy}},
                  {1.0, -2.0, 1.0}, 2 * w * Eigen::Matrix3d::Identity());
     }
     for (size_t k = 0; k < pairs.size(); ++k) {
@@ -278,6 +306,8 @@ Eigen::SparseMatrix<double> hessian(const Problem& pb, const std::vector<Pair>& 
                   PointRef{t.b, t.dx + pr.ix, t.dy + pr.iy}},
                  {1 - f.a, f.a, -(1 - f.b), -f.b}, 2 * pb.opt.contact * outer(n));
     }
+    for (const uint32_t i : pb.opt.anchors)  // the vertex's part (the period's is left out)
+        h.add<1>({PointRef{i, 0, 0}}, {1.0}, 2 * pb.opt.anchorWeight * Eigen::Matrix3d::Identity());
     const Eigen::Index size = v.size();
     if (!pb.opt.freePeriod)
         for (Eigen::Index i = size - 2; i < size; ++i) h.entries.emplace_back(i, i, 1.0);
@@ -302,48 +332,65 @@ bool factorise(const Eigen::SparseMatrix<double>& H, Factor& ldlt) {
     return false;
 }
 
-// Step 1: the problem in yarn radii, segments indexed by their first vertex.
+// Step 1: the problem in yarn radii, segments ordered by their first vertex.
 Problem setUp(const Pattern& p, const RelaxOptions& opt, Vec& v) {
     validatePattern(p, p.name);
     Problem pb;
     pb.opt = opt;
     pb.n = p.points.size();
-    pb.segs.resize(pb.n);
-    std::vector<int> seen(pb.n, 0);
-    for (const PeriodicEdge& e : p.edges) {
-        if (seen[e.v0]++)
-            throw Error(p.name + ": relaxation needs closed yarns with consistently oriented edges (vertex " +
-                        std::to_string(e.v0) + ")");
-        pb.segs[e.v0] = {e.v0, e.v1, e.dx, e.dy};
+    std::vector<int32_t> out(pb.n, -1), in(pb.n, -1);
+    for (size_t k = 0; k < p.edges.size(); ++k) {
+        const PeriodicEdge& e = p.edges[k];
+        if (out[e.v0] >= 0 || in[e.v1] >= 0)
+            throw Error(p.name + ": relaxation needs yarns with consistently oriented edges (vertex " +
+                        std::to_string(out[e.v0] >= 0 ? e.v0 : e.v1) + ")");
+        out[e.v0] = int32_t(k);
+        in[e.v1] = int32_t(k);
     }
+    for (size_t i = 0; i < pb.n; ++i)
+        if (out[i] >= 0) {
+            const PeriodicEdge& e = p.edges[size_t(out[i])];
+            pb.segs.push_back({e.v0, e.v1, e.dx, e.dy});
+            out[i] = int32_t(pb.segs.size() - 1);
+        }
+    for (const Seg& s : pb.segs) in[s.b] = out[s.a];
+    for (size_t i = 0; i < pb.n; ++i)
+        if (in[i] >= 0 && out[i] >= 0)
+            pb.bends.push_back({uint32_t(i), pb.segs[size_t(in[i])], pb.segs[size_t(out[i])]});
     if (!(opt.restLength > 0) || !(opt.contactDistance > 0) || opt.maxIterations < 0)
         throw Error(
             "yarn relaxation: the rest length and the contact distance must be positive and the iteration count >= 0");
     if (!(opt.relativeGradientTolerance >= 0) || !(opt.relativeEnergyTolerance >= 0) || opt.energyWindow < 0)
         throw Error("yarn relaxation: the relative gradient and energy tolerances and the energy window must be >= 0");
-    if (p.edges.size() != pb.n) throw Error(p.name + ": relaxation needs closed yarns (every vertex starts one edge)");
     if (!opt.restScale.empty() && opt.restScale.size() != pb.n)
         throw Error("yarn relaxation: the rest-length scale has " + std::to_string(opt.restScale.size()) +
                     " entries for " + std::to_string(pb.n) + " vertices");
     for (const double f : opt.restScale)
         if (!(f > 0) || !std::isfinite(f)) throw Error("yarn relaxation: the rest-length scales must be positive");
-    pb.yarns = relax::indexYarns(p, pb.segs);
+    pb.yarns = relax::indexYarns(p, pb.segs, true);
     for (int32_t len : pb.yarns.length)
         if (len < 4) throw Error(p.name + ": relaxation needs yarns of at least 4 vertices");
-    pb.before.resize(pb.n);
-    for (const Seg& s : pb.segs) pb.before[s.b] = s;
     v.resize(Eigen::Index(3 * pb.n + 2));
     for (size_t i = 0; i < pb.n; ++i)
         for (int c = 0; c < 3; ++c) v[Eigen::Index(3 * i + size_t(c))] = p.points[i][c] / p.radius;
     v[Eigen::Index(3 * pb.n)] = p.px / p.radius;
     v[Eigen::Index(3 * pb.n + 1)] = p.py / p.radius;
+    if (!(opt.anchorWeight >= 0) || !std::isfinite(opt.anchorWeight))
+        throw Error("yarn relaxation: the anchor weight must be >= 0");
+    pb.px0 = p.px / p.radius;
+    pb.py0 = p.py / p.radius;
+    for (const uint32_t i : opt.anchors) {
+        if (i >= pb.n)
+            throw Error("yarn relaxation: anchored vertex " + std::to_string(i) + " of " + std::to_string(pb.n));
+        pb.anchorAt.push_back(vertex(v, i));
+    }
     double total = 0;
     for (const Seg& s : pb.segs) {
         const double scale = opt.restScale.empty() ? 1.0 : opt.restScale[s.a];
         pb.rest.push_back(opt.restLength * scale * glm::length(at(v, pb.n, s.b, s.dx, s.dy) - vertex(v, s.a)));
         total += pb.rest.back();
     }
-    pb.meanRest = total / double(pb.n);
+    pb.meanRest = total / double(std::max<size_t>(pb.segs.size(), 1));
     return pb;
 }
 

@@ -15,29 +15,35 @@
 
 namespace knit::relax {
 
-YarnIndex indexYarns(const Pattern& p, const std::vector<Seg>& segs) {
+YarnIndex indexYarns(const Pattern& p, const std::vector<Seg>& segs, bool allowOpen) {
     const size_t n = p.points.size();
-    // Out/in segment per vertex: every yarn must be a closed, consistently oriented cycle.
+    // Out/in segment per vertex: every yarn a consistently oriented cycle, or (allowOpen) path.
     std::vector<int32_t> out(n, -1);
+    std::vector<bool> arrives(n, false);
     for (size_t i = 0; i < segs.size(); ++i) {
         if (out[segs[i].a] >= 0)
             throw Error(p.name + ": relaxation needs closed yarns with consistently oriented edges (vertex " +
                         std::to_string(segs[i].a) + ")");
         out[segs[i].a] = int32_t(i);
+        arrives[segs[i].b] = true;
     }
     YarnIndex yi;
     for (auto* v : {&yi.yarn, &yi.index, &yi.ux, &yi.uy}) v->assign(n, -1);
-    for (size_t start = 0; start < n; ++start) {
-        if (yi.yarn[start] >= 0) continue;
+    // Open yarns first, from their first vertex (no segment arrives there), then the closed ones.
+    auto walk = [&](size_t start, bool open) {
         const int32_t y = int32_t(yi.length.size());
         int32_t count = 0, ux = 0, uy = 0;
         for (size_t v = start; yi.yarn[v] < 0;) {
-            if (out[v] < 0)
-                throw Error(p.name + ": relaxation needs closed yarns (vertex " + std::to_string(v) + " ends a yarn)");
             yi.yarn[v] = y;
             yi.index[v] = count++;
             yi.ux[v] = ux;
             yi.uy[v] = uy;
+            if (out[v] < 0) {
+                if (!open)
+                    throw Error(p.name + ": relaxation needs closed yarns (vertex " + std::to_string(v) +
+                                " ends a yarn)");
+                break;
+            }
             const Seg& s = segs[size_t(out[v])];
             ux += s.dx;
             uy += s.dy;
@@ -46,9 +52,19 @@ YarnIndex indexYarns(const Pattern& p, const std::vector<Seg>& segs) {
                 throw Error(p.name + ": yarns of the pattern merge at vertex " + std::to_string(v));
         }
         yi.length.push_back(count);
-        yi.wx.push_back(ux);
-        yi.wy.push_back(uy);
-    }
+        yi.wx.push_back(open ? 0 : ux);
+        yi.wy.push_back(open ? 0 : uy);
+        yi.open.push_back(open);
+    };
+    for (size_t start = 0; start < n; ++start)
+        if (!arrives[start]) {
+            if (!allowOpen)
+                throw Error(p.name + ": relaxation needs closed yarns (vertex " + std::to_string(start) +
+                            " starts a yarn)");
+            walk(start, true);
+        }
+    for (size_t start = 0; start < n; ++start)
+        if (yi.yarn[start] < 0) walk(start, false);
     return yi;
 }
 
@@ -60,7 +76,10 @@ bool nearAlongYarn(const YarnIndex& yi, const std::vector<Seg>& segs, const Pair
     const int32_t cx = pr.ix - yi.ux[b] + yi.ux[a], cy = pr.iy - yi.uy[b] + yi.uy[a];
     const int32_t wx = yi.wx[size_t(y)], wy = yi.wy[size_t(y)], len = yi.length[size_t(y)];
     long delta = yi.index[b] - yi.index[a];
-    if (wx == 0 && wy == 0) {
+    if (yi.open[size_t(y)]) {  // one copy of an open yarn: no wrap along it
+        if (cx != 0 || cy != 0) return false;
+        delta = std::abs(delta);
+    } else if (wx == 0 && wy == 0) {
         if (cx != 0 || cy != 0) return false;
         delta = std::abs(delta) % len;
         delta = std::min<long>(delta, len - delta);

@@ -17,12 +17,16 @@ struct Seg {
     int32_t dx = 0, dy = 0;
 };
 
-// Where each vertex sits along its yarn (all yarns closed): index along the yarn, the yarn, the
-// yarn's vertex count, the tile offset accumulated from the yarn's start, and the yarn's winding.
+// Where each vertex sits along its yarn: index along the yarn, the yarn, the yarn's vertex count,
+// the tile offset accumulated from the yarn's start, the yarn's winding (0 for an open yarn) and
+// whether it is open (it has two ends; its first vertex is the one no segment arrives at).
 struct YarnIndex {
     std::vector<int32_t> yarn, index, length, ux, uy, wx, wy;
+    std::vector<bool> open;
 };
-YarnIndex indexYarns(const Pattern& p, const std::vector<Seg>& segs);
+// Throws knit::Error when two yarns merge, a vertex starts two segments, or (allowOpen false) a
+// yarn is open.
+YarnIndex indexYarns(const Pattern& p, const std::vector<Seg>& segs, bool allowOpen = false);
 
 // Two segments, the second moved by (ix, iy) periods.
 struct Pair {
