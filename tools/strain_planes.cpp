@@ -3,7 +3,8 @@
 // uniformly by F (sx, sa, sy) and prints, per strain, the total yarn length over the rest plane's
 // and the closest distance between yarns (radii) for `--deform none` and `--deform strain`.
 //   strain_planes [--pattern P] [--table T.npy] [--samples NX NA NY] [--size METRES] [--json]
-//                 [--stretch W] [--bend W] [--contact W] [--barrier W] [--iterations N]  (the table's solver)
+//                 [--stretch W] [--bend W] [--contact W] [--barrier W] [--contact-distance R]
+//                 [--barrier-distance R] [--iterations N]  (the table's solver)
 #include <chrono>
 #include <cstdio>
 #include <ctime>
@@ -85,6 +86,11 @@ int run(int argc, char** argv) {
     app.add_option("--bend", tableOptions.bend, "The table solver's bending weight")->capture_default_str();
     app.add_option("--contact", tableOptions.contact, "The table solver's contact weight")->capture_default_str();
     app.add_option("--barrier", tableOptions.barrier, "The table solver's contact barrier weight")
+        ->capture_default_str();
+    app.add_option("--contact-distance", tableOptions.contactDistance, "The table solver's contact distance (radii)")
+        ->capture_default_str();
+    app.add_option("--barrier-distance", tableOptions.barrierDistance,
+                   "Where the table solver's contact barrier starts (radii)")
         ->capture_default_str();
     app.add_option("--iterations", tableOptions.maxIterations, "The table solver's iteration cap per sample")
         ->capture_default_str();

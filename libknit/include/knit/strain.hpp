@@ -66,8 +66,9 @@ struct StrainTableOptions {
     std::array<double, 2> sxRange{-0.2, 1.0}, saRange{-0.7, 0.7}, syRange{-0.2, 1.0};
     // The yarn-level solver on the deformed lattice, period fixed (docs/deformation.md): the yarn's
     // stretch weight (ten times chart relaxation's: close to inextensible), bending, the contact
-    // penalty below 2.05 radii and the contact barrier below 1.25 radii.
+    // penalty below contactDistance radii and the contact barrier below barrierDistance radii.
     double stretch = 2000, bend = 1, contact = 400, barrier = 2000;
+    double contactDistance = 2.05, barrierDistance = 1.25;
     int maxIterations = 600;
     // Called after each sample with the samples done and the total (from worker threads, serialised).
     std::function<void(size_t done, size_t total)> progress;

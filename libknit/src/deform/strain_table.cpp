@@ -48,6 +48,9 @@ void validateOptions(const StrainTableOptions& o) {
     if (!(o.stretch > 0) || !(o.bend >= 0) || !(o.contact >= 0) || !(o.barrier >= 0) || o.maxIterations < 1)
         throw Error("the strain table's stretch weight must be positive, its bend and contact weights >= 0 and its "
                     "iteration count >= 1");
+    if (!(o.barrierDistance > 0) || !(o.contactDistance >= o.barrierDistance) || !(o.contactDistance < 10))
+        throw Error("the strain table's barrier distance must be positive and at most its contact distance, which "
+                    "must be below 10 radii");
 }
 
 impl::LatticeRelaxOptions solverOptions(const StrainTableOptions& o) {
@@ -56,6 +59,8 @@ impl::LatticeRelaxOptions solverOptions(const StrainTableOptions& o) {
     lo.bend = o.bend;
     lo.contact = o.contact;
     lo.barrier = o.barrier;
+    lo.contactDistance = o.contactDistance;
+    lo.barrierDistance = o.barrierDistance;
     lo.maxIterations = o.maxIterations;
     return lo;
 }
