@@ -109,7 +109,8 @@ int run(int argc, char** argv) {
             const double cpu = double(std::clock() - c0) / CLOCKS_PER_SEC;
             out["table"] = {{"vertices", table->vertexCount}, {"samples", table->samples()},
                             {"wall_seconds", st.seconds},     {"cpu_seconds", cpu},
-                            {"unconverged", st.unconverged},  {"closest_radii", st.minDistance}};
+                            {"unconverged", st.unconverged},  {"iterations", st.iterations},
+                            {"closest_radii", st.minDistance}};
         } else {
             table = std::make_shared<const knit::StrainTable>(knit::loadStrainTable(tablePath));
             out["table"] = {{"file", tablePath}, {"vertices", table->vertexCount}, {"samples", table->samples()}};
