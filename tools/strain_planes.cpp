@@ -3,7 +3,8 @@
 // uniformly by F (sx, sa, sy) and prints, per strain, the total yarn length over the rest plane's
 // and the closest distance between yarns (radii) for `--deform none` and `--deform strain`.
 //   strain_planes [--pattern P] [--table T.npy] [--samples NX NA NY] [--size METRES] [--json]
-//                 [--stretch W] [--bend W] [--contact W] [--barrier W] [--iterations N]  (the table's solver)
+//                 [--stretch W] [--bend W] [--contact W] [--barrier W] [--contact-distance R]
+//                 [--barrier-distance R] [--iterations N]  (the table's solver)
 #include <chrono>
 #include <cstdio>
 #include <ctime>
@@ -86,6 +87,11 @@ int run(int argc, char** argv) {
     app.add_option("--contact", tableOptions.contact, "The table solver's contact weight")->capture_default_str();
     app.add_option("--barrier", tableOptions.barrier, "The table solver's contact barrier weight")
         ->capture_default_str();
+    app.add_option("--contact-distance", tableOptions.contactDistance, "The table solver's contact distance (radii)")
+        ->capture_default_str();
+    app.add_option("--barrier-distance", tableOptions.barrierDistance,
+                   "Where the table solver's contact barrier starts (radii)")
+        ->capture_default_str();
     app.add_option("--iterations", tableOptions.maxIterations, "The table solver's iteration cap per sample")
         ->capture_default_str();
     app.add_flag("--json", json, "JSON instead of a Markdown table");
@@ -103,7 +109,8 @@ int run(int argc, char** argv) {
             const double cpu = double(std::clock() - c0) / CLOCKS_PER_SEC;
             out["table"] = {{"vertices", table->vertexCount}, {"samples", table->samples()},
                             {"wall_seconds", st.seconds},     {"cpu_seconds", cpu},
-                            {"unconverged", st.unconverged},  {"closest_radii", st.minDistance}};
+                            {"unconverged", st.unconverged},  {"iterations", st.iterations},
+                            {"closest_radii", st.minDistance}};
         } else {
             table = std::make_shared<const knit::StrainTable>(knit::loadStrainTable(tablePath));
             out["table"] = {{"file", tablePath}, {"vertices", table->vertexCount}, {"samples", table->samples()}};

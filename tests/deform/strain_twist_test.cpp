@@ -5,7 +5,9 @@
 
 #include <cmath>
 #include <cstring>
+#include <map>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -38,9 +40,12 @@ std::shared_ptr<const StrainTable> twistTable() {
 
 // The plane at the pattern's own shape (isometric) or stretched by 1.4 along the courses against
 // the rows (strain sx = 0.18, sy = -0.15 at the placement's scale).
-Scene planeScene(const std::shared_ptr<const StrainTable>& table, bool stretched) {
+// With `detail`: the scene of a view (its plies cut from whole yarns by piecePlies).
+Scene planeScene(const std::shared_ptr<const StrainTable>& table, bool stretched,
+                 const std::optional<DetailOptions>& detail = std::nullopt) {
     const Pattern p = generateStockinette();
     SceneOptions o;
+    o.detail = detail;
     o.placement.repeats = {0.05 / ((stretched ? 1.4 : 1.0) * p.px), 0.05 / p.py};
     o.deform.mode = table ? DeformMode::Strain : DeformMode::None;
     o.deform.table = table;
@@ -102,6 +107,54 @@ TEST(StrainTwist, zeroStrainLeavesThePliesBitForBit) {
     ASSERT_EQ(an.curves.points.size(), as.curves.points.size());
     EXPECT_EQ(std::memcmp(an.curves.points.data(), as.curves.points.data(), an.curves.points.size() * sizeof(dvec3)),
               0);
+}
+
+// Where `piece` (curve c) sits in `whole` (curve w): the index of whole's point equal to piece's
+// first when every following point is equal too (cyclically on a closed whole); -1 otherwise.
+long runOffset(const Polylines& whole, size_t w, const Polylines& piece, size_t c) {
+    const uint32_t n = whole.size(w), k = piece.size(c);
+    for (uint32_t o = 0; o < n; ++o) {
+        bool same = true;
+        for (uint32_t i = 0; i < k && same; ++i) {
+            const uint32_t j = o + i;
+            same = (j < n || whole.isClosed(w)) &&
+                   whole.points[whole.begin(w) + j % n] == piece.points[piece.begin(c) + i];
+        }
+        if (same) return o;
+    }
+    return -1;
+}
+
+// A close-up view's plies (knit render, export of a view) are the full scene's plies where drawn,
+// the table's twist included: a view of part of the strained plane, every drawn cell at the ply
+// level, yarns of the whole mesh (so yarn numbers match the full scene's).
+TEST(StrainTwist, aViewsPliesAreTheFullScenesPliesWithTheTwist) {
+    DetailOptions d;
+    d.yarnLevel = false;
+    d.region = false;
+    d.cullBackFaces = false;
+    View v;
+    v.eye = {0.0125, 0.0125, 0.03};  // over one quarter of the 5 cm plane, looking down
+    v.target = {0.0125, 0.0125, 0.0};
+    v.up = {0.0, 1.0, 0.0};
+    d.view = v;
+    const Scene full = planeScene(twistTable(), true), view = planeScene(twistTable(), true, d);
+    ASSERT_TRUE(view.detail().has_value());
+    ASSERT_EQ(full.yarns().curves.points, view.yarns().curves.points);
+    const Plies& whole = full.plies();
+    const Plies& cut = view.plies();
+    ASSERT_GT(cut.curves.curveCount(), 10U);
+    std::map<std::pair<uint32_t, uint8_t>, size_t> wholeCurve;  // (yarn, ply) -> full curve
+    for (size_t c = 0; c < whole.curves.curveCount(); ++c) wholeCurve[{whole.yarnOfCurve[c], whole.plyOfCurve[c]}] = c;
+    size_t partial = 0;
+    for (size_t c = 0; c < cut.curves.curveCount(); ++c) {
+        const size_t w = wholeCurve.at({cut.yarnOfCurve[c], cut.plyOfCurve[c]});
+        EXPECT_GE(runOffset(whole.curves, w, cut.curves, c), 0)
+            << "view ply curve " << c << " is not a run of the full ply";
+        if (cut.curves.size(c) < whole.curves.size(w)) ++partial;
+    }
+    EXPECT_GT(partial, 0U);  // the view cuts yarns, not only whole ones
+    EXPECT_LT(cut.curves.pointCount(), whole.curves.pointCount());
 }
 
 }  // namespace

@@ -20,7 +20,7 @@ std::string strainCacheKey(const Pattern& pattern, const StrainTableOptions& o) 
     key << "strain v2";
     for (int n : o.samples) key << ' ' << n;
     for (double v : {o.sxRange[0], o.sxRange[1], o.saRange[0], o.saRange[1], o.syRange[0], o.syRange[1], o.stretch,
-                     o.bend, o.contact, o.barrier})
+                     o.bend, o.contact, o.barrier, o.contactDistance, o.barrierDistance})
         key << ' ' << v;
     key << ' ' << o.maxIterations << '\n';
     Pattern unnamed = pattern;  // the same cell under another file name is the same table

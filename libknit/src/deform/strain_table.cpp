@@ -48,6 +48,9 @@ void validateOptions(const StrainTableOptions& o) {
     if (!(o.stretch > 0) || !(o.bend >= 0) || !(o.contact >= 0) || !(o.barrier >= 0) || o.maxIterations < 1)
         throw Error("the strain table's stretch weight must be positive, its bend and contact weights >= 0 and its "
                     "iteration count >= 1");
+    if (!(o.barrierDistance > 0) || !(o.contactDistance >= o.barrierDistance) || !(o.contactDistance < 10))
+        throw Error("the strain table's barrier distance must be positive and at most its contact distance, which "
+                    "must be below 10 radii");
 }
 
 impl::LatticeRelaxOptions solverOptions(const StrainTableOptions& o) {
@@ -56,6 +59,8 @@ impl::LatticeRelaxOptions solverOptions(const StrainTableOptions& o) {
     lo.bend = o.bend;
     lo.contact = o.contact;
     lo.barrier = o.barrier;
+    lo.contactDistance = o.contactDistance;
+    lo.barrierDistance = o.barrierDistance;
     lo.maxIterations = o.maxIterations;
     return lo;
 }
@@ -156,6 +161,7 @@ StrainTable makeStrainTable(const Pattern& pattern, const StrainTableOptions& op
     for (size_t s = 0; s < total; ++s) {
         const impl::LatticeRelaxResult& r = result[s];
         st.unconverged += r.converged ? 0 : 1;
+        st.iterations += size_t(r.iterations);
         st.minDistance = std::min(st.minDistance, r.minDistance);
         glm::dvec3 mean(0.0);
         for (size_t v = 0; v < nv; ++v) mean += r.points[v] - rest.points[v];
@@ -176,19 +182,30 @@ StrainTable makeStrainTable(const Pattern& pattern, const StrainTableOptions& op
 
 double estimateStrainTableSeconds(const Pattern& pattern, const StrainTableOptions& options) {
     validateOptions(options);
-    // Two relaxations timed: the rest cell from the pattern, and the far corner of the table
-    // warm-started from it (a hard sample; most samples start one step away and take less).
+    // A few Newton iterations timed, times the iterations a table takes per sample. Timing whole
+    // relaxations (the rest cell, then the table's far corner from it through its lattice stages)
+    // cost seconds for patterns of 80-130 vertices, on every run that only printed the estimate.
+    // The iterations: the pattern's cell on the lattice stretched by 10 % along the courses
+    // (distances only grow, so no crossing is pressed through at the start; the stretched yarn
+    // makes every step a real one), the gradient tolerance 0 so none stops early.
+    constexpr int kTimedIterations = 10;
+    // Newton iterations per sample, the lattice stages on the way included: the default
+    // stockinette 9 x 9 x 9 table took 260808 for 729 samples (StrainTableStats::iterations,
+    // `build/tools/strain_planes`, 2026-11-27). The rest cell (up to 8 x the cap) counts as one more
+    // sample per thread.
+    constexpr double kIterationsPerSample = 358;
+    impl::LatticeRelaxOptions timed = solverOptions(options);
+    timed.maxIterations = kTimedIterations;
+    timed.gradientTolerance = 0;
+    const impl::LatticeCell cell(pattern, timed);  // throws for a pattern no table can be made for
+    const glm::dmat2 stretched(glm::dvec2(1.1, 0.0), glm::dvec2(0.0, 1.0));
     const auto t0 = std::chrono::steady_clock::now();
-    const impl::LatticeCell cell(pattern, solverOptions(options));
-    const impl::LatticeRelaxResult rest = cell.relax(glm::dmat2(1.0), {});
-    const auto t1 = std::chrono::steady_clock::now();
-    cell.relax(latticeMap({options.sxRange[1], options.saRange[1], options.syRange[1]}), rest.points);
-    const auto t2 = std::chrono::steady_clock::now();
-    const double perSample =
-        0.5 * (std::chrono::duration<double>(t1 - t0).count() + std::chrono::duration<double>(t2 - t1).count());
+    const impl::LatticeRelaxResult r = cell.relax(stretched, {}, stretched);
+    const double perIteration =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / std::max(1, r.iterations);
     const double samples = double(options.samples[0]) * options.samples[1] * options.samples[2];
     const unsigned threads = std::max(1U, std::thread::hardware_concurrency());
-    return perSample * samples / double(threads);
+    return perIteration * kIterationsPerSample * (samples / double(threads) + 1);
 }
 
 }  // namespace knit

@@ -2,8 +2,8 @@
 // of their whole source yarns.
 //
 // Steps per source yarn (yarns in parallel): resample the whole yarn and sweep its plies exactly
-// as makePlies does (same resampling, frames seeded at the yarn's first point, twist phase from
-// its arc length); give every resampled point its position in vertex units of the yarn (from the
+// as makePlies does, through the same kernel (same resampling, frames seeded at the yarn's first
+// point, twist phase from its arc length plus a strain table's twist change); give every resampled point its position in vertex units of the yarn (from the
 // resampling layout: kept input points and the pieces of each segment between them); then for each
 // span copy the resampled points from the last one at or before its begin to the first one at or
 // after its end (cyclically, unwrapped, on a closed yarn), for every ply.
@@ -32,19 +32,19 @@ struct YarnPlies {
     std::vector<double> at;         // per resampled point: its position in vertex units
 };
 
-void sweepYarn(const PlyGenerator& g, size_t y, YarnPlies& out, PlyScratch& scratch, ResampleScratch& rs) {
+void sweepYarn(const PlyGenerator& g, size_t y, YarnPlies& out, PlyScratch& scratch) {
     const MappedYarns& yarns = g.yarns();
     std::vector<dvec3> centre;
+    std::vector<double> twist;  // a strain table's twist change, as makePlies adds it to the phase
     ResampleLayout layout;
-    out.m = resampleCurve(yarns, y, impl::PlyKernel::spacing(g), centre, nullptr, rs, &layout);
+    out.colour.clear();
+    out.m = impl::PlyKernel::centreline(g, y, centre, scratch, &out.colour, &twist, &layout);
     if (out.m < 2) return;
     const size_t n = size_t(g.options().count), m = out.m;
     out.points.resize(n * m);
     out.radial.resize(n * m);
-    impl::PlyKernel::sweep(g, y, centre.data(), m, out.points.data(), out.radial.data(), scratch);
-    out.colour.clear();
-    if (!yarns.colour.empty())
-        resampleColours(yarns.colour.data() + yarns.curves.begin(y), yarns.curves.isClosed(y), layout, out.colour);
+    impl::PlyKernel::sweep(g, y, centre.data(), m, out.points.data(), out.radial.data(), scratch,
+                           twist.empty() ? nullptr : twist.data());
     // Positions: segment k runs from kept[k] to kept[k + 1] (closed: the last one back to kept[0]
     // + the vertex count) in pieces[k] equal steps.
     const double count = double(yarns.curves.size(y));
@@ -119,12 +119,11 @@ Plies piecePlies(const MappedYarns& yarns, const std::vector<YarnSpan>& spans, c
     std::vector<Plies> parts(groups);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, groups, 1), [&](const tbb::blocked_range<size_t>& r) {
         PlyScratch scratch;
-        ResampleScratch rs;
         YarnPlies p;
         for (size_t k = r.begin(); k < r.end(); ++k) {
             const uint32_t y = spans[groupStart[k]].yarn;
             parts[k].curves.offsets.assign(1, 0);
-            sweepYarn(g, y, p, scratch, rs);
+            sweepYarn(g, y, p, scratch);
             if (p.m < 2) continue;
             const bool closed = yarns.curves.isClosed(y);
             for (size_t s = groupStart[k]; s < groupStart[k + 1]; ++s)

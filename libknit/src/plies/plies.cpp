@@ -133,19 +133,19 @@ PlyScratch::Buffers& PlyKernel::buffers(PlyScratch& scratch) {
 }
 
 size_t PlyKernel::centreline(const PlyGenerator& g, size_t y, std::vector<dvec3>& centre, PlyScratch& scratch,
-                             std::vector<glm::vec3>* colour, std::vector<double>* twist) {
+                             std::vector<glm::vec3>* colour, std::vector<double>* twist, ResampleLayout* layout) {
     PlyScratch::Buffers& buf = buffers(scratch);
     const std::vector<glm::vec3>& in = g.yarns_.colour;
     const bool withColour = colour && !in.empty(), withTwist = twist && !g.yarns_.twist.empty();
-    const size_t m = resampleCurve(g.yarns_, y, g.spacing_, centre, nullptr, buf.resample,
-                                   withColour || withTwist ? &buf.layout : nullptr);
+    ResampleLayout* record = layout ? layout : withColour || withTwist ? &buf.layout : nullptr;
+    const size_t m = resampleCurve(g.yarns_, y, g.spacing_, centre, nullptr, buf.resample, record);
     if (withColour)
-        resampleColours(in.data() + g.yarns_.curves.begin(y), g.yarns_.curves.isClosed(y), buf.layout, *colour);
+        resampleColours(in.data() + g.yarns_.curves.begin(y), g.yarns_.curves.isClosed(y), *record, *colour);
     if (withTwist) {
         const size_t start = twist->size();
         twist->resize(start + m);
         resampleTwist(g.yarns_.twist.data() + g.yarns_.curves.begin(y), g.yarns_.curves.isClosed(y),
-                      buf.layout.kept.data(), buf.layout.kept.size(), buf.layout.pieces.data(), twist->data() + start);
+                      record->kept.data(), record->kept.size(), record->pieces.data(), twist->data() + start);
     }
     return m;
 }

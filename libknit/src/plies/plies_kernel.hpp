@@ -33,10 +33,11 @@ struct PlyKernel {
     // `colour` (when not null and the yarns have colours); returns its point count (< 2 means no
     // plies).
     // Likewise its twist (radians, per centre point) appended to `twist` when not null and the
-    // yarns have twist.
+    // yarns have twist. `layout`, when not null, receives the resampling's decisions (piecePlies
+    // places a view's pieces on the resampled yarn with it).
     static size_t centreline(const PlyGenerator& generator, size_t y, std::vector<glm::dvec3>& centre,
                              PlyScratch& scratch, std::vector<glm::vec3>* colour = nullptr,
-                             std::vector<double>* twist = nullptr);
+                             std::vector<double>* twist = nullptr, ResampleLayout* layout = nullptr);
     // The centre colours (m per yarn) repeated for each of the `count` plies: ply i's point j
     // goes to out[i * m + j].
     static void plyColours(const glm::vec3* colour, size_t m, uint32_t count, glm::vec3* out);
