@@ -48,7 +48,7 @@ cd "$build"
 # change what it measures), and the tests that drive outside programs over a whole installed or
 # Release build (python, the Blender add-on, three.js / Blender clients, the installed package,
 # the page of knit serve in Chromium): scripts/test.sh runs those.
-# Also left to the Release suite: the tests that relax whole built-in charts, intarsia motifs, or make whole strain
+# Also left to the Release suite: the tests that relax whole built-in charts or intarsia motifs, or make strain
 # tables. The relaxation runs ~70x slower instrumented (Relax.everyBuiltinChartTilesSeamlessly: 8.4 s
 # in Release, over its 600 s timeout here on a loaded machine); its code is run instrumented by the
 # smaller cells of Relax.plainBuiltins*, Relax.isDeterministic, Intarsia.*, StrainTable.* and the rest.
@@ -57,7 +57,7 @@ heavy=(Relax.everyBuiltinChartTilesSeamlessly Relax.basketweaveAndCableRelaxApar
        ChartConstructsRelaxed.roundTwoBuiltinsAfterRelaxation
        ChartConstructsRelaxed.loopsHeldThreeRowsKeepTheYarnsApart
        ChartCommand.longFloatsAreWarnedAboutAndReported ChartCommand.intarsiaMotifYarnsKeepTheirColourThroughTheExport
-       Intarsia.aMotifRelaxesWithItsBoundaryClosed
+       Intarsia.aMotifRelaxesWithItsBoundaryClosed Cli.everySharedPatternBuildsOnAPlane
        DeformChoice.autoIsStrainWhereTheTableIsQuickOrCachedElseNoneWithAnEstimate
        DeformChoice.aTableIsTheSameBytesWithAnyThreadCountAndFromTheCache
        StrainCli.defaultDeformMakesCachesAndReadsThePatternsTable
