@@ -1,5 +1,6 @@
 // Tests for resampleYarns (centripetal Catmull-Rom resampling).
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <random>
 #include <vector>
@@ -10,6 +11,7 @@
 #include "knit/error.hpp"
 #include "knit/resample.hpp"
 #include "plies/plies_curves.hpp"
+#include "plies/resample_curve.hpp"
 #include "util/checks.hpp"
 
 using glm::dvec3;
@@ -246,4 +248,33 @@ TEST(Resample, nearRepeatedPointsAboveMergeDistanceStayBounded) {
         EXPECT_LE(std::abs(p.y), 0.0015);  // stays near the control polygon's extent
     }
     for (const dvec3& n : r.normals) EXPECT_NEAR(glm::length(n), 1.0, 1e-12);
+}
+
+// Replaying a curve's layout on the pose it was recorded on gives resampleCurve's points bit for
+// bit: the replay reads its divisions from per-segment reciprocal tables (knot intervals and
+// reciprocals four at a time in AVX2 when the CPU has it), resampleCurve computes them one by one
+// per piece, so this pins the tables' indexing (both ends of open curves, the wrap of closed
+// ones, merged repeated points) and the AVX2 lanes to the very same values.
+TEST(Resample, layoutReplayOnTheRecordingPoseIsResampleCurveBitForBit) {
+    MappedYarns y;
+    addYarn(y, wigglyWithHairpin(), false);
+    addYarn(y, circle(0.003, 11), true);
+    std::vector<dvec3> repeated = wigglyWithHairpin();
+    repeated.insert(repeated.begin() + 7, repeated[6]);  // merged when resampled
+    addYarn(y, repeated, true);
+    addYarn(y, {dvec3(0, 0, 0), dvec3(0.003, 0.001, 0)}, false);
+    addYarn(y, {dvec3(0, 0, 0), dvec3(0.003, 0.001, 0), dvec3(0.001, 0.003, 0.002)}, true);
+    for (size_t c = 0; c < y.curves.curveCount(); ++c) {
+        knit::ResampleScratch scratch;
+        knit::ResampleLayout layout;
+        std::vector<dvec3> recorded;
+        const size_t count = knit::resampleCurve(y, c, 0.0004, recorded, nullptr, scratch, &layout);
+        ASSERT_GT(count, layout.kept.size()) << "curve " << c;  // points were inserted
+        std::vector<dvec3> replayed(count + 1, dvec3(-1.0));
+        EXPECT_EQ(knit::resampleCurveWithLayout(y.curves, c, layout.kept.data(), layout.kept.size(),
+                                                layout.pieces.data(), replayed.data(), scratch),
+                  count);
+        EXPECT_EQ(std::memcmp(replayed.data(), recorded.data(), count * sizeof(dvec3)), 0) << "curve " << c;
+        EXPECT_EQ(replayed[count], dvec3(-1.0)) << "curve " << c;
+    }
 }

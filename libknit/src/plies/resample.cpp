@@ -27,6 +27,11 @@
 #include "resample_curve.hpp"
 #include "util/checks.hpp"
 #include "util/csr.hpp"
+#include "util/simd.hpp"
+
+#if KNIT_HAVE_AVX2_KERNELS
+#include "simd_lanes.hpp"
+#endif
 
 namespace knit {
 namespace {
@@ -41,15 +46,22 @@ struct Cubic {
     dvec3 eval(double u) const { return ((a * u + b) * u + c) * u + d; }
 };
 
+// The reciprocals of the knot intervals and of the sums of two neighbouring ones, which makeCubic
+// divides by; neighbouring pieces share three of the five (resampleCurveWithLayout computes each
+// once per segment: the same divisions, so the same bits).
+struct KnotReciprocals {
+    double i01, i12, i23, i02, i13;
+};
+
 // Centripetal Catmull-Rom piece between p1 and p2 (Barry-Goldman tangents in Hermite form),
-// given the centripetal knot intervals t_ij = |p_j - p_i|^(1/2). All are > 0 because
+// given the centripetal knot interval t12 = |p2 - p1|^(1/2) and the reciprocals of t01, t12,
+// t23, t01 + t12 and t12 + t23 (t_ij = |p_j - p_i|^(1/2)). All intervals are > 0 because
 // consecutive duplicates were merged and reflected end points differ from their neighbours.
 // Without `bounds` the control polygon's lengths (maxLeg, polygon: three square roots, only
 // the adaptive split needs them) are left at 0.
-Cubic makeCubic(const dvec3& p0, const dvec3& p1, const dvec3& p2, const dvec3& p3, double t01, double t12, double t23,
-                bool bounds) {
-    const double i01 = 1.0 / t01, i12 = 1.0 / t12, i23 = 1.0 / t23;
-    const double i02 = 1.0 / (t01 + t12), i13 = 1.0 / (t12 + t23);
+Cubic makeCubic(const dvec3& p0, const dvec3& p1, const dvec3& p2, const dvec3& p3, double t12,
+                const KnotReciprocals& r, bool bounds) {
+    const double i01 = r.i01, i12 = r.i12, i23 = r.i23, i02 = r.i02, i13 = r.i13;
     const dvec3 d12 = (p2 - p1) * i12;
     const dvec3 m1 = t12 * ((p1 - p0) * i01 - (p2 - p0) * i02 + d12);
     const dvec3 m2 = t12 * (d12 - (p3 - p1) * i13 + (p3 - p2) * i23);
@@ -68,32 +80,99 @@ Cubic makeCubic(const dvec3& p0, const dvec3& p1, const dvec3& p2, const dvec3& 
     return c;
 }
 
+// Reciprocals of a curve's knot intervals, per segment s: inverse[s] = 1 / knot[s] and
+// pairInverse[s] = 1 / (knot[s] + knot[next]), next the following segment (wrapping on closed
+// curves; on an open curve's last segment, s itself, as the reflected end's interval).
+struct KnotInverses {
+    const double* inverse;
+    const double* pairInverse;
+};
+
 // The piece of segment s (from pts[s] to the next point) of a curve of n >= 2 merged points
 // with centripetal knot intervals `knot` (one per segment). Open ends use the reflected
-// neighbour (same knot interval as the end segment); closed curves wrap around.
-Cubic segmentCubic(const dvec3* pts, const double* knot, size_t n, bool closed, size_t s, bool bounds = true) {
+// neighbour (same knot interval as the end segment); closed curves wrap around. With `inv`,
+// the divisions are read from it (the same values: bit for bit the same piece).
+Cubic segmentCubic(const dvec3* pts, const double* knot, size_t n, bool closed, size_t s, bool bounds = true,
+                   const KnotInverses* inv = nullptr) {
     const size_t segments = closed ? n : n - 1;
     const size_t s1 = s + 1 == n ? 0 : s + 1;
     const dvec3& p1 = pts[s];
     const dvec3& p2 = pts[s1];
     dvec3 p0, p3;
-    double t01, t23;
-    if (s > 0 || closed) {
+    size_t k01 = 0, k23 = s;  // the segments whose knot intervals are t01 and t23
+    const bool reflectedStart = s == 0 && !closed;
+    if (!reflectedStart) {
         const size_t s0 = s == 0 ? n - 1 : s - 1;
         p0 = pts[s0];
-        t01 = knot[s == 0 ? segments - 1 : s - 1];
+        k01 = s == 0 ? segments - 1 : s - 1;
     } else {
         p0 = 2.0 * p1 - p2;
-        t01 = knot[0];
     }
     if (s + 1 < segments || closed) {
         p3 = pts[s1 + 1 == n ? 0 : s1 + 1];
-        t23 = knot[s + 1 == segments ? 0 : s + 1];
+        k23 = s + 1 == segments ? 0 : s + 1;
     } else {
         p3 = 2.0 * p2 - p1;
-        t23 = knot[s];
     }
-    return makeCubic(p0, p1, p2, p3, t01, knot[s], t23, bounds);
+    const double t01 = knot[k01], t12 = knot[s], t23 = knot[k23];
+    KnotReciprocals r;
+    if (inv) {
+        r = {inv->inverse[k01], inv->inverse[s], inv->inverse[k23],
+             reflectedStart ? 1.0 / (t01 + t12) : inv->pairInverse[k01], inv->pairInverse[s]};
+    } else {
+        r = {1.0 / t01, 1.0 / t12, 1.0 / t23, 1.0 / (t01 + t12), 1.0 / (t12 + t23)};
+    }
+    return makeCubic(p0, p1, p2, p3, t12, r, bounds);
+}
+
+// The centripetal knot interval of the segment from a to b: |b - a|^(1/2), at least 1e-150
+// (coincident points get a tiny interval instead of a division by zero).
+double knotInterval(const dvec3& a, const dvec3& b) {
+    const dvec3 d = b - a;
+    return std::max(std::sqrt(std::sqrt(glm::dot(d, d))), 1e-150);
+}
+
+#if KNIT_HAVE_AVX2_KERNELS
+// knotInterval and its reciprocal for segments s, s + 1, ... four at a time while the group's
+// points lie in pts[0, n): knotInterval's operations lane by lane (vmaxpd(1e-150, x) returns
+// x unless 1e-150 > x, NaN included, as std::max(x, 1e-150) does), so the same bits. Returns
+// the first segment not done.
+KNIT_AVX2 size_t knotsAvx2(const dvec3* pts, size_t n, double* knot, double* inverse) {
+    size_t s = 0;
+    for (; s + 5 <= n; s += 4) {
+        const impl::lanes::Lanes d = impl::lanes::sub(impl::lanes::load4(pts + s + 1), impl::lanes::load4(pts + s));
+        const __m256d k = _mm256_max_pd(_mm256_set1_pd(1e-150), _mm256_sqrt_pd(_mm256_sqrt_pd(impl::lanes::dot(d, d))));
+        _mm256_storeu_pd(knot + s, k);
+        _mm256_storeu_pd(inverse + s, _mm256_div_pd(_mm256_set1_pd(1.0), k));
+    }
+    return s;
+}
+
+// 1 / (knot[s] + knot[s + 1]) four at a time while s + 1 < segments; returns the first not done.
+KNIT_AVX2 size_t pairInversesAvx2(const double* knot, size_t segments, double* pairInverse) {
+    size_t s = 0;
+    for (; s + 5 <= segments; s += 4)
+        _mm256_storeu_pd(pairInverse + s,
+                         _mm256_div_pd(_mm256_set1_pd(1.0),
+                                       _mm256_add_pd(_mm256_loadu_pd(knot + s), _mm256_loadu_pd(knot + s + 1))));
+    return s;
+}
+#endif
+
+size_t knotsWithInverses(const dvec3* pts, size_t n, double* knot, double* inverse, bool simd) {
+#if KNIT_HAVE_AVX2_KERNELS
+    if (simd) return knotsAvx2(pts, n, knot, inverse);
+#endif
+    (void)pts, (void)n, (void)knot, (void)inverse, (void)simd;
+    return 0;
+}
+
+size_t pairInverses(const double* knot, size_t segments, double* pairInverse, bool simd) {
+#if KNIT_HAVE_AVX2_KERNELS
+    if (simd) return pairInversesAvx2(knot, segments, pairInverse);
+#endif
+    (void)knot, (void)segments, (void)pairInverse, (void)simd;
+    return 0;
 }
 
 // Normal interpolated linearly between n1 and n2 at fraction f, renormalized. Opposite
@@ -274,17 +353,30 @@ size_t resampleCurveWithLayout(const Polylines& curves, size_t c, const uint32_t
         return n;
     }
     const size_t segments = closed ? n : n - 1;
-    for (size_t s = 0; s < segments; ++s) {
-        const dvec3 d = pts[s + 1 == n ? 0 : s + 1] - pts[s];
-        knot.push_back(std::max(std::sqrt(std::sqrt(glm::dot(d, d))), 1e-150));
+    // Their reciprocals, each computed once (segmentCubic would divide five times per piece).
+    std::vector<double>& inverse = scratch.inverseKnots;
+    std::vector<double>& pairInverse = scratch.inversePairs;
+    knot.resize(segments);
+    inverse.resize(segments);
+    pairInverse.resize(segments);
+    const bool simd = util::avx2Kernels();
+    for (size_t s = knotsWithInverses(pts.data(), n, knot.data(), inverse.data(), simd); s < segments; ++s) {
+        knot[s] = knotInterval(pts[s], pts[s + 1 == n ? 0 : s + 1]);
+        inverse[s] = 1.0 / knot[s];
     }
+    for (size_t s = pairInverses(knot.data(), segments, pairInverse.data(), simd); s < segments; ++s) {
+        const size_t next = s + 1 < segments ? s + 1 : (closed ? 0 : s);
+        pairInverse[s] = 1.0 / (knot[s] + knot[next]);
+    }
+    const KnotInverses inv{inverse.data(), pairInverse.data()};
     // Step 2: each piece evaluated at the rest pose's parameters j / k.
     size_t o = 0;
     for (size_t s = 0; s < segments; ++s) {
         out[o++] = pts[s];
         const size_t k = pieces[s];
         if (k <= 1) continue;
-        const Cubic cubic = segmentCubic(pts.data(), knot.data(), n, closed, s, false);  // fixed pieces: no bounds
+        const Cubic cubic =
+            segmentCubic(pts.data(), knot.data(), n, closed, s, false, &inv);  // fixed pieces: no bounds
         const double du = 1.0 / static_cast<double>(k);
         for (size_t j = 1; j < k; ++j) out[o++] = cubic.eval(static_cast<double>(j) * du);
     }

@@ -15,7 +15,7 @@ namespace knit {
 // Reusable buffers of resampleCurve (one per thread).
 struct ResampleScratch {
     std::vector<glm::dvec3> points, normals, samples;
-    std::vector<double> knots;
+    std::vector<double> knots, inverseKnots, inversePairs;  // inverses: resampleCurveWithLayout's
 };
 
 // The checks resampleYarns makes before it resamples: positive finite spacing, consistent
