@@ -13,6 +13,7 @@
 #include <glm/geometric.hpp>
 
 #include "common/fixtures.hpp"
+#include "common/ply_runs.hpp"
 #include "knit/animation.hpp"
 #include "knit/generator.hpp"
 #include "knit/scene.hpp"
@@ -109,22 +110,6 @@ TEST(StrainTwist, zeroStrainLeavesThePliesBitForBit) {
               0);
 }
 
-// Where `piece` (curve c) sits in `whole` (curve w): the index of whole's point equal to piece's
-// first when every following point is equal too (cyclically on a closed whole); -1 otherwise.
-long runOffset(const Polylines& whole, size_t w, const Polylines& piece, size_t c) {
-    const uint32_t n = whole.size(w), k = piece.size(c);
-    for (uint32_t o = 0; o < n; ++o) {
-        bool same = true;
-        for (uint32_t i = 0; i < k && same; ++i) {
-            const uint32_t j = o + i;
-            same = (j < n || whole.isClosed(w)) &&
-                   whole.points[whole.begin(w) + j % n] == piece.points[piece.begin(c) + i];
-        }
-        if (same) return o;
-    }
-    return -1;
-}
-
 // A close-up view's plies (knit render, export of a view) are the full scene's plies where drawn,
 // the table's twist included: a view of part of the strained plane, every drawn cell at the ply
 // level, yarns of the whole mesh (so yarn numbers match the full scene's).
@@ -144,15 +129,7 @@ TEST(StrainTwist, aViewsPliesAreTheFullScenesPliesWithTheTwist) {
     const Plies& whole = full.plies();
     const Plies& cut = view.plies();
     ASSERT_GT(cut.curves.curveCount(), 10U);
-    std::map<std::pair<uint32_t, uint8_t>, size_t> wholeCurve;  // (yarn, ply) -> full curve
-    for (size_t c = 0; c < whole.curves.curveCount(); ++c) wholeCurve[{whole.yarnOfCurve[c], whole.plyOfCurve[c]}] = c;
-    size_t partial = 0;
-    for (size_t c = 0; c < cut.curves.curveCount(); ++c) {
-        const size_t w = wholeCurve.at({cut.yarnOfCurve[c], cut.plyOfCurve[c]});
-        EXPECT_GE(runOffset(whole.curves, w, cut.curves, c), 0)
-            << "view ply curve " << c << " is not a run of the full ply";
-        if (cut.curves.size(c) < whole.curves.size(w)) ++partial;
-    }
+    const size_t partial = test::expectEveryCurveIsARunOfTheFullPly(whole, cut);
     EXPECT_GT(partial, 0U);  // the view cuts yarns, not only whole ones
     EXPECT_LT(cut.curves.pointCount(), whole.curves.pointCount());
 }

@@ -10,6 +10,7 @@
 #include <tuple>
 
 #include "common/fixtures.hpp"
+#include "common/ply_runs.hpp"
 #include "knit/detail.hpp"
 #include "knit/plies.hpp"
 #include "knit/scene.hpp"
@@ -367,23 +368,6 @@ TEST(Detail, patternMarginIsTheBindingsMargin) {
     }
 }
 
-// Where `piece` (a ply curve of a view) sits in `whole` (the same yarn's same ply at full
-// detail): the index of whole's point equal to piece's first, when every following point is
-// equal too (cyclically for a closed whole); -1 otherwise.
-long runOffset(const Polylines& whole, size_t w, const Polylines& piece, size_t c) {
-    const uint32_t n = whole.size(w), k = piece.size(c);
-    for (uint32_t o = 0; o < n; ++o) {
-        bool same = true;
-        for (uint32_t i = 0; i < k && same; ++i) {
-            const uint32_t j = o + i;
-            if (j >= n && !whole.isClosed(w)) same = false;
-            else same = whole.points[whole.begin(w) + j % n] == piece.points[piece.begin(c) + i];
-        }
-        if (same) return o;
-    }
-    return -1;
-}
-
 // The plies of ply-level pieces are the full scene's plies point for point (twist phase and frames
 // from the yarn's start, not the piece's), and each piece's plies reach past both ends of its span.
 TEST(Detail, plyLevelPliesAreTheFullScenesPliesPointForPoint) {
@@ -397,15 +381,7 @@ TEST(Detail, plyLevelPliesAreTheFullScenesPliesPointForPoint) {
         ASSERT_EQ(pieces.plySpans.size(), pieces.plies.curves.curveCount());
         const uint32_t n = uint32_t(resolvePlyOptions(s.plyOptions()).count);
         ASSERT_EQ(cut.curves.curveCount(), n * pieces.plySpans.size());
-        std::map<std::pair<uint32_t, uint8_t>, size_t> wholeCurve;  // (yarn, ply) -> full curve
-        for (size_t c = 0; c < full.curves.curveCount(); ++c) wholeCurve[{full.yarnOfCurve[c], full.plyOfCurve[c]}] = c;
-        size_t partial = 0;
-        for (size_t c = 0; c < cut.curves.curveCount(); ++c) {
-            const size_t w = wholeCurve.at({cut.yarnOfCurve[c], cut.plyOfCurve[c]});
-            EXPECT_GE(runOffset(full.curves, w, cut.curves, c), 0)
-                << "ply curve " << c << " is not a run of the full ply";
-            if (cut.curves.size(c) < full.curves.size(w)) ++partial;
-        }
+        const size_t partial = test::expectEveryCurveIsARunOfTheFullPly(full, cut);
         EXPECT_GT(partial, 10u);  // most pieces are cut out of longer yarns
         // Each piece's plies reach past its span: the piece's end points lie within the ply 0 curve's
         // centreline extent (the centre is the mean of the plies' points at one index).
