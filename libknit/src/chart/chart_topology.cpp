@@ -680,8 +680,9 @@ ChartCell chartToCell(const Chart& chart, const ChartCellOptions& options) {
     // Intarsia is knitted back and forth: in vertical bands each yarn's serpentine closes after an
     // even number of rows (motifs' yarns are open: any number).
     const bool isIntarsia = chart.colourwork == Colourwork::Intarsia;
-    const Chart even = isIntarsia && intarsia::rowBlocks(chart).size() == 1 ? intarsia::evenRows(chart) : chart;
-    const Chart& ch = isIntarsia ? even : chart;
+    const bool bands = isIntarsia && intarsia::rowBlocks(chart).size() == 1;
+    const Chart even = bands ? intarsia::evenRows(chart) : Chart{};
+    const Chart& ch = bands ? even : chart;
     const double s = options.radius / kModelRadius;  // metres per model unit
     ChartCell cell;
     cell.width = ch.width;

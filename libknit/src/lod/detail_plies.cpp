@@ -3,10 +3,11 @@
 //
 // Steps per source yarn (yarns in parallel): resample the whole yarn and sweep its plies exactly
 // as makePlies does, through the same kernel (same resampling, frames seeded at the yarn's first
-// point, twist phase from its arc length plus a strain table's twist change); give every resampled point its position in vertex units of the yarn (from the
-// resampling layout: kept input points and the pieces of each segment between them); then for each
-// span copy the resampled points from the last one at or before its begin to the first one at or
-// after its end (cyclically, unwrapped, on a closed yarn), for every ply.
+// point, twist phase from its arc length plus a strain table's twist change); give every
+// resampled point its position in vertex units of the yarn (from the resampling layout: kept
+// input points and the pieces of each segment between them); then for each span copy the
+// resampled points from the last one at or before its begin to the first one at or after its
+// end (cyclically, unwrapped, on a closed yarn), for every ply.
 #include <algorithm>
 #include <cmath>
 #include <vector>
