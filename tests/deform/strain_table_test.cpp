@@ -278,6 +278,22 @@ TEST(StrainTable, refusesAPeriodMismatch) {
     EXPECT_NE(msg.find("period"), std::string::npos) << msg;
 }
 
+// A line of the axes file holding only white space other than blanks (a form feed, found by the
+// fuzzer) is blank: before, it counted as an axis of no samples, and the row count was divided
+// by zero samples.
+TEST(StrainTable, anAxesLineOfOnlyAFormFeedIsBlankNotAnAxisOfNoSamples) {
+    const test::TempDir dir;
+    const std::string path = dir.file("t.npy");
+    writeStrainTable(syntheticTable(3), path);
+    const std::string npy = test::readText(path), axes = test::readText(dir.file("t.axes.txt"));
+    const StrainTable plain = parseStrainTable(npy, axes, "t.npy");
+    EXPECT_EQ(parseStrainTable(npy, "\f\n" + axes + "\f\n", "t.npy").axes, plain.axes);
+    std::string two = axes.substr(0, axes.find_last_not_of('\n'));  // without its last value line
+    two = two.substr(0, two.rfind('\n') + 1) + "\f\n";
+    const std::string msg = test::errorOf([&] { parseStrainTable(npy, two, "t.npy"); });
+    EXPECT_NE(msg.find("need three"), std::string::npos) << msg;
+}
+
 // Each damaged file is refused with a message naming the file and what is wrong.
 TEST(StrainTable, refusesDamagedFilesNamingThem) {
     const test::TempDir dir;

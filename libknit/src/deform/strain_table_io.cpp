@@ -125,12 +125,15 @@ AxesFile parseAxes(const std::string& text, const std::string& source) {
             continue;
         }
         for (char& c : line)
-            if (c == ',' || c == '\t' || c == '\r') c = ' ';
-        if (line.find_first_not_of(' ') == std::string::npos) continue;
-        if (axis == 3) throw Error(where + ": more than three lines of axis values (sx, sa, sy)");
+            if (c == ',') c = ' ';
+        // A line without values is blank, whatever white space it holds (a form feed included:
+        // counted as an axis, it made an axis of no samples and a table of none).
         std::istringstream values(line);
-        std::string token;
-        while (values >> token) {
+        std::vector<std::string> tokens;
+        for (std::string token; values >> token;) tokens.push_back(token);
+        if (tokens.empty()) continue;
+        if (axis == 3) throw Error(where + ": more than three lines of axis values (sx, sa, sy)");
+        for (const std::string& token : tokens) {
             char* end = nullptr;
             const double v = std::strtod(token.c_str(), &end);
             if (end == token.c_str() || *end != '\0' || !std::isfinite(v))
