@@ -121,11 +121,15 @@ Closest closestWithin(const Polylines& centres, const std::vector<uint32_t>& yar
                       yarnOf[i],
                       static_cast<float>(arc[i])};
     };
-    // Cells of the packed (float) coordinates the distances are computed from.
-    const auto cellOf = [&](const Packed& a) {
-        return Cell{static_cast<int64_t>(std::floor(a.x * inv)), static_cast<int64_t>(std::floor(a.y * inv)),
-                    static_cast<int64_t>(std::floor(a.z * inv))};
+    // Cells of the packed (float) coordinates the distances are computed from. A coordinate
+    // beyond float's range (a finite double far out) is infinite here: its cell index is clamped
+    // (NaN to the low end) rather than converted out of int64's range.
+    const auto axisCell = [inv](float v) {
+        constexpr double kLimit = 4.0e18;
+        const double c = std::floor(double(v) * inv);
+        return static_cast<int64_t>(!(c > -kLimit) ? -kLimit : c < kLimit ? c : kLimit);
     };
+    const auto cellOf = [&](const Packed& a) { return Cell{axisCell(a.x), axisCell(a.y), axisCell(a.z)}; };
 
     // Step 1: a table of at least 4n buckets (blocks of 512), filled by counting sort (CSR), with
     // the points packed in bucket order (neighbours are then read from contiguous memory).
