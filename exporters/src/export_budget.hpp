@@ -12,4 +12,9 @@ namespace knit::impl {
 // `options.chunkVertices` must be resolved (not 0).
 void checkTubeExportBudget(const Polylines& curves, const TubeOptions& tube, const ExportOptions& options, bool gltf);
 
+// Ply curves generated chunk by chunk (a glTF export of plies not built with the scene): `total`
+// ply points in all, `largestChunk` in the largest chunk (a yarn's plies are never split), the
+// chunks in memory at once of that size at most. Driven by the ply pitch and the samples per turn.
+void checkStreamedPlyBudget(size_t total, size_t largestChunk, const ExportOptions& options);
+
 }  // namespace knit::impl

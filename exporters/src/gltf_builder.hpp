@@ -127,7 +127,9 @@ struct CurveChunk {
 // maxPoints; a longer yarn gets a chunk of its own).
 class CurveChunkSource {
 public:
-    CurveChunkSource(const ExportInput& input, size_t maxPoints, const std::string& path);
+    // Plans the chunks (options.chunkVertices points each, or a longer yarn's own) and refuses
+    // generated plies whose chunks in memory at once exceed options.budget.
+    CurveChunkSource(const ExportInput& input, const ExportOptions& options);
     size_t count() const { return input_.curves ? chunks_.size() : yarnStart_.size() - 1; }
     size_t curveCountBound() const {
         return input_.curves ? input_.curves->curveCount()

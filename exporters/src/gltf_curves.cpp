@@ -1,19 +1,22 @@
 // gltf_curves.cpp — curve chunks: LINE_STRIP primitives with POSITION and _RADIUS (gltf_builder.hpp).
 #include "gltf_builder.hpp"
 
+#include "export_budget.hpp"
+
 #include <algorithm>
 #include <limits>
 
 namespace knit::impl {
 
-CurveChunkSource::CurveChunkSource(const ExportInput& input, size_t maxPoints, const std::string& path)
-    : input_(input) {
+CurveChunkSource::CurveChunkSource(const ExportInput& input, const ExportOptions& options) : input_(input) {
+    const size_t maxPoints = options.chunkVertices;
+    const std::string& path = options.path;
     if (input.curves) {
         chunks_ = planCurveChunks(*input.curves, maxPoints);
         return;
     }
     const PlyGenerator& g = *input.plies;
-    size_t acc = 0;
+    size_t acc = 0, total = 0, largest = 0;
     yarnStart_.push_back(0);
     for (size_t y = 0; y < g.yarnCount(); ++y) {
         const size_t e = g.estimatePoints(y);
@@ -28,8 +31,11 @@ CurveChunkSource::CurveChunkSource(const ExportInput& input, size_t maxPoints, c
             acc = 0;
         }
         acc += e;
+        total += e;
+        largest = std::max(largest, acc);
     }
     if (g.yarnCount() > 0) yarnStart_.push_back(g.yarnCount());
+    checkStreamedPlyBudget(total, largest, options);
 }
 
 // Produces chunk k and converts it: origin = centre of its points' bounding box.

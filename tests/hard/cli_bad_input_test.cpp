@@ -526,5 +526,17 @@ TEST_F(CliBadInput, hostileHuntFindingsAreRefusedNamingTheOption) {
 #endif
 }
 
+// Round 4 of the hostile hunt (issue 29). Plies written to glTF are generated chunk by chunk (the
+// scene does not build them, so its ply estimate never ran): a 0.1 um pitch generated a chunk per
+// yarn of ~1e8 points and ran past 17 GB (1e-6: 7.1 GB, exit 0). The chunks are estimated first.
+TEST_F(CliBadInput, streamedPliesOfAFinePitchAreEstimatedBeforeAnyChunkIsMade) {
+    const std::string plies = "build -q --mesh plane --mesh-res 2 --repeats 2 2 --export plies -o p.glb ";
+    for (const char* pitch : {"1e-7", "1e-6"})
+        expectFailure(plies + "--ply-pitch " + pitch, "ply vertices in the chunks written at once");
+    expectFailure(plies + "--ply-pitch 1e-5 --max-memory 256M", "raise the ply pitch (--ply-pitch)");
+    const CliRun r = knit(plies + "--ply-pitch 1e-4 --max-memory 256M", dir);
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+}
+
 }  // namespace
 #endif  // KNIT_HARD_HAVE_CLI
