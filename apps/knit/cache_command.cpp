@@ -26,9 +26,12 @@ int runCache(const CacheCommand& c) {
         inputs.push_back({"chunk", chunk});
         inputs.push_back({"the topology of a chunk", std::filesystem::path(chunk).replace_extension(".obj").string()});
     }
-    refuseCollidingPaths(
-        inputs, {{"-o", c.output},
-                 {"the topology file of -o", std::filesystem::path(c.output).replace_extension(".obj").string()}});
+    // The topology beside -o only for a cache name (-o m.obj was its own topology: a garbled refusal).
+    CacheFormat format;
+    const bool cache = cacheFormatOf(c.output, format);
+    refuseCollidingPaths(inputs, {{"-o", c.output},
+                                  {"the topology file of -o",
+                                   cache ? std::filesystem::path(c.output).replace_extension(".obj").string() : ""}});
     const CacheMergeResult r = mergePointCaches(c.chunks, c.output);
     std::printf("merged %zu chunks: frames %lld-%lld (step %lld, %zu frames, %zu points) into %s\n", c.chunks.size(),
                 static_cast<long long>(r.first), static_cast<long long>(r.last), static_cast<long long>(r.step),

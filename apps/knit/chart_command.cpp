@@ -122,6 +122,7 @@ int runChart(const ChartCommand& c) {
     // chart itself or the other output.
     checkReportPath(c.report);
     const bool builtin = c.chart.rfind("chart:", 0) == 0;
+    refuseOtherFormatName("-o", c.output, "a pattern", ".pyp");
     refuseCollidingPaths({{"the chart", builtin ? std::string() : c.chart}},
                          {{"-o", c.output}, {"--report", c.report}});
     // Step 2: parse and relax; step 3: write the cell and its report together.

@@ -107,6 +107,7 @@ int runFit(const FitCommand& f) {
     // Step 1: check the outputs, read the photographs and the mask.
     checkReportPath(f.report);
     checkReportPath(f.output);
+    refuseOtherFormatName("-o", f.output, "a JSON file", ".json");
     refuseCollidingPaths({{"--front", f.front},
                           {"--back", f.back},
                           {"--mask", f.mask},

@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "knit/export.hpp"
+#include "path_collisions.hpp"
 #include "knit/pattern.hpp"
 
 namespace knit::cli {
@@ -27,6 +28,7 @@ void addGenerateCommand(CLI::App& app, GenerateCommand& g) {
 }
 
 int runGenerate(const GenerateCommand& g) {
+    refuseOtherFormatName("-o", g.output, "a pattern", ".pyp");
     StockinetteParams params = g.stockinette;
     if (!g.maxMemory.empty()) params.budget = MemoryBudget(parseMemorySize(g.maxMemory));
     const Pattern p = generateStockinette(params);

@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "knit/error.hpp"
+#include "knit/file_kind.hpp"
 #include "knit/same_file.hpp"
 #include "util/platform.hpp"
 
@@ -18,6 +19,14 @@ namespace fs = std::filesystem;
 }
 
 }  // namespace
+
+void refuseOtherFormatName(const std::string& flag, const std::string& path, const std::string& kind,
+                           const std::string& ext) {
+    const std::string named = fileKind(path);
+    if (named.empty() || named.rfind(kind, 0) == 0) return;
+    throw Error(flag + " '" + path + "': this command writes " + kind + " (" + ext + "), but the name is that of " +
+                named + "; choose a " + ext + " name");
+}
 
 void refuseCollidingPaths(const std::vector<NamedPath>& inputs, const std::vector<NamedPath>& outputs) {
     for (size_t i = 0; i < outputs.size(); ++i) {

@@ -17,6 +17,12 @@ struct NamedPath {
 // knit::Error naming both flags when an output is an input or another output.
 void refuseCollidingPaths(const std::vector<NamedPath>& inputs, const std::vector<NamedPath>& outputs);
 
+// An output of one fixed format (`kind` as knit/file_kind.hpp names it: "a pattern", with its usual
+// extension `ext`) refused under the name of another knit format: `knit chart -o c.obj` wrote a
+// pattern under a mesh's name. Other names (no extension, one knit does not use) are written.
+void refuseOtherFormatName(const std::string& flag, const std::string& path, const std::string& kind,
+                           const std::string& ext);
+
 // The external buffer a .gltf output writes first ("<stem>.bin" next to it); "" for other formats.
 std::string gltfBufferOf(const std::string& output);
 

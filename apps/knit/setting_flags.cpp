@@ -57,6 +57,20 @@ const std::vector<SettingSpelling>& settingFlags() {
         {"the sx range", "--sx-range"},
         {"the sa range", "--sa-range"},
         {"the sy range", "--sy-range"},
+        // The ply material: messages name a field as the --material file spells it, which the
+        // render flags override.
+        {"'eta'", "--eta"},
+        {"'alphaAlong'", "--alpha-along"},
+        {"'alphaAcross'", "--alpha-across"},
+        {"'kR'", "--kR"},
+        {"'alphaTT'", "--alpha-tt"},
+        {"'kTT'", "--kTT"},
+        {"'bodyAlbedo'", "--body-albedo"},
+        {"'reflectFraction'", "--reflect-fraction"},
+        {"'fiberCount'", "--fiber-count"},
+        {"'fiberTwist'", "--fiber-twist"},
+        {"'fiberShadowFloor'", "--fiber-shadow-floor"},
+        {"'plyShadowFloor'", "--ply-shadow-floor"},
     };
     return flags;
 }

@@ -68,6 +68,7 @@ StrainTable makeTableWithProgress(const Pattern& pattern, const StrainTableOptio
 int runStrainTable(const StrainTableCommand& c) {
     const Pattern pattern = loadPatternFileOrName(c.pattern);
     requireWritableFolder(c.output, "the strain table");  // before the long work
+    refuseOtherFormatName("-o", c.output, "a strain table", ".npy");
     refuseCollidingPaths({{"--pattern", c.pattern}},
                          {{"-o", c.output}, {"the table's axes file", strainAxesPath(c.output)}});
     StrainTableStats stats;

@@ -103,8 +103,7 @@ glm::u8vec4 linearRgba8(const glm::vec3& c) {
 GltfBuilder::GltfBuilder(const FormatJob& job, bool glb)
     : job_(job),
       glb_(glb),
-      curves_(job.tubes ? nullptr
-                        : std::make_unique<CurveChunkSource>(job.input, job.options)),
+      curves_(job.tubes ? nullptr : std::make_unique<CurveChunkSource>(job.input, job.options)),
       sink_(job.options.path, glb, job.options.maxBufferBytes, jsonReservation(job, curves_.get())) {
     model_.asset.version = "2.0";
     model_.asset.generator = "libknit";

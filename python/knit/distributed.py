@@ -123,6 +123,17 @@ def _check_args(bound, frames, output, chunk, step):
     return per_frame
 
 
+def _check_bake_args(fps, threads, export):
+    """bake()'s settings passed on to `knit animate`, checked here so that a bad one is named by its keyword
+    before any cluster starts (the command line would name its own flags)."""
+    if isinstance(fps, bool) or not isinstance(fps, (int, float)) or not (0.001 <= fps <= 1e6):
+        raise Error("fps: must be a frame rate of 0.001 to 1e6 frames per second (got %r)" % (fps,))
+    if not isinstance(threads, int) or isinstance(threads, bool) or threads < 0:
+        raise Error("threads: must be an integer >= 0, 0 = all cores (got %r)" % (threads,))
+    if export not in ("plies", "yarns"):
+        raise Error("export: must be 'plies' or 'yarns' (got %r)" % (export,))
+
+
 def _start_cluster(workers):
     from distributed import Client, LocalCluster
 
@@ -196,6 +207,7 @@ def bake(bound, frames, output, client=None, chunk=10, first=-1, last=-1, step=1
     chunk_seconds (per chunk key). Raises knit.Error naming the frame and file of a failed chunk.
     """
     per_frame = _check_args(bound, frames, output, chunk, step)
+    _check_bake_args(fps, threads, export)
     output = os.path.abspath(output)
     knit_exe = find_knit(knit_cli)
     report = progress if callable(progress) else (_stderr_progress if progress else None)
@@ -262,6 +274,9 @@ def render_frames(bound, frames, output, client=None, chunk=1, first=-1, last=-1
     seconds, chunk_seconds. Raises knit.Error naming the frame and file of a failed render.
     """
     _check_args(bound, frames, output, chunk, step)
+    # A string was iterated as one argument per character ("The following arguments were not expected: 0 p p s").
+    if isinstance(render_args, (str, bytes)) or not all(isinstance(a, str) for a in render_args):
+        raise TypeError("render_args: expected a list of `knit render` arguments (str each), got %r" % (render_args,))
     if "%" not in os.path.basename(output):
         raise Error("output: '%s': give a per-frame pattern such as out_%%04d.png" % output)
     output = os.path.abspath(output)

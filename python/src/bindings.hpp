@@ -2,9 +2,27 @@
 #pragma once
 #include <pybind11/pybind11.h>
 
+#include <string>
+
 namespace knitpy {
 
 namespace py = pybind11;
+
+// What a `pattern` argument may be, for castArg's messages.
+inline constexpr const char* kPatternArg = "a pattern name or file (str) or a knit.Pattern";
+
+// `value` (the argument `keyword`) as T, or a TypeError in the caller's words: "pattern: expected a
+// pattern name or file (str) or a knit.Pattern, got int" (pybind11's own cast failure is a
+// RuntimeError naming none of them).
+template <class T>
+T castArg(const py::handle& value, const char* keyword, const char* expected) {
+    try {
+        return value.cast<T>();
+    } catch (const py::cast_error&) {
+        throw py::type_error(std::string(keyword) + ": expected " + expected + ", got " +
+                             std::string(py::str(py::type::handle_of(value).attr("__name__"))));
+    }
+}
 
 void registerPatternAndMesh(py::module_& m);  // pattern_mesh.cpp: Pattern, Mesh, loaders
 void registerCurves(py::module_& m);          // curves.cpp: Curves, Yarns, Plies, make_plies

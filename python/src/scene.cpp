@@ -55,9 +55,10 @@ void resolveDeform(const SceneArgs& a, const py::object& pattern, knit::SceneOpt
         given =
             py::isinstance<py::str>(a.strainTable)
                 ? std::make_shared<const knit::StrainTable>(knit::loadStrainTable(a.strainTable.cast<std::string>()))
-                : std::shared_ptr<const knit::StrainTable>(a.strainTable.cast<std::shared_ptr<knit::StrainTable>>());
+                : std::shared_ptr<const knit::StrainTable>(castArg<std::shared_ptr<knit::StrainTable>>(
+                      a.strainTable, "strain_table", "None, a .npy file (str) or a knit.StrainTable"));
     const knit::Pattern p = given || !py::isinstance<py::str>(pattern)
-                                ? (given ? knit::Pattern{} : pattern.cast<knit::Pattern>())
+                                ? (given ? knit::Pattern{} : castArg<knit::Pattern>(pattern, "pattern", kPatternArg))
                                 : knit::loadPatternFileOrName(pattern.cast<std::string>());
     py::gil_scoped_release release;
     o.deform = knit::decideDeform(p, choice, given).deform;
@@ -121,12 +122,12 @@ ScenePtr buildScene(const py::object& pattern, const py::object& mesh, const Sce
         return std::make_shared<knit::Scene>(knit::buildScene(options));
     }
     knit::Pattern p = py::isinstance<py::str>(pattern) ? knit::loadPatternFileOrName(pattern.cast<std::string>())
-                                                       : pattern.cast<knit::Pattern>();
+                                                       : castArg<knit::Pattern>(pattern, "pattern", kPatternArg);
     knit::MeshLoadOptions load;
     load.budget = options.budget;
     knit::BaseMesh b = py::isinstance<py::str>(mesh)
                            ? knit::loadMeshFileOrName(mesh.cast<std::string>(), options.meshOptions, load)
-                           : mesh.cast<knit::BaseMesh>();
+                           : castArg<knit::BaseMesh>(mesh, "mesh", "a mesh name or file (str) or a knit.Mesh");
     py::gil_scoped_release release;
     return std::make_shared<knit::Scene>(knit::buildScene(std::move(p), std::move(b), options));
 }
@@ -206,7 +207,7 @@ knit::AnimationFrame evaluateFrame(const py::object& self, const py::array& posi
     const knit::Scene& scene = self.cast<const knit::Scene&>();
     bool useDeformer = true;
     if (!deform.is_none()) {
-        const std::string d = deform.cast<std::string>();
+        const std::string d = castArg<std::string>(deform, "deform", "None, 'none' or 'strain'");
         if (d != "none" && d != "strain") throw knit::Error("deform must be 'none' or 'strain', got '" + d + "'");
         if (d == "strain" && !scene.deformer())
             throw knit::Error("deform='strain' needs a scene built with a strain table (build_scene(..., "

@@ -6,6 +6,7 @@
 #include "bindings.hpp"
 #include "input_files.hpp"
 #include "knit/error.hpp"
+#include "knit/file_kind.hpp"
 #include "knit/generator.hpp"
 #include "knit/strain.hpp"
 
@@ -38,7 +39,16 @@ void registerStrain(py::module_& m) {
             },
             "(rows, 4) float32 copy; row isx + Nx isa + Nx Na isy + Nx Na Ny vertex")
         .def(
-            "save", [](const knit::StrainTable& t, const std::string& path) { knit::writeStrainTable(t, path); },
+            "save",
+            [](const knit::StrainTable& t, const std::string& path) {
+                // A table made from a pattern file names it as its source: saving there replaced the pattern
+                // (a loaded table's source is its own .npy, which it may write again).
+                if (knit::fileKind(t.source).rfind("a strain table", 0) != 0) {
+                    refuseWritingOverInputs("path", path, {{"the pattern file", t.source}});
+                    refuseWritingOverInputs("path", knit::strainAxesPath(path), {{"the pattern file", t.source}});
+                }
+                knit::writeStrainTable(t, path);
+            },
             "path"_a, "Writes path (.npy) and its axes file (.axes.txt) beside it, atomically.")
         .def("__repr__", [](const knit::StrainTable& t) {
             return "<knit.StrainTable '" + t.source + "': " + std::to_string(t.vertexCount) + " vertices, " +
@@ -52,9 +62,9 @@ void registerStrain(py::module_& m) {
            int iterations) {
             const knit::Pattern p = py::isinstance<py::str>(pattern)
                                         ? knit::loadPatternFileOrName(pattern.cast<std::string>())
-                                        : pattern.cast<knit::Pattern>();
+                                        : castArg<knit::Pattern>(pattern, "pattern", kPatternArg);
             if (!path.is_none()) {  // before the long work
-                const std::string out = path.cast<std::string>();
+                const std::string out = castArg<std::string>(path, "path", "None or a .npy path (str)");
                 refuseWritingOverInputs("path", out, {{"the pattern file", p.name}});
                 refuseWritingOverInputs("path", knit::strainAxesPath(out), {{"the pattern file", p.name}});
             }

@@ -57,3 +57,55 @@ def test_a_one_value_strain_range_over_several_samples_names_its_keyword():
         knit.strain_table("stockinette", samples=(2, 2, 2), sx_range=(0, 0), iterations=5)
     table = knit.strain_table("stockinette", samples=(1, 2, 2), sx_range=(0, 0), iterations=5)
     assert table.axes[0] == [0.0]
+
+
+def test_arguments_of_the_wrong_type_raise_type_error_naming_the_keyword(inputs, monkeypatch):
+    # pybind11's cast of a pattern / mesh / strain table / deform of another type raised
+    # RuntimeError("Unable to cast Python instance to C++ type ..."), naming no keyword.
+    monkeypatch.chdir(inputs)
+    mesh = knit.load_mesh("plane", 2, 2)
+    cases = [(lambda: knit.build_scene(3, "plane", repeats=(2, 2), res_u=2, res_v=2), "pattern: expected"),
+             (lambda: knit.build_scene(mesh, "plane", repeats=(2, 2), res_u=2, res_v=2), "got Mesh"),
+             (lambda: knit.build_scene("p.pyp", 3, repeats=(2, 2)), "mesh: expected"),
+             (lambda: knit.build_scene("p.pyp", "m.obj", repeats=(2, 2), strain_table=3), "strain_table: expected"),
+             (lambda: knit.strain_table(3, samples=(2, 2, 2), iterations=5), "pattern: expected"),
+             (lambda: knit.strain_table("p.pyp", path=3, samples=(2, 2, 2), iterations=5), "path: expected")]
+    for call, words in cases:
+        with pytest.raises(TypeError, match=words):
+            call()
+    scene = knit.build_scene("p.pyp", "m.obj", repeats=(2, 2))
+    with pytest.raises(TypeError, match="deform: expected None, 'none' or 'strain', got int"):
+        scene.evaluate(scene.mesh.positions, deform=3)
+
+
+def test_bake_settings_are_named_by_their_keyword_before_a_cluster_starts(inputs, monkeypatch):
+    # fps / threads / export went to `knit animate` unchecked: after a cluster started, a chunk failed
+    # naming --fps (a flag the Python caller never typed), or the missing dask module was reported first.
+    import knit.distributed as d
+    monkeypatch.chdir(inputs)
+    open("b.knitbind", "wb").write(b"not checked before the settings")
+    for kw, words in [({"fps": float("nan")}, "fps: must be a frame rate"), ({"fps": 0}, "fps: "),
+                      ({"threads": -1}, "threads: "), ({"export": "tubes"}, "export: must be 'plies' or 'yarns'")]:
+        with pytest.raises(knit.Error, match=words) as e:
+            d.bake("b.knitbind", "f_%04d.obj", "o.pc2", knit_cli="/nonexistent/knit", **kw)
+        assert "--" not in str(e.value)
+
+
+def test_saving_a_strain_table_over_its_pattern_file_is_refused(inputs, monkeypatch):
+    monkeypatch.chdir(inputs)
+    table = knit.strain_table("p.pyp", samples=(2, 2, 2), iterations=5)
+    before = (inputs / "p.pyp").read_bytes()
+    with pytest.raises(knit.Error, match="path"):
+        table.save("./p.pyp")
+    assert (inputs / "p.pyp").read_bytes() == before
+    table.save("t.npy")
+    knit.load_strain_table("t.npy").save("t.npy")  # a loaded table may be written over its own file
+
+
+def test_render_args_given_as_one_string_is_refused(inputs, monkeypatch):
+    # The string was iterated character by character into `knit render` arguments.
+    import knit.distributed as d
+    monkeypatch.chdir(inputs)
+    open("b.knitbind", "wb").write(b"x")
+    with pytest.raises(TypeError, match="render_args: expected a list"):
+        d.render_frames("b.knitbind", "f_%04d.obj", "r_%04d.png", knit_cli="/nonexistent/knit", render_args="--spp 4")

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <sys/stat.h>
 #include <sys/wait.h>
 
@@ -537,6 +538,43 @@ TEST_F(CliBadInput, streamedPliesOfAFinePitchAreEstimatedBeforeAnyChunkIsMade) {
     const CliRun r = knit(plies + "--ply-pitch 1e-4 --max-memory 256M", dir);
     EXPECT_EQ(r.exitCode, 0) << r.output;
 }
+
+// Round 4: a file of another knit format given as a pattern was read as a .pyp ("good.pc2:1: data
+// before the first block header"); an output of one fixed format was written under another
+// format's name (a pattern as c.obj, a bound scene as b.obj); `cache merge -o m.obj` took m.obj for
+// its own topology ("the topology file of -o 'm.obj' and -o 'm.obj' name the same file; choose
+// another the topology file of -o path").
+TEST_F(CliBadInput, filesOfAnotherFormatAreNamedAsWhatTheyAre) {
+    write("m.obj", kTriangleObj);
+    write("c.chart", "k k\nk k\n");
+    expectFailure("info m.obj", "'m.obj' is a mesh (.obj), not a pattern");
+    expectFailure("build -q --pattern m.obj --mesh plane --mesh-res 2 --repeats 2 2 -o o.ply",
+                  "'m.obj' is a mesh (.obj), not a pattern");
+    expectFailure("chart c.chart -o c.OBJ", "-o 'c.OBJ': this command writes a pattern (.pyp), but the name is that of "
+                                            "a mesh (.OBJ); choose a .pyp name");
+    expectFailure("generate -o g.glb", "writes a pattern (.pyp), but the name is that of a mesh (.glb)");
+    expectFailure("bind -q --mesh plane --mesh-res 2 --repeats 2 2 -o b.obj", "writes a bound scene (.knitbind)");
+    expectFailure("strain-table -q --samples 2 2 2 --iterations 5 -o t.pyp", "writes a strain table (.npy)");
+    expectFailure("cache merge c.pc2 -o m2.obj", "cannot write 'm2.obj': merged point caches are PC2");
+    // Names of no knit format are still written.
+    const CliRun r = knit("generate -o g.pattern", dir);
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+}
+
+#ifdef KNIT_HARD_HAVE_RENDER_CHECK
+// The render flags that override a material field were refused in the field's name
+// ("'alphaAcross' = nan is out of range"), which the user who typed --alpha-across never saw.
+TEST_F(CliBadInput, materialFlagsAreNamedByTheirFlagNotTheirField) {
+    const std::pair<const char*, const char*> cases[] = {
+        {"--alpha-across nan", "'alphaAcross' (--alpha-across) = nan"},
+        {"--reflect-fraction 2", "'reflectFraction' (--reflect-fraction) = 2"},
+        {"--ply-shadow-floor 5", "'plyShadowFloor' (--ply-shadow-floor) = 5"}};
+    for (const auto& [flag, message] : cases)
+        expectFailure(std::string("render -q --mesh plane --mesh-res 2 --repeats 2 2 --width 8 --height 8 --spp 1 ") +
+                          flag + " --output r.png",
+                      message);
+}
+#endif
 
 }  // namespace
 #endif  // KNIT_HARD_HAVE_CLI

@@ -11,6 +11,7 @@
 #include "knit/chart_cache.hpp"
 #include "chart/relax_lattice.hpp"
 #include "knit/error.hpp"
+#include "knit/file_kind.hpp"
 #include "util/math.hpp"
 
 namespace knit {
@@ -107,6 +108,13 @@ Pattern loadPatternFileOrName(const std::string& fileOrName) {
         return cachedChartPattern(readChartText(fileOrName), fileOrName);
     }
     if (endsWith(fileOrName, ".json")) return patternFromCurves(loadCurvesJson(fileOrName));
+    // A mesh, cache or image read as a .pyp was refused as "a.pc2:1: data before the first block header".
+    const std::string kind = fileKind(fileOrName);
+    const bool patternKind =
+        kind.rfind("a pattern", 0) == 0 || kind.rfind("a chart", 0) == 0 || kind.rfind("a JSON", 0) == 0;
+    if (exists && !kind.empty() && !patternKind)
+        throw Error("'" + fileOrName + "' is " + kind +
+                    ", not a pattern: give a .pyp pattern, a curves .json, a .chart chart or a built-in pattern name");
     if (endsWith(fileOrName, ".pyp") || exists) return loadPyp(fileOrName);
     return builtinPattern(fileOrName);
 }
