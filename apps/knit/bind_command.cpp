@@ -74,8 +74,9 @@ void addBindCommand(CLI::App& app, BindCommand& b) {
 int runBind(const BindCommand& b) {
     // Step 1: fail before long work.
     requireWritableFolder(b.output, "bound scene");
-    refuseOtherFormatName("-o", b.output, "a bound scene", ".knitbind");
     refuseCollidingPaths({{"--mesh", b.scene.scene.mesh}, {"--pattern", b.scene.scene.pattern}}, {{"-o", b.output}});
+    // After the collisions (an output onto an input is the more useful message).
+    refuseOtherFormatName("-o", b.output, "a bound scene", ".knitbind");
     // Step 2: bind on the rest mesh, as `knit animate` does, with the deformation it would use
     // (--deform, --strain-table, else the default: knit::decideDeform through resolveScene). The
     // file records it, with a strain table whole, so `animate --bound` deforms as `animate` does.

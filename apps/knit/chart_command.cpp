@@ -122,9 +122,10 @@ int runChart(const ChartCommand& c) {
     // chart itself or the other output.
     checkReportPath(c.report);
     const bool builtin = c.chart.rfind("chart:", 0) == 0;
-    refuseOtherFormatName("-o", c.output, "a pattern", ".pyp");
     refuseCollidingPaths({{"the chart", builtin ? std::string() : c.chart}},
                          {{"-o", c.output}, {"--report", c.report}});
+    // After the collisions (an output onto an input is the more useful message).
+    refuseOtherFormatName("-o", c.output, "a pattern", ".pyp");
     // Step 2: parse and relax; step 3: write the cell and its report together.
     const Chart chart = builtin ? builtinChart(c.chart) : loadChart(c.chart);
     ChartPatternOptions options;

@@ -107,7 +107,6 @@ int runFit(const FitCommand& f) {
     // Step 1: check the outputs, read the photographs and the mask.
     checkReportPath(f.report);
     checkReportPath(f.output);
-    refuseOtherFormatName("-o", f.output, "a JSON file", ".json");
     refuseCollidingPaths({{"--front", f.front},
                           {"--back", f.back},
                           {"--mask", f.mask},
@@ -115,6 +114,8 @@ int runFit(const FitCommand& f) {
                           {"--pattern", f.scene.scene.pattern},
                           {"--material", f.fit.render.materialFile}},
                          {{"-o", f.output}, {"--report", f.report}});
+    // After the collisions (an output onto an input is the more useful message).
+    refuseOtherFormatName("-o", f.output, "a JSON file", ".json");
     const FitTarget front = readFitTarget(f.front, "--front"), back = readFitTarget(f.back, "--back");
     checkFitTargets(front, back, {});
     // The camera of the photographs (none: render's default framing), checked before the scene.

@@ -68,9 +68,10 @@ StrainTable makeTableWithProgress(const Pattern& pattern, const StrainTableOptio
 int runStrainTable(const StrainTableCommand& c) {
     const Pattern pattern = loadPatternFileOrName(c.pattern);
     requireWritableFolder(c.output, "the strain table");  // before the long work
-    refuseOtherFormatName("-o", c.output, "a strain table", ".npy");
     refuseCollidingPaths({{"--pattern", c.pattern}},
                          {{"-o", c.output}, {"the table's axes file", strainAxesPath(c.output)}});
+    // After the collisions (an output onto an input is the more useful message).
+    refuseOtherFormatName("-o", c.output, "a strain table", ".npy");
     StrainTableStats stats;
     const StrainTable t = makeTableWithProgress(pattern, strainTableOptions(c), c.quiet, stats);
     writeStrainTable(t, c.output);
