@@ -39,6 +39,9 @@ void addServeCommand(CLI::App& app, ServeCommand& s) {
 }
 
 int runServe(const ServeCommand& s) {
+    // An empty host listened on every address (the socket library's reading of ""), with only a warning.
+    if (s.host.empty())
+        throw Error("--host must name an address or host name to listen on (127.0.0.1: this machine only), got ''");
     serve::ServeOptions o;
     o.host = s.host;
     o.port = s.port;

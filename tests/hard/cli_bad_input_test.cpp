@@ -556,6 +556,8 @@ TEST_F(CliBadInput, filesOfAnotherFormatAreNamedAsWhatTheyAre) {
     expectFailure("bind -q --mesh plane --mesh-res 2 --repeats 2 2 -o b.obj", "writes a bound scene (.knitbind)");
     expectFailure("strain-table -q --samples 2 2 2 --iterations 5 -o t.pyp", "writes a strain table (.npy)");
     expectFailure("cache merge c.pc2 -o m2.obj", "cannot write 'm2.obj': merged point caches are PC2");
+    // serve --host '' listened on every address with only a warning (a server until killed: `timeout`).
+    expectFailure("serve --port 0 --host ''", "--host must name an address or host name");
     // Names of no knit format are still written.
     const CliRun r = knit("generate -o g.pattern", dir);
     EXPECT_EQ(r.exitCode, 0) << r.output;
