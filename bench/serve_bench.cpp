@@ -46,16 +46,23 @@ const std::vector<NamedChart>& charts() {
     return all;
 }
 
-void BM_Relax(benchmark::State& state, int samplesPerStitch) {
+// How one relaxation went.
+struct Outcome {
+    int iterations = 0;
+    bool converged = false;
+    double minDistance = 0;
+};
+
+// Runs `relax` (of chart N, state.range(0)) and reports its CPU time and Outcome.
+template <class Relax>
+void measure(benchmark::State& state, const Relax& relax) {
     const auto& [label, text] = charts()[size_t(state.range(0))];
     const knit::Chart chart = knit::parseChart(text, "chart");
-    knit::ChartPatternOptions options;
-    options.samplesPerStitch = samplesPerStitch;
-    knit::serve::CellRelaxation r;
+    Outcome r;
     double cpu = 0;
     for (auto _ : state) {
         const double start = knit::bench::cpuSeconds();
-        r = knit::serve::relaxPageCell(chart, options);
+        r = relax(chart);
         cpu = knit::bench::cpuSeconds() - start;
     }
     state.counters["cpu_s"] = cpu;
@@ -65,33 +72,33 @@ void BM_Relax(benchmark::State& state, int samplesPerStitch) {
     state.SetLabel(std::to_string(chart.width) + "x" + std::to_string(chart.height) + " " + label);
 }
 
+void BM_Relax(benchmark::State& state, int samplesPerStitch) {
+    measure(state, [samplesPerStitch](const knit::Chart& chart) {
+        knit::ChartPatternOptions options;
+        options.samplesPerStitch = samplesPerStitch;
+        const knit::serve::CellRelaxation r = knit::serve::relaxPageCell(chart, options);
+        return Outcome{r.iterations, r.converged, r.minDistance};
+    });
+}
+
 // The preview's cell relaxed as relaxChart does, but by plain L-BFGS
-// (RelaxOptions::hessianPreconditioner false): at 10 samples per stitch the preconditioner's
-// factorisations cost more CPU than the iterations they save (docs/serve.md).
+// (RelaxOptions::hessianPreconditioner false), on one core: at 10 samples per stitch the
+// preconditioner's factorisations cost more CPU than the iterations they save (docs/serve.md).
 void BM_RelaxPlain(benchmark::State& state, int samplesPerStitch) {
-    const auto& [label, text] = charts()[size_t(state.range(0))];
-    const knit::Chart chart = knit::parseChart(text, "chart");
-    knit::ChartCellOptions cellOptions;
-    cellOptions.samplesPerStitch = samplesPerStitch;
-    const knit::ChartCell cell = knit::chartToCell(chart, cellOptions);
-    knit::RelaxOptions options;
-    options.restLength = knit::ChartPatternOptions{}.restLength;
-    options.restScale = cell.restScale;
-    options.anchors = cell.anchors;
-    options.hessianPreconditioner = false;
-    knit::RelaxResult r;
-    double cpu = 0;
-    tbb::task_arena oneCore(1);
-    for (auto _ : state) {
-        const double start = knit::bench::cpuSeconds();
+    measure(state, [samplesPerStitch](const knit::Chart& chart) {
+        knit::ChartCellOptions cellOptions;
+        cellOptions.samplesPerStitch = samplesPerStitch;
+        const knit::ChartCell cell = knit::chartToCell(chart, cellOptions);
+        knit::RelaxOptions options;
+        options.restLength = knit::ChartPatternOptions{}.restLength;
+        options.restScale = cell.restScale;
+        options.anchors = cell.anchors;
+        options.hessianPreconditioner = false;
+        knit::RelaxResult r;
+        tbb::task_arena oneCore(1);
         oneCore.execute([&] { r = knit::relaxYarn(cell.pattern, options); });
-        cpu = knit::bench::cpuSeconds() - start;
-    }
-    state.counters["cpu_s"] = cpu;
-    state.counters["iterations"] = r.iterations;
-    state.counters["converged"] = r.converged;
-    state.counters["min_distance_r"] = r.minDistance;
-    state.SetLabel(std::to_string(chart.width) + "x" + std::to_string(chart.height) + " " + label);
+        return Outcome{r.iterations, r.converged, r.minDistance};
+    });
 }
 
 void allCharts(benchmark::internal::Benchmark* b) {
