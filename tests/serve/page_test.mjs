@@ -96,10 +96,13 @@ try {
                                {timeout: 20000, polling: 'raf'});
     return {relaxedState, total: Date.now() - typed};
   };
-  // Charts up to 4 x 4, each a new cell for the server (beyond nine runs they come from memory).
+  // Charts up to 4 x 4, each a new cell for the server (beyond twelve runs they come from memory):
+  // knit and purl, a cable, a lace row and the built-in eyelet mesh (bench/serve_bench.cpp has
+  // their relaxation CPU).
   const charts = ['k p\nk p', 'k k p p\nk k p p\np p k k\np p k k', 'k p k\np k p\nk p k', 'k p\np k',
                   'k k p p\np k k p\np p k k\nk p p k', 'k k k\np p p\nk p k', 'k p p\np k p\np p k',
-                  'k k p p\nk k p p', 'k p k p\np k p k\nk k p p\np p k k'];
+                  'k k p p\nk k p p', 'k p k p\np k p k\nk k p p\np p k k', 'c2/2f\nk k k k\nk k k k\nk k k k',
+                  'k yo k2tog k\nk k k k', 'k k k k\nk k k2tog yo\nk k k k\nk2tog yo k k'];
   const runs = Number(args['latency-runs'] ?? 1);
   const latencies = [];
   let lastBody = '';
