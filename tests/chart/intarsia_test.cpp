@@ -461,9 +461,15 @@ TEST(Intarsia, aDiagonalsTurnSitsOnEachRowAtThatRowsBoundaryColumn) {
             EXPECT_EQ(l.reversed, l.row == 2) << l.row << ", " << l.column;
         }
     }
+    // Each yarn keeps its colour (one per yarn, as the export then gives each yarn:
+    // ChartCommand.intarsiaMotifYarnsKeepTheirColourThroughTheExport for the path from here on).
+    ASSERT_EQ(p.colour.size(), p.points.size());
+    for (const YarnPath& y : paths)
+        for (const uint32_t v : y.vertices) EXPECT_EQ(p.colour[v], p.colour[y.vertices.front()]);
     const int diamond = yarnOfVertex[cell.loop(1, 2).first];
     EXPECT_EQ(stitchesOfYarnRow[diamond], (std::map<int, int>{{1, 1}, {2, 3}, {3, 1}}));
     const int background = yarnOfVertex[cell.loop(1, 0).first];
+    EXPECT_NE(p.colour[paths[size_t(diamond)].vertices.front()], p.colour[paths[size_t(background)].vertices.front()]);
     EXPECT_EQ(stitchesOfYarnRow[background], (std::map<int, int>{{1, 4}, {2, 2}, {3, 4}}));
     // Each turn: below its first foot at the lower row's boundary, above its last foot at the
     // upper row's, a column (one stitch) apart; within the inset and reach of the boundary.

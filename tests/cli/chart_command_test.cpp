@@ -108,15 +108,15 @@ TEST(ChartCommand, intarsiaReportsItsYarnsAndRows) {
     EXPECT_EQ(loadPyp(dir.file("cell.pyp")).rowsPerPeriod, 2);
 }
 
-// An intarsia chart's open yarns through tiling and the PLY export: every yarn (a connected
+// An intarsia motif's open yarns through tiling and the PLY export: every yarn (a connected
 // component of the edges) keeps one colour, and the two colours are the palette's (sRGB bytes).
-void expectIntarsiaYarnsKeepTheirColour(const std::string& builtin) {
+TEST(ChartCommand, intarsiaMotifYarnsKeepTheirColourThroughTheExport) {
     test::TempDir dir;
     ::setenv("KNIT_CACHE_DIR", dir.file("cache").c_str(), 1);
-    const test::CliRun r =
-        test::runKnit("build --pattern " + builtin +
-                          " --mesh plane --repeats 2 2 --mesh-res 4 -q -o m.ply --export yarns --deform none",
-                      dir.path());
+    const test::CliRun r = test::runKnit(
+        "build --pattern chart:intarsia-motif --mesh plane --repeats 2 2 --mesh-res 4 -q -o m.ply --export yarns "
+        "--deform none",
+        dir.path());
     ::unsetenv("KNIT_CACHE_DIR");
     ASSERT_EQ(r.exitCode, 0) << r.output;
     const std::string text = test::readText(dir.file("m.ply"));
@@ -153,15 +153,6 @@ void expectIntarsiaYarnsKeepTheirColour(const std::string& builtin) {
     EXPECT_GT(coloursOf.size(), 8u);
     for (const auto& [yarn, colours] : coloursOf) EXPECT_EQ(colours.size(), 1u) << "yarn of vertex " << yarn;
     EXPECT_EQ(all, (std::set<std::array<int, 3>>{{0xf2, 0xe8, 0xd5}, {0xc1, 0x12, 0x1f}}));
-}
-
-TEST(ChartCommand, intarsiaMotifYarnsKeepTheirColourThroughTheExport) {
-    expectIntarsiaYarnsKeepTheirColour("chart:intarsia-motif");
-}
-
-// A diagonal's carried yarns: the diamond's and the background's each one colour through the export.
-TEST(ChartCommand, intarsiaDiamondYarnsKeepTheirColourThroughTheExport) {
-    expectIntarsiaYarnsKeepTheirColour("chart:intarsia-diamond");
 }
 
 TEST(ChartCommand, buildAcceptsAChartFileAndCachesIt) {
