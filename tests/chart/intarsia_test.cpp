@@ -262,11 +262,24 @@ TEST(Intarsia, layoutsAPeriodicCellCannotKnitAreRefusedWithTheirPlace) {
     EXPECT_EQ(error("k k k k\nk k k k\nk k k k\nk k k k\n\nA A A A\nA B B A\nA B B A\nA A A A\n"
                     "A=#ffffff B=#000000\nintarsia\n"),
               "");
-    // A boundary that steps every row: each row its own areas, the smallest named.
-    const std::string stepped = error("k k k k\nk k k k\n\nA B B B\nA A B B\nA=#ffffff B=#000000\nintarsia\n");
-    EXPECT_NE(stepped.find("t.chart:5:1: intarsia: the colour A area in row 1, columns 1-2 lasts one row"),
+    // A boundary that steps a column every row is knitted (the yarns carried one stitch on:
+    // Intarsia.aZigzag...); one that jumps two columns leaves a row whose areas continue into
+    // neither neighbour: refused, the smallest area named.
+    EXPECT_EQ(error("k k k k\nk k k k\n\nA B B B\nA A B B\nA=#ffffff B=#000000\nintarsia\n"), "");
+    const std::string jump = error("k k k k k k\nk k k k k k\nk k k k k k\n\nA A A A B B\nA A A A B B\n"
+                                   "A A B B B B\nA=#ffffff B=#000000\nintarsia\n");
+    EXPECT_NE(jump.find("t.chart:7:1: intarsia: the colour A area in row 1, columns 1-2 lasts one row: the areas "
+                        "of the rows below and above do not continue into it"),
               std::string::npos)
-        << stepped;
+        << jump;
+    EXPECT_NE(jump.find("move each boundary by at most one column"), std::string::npos) << jump;
+    // Stripes one stitch wide moving a column every row come back onto the other stripe of their
+    // colour after the period: no yarn would close.
+    const std::string wander = error("k k k k\nk k k k\n\nB A B A\nA B A B\nA=#ffffff B=#000000\nintarsia\n");
+    EXPECT_NE(wander.find("t.chart:5:1: intarsia: the colour areas move from row to row round the whole period and "
+                          "come back onto other areas of their colour"),
+              std::string::npos)
+        << wander;
     EXPECT_NE(error("k k\n\nA A\nA=#ffffff B=#000000\nintarsia\n").find("t.chart:1:1: intarsia needs at least two"),
               std::string::npos);
     // Purl beside the boundary: the turn leaves a knit foot from behind.
@@ -414,6 +427,172 @@ TEST(Intarsia, aMotifRelaxesWithItsBoundaryClosed) {
     const double plain = test::largestOpening(relaxChart(builtinChart("chart:stockinette")).relaxed.pattern).radius;
     std::printf("intarsia-motif: largest opening %.3f r (stockinette %.3f r)\n", opening, plain);
     EXPECT_LT(opening, plain + 0.25);
+}
+
+// The x (the pattern's frame, metres) of the boundary beside column c on its right (side +1) or
+// left (-1): half a stitch over from the loop's centre.
+double boundaryBeside(const Pattern& p, int width, int c, int side) { return p.px / width * (c + 0.5 * side); }
+double periodicGap(double a, double b, double period) {
+    const double d = std::fmod(std::abs(a - b), period);
+    return std::min(d, period - d);
+}
+
+// chart:intarsia-diamond: each of the diamond's boundaries moves a column every row. Its rows are
+// knitted by two open yarns (the diamond's, the background's beside it), each carried one stitch
+// on between rows; every turn leaves its row's last stitch at that row's boundary and reaches the
+// next row's first stitch at the next row's boundary, one column over.
+TEST(Intarsia, aDiagonalsTurnSitsOnEachRowAtThatRowsBoundaryColumn) {
+    const Chart chart = builtinChart("chart:intarsia-diamond");
+    const ChartCell cell = chartToCell(chart);
+    const Pattern& p = cell.pattern;
+    ASSERT_EQ(cell.height, 5);
+    ASSERT_EQ(cell.yarns, 4);  // rows 0 and 4, the diamond's, the background's in rows 1-3
+    const std::vector<YarnPath> paths = yarnPaths(p);
+    ASSERT_EQ(paths.size(), 4u);
+    std::vector<int> yarnOfVertex(p.points.size(), -1);
+    for (size_t k = 0; k < paths.size(); ++k)
+        for (const uint32_t v : paths[k].vertices) yarnOfVertex[v] = int(k);
+    // The diamond's 1 + 3 + 1 stitches on one open yarn, its rows knitted right, left, right.
+    std::map<int, std::map<int, int>> stitchesOfYarnRow;
+    for (const StitchLoop& l : cell.loops) {
+        ++stitchesOfYarnRow[yarnOfVertex[l.first]][l.row];
+        if (chart.colourAt(l.row, l.column) == 'B') {
+            EXPECT_TRUE(paths[size_t(yarnOfVertex[l.first])].open);
+            EXPECT_EQ(l.reversed, l.row == 2) << l.row << ", " << l.column;
+        }
+    }
+    // Each yarn keeps its colour (one per yarn, as the export then gives each yarn:
+    // ChartCommand.intarsiaMotifYarnsKeepTheirColourThroughTheExport for the path from here on).
+    ASSERT_EQ(p.colour.size(), p.points.size());
+    for (const YarnPath& y : paths)
+        for (const uint32_t v : y.vertices) EXPECT_EQ(p.colour[v], p.colour[y.vertices.front()]);
+    const int diamond = yarnOfVertex[cell.loop(1, 2).first];
+    EXPECT_EQ(stitchesOfYarnRow[diamond], (std::map<int, int>{{1, 1}, {2, 3}, {3, 1}}));
+    const int background = yarnOfVertex[cell.loop(1, 0).first];
+    EXPECT_NE(p.colour[paths[size_t(diamond)].vertices.front()], p.colour[paths[size_t(background)].vertices.front()]);
+    EXPECT_EQ(stitchesOfYarnRow[background], (std::map<int, int>{{1, 4}, {2, 2}, {3, 4}}));
+    // Each turn: below its first foot at the lower row's boundary, above its last foot at the
+    // upper row's, a column (one stitch) apart; within the inset and reach of the boundary.
+    std::vector<int> loopOfVertex(p.points.size(), -1);
+    for (size_t k = 0; k < cell.loops.size(); ++k)
+        for (uint32_t i = cell.loops[k].first; i < cell.loops[k].first + cell.loops[k].count; ++i)
+            loopOfVertex[i] = int(k);
+    std::vector<const PeriodicEdge*> leaving(p.points.size(), nullptr);
+    for (const PeriodicEdge& e : p.edges) leaving[e.v0] = &e;
+    const double stitch = p.px / chart.width, unit = p.radius / 0.8;  // model units
+    int turns = 0;
+    for (const PeriodicEdge& e : p.edges) {
+        if (loopOfVertex[e.v0] < 0 || loopOfVertex[e.v1] >= 0) continue;
+        const StitchLoop& from = cell.loops[size_t(loopOfVertex[e.v0])];
+        std::vector<glm::dvec3> turn;
+        glm::dvec3 offset(e.dx * p.px, e.dy * p.py, 0);
+        uint32_t v = e.v1;
+        for (turn.push_back(p.points[v] + offset); loopOfVertex[v] < 0 && leaving[v];) {  // to a stitch or the end
+            offset += glm::dvec3(leaving[v]->dx * p.px, leaving[v]->dy * p.py, 0);
+            v = leaving[v]->v1;
+            turn.push_back(p.points[v] + offset);
+        }
+        if (loopOfVertex[v] < 0) continue;  // an end tail, not a turn
+        const StitchLoop& to = cell.loops[size_t(loopOfVertex[v])];
+        ASSERT_EQ(to.row, from.row + 1);
+        // A row knitted to the right turns at its right end, the next row starts there.
+        const int side = from.reversed ? -1 : 1;
+        EXPECT_NE(chart.colourAt(from.row, (from.column + side + chart.width) % chart.width),
+                  chart.colourAt(from.row, from.column));
+        EXPECT_NE(chart.colourAt(to.row, (to.column + side + chart.width) % chart.width),
+                  chart.colourAt(to.row, to.column));
+        const double below = boundaryBeside(p, chart.width, from.column, side),
+                     above = boundaryBeside(p, chart.width, to.column, side);
+        EXPECT_NEAR(periodicGap(below, above, p.px), stitch, 1e-9) << "turn from row " << from.row;
+        const double footLow = p.points[e.v0].y, footHigh = turn.back().y;
+        for (const glm::dvec3& q : turn) {
+            if (q.y < footLow) EXPECT_LT(periodicGap(q.x, below, p.px), 1.25 * unit) << from.row;
+            if (q.y > footHigh) EXPECT_LT(periodicGap(q.x, above, p.px), 1.25 * unit) << from.row;
+        }
+        ++turns;
+    }
+    EXPECT_EQ(turns, 4);  // two per boundary: rows 1-2 and 2-3
+}
+
+// The crossing structure at a diagonal step: along each boundary the two yarns still turn on
+// alternate rows, each carried turn hooked (Gauss linking number +-1) through the other yarn's
+// turn beside it and linked with no other turn, before and after relaxation; relaxed, the yarns
+// keep apart, no hole opens at the steps and every stitch but the diamond's two tips keeps
+// knitting's crossings. The tips (a one-stitch row between a tail and a carried turn) are pulled
+// up and back by the carried yarn: one leg stays over the head below, the other is lifted off it
+// (docs/charts.md, "Diagonals": a known limit, asserted so a change shows).
+TEST(Intarsia, aDiagonalsCarriedTurnsHookThroughTheNeighboursAndTheBoundaryStaysClosed) {
+    const ChartPattern cp = relaxChart(builtinChart("chart:intarsia-diamond"));
+    std::printf("intarsia-diamond: min distance %.3f r, closest approach %.3f r, %d iterations, converged %d\n",
+                cp.relaxed.minDistance, cp.relaxed.closestApproach, cp.relaxed.iterations, int(cp.relaxed.converged));
+    for (const Pattern* p : {&cp.cell.pattern, &cp.relaxed.pattern}) {
+        const Interlock il = interlock(cp.cell, *p);
+        ASSERT_EQ(il.linkedWith.size(), 4u);
+        for (const int n : il.linkedWith) EXPECT_EQ(n, 1);
+        EXPECT_GT(il.worstLinked, 0.9);
+        EXPECT_LT(il.worstUnlinked, 0.1);
+    }
+    for (int r = 0; r < cp.cell.height; ++r)
+        for (int c = 0; c < cp.cell.width; ++c) EXPECT_EQ(test::checkStitch(cp.cell, r, c), "") << r << ", " << c;
+    EXPECT_TRUE(cp.relaxed.converged);
+    EXPECT_GE(cp.relaxed.minDistance, 1.9);
+    EXPECT_GT(cp.relaxed.closestApproach, 0.2);
+    ChartCell relaxed = cp.cell;
+    relaxed.pattern = cp.relaxed.pattern;
+    for (int r = 0; r < relaxed.height; ++r)
+        for (int c = 0; c < relaxed.width; ++c) {
+            if (c == 2 && (r == 1 || r == 3)) {  // the tips: still through the loop below, one leg over its head
+                EXPECT_GE(test::stitchCrossings(relaxed, r, c, test::stitchFrame(relaxed, r, c)).size(), 1u) << r;
+                continue;
+            }
+            EXPECT_EQ(test::checkStitchEnds(relaxed, r, c), "") << r << ", " << c;
+        }
+    const double opening = test::largestOpening(cp.relaxed.pattern).radius;
+    const double plain = test::largestOpening(relaxChart(builtinChart("chart:stockinette")).relaxed.pattern).radius;
+    std::printf("intarsia-diamond: largest opening %.3f r (stockinette %.3f r)\n", opening, plain);
+    EXPECT_LT(opening, plain + 0.25);
+}
+
+// A zigzag boundary (a column over every other row) continues from every row into the next, round
+// the period: each area's yarn is one closed serpentine, carried a stitch on at each step, and
+// every turn hooks through the other yarn's turns above and below.
+TEST(Intarsia, aZigzagBoundaryIsKnittedByClosedCarriedYarns) {
+    const ChartCell cell =
+        chartToCell(parseChart("k k k k\nk k k k\n\nA B B B\nA A B B\nA=#ffffff B=#000000\nintarsia\n", "t"));
+    EXPECT_EQ(cell.yarns, 2);
+    EXPECT_TRUE(cell.anchors.empty());  // no tails
+    for (const YarnPath& y : yarnPaths(cell.pattern)) EXPECT_FALSE(y.open);
+    const Interlock il = interlock(cell, cell.pattern);
+    ASSERT_EQ(il.linkedWith.size(), 4u);
+    for (const int n : il.linkedWith) EXPECT_EQ(n, 2);
+    EXPECT_LT(il.worstUnlinked, 0.1);
+    EXPECT_GT(minYarnDistance(cell.pattern), 0.3);
+}
+
+// Diagonal stripes (each row the areas one column to the left): each stripe's yarn climbs the
+// cell and comes back to itself one period up and one period to the left, a closed yarn whose
+// edges sum to (-1, 1) periods; its turns hook as in vertical bands.
+TEST(Intarsia, aDiagonalStripesYarnClosesAPeriodOver) {
+    const ChartCell cell = chartToCell(parseChart("k k k k\nk k k k\nk k k k\nk k k k\n\nB A A B\nB B A A\n"
+                                                  "A B B A\nA A B B\nA=#ffffff B=#000000\nintarsia\n",
+                                                  "stripes.chart"));
+    EXPECT_EQ(cell.yarns, 2);
+    const Pattern& p = cell.pattern;
+    for (const YarnPath& y : yarnPaths(p)) {
+        ASSERT_FALSE(y.open);
+        int dx = 0, dy = 0;
+        for (const uint32_t v : y.vertices) {
+            dx += p.edges[v].dx;
+            dy += p.edges[v].dy;
+        }
+        EXPECT_EQ(dx, -1);
+        EXPECT_EQ(dy, 1);
+    }
+    const Interlock il = interlock(cell, p);
+    ASSERT_EQ(il.linkedWith.size(), 8u);
+    for (const int n : il.linkedWith) EXPECT_EQ(n, 2);
+    EXPECT_LT(il.worstUnlinked, 0.1);
+    EXPECT_GT(minYarnDistance(p), 0.3);
 }
 
 }  // namespace

@@ -48,7 +48,7 @@ enum class StitchOp : uint8_t {
 enum class Colourwork : uint8_t {
     Painted,   // one yarn per row, each stitch painted its colour
     Stranded,  // one yarn per colour a row uses; the others float on the wrong side (-z)
-    Intarsia,  // one yarn per colour area (vertical bands), knitted back and forth; neighbouring
+    Intarsia,  // one yarn per colour area (bands, motifs, diagonals), knitted back and forth; neighbouring
                // areas' yarns interlock where they turn (docs/charts.md, "Intarsia")
 };
 
@@ -100,8 +100,9 @@ constexpr int kMaxStrandedColours = 4;
 // an empty chart, a bad colour block or palette, a row that does not consume the loops the row
 // below makes (with both counts), and charts whose yarn would not hold together: a column of
 // yarn-overs on every row, a loop slipped or tucked on every row or on more than kMaxHeldRows;
-// for intarsia, colour areas that are not vertical bands, a single area, or a stitch beside a
-// colour boundary that is not a knit-face loop.
+// for intarsia, an area that lasts one row (one row tall, or a boundary that jumps two or more
+// columns), stripes that move round the period onto another area of their colour, a single area,
+// or a stitch beside a colour boundary that is not a knit-face loop.
 Chart parseChart(const std::string& text, const std::string& source);
 Chart loadChart(const std::string& path);
 // The text of a chart file, refused (knit::Error naming the path) when it does not exist, is a

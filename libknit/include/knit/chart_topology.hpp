@@ -28,10 +28,11 @@
 //     rising from the left foot (to the right leg) in front;
 //   * stranded colourwork: one yarn per colour a row uses; a yarn makes the loops of its colour
 //     and floats behind (-z) everywhere else, at the height of the course's lower half.
-//   * intarsia: one yarn per colour area (vertical bands), knitted back and forth: a serpentine
-//     up the period that turns at the area's boundaries behind the work, each turn hooked through
-//     the neighbouring yarn's turns above and below (an odd-height chart is stacked twice, so the
-//     cell has an even number of rows).
+//   * intarsia: one yarn per colour area, knitted back and forth: a serpentine up the period that
+//     turns at the area's boundaries behind the work, each turn hooked through the neighbouring
+//     yarn's turns above and below (an odd-height chart is stacked twice, so the cell has an even
+//     number of rows); where a boundary moves a column between rows the turn is carried a stitch
+//     on, hooking at each row's boundary; a motif's yarns are open, with tails (docs/charts.md).
 //
 // The loop shape in the plane is the plain-knit curve of generateStockinette (K. Crane's model),
 // one stitch per 2 pi of the parameter; heights follow the rule above. The result is a starting

@@ -299,9 +299,10 @@ void readColours(const Block& block, const std::string& source, Chart& chart) {
     }
 }
 
-// A block of rows with several colour areas that lasts one row only (a diagonal boundary, or one
-// that steps every row, or a motif one row tall), refused naming its smallest area where the
-// colour block draws it (rows from 1 at the bottom, columns from 1 at the left).
+// A block of rows with several colour areas that lasts one row only (an area that starts and
+// ends in the same row: a motif one row tall, or a boundary that jumps by more than a column),
+// refused naming its smallest area where the colour block draws it (rows from 1 at the bottom,
+// columns from 1 at the left).
 [[noreturn]] void refuseOneRowBlock(const std::string& source, const Chart& chart, const Block& colours,
                                     const intarsia::RowBlock& block) {
     const intarsia::Area* small = &block.areas.front();
@@ -315,16 +316,29 @@ void readColours(const Block& block, const std::string& source, Chart& chart) {
     fail(source, line.number, line.tokens[size_t(small->first)].column,
          "intarsia: the colour " + std::string(1, small->colour) + " area in row " + std::to_string(block.first + 1) +
              ", " + span(small->first, small->count) +
-             " lasts one row (its boundaries are not those of the row below or above: a diagonal, a boundary "
-             "that moves between columns every row, or a motif one row tall). Each area's yarn knits back and "
-             "forth over at least two rows with the same areas, turning round its neighbours' yarns, so make "
-             "every run of rows with the same colour areas at least two rows tall, or knit it `stranded`");
+             " lasts one row: the areas of the rows below and above do not continue into it (an area one row "
+             "tall, or a boundary that moves by more than one column), so its yarn would knit one row with "
+             "no row above or below to turn into round its neighbours' yarns and would hang by its two "
+             "tails. Make the area at least two rows tall, move each boundary by at most one column from "
+             "row to row (the yarn is carried one stitch on), or knit it `stranded`");
+}
+
+// A chart whose areas continue from every row into the next round the period but come back to
+// other areas (a stripe that moves round the period onto another stripe of its colour): its yarns
+// would not close. Refused at the first row's colour line.
+[[noreturn]] void refuseWanderingAreas(const std::string& source, const Chart& chart, const Block& colours) {
+    const Line& line = colours[size_t(chart.height - 1)];
+    fail(source, line.number, 1,
+         "intarsia: the colour areas move from row to row round the whole period and come back onto "
+         "other areas of their colour, so no area's yarn returns to where it started: repeat the rows "
+         "until each area comes back to itself, or give the areas a row where they start");
 }
 
 // Intarsia in a periodic cell (chart_intarsia.hpp): at least one row with two colour areas; the
-// rows with the same areas form blocks, each of several areas at least two rows tall (the areas'
-// yarns turn round each other), unless the areas are vertical bands over every row; the stitches
-// either side of a boundary are knit-face loops the turns and tails can leave from behind.
+// rows whose areas continue (the same areas, boundaries moving by at most a column) form blocks,
+// each of several areas at least two rows tall (the areas' yarns turn round each other), unless
+// every row continues into the next (closed yarns, each area back to itself); the stitches either
+// side of a boundary are knit-face loops the turns and tails can leave from behind.
 void checkIntarsia(const std::string& source, const Chart& chart, const Block& colours) {
     const int w = chart.width;
     const std::vector<intarsia::RowBlock> blocks = intarsia::rowBlocks(chart);
@@ -333,9 +347,11 @@ void checkIntarsia(const std::string& source, const Chart& chart, const Block& c
     if (!several)
         fail(source, chart.rowLine[0], 1,
              "intarsia needs at least two colour areas along a row (this chart has one colour in every row)");
-    if (blocks.size() > 1)
+    if (!blocks.front().closed)
         for (const intarsia::RowBlock& b : blocks)
             if (b.areas.size() > 1 && b.rows < 2) refuseOneRowBlock(source, chart, colours, b);
+    if (blocks.front().closed && !intarsia::rowBlocks(intarsia::evenRows(chart)).front().returns)
+        refuseWanderingAreas(source, chart, colours);
     for (int r = 0; r < chart.height; ++r)
         for (int c = 0; c < w; ++c) {
             const bool edge = chart.colourAt(r, c) != chart.colourAt(r, (c + 1) % w) ||
@@ -492,6 +508,11 @@ const BuiltinChart kBuiltinCharts[] = {
      "# background beside it each knitted back and forth with their own yarn (tails woven in behind),\n"
      "# interlocked where they meet; the rows above and below in the background's yarn\n"
      "k k k\nk k k\nk k k\nk k k\nk k k\n\nA A A\nA B A\nA B A\nA B A\nA A A\nA=#f2e8d5 B=#c1121f\nintarsia\n"},
+    {"chart:intarsia-diamond",
+     "# intarsia: a diamond on a plain background; each boundary moves a column every row, the\n"
+     "# diamond's and the background's yarns carried one stitch on at each step and interlocked\n"
+     "k k k k k\nk k k k k\nk k k k k\nk k k k k\nk k k k k\n\n"
+     "A A A A A\nA A B A A\nA B B B A\nA A B A A\nA A A A A\nA=#f2e8d5 B=#c1121f\nintarsia\n"},
 };
 
 }  // namespace

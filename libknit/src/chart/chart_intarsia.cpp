@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
+#include <utility>
 
 #include <glm/geometric.hpp>
 
@@ -20,6 +22,9 @@ constexpr double kFarReach = 0.9;
 constexpr double kOvershoot = 1.0;
 constexpr double kNearDepth = 1.5;
 constexpr double kFarDepth = 4.5;
+// Where the boundary steps, the far edge crosses over this far above and below the bands where
+// the neighbours' turns hook through it.
+constexpr double kStepClear = 0.5;
 // A tail: below its row's loop centres and behind the work as a stranded float (the stitches'
 // lower legs and the heads below lie in front of it), its end this far short of the far boundary.
 constexpr double kTailDrop = 2.5;
@@ -44,19 +49,73 @@ std::vector<Area> areas(const Chart& chart, int row) {
     return out;
 }
 
+namespace {
+
+// How each area of a row continues into the next row's (`above`): the index of its continuation
+// there and how far its first column moves (-1, 0 or +1), or nothing when the rows do not
+// continue: a different number of areas, other colours, or a boundary that moves by more than a
+// column. One colour continues into the same colour.
+using Follow = std::vector<std::pair<int, int>>;
+std::optional<Follow> follow(const std::vector<Area>& below, const std::vector<Area>& above, int width) {
+    const size_t n = below.size();
+    if (n != above.size()) return std::nullopt;
+    if (n == 1) return below == above ? std::optional<Follow>(Follow{{0, 0}}) : std::nullopt;
+    auto step = [&](int from, int to) { return ((to - from + 1) % width + width) % width - 1; };  // cyclic, from -1
+    for (size_t s = 0; s < n; ++s) {
+        Follow out;
+        for (size_t i = 0; i < n; ++i) {
+            const Area &a = below[i], &b = above[(i + s) % n];
+            const int first = step(a.first, b.first), end = step(a.first + a.count, b.first + b.count);
+            if (a.colour != b.colour || first > 1 || end > 1 || b.count != a.count + end - first) break;
+            out.push_back({int((i + s) % n), first});
+        }
+        if (out.size() == n) return out;
+    }
+    return std::nullopt;
+}
+
+// Area a's places along `count` rows from row `first`, following `into`.
+std::vector<Place> track(const std::vector<std::vector<Area>>& rows, const std::vector<std::optional<Follow>>& into,
+                         int first, int count, int a) {
+    const int H = int(rows.size());
+    const Area& start = rows[size_t(first % H)][size_t(a)];
+    std::vector<Place> out{{start.first, start.count, a}};
+    for (int k = 1; k < count; ++k) {
+        const Place& p = out.back();
+        const auto [index, move] = (*into[size_t((first + k) % H)])[size_t(p.index)];
+        out.push_back({p.first + move, rows[size_t((first + k) % H)][size_t(index)].count, index});
+    }
+    return out;
+}
+
+}  // namespace
+
 std::vector<RowBlock> rowBlocks(const Chart& chart) {
     const int H = chart.height;
     std::vector<std::vector<Area>> rows(static_cast<size_t>(H));
     for (int r = 0; r < H; ++r) rows[size_t(r)] = areas(chart, r);
+    std::vector<std::optional<Follow>> into;  // into[r]: how row r - 1 continues into row r
+    into.reserve(size_t(H));
+    for (int r = 0; r < H; ++r) into.push_back(follow(rows[size_t((r + H - 1) % H)], rows[size_t(r)], chart.width));
     int start = 0;
-    while (start < H && rows[size_t(start)] == rows[size_t((start + H - 1) % H)]) ++start;
-    if (start == H) return {{0, H, rows[0]}};
+    while (start < H && into[size_t(start)]) ++start;
+    if (start == H) {  // every row continues: one closed block (each yarn back to itself?)
+        RowBlock b{0, H, rows[0], {}, true, true};
+        for (size_t a = 0; a < rows[0].size(); ++a) {
+            b.places.push_back(track(rows, into, 0, H + 1, int(a)));
+            const Place& back = b.places.back().back();
+            b.returns = b.returns && back.index == int(a) && (back.first - int(rows[0][a].first)) % chart.width == 0;
+        }
+        return {b};
+    }
     std::vector<RowBlock> out;
     for (int k = 0; k < H; ++k) {
-        const int r = start + k;
-        if (out.empty() || rows[size_t(r % H)] != out.back().areas) out.push_back({r % H, 0, rows[size_t(r % H)]});
+        const int r = (start + k) % H;
+        if (out.empty() || !into[size_t(r)]) out.push_back({r, 0, rows[size_t(r)], {}, false, true});
         ++out.back().rows;
     }
+    for (RowBlock& b : out)
+        for (size_t a = 0; a < b.areas.size(); ++a) b.places.push_back(track(rows, into, b.first, b.rows, int(a)));
     return out;
 }
 
@@ -79,13 +138,16 @@ Chart evenRows(const Chart& chart) {
 
 std::vector<glm::dvec3> turnPoints(const Turn& turn, double spacing) {
     const double nearX = turn.boundary + turn.side * kBoundaryInset, farX = turn.boundary - turn.side * kFarReach;
+    const double step = turn.boundaryAbove - turn.boundary;
     const double low = turn.from.y - kOvershoot, high = turn.to.y + kOvershoot;
-    const std::vector<glm::dvec3> corners{turn.from,
-                                          {nearX, low, -kNearDepth},
-                                          {farX, low, -kFarDepth},
-                                          {farX, high, -kFarDepth},
-                                          {nearX, high, -kNearDepth},
-                                          turn.to};
+    std::vector<glm::dvec3> corners{turn.from, {nearX, low, -kNearDepth}, {farX, low, -kFarDepth}};
+    if (step != 0) {  // carried a column on: up at this row's boundary, over, up at the next row's
+        corners.push_back({farX, turn.from.y + kOvershoot + kStepClear, -kFarDepth});
+        corners.push_back({farX + step, turn.to.y - kOvershoot - kStepClear, -kFarDepth});
+    }
+    corners.push_back({farX + step, high, -kFarDepth});
+    corners.push_back({nearX + step, high, -kNearDepth});
+    corners.push_back(turn.to);
     std::vector<double> along{0.0};  // arc length at each corner
     for (size_t k = 1; k < corners.size(); ++k)
         along.push_back(along.back() + glm::length(corners[k] - corners[k - 1]));

@@ -1,21 +1,24 @@
 // chart_intarsia.hpp — intarsia colourwork in a periodic cell (internal to chart_topology.cpp):
 // the colour areas of a chart and the yarn's turn where an area ends in a row.
 //
-// Intarsia is knitted back and forth, each colour area with its own yarn. In a periodic cell the
-// areas are vertical bands (each column keeps its colour on every row: parseChart refuses other
-// layouts), so each area's yarn runs along its columns of row 0 to the right, turns at the area's
-// boundary up into row 1, runs back to the left, turns at the other boundary, and so on: a
-// serpentine that closes through the period in y (an even number of rows; an odd chart is
-// stacked twice). Where two areas meet, the yarns turn on alternate rows, and each turn reaches
-// past the boundary behind the work and hooks through its neighbours' turns above and below: a
-// chain of interlocked turns along the boundary, the twist knitters make when they change
-// colour, so the areas hold together (no slit) and no yarn floats.
+// Intarsia is knitted back and forth, each colour area with its own yarn. When every row's areas
+// continue from the row below's (vertical bands, or boundaries that step a column between rows),
+// each area's yarn runs along its columns of row 0 to the right, turns at the area's boundary up
+// into row 1, runs back to the left, turns at the other boundary, and so on: a serpentine that
+// closes through the period in y (an even number of rows; an odd chart is stacked twice). Where
+// two areas meet, the yarns turn on alternate rows, and each turn reaches past the boundary
+// behind the work and hooks through its neighbours' turns above and below: a chain of
+// interlocked turns along the boundary, the twist knitters make when they change colour, so the
+// areas hold together (no slit) and no yarn floats. Where the boundary moves a column between
+// two rows (a diagonal), the turn between them is carried one stitch on behind the work, its
+// ends at each row's boundary, so it still hooks through the neighbour's turns of both rows.
 //
-// Motifs: when the areas change from row to row, the rows fall into blocks of rows with the same
-// areas. A block of one colour is knitted as plain courses (the background's yarn, closing
-// through the period in x); in a block of several areas each area's yarn is an open serpentine
-// over the block's rows with a tail at each end, run behind two stitches of its own area (the
-// tails a knitter weaves in), and the yarns turn and interlock at the boundaries as above.
+// Motifs: when the areas do not continue from row to row (an area starts or ends, a boundary
+// jumps by more than a column), the rows fall into blocks of rows whose areas continue. A block
+// of one colour is knitted as plain courses (the background's yarn, closing through the period
+// in x); in a block of several areas each area's yarn is an open serpentine over the block's rows
+// with a tail at each end, run behind two stitches of its own area (the tails a knitter weaves
+// in), and the yarns turn and interlock at the boundaries as above.
 #pragma once
 #include <vector>
 
@@ -35,15 +38,29 @@ struct Area {
 // first (an area that wraps round the period is listed where it starts).
 std::vector<Area> areas(const Chart& chart, int row = 0);
 
-// Consecutive rows with the same areas: rows first .. first + rows - 1, cyclic (a block may run
-// past the last row into row 0; its rows are then unwrapped, above the chart's height).
+// Where an area lies in one row of its block: columns [first, first + count) with `first`
+// unwrapped along the block (below 0 or past the width once the area has moved across the
+// period's edge), and its index among areas(chart, row) (the row's yarn that knits it).
+struct Place {
+    int first = 0, count = 0, index = 0;
+};
+
+// Consecutive rows whose areas continue from row to row: the same colours in the same order, each
+// boundary in the same column or one column over (a diagonal: the area's yarn knits one stitch
+// more or fewer on the next row, carried across the step). Rows first .. first + rows - 1, cyclic
+// (a block may run past the last row into row 0; its rows are then unwrapped, above the chart's
+// height). places[a][k] is area a's place in the block's row k (areas[a] in row 0); a closed
+// block (every row continues, round the period) has one place more, row 0 one period up, and
+// `returns` says whether each area comes back there to itself (its yarn then closes).
 struct RowBlock {
     int first = 0, rows = 0;
-    std::vector<Area> areas;
+    std::vector<Area> areas;  // the block's first row's
+    std::vector<std::vector<Place>> places;
+    bool closed = false, returns = true;
 };
-// The chart's blocks in row order: one block of every row when the areas are vertical bands
-// (each yarn a closed serpentine), else starting at the lowest row whose areas differ from the
-// row below's (cyclic).
+// The chart's blocks in row order: one closed block of every row when every row continues from
+// the row below (vertical bands, a zigzag boundary: each yarn a closed serpentine), else starting
+// at the lowest row whose areas do not continue from the row below's (cyclic).
 std::vector<RowBlock> rowBlocks(const Chart& chart);
 
 // An odd-height chart stacked twice (its rows repeated, cables copied), so each yarn's
@@ -52,14 +69,18 @@ Chart evenRows(const Chart& chart);
 
 // One turn of a yarn at a colour boundary, in model units (yarn radius 0.8): from the foot
 // `from` of its last loop in row g to the foot `to` of its first loop in row g + 1 (unwrapped).
-// `boundary` is the boundary's x, `side` where the yarn's own area lies (-1 left, +1 right).
+// `boundary` is the boundary's x in row g, `boundaryAbove` in row g + 1 (a column over where the
+// boundary steps), `side` where the yarn's own area lies (-1 left, +1 right).
 struct Turn {
     glm::dvec3 from{0.0}, to{0.0};
-    double boundary = 0;
+    double boundary = 0, boundaryAbove = 0;
     int side = -1;
 };
 // The turn's vertices, `from` first, `to` excluded, about `spacing` apart: from the foot back
 // behind the work, across the boundary to its far edge, up past the next row's foot, and back.
+// Where the boundary steps, the far edge stays at each row's boundary over the band where it
+// hooks through the neighbour's turn of that row and crosses over between the two (behind the
+// stitch at the step: the yarn carried one stitch on).
 std::vector<glm::dvec3> turnPoints(const Turn& turn, double spacing);
 
 // The feet of the loops beside a boundary stop this far (model units) short of it.

@@ -504,21 +504,27 @@ struct IntarsiaYarn {
     std::vector<uint32_t> tail;  // the vertices of its tails (ChartCell::anchors)
 };
 
-// A row of an area's serpentine: the area, its index among its row's yarns, the global yarn, the
-// unwrapped row, the direction, and what follows the row (a turn up into the next row, or the
-// block ends with a tail); and whether a tail comes before it (the block's first row).
+// A row of an area's serpentine: the area's place in the row (its first column unwrapped along the
+// block) and its colour, the global yarn, the unwrapped row, the direction, and what follows the
+// row (a turn up into the next row, where the yarn's first column is `nextColumn`, unwrapped, and
+// its area's index among that row's areas `nextIndex`; or the block ends with a tail); and whether
+// a tail comes before it (the block's first row).
 struct SerpentineRow {
-    const intarsia::Area* area = nullptr;
-    int local = 0, yarn = 0, row = 0;
+    intarsia::Place place;
+    char colour = 0;
+    int yarn = 0, row = 0, nextColumn = 0, nextIndex = 0;
     bool rightwards = true, turns = true, startTail = false, endTail = false;
 };
+
+// An unwrapped column's tile (whole periods in x, floor) and its column in the chart.
+int tileOf(int u, int width) { return u >= 0 ? u / width : -((width - 1 - u) / width); }
 
 // One row of an intarsia area's yarn, in its direction: (the starting tail,) loops (or a float
 // past a slipped stitch), then the turn at the boundary up into the next row or the end tail.
 void intarsiaRow(const CellInputs& in, const SerpentineRow& sr, double scale, ChartCell& cell, IntarsiaYarn& yarn,
                  std::vector<char>& letter) {
     const Chart& chart = in.chart;
-    const intarsia::Area& area = *sr.area;
+    const intarsia::Place& area = sr.place;
     const int W = chart.width, H = chart.height, n = in.n, r = sr.row % H, oy = sr.row / H;
     const double spacing = plainLoopLength(n) / n;
     Pattern& p = cell.pattern;
@@ -526,9 +532,9 @@ void intarsiaRow(const CellInputs& in, const SerpentineRow& sr, double scale, Ch
         p.points.push_back(q * scale);
         yarn.tileX.push_back(ox);
         yarn.tileY.push_back(oy);
-        letter.push_back(area.colour);
+        letter.push_back(sr.colour);
     };
-    const CellGeometry g{&chart, &in.rows, &in.plan, &in.yarns[size_t(r)], sr.local, intarsia::kBoundaryInset, 0.0};
+    const CellGeometry g{&chart, &in.rows, &in.plan, &in.yarns[size_t(r)], area.index, intarsia::kBoundaryInset, 0.0};
     const double dir = sr.rightwards ? 1.0 : -1.0;
     // A tail lies behind two stitches of its row, or one when the second is not a loop of this
     // yarn (a slipped stitch's float lies where the tail would).
@@ -537,25 +543,25 @@ void intarsiaRow(const CellInputs& in, const SerpentineRow& sr, double scale, Ch
     };
     const int firstU = sr.rightwards ? area.first : area.first + area.count - 1;
     if (sr.startTail) {  // behind the row's first stitches, ending at its first foot
-        const glm::dvec3 foot = loopPoint(g, stitchLoop(in, r, firstU % W, sr.yarn, 0, 0), -dir * util::kPi);
+        const glm::dvec3 foot = loopPoint(g, stitchLoop(in, r, wrap(firstU, W), sr.yarn, 0, 0), -dir * util::kPi);
         std::vector<glm::dvec3> tail =
             intarsia::tailPoints(foot, in.rows.y[size_t(r)], int(dir), tailStitches(firstU, int(dir)), spacing);
         for (auto q = tail.rbegin(); q != tail.rend(); ++q) {
             yarn.tail.push_back(uint32_t(p.points.size()));
-            add(*q, firstU / W);
+            add(*q, tileOf(firstU, W));
         }
     }
     bool floating = false;
     for (int k = 0; k < area.count; ++k) {
         const int u = area.first + (sr.rightwards ? k : area.count - 1 - k);  // unwrapped column
-        const int c = u % W, ox = u / W;
+        const int c = wrap(u, W), ox = tileOf(u, W);
         const bool loop = g.loopOf(r, c);
         const int m = loop ? n : floatSamples(n);
         StitchLoop& l = cell.loops[size_t(r) * size_t(W) + size_t(c)];
         l = stitchLoop(in, r, c, sr.yarn, uint32_t(p.points.size()), uint32_t(m));
         l.reversed = !sr.rightwards;
         if (!loop) {  // a slipped stitch inside the area: the yarn floats past it
-            if (!floating) yarn.floats.push_back({r, c, 0, sr.yarn, area.colour, true, false, {}});
+            if (!floating) yarn.floats.push_back({r, c, 0, sr.yarn, sr.colour, true, false, {}});
             ChartFloat& f = yarn.floats.back();
             f.firstColumn = sr.rightwards ? f.firstColumn : c;
             f.columns += 1;
@@ -569,40 +575,44 @@ void intarsiaRow(const CellInputs& in, const SerpentineRow& sr, double scale, Ch
         }
     }
     const int u = sr.rightwards ? area.first + area.count - 1 : area.first;
-    const int c = u % W;
+    const int c = wrap(u, W);
     const glm::dvec3 lastFoot = loopPoint(g, cell.loops[size_t(r) * size_t(W) + size_t(c)], dir * util::kPi);
     if (sr.endTail) {  // from the row's last foot back behind its last stitches
-        add(lastFoot, u / W);
+        add(lastFoot, tileOf(u, W));
         for (const glm::dvec3& q :
              intarsia::tailPoints(lastFoot, in.rows.y[size_t(r)], -int(dir), tailStitches(u, -int(dir)), spacing)) {
             yarn.tail.push_back(uint32_t(p.points.size()));
-            add(q, u / W);
+            add(q, tileOf(u, W));
         }
     }
     if (!sr.turns) return;
     // The turn: from this row's last foot to the next row's first (the next period's row 0 after
-    // the last row), at the boundary beside the row's last column.
-    const int next = (r + 1) % H;
-    const CellGeometry gn{&chart, &in.rows, &in.plan, &in.yarns[size_t(next)], sr.local, intarsia::kBoundaryInset, 0.0};
+    // the last row), at the boundary beside the row's last column and, a column over where the
+    // boundary steps, beside the next row's first; built in this column's tile.
+    const int next = (r + 1) % H, step = sr.nextColumn - u;
+    const CellGeometry gn{&chart, &in.rows, &in.plan, &in.yarns[size_t(next)], sr.nextIndex, intarsia::kBoundaryInset,
+                          0.0};
     intarsia::Turn turn;
     turn.from = lastFoot;
-    turn.to = loopPoint(gn, stitchLoop(in, next, c, sr.yarn, 0, 0), dir * util::kPi) +
-              glm::dvec3(0, r + 1 == H ? in.rows.period : 0.0, 0);
+    turn.to = loopPoint(gn, stitchLoop(in, next, wrap(sr.nextColumn, W), sr.yarn, 0, 0), dir * util::kPi) +
+              glm::dvec3(util::kTwoPi * (c + step - wrap(sr.nextColumn, W)), r + 1 == H ? in.rows.period : 0.0, 0);
     turn.boundary = util::kTwoPi * c + dir * util::kPi;
+    turn.boundaryAbove = turn.boundary + util::kTwoPi * step;
     turn.side = sr.rightwards ? -1 : 1;
-    for (const glm::dvec3& q : intarsia::turnPoints(turn, spacing)) add(q, u / W);
+    for (const glm::dvec3& q : intarsia::turnPoints(turn, spacing)) add(q, tileOf(u, W));
 }
 
 // The edges of an intarsia yarn built from vertex `first` on: along it, and (closed) from its
-// last vertex back to its first one period up.
-void intarsiaEdges(const IntarsiaYarn& yarn, uint32_t first, bool closed, Pattern& p) {
+// last vertex back to its first one period up and `shift` periods over (its area moved round the
+// period in x on the way up: a diagonal stripe).
+void intarsiaEdges(const IntarsiaYarn& yarn, uint32_t first, bool closed, int shift, Pattern& p) {
     const uint32_t last = uint32_t(p.points.size()) - 1;
     for (uint32_t i = first; i < last; ++i)
         p.edges.push_back({i, i + 1, yarn.tileX[i + 1 - first] - yarn.tileX[i - first],
                            yarn.tileY[i + 1 - first] - yarn.tileY[i - first]});
     if (closed)
         p.edges.push_back(
-            {last, first, yarn.tileX.front() - yarn.tileX.back(), 1 + yarn.tileY.front() - yarn.tileY.back()});
+            {last, first, shift + yarn.tileX.front() - yarn.tileX.back(), 1 + yarn.tileY.front() - yarn.tileY.back()});
 }
 
 // A block of one colour: each row a plain course of the background's yarn, closing through +x.
@@ -620,41 +630,55 @@ void intarsiaCourses(const CellInputs& in, const intarsia::RowBlock& block, doub
     }
 }
 
+// One area's serpentine over its block's rows, open (tails at both ends) or closed.
+void intarsiaYarn(const CellInputs& in, const intarsia::RowBlock& block, size_t a, double scale, ChartCell& cell,
+                  std::vector<char>& letter) {
+    Pattern& p = cell.pattern;
+    const int W = in.chart.width;
+    const std::vector<intarsia::Place>& places = block.places[a];
+    const uint32_t first = uint32_t(p.points.size());
+    IntarsiaYarn yarn;
+    for (int k = 0; k < block.rows; ++k) {
+        const bool last = k + 1 == block.rows, rightwards = k % 2 == 0;
+        SerpentineRow sr{places[size_t(k)], block.areas[a].colour, cell.yarns, block.first + k};
+        sr.rightwards = rightwards;
+        sr.turns = block.closed || !last;
+        sr.startTail = !block.closed && k == 0;
+        sr.endTail = !block.closed && last;
+        if (sr.turns) {  // the next row goes the other way: it starts at the end this row stops at
+            const intarsia::Place& above = places[size_t(k) + 1];
+            sr.nextColumn = rightwards ? above.first + above.count - 1 : above.first;
+            sr.nextIndex = above.index;
+        }
+        intarsiaRow(in, sr, scale, cell, yarn, letter);
+    }
+    const int shift = block.closed ? (places.back().first - places.front().first) / W : 0;
+    intarsiaEdges(yarn, first, block.closed, shift, p);
+    cell.anchors.insert(cell.anchors.end(), yarn.tail.begin(), yarn.tail.end());
+    cell.floats.insert(cell.floats.end(), yarn.floats.begin(), yarn.floats.end());
+    ++cell.yarns;
+}
+
 // Steps 5-6 for intarsia: each area's yarn a serpentine over its block's rows (chart_intarsia.hpp),
-// closing through +y after the last row's turn when the areas are vertical bands, else open with a
-// tail at each end; blocks of one colour as plain courses. Returns the palette letter of every
-// vertex.
+// closing through +y after the last row's turn when every row continues from the row below
+// (vertical bands, a zigzag or a diagonal stripe), else open with a tail at each end; blocks of
+// one colour as plain courses. Returns the palette letter of every vertex.
 std::vector<char> buildIntarsia(const CellInputs& in, double scale, ChartCell& cell) {
     const Chart& chart = in.chart;
     const int W = chart.width, H = chart.height;
-    // A loop per stitch, a turn per area and row (shorter than two loops) and two tails per area
-    // and block (each shorter than a loop), bounded first.
+    // A loop per stitch, a turn per area and row (shorter than two loops, a carried one shorter
+    // than three) and two tails per area and block (each shorter than a loop), bounded first.
     checkVertexCount(chart, uint64_t(W) * uint64_t(H) * uint64_t(in.n) * 5);
     const std::vector<intarsia::RowBlock> blocks = intarsia::rowBlocks(chart);
-    const bool bands = blocks.size() == 1;
     cell.loops.assign(size_t(W) * size_t(H), {});
     cell.yarns = 0;
-    Pattern& p = cell.pattern;
     std::vector<char> letter;
     for (const intarsia::RowBlock& block : blocks) {
-        if (block.areas.size() == 1 && !bands) {
+        if (block.areas.size() == 1 && !block.closed) {
             intarsiaCourses(in, block, scale, cell, letter);
             continue;
         }
-        for (size_t a = 0; a < block.areas.size(); ++a) {
-            const uint32_t first = uint32_t(p.points.size());
-            IntarsiaYarn yarn;
-            for (int k = 0; k < block.rows; ++k) {
-                const bool last = k + 1 == block.rows;
-                const SerpentineRow sr{&block.areas[a], int(a),         cell.yarns,       block.first + k,
-                                       k % 2 == 0,      bands || !last, !bands && k == 0, !bands && last};
-                intarsiaRow(in, sr, scale, cell, yarn, letter);
-            }
-            intarsiaEdges(yarn, first, bands, p);
-            cell.anchors.insert(cell.anchors.end(), yarn.tail.begin(), yarn.tail.end());
-            cell.floats.insert(cell.floats.end(), yarn.floats.begin(), yarn.floats.end());
-            ++cell.yarns;
-        }
+        for (size_t a = 0; a < block.areas.size(); ++a) intarsiaYarn(in, block, a, scale, cell, letter);
     }
     return letter;
 }
@@ -677,12 +701,12 @@ void colourLayer(const Chart& chart, const std::vector<char>& letter, ChartCell&
 ChartCell chartToCell(const Chart& chart, const ChartCellOptions& options) {
     if (!util::positiveFinite(options.radius)) throw Error("knitting chart: the yarn radius must be positive");
     if (options.samplesPerStitch < 8) throw Error("knitting chart: the samples per stitch must be >= 8");
-    // Intarsia is knitted back and forth: in vertical bands each yarn's serpentine closes after an
-    // even number of rows (motifs' yarns are open: any number).
+    // Intarsia is knitted back and forth: when every row continues from the row below each yarn's
+    // serpentine closes after an even number of rows (motifs' yarns are open: any number).
     const bool isIntarsia = chart.colourwork == Colourwork::Intarsia;
-    const bool bands = isIntarsia && intarsia::rowBlocks(chart).size() == 1;
-    const Chart even = bands ? intarsia::evenRows(chart) : Chart{};
-    const Chart& ch = bands ? even : chart;
+    const bool closed = isIntarsia && intarsia::rowBlocks(chart).front().closed;
+    const Chart even = closed ? intarsia::evenRows(chart) : Chart{};
+    const Chart& ch = closed ? even : chart;
     const double s = options.radius / kModelRadius;  // metres per model unit
     ChartCell cell;
     cell.width = ch.width;
