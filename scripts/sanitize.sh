@@ -58,6 +58,7 @@ heavy=(Relax.everyBuiltinChartTilesSeamlessly Relax.basketweaveAndCableRelaxApar
        ChartConstructsRelaxed.loopsHeldThreeRowsKeepTheYarnsApart
        ChartCommand.longFloatsAreWarnedAboutAndReported ChartCommand.intarsiaMotifYarnsKeepTheirColourThroughTheExport
        Intarsia.aMotifRelaxesWithItsBoundaryClosed Cli.everySharedPatternBuildsOnAPlane
+       Intarsia.aDiagonalsCarriedTurnsHookThroughTheNeighboursAndTheBoundaryStaysClosed
        DeformChoice.autoIsStrainWhereTheTableIsQuickOrCachedElseNoneWithAnEstimate
        DeformChoice.aTableIsTheSameBytesWithAnyThreadCountAndFromTheCache
        StrainCli.defaultDeformMakesCachesAndReadsThePatternsTable
