@@ -1,16 +1,16 @@
 // fileKind(): knit's file formats by extension (see knit/file_kind.hpp).
 #include "knit/file_kind.hpp"
 
-#include <cctype>
 #include <filesystem>
 #include <utility>
+
+#include "util/platform.hpp"
 
 namespace knit {
 
 std::string fileKind(const std::string& path) {
     const std::string ext = std::filesystem::path(path).extension().string();
-    std::string lower = ext;
-    for (char& c : lower) c = char(std::tolower(static_cast<unsigned char>(c)));
+    const std::string lower = "." + util::lowerExtension(path);  // ".obj" for "a.OBJ"
     static const std::pair<const char*, const char*> kinds[] = {
         {".obj", "a mesh"},          {".ply", "a mesh"},
         {".off", "a mesh"},          {".gltf", "a mesh"},
