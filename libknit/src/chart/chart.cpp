@@ -300,7 +300,7 @@ void readColours(const Block& block, const std::string& source, Chart& chart) {
 }
 
 // A block of rows with several colour areas that lasts one row only (an area that starts and
-// ends in the same row: a motif one row tall, or a boundary that jumps by more than a column),
+// ends in the same row: a motif one row tall, or a boundary that jumps by more than two columns),
 // refused naming its smallest area where the colour block draws it (rows from 1 at the bottom,
 // columns from 1 at the left).
 [[noreturn]] void refuseOneRowBlock(const std::string& source, const Chart& chart, const Block& colours,
@@ -317,10 +317,10 @@ void readColours(const Block& block, const std::string& source, Chart& chart) {
          "intarsia: the colour " + std::string(1, small->colour) + " area in row " + std::to_string(block.first + 1) +
              ", " + span(small->first, small->count) +
              " lasts one row: the areas of the rows below and above do not continue into it (an area one row "
-             "tall, or a boundary that moves by more than one column), so its yarn would knit one row with "
+             "tall, or a boundary that moves by more than two columns), so its yarn would knit one row with "
              "no row above or below to turn into round its neighbours' yarns and would hang by its two "
-             "tails. Make the area at least two rows tall, move each boundary by at most one column from "
-             "row to row (the yarn is carried one stitch on), or knit it `stranded`");
+             "tails. Make the area at least two rows tall, move each boundary by at most two columns from "
+             "row to row (the yarn is carried one or two stitches on), or knit it `stranded`");
 }
 
 // A chart whose areas continue from every row into the next round the period but come back to

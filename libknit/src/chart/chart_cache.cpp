@@ -17,7 +17,7 @@ namespace knit {
 std::string chartCacheKey(const std::string& chartText, const ChartPatternOptions& o) {
     std::ostringstream key;
     key.precision(17);
-    key << "v8 " << o.radius << ' ' << o.samplesPerStitch << ' ' << o.restLength << ' ' << o.maxIterations
+    key << "v9 " << o.radius << ' ' << o.samplesPerStitch << ' ' << o.restLength << ' ' << o.maxIterations
         << (o.affinePeriod ? " affine" : "") << '\n'  // the default's keys as before the option
         << chartText;
     char name[40];

@@ -52,21 +52,23 @@ std::vector<Area> areas(const Chart& chart, int row) {
 namespace {
 
 // How each area of a row continues into the next row's (`above`): the index of its continuation
-// there and how far its first column moves (-1, 0 or +1), or nothing when the rows do not
-// continue: a different number of areas, other colours, or a boundary that moves by more than a
-// column. One colour continues into the same colour.
+// there and how far its first column moves (-kMaxMove .. kMaxMove), or nothing when the rows do not
+// continue: a different number of areas, other colours, or a boundary that moves by more than
+// kMaxMove columns. One colour continues into the same colour.
 using Follow = std::vector<std::pair<int, int>>;
 std::optional<Follow> follow(const std::vector<Area>& below, const std::vector<Area>& above, int width) {
     const size_t n = below.size();
     if (n != above.size()) return std::nullopt;
     if (n == 1) return below == above ? std::optional<Follow>(Follow{{0, 0}}) : std::nullopt;
-    auto step = [&](int from, int to) { return ((to - from + 1) % width + width) % width - 1; };  // cyclic, from -1
+    auto step = [&](int from, int to) {  // cyclic, from -kMaxMove
+        return ((to - from + kMaxMove) % width + width) % width - kMaxMove;
+    };
     for (size_t s = 0; s < n; ++s) {
         Follow out;
         for (size_t i = 0; i < n; ++i) {
             const Area &a = below[i], &b = above[(i + s) % n];
             const int first = step(a.first, b.first), end = step(a.first + a.count, b.first + b.count);
-            if (a.colour != b.colour || first > 1 || end > 1 || b.count != a.count + end - first) break;
+            if (a.colour != b.colour || first > kMaxMove || end > kMaxMove || b.count != a.count + end - first) break;
             out.push_back({int((i + s) % n), first});
         }
         if (out.size() == n) return out;

@@ -10,11 +10,12 @@
 // behind the work and hooks through its neighbours' turns above and below: a chain of
 // interlocked turns along the boundary, the twist knitters make when they change colour, so the
 // areas hold together (no slit) and no yarn floats. Where the boundary moves a column between
-// two rows (a diagonal), the turn between them is carried one stitch on behind the work, its
-// ends at each row's boundary, so it still hooks through the neighbour's turns of both rows.
+// two rows (a diagonal; or two columns, a steep one), the turn between them is carried that many
+// stitches on behind the work, its ends at each row's boundary, so it still hooks through the
+// neighbour's turns of both rows.
 //
 // Motifs: when the areas do not continue from row to row (an area starts or ends, a boundary
-// jumps by more than a column), the rows fall into blocks of rows whose areas continue. A block
+// jumps by more than two columns), the rows fall into blocks of rows whose areas continue. A block
 // of one colour is knitted as plain courses (the background's yarn, closing through the period
 // in x); in a block of several areas each area's yarn is an open serpentine over the block's rows
 // with a tail at each end, run behind two stitches of its own area (the tails a knitter weaves
@@ -45,11 +46,15 @@ struct Place {
     int first = 0, count = 0, index = 0;
 };
 
+// The most columns a boundary moves between two rows whose areas continue (the area's yarn is
+// carried that many stitches on behind the work).
+constexpr int kMaxMove = 2;
+
 // Consecutive rows whose areas continue from row to row: the same colours in the same order, each
-// boundary in the same column or one column over (a diagonal: the area's yarn knits one stitch
-// more or fewer on the next row, carried across the step). Rows first .. first + rows - 1, cyclic
-// (a block may run past the last row into row 0; its rows are then unwrapped, above the chart's
-// height). places[a][k] is area a's place in the block's row k (areas[a] in row 0); a closed
+// boundary in the same column or up to kMaxMove columns over (a diagonal: the area's yarn knits one
+// or two stitches more or fewer on the next row, carried across the step). Rows first .. first +
+// rows - 1, cyclic (a block may run past the last row into row 0; its rows are then unwrapped,
+// above the chart's height). places[a][k] is area a's place in the block's row k (areas[a] in row 0); a closed
 // block (every row continues, round the period) has one place more, row 0 one period up, and
 // `returns` says whether each area comes back there to itself (its yarn then closes).
 struct RowBlock {
@@ -80,7 +85,7 @@ struct Turn {
 // behind the work, across the boundary to its far edge, up past the next row's foot, and back.
 // Where the boundary steps, the far edge stays at each row's boundary over the band where it
 // hooks through the neighbour's turn of that row and crosses over between the two (behind the
-// stitch at the step: the yarn carried one stitch on).
+// stitches at the step: the yarn carried one or two stitches on).
 std::vector<glm::dvec3> turnPoints(const Turn& turn, double spacing);
 
 // The feet of the loops beside a boundary stop this far (model units) short of it.

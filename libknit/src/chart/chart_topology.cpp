@@ -599,7 +599,15 @@ void intarsiaRow(const CellInputs& in, const SerpentineRow& sr, double scale, Ch
     turn.boundary = util::kTwoPi * c + dir * util::kPi;
     turn.boundaryAbove = turn.boundary + util::kTwoPi * step;
     turn.side = sr.rightwards ? -1 : 1;
-    for (const glm::dvec3& q : intarsia::turnPoints(turn, spacing)) add(q, tileOf(u, W));
+    // A turn into the next period's first row that also moves to another tile in x (the area
+    // crossed the period's edge) changes tile one axis at a time: from its middle on it is built in
+    // the next row's x tile, moved back by the periods between, and the edge into that row adds dy.
+    const std::vector<glm::dvec3> points = intarsia::turnPoints(turn, spacing);
+    const int ox = tileOf(u, W), nx = r + 1 == H ? tileOf(sr.nextColumn, W) : ox;
+    for (size_t i = 0; i < points.size(); ++i) {
+        const bool over = 2 * i >= points.size();
+        add(points[i] - glm::dvec3(over ? util::kTwoPi * W * (nx - ox) : 0.0, 0, 0), over ? nx : ox);
+    }
 }
 
 // The edges of an intarsia yarn built from vertex `first` on: along it, and (closed) from its
