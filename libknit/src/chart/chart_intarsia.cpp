@@ -27,7 +27,13 @@ constexpr double kFarDepth = 4.5;
 constexpr double kStepClear = 0.5;
 // A tail: below its row's loop centres and behind the work as a stranded float (the stitches'
 // lower legs and the heads below lie in front of it), its end this far short of the far boundary.
+// A one-stitch area's tail lies higher, just above the head of the loop below (0.5 below the loop
+// centres): lower down, behind that loop's legs, the anchored tail stayed where it was built while
+// the area settled back, and the head below came out in front of the stitch (the diamond's tips
+// lost their crossings with the loop below). On chart:intarsia-diamond every stitch keeps its
+// crossings for drops 0 to 0.5, not for -0.5, 0.75, 1.0 or 2.5 (docs/charts.md, "Diagonals").
 constexpr double kTailDrop = 2.5;
+constexpr double kAloneTailDrop = 0.25;
 constexpr double kTailDepth = 2.4;
 constexpr double kTailClear = 2.0;
 
@@ -165,13 +171,15 @@ std::vector<glm::dvec3> turnPoints(const Turn& turn, double spacing) {
     return out;
 }
 
-std::vector<glm::dvec3> tailPoints(const glm::dvec3& foot, double rowY, int inward, int stitches, double spacing) {
-    // Behind the work at the height and depth of a float behind its row's stitches, reaching to
-    // kTailClear short of the far boundary (which lies 2 pi stitches - kBoundaryInset from the foot).
+std::vector<glm::dvec3> tailPoints(const glm::dvec3& foot, double rowY, int inward, int stitches, bool alone,
+                                   double spacing) {
+    // Behind the work at the depth of a float behind its row's stitches (and its height, or just
+    // above the head below for a stitch alone), reaching to kTailClear short of the far boundary
+    // (which lies 2 pi stitches - kBoundaryInset from the foot).
     const double reach = util::kTwoPi * stitches - kBoundaryInset - kTailClear;
-    const std::vector<glm::dvec3> corners{foot,
-                                          {foot.x + inward * 1.0, rowY - kTailDrop, -kTailDepth},
-                                          {foot.x + inward * reach, rowY - kTailDrop, -kTailDepth}};
+    const double y = rowY - (alone ? kAloneTailDrop : kTailDrop);
+    const std::vector<glm::dvec3> corners{
+        foot, {foot.x + inward * 1.0, y, -kTailDepth}, {foot.x + inward * reach, y, -kTailDepth}};
     std::vector<glm::dvec3> out;
     for (size_t k = 1; k < corners.size(); ++k) {
         const double length = glm::length(corners[k] - corners[k - 1]);

@@ -94,8 +94,11 @@ constexpr double kBoundaryInset = 1.2;
 // A motif yarn's tail (model units): from the foot `foot` of its first or last loop in a row whose
 // loop centres lie at y = rowY, behind the work into its own area (inward: +1 to the right, -1 to
 // the left) across `stitches` stitches' worth (1 or 2), ending clear of the area's far boundary.
+// `alone`: the area is one stitch wide in that row (a motif one stitch wide, a diamond's tip); the
+// tail then lies higher, behind the stitch's own legs just above the head of the loop below.
 // The points run from the foot outwards, `foot` excluded, about `spacing` apart; a starting
 // tail takes them in reverse order.
-std::vector<glm::dvec3> tailPoints(const glm::dvec3& foot, double rowY, int inward, int stitches, double spacing);
+std::vector<glm::dvec3> tailPoints(const glm::dvec3& foot, double rowY, int inward, int stitches, bool alone,
+                                   double spacing);
 
 }  // namespace knit::intarsia

@@ -544,8 +544,8 @@ void intarsiaRow(const CellInputs& in, const SerpentineRow& sr, double scale, Ch
     const int firstU = sr.rightwards ? area.first : area.first + area.count - 1;
     if (sr.startTail) {  // behind the row's first stitches, ending at its first foot
         const glm::dvec3 foot = loopPoint(g, stitchLoop(in, r, wrap(firstU, W), sr.yarn, 0, 0), -dir * util::kPi);
-        std::vector<glm::dvec3> tail =
-            intarsia::tailPoints(foot, in.rows.y[size_t(r)], int(dir), tailStitches(firstU, int(dir)), spacing);
+        std::vector<glm::dvec3> tail = intarsia::tailPoints(foot, in.rows.y[size_t(r)], int(dir),
+                                                            tailStitches(firstU, int(dir)), area.count == 1, spacing);
         for (auto q = tail.rbegin(); q != tail.rend(); ++q) {
             yarn.tail.push_back(uint32_t(p.points.size()));
             add(*q, tileOf(firstU, W));
@@ -579,8 +579,8 @@ void intarsiaRow(const CellInputs& in, const SerpentineRow& sr, double scale, Ch
     const glm::dvec3 lastFoot = loopPoint(g, cell.loops[size_t(r) * size_t(W) + size_t(c)], dir * util::kPi);
     if (sr.endTail) {  // from the row's last foot back behind its last stitches
         add(lastFoot, tileOf(u, W));
-        for (const glm::dvec3& q :
-             intarsia::tailPoints(lastFoot, in.rows.y[size_t(r)], -int(dir), tailStitches(u, -int(dir)), spacing)) {
+        for (const glm::dvec3& q : intarsia::tailPoints(lastFoot, in.rows.y[size_t(r)], -int(dir),
+                                                        tailStitches(u, -int(dir)), area.count == 1, spacing)) {
             yarn.tail.push_back(uint32_t(p.points.size()));
             add(q, tileOf(u, W));
         }
