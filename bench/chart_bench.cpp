@@ -9,21 +9,13 @@
 #include <algorithm>
 #include <string>
 
-#include <glm/geometric.hpp>
-
 #include "knit/chart.hpp"
 #include "knit/chart_pattern.hpp"
 
 #include "bench_clock.hpp"
+#include "pattern_measures.hpp"
 
 namespace {
-
-double lengthPerArea(const knit::Pattern& p) {
-    double L = 0;
-    for (const knit::PeriodicEdge& e : p.edges)
-        L += glm::length(p.points[e.v1] + glm::dvec3(e.dx * p.px, e.dy * p.py, 0) - p.points[e.v0]);
-    return L * p.radius / (p.px * p.py);
-}
 
 // 12 stitches x 16 rows: two 2/2 cables (front and back) between purl columns, crossed every
 // 8 rows.
@@ -53,7 +45,7 @@ void relax(benchmark::State& state, const knit::Chart& chart, bool affine = fals
     state.counters["pair_rebuilds"] = cp.relaxed.pairRebuilds;
     state.counters["converged"] = cp.relaxed.converged;
     state.counters["min_distance_r"] = cp.relaxed.minDistance;
-    state.counters["L_r_per_A"] = lengthPerArea(cp.relaxed.pattern);
+    state.counters["L_r_per_A"] = knit::bench::lengthPerArea(cp.relaxed.pattern);
     state.counters["vertices"] = double(cp.relaxed.pattern.points.size());
 }
 

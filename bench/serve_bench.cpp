@@ -1,10 +1,14 @@
 // knit serve's relaxations (issue 27: converged yarns of every chart up to 4 x 4 within 0.5 s of
 // the last keystroke). For the charts of tests/serve/page_test.mjs, the built-in charts up to
-// 4 x 4 and a few typed ones (a cable, a lace row), the page's preview (kPreviewSamples samples
-// per stitch) and the full relaxation (24, as `knit chart`), each on one core as the server runs
-// them (relaxPageCell). Counters: iterations, converged, the smallest yarn distance and the
-// process CPU seconds of one relaxation (the machine may be shared); and the preview's cell
-// relaxed by plain L-BFGS (BM_RelaxPlain). docs/serve.md has the numbers. Run: build/bench/serve_bench
+// 4 x 4 and a few typed ones (a cable, a lace row), each relaxed by relaxChart on one core as the
+// server runs it (relaxPageCell): `preview`, what the page shows first (previewOptions: 10
+// samples per stitch, plain L-BFGS), `preview_preconditioned` (the same with the Hessian
+// preconditioner, as the page relaxed it before), `full` (24 samples per stitch, as `knit chart`)
+// and `full_warm` (the same warm-started from the chart relaxed at 10, ChartPatternOptions::
+// warmStartSamples; it includes that coarse stage). Counters: the process CPU seconds of one
+// relaxation (the machine may be shared), iterations (of the last stage; warm_iterations: the
+// coarse stage's), converged, the smallest yarn distance, the energy and L r / A. docs/serve.md
+// has the numbers. Run: build/bench/serve_bench
 #include <benchmark/benchmark.h>
 
 #include <string>
@@ -15,9 +19,9 @@
 
 #include "bench_clock.hpp"
 #include "chart_job.hpp"
+#include "knit/chart_pattern.hpp"
+#include "pattern_measures.hpp"
 #include "knit/chart.hpp"
-#include "knit/chart_topology.hpp"
-#include "knit/relax.hpp"
 
 namespace {
 
@@ -46,59 +50,39 @@ const std::vector<NamedChart>& charts() {
     return all;
 }
 
-// How one relaxation went.
-struct Outcome {
-    int iterations = 0;
-    bool converged = false;
-    double minDistance = 0;
-};
-
-// Runs `relax` (of chart N, state.range(0)) and reports its CPU time and Outcome.
-template <class Relax>
-void measure(benchmark::State& state, const Relax& relax) {
+// Runs relaxChart with `options` on chart N (state.range(0)) on one core, as relaxPageCell does,
+// and reports its CPU time and how it went.
+void BM_Relax(benchmark::State& state, const knit::ChartPatternOptions& options) {
     const auto& [label, text] = charts()[size_t(state.range(0))];
     const knit::Chart chart = knit::parseChart(text, "chart");
-    Outcome r;
+    knit::ChartPattern r;
     double cpu = 0;
     for (auto _ : state) {
         const double start = knit::bench::cpuSeconds();
-        r = relax(chart);
+        tbb::task_arena oneCore(1);
+        oneCore.execute([&] { r = knit::relaxChart(chart, options); });
         cpu = knit::bench::cpuSeconds() - start;
     }
     state.counters["cpu_s"] = cpu;
-    state.counters["iterations"] = r.iterations;
-    state.counters["converged"] = r.converged;
-    state.counters["min_distance_r"] = r.minDistance;
+    state.counters["iterations"] = r.relaxed.iterations;
+    state.counters["warm_iterations"] = r.warmStartIterations;
+    state.counters["converged"] = r.relaxed.converged;
+    state.counters["min_distance_r"] = r.relaxed.minDistance;
+    state.counters["energy"] = r.relaxed.energy;
+    state.counters["L_r_per_A"] = knit::bench::lengthPerArea(r.relaxed.pattern);
     state.SetLabel(std::to_string(chart.width) + "x" + std::to_string(chart.height) + " " + label);
 }
 
-void BM_Relax(benchmark::State& state, int samplesPerStitch) {
-    measure(state, [samplesPerStitch](const knit::Chart& chart) {
-        knit::ChartPatternOptions options;
-        options.samplesPerStitch = samplesPerStitch;
-        const knit::serve::CellRelaxation r = knit::serve::relaxPageCell(chart, options);
-        return Outcome{r.iterations, r.converged, r.minDistance};
-    });
+knit::ChartPatternOptions preconditionedPreview() {
+    knit::ChartPatternOptions o = knit::serve::previewOptions();
+    o.hessianPreconditioner = true;
+    return o;
 }
 
-// The preview's cell relaxed as relaxChart does, but by plain L-BFGS
-// (RelaxOptions::hessianPreconditioner false), on one core: at 10 samples per stitch the
-// preconditioner's factorisations cost more CPU than the iterations they save (docs/serve.md).
-void BM_RelaxPlain(benchmark::State& state, int samplesPerStitch) {
-    measure(state, [samplesPerStitch](const knit::Chart& chart) {
-        knit::ChartCellOptions cellOptions;
-        cellOptions.samplesPerStitch = samplesPerStitch;
-        const knit::ChartCell cell = knit::chartToCell(chart, cellOptions);
-        knit::RelaxOptions options;
-        options.restLength = knit::ChartPatternOptions{}.restLength;
-        options.restScale = cell.restScale;
-        options.anchors = cell.anchors;
-        options.hessianPreconditioner = false;
-        knit::RelaxResult r;
-        tbb::task_arena oneCore(1);
-        oneCore.execute([&] { r = knit::relaxYarn(cell.pattern, options); });
-        return Outcome{r.iterations, r.converged, r.minDistance};
-    });
+knit::ChartPatternOptions warm() {
+    knit::ChartPatternOptions o;
+    o.warmStartSamples = knit::serve::kPreviewSamples;
+    return o;
 }
 
 void allCharts(benchmark::internal::Benchmark* b) {
@@ -107,7 +91,8 @@ void allCharts(benchmark::internal::Benchmark* b) {
 
 }  // namespace
 
-BENCHMARK_CAPTURE(BM_Relax, preview, knit::serve::kPreviewSamples)->Apply(allCharts);
-BENCHMARK_CAPTURE(BM_RelaxPlain, preview_plain, knit::serve::kPreviewSamples)->Apply(allCharts);
-BENCHMARK_CAPTURE(BM_Relax, full, knit::ChartPatternOptions{}.samplesPerStitch)->Apply(allCharts);
+BENCHMARK_CAPTURE(BM_Relax, preview, knit::serve::previewOptions())->Apply(allCharts);
+BENCHMARK_CAPTURE(BM_Relax, preview_preconditioned, preconditionedPreview())->Apply(allCharts);
+BENCHMARK_CAPTURE(BM_Relax, full, knit::ChartPatternOptions{})->Apply(allCharts);
+BENCHMARK_CAPTURE(BM_Relax, full_warm, warm())->Apply(allCharts);
 BENCHMARK_MAIN();

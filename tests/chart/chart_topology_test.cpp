@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "crossings.hpp"
 #include "knit/chart.hpp"
@@ -40,15 +41,21 @@ TEST(ChartTopology, cableLoopsAreThreadedThroughTheirSourceLoops) {
 
 // The legs of a cable's loops (the row below the cable row) cross each other, the left-moving
 // loop in front for a front cross, behind for a back cross.
-void expectCableCross(const std::string& text, int leftMoving, int rightMoving, bool front) {
-    const ChartCell cell = chartToCell(parseChart(text, "t.chart"));
+void expectCableCross(const std::string& text, int leftMoving, int rightMoving, bool front, int samples = 24) {
+    ChartCellOptions options;
+    options.samplesPerStitch = samples;
+    const ChartCell cell = chartToCell(parseChart(text, "t.chart"), options);
     const StitchLoop &l = cell.loop(cell.height - 1, leftMoving), &r = cell.loop(cell.height - 1, rightMoving);
     ASSERT_LT(l.headShift, 0);
     ASSERT_GT(r.headShift, 0);
     const std::vector<test::Crossing> c =
         test::crossingsBetween(cell.pattern, l.first, l.first + l.count, r.first, r.first + r.count, 0);
-    EXPECT_EQ(c.size(), 4u) << text;  // each leg of one loop over (under) each leg of the other
-    for (const test::Crossing& x : c) EXPECT_EQ(x.at.z > x.zb, front) << text;
+    EXPECT_EQ(c.size(), 4u) << text << " at " << samples;  // each leg of one loop over (under) each leg of the other
+    for (const test::Crossing& x : c) {
+        EXPECT_EQ(x.at.z > x.zb, front) << text << " at " << samples;
+        // built well apart in depth where they cross (the relaxation starts untangled)
+        EXPECT_GT(std::abs(x.at.z - x.zb), 0.5 * cell.pattern.radius) << text << " at " << samples;
+    }
 }
 
 TEST(ChartTopology, cablesCrossInTheRequestedDirection) {
@@ -57,6 +64,23 @@ TEST(ChartTopology, cablesCrossInTheRequestedDirection) {
     expectCableCross("k k k k\nc2/2f\n", 3, 1, true);
     expectCableCross("p k k p\np c1/1b p\n", 2, 1, false);
     expectCableCross("p k k p\np c1/1f p\n", 2, 1, true);
+}
+
+// The cable legs cross between |t| = 1.5 and 1.66 of the loop parameter, narrower than the
+// samples' spacing there: at 10 samples per stitch (the page's preview) both samples beside the
+// crossing missed the cable depth, the 4 x 4 cable's legs were built 0.011 r apart and its
+// preview relaxed them to 5e-11 r. At any sampling the legs are now built apart and cross as asked.
+TEST(ChartTopology, cableLegsAreBuiltApartAtAnySampling) {
+    for (int samples = 8; samples <= 16; ++samples) {
+        expectCableCross("k k k k\nc2/2f\n", 2, 0, true, samples);
+        expectCableCross("k k k k\nc2/2b\n", 3, 1, false, samples);
+        expectCableCross("p k k p\np c1/1b p\n", 2, 1, false, samples);
+        expectCableCross("k k k k k k\nc3/3f\n", 3, 0, true, samples);
+        ChartCellOptions options;
+        options.samplesPerStitch = samples;
+        const ChartCell cell = chartToCell(parseChart("c2/2f\nk k k k\nk k k k\nk k k k\n", "cable"), options);
+        EXPECT_GT(minYarnDistance(cell.pattern), 0.3) << samples;
+    }
 }
 
 TEST(ChartTopology, ribAlternatesFrontAndBackColumns) {

@@ -69,12 +69,11 @@ CellRelaxation cellRelaxation(ServerState& state, const Chart& chart, const Char
     return r;
 }
 
-// The preview: the chart relaxed at kPreviewSamples, its intermediate swatches streamed, then a
+// The preview: the chart relaxed with previewOptions(), its intermediate swatches streamed, then a
 // "preview" line with the relaxed swatch and the chart's design warnings.
 void preview(ServerState& state, const Chart& chart, const CancelToken& token, const Emit& emit,
              const std::array<double, 2>& repeats) {
-    ChartPatternOptions options;
-    options.samplesPerStitch = kPreviewSamples;
+    ChartPatternOptions options = previewOptions();
     options.onStep = stepLines("preview", token, emit, &repeats);
     options.stepInterval = 20;
     const ChartCell cell = chartToCell(chart, cellOptions(options));

@@ -54,9 +54,17 @@ std::string relaxationKey(const ChartCell& cell, const ChartPatternOptions& opti
     const Pattern& p = cell.pattern;
     std::string key;
     key.reserve(64 + p.points.size() * (sizeof(glm::dvec3) + sizeof(PeriodicEdge) + sizeof(double)));
-    const double numbers[] = {
-        options.radius, double(options.samplesPerStitch), options.restLength, double(options.maxIterations), p.px, p.py,
-        p.radius};
+    const double numbers[] = {options.radius,
+                              double(options.samplesPerStitch),
+                              options.restLength,
+                              double(options.maxIterations),
+                              double(options.affinePeriod),
+                              double(options.hessianPreconditioner),
+                              double(options.warmStartSamples),
+                              double(options.warmStartPreconditioner),
+                              p.px,
+                              p.py,
+                              p.radius};
     appendBytes(key, numbers, std::size(numbers));
     const uint64_t counts[] = {p.points.size(), p.edges.size(), cell.restScale.size()};
     appendBytes(key, counts, std::size(counts));
@@ -103,6 +111,13 @@ void addDesignWarnings(const Chart& chart, const ChartCell& cell, nlohmann::json
         warnings.push_back(std::to_string(eyelets) +
                            (eyelets == 1 ? " yarn-over opens an eyelet" : " yarn-overs open eyelets") +
                            " (holes) per repeat");
+}
+
+ChartPatternOptions previewOptions() {
+    ChartPatternOptions o;
+    o.samplesPerStitch = kPreviewSamples;
+    o.hessianPreconditioner = kPreviewPreconditioner;
+    return o;
 }
 
 ChartCellOptions cellOptions(const ChartPatternOptions& options) {

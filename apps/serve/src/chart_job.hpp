@@ -84,11 +84,18 @@ private:
 void addDesignWarnings(const Chart& chart, const ChartCell& cell, nlohmann::json& warnings);
 
 // Samples per stitch of the swatch's preview: the cell relaxed at 10 instead of `knit chart`'s 24
-// converges several times sooner (bench/serve_bench.cpp: the charts up to 4 x 4 of docs/serve.md
-// in 0.01-0.11 s of CPU, against 0.06-0.66 s with three at the 4000-iteration cap), so the page
-// shows relaxed yarns while the full relaxation runs. At 12 it took up to twice as long
+// converges several times sooner, so the page shows relaxed yarns while the full relaxation runs
+// (build/bench/serve_bench, docs/serve.md "Measured": the charts up to 4 x 4 in 6-145 ms of CPU
+// by plain L-BFGS, against 0.07-3.8 s for the full relaxation). At 12 it took up to twice as long
 // (eyelet-mesh 3232 iterations); at 8 the 3 x 3 moss did not converge.
 constexpr int kPreviewSamples = 10;
+// The preview relaxes by plain L-BFGS (ChartPatternOptions::hessianPreconditioner false): at 10
+// samples per stitch the preconditioner's factorisations cost more CPU than the iterations they
+// save, and every preview settles in the same rest state either way (docs/serve.md).
+constexpr bool kPreviewPreconditioner = false;
+
+// The options of the page's preview.
+ChartPatternOptions previewOptions();
 
 // The initial cell relaxChart builds with `options`.
 ChartCellOptions cellOptions(const ChartPatternOptions& options);

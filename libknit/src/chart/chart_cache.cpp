@@ -17,9 +17,13 @@ namespace knit {
 std::string chartCacheKey(const std::string& chartText, const ChartPatternOptions& o) {
     std::ostringstream key;
     key.precision(17);
-    key << "v9 " << o.radius << ' ' << o.samplesPerStitch << ' ' << o.restLength << ' ' << o.maxIterations
-        << (o.affinePeriod ? " affine" : "") << '\n'  // the default's keys as before the option
-        << chartText;
+    // v10: cables built at samples per stitch not divisible by 4 changed (chart_topology.cpp,
+    // loopParameter); v9: two-column intarsia jumps, one-stitch rows' tails higher. Options at
+    // their defaults add nothing to the key.
+    key << "v10 " << o.radius << ' ' << o.samplesPerStitch << ' ' << o.restLength << ' ' << o.maxIterations
+        << (o.affinePeriod ? " affine" : "") << (o.hessianPreconditioner ? "" : " plain");
+    if (o.warmStartSamples > 0) key << " warm " << o.warmStartSamples << (o.warmStartPreconditioner ? " hessian" : "");
+    key << '\n' << chartText;
     char name[40];
     std::snprintf(name, sizeof name, "chart-%016llx.pyp", static_cast<unsigned long long>(util::fnv1a(key.str())));
     return name;

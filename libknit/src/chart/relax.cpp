@@ -217,11 +217,9 @@ constexpr size_t kPreconditionedMemory = 20;
 // Larger cells keep plain L-BFGS: the factorisation's fill grows faster than the cell (a 12 x 16
 // cable cell, 4608 vertices, ran for minutes of CPU instead of 12.6 s).
 constexpr size_t kMaxPreconditionedVertices = 1000;
-// The first steps stay plain L-BFGS: while the loose cell pulls tight it chooses its rest state,
-// and preconditioned from the start some cells settled in another one (garter at energy 26.2
-// against 23.4, with a stitch that lost a crossing); from there on the preconditioner speeds the
-// slow tail (most built-ins end in plain L-BFGS's states; docs/charts.md lists them).
-constexpr int kPlainStart = 300;
+// The first RelaxOptions::plainIterations steps stay plain L-BFGS (the loose cell chooses its
+// rest state); from there on the preconditioner speeds the slow tail (most built-ins end in
+// plain L-BFGS's states; docs/charts.md lists them).
 
 struct PointRef {
     uint32_t i = 0;
@@ -357,9 +355,9 @@ Problem setUp(const Pattern& p, const RelaxOptions& opt, Vec& v) {
     for (size_t i = 0; i < pb.n; ++i)
         if (in[i] >= 0 && out[i] >= 0)
             pb.bends.push_back({uint32_t(i), pb.segs[size_t(in[i])], pb.segs[size_t(out[i])]});
-    if (!(opt.restLength > 0) || !(opt.contactDistance > 0) || opt.maxIterations < 0)
+    if (!(opt.restLength > 0) || !(opt.contactDistance > 0) || opt.maxIterations < 0 || opt.plainIterations < 0)
         throw Error(
-            "yarn relaxation: the rest length and the contact distance must be positive and the iteration count >= 0");
+            "yarn relaxation: the rest length and the contact distance must be positive and the iteration counts >= 0");
     if (!(opt.relativeGradientTolerance >= 0) || !(opt.relativeEnergyTolerance >= 0) || opt.energyWindow < 0)
         throw Error("yarn relaxation: the relative gradient and energy tolerances and the energy window must be >= 0");
     if (!opt.restScale.empty() && opt.restScale.size() != pb.n)
@@ -392,6 +390,25 @@ Problem setUp(const Pattern& p, const RelaxOptions& opt, Vec& v) {
     }
     pb.meanRest = total / double(std::max<size_t>(pb.segs.size(), 1));
     return pb;
+}
+
+// RelaxOptions::startPoints and the start period, in yarn radii (v's layout).
+Vec startVector(const Problem& pb, const Pattern& p, const RelaxOptions& opt) {
+    if (opt.startPoints.size() != pb.n)
+        throw Error("yarn relaxation: " + std::to_string(opt.startPoints.size()) + " start points for " +
+                    std::to_string(pb.n) + " vertices");
+    if (!(opt.startPx > 0) || !(opt.startPy > 0) || !std::isfinite(opt.startPx) || !std::isfinite(opt.startPy))
+        throw Error("yarn relaxation: the start period must be positive");
+    Vec v(Eigen::Index(3 * pb.n + 2));
+    for (size_t i = 0; i < pb.n; ++i)
+        for (int c = 0; c < 3; ++c) {
+            const double x = opt.startPoints[i][c];
+            if (!std::isfinite(x)) throw Error("yarn relaxation: start point " + std::to_string(i) + " is not finite");
+            v[Eigen::Index(3 * i + size_t(c))] = x / p.radius;
+        }
+    v[Eigen::Index(3 * pb.n)] = opt.startPx / p.radius;
+    v[Eigen::Index(3 * pb.n + 1)] = opt.startPy / p.radius;
+    return v;
 }
 
 std::vector<glm::dvec3> positions(const Problem& pb, const Vec& v) {
@@ -505,12 +522,20 @@ RelaxResult relaxYarn(const Pattern& initial, const RelaxOptions& options) {
     Vec g, gNew, vNew;
     double dmin = 0, dminNew = 0;  // smallest pair distance now and after the trial step
     double e = energy(pb, pairs, v, g, &dmin);
+    // The stop tests' references: the initial pattern's gradient and energy, also when it starts
+    // elsewhere (a start near rest would otherwise tighten the relative tests).
+    const double gStart = g.lpNorm<Eigen::Infinity>(), eStart = e;
+    if (!options.startPoints.empty()) {
+        v = startVector(pb, initial, options);
+        pairs = pairsOf(pb, v, skin);
+        built = v;
+        e = energy(pb, pairs, v, g, &dmin);
+    }
     std::vector<Vec> S, Y;
     Factor ldlt;
     bool haveFactor = false;  // ldlt holds the preconditioner (refactorised every kRefactorEvery steps)
     RelaxResult result;
     result.closestApproach = dmin;
-    const double gStart = g.lpNorm<Eigen::Infinity>(), eStart = e;
     std::vector<double> history;  // energy after each iteration
     int it = 0;
     for (; it < options.maxIterations; ++it) {
@@ -526,8 +551,8 @@ RelaxResult relaxYarn(const Pattern& initial, const RelaxOptions& options) {
         // Step 2: direction (L-BFGS, preconditioned by the Hessian when asked, steepest descent
         // when it is not a descent direction), in affine period coordinates when asked.
         const bool affine = options.affinePeriod && options.freePeriod;
-        const bool preconditioned =
-            options.hessianPreconditioner && !affine && pb.n <= kMaxPreconditionedVertices && it >= kPlainStart;
+        const bool preconditioned = options.hessianPreconditioner && !affine && pb.n <= kMaxPreconditionedVertices &&
+                                    it >= options.plainIterations;
         const Vec gw = affine ? affineGradient(pb, v, g) : g;
         Vec dw;
         if (preconditioned && (it % kRefactorEvery == 0 || !haveFactor))
