@@ -88,7 +88,8 @@ public:
         cacheFormatOf(path, format);
         topologyHeader_ = cacheTopologyHeader(format, seq.frame(0).number, seq.frames().back().number, step, fps);
         CacheInfo info;
-        info.points = plies_ ? animator.plyPointCount() : animator.rest().yarns().curves.pointCount();
+        // (the binding's vertex count: the yarns' points, without evaluating a loaded scene's rest yarns)
+        info.points = plies_ ? animator.plyPointCount() : animator.rest().binding().vertexCount();
         info.frames = seq.size();
         info.startFrame = seq.frame(0).number;
         info.step = step;  // PC2: the chunks of a farm run record their frame range (knit cache merge)
@@ -224,7 +225,7 @@ nlohmann::json animateReport(double bindSeconds, const std::vector<FrameRecord>&
                                {"stats", s.evaluate.stats},
                                {"write", s.write}}},
                              {"peakMemoryBytes", util::peakResidentBytes()},
-                             {"yarnVertices", animator.rest().yarns().curves.pointCount()},
+                             {"yarnVertices", animator.rest().binding().vertexCount()},
                              {"plyVertices", animator.plyPointCount()},
                              {"yarnRadius", animator.rest().yarnRadius()}};
     nlohmann::json& list = report["frames"] = nlohmann::json::array();
@@ -402,7 +403,7 @@ int runAnimate(const AnimateCommand& a) {
     });
     if (a.scene.quiet) return 0;  // -q: only errors and warnings
     std::printf("animated %zu frames (%zu yarn vertices, %zu ply vertices per frame): %s %.3f s, wrote %s\n",
-                frames.size(), rest.yarns().curves.pointCount(), animator.plyPointCount(),
+                frames.size(), rest.binding().vertexCount(), animator.plyPointCount(),
                 a.bound.empty() ? "bind" : "load", bindSeconds, a.exportOptions.path.c_str());
     return 0;
 }

@@ -303,8 +303,8 @@ void registerSceneClass(py::module_& m) {
             "resampled afresh on one pose use make_plies(scene.evaluate(positions), ...). Raises knit.Error.")
         .def("__repr__", [](const knit::Scene& s) {
             return "<knit.Scene '" + s.pattern().name + "' on '" + s.mesh().name +
-                   "': " + std::to_string(s.yarns().curves.curveCount()) + " yarns, " +
-                   std::to_string(s.yarns().curves.pointCount()) + " yarn points>";
+                   "': " + std::to_string(s.binding().yarnCount()) + " yarns, " +
+                   std::to_string(s.binding().vertexCount()) + " yarn points>";  // a loaded scene's yarns stay lazy
         });
 }
 

@@ -20,7 +20,8 @@ using glm::dvec3;
 
 constexpr double kRadius = 0.001;  // yarn radius: diameters are 2 mm
 
-// Centrelines with their rest arc lengths and rest lengths (what the Animator passes).
+// Centrelines with their rest arc lengths and rest lengths (what the Animator passes), and the
+// yarn of each point for the brute force (the search takes it from the curves' offsets).
 struct Centres {
     Polylines curves;
     std::vector<uint32_t> yarnOf;
@@ -69,7 +70,7 @@ double bruteForce(const Centres& c, const AnimatorOptions& o) {
 }
 
 double search(const Centres& c, const AnimatorOptions& o, DistanceScratch& scratch) {
-    return minYarnDistance(c.curves, c.yarnOf, c.arc, c.length, kRadius, o, scratch);
+    return minYarnDistance(c.curves, c.arc, c.length, kRadius, o, scratch);
 }
 
 void expectSame(double found, double expected, int frame) {
@@ -125,6 +126,33 @@ TEST(AnimationStats, nothingWithinTheCutoffIsInfinityAndTheNextFrameStillFindsPa
     EXPECT_TRUE(std::isinf(bruteForce(c, o)));
     for (uint32_t k = c.curves.begin(1); k < c.curves.end(1); ++k) c.curves.points[k].z -= 1.0;
     expectSame(search(c, o, scratch), 0.75, 1);
+}
+
+// The search finds each point's yarn by walking the curve offsets: with empty yarns between and
+// over many parallel ranges (more than 2 x 16384 points), every point must get its own yarn, else
+// two neighbours of one yarn (a quarter of a diameter apart) would count as different yarns.
+TEST(AnimationStats, eachPointsYarnComesFromTheOffsetsAcrossRangesAndEmptyYarns) {
+    Centres c;
+    const int yarns = 40, points = 1200;
+    for (int y = 0; y < yarns; ++y) {
+        if (y % 5 == 2) {  // an empty yarn
+            c.length.push_back(0.0);
+            c.curves.offsets.push_back(static_cast<uint32_t>(c.curves.points.size()));
+            c.curves.closed.push_back(0);
+            continue;
+        }
+        for (int k = 0; k < points; ++k) {  // straight along x, 1.5 mm apart in z
+            c.curves.points.push_back(dvec3(0.5 * kRadius * k, 0, y * 0.0015));
+            c.arc.push_back(0.5 * kRadius * k);
+        }
+        c.length.push_back(0.5 * kRadius * (points - 1));
+        c.curves.offsets.push_back(static_cast<uint32_t>(c.curves.points.size()));
+        c.curves.closed.push_back(0);
+    }
+    ASSERT_GT(c.curves.pointCount(), 2u * 16384u);
+    const AnimatorOptions o;
+    DistanceScratch scratch;
+    expectSame(search(c, o, scratch), 0.75, 0);
 }
 
 // One closed yarn: its neighbouring points never count, a hairpin pressed onto itself does

@@ -1,6 +1,6 @@
 // Bound scene files (knit/bound_scene.hpp): a loaded scene evaluates frames to the same bytes as
-// the scene that was saved, with its strain table when it has one; other versions and damaged
-// files are refused saying which.
+// the scene that was saved, with its strain table when it has one, and its lazily evaluated rest
+// yarns equal the saved scene's; other versions and damaged files are refused saying which.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -151,12 +151,16 @@ TEST(BoundScene, otherVersionsAndDamagedFilesAreRefusedSayingWhich) {
     const std::string bytes = encodeBoundScene(restScene(), {});
     std::string v = bytes;
     v[8] = 7;  // format version 7
-    EXPECT_NE(errorOf(v).find("has format version 7 (written by a newer knit); this knit reads version 3 only: bind "
+    EXPECT_NE(errorOf(v).find("has format version 7 (written by a newer knit); this knit reads version 4 only: bind "
                               "the scene again with this knit (`knit bind --mesh REST ... -o g.knitbind`)"),
               std::string::npos)
         << errorOf(v);
+    v[8] = 3;  // a file of the previous format (no stretch references: the rest yarns were evaluated on loading)
+    EXPECT_NE(errorOf(v).find("has format version 3 (written by an older knit); this knit reads version 4 only"),
+              std::string::npos)
+        << errorOf(v);
     v[8] = 1;  // a file of the first format (no Animator state)
-    EXPECT_NE(errorOf(v).find("has format version 1 (written by an older knit); this knit reads version 3 only"),
+    EXPECT_NE(errorOf(v).find("has format version 1 (written by an older knit); this knit reads version 4 only"),
               std::string::npos)
         << errorOf(v);
     EXPECT_NE(errorOf(bytes.substr(0, bytes.size() - 100)).find("is truncated"), std::string::npos);
@@ -348,9 +352,70 @@ TEST(BoundScene, aDamagedOrMismatchedEmbeddedTableIsRefusedNamingTheFile) {
     // A file of the previous format (before the table was stored) says so.
     std::string v2 = bytes;
     v2[8] = 2;
-    EXPECT_NE(errorOf(v2).find("has format version 2 (written by an older knit); this knit reads version 3 only"),
+    EXPECT_NE(errorOf(v2).find("has format version 2 (written by an older knit); this knit reads version 4 only"),
               std::string::npos)
         << errorOf(v2);
+}
+
+// The rest yarns of a loaded scene are evaluated lazily (Scene::yarns), from the binding, mesh
+// and deformer; they must equal the bound scene's bit for bit, and what the Animator and the
+// scene would have derived from them at load is stored instead, equal to what they derive.
+void expectLazyRestYarnsEqual(const Scene& rest) {
+    const BoundScene loaded = decodeBoundScene(encodeBoundScene(rest, {}), "g.knitbind");
+    // An Animator with plies and statistics evaluating a frame asks nothing of the rest yarns.
+    EXPECT_FALSE(loaded.scene.yarnsEvaluated());
+    const Animator a(rest), b(loaded.scene);
+    AnimationFrame fa, fb;
+    const std::vector<glm::dvec3> frame = waved(rest.mesh());
+    a.evaluate(frame, fa);
+    b.evaluate(frame, fb);
+    EXPECT_FALSE(loaded.scene.yarnsEvaluated());
+    EXPECT_EQ(fa.plies.curves.points, fb.plies.curves.points);
+    EXPECT_EQ(fa.plies.curves.closed, fb.plies.curves.closed);
+    EXPECT_EQ(fa.stats.maxStretch, fb.stats.maxStretch);
+    EXPECT_EQ(fa.stats.yarnLengthRatio, fb.stats.yarnLengthRatio);
+    EXPECT_EQ(fa.stats.minYarnDistance, fb.stats.minYarnDistance);
+    // The stored stretch references and deform statistics are what the rest scene gives.
+    const PlyGenerator generator(rest.yarns(), rest.plyOptions());
+    const AnimatorBindState fresh = computeAnimatorBindState(rest, generator);
+    ASSERT_EQ(fresh.restSegment.size(), rest.yarns().curves.pointCount());
+    EXPECT_EQ(loaded.scene.animatorState()->restSegment, fresh.restSegment);
+    EXPECT_EQ(loaded.scene.animatorState()->restTotalLength, fresh.restTotalLength);
+    EXPECT_EQ(std::memcmp(&loaded.scene.deformStats(), &rest.deformStats(), sizeof(DeformStats)), 0);
+    // A copy made before the first call shares the evaluation; both give the bound yarns.
+    const Scene copy = loaded.scene;
+    const MappedYarns& y = loaded.scene.yarns();
+    EXPECT_TRUE(loaded.scene.yarnsEvaluated());
+    EXPECT_TRUE(copy.yarnsEvaluated());
+    EXPECT_EQ(&copy.yarns(), &y);
+    const MappedYarns& r = rest.yarns();
+    EXPECT_EQ(y.curves.points, r.curves.points);
+    EXPECT_EQ(y.curves.offsets, r.curves.offsets);
+    EXPECT_EQ(y.curves.closed, r.curves.closed);
+    EXPECT_EQ(y.normals, r.normals);
+    EXPECT_EQ(y.colour, r.colour);
+    EXPECT_EQ(y.twist, r.twist);
+}
+
+TEST(BoundScene, restYarnsAreEvaluatedOnFirstUseAndEqualTheBoundOnes) {
+    expectLazyRestYarnsEqual(restScene());
+    const Scene strained = strainedRestScene(testTable());
+    ASSERT_FALSE(strained.yarns().twist.empty());  // the deformer's part of the yarns is compared too
+    expectLazyRestYarnsEqual(strained);
+}
+
+TEST(BoundScene, badStretchReferencesOrDeformStatisticsAreRefused) {
+    const std::string bytes = encodeBoundScene(restScene(), {});
+    const FieldOffsets at(bytes);
+    const std::string prefix = "bound scene 'g.knitbind' is inconsistent: ";
+    std::string e = errorOf(withValue(bytes, at["the rest segment lengths"] + 8, -1.0));
+    EXPECT_NE(e.find(prefix + "its Animator state: a rest segment length or the rest yarns' total length is negative"),
+              std::string::npos)
+        << e;
+    e = errorOf(withValue(bytes, at["the rest yarns' total length"], std::numeric_limits<double>::infinity()));
+    EXPECT_NE(e.find(prefix + "its Animator state: a rest segment length"), std::string::npos) << e;
+    e = errorOf(withValue(bytes, at["the deform statistics"], uint64_t(5)));
+    EXPECT_NE(e.find(prefix + "the deform mode is none, but deform statistics follow"), std::string::npos) << e;
 }
 
 TEST(BoundScene, aSceneMadeFromPartsIsNotSaved) {

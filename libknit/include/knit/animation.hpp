@@ -197,9 +197,10 @@ class Animator {
 public:
     // Bind-time work on the rest scene (its mesh, binding and yarns; plyOptions resolved here
     // unless only the yarns are evaluated):
-    // the resampling layouts, rest arc lengths, pitches and twist phases, frame seeds (adopted,
-    // not recomputed, from a scene loaded from a bound scene file: Scene::animatorState), rest
-    // segment lengths. Keeps a
+    // the resampling layouts, rest arc lengths, pitches and twist phases, frame seeds, rest
+    // segment lengths (adopted, not recomputed, from a scene loaded from a bound scene file:
+    // Scene::animatorState; such an Animator never asks for the rest yarns, which the loaded
+    // scene then does not evaluate). Keeps a
     // reference to `rest`, which must outlive the Animator. Throws knit::Error for bad ply
     // options, more than 2^32-1 ply points or plies over options.budget.
     explicit Animator(const Scene& rest, const AnimatorOptions& options = {});
@@ -231,21 +232,24 @@ private:
     std::optional<PlyGenerator> generator_;  // on the rest yarns: options, spacing, ply phases (plies or stats)
     // The bind-time decisions (resampling layouts, rest arc lengths, pitches, twist phases, frame
     // seeds): the rest scene's stored ones (a bound scene file's) or computed here; plies or stats.
+    // (It also holds the stretch references: the rest length of each yarn segment and of all.)
     std::shared_ptr<const AnimatorBindState> bind_;
-    std::vector<uint32_t> yarnOfCentre_;  // yarn of each resampled point (stats)
-    std::vector<double> restSegment_;     // rest length of the segment from each yarn vertex (0: none)
-    double restTotalLength_ = 0;          // totalYarnLength of the rest yarns
-    std::vector<size_t> plyOfYarn_;       // first ply point of each yarn
+    // With a stored state: the rest yarns' offsets and closed flags alone (from the binding), which
+    // the generator reads (curve frames need the closed flags), so the rest yarns stay unevaluated.
+    // Shared: the generator keeps a reference, which a copy of the Animator keeps valid.
+    std::shared_ptr<const MappedYarns> restTopology_;
+    std::vector<size_t> plyOfYarn_;  // first ply point of each yarn
     Plies plyTopology_;
 };
 
 // The statistics of a frame (what Animator::evaluate computes when options.stats is set):
-// `restSegment` per yarn vertex, `yarnOfCentre` and `restArc` per centre point, `yarnRadius`.
+// `restSegment` per yarn vertex, `restArc` per centre point, `restLength` per yarn, `yarnRadius`
+// (a centre point's yarn is the curve of `centres` it lies on).
 double maxYarnStretch(const Polylines& yarns, const std::vector<double>& restSegment);
 // Total length of the curves (closed ones with their closing segment); the same for any thread count.
 double totalYarnLength(const Polylines& yarns);
-double minYarnDistance(const Polylines& centres, const std::vector<uint32_t>& yarnOfCentre,
-                       const std::vector<double>& restArc, const std::vector<double>& restLength, double yarnRadius,
-                       const AnimatorOptions& options, DistanceScratch& scratch);
+double minYarnDistance(const Polylines& centres, const std::vector<double>& restArc,
+                       const std::vector<double>& restLength, double yarnRadius, const AnimatorOptions& options,
+                       DistanceScratch& scratch);
 
 }  // namespace knit

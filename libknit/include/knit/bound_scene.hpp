@@ -12,13 +12,17 @@
 // version 3) the scene's deformation (SceneOptions::deform as knit::decideDeform chose it: the
 // mode and why) with, for strain, the strain table itself (float32, the whole table: a farm
 // worker needs no cache and no path of the machine that bound the scene; covered by the
-// checksum) and each yarn vertex's pattern vertex (Binding::source). Loading rebuilds
-// the cheap rest: the rest vertex normals, the rest yarns (the binding evaluated on the rest mesh,
-// with strain displaced by the table as buildScene does) and the UV grid, with the same code as
-// binding; the loaded scene carries the stored Animator state (Scene::animatorState), which its
-// Animators adopt instead of resampling the rest yarns, and its strain deformer
-// (Scene::deformer), which they apply on every frame. So a loaded scene evaluates every frame to
-// the same bytes as the scene that was saved. Nothing depends on other frames.
+// checksum) and each yarn vertex's pattern vertex (Binding::source); and (format version 4) the
+// Animator's stretch references (the rest length of every yarn segment and of all yarns) and
+// what the deformer did on the rest mesh (Scene::deformStats). Loading rebuilds the cheap rest
+// with the same code as binding: the rest vertex normals and the UV grid; the rest yarns (the
+// binding evaluated on the rest mesh, with strain displaced by the table as buildScene does)
+// are evaluated lazily, on the first Scene::yarns call (an Animator never makes it: what it
+// derives from them is stored), so a farm task that bakes frames does not hold them. The loaded
+// scene carries the stored Animator state (Scene::animatorState), which its Animators adopt
+// instead of resampling the rest yarns, and its strain deformer (Scene::deformer), which they
+// apply on every frame. So a loaded scene evaluates every frame to the same bytes as the scene
+// that was saved. Nothing depends on other frames.
 //
 // Layout (little-endian): a 32-byte header
 //   char[8] "KNITBIND", u32 format version, u32 header size (32), u64 payload bytes,
@@ -26,7 +30,8 @@
 // then the payload: the fields above in a fixed order, arrays as a u64 count and packed
 // elements, strings as a u64 length and bytes. A file of another format version (version 1:
 // written before the Animator state was stored; version 2: before the deformation and its table
-// were; bind the scene again), a truncated or otherwise damaged file (size or checksum wrong,
+// were; version 3: before the stretch references and deform statistics were; bind the scene
+// again), a truncated or otherwise damaged file (size or checksum wrong,
 // counts beyond the file, indices out of range, an embedded table that is not finite or does not
 // fit the pattern) is refused with a knit::Error saying which.
 #pragma once
@@ -40,7 +45,7 @@
 namespace knit {
 
 // The format this library writes and reads (a file of any other version is refused).
-constexpr uint32_t kBoundSceneFormatVersion = 3;
+constexpr uint32_t kBoundSceneFormatVersion = 4;
 
 struct BoundSceneInfo {
     uint32_t formatVersion = kBoundSceneFormatVersion;
@@ -52,7 +57,7 @@ struct BoundSceneInfo {
 };
 
 struct BoundScene {
-    Scene scene;  // pattern, placement, mesh, normals, grid, binding, rest yarns, ply options
+    Scene scene;  // pattern, placement, mesh, normals, grid, binding, rest yarns (lazily), ply options
     BoundSceneInfo info;
 };
 

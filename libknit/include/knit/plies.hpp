@@ -92,6 +92,9 @@ public:
 
 private:
     friend struct impl::PlyKernel;
+    struct TopologyOnly {};
+    // Options resolved and validated, `yarns` taken as they are (impl::PlyKernel::replayGenerator).
+    PlyGenerator(const MappedYarns& yarns, const PlyOptions& options, TopologyOnly);
     const MappedYarns& yarns_;
     PlyOptions options_;
     double spacing_ = 0;

@@ -81,6 +81,9 @@ struct SceneParts {
     UvGrid grid;                      // the renderer's grid mode needs only cellSize
     Binding binding;                  // of `yarns` on `mesh`
     MappedYarns yarns;
+    // True (a loaded bound scene): `yarns` is left empty and Scene::yarns evaluates the binding on
+    // the rest mesh (and applies `deformer`) the first time it is asked, as buildScene did.
+    bool lazyYarns = false;
     Plies plies;
     std::optional<SceneDetail> detail;     // a view's levels and pieces (of these yarns)
     std::optional<PlyOptions> plyOptions;  // none: the defaults with yarnRadius
@@ -116,7 +119,17 @@ public:
     const UvGrid& grid() const { return grid_; }
     const Binding& binding() const { return bound_.binding; }
     const BindStats& bindStats() const { return bound_.stats; }
-    const MappedYarns& yarns() const { return yarns_; }
+    // The rest yarns. A scene loaded from a bound scene file (knit/bound_scene.hpp) evaluates
+    // them on the first call (the binding on the rest mesh and normals, displaced by the strain
+    // deformer when it has one: buildScene's evaluate and deform stages, bit for bit; thread-safe,
+    // once per scene and its copies): the Animator of a loaded scene needs none of them (its
+    // stored state has what it would derive), so a farm task that only bakes frames never pays
+    // for them (141 MB and ~0.1 CPU-s on the 3M-vertex garment). A renderer or exporter pays on
+    // its first call.
+    const MappedYarns& yarns() const;
+    // False while a loaded scene's rest yarns are unevaluated (yarns() not called yet); true for
+    // a built scene.
+    bool yarnsEvaluated() const;
     const Plies& plies() const { return plies_; }  // empty unless SceneOptions::buildPlies
     // Ply settings, yarnRadius set (resolved when the plies were built; else by their consumer).
     const PlyOptions& plyOptions() const { return plyOptions_; }
@@ -152,6 +165,8 @@ private:
     SceneStages stages_;
     BindResult bound_;
     MappedYarns yarns_;
+    struct LazyYarns;                       // scene.cpp: the rest yarns of a loaded scene, on first use
+    std::shared_ptr<LazyYarns> lazyYarns_;  // null: yarns_ holds them
     Plies plies_;
     PlyOptions plyOptions_;
     std::vector<StageTime> timings_;

@@ -12,9 +12,9 @@
 // the answer, so a grid of cells that size finds every closer pair (frames change little, and
 // the cost grows with the cube of the cell size). Points are packed in float relative to the
 // frame's first point (distance rounding ~1e-7 of the garment's extent; the pair found is
-// measured again in double) with their yarn and rest arc length, so the inner loop reads only
-// contiguous memory; cells are hashed in blocks of 8 x 8 x 8 so most neighbours of a cell are
-// next to it in the table.
+// measured again in double) with their yarn (walked along the centres' offsets) and rest arc
+// length, so the inner loop reads only contiguous memory; cells are hashed in blocks of 8 x 8 x 8
+// so most neighbours of a cell are next to it in the table.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -87,6 +87,22 @@ bool different(const Packed& a, const Packed& b, const Polylines& centres, const
     return along > separation;
 }
 
+// The yarn of each centre point, for the points visited in order from the first: walked along
+// the curve offsets (no per-point yarn index is kept: 4 bytes per resampled point, 38 MB on the
+// 3M-vertex garment, for what the offsets already say).
+class YarnWalk {
+public:
+    explicit YarnWalk(const std::vector<uint32_t>& offsets) : offsets_(offsets) {}
+    uint32_t at(size_t i) {
+        while (i >= offsets_[yarn_ + 1]) ++yarn_;  // skips empty yarns too
+        return yarn_;
+    }
+
+private:
+    const std::vector<uint32_t>& offsets_;
+    uint32_t yarn_ = 0;
+};
+
 // The closest qualifying pair found: squared float distance and the two centreline points.
 struct Closest {
     float d2;
@@ -106,20 +122,16 @@ uint32_t bucketOf(const Cell& c, uint32_t blockMask) {
 
 // The closest pair of qualifying points closer than `cell` ({+inf, 0, 0} when there is none):
 // a hash of cells of that size, each pair checked once by a half stencil.
-Closest closestWithin(const Polylines& centres, const std::vector<uint32_t>& yarnOf, const std::vector<double>& arc,
-                      const std::vector<double>& length, double separation, double cell, DistanceScratch& scratch) {
+Closest closestWithin(const Polylines& centres, const std::vector<double>& arc, const std::vector<double>& length,
+                      double separation, double cell, DistanceScratch& scratch) {
     const size_t n = centres.pointCount();
     const dvec3* p = centres.points.data();
     const dvec3 origin = p[0];
     const double inv = 1.0 / cell;
-    const auto pack = [&](size_t i) {
+    const auto pack = [&](size_t i, uint32_t yarn) {
         const dvec3 d = p[i] - origin;
-        return Packed{static_cast<float>(d.x),
-                      static_cast<float>(d.y),
-                      static_cast<float>(d.z),
-                      static_cast<uint32_t>(i),
-                      yarnOf[i],
-                      static_cast<float>(arc[i])};
+        const auto f = [](double v) { return static_cast<float>(v); };
+        return Packed{f(d.x), f(d.y), f(d.z), static_cast<uint32_t>(i), yarn, f(arc[i])};
     };
     // Cells of the packed (float) coordinates the distances are computed from. A coordinate
     // beyond float's range (a finite double far out) is infinite here: its cell index is clamped
@@ -141,13 +153,15 @@ Closest closestWithin(const Polylines& centres, const std::vector<uint32_t>& yar
     scratch.bucketStart.assign(buckets + 1, 0);
     scratch.packed.resize(n);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1 << 14), [&](const tbb::blocked_range<size_t>& r) {
-        for (size_t i = r.begin(); i < r.end(); ++i) scratch.keys[i] = bucketOf(cellOf(pack(i)), blockMask);
+        // (The yarn plays no part in the cell.)
+        for (size_t i = r.begin(); i < r.end(); ++i) scratch.keys[i] = bucketOf(cellOf(pack(i, 0)), blockMask);
     });
     uint32_t* start = scratch.bucketStart.data();
     for (size_t i = 0; i < n; ++i) ++start[scratch.keys[i] + 1];
     util::countsToOffsets(scratch.bucketStart);
     // Filling advances each bucket's start to its end (the next bucket's start): shift back.
-    for (size_t i = 0; i < n; ++i) scratch.packed[start[scratch.keys[i]]++] = pack(i);
+    YarnWalk walk(centres.offsets);
+    for (size_t i = 0; i < n; ++i) scratch.packed[start[scratch.keys[i]]++] = pack(i, walk.at(i));
     for (size_t b = buckets; b > 0; --b) start[b] = start[b - 1];
     start[0] = 0;
 
@@ -188,9 +202,8 @@ Closest closestWithin(const Polylines& centres, const std::vector<uint32_t>& yar
 
 }  // namespace
 
-double minYarnDistance(const Polylines& centres, const std::vector<uint32_t>& yarnOf, const std::vector<double>& arc,
-                       const std::vector<double>& length, double yarnRadius, const AnimatorOptions& options,
-                       DistanceScratch& scratch) {
+double minYarnDistance(const Polylines& centres, const std::vector<double>& arc, const std::vector<double>& length,
+                       double yarnRadius, const AnimatorOptions& options, DistanceScratch& scratch) {
     const double diameter = 2.0 * yarnRadius;
     const double cutoff = options.distanceCutoff * diameter;
     const size_t n = centres.pointCount();
@@ -210,7 +223,7 @@ double minYarnDistance(const Polylines& centres, const std::vector<uint32_t>& ya
     // Step 2: every pair closer than the cell size is found, so the first search that finds one
     // (or that the bound undercuts) has the minimum; otherwise widen up to the cutoff.
     for (;;) {
-        const Closest c = closestWithin(centres, yarnOf, arc, length, separation, cell, scratch);
+        const Closest c = closestWithin(centres, arc, length, separation, cell, scratch);
         if (std::isfinite(c.d2)) {
             scratch.hasPair = true;
             scratch.pair = {c.i, c.j};

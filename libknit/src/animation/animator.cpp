@@ -2,7 +2,8 @@
 //
 // Bind time (constructor): the rest yarns are resampled once, recording each yarn's layout
 // (ResampleLayout), the rest arc length of every resampled point, the rest pitch of every yarn
-// and the rest length of every yarn segment. An Animator of the yarns alone (no plies, no
+// and the rest length of every yarn segment (or adopts them from a loaded bound scene, without
+// evaluating its rest yarns). An Animator of the yarns alone (no plies, no
 // statistics: the Python module's Scene.evaluate) does none of it. Per frame (evaluate): vertex normals -> binding
 // evaluation -> resampling with the fixed layouts -> rotation-minimizing frames and helices
 // with the rest phase -> statistics.
@@ -56,19 +57,33 @@ constexpr size_t kYarnGrain = 2;
 }  // namespace
 
 Animator::Animator(const Scene& rest, const AnimatorOptions& options) : rest_(rest), options_(options) {
-    const Polylines& yarns = rest.yarns().curves;
-    const size_t yarnCount = yarns.curveCount();
-    plyOfYarn_.assign(yarnCount + 1, 0);
+    plyOfYarn_.assign(rest.binding().yarnCount() + 1, 0);
     // The yarns alone are the binding evaluated (step 2 of evaluate): no ply options, no resampling.
     if (!options_.plies && !options_.stats) return;
-    const PlyGenerator& generator = generator_.emplace(rest.yarns(), rest.plyOptions());
-    impl::checkPlyBudget(rest.yarns(), generator.options(), options_.budget);  // before resampling
 
     // Step 1: the rest yarns resampled, with each layout and the rest arc lengths / pitches /
-    // phases / frame seeds (animator_bind_state.cpp); a loaded bound scene stores them.
+    // phases / frame seeds / segment lengths (animator_bind_state.cpp). A loaded bound scene
+    // stores them: its generator then reads only the yarns' offsets and closed flags (from the
+    // binding), and the budget the exact resampled point count, so the rest yarns, which a
+    // loaded scene evaluates lazily (Scene::yarns), are never evaluated for an Animator.
     bind_ = rest.animatorState();
-    if (!bind_) bind_ = std::make_shared<const AnimatorBindState>(computeAnimatorBindState(rest, generator));
+    if (bind_) {
+        auto topology = std::make_shared<MappedYarns>();
+        topology->curves.offsets = rest.binding().offsets;
+        topology->curves.closed = rest.binding().closed;
+        restTopology_ = topology;
+        generator_.emplace(impl::PlyKernel::replayGenerator(*restTopology_, rest.plyOptions()));
+        impl::checkPlyBudget(double(bind_->centreOffsets.back()), generator_->options(), options_.budget);
+    } else {
+        generator_.emplace(rest.yarns(), rest.plyOptions());
+        impl::checkPlyBudget(rest.yarns(), generator_->options(), options_.budget);  // before resampling
+        bind_ = std::make_shared<const AnimatorBindState>(computeAnimatorBindState(rest, *generator_));
+    }
+    const PlyGenerator& generator = *generator_;
     const AnimatorBindState& b = *bind_;
+    const std::vector<uint8_t>& closed = generator.yarns().curves.closed;
+    const size_t yarnCount = generator.yarnCount();
+    plyOfYarn_.assign(yarnCount + 1, 0);
 
     // Step 2: the constant ply layout (yarn-major, ply-minor, as makePlies).
     const uint32_t n = static_cast<uint32_t>(generator.options().count);
@@ -83,7 +98,7 @@ Animator::Animator(const Scene& rest, const AnimatorOptions& options) : rest_(re
                 throw Error(
                     "more than 2^32-1 ply points per frame; raise the ply pitch or lower the samples per ply turn");
             plyTopology_.curves.offsets.push_back(static_cast<uint32_t>(total));
-            plyTopology_.curves.closed.push_back(yarns.closed[y]);
+            plyTopology_.curves.closed.push_back(closed[y]);
             plyTopology_.yarnOfCurve.push_back(static_cast<uint32_t>(y));
             plyTopology_.plyOfCurve.push_back(static_cast<uint8_t>(i));
             if (!b.centreColour.empty())
@@ -95,23 +110,6 @@ Animator::Animator(const Scene& rest, const AnimatorOptions& options) : rest_(re
     plyTopology_.plyRadius = generator.options().plyRadius;
     plyTopology_.centerRadius = generator.options().centerRadius;
     plyTopology_.pitch = generator.options().pitch;
-
-    // Step 3: the yarn of each resampled point, the rest length of the segment starting at each
-    // yarn vertex (the stretch reference).
-    if (!options_.stats) return;
-    yarnOfCentre_.resize(b.centreOffsets.back());
-    for (size_t y = 0; y < yarnCount; ++y)
-        std::fill(yarnOfCentre_.begin() + b.centreOffsets[y], yarnOfCentre_.begin() + b.centreOffsets[y + 1],
-                  static_cast<uint32_t>(y));
-    restSegment_.assign(yarns.pointCount(), 0.0);
-    for (size_t y = 0; y < yarnCount; ++y) {
-        const uint32_t first = yarns.begin(y), e = yarns.end(y);
-        for (uint32_t i = first; i < e; ++i) {
-            const uint32_t j = i + 1 < e ? i + 1 : (yarns.isClosed(y) && e - first > 2 ? first : i);
-            restSegment_[i] = glm::length(yarns.points[j] - yarns.points[i]);
-        }
-    }
-    restTotalLength_ = totalYarnLength(yarns);
 }
 
 void Animator::evaluate(const std::vector<dvec3>& positions, AnimationFrame& out, AnimationStageTimes* times) const {
@@ -150,10 +148,11 @@ void Animator::evaluate(const std::vector<dvec3>& positions, AnimationFrame& out
     // Step 5: stretch and the closest approach of different yarns.
     t0 = Clock::now();
     if (options_.stats) {
-        out.stats.maxStretch = maxYarnStretch(out.yarns.curves, restSegment_);
-        out.stats.yarnLengthRatio = restTotalLength_ > 0 ? totalYarnLength(out.yarns.curves) / restTotalLength_ : 1.0;
-        out.stats.minYarnDistance = minYarnDistance(out.centres, yarnOfCentre_, bind_->restArc, bind_->restLength,
-                                                    rest_.yarnRadius(), options_, out.distance);
+        const AnimatorBindState& b = *bind_;
+        out.stats.maxStretch = maxYarnStretch(out.yarns.curves, b.restSegment);
+        out.stats.yarnLengthRatio = b.restTotalLength > 0 ? totalYarnLength(out.yarns.curves) / b.restTotalLength : 1.0;
+        out.stats.minYarnDistance =
+            minYarnDistance(out.centres, b.restArc, b.restLength, rest_.yarnRadius(), options_, out.distance);
         t.stats = since(t0);
     }
     if (times) *times = t;
@@ -165,7 +164,7 @@ void Animator::resample(AnimationFrame& out) const {
     Polylines& c = out.centres;
     if (c.offsets != b.centreOffsets) {  // first frame with this buffer
         c.offsets = b.centreOffsets;
-        c.closed = rest_.yarns().curves.closed;
+        c.closed = generator_->yarns().curves.closed;
         c.points.resize(b.centreOffsets.back());
     }
     tbb::enumerable_thread_specific<ResampleScratch> scratches;

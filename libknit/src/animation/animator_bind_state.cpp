@@ -1,6 +1,6 @@
 // animator_bind_state.cpp — an Animator's bind-time work on the rest yarns (the resampling
-// layout, rest arc lengths, pitches and twist phases, frame seeds, colours), and the checks of a
-// stored one (a bound scene file's) against the rest yarns it is replayed on.
+// layout, rest arc lengths, pitches and twist phases, frame seeds, colours, stretch references),
+// and the checks of a stored one (a bound scene file's) against the binding it is replayed on.
 #include "animation/animator_bind_state.hpp"
 
 #include <cmath>
@@ -8,6 +8,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "knit/animation.hpp"
 #include "knit/error.hpp"
 #include "plies/frames_curve.hpp"
 #include "plies/plies_kernel.hpp"
@@ -97,11 +98,26 @@ AnimatorBindState computeAnimatorBindState(const Scene& rest, const PlyGenerator
         for (const double a : arc) s.restPhase.emplace_back(std::cos(rate * a), std::sin(rate * a));
         s.restLength[y] = arc[m - 1] + (yarns.isClosed(y) ? glm::length(centre[0] - centre[m - 1]) : 0.0);
     }
+    restSegments(yarns, s.restSegment, s.restTotalLength);
     return s;
 }
 
-void checkAnimatorBindState(const AnimatorBindState& s, const MappedYarns& restYarns) {
-    const Polylines& yarns = restYarns.curves;
+void restSegments(const Polylines& yarns, std::vector<double>& segment, double& total) {
+    segment.assign(yarns.pointCount(), 0.0);
+    for (size_t y = 0; y < yarns.curveCount(); ++y) {
+        const uint32_t first = yarns.begin(y), e = yarns.end(y);
+        for (uint32_t i = first; i < e; ++i) {
+            const uint32_t j = i + 1 < e ? i + 1 : (yarns.isClosed(y) && e - first > 2 ? first : i);
+            segment[i] = glm::length(yarns.points[j] - yarns.points[i]);
+        }
+    }
+    total = totalYarnLength(yarns);
+}
+
+void checkAnimatorBindState(const AnimatorBindState& s, const Binding& binding) {
+    Polylines yarns;  // the rest yarns' topology (no points: none are read)
+    yarns.offsets = binding.offsets;
+    yarns.closed = binding.closed;
     const size_t yarnCount = yarns.curveCount();
     // Step 1: sizes.
     checkOffsets(s.keptOffsets, yarnCount, s.kept.size(), "kept point");
@@ -113,7 +129,10 @@ void checkAnimatorBindState(const AnimatorBindState& s, const MappedYarns& restY
                     std::to_string(centres) + ")");
     if (s.restPitch.size() != yarnCount || s.restLength.size() != yarnCount || s.seeds.size() != yarnCount)
         throw Error("the pitches, lengths and frame seeds are not one per yarn (" + std::to_string(yarnCount) + ")");
-    if (s.centreColour.size() != (restYarns.colour.empty() ? 0 : centres))
+    if (s.restSegment.size() != binding.vertexCount())
+        throw Error("the rest segment lengths (" + std::to_string(s.restSegment.size()) +
+                    ") are not one per yarn vertex (" + std::to_string(binding.vertexCount()) + ")");
+    if (s.centreColour.size() != (binding.colour.empty() ? 0 : centres))
         throw Error("the resampled points' colours (" + std::to_string(s.centreColour.size()) +
                     ") do not match the yarns' colours");
     // Step 2: per yarn, what resampling with the layout reads and writes.
@@ -142,6 +161,9 @@ void checkAnimatorBindState(const AnimatorBindState& s, const MappedYarns& restY
     // Step 3: finite values.
     if (!allFinite(s.restArc) || !allFinite(s.restPhase) || !allFinite(s.restPitch) || !allFinite(s.restLength))
         throw Error("a rest arc length, twist phase, pitch or length is not finite");
+    bool segments = std::isfinite(s.restTotalLength) && s.restTotalLength >= 0.0;
+    for (const double l : s.restSegment) segments &= std::isfinite(l) && l >= 0.0;
+    if (!segments) throw Error("a rest segment length or the rest yarns' total length is negative or not finite");
     for (size_t y = 0; y < yarnCount; ++y) {
         const AnimatorBindState::Seed& seed = s.seeds[y];
         bool finite = true;

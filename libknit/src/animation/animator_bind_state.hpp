@@ -2,8 +2,11 @@
 // kept apart from the Animator so that a bound scene file (knit/bound_scene.hpp) stores it and the
 // Animator of a loaded scene adopts it instead of resampling the rest yarns again: the resampling
 // layout of every yarn, the rest arc length and twist phase of every resampled point, each yarn's
-// rest pitch, rest length and first ply frame, and the resampled points' colours. All of it is a
-// pure function of the rest scene (its yarns, mesh, binding) and the resolved ply options.
+// rest pitch, rest length and first ply frame, the resampled points' colours, and the statistics'
+// references (the rest length of every yarn segment and of all yarns). All of it is a pure
+// function of the rest scene (its yarns, mesh, binding) and the resolved ply options. With the
+// references stored too, an Animator of a loaded scene needs nothing of the rest yarns, so a
+// loaded scene evaluates them only when something else asks (Scene::yarns).
 #pragma once
 #include <array>
 #include <cstdint>
@@ -36,6 +39,11 @@ struct AnimatorBindState {
     std::vector<double> restLength;          // per yarn: resampled rest length (closed: with the closing segment)
     std::vector<Seed> seeds;                 // per yarn
     std::vector<glm::vec3> centreColour;     // per resampled point, when the rest yarns have colours
+    // The stretch references (format version 4): per rest yarn vertex the length of the segment
+    // starting there (the closing one at a closed yarn's last vertex; 0: none), and
+    // totalYarnLength of the rest yarns.
+    std::vector<double> restSegment;
+    double restTotalLength = 0;
 };
 static_assert(sizeof(AnimatorBindState::Seed) == 128, "Seed is stored without padding");
 
@@ -47,9 +55,13 @@ bool triangleFrame(const std::vector<glm::dvec3>& x, const glm::uvec3& f, glm::d
 // Animator's constructor, step 1). Throws knit::Error for more than 2^32-1 resampled points.
 AnimatorBindState computeAnimatorBindState(const Scene& rest, const PlyGenerator& generator);
 
-// Checks what evaluation relies on when it replays a stored state on `rest`'s yarns (sizes per
+// The stretch references of `yarns` (AnimatorBindState::restSegment, restTotalLength).
+void restSegments(const Polylines& yarns, std::vector<double>& segment, double& total);
+
+// Checks what evaluation relies on when it replays a stored state on the rest yarns `binding`
+// makes (their offsets, closed flags and colours: the yarns themselves are not needed): sizes per
 // yarn, kept indices within their yarn, piece counts adding up to the resampled points, flags,
-// finite values); throws knit::Error naming the yarn and what is wrong.
-void checkAnimatorBindState(const AnimatorBindState& state, const MappedYarns& restYarns);
+// finite values; throws knit::Error naming the yarn and what is wrong.
+void checkAnimatorBindState(const AnimatorBindState& state, const Binding& binding);
 
 }  // namespace knit

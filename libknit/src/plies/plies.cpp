@@ -47,6 +47,7 @@
 #include "plies_kernel.hpp"
 #include "resample_curve.hpp"
 #include "util/checks.hpp"
+#include "util/csr.hpp"
 #include "util/math.hpp"
 #include "util/simd.hpp"
 
@@ -100,13 +101,17 @@ PlyOptions resolvePlyOptions(const PlyOptions& options) {
     return o;
 }
 
-PlyGenerator::PlyGenerator(const MappedYarns& yarns, const PlyOptions& options)
+PlyGenerator::PlyGenerator(const MappedYarns& yarns, const PlyOptions& options, TopologyOnly)
     : yarns_(yarns), options_(resolvePlyOptions(options)) {
     spacing_ = options_.pitch / static_cast<double>(options_.samplesPerTurn);
     for (int i = 0; i < options_.count; ++i) {
         cosPly_[i] = std::cos(util::kTwoPi * i / options_.count);
         sinPly_[i] = std::sin(util::kTwoPi * i / options_.count);
     }
+}
+
+PlyGenerator::PlyGenerator(const MappedYarns& yarns, const PlyOptions& options)
+    : PlyGenerator(yarns, options, TopologyOnly{}) {
     ResampleOptions ro;
     ro.spacing = spacing_;
     validateResampleInput(yarns_, ro);
@@ -126,6 +131,13 @@ PlyScratch::PlyScratch(PlyScratch&&) noexcept = default;
 PlyScratch& PlyScratch::operator=(PlyScratch&&) noexcept = default;
 
 namespace impl {
+
+PlyGenerator PlyKernel::replayGenerator(const MappedYarns& topology, const PlyOptions& options) {
+    const std::vector<uint32_t>& o = topology.curves.offsets;
+    if (o.empty() || !util::validOffsets(o, topology.curves.curveCount(), o.back()))
+        throw Error("replaying the plies: the yarn offsets decrease");
+    return PlyGenerator(topology, options, PlyGenerator::TopologyOnly{});
+}
 
 PlyScratch::Buffers& PlyKernel::buffers(PlyScratch& scratch) {
     if (!scratch.buffers_) scratch.buffers_ = std::make_unique<PlyScratch::Buffers>();

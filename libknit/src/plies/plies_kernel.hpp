@@ -25,6 +25,11 @@ struct PlyScratch::Buffers {
 namespace impl {
 
 struct PlyKernel {
+    // A generator that only replays a stored bind state (the Animator of a loaded bound scene):
+    // `topology` holds the yarns' offsets and closed flags but no points, so only the options,
+    // twistRate and sweepWithCosSin (which read the closed flags) may be used with it, never
+    // generate, centreline, sweep or estimatePoints. Keeps a reference to `topology`.
+    static PlyGenerator replayGenerator(const MappedYarns& topology, const PlyOptions& options);
     // The resampling spacing of the generator's yarns (pitch / samplesPerTurn).
     static double spacing(const PlyGenerator& generator) { return generator.spacing_; }
     // The buffers of `scratch`, allocated on first use.

@@ -49,6 +49,9 @@ struct BoundSceneParts {
     uint32_t deformReason = 0;  // DeformReason
     double tableSeconds = 0;    // DeformOptions::tableSeconds
     StrainTable table;          // empty (no samples, no data) with none
+    // Format version 4: what the deformer did on the rest mesh (Scene::deformStats), stored so
+    // that loading need not evaluate the rest yarns (Scene::yarns evaluates them when asked).
+    DeformStats deformStats;
 };
 
 // The fields in file order; `io` has value(x, what), array(v, what), text(s, what) and
@@ -128,6 +131,12 @@ void boundSceneLayout(IO& io, P& p) {
     io.array(t.axes[1], "the strain table's sa samples");
     io.array(t.axes[2], "the strain table's sy samples");
     io.array(t.data, "the strain table's data");
+    // Format version 4: the Animator's stretch references (each rest yarn segment's length, all
+    // of them together) and the deformer's statistics on the rest mesh: with them, a loaded scene
+    // and its Animators need nothing of the rest yarns, which Scene::yarns evaluates lazily.
+    io.array(a.restSegment, "the rest segment lengths");
+    io.value(a.restTotalLength, "the rest yarns' total length");
+    io.value(p.deformStats, "the deform statistics");
 }
 
 }  // namespace knit::impl

@@ -2,8 +2,11 @@
 // (magic, format version, size, CRC-32), the payload walked in boundSceneLayout's order with
 // every count checked against the bytes left before anything is allocated, the invariants the
 // evaluation relies on, then what is a pure function of the stored parts (rest normals, UV grid,
-// rest yarns) rebuilt with the pipeline's own calls, and the stored Animator state checked
-// against the rest yarns and handed to the scene.
+// strain deformer) rebuilt with the pipeline's own calls, and the stored Animator state checked
+// against the binding and handed to the scene. The rest yarns are not evaluated here: the scene
+// evaluates them on first use (Scene::yarns, SceneParts::lazyYarns), since its Animators need
+// none of them (their stretch references are stored) and they were a quarter of the memory a
+// load allocates (allocating it was most of a load's cost: docs/scale-out.md).
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -206,6 +209,9 @@ void checkDeformParts(const impl::BoundSceneParts& p) {
         if (!p.binding.source.empty() || !t.data.empty() || t.vertexCount != 0 || !t.axes[0].empty() ||
             !t.axes[1].empty() || !t.axes[2].empty())
             throw Error("the deform mode is none, but a strain table or pattern vertices follow");
+        const DeformStats& d = p.deformStats;
+        if (d.vertices != 0 || d.clamped != 0 || d.degenerate != 0 || d.total != 0)
+            throw Error("the deform mode is none, but deform statistics follow");
         return;
     }
     if (p.deformMode != static_cast<uint32_t>(DeformMode::Strain))
@@ -279,8 +285,8 @@ BoundScene decodeBoundScene(std::string_view bytes, const std::string& name, con
                        48.0 * static_cast<double>(p.mesh.positions.size()) + deformerBytes,
                    "loading " + boundName(name), "the scene's size (bind fewer repeats)");
     impl::checkGridBudget(p.mesh, p.placement, false, budget);
-    // Step 4: the rest normals, UV grid and rest yarns, as buildScene makes them; the Animator
-    // state on them.
+    // Step 4: the rest normals and UV grid, as buildScene makes them; the rest yarns left to
+    // Scene::yarns (lazily: evaluated from these parts on first use, bit for bit as here before).
     SceneParts parts;
     parts.yarnRadius = p.pattern.radius * p.placement.scale;
     parts.normals = vertexNormals(p.mesh.positions, p.mesh.faces);
@@ -288,9 +294,10 @@ BoundScene decodeBoundScene(std::string_view bytes, const std::string& name, con
     gridOptions.cellSize = p.placement.cellSize();
     gridOptions.maxEntries = std::numeric_limits<uint64_t>::max();  // bounded by the memory budget above
     parts.grid = buildUvGrid(p.mesh, gridOptions);
-    evaluateBinding(p.binding, p.mesh.faces, p.mesh.positions, parts.normals, parts.yarns);
-    // Step 5: with strain, the deformer on the rest mesh and its displacements on the rest yarns,
-    // as buildScene's deform stage makes them (the Animator state was computed on those yarns).
+    parts.lazyYarns = true;
+    // Step 5: with strain, the deformer on the rest mesh, as buildScene's deform stage makes it
+    // (Scene::yarns applies it to the rest yarns; what it did there is stored).
+    parts.deformStats = p.deformStats;
     if (strain) {
         parts.deform = {DeformMode::Strain, std::make_shared<const StrainTable>(std::move(p.table)),
                         static_cast<DeformReason>(p.deformReason), p.tableSeconds};
@@ -300,13 +307,12 @@ BoundScene decodeBoundScene(std::string_view bytes, const std::string& name, con
         } catch (const Error& e) {
             throw Error(boundName(name) + " is inconsistent: its strain table: " + e.what());
         }
-        parts.deformStats = parts.deformer->apply(p.binding, p.mesh.positions, parts.yarns);
     } else {
         parts.deform.reason = static_cast<DeformReason>(p.deformReason);
         parts.deform.tableSeconds = p.tableSeconds;
     }
     try {
-        checkAnimatorBindState(p.animator, parts.yarns);
+        checkAnimatorBindState(p.animator, p.binding);
     } catch (const Error& e) {
         throw Error(boundName(name) + " is inconsistent: its Animator state: " + e.what());
     }

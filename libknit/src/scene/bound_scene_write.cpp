@@ -83,6 +83,7 @@ std::string encodeBoundScene(const Scene& rest, const BoundSceneInfo& info, cons
     parts.binding = rest.binding();
     deformParts(rest, parts);
     parts.stats = rest.bindStats();
+    parts.deformStats = rest.deformStats();
     parts.plies = rest.plyOptions();
     // The Animator's bind-time work, as every Animator of the rest scene does it (or the state a
     // loaded scene brought along).

@@ -2,10 +2,12 @@
 #include "knit/scene.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <mutex>
 #include <utility>
 
 #include "knit/error.hpp"
@@ -278,6 +280,29 @@ double Scene::yarnMargin() const {
     return knit::yarnMargin(bound_.binding, yarnRadius_);
 }
 
+// The rest yarns of a loaded bound scene, evaluated on first use (Scene::yarns); shared by the
+// copies of the scene (they hold the same binding and mesh).
+struct Scene::LazyYarns {
+    std::once_flag once;
+    std::atomic<bool> done{false};
+    MappedYarns yarns;
+};
+
+const MappedYarns& Scene::yarns() const {
+    if (!lazyYarns_) return yarns_;
+    std::call_once(lazyYarns_->once, [this] {
+        // buildScene's evaluate stage, then its deform stage (the deform statistics are the
+        // stored ones: the same pass on the same input).
+        MappedYarns& y = lazyYarns_->yarns;
+        evaluateBinding(bound_.binding, mesh_.faces, mesh_.positions, normals_, y);
+        if (deformer_) (void)deformer_->apply(bound_.binding, mesh_.positions, y);
+        lazyYarns_->done = true;
+    });
+    return lazyYarns_->yarns;
+}
+
+bool Scene::yarnsEvaluated() const { return !lazyYarns_ || lazyYarns_->done; }
+
 Scene Scene::fromParts(SceneParts parts) {
     Scene s;
     s.mesh_ = std::move(parts.mesh);
@@ -289,6 +314,10 @@ Scene Scene::fromParts(SceneParts parts) {
     s.pattern_ = std::move(parts.pattern);
     s.placement_ = parts.placement;
     s.yarns_ = std::move(parts.yarns);
+    if (parts.lazyYarns) {
+        if (!s.yarns_.curves.points.empty()) throw Error("a scene with lazily evaluated yarns is given yarns");
+        s.lazyYarns_ = std::make_shared<LazyYarns>();
+    }
     s.plies_ = std::move(parts.plies);
     s.detail_ = std::move(parts.detail);
     if (parts.plyOptions) s.plyOptions_ = *parts.plyOptions;

@@ -76,7 +76,10 @@ void checkPlyBudget(const MappedYarns& yarns, const PlyOptions& resolved, const 
         if (c.isClosed(y) && c.size(y) > 1) length += glm::distance(c.points[c.end(y) - 1], c.points[c.begin(y)]);
     }
     // One sample per yarn vertex at least, then samplesPerTurn per pitch along each yarn.
-    const double samples = length / resolved.pitch * resolved.samplesPerTurn + double(c.pointCount());
+    checkPlyBudget(length / resolved.pitch * resolved.samplesPerTurn + double(c.pointCount()), resolved, budget);
+}
+
+void checkPlyBudget(double samples, const PlyOptions& resolved, const MemoryBudget& budget) {
     const double points = samples * resolved.count;
     budget.require(points * kBytesPerPlyPoint + samples * 96, count(points, "ply vertices"),
                    "the samples per turn, or raise the ply pitch,");

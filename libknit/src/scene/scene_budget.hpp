@@ -38,5 +38,7 @@ void checkRegionYarnBudget(uint64_t vertices, bool physicalSize, const MemoryBud
 // The plies of the mapped yarns: their length / pitch x samples per turn x plies.
 // Driven by --samples-per-turn and --ply-pitch.
 void checkPlyBudget(const MappedYarns& yarns, const PlyOptions& resolved, const MemoryBudget& budget);
+// The same for `samples` resampled centre points, known exactly (a stored Animator state).
+void checkPlyBudget(double samples, const PlyOptions& resolved, const MemoryBudget& budget);
 
 }  // namespace knit::impl
