@@ -158,7 +158,10 @@ def main():
     bpy.context.scene.frame_set(10)
     blend = os.path.join(tempfile.mkdtemp(), "knit.blend")
     bpy.ops.wm.save_as_mainfile(filepath=blend)
-    build._scenes.clear()
+    # This session's Cloth.knit then bound otherwise: the file's knit is not that one (the session's
+    # bound scenes are forgotten when a file is opened; before, the file's knit took 8 x 8's plies).
+    bpy.context.view_layer.objects.active = bpy.data.objects["Cloth"]
+    check(bpy.ops.object.knit_apply(pattern="stockinette", repeats=(8, 8)) == {"FINISHED"}, "re-applied at 8 x 8")
     bpy.ops.wm.open_mainfile(filepath=blend)
     bpy.context.scene.frame_set(10)
     obj = bpy.data.objects["Cloth.knit"]
