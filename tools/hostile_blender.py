@@ -36,7 +36,7 @@ ROOT = os.path.dirname(HERE)
 # Spellings a Blender user never typed: command-line flags and the Python module's keywords.
 FOREIGN = [r"(?<![\w-])--[a-z]", r"\bres_u\b", r"\bmax_memory\b", r"\bclamp_tolerance\b", r"\bweld_tolerance\b",
            r"\bply_pitch\b", r"\bsamples_per_turn\b", r"\bcenter_radius\b", r"\bply_radius\b", r"\bpositions:",
-           r"\bbuild_plies\b"]
+           r"\b(face_)?uvs:", r"\bbuild_plies\b"]
 
 CASES = []
 
@@ -450,14 +450,21 @@ def _applied(h, repeats=(4, 4)):
     return cloth, h.knit(), h.points(h.knit())
 
 
+def _stale_after(h, change, words, reapply_words=None):
+    """Apply, change(cloth), frames: the knit says why it no longer follows (words) and keeps its
+    shape; Re-apply, where it cannot help, is refused saying reapply_words."""
+    cloth, knit, shape = _applied(h)
+    change(cloth)
+    h.frames(4, 6)
+    h.expect_stale(knit, shape, *words)
+    if reapply_words:
+        h.select(knit)
+        h.expect_refused(h.op("knit_reapply"), *reapply_words)
+
+
 @case("after: the source deleted")
 def _(h):
-    cloth, knit, shape = _applied(h)
-    h.bpy.data.objects.remove(cloth)
-    h.frames(4, 6)
-    h.expect_stale(knit, shape, "Cloth")
-    h.select(knit)
-    h.expect_refused(h.op("knit_reapply"), "Cloth")
+    _stale_after(h, h.bpy.data.objects.remove, ["Cloth"], ["Cloth"])
 
 
 @case("after: the source renamed")
@@ -480,28 +487,18 @@ def _(h):
 
 @case("after: the UV map removed")
 def _(h):
-    cloth, knit, shape = _applied(h)
-    cloth.data.uv_layers.remove(cloth.data.uv_layers[0])
-    h.frames(4, 6)
-    h.expect_stale(knit, shape, "UV")
-    h.select(knit)
-    h.expect_refused(h.op("knit_reapply"), "UV")
+    _stale_after(h, lambda cloth: cloth.data.uv_layers.remove(cloth.data.uv_layers[0]), ["UV"], ["UV"])
 
 
 @case("after: Decimate on the source")
 def _(h):
-    cloth, knit, shape = _applied(h)
-    cloth.modifiers.new("Decimate", "DECIMATE").ratio = 0.3
-    h.frames(4, 6)
-    h.expect_stale(knit, shape, "vertices", "Re-apply")
+    _stale_after(h, lambda cloth: setattr(cloth.modifiers.new("Decimate", "DECIMATE"), "ratio", 0.3),
+                 ["vertices", "Re-apply"])
 
 
 @case("after: Remesh on the source")
 def _(h):
-    cloth, knit, shape = _applied(h)
-    cloth.modifiers.new("Remesh", "REMESH").voxel_size = 0.05
-    h.frames(4, 6)
-    h.expect_stale(knit, shape, "Re-apply")
+    _stale_after(h, lambda cloth: setattr(cloth.modifiers.new("Remesh", "REMESH"), "voxel_size", 0.05), ["Re-apply"])
 
 
 @case("after: Subdivision on the source, then Re-apply")

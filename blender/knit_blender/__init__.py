@@ -13,8 +13,9 @@ count changed by a modifier such as Decimate or Remesh, the source deleted, its 
 the module knit missing) keeps its last good shape and says why once: a line on the console and
 the status bar, and in the Knit panel of the object's properties for as long as it lasts, with
 Re-apply Knit (bpy.ops.object.knit_reapply: binds again, with the same options, to the source as
-it is now). Errors name the operator's properties (Repeats, Plies, Ply pitch), never a command
-line flag or a Python keyword.
+it is now). A renamed source (the knit's parent) or UV map (the same coordinates) is followed.
+Errors name the operator's properties (Repeats, Plies, Ply pitch), never a command line flag or a
+Python keyword.
 
 The module `knit` is found on sys.path (installed into Debian's dist-packages by `cmake --install`),
 else in the folders of the environment variable KNIT_PYTHONPATH or of the add-on preference
