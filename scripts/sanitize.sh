@@ -65,4 +65,4 @@ heavy=(Relax.everyBuiltinChartTilesSeamlessly Relax.basketweaveAndCableRelaxApar
        StrainCli.defaultDeformIsNoneWhereMakingTheTableIsSlow)
 heavy_regex=$(IFS='|'; echo "${heavy[*]}" | sed 's/\./\\./g')
 ctest --output-on-failure -j"$jobs" \
-  -E "_NOT_BUILT|Streaming.peakMemory|^python_tests$|^blender_addon$|^consumer_package$|^clients_|^serve_page$|^($heavy_regex)$" "$@"
+  -E "_NOT_BUILT|Streaming.peakMemory|^python_tests$|^blender_addon(_deform)?$|^consumer_package$|^clients_|^serve_page$|^($heavy_regex)$" "$@"

@@ -41,7 +41,7 @@ INTERNAL = [r"::", r"\bstd\b", r"\b[A-Z][A-Za-z]*(Options|Params|Info)\.\w+", r"
 # mesh / cache / image read as a .pyp, a message whose words were pasted into the wrong slot.
 MISLEADING = [(r"'(eta|alphaAlong|alphaAcross|alphaTT|kR|kTT|bodyAlbedo|reflectFraction|fiberCount|fiberTwist|"
                r"fiberShadowFloor|plyShadowFloor)'(?! \(--)", "names a material field, not the flag typed"),
-              (r"\.(obj|ply|off|gltf|glb|pc2|mdd|png|exr|knitbind|npy):1: data before the first block header",
+              (r"\.(obj|ply|off|gltf|glb|pc2|mdd|png|exr|knitbind|npy|blend):1: data before the first block header",
                "reads another format as a .pyp"),
               (r"choose another the ", "garbled message")]
 

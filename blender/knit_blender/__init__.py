@@ -13,8 +13,9 @@ count changed by a modifier such as Decimate or Remesh, the source deleted, its 
 the module knit missing) keeps its last good shape and says why once: a line on the console and
 the status bar, and in the Knit panel of the object's properties for as long as it lasts, with
 Re-apply Knit (bpy.ops.object.knit_reapply: binds again, with the same options, to the source as
-it is now). Errors name the operator's properties (Repeats, Plies, Ply pitch), never a command
-line flag or a Python keyword.
+it is now). A renamed source (the knit's parent) or UV map (the same coordinates) is followed.
+Errors name the operator's properties (Repeats, Plies, Ply pitch), never a command line flag or a
+Python keyword.
 
 The module `knit` is found on sys.path (installed into Debian's dist-packages by `cmake --install`),
 else in the folders of the environment variable KNIT_PYTHONPATH or of the add-on preference
@@ -31,14 +32,13 @@ bl_info = {
 }
 
 import importlib
-import json
 
 if "bpy" in locals():
     importlib.reload(build)  # noqa: F821 (Blender's add-on reload)
 import bpy
 
 from . import build
-from .build import ADDON, knit_module
+from .build import ADDON, knit_module, missing_module_message
 
 
 class KnitPreferences(bpy.types.AddonPreferences):
@@ -86,15 +86,15 @@ class OBJECT_OT_knit_apply(bpy.types.Operator):
         try:
             knit_module()
         except ImportError as e:
-            self.report({"ERROR"}, _missing_module_message(e))
+            self.report({"ERROR"}, missing_module_message(e))
+            return {"CANCELLED"}
+        why = self.refusal()
+        if why:
+            self.report({"ERROR"}, why)
             return {"CANCELLED"}
         options = self.as_keywords()
         if self.chart_text:  # the chart's text is stored with the object, so a re-bind uses it
-            block = bpy.data.texts.get(self.chart_text)
-            if block is None:
-                self.report({"ERROR"}, f"Chart text: there is no text block named '{self.chart_text}'")
-                return {"CANCELLED"}
-            options["chart_source"] = block.as_string()
+            options["chart_source"] = bpy.data.texts[self.chart_text].as_string()
         try:
             obj = build.apply_knit(context, context.active_object, options)
         except Exception as e:  # noqa: BLE001 - reported in the interface, never a traceback
@@ -104,9 +104,19 @@ class OBJECT_OT_knit_apply(bpy.types.Operator):
         return {"FINISHED"}
 
 
-def _missing_module_message(e):
-    return (f"the Python module knit was not found ({e}): install it with cmake --install, "
-            "or set KNIT_PYTHONPATH or the add-on's Module folder to <build>/python")
+    def refusal(self):
+        """Why the properties cannot be applied together, or "" (the library checks each value)."""
+        for name, pair in (("Repeats", self.repeats), ("Gauge", self.gauge)):
+            if (pair[0] > 0) != (pair[1] > 0):
+                return (f"{name} ({pair[0]:g}, {pair[1]:g}): set both (along u and v) or neither (0, 0), "
+                        "not one")
+        if self.chart_text:
+            block = bpy.data.texts.get(self.chart_text)
+            if block is None:
+                return f"Chart text: there is no text block named '{self.chart_text}'"
+            if not block.as_string().strip():
+                return f"Chart text: the text block '{self.chart_text}' is empty (write a stitch chart in it)"
+        return ""
 
 
 class OBJECT_OT_knit_reapply(bpy.types.Operator):
@@ -125,15 +135,15 @@ class OBJECT_OT_knit_reapply(bpy.types.Operator):
         try:
             build.knit_module()
         except ImportError as e:
-            self.report({"ERROR"}, _missing_module_message(e))
+            self.report({"ERROR"}, missing_module_message(e))
             return {"CANCELLED"}
-        source = bpy.data.objects.get(obj[build.SOURCE_PROP])
-        if source is None or source.type != "MESH":
+        source = build.source_of(obj)
+        if source is None:
             self.report({"ERROR"}, f"{obj.name}: its source mesh '{obj[build.SOURCE_PROP]}' no longer exists; "
                                    "select a mesh and use Apply Knit")
             return {"CANCELLED"}
         try:
-            new = build.apply_knit(context, source, json.loads(obj[build.OPTIONS_PROP]))
+            new = build.apply_knit(context, source, build.options_of(obj))
         except Exception as e:  # noqa: BLE001 - reported in the interface, never a traceback
             self.report({"ERROR"}, build.message_of(e))
             return {"CANCELLED"}
@@ -157,7 +167,12 @@ class OBJECT_OT_knit_bake_pc2(bpy.types.Operator):
         return obj is not None and build.SOURCE_PROP in obj
 
     def execute(self, context):
-        path = bpy.path.abspath(self.filepath or f"//{context.active_object.name}.pc2")
+        path = self.filepath or f"//{context.active_object.name}.pc2"
+        if path.startswith("//") and not bpy.data.filepath:  # relative to a .blend file not saved yet
+            self.report({"ERROR"}, f"File path: '{path}' is relative to the .blend file, which is not saved yet; "
+                                   "save the .blend file or choose a full path; nothing written")
+            return {"CANCELLED"}
+        path = bpy.path.abspath(path)
         if not path.lower().endswith(".pc2"):  # another file (a .blend, a pattern) would be overwritten
             self.report({"ERROR"}, f"File path: '{path}' is not a .pc2 name (a PC2 point cache is written there); "
                                    "nothing written")
@@ -165,6 +180,11 @@ class OBJECT_OT_knit_bake_pc2(bpy.types.Operator):
         if self.frame_end < self.frame_start:
             self.report({"ERROR"}, f"End ({self.frame_end}) is before Start ({self.frame_start}); nothing written")
             return {"CANCELLED"}
+        for name, frame in (("Start", self.frame_start), ("End", self.frame_end)):
+            if abs(frame) > MAX_FRAME:
+                self.report({"ERROR"}, f"{name} ({frame}) is beyond Blender's frames (-{MAX_FRAME} to {MAX_FRAME}); "
+                                       "nothing written")
+                return {"CANCELLED"}
         try:
             frames = build.bake_pc2(context, context.active_object, path, self.frame_start, self.frame_end)
         except Exception as e:  # noqa: BLE001 - reported in the interface, never a traceback
@@ -172,6 +192,9 @@ class OBJECT_OT_knit_bake_pc2(bpy.types.Operator):
             return {"CANCELLED"}
         self.report({"INFO"}, f"{path}: {frames} frames")
         return {"FINISHED"}
+
+
+MAX_FRAME = 1048574  # Blender's last frame (MAXFRAME): scene.frame_set clamps beyond it
 
 
 class OBJECT_PT_knit(bpy.types.Panel):
@@ -231,11 +254,15 @@ def register():
     bpy.types.VIEW3D_MT_object.append(_menu)
     if build.on_frame_change not in bpy.app.handlers.frame_change_post:
         bpy.app.handlers.frame_change_post.append(build.on_frame_change)
+    if build.on_load not in bpy.app.handlers.load_post:
+        bpy.app.handlers.load_post.append(build.on_load)
 
 
 def unregister():
     if build.on_frame_change in bpy.app.handlers.frame_change_post:
         bpy.app.handlers.frame_change_post.remove(build.on_frame_change)
+    if build.on_load in bpy.app.handlers.load_post:
+        bpy.app.handlers.load_post.remove(build.on_load)
     bpy.types.VIEW3D_MT_object.remove(_menu)
     for c in reversed(_classes):
         bpy.utils.unregister_class(c)

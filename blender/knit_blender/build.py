@@ -7,6 +7,7 @@ options (the point layout, twist phase and ply frames are fixed at bind time).""
 import itertools
 import json
 import os
+import re
 import struct
 import sys
 import zlib
@@ -45,6 +46,39 @@ def knit_module():
             sys.path.append(f)
     import knit
     return knit
+
+
+def missing_module_message(error):
+    """Why the module knit could not be imported, and where Blender looks for it (every operator
+    and the frame handler say it in these words)."""
+    return (f"the Python module knit was not found ({error}): install libknit's Python module, or set the "
+            "add-on's Module folder (Edit > Preferences > Add-ons > Knit) or the environment variable "
+            "KNIT_PYTHONPATH to <libknit build>/python")
+
+
+def source_of(obj):
+    """The source mesh object of a knit object: the one named in SOURCE_PROP, else (renamed) the
+    mesh it is parented to, whose new name is then recorded; None when it was deleted."""
+    source = bpy.data.objects.get(obj[SOURCE_PROP])
+    if source is None and obj.parent is not None and obj.parent.type == "MESH":
+        source = obj.parent
+        try:
+            obj[SOURCE_PROP] = source.name
+        except (AttributeError, RuntimeError, TypeError):  # ID writes not allowed here (rendering)
+            pass
+    return source if source is not None and source.type == "MESH" else None
+
+
+def options_of(obj):
+    """The apply options stored on a knit object (OPTIONS_PROP); ValueError when damaged."""
+    try:
+        options = json.loads(obj[OPTIONS_PROP])
+        if not isinstance(options, dict):
+            raise ValueError("not a JSON object")
+        return options
+    except (ValueError, TypeError, KeyError) as e:
+        raise ValueError(f"{obj.name}: its stored apply options (custom property {OPTIONS_PROP}) are damaged "
+                         f"({e}); select its source and use Apply Knit") from None
 
 
 # -- Step 1: the source mesh as arrays ------------------------------------------------------------
@@ -88,12 +122,12 @@ def signature_change(bound, now):
                 "(a modifier such as Decimate or Remesh, or an edit, changed them)")
     if bound["faces"] != now["faces"]:
         return f"the source now has {now['faces']} faces, the knit was bound to {bound['faces']}"
+    if bound["uv_crc"] == now["uv_crc"]:  # the same coordinates (a renamed UV map is the same map)
+        return ""
     if bound["uv_map"] != now["uv_map"]:
         return (f"the source's active UV map is now {now['uv_map'] or 'none'!s}, "
                 f"the knit was bound to {bound['uv_map']}")
-    if bound["uv_crc"] != now["uv_crc"]:
-        return f"the source's UV map {now['uv_map']} changed since the knit was bound"
-    return ""
+    return f"the source's UV map {now['uv_map']} changed since the knit was bound"
 
 
 def weld_corner_uvs(faces, corner_uvs):
@@ -155,12 +189,17 @@ def bind(source, options, depsgraph, rest=None):
         su, sv = knit.uv_to_metre_scale(mesh)
         repeats = (su * gauge[0] / 0.1, sv * gauge[1] / 0.1)
     pattern = options["pattern"]
+    if pattern.startswith("//"):  # Blender's path relative to the .blend file
+        pattern = bpy.path.abspath(pattern)
     if options.get("chart_source"):  # chart text from a text block (the operator's Chart text)
         pattern = knit.chart_pattern(options["chart_source"], name=options.get("chart_text") or "chart text")
+    deform = options.get("deform", "auto")
+    if deform == "strain":
+        require_quick_strain_table(knit, pattern)
     try:
         return knit.build_scene(pattern, mesh, repeats=repeats if repeats[0] > 0 else None,
                                 plies=options["plies"], ply_pitch=options["ply_pitch"], twist=options["twist"],
-                                deform={"auto": ""}.get(options.get("deform", "auto"), options.get("deform", "auto")),
+                                deform={"auto": ""}.get(deform, deform),
                                 build_plies=False)
     except knit.Error as e:
         if not (gauge[0] > 0 and gauge[1] > 0) or getattr(e, "words", None) is None:
@@ -168,6 +207,25 @@ def bind(source, options, depsgraph, rest=None):
         # The repeats came from Gauge, not from the Repeats the user left alone.
         names = [("the repeats", "from Gauge")] + [n for n in PROPERTY_NAMES if n[0] != "the repeats"]
         raise ValueError(knit.spell_settings(e.words, names)) from None
+
+
+# Blender does not respond while an operator runs: Strain-aware makes a pattern's missing strain
+# table only when that takes about this long at most (Automatic's rule, strainTableIsQuick, or the
+# estimate).
+MAX_TABLE_SECONDS = 60.0
+
+
+def require_quick_strain_table(knit, pattern):
+    """Deform Strain-aware on a pattern whose strain table is neither cached nor quick to make:
+    refused (ValueError) with the estimate, rather than Blender not responding for minutes."""
+    at_hand = knit.strain_table_at_hand(pattern)
+    if at_hand["quick"] or at_hand["seconds"] <= MAX_TABLE_SECONDS:
+        return
+    minutes = at_hand["seconds"] / 60.0
+    raise ValueError(f"Deform Strain-aware: the pattern's strain table is not made yet, and making it would take "
+                     f"about {minutes:.0f} minutes with Blender not responding; choose Deform Automatic or "
+                     "Geometric, or make the table once outside Blender (libknit docs/deformation.md: it is "
+                     "cached, and Strain-aware then uses it)")
 
 
 # -- Step 3: the ply mesh (edges + radius) --------------------------------------------------------
@@ -290,10 +348,10 @@ def scene_of(obj, depsgraph):
     needed (an object applied before the pose was stored binds the source's current mesh)."""
     scene = _scenes.get(obj.name)
     if scene is None:
-        source = bpy.data.objects[obj[SOURCE_PROP]]
+        source = source_of(obj)
         rest = obj.get(REST_PROP)
         rest = None if rest is None else np.array(rest, dtype=np.float32).reshape(-1, 3)
-        scene = _scenes[obj.name] = bind(source, json.loads(obj[OPTIONS_PROP]), depsgraph, rest)
+        scene = _scenes[obj.name] = bind(source, options_of(obj), depsgraph, rest)
     return scene
 
 
@@ -311,6 +369,11 @@ PROPERTY_NAMES = [
 ]
 REAPPLY_HINT = "Object > Knit > Re-apply Knit binds it to the source as it is now"
 
+# The module's array arguments as the add-on fills them: a row of positions is a vertex of the
+# source (one to one), a UV row one of its active UV map's (welded, so no loop index).
+ARRAY_NAMES = [(re.compile(r"\bpositions: row (\d+)"), r"the source's vertex \1"),
+               (re.compile(r"\b(face_)?uvs: row \d+"), "a UV of the source's active UV map")]
+
 
 def message_of(error):
     """An exception as the interface shows it: a knit.Error in the operator's property names,
@@ -318,12 +381,16 @@ def message_of(error):
     words = getattr(error, "words", None)
     if words is not None:
         try:
-            return knit_module().spell_settings(words, PROPERTY_NAMES)
+            text = knit_module().spell_settings(words, PROPERTY_NAMES)
         except ImportError:
-            return words
-    if isinstance(error, (ValueError, OSError)):
-        return str(error)
-    return f"{type(error).__name__}: {error}"
+            text = words
+    elif isinstance(error, (ValueError, OSError)):
+        text = str(error)
+    else:
+        text = f"{type(error).__name__}: {error}"
+    for pattern, name in ARRAY_NAMES:
+        text = pattern.sub(name, text)
+    return text
 
 
 def follow_source(obj, depsgraph):
@@ -333,11 +400,11 @@ def follow_source(obj, depsgraph):
     try:
         knit_module()
     except ImportError as e:
-        return (f"the Python module knit was not found ({e}); install it with cmake --install, or set "
-                "KNIT_PYTHONPATH or the add-on's Module folder to <build>/python")
-    source = bpy.data.objects.get(obj[SOURCE_PROP])
-    if source is None or source.type != "MESH":
-        return f"its source mesh '{obj[SOURCE_PROP]}' was deleted or renamed; {REAPPLY_HINT} (select the source)"
+        return missing_module_message(e)
+    source = source_of(obj)
+    if source is None:
+        return (f"its source mesh '{obj[SOURCE_PROP]}' was deleted; it keeps its last shape. Select a mesh and "
+                "use Object > Knit > Apply Knit (Re-apply Knit needs its source)")
     positions, signature = read_frame(source, depsgraph)
     bound = obj.get(BOUND_PROP)
     change = signature_change(json.loads(bound), signature) if bound else ""
@@ -386,6 +453,14 @@ def set_status(obj, status):
             window.workspace.status_text_set(text)
     except (AttributeError, RuntimeError):  # no windows in background mode
         pass
+
+
+@bpy.app.handlers.persistent
+def on_load(*_):
+    """Another .blend file was opened: the bound scenes and statuses of this session's knit objects
+    belong to the old one (a knit of the same name there may be bound otherwise)."""
+    _scenes.clear()
+    _said.clear()
 
 
 @bpy.app.handlers.persistent

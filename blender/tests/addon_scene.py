@@ -1,5 +1,5 @@
-"""What the headless add-on tests share: the animated grid they drape the knit on, and reading an
-object's points."""
+"""What the headless add-on tests share: the animated grid they drape the knit on, reading an
+object's points, and printing a check."""
 import bpy
 import numpy as np
 
@@ -28,3 +28,9 @@ def points_of(obj):
     co = np.empty(len(obj.data.vertices) * 3, dtype=np.float32)
     obj.data.vertices.foreach_get("co", co)
     return co.reshape(-1, 3)
+
+
+def check(condition, what):
+    print(("ok   " if condition else "FAIL ") + what)
+    if not condition:
+        raise SystemExit(f"knit_blender test failed: {what}")

@@ -13,10 +13,12 @@ import contextlib
 import io
 import os
 import re
+import shutil
 import signal
 import subprocess
 import sys
 import tempfile
+import time
 
 import bpy
 import numpy as np
@@ -26,7 +28,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import knit_blender  # noqa: E402
 from addon_scene import make_animated_grid, points_of  # noqa: E402
 
-FOREIGN = ["--", "res_u", "max_memory", "ply_pitch", "samples_per_turn", "Traceback", "::"]
+FOREIGN = ["--", "res_u", "max_memory", "ply_pitch", "samples_per_turn", "positions:", "Traceback", "::"]
 
 
 def check(condition, what):
@@ -96,6 +98,33 @@ def main():
     expect_refused_or_finite(cloth, "repeats of a billionth", None, repeats=(1e-9, 1e-9))
     expect_refused_or_finite(cloth, "a ply pitch of a picometre", ["Ply pitch"], ply_pitch=1e-12)
 
+    # Found by tools/hostile_blender.py (issue 29, the Blender round): a property set on one axis
+    # only (ignored before), an empty chart text block (Pattern used instead, silently), a Blender
+    # file as the pattern (read as a .pyp), Strain-aware on a pattern whose table would take minutes
+    # to make (Blender not responding for them).
+    expect_refused_or_finite(cloth, "Repeats on one axis", ["Repeats (0, 5)", "both"], repeats=(0, 5))
+    expect_refused_or_finite(cloth, "Gauge on one axis", ["Gauge (20, 0)", "both"], repeats=(0, 0), gauge=(20, 0))
+    bpy.data.texts.new("empty chart")
+    expect_refused_or_finite(cloth, "an empty chart text block", ["'empty chart' is empty"], chart_text="empty chart")
+    slow = bpy.data.texts.new("slow chart")
+    slow.write("k p k p\nk p k p\n")
+    cache = os.environ.get("KNIT_CACHE_DIR")
+    os.environ["KNIT_CACHE_DIR"] = os.path.join(folder, "cache")  # no table of it cached (nor stockinette's)
+    started = time.monotonic()
+    expect_refused_or_finite(cloth, "Strain-aware with a table that takes minutes", ["Deform Strain-aware", "minutes"],
+                             chart_text="slow chart", repeats=(4, 4), deform="strain")
+    check(time.monotonic() - started < 30, f"refused without making it ({time.monotonic() - started:.1f} s)")
+    if cache is None:
+        del os.environ["KNIT_CACHE_DIR"]
+    else:
+        os.environ["KNIT_CACHE_DIR"] = cache
+    nan_mesh = bpy.data.meshes.new("nan")
+    nan_mesh.from_pydata([(0, 0, 0), (1, 0, 0), (float("nan"), 1, 0), (0, 1, 0)], [], [(0, 1, 2, 3)])
+    nan_mesh.uv_layers.new(name="UVMap")
+    nan_obj = bpy.data.objects.new("NaN", nan_mesh)
+    bpy.context.scene.collection.objects.link(nan_obj)
+    expect_refused_or_finite(nan_obj, "a NaN vertex", ["the source's vertex 2", "not finite"])
+
     # Meshes the knit cannot bind to.
     bpy.ops.mesh.primitive_plane_add(size=1)
     no_uv = bpy.context.active_object
@@ -123,6 +152,32 @@ def main():
     result, message, _ = run(bpy.ops.object.knit_bake_pc2, filepath=os.path.join(folder, "c.pc2"), frame_start=5,
                              frame_end=2)
     check(result == {"CANCELLED"} and "End (2) is before Start (5)" in message, "bake End before Start: refused")
+    for props, words, what in [(dict(frame_start=1, frame_end=2), ["not saved"], "the default // path, unsaved"),
+                               (dict(filepath="//c.pc2", frame_start=1, frame_end=2), ["not saved"],
+                                "//c.pc2, unsaved"),
+                               (dict(filepath=os.path.join(folder, "c.pc2"), frame_start=1, frame_end=2**31 - 1),
+                                ["End (2147483647) is beyond Blender's frames"], "End 2^31 - 1")]:
+        select(knit_obj)
+        result, message, printed = run(bpy.ops.object.knit_bake_pc2, **props)
+        check(result == {"CANCELLED"} and all(w in message for w in words) and "Traceback" not in printed,
+              f"bake {what}: refused ({message.strip()!r})")
+        check(sorted(os.listdir(folder)) == before and not os.path.exists(f"{knit_obj.name}.pc2"),
+              f"bake {what}: nothing written (here or where Blender started)")
+    knit_obj["knit_options"] = "{damaged"
+    select(knit_obj)
+    result, message, printed = run(bpy.ops.object.knit_reapply)
+    check(result == {"CANCELLED"} and "knit_options" in message and "Apply Knit" in message,
+          f"Re-apply with damaged stored options: refused, saying what to do ({message.strip()!r})")
+    # Saved: a pattern beside the .blend file given //-relative is found; the .blend is no pattern.
+    bpy.ops.wm.save_as_mainfile(filepath=os.path.join(folder, "scene.blend"))
+    shutil.copy(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "patterns", "stockinette.pyp"),
+                os.path.join(folder, "p.pyp"))
+    select(cloth)
+    check(run(bpy.ops.object.knit_apply, pattern="//p.pyp", repeats=(4, 4))[0] == {"FINISHED"},
+          "a pattern given relative to the .blend file (//p.pyp) is found")
+    knit_obj = bpy.data.objects[f"{cloth.name}.knit"]
+    expect_refused_or_finite(cloth, "the .blend file as the pattern", ["scene.blend", "Blender file"],
+                             pattern=os.path.join(folder, "scene.blend"))
     killed_bake(folder, knit_obj)
     print("knit_blender hostile test passed")
 

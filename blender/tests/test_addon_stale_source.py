@@ -83,7 +83,8 @@ def main():
     frames(9, 9)
     expect_following(obj, "UV map restored")
     shape = points_of(obj)
-    other = cloth.data.uv_layers.new(name="Other")
+    other = cloth.data.uv_layers.new(name="Other")  # a copy of the active map's UVs, then moved
+    other.data.foreach_set("uv", saved * 0.5)
     cloth.data.uv_layers.active = other
     expect_stale(obj, shape, frames(6, 8), ["active UV map is now Other"], "another UV map active")
     cloth.data.uv_layers.remove(cloth.data.uv_layers["Other"])
@@ -92,11 +93,41 @@ def main():
     expect_following(obj, "first UV map active again")
     shape = points_of(obj)
 
+    # Renaming the UV map keeps its coordinates: the knit follows; removing it does not.
+    uv.name = "Sleeve UVs"
+    out = frames(6, 8)
+    check("knit: warning" not in out, f"UV map renamed: no warning ({out.strip()})")
+    expect_following(obj, "UV map renamed")
+    uv.name = "UVMap"
+    shape = points_of(obj)
+
+    # A shape key moving a vertex to NaN: named as the source's vertex, not the module's argument.
+    bulge = cloth.data.shape_keys.key_blocks["Bulge"]
+    saved_co = tuple(bulge.data[5].co)
+    bulge.data[5].co = (float("nan"), 0.0, 0.0)
+    expect_stale(obj, shape, frames(10, 12), ["the source's vertex 5", "not finite"], "a NaN vertex")
+    check("positions" not in obj.get(build.STATUS_PROP, ""), "a NaN vertex: no Python keyword in the status")
+    bulge.data[5].co = saved_co
+    frames(9, 9)
+    expect_following(obj, "the NaN vertex restored")
+    shape = points_of(obj)
+
+    # The source renamed: the knit is parented to it, so it follows it under its new name.
+    cloth.name = "Shirt"
+    out = frames(6, 8)
+    check("knit: warning" not in out and obj[build.SOURCE_PROP] == "Shirt",
+          f"source renamed: followed, its new name recorded ({out.strip()})")
+    cloth.name = "Cloth"
+    frames(9, 9)
+    shape = points_of(obj)
+
     # The module knit missing (an add-on installed without it, or a broken install).
     saved_module = sys.modules.get("knit")
     sys.modules["knit"] = None  # `import knit` raises ImportError
     try:
-        expect_stale(obj, shape, frames(6, 8), ["module knit was not found"], "module missing", reapply=False)
+        expect_stale(obj, shape, frames(6, 8), ["module knit was not found", "Module folder"], "module missing",
+                     reapply=False)
+        check("--" not in obj.get(build.STATUS_PROP, ""), "module missing: no command line in the status")
         bpy.context.view_layer.objects.active = obj
         try:
             bpy.ops.object.knit_reapply()

@@ -34,6 +34,7 @@ from ._knit import (  # noqa: F401
     make_plies,
     remove_stale_temporaries,
     strain_table,
+    strain_table_at_hand,
     spell_settings,
     save_bound_scene,
     uv_to_metre_scale,

@@ -88,6 +88,25 @@ void registerStrain(py::module_& m) {
         "Makes a pattern's strain table (its cell relaxed under each sampled strain; `knit strain-table`), written to "
         "path (.npy + .axes.txt) when given. Raises knit.Error.");
     m.def(
+        "strain_table_at_hand",
+        [](const py::object& pattern) {
+            const knit::Pattern p = py::isinstance<py::str>(pattern)
+                                        ? knit::loadPatternFileOrName(pattern.cast<std::string>())
+                                        : castArg<knit::Pattern>(pattern, "pattern", kPatternArg);
+            const bool cached = static_cast<bool>(knit::findCachedStrainTable(p).table);
+            double seconds = 0;
+            if (!cached) {
+                py::gil_scoped_release release;
+                seconds = knit::estimateStrainTableSeconds(p, {});
+            }
+            return py::dict("cached"_a = cached, "quick"_a = cached || knit::strainTableIsQuick(p),
+                            "seconds"_a = seconds);
+        },
+        "pattern"_a,
+        "Whether deform='strain' finds the pattern's strain table in the cache, else whether making it is quick "
+        "(what deform='' makes on first use) and the seconds it is estimated to take: {'cached', 'quick', "
+        "'seconds'}. Raises knit.Error for a pattern no table can be made for.");
+    m.def(
         "load_strain_table",
         [](const std::string& path) { return std::make_shared<knit::StrainTable>(knit::loadStrainTable(path)); },
         "path"_a, "Reads a table file (T.npy with T.axes.txt) or a MADYPG sxsasy/ folder. Raises knit.Error.");

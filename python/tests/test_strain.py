@@ -58,9 +58,12 @@ def test_default_deform_is_strain_for_the_default_pattern(tmp_path, monkeypatch)
     """deform='' (the default): the default pattern's table is made in seconds, so strain; it is
     cached, and the next scene reads it with the same result."""
     monkeypatch.setenv("KNIT_CACHE_DIR", str(tmp_path))
+    before = knit.strain_table_at_hand("stockinette")  # what a front end asks before a long wait
+    assert not before["cached"] and before["quick"] and before["seconds"] > 0, before
     first = knit.build_scene("stockinette", square(), build_plies=False)
     assert first.stats["deform"] == "strain"
     assert "made now" in first.stats["deform_why"]
+    assert knit.strain_table_at_hand("stockinette") == {"cached": True, "quick": True, "seconds": 0.0}
     second = knit.build_scene("stockinette", square(), build_plies=False)
     assert second.stats["deform_why"] == "the pattern's strain table was in the cache"
     rest = np.array(first.mesh.positions)
@@ -69,6 +72,16 @@ def test_default_deform_is_strain_for_the_default_pattern(tmp_path, monkeypatch)
     assert np.array_equal(first.evaluate(pose).points, first.evaluate(pose, deform="strain").points)
     # Isometric at rest: the geometric yarns, bit for bit.
     assert np.array_equal(first.evaluate(rest).points, first.evaluate(rest, deform="none").points)
+
+
+def test_a_table_that_takes_minutes_is_said_so_before_it_is_made(tmp_path, monkeypatch):
+    """strain_table_at_hand: a 2 x 2 rib chart's table is not quick (Blender refuses Strain-aware
+    on it rather than not responding for minutes); a pattern argument of another type is named."""
+    monkeypatch.setenv("KNIT_CACHE_DIR", str(tmp_path))
+    rib = knit.strain_table_at_hand(knit.chart_pattern("k p k p\nk p k p\n", name="rib"))
+    assert not rib["cached"] and not rib["quick"] and rib["seconds"] > 0, rib
+    with pytest.raises(TypeError, match="pattern"):
+        knit.strain_table_at_hand(3)
 
 
 def test_mismatched_table_is_refused(table, tmp_path):

@@ -19,7 +19,8 @@ std::string fileKind(const std::string& path) {
         {".npy", "a strain table"},  {".png", "an image"},
         {".exr", "an image"},        {".bcc", "a curve export"},
         {".pbrt", "a curve export"}, {".pyp", "a pattern"},
-        {".chart", "a chart"},       {".json", "a JSON file"}};
+        {".chart", "a chart"},       {".json", "a JSON file"},
+        {".blend", "a Blender file"}};
     for (const auto& [e, kind] : kinds)
         if (lower == e) return std::string(kind) + " (" + ext + ")";
     return "";
