@@ -217,9 +217,6 @@ constexpr size_t kPreconditionedMemory = 20;
 // Larger cells keep plain L-BFGS: the factorisation's fill grows faster than the cell (a 12 x 16
 // cable cell, 4608 vertices, ran for minutes of CPU instead of 12.6 s).
 constexpr size_t kMaxPreconditionedVertices = 1000;
-// The first RelaxOptions::plainIterations steps stay plain L-BFGS (the loose cell chooses its
-// rest state); from there on the preconditioner speeds the slow tail (most built-ins end in
-// plain L-BFGS's states; docs/charts.md lists them).
 
 struct PointRef {
     uint32_t i = 0;
