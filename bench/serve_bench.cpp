@@ -3,12 +3,10 @@
 // 4 x 4 and a few typed ones (a cable, a lace row), each relaxed by relaxChart on one core as the
 // server runs it (relaxPageCell): `preview`, what the page shows first (previewOptions: 10
 // samples per stitch, plain L-BFGS), `preview_preconditioned` (the same with the Hessian
-// preconditioner, as the page relaxed it before), `full` (24 samples per stitch, as `knit chart`)
-// and `full_warm` (the same warm-started from the chart relaxed at 10, ChartPatternOptions::
-// warmStartSamples; it includes that coarse stage). Counters: the process CPU seconds of one
-// relaxation (the machine may be shared), iterations (of the last stage; warm_iterations: the
-// coarse stage's), converged, the smallest yarn distance, the energy and L r / A. docs/serve.md
-// has the numbers. Run: build/bench/serve_bench
+// preconditioner, as the page relaxed it before) and `full` (24 samples per stitch, as `knit
+// chart`). Counters: the process CPU seconds of one relaxation (the machine may be shared),
+// iterations, converged, the smallest yarn distance, the energy and L r / A (which rest state it
+// reached). docs/serve.md has the numbers. Run: build/bench/serve_bench
 #include <benchmark/benchmark.h>
 
 #include <string>
@@ -65,7 +63,6 @@ void BM_Relax(benchmark::State& state, const knit::ChartPatternOptions& options)
     }
     state.counters["cpu_s"] = cpu;
     state.counters["iterations"] = r.relaxed.iterations;
-    state.counters["warm_iterations"] = r.warmStartIterations;
     state.counters["converged"] = r.relaxed.converged;
     state.counters["min_distance_r"] = r.relaxed.minDistance;
     state.counters["energy"] = r.relaxed.energy;
@@ -79,12 +76,6 @@ knit::ChartPatternOptions preconditionedPreview() {
     return o;
 }
 
-knit::ChartPatternOptions warm() {
-    knit::ChartPatternOptions o;
-    o.warmStartSamples = knit::serve::kPreviewSamples;
-    return o;
-}
-
 void allCharts(benchmark::internal::Benchmark* b) {
     b->DenseRange(0, int(charts().size()) - 1)->Unit(benchmark::kMillisecond)->Iterations(1);
 }
@@ -94,5 +85,4 @@ void allCharts(benchmark::internal::Benchmark* b) {
 BENCHMARK_CAPTURE(BM_Relax, preview, knit::serve::previewOptions())->Apply(allCharts);
 BENCHMARK_CAPTURE(BM_Relax, preview_preconditioned, preconditionedPreview())->Apply(allCharts);
 BENCHMARK_CAPTURE(BM_Relax, full, knit::ChartPatternOptions{})->Apply(allCharts);
-BENCHMARK_CAPTURE(BM_Relax, full_warm, warm())->Apply(allCharts);
 BENCHMARK_MAIN();

@@ -321,52 +321,5 @@ TEST(Relax, hessianPreconditionerSettlesSlowCellsWellWithinTheCap) {
     }
 }
 
-// RelaxOptions::startPoints: started from its own rest state the cell stays there (the rest
-// lengths and the stop tests' references are the initial cell's: taken from the start, the
-// relaxed cell would count as pulled 20 % short and shrink again); bad starts are refused.
-TEST(Relax, aStartAtRestStaysThereWithTheInitialCellsRestLengths) {
-    const ChartCell cell = chartToCell(builtinChart("chart:stockinette"));
-    RelaxOptions o;
-    o.restLength = 0.8;
-    const RelaxResult cold = relaxYarn(cell.pattern, o);
-    o.startPoints = cold.pattern.points;
-    o.startPx = cold.pattern.px;
-    o.startPy = cold.pattern.py;
-    o.plainIterations = 0;
-    const RelaxResult warm = relaxYarn(cell.pattern, o);
-    EXPECT_TRUE(warm.converged);
-    EXPECT_LE(warm.energy, cold.energy * (1 + 1e-9));
-    EXPECT_NEAR(warm.energy, cold.energy, 1e-3 * cold.energy);
-    EXPECT_NEAR(warm.pattern.px, cold.pattern.px, 1e-3 * cold.pattern.px);
-    EXPECT_GE(warm.minDistance, 1.9);
-    o.startPoints.pop_back();
-    EXPECT_THROW(relaxYarn(cell.pattern, o), Error);
-    o.startPoints = cold.pattern.points;
-    o.startPx = 0;
-    EXPECT_THROW(relaxYarn(cell.pattern, o), Error);
-}
-
-// ChartPatternOptions::warmStartSamples: the full relaxation starts from the chart relaxed at 10
-// samples per stitch and ends converged, apart, with the crossings of every stitch (the 4 x 4
-// cable too, measured: 908 + 1464 iterations, 2.002 r; 6 s, too slow for this test).
-TEST(Relax, aWarmStartedChartRelaxesApartWithItsCrossings) {
-    ChartPatternOptions o;
-    o.warmStartSamples = 10;
-    for (const char* text : {"k p\np k\n", "k\nk\n"}) {
-        const ChartPattern cp = relaxChart(parseChart(text, "warm.chart"), o);
-        std::printf("%d + %d iterations, min distance %.3f r, energy %.2f\n", cp.warmStartIterations,
-                    cp.relaxed.iterations, cp.relaxed.minDistance, cp.relaxed.energy);
-        EXPECT_GT(cp.warmStartIterations, 0) << text;  // the warm start was used
-        EXPECT_TRUE(cp.relaxed.converged) << text;
-        EXPECT_GE(cp.relaxed.minDistance, 1.9) << text;
-        EXPECT_GT(cp.relaxed.closestApproach, 0.2) << text;
-        const ChartCell cell = relaxedCell(cp);
-        for (int r = 0; r < cell.height; ++r)
-            for (int c = 0; c < cell.width; ++c) EXPECT_EQ(test::checkStitchEnds(cell, r, c), "") << text;
-    }
-    o.warmStartSamples = 5;
-    EXPECT_THROW(relaxChart(builtinChart("chart:stockinette"), o), Error);
-}
-
 }  // namespace
 }  // namespace knit

@@ -60,12 +60,9 @@ TEST(ServeChart, aColourOrCommentEditReusesTheCellsRelaxation) {
     ChartPatternOptions preview = options;
     preview.samplesPerStitch = 10;
     EXPECT_NE(keyOf(plain, options), keyOf(plain, preview));
-    // The preview relaxes by plain L-BFGS; the solver and a warm start are in the key too.
+    // The preview relaxes by plain L-BFGS; the solver is in the key too.
     EXPECT_FALSE(previewOptions().hessianPreconditioner);
     EXPECT_NE(keyOf(plain, previewOptions()), keyOf(plain, preview));
-    ChartPatternOptions warm = options;
-    warm.warmStartSamples = 10;
-    EXPECT_NE(keyOf(plain, options), keyOf(plain, warm));
 
     const Chart chart = parsePageChart(coloured, 400);
     const RelaxedChart reused = relaxedChart(chart, chartToCell(chart, cellOptions(options)),

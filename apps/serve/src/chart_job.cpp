@@ -60,8 +60,6 @@ std::string relaxationKey(const ChartCell& cell, const ChartPatternOptions& opti
                               double(options.maxIterations),
                               double(options.affinePeriod),
                               double(options.hessianPreconditioner),
-                              double(options.warmStartSamples),
-                              double(options.warmStartPreconditioner),
                               p.px,
                               p.py,
                               p.radius};

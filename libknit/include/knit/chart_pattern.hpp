@@ -19,14 +19,6 @@ struct ChartPatternOptions {
     int maxIterations = 4000;
     bool affinePeriod = false;          // RelaxOptions::affinePeriod: faster, for previews (part of the cache key)
     bool hessianPreconditioner = true;  // RelaxOptions::hessianPreconditioner of this relaxation
-    // Warm start (off by default): the chart is first relaxed at warmStartSamples samples per
-    // stitch (the coarse stage, warmStartOptions), and the relaxation at samplesPerStitch starts
-    // from that rest state carried to its vertices, without RelaxOptions::plainIterations (the
-    // rest state is chosen). 0, or not below samplesPerStitch: from the initial cell. Measured at
-    // 10 (docs/serve.md, "Warm start"): faster on some charts, slower on others, and it ends in
-    // other rest states (the relaxation has several; the energies are listed there).
-    int warmStartSamples = 0;
-    bool warmStartPreconditioner = false;  // the coarse stage's hessianPreconditioner
     // Progress and cancellation of the relaxation (RelaxOptions::onStep); not part of the
     // cache key, since it does not change the result.
     RelaxStepFn onStep;
@@ -36,9 +28,7 @@ struct ChartPatternOptions {
 struct ChartPattern {
     ChartCell cell;       // the initial cell and its stitch record (vertex ranges stay valid)
     RelaxResult relaxed;  // relaxed.pattern is the result
-    double seconds = 0;   // relaxation wall time (the coarse stage's included)
-    // The coarse stage's iterations when the relaxation was warm-started from it, else 0.
-    int warmStartIterations = 0;
+    double seconds = 0;   // relaxation wall time
 };
 
 // The relaxation's cost grows with the cell's yarn vertices (stitches x samples per stitch):
@@ -47,14 +37,7 @@ struct ChartPattern {
 constexpr size_t kMaxRelaxedChartVertices = 48000;
 
 // Throws knit::Error for bad options (radius, samples), an invalid chart cell or one of more
-// than kMaxRelaxedChartVertices vertices (before relaxing it). With a warm start
-// (ChartPatternOptions::warmStartSamples) onStep is called by both stages (the coarse one's
-// RelaxStep::pattern has the coarse cell's vertices); stopped in the coarse stage, the result's
-// relaxed.stopped is set and relaxed.pattern is the initial cell.
+// than kMaxRelaxedChartVertices vertices (before relaxing it).
 ChartPattern relaxChart(const Chart& chart, const ChartPatternOptions& options = {});
-
-// The options of relaxChart's coarse stage for `options`: warmStartSamples samples per stitch,
-// warmStartPreconditioner, no warm start of its own.
-ChartPatternOptions warmStartOptions(const ChartPatternOptions& options);
 
 }  // namespace knit

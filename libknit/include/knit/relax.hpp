@@ -68,16 +68,8 @@ struct RelaxOptions {
     bool hessianPreconditioner = true;
     // The first iterations stay plain L-BFGS: while a loose cell pulls tight it chooses its rest
     // state, and preconditioned from the start some cells settled in another one (garter at
-    // energy 26.2 against 23.4, with a stitch that lost a crossing). A relaxation started from a
-    // cell already at rest (startPoints) needs none.
+    // energy 26.2 against 23.4, with a stitch that lost a crossing).
     int plainIterations = 300;
-    // Optional start (empty: the initial pattern's points and period): the relaxation starts
-    // from these points (one per vertex of the initial pattern, in metres) and this period,
-    // while the rest lengths, anchors and the stop tests' references (the gradient and energy at
-    // the start) stay the initial pattern's. relaxChart starts the full relaxation from its
-    // coarse relaxation this way (knit/chart_pattern.hpp).
-    std::vector<glm::dvec3> startPoints;
-    double startPx = 0, startPy = 0;
     int maxIterations = 4000;
     double gradientTolerance = 1e-4;          // stop when the largest gradient entry is below this,
     double relativeGradientTolerance = 1e-6;  // or below this times its value at the start,

@@ -22,7 +22,6 @@ std::string chartCacheKey(const std::string& chartText, const ChartPatternOption
     // their defaults add nothing to the key.
     key << "v10 " << o.radius << ' ' << o.samplesPerStitch << ' ' << o.restLength << ' ' << o.maxIterations
         << (o.affinePeriod ? " affine" : "") << (o.hessianPreconditioner ? "" : " plain");
-    if (o.warmStartSamples > 0) key << " warm " << o.warmStartSamples << (o.warmStartPreconditioner ? " hessian" : "");
     key << '\n' << chartText;
     char name[40];
     std::snprintf(name, sizeof name, "chart-%016llx.pyp", static_cast<unsigned long long>(util::fnv1a(key.str())));

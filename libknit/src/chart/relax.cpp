@@ -389,25 +389,6 @@ Problem setUp(const Pattern& p, const RelaxOptions& opt, Vec& v) {
     return pb;
 }
 
-// RelaxOptions::startPoints and the start period, in yarn radii (v's layout).
-Vec startVector(const Problem& pb, const Pattern& p, const RelaxOptions& opt) {
-    if (opt.startPoints.size() != pb.n)
-        throw Error("yarn relaxation: " + std::to_string(opt.startPoints.size()) + " start points for " +
-                    std::to_string(pb.n) + " vertices");
-    if (!(opt.startPx > 0) || !(opt.startPy > 0) || !std::isfinite(opt.startPx) || !std::isfinite(opt.startPy))
-        throw Error("yarn relaxation: the start period must be positive");
-    Vec v(Eigen::Index(3 * pb.n + 2));
-    for (size_t i = 0; i < pb.n; ++i)
-        for (int c = 0; c < 3; ++c) {
-            const double x = opt.startPoints[i][c];
-            if (!std::isfinite(x)) throw Error("yarn relaxation: start point " + std::to_string(i) + " is not finite");
-            v[Eigen::Index(3 * i + size_t(c))] = x / p.radius;
-        }
-    v[Eigen::Index(3 * pb.n)] = opt.startPx / p.radius;
-    v[Eigen::Index(3 * pb.n + 1)] = opt.startPy / p.radius;
-    return v;
-}
-
 std::vector<glm::dvec3> positions(const Problem& pb, const Vec& v) {
     std::vector<glm::dvec3> x(pb.n);
     for (size_t i = 0; i < pb.n; ++i) x[i] = vertex(v, i);
@@ -519,15 +500,7 @@ RelaxResult relaxYarn(const Pattern& initial, const RelaxOptions& options) {
     Vec g, gNew, vNew;
     double dmin = 0, dminNew = 0;  // smallest pair distance now and after the trial step
     double e = energy(pb, pairs, v, g, &dmin);
-    // The stop tests' references: the initial pattern's gradient and energy, also when it starts
-    // elsewhere (a start near rest would otherwise tighten the relative tests).
-    const double gStart = g.lpNorm<Eigen::Infinity>(), eStart = e;
-    if (!options.startPoints.empty()) {
-        v = startVector(pb, initial, options);
-        pairs = pairsOf(pb, v, skin);
-        built = v;
-        e = energy(pb, pairs, v, g, &dmin);
-    }
+    const double gStart = g.lpNorm<Eigen::Infinity>(), eStart = e;  // the stop tests' references
     std::vector<Vec> S, Y;
     Factor ldlt;
     bool haveFactor = false;  // ldlt holds the preconditioner (refactorised every kRefactorEvery steps)
