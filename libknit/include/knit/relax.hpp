@@ -59,7 +59,7 @@ struct RelaxOptions {
     // state (docs/charts.md, "Relaxation"): off by default, for previews that want speed.
     bool affinePeriod = false;
     // L-BFGS preconditioned by the energy's Hessian (each term's part made positive
-    // semidefinite, contact pairs near D included; a sparse LDLT factorisation every 10 steps):
+    // semidefinite, contact pairs near D included; a sparse LDLT factorisation every 25 steps):
     // the slow modes of a cell (the period narrowing under lace decreases, basketweave's and
     // cable4's ridges) settle in hundreds to about 2000 iterations instead of running into the
     // cap (docs/charts.md, "Relaxation"). Cells of up to 1000 vertices (about 40 stitches; above,
