@@ -232,6 +232,17 @@ struct PointRef {
 // table of (n + 1)^2 block numbers: 4 MB at the 1000 vertices the preconditioner is used up to).
 class EntrySums {
 public:
+    struct Block {
+        Eigen::Index row = 0, col = 0;  // in vertices
+        std::array<double, 9> sum{};
+        uint32_t touched = 0;
+        // Adds to entry e (3 row + column within the block).
+        void add(int e, double value) {
+            sum[size_t(e)] += value;
+            touched |= 1u << e;
+        }
+    };
+
     explicit EntrySums(size_t n) : points_(n + 1), blockOf_(points_ * points_, -1) {}
     // The block of rows of vertex a and columns of vertex b (n: the period), made when first used.
     size_t block(size_t a, size_t b) {
@@ -242,12 +253,7 @@ public:
         }
         return size_t(k);
     }
-    // Adds to entry e (3 row + column, within the block) of block k.
-    void add(size_t k, int e, double value) {
-        Block& b = blocks_[k];
-        b.sum[size_t(e)] += value;
-        b.touched |= 1u << e;
-    }
+    Block& at(size_t k) { return blocks_[k]; }
     Eigen::SparseMatrix<double> matrix(Eigen::Index size) const {
         std::vector<Eigen::Triplet<double>> entries;
         entries.reserve(9 * blocks_.size());
@@ -260,11 +266,6 @@ public:
     }
 
 private:
-    struct Block {
-        Eigen::Index row = 0, col = 0;  // in vertices
-        std::array<double, 9> sum{};
-        uint32_t touched = 0;
-    };
     size_t points_;
     std::vector<int32_t> blockOf_;
     std::vector<Block> blocks_;
@@ -280,33 +281,39 @@ struct HessianBuilder {
         if (!freePeriod) return 0;
         return c == 0 ? p.ox : c == 1 ? p.oy : 0;
     }
+    // Adds c_k c_l M to the blocks of points k and l: for coordinates c1, c2 the entry of their
+    // vertices, and times their offsets in periods the period's row, column and corner.
     template <size_t K>
     void add(const std::array<PointRef, K>& pts, const std::array<double, K>& coef, const Eigen::Matrix3d& M) {
         for (size_t k = 0; k < K; ++k)
             for (size_t l = 0; l < K; ++l) {
                 const double cc = coef[k] * coef[l];
                 if (cc == 0) continue;
-                // The blocks of (vertex k or the period) x (vertex l or the period), when first needed.
-                constexpr size_t kNone = SIZE_MAX;
-                size_t blocks[2][2] = {{kNone, kNone}, {kNone, kNone}};
-                const size_t rowPoint[2] = {pts[k].i, n}, colPoint[2] = {pts[l].i, n};
+                const PointRef &p = pts[k], &q = pts[l];
+                const double wa[3] = {double(offset(p, 0)), double(offset(p, 1)), 0.0};
+                const double wb[3] = {double(offset(q, 0)), double(offset(q, 1)), 0.0};
+                const bool rowPeriod = wa[0] != 0 || wa[1] != 0, colPeriod = wb[0] != 0 || wb[1] != 0;
+                // The blocks first (made when new), then their addresses (the list no longer grows).
+                const size_t kvv = entries.block(p.i, q.i), kvp = colPeriod ? entries.block(p.i, n) : kvv,
+                             kpv = rowPeriod ? entries.block(n, q.i) : kvv,
+                             kpp = rowPeriod && colPeriod ? entries.block(n, n) : kvv;
+                EntrySums::Block &vv = entries.at(kvv), &vp = entries.at(kvp), &pv = entries.at(kpv),
+                                 &pp = entries.at(kpp);
                 for (int c1 = 0; c1 < 3; ++c1)
                     for (int c2 = 0; c2 < 3; ++c2) {
                         const double m = cc * M(c1, c2);
                         if (m == 0) continue;
-                        const int oa = offset(pts[k], c1), ob = offset(pts[l], c2);
-                        const double wa[2] = {1, double(oa)}, wb[2] = {1, double(ob)};
-                        for (int x = 0; x < (oa == 0 ? 1 : 2); ++x)
-                            for (int y = 0; y < (ob == 0 ? 1 : 2); ++y) {
-                                if (blocks[x][y] == kNone) blocks[x][y] = entries.block(rowPoint[x], colPoint[y]);
-                                entries.add(blocks[x][y], 3 * c1 + c2, m * wa[x] * wb[y]);
-                            }
+                        const int e = 3 * c1 + c2;
+                        vv.add(e, m);
+                        if (wb[c2] != 0) vp.add(e, m * wb[c2]);
+                        if (wa[c1] != 0) pv.add(e, m * wa[c1]);
+                        if (wa[c1] != 0 && wb[c2] != 0) pp.add(e, m * wa[c1] * wb[c2]);
                     }
             }
     }
     // A diagonal entry of its own (the fixed period's).
     void addDiagonal(Eigen::Index i, double value) {
-        entries.add(entries.block(size_t(i / 3), size_t(i / 3)), int(i % 3) * 4, value);
+        entries.at(entries.block(size_t(i / 3), size_t(i / 3))).add(int(i % 3) * 4, value);
     }
 };
 
