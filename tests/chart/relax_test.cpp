@@ -343,7 +343,7 @@ TEST(Relax, hessianPreconditionerSettlesSlowCellsWellWithinTheCap) {
 // reaches depends on the path (docs/serve.md, "Which rest state"): started elsewhere, refactorised
 // every 35 or 50 steps instead of 25, with an incomplete Cholesky factor, or preconditioned from
 // the first step, seed ended at energy 262.8, rib1x1 at 13.5567, basketweave at 846.5, garter at
-// 26.2. `knit chart`'s state is the one the default path reaches: relaxChart with the default
+// 23.27. `knit chart`'s state is the one the default path reaches: relaxChart with the default
 // options, from the chart's initial cell, 300 plain L-BFGS steps, then L-BFGS preconditioned by
 // the projected Hessian refactorised every 25 steps. Pinned here by its energy (to 1e-4 relative:
 // the other states measured differ by 1.7e-4 or more) and its yarn length per area (to 1e-3), for
