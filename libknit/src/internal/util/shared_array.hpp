@@ -13,43 +13,35 @@
 
 namespace knit::util {
 
+// An ArrayView (its accessors; it converts to one for a function taking an ArrayView) that owns
+// or shares ownership of what it views.
 template <class T>
-class SharedArray {
+class SharedArray : public ArrayView<T> {
 public:
     SharedArray() = default;
     // Owns the elements (moved in).
     SharedArray(std::vector<T> v) {  // NOLINT: implicit, as a vector is assigned to it
         auto owned = std::make_shared<const std::vector<T>>(std::move(v));
-        data_ = owned->data();
-        size_ = owned->size();
+        static_cast<ArrayView<T>&>(*this) = ArrayView<T>(owned->data(), owned->size());
         owner_ = std::move(owned);
     }
     // Views `size` elements at `data`, which `owner` keeps valid (and unchanged).
     SharedArray(std::shared_ptr<const void> owner, const T* data, size_t size)
-        : owner_(std::move(owner)), data_(data), size_(size), view_(true) {}
+        : ArrayView<T>(data, size), owner_(std::move(owner)), view_(true) {}
 
-    const T* data() const { return data_; }
-    size_t size() const { return size_; }
-    bool empty() const { return size_ == 0; }
-    const T& operator[](size_t i) const { return data_[i]; }
-    const T* begin() const { return data_; }
-    const T* end() const { return data_ + size_; }
-    operator ArrayView<T>() const { return {data_, size_}; }  // NOLINT: implicit by design
     // True when the elements belong to another owner (e.g. a file's memory map).
     bool isView() const { return view_; }
 
     friend bool operator==(const SharedArray& a, const SharedArray& b) {
-        if (a.size_ != b.size_) return false;
-        for (size_t i = 0; i < a.size_; ++i)
-            if (!(a.data_[i] == b.data_[i])) return false;
+        if (a.size() != b.size()) return false;
+        for (size_t i = 0; i < a.size(); ++i)
+            if (!(a[i] == b[i])) return false;
         return true;
     }
     friend bool operator!=(const SharedArray& a, const SharedArray& b) { return !(a == b); }
 
 private:
     std::shared_ptr<const void> owner_;
-    const T* data_ = nullptr;
-    size_t size_ = 0;
     bool view_ = false;
 };
 
