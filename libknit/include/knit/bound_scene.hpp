@@ -26,7 +26,7 @@
 //
 // Format version 5 aligns every array (below), so that readBoundScene leaves the largest arrays
 // in place in its memory map of the file instead of copying them: the Animator state's rest arc
-// lengths, twist phases and segment lengths (about 60 % of the file; values only, never an index
+// lengths, twist phases and segment lengths (two thirds of the file at 350 x 350; values only, never an index
 // or a size). The loaded scene holds them as views that share ownership of the map, so the map
 // stays open while the scene, any copy of it or an Animator of it lives. Every value is still
 // checked on loading (reading the map allocates nothing). A file truncated or rewritten in place
