@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -260,7 +261,10 @@ inline Outcome runBoundScene(const uint8_t* data, size_t size) {
     }
     try {
         const MemoryBudget budget(uint64_t(64) << 20);
-        const BoundScene b = decodeBoundScene(bytes, "fuzz.knitbind", budget);
+        // Owned bytes: the Animator state's largest arrays are used in place, as readBoundScene
+        // uses them in its map of a file.
+        const auto owned = std::make_shared<const std::string>(std::move(bytes));
+        const BoundScene b = decodeBoundScene(*owned, owned, "fuzz.knitbind", budget);
         AnimatorOptions options;
         options.budget = budget;
         const Animator animator(b.scene, options);

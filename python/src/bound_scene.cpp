@@ -28,7 +28,9 @@ void registerBoundScene(py::module_& m) {
         "path"_a, "max_memory"_a = "",
         "The Scene of a bound scene file (`knit bind`): pattern, placement, rest mesh and binding as saved, "
         "evaluating every pose to the same bytes as the scene that was saved. A file of another format "
-        "version or a damaged one raises knit.Error saying which.");
+        "version or a damaged one raises knit.Error saying which. The file is memory-mapped and its largest "
+        "arrays are used in place while the Scene lives: replace it by rename (as save_bound_scene and "
+        "`knit bind` do), never truncate or rewrite it in place meanwhile.");
     m.def(
         "save_bound_scene",
         [](const knit::Scene& scene, const std::string& path, const std::string& settings) {

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <limits>
 #include <map>
+#include <optional>
 #include <string>
 
 #include <boost/crc.hpp>
@@ -17,7 +18,9 @@
 #include "knit/generator.hpp"
 #include "knit/scene.hpp"
 #include "knit/strain.hpp"
+#include "scene/bound_scene_file.hpp"
 #include "scene/bound_scene_format.hpp"
+#include "test_util.hpp"
 
 namespace knit {
 namespace {
@@ -67,6 +70,8 @@ public:
         impl::boundSceneLayout(*this, parts);
     }
     size_t operator[](const std::string& what) const { return where_.at(what); }
+    // Where an array's or a text's count lies.
+    size_t countOf(const std::string& what) const { return counts_.at(what); }
 
     template <class T>
     void value(T& v, const char* what) {
@@ -76,15 +81,26 @@ public:
     template <class T>
     void array(std::vector<T>& v, const char* what) {
         uint64_t n = 0;
+        counts_.emplace(what, at_);
         take(&n, sizeof n);
+        at_ += impl::arrayPadding(at_);  // the elements start at a file offset multiple of 64
         note(what);
         v.resize(n);
         take(v.data(), n * sizeof(T));
     }
+    template <class T>
+    void array(util::SharedArray<T>& v, const char* what) {
+        std::vector<T> copy;
+        array(copy, what);
+        v = std::move(copy);
+    }
     void text(std::string& s, const char* what) {
-        std::vector<char> v;
-        array(v, what);
-        s.assign(v.begin(), v.end());
+        uint64_t n = 0;
+        counts_.emplace(what, at_);
+        take(&n, sizeof n);
+        note(what);
+        s.resize(n);
+        take(s.data(), n);
     }
     void blocks(std::map<std::string, std::vector<std::vector<double>>>& b, const char* what) {
         uint64_t n = 0;
@@ -109,7 +125,7 @@ private:
     }
     const std::string& bytes_;
     size_t at_ = 32;  // the payload follows the header
-    std::map<std::string, size_t> where_;
+    std::map<std::string, size_t> where_, counts_;
 };
 
 template <class T>
@@ -151,16 +167,20 @@ TEST(BoundScene, otherVersionsAndDamagedFilesAreRefusedSayingWhich) {
     const std::string bytes = encodeBoundScene(restScene(), {});
     std::string v = bytes;
     v[8] = 7;  // format version 7
-    EXPECT_NE(errorOf(v).find("has format version 7 (written by a newer knit); this knit reads version 4 only: bind "
+    EXPECT_NE(errorOf(v).find("has format version 7 (written by a newer knit); this knit reads version 5 only: bind "
                               "the scene again with this knit (`knit bind --mesh REST ... -o g.knitbind`)"),
               std::string::npos)
         << errorOf(v);
-    v[8] = 3;  // a file of the previous format (no stretch references: the rest yarns were evaluated on loading)
-    EXPECT_NE(errorOf(v).find("has format version 3 (written by an older knit); this knit reads version 4 only"),
+    v[8] = 4;  // a file of the previous format (arrays not aligned: they were copied out on loading)
+    EXPECT_NE(errorOf(v).find("has format version 4 (written by an older knit); this knit reads version 5 only"),
+              std::string::npos)
+        << errorOf(v);
+    v[8] = 3;  // no stretch references: the rest yarns were evaluated on loading
+    EXPECT_NE(errorOf(v).find("has format version 3 (written by an older knit); this knit reads version 5 only"),
               std::string::npos)
         << errorOf(v);
     v[8] = 1;  // a file of the first format (no Animator state)
-    EXPECT_NE(errorOf(v).find("has format version 1 (written by an older knit); this knit reads version 4 only"),
+    EXPECT_NE(errorOf(v).find("has format version 1 (written by an older knit); this knit reads version 5 only"),
               std::string::npos)
         << errorOf(v);
     EXPECT_NE(errorOf(bytes.substr(0, bytes.size() - 100)).find("is truncated"), std::string::npos);
@@ -246,7 +266,7 @@ TEST(BoundScene, anInconsistentAnimatorStateIsRefusedNamingTheYarn) {
     e = errorOf(withValue(bytes, at["the frame seeds"] + 120, uint8_t(2)));
     EXPECT_NE(e.find(prefix + "yarn 0: its frame seed has a bad flag"), std::string::npos) << e;
     // A count beyond the file in the new fields: refused before allocating.
-    e = errorOf(withValue(bytes, at["the rest twist phases"] - 8, uint64_t(1) << 50));
+    e = errorOf(withValue(bytes, at.countOf("the rest twist phases"), uint64_t(1) << 50));
     EXPECT_NE(e.find("is damaged: the rest twist phases claim 1125899906842624 elements of 16 bytes"),
               std::string::npos)
         << e;
@@ -347,12 +367,12 @@ TEST(BoundScene, aDamagedOrMismatchedEmbeddedTableIsRefusedNamingTheFile) {
     EXPECT_NE(e.find("is inconsistent: the deform mode 7 is unknown"), std::string::npos) << e;
     e = errorOf(withValue(bytes, at["the deform mode"], uint32_t(0)));  // none, with a table
     EXPECT_NE(e.find("is inconsistent: the deform mode is none, but a strain table"), std::string::npos) << e;
-    e = errorOf(withValue(bytes, at["the binding's pattern vertices"] - 8, uint64_t(3)));
+    e = errorOf(withValue(bytes, at.countOf("the binding's pattern vertices"), uint64_t(3)));
     EXPECT_NE(e.find("bound scene 'g.knitbind' is"), std::string::npos) << e;  // the fields after it no longer line up
     // A file of the previous format (before the table was stored) says so.
     std::string v2 = bytes;
     v2[8] = 2;
-    EXPECT_NE(errorOf(v2).find("has format version 2 (written by an older knit); this knit reads version 4 only"),
+    EXPECT_NE(errorOf(v2).find("has format version 2 (written by an older knit); this knit reads version 5 only"),
               std::string::npos)
         << errorOf(v2);
 }
@@ -416,6 +436,100 @@ TEST(BoundScene, badStretchReferencesOrDeformStatisticsAreRefused) {
     EXPECT_NE(e.find(prefix + "its Animator state: a rest segment length"), std::string::npos) << e;
     e = errorOf(withValue(bytes, at["the deform statistics"], uint64_t(5)));
     EXPECT_NE(e.find(prefix + "the deform mode is none, but deform statistics follow"), std::string::npos) << e;
+}
+
+// The frame and statistics of an Animator of `loaded` equal those of `bound` bit for bit.
+void expectSameFrame(const Animator& bound, const Scene& loaded) {
+    const Animator b(loaded);
+    AnimationFrame fa, fb;
+    const std::vector<glm::dvec3> frame = waved(bound.rest().mesh());
+    bound.evaluate(frame, fa);
+    b.evaluate(frame, fb);
+    ASSERT_GT(fa.plies.curves.pointCount(), 1000u);
+    EXPECT_EQ(fa.plies.curves.points, fb.plies.curves.points);
+    EXPECT_EQ(fa.centres.points, fb.centres.points);
+    EXPECT_EQ(fa.stats.maxStretch, fb.stats.maxStretch);
+    EXPECT_EQ(fa.stats.yarnLengthRatio, fb.stats.yarnLengthRatio);
+    EXPECT_EQ(fa.stats.minYarnDistance, fb.stats.minYarnDistance);
+}
+
+// Format version 5: readBoundScene maps the file and the loaded scene uses the Animator state's
+// largest arrays in place (views sharing the map), read back into memory where mapping is not
+// possible; either way frames are the bound scene's bit for bit, also through a copy of the
+// scene that outlives the loaded original (the views keep the map open).
+TEST(BoundScene, aMappedFileIsUsedInPlaceAndEvaluatesFramesToTheSameBytes) {
+    const test::TempDir dir;
+    const Scene rest = strainedRestScene(testTable());  // strain: the twist turns the stored phases
+    const std::string path = dir.write("g.knitbind", encodeBoundScene(rest, {}));
+    const Animator bound(rest);
+    const auto expectInPlace = [](const Scene& s) {
+        const AnimatorBindState& b = *s.animatorState();
+        EXPECT_TRUE(b.restPhase.isView());
+        EXPECT_TRUE(b.restArc.isView());
+        EXPECT_TRUE(b.restSegment.isView());
+        EXPECT_FALSE(b.restPhase.empty());
+    };
+    {  // mapped; a copy evaluates after the original and its map's first owner are gone
+        const impl::BoundSceneFile file = impl::openBoundSceneFile(path, {});
+        EXPECT_TRUE(file.mapped);
+        std::optional<BoundScene> loaded = readBoundScene(path);
+        expectInPlace(loaded->scene);
+        expectSameFrame(bound, loaded->scene);
+        const Scene copy = loaded->scene;
+        loaded.reset();
+        expectInPlace(copy);
+        expectSameFrame(bound, copy);
+    }
+    {  // read into memory (what a failed map falls back to)
+        impl::BoundSceneFile file = impl::openBoundSceneFile(path, {}, impl::BoundSceneAccess::Read);
+        EXPECT_FALSE(file.mapped);
+        const BoundScene loaded = decodeBoundScene(file.bytes, std::move(file.owner), path);
+        expectInPlace(loaded.scene);
+        expectSameFrame(bound, loaded.scene);
+    }
+    // Bytes without an owner are copied.
+    const BoundScene copied = decodeBoundScene(encodeBoundScene(rest, {}), "g.knitbind");
+    EXPECT_FALSE(copied.scene.animatorState()->restPhase.isView());
+    expectSameFrame(bound, copied.scene);
+}
+
+// A version 5 file truncated, with an array not at its aligned offset (no padding: a version 4
+// payload, or a byte lost), or with a value left in place in the map that evaluation cannot use
+// is refused naming the file, through the map as from bytes.
+TEST(BoundScene, aTruncatedMisalignedOrBadMappedFileIsRefusedNamingTheFile) {
+    const test::TempDir dir;
+    const std::string bytes = encodeBoundScene(restScene(), {});
+    const FieldOffsets at(bytes);
+    const auto readError = [&](const std::string& content) {
+        const std::string path = dir.write("f.knitbind", content);
+        try {
+            readBoundScene(path);
+        } catch (const Error& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    const std::string name = "bound scene '" + dir.file("f.knitbind") + "' ";
+    std::string e = readError(bytes.substr(0, bytes.size() / 2));
+    EXPECT_NE(e.find(name + "is truncated: it holds"), std::string::npos) << e;
+    // The padding before the pattern points taken out (the header's payload size and checksum
+    // made to match): the reader meets the points where the zero padding belongs.
+    const size_t count = at.countOf("the pattern points"), padding = at["the pattern points"] - count - 8;
+    ASSERT_GT(padding, 0u);
+    std::string unpadded = bytes;
+    unpadded.erase(count + 8, padding);
+    const uint64_t payload = unpadded.size() - 32;
+    std::memcpy(unpadded.data() + 16, &payload, 8);
+    e = readError(resealed(unpadded));
+    EXPECT_NE(e.find(name + "is damaged: the padding before the pattern points is not zero"), std::string::npos) << e;
+    // Values in the arrays used in place are checked on loading too.
+    e = readError(withValue(bytes, at["the rest arc lengths"] + 8, std::numeric_limits<double>::quiet_NaN()));
+    EXPECT_NE(e.find(name + "is inconsistent: its Animator state: a rest arc length, twist phase, pitch or length is "
+                            "not finite"),
+              std::string::npos)
+        << e;
+    e = readError(withValue(bytes, at["the rest segment lengths"], -1.0));
+    EXPECT_NE(e.find(name + "is inconsistent: its Animator state: a rest segment length"), std::string::npos) << e;
 }
 
 TEST(BoundScene, aSceneMadeFromPartsIsNotSaved) {

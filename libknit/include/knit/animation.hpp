@@ -36,6 +36,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "knit/array_view.hpp"
 #include "knit/base_mesh.hpp"
 #include "knit/budget.hpp"
 #include "knit/plies.hpp"
@@ -199,8 +200,9 @@ public:
     // unless only the yarns are evaluated):
     // the resampling layouts, rest arc lengths, pitches and twist phases, frame seeds, rest
     // segment lengths (adopted, not recomputed, from a scene loaded from a bound scene file:
-    // Scene::animatorState; such an Animator never asks for the rest yarns, which the loaded
-    // scene then does not evaluate). Keeps a
+    // Scene::animatorState, whose largest arrays stay in the file's memory map, shared with the
+    // scene; such an Animator never asks for the rest yarns, which the loaded scene then does not
+    // evaluate). Keeps a
     // reference to `rest`, which must outlive the Animator. Throws knit::Error for bad ply
     // options, more than 2^32-1 ply points or plies over options.budget.
     explicit Animator(const Scene& rest, const AnimatorOptions& options = {});
@@ -245,11 +247,11 @@ private:
 // The statistics of a frame (what Animator::evaluate computes when options.stats is set):
 // `restSegment` per yarn vertex, `restArc` per centre point, `restLength` per yarn, `yarnRadius`
 // (a centre point's yarn is the curve of `centres` it lies on).
-double maxYarnStretch(const Polylines& yarns, const std::vector<double>& restSegment);
+// (restSegment and restArc: a std::vector, or a loaded scene's arrays in its file's map.)
+double maxYarnStretch(const Polylines& yarns, ArrayView<double> restSegment);
 // Total length of the curves (closed ones with their closing segment); the same for any thread count.
 double totalYarnLength(const Polylines& yarns);
-double minYarnDistance(const Polylines& centres, const std::vector<double>& restArc,
-                       const std::vector<double>& restLength, double yarnRadius, const AnimatorOptions& options,
-                       DistanceScratch& scratch);
+double minYarnDistance(const Polylines& centres, ArrayView<double> restArc, const std::vector<double>& restLength,
+                       double yarnRadius, const AnimatorOptions& options, DistanceScratch& scratch);
 
 }  // namespace knit

@@ -24,18 +24,30 @@
 // apply on every frame. So a loaded scene evaluates every frame to the same bytes as the scene
 // that was saved. Nothing depends on other frames.
 //
+// Format version 5 aligns every array (below), so that readBoundScene leaves the largest arrays
+// in place in its memory map of the file instead of copying them: the Animator state's rest arc
+// lengths, twist phases and segment lengths (two thirds of the file at 350 x 350; values only, never an index
+// or a size). The loaded scene holds them as views that share ownership of the map, so the map
+// stays open while the scene, any copy of it or an Animator of it lives. Every value is still
+// checked on loading (reading the map allocates nothing). A file truncated or rewritten in place
+// while it is mapped changes what the views read (a truncation ends the process with SIGBUS on
+// the next read of a lost page); `knit bind` replaces files by rename, which a map survives.
+//
 // Layout (little-endian): a 32-byte header
 //   char[8] "KNITBIND", u32 format version, u32 header size (32), u64 payload bytes,
 //   u32 CRC-32 of the payload, u32 zero
-// then the payload: the fields above in a fixed order, arrays as a u64 count and packed
-// elements, strings as a u64 length and bytes. A file of another format version (version 1:
+// then the payload: the fields above in a fixed order, arrays as a u64 count, zero bytes up to
+// the next file offset that is a multiple of 64, and the packed elements; strings as a u64 length
+// and bytes. A file of another format version (version 1:
 // written before the Animator state was stored; version 2: before the deformation and its table
-// were; version 3: before the stretch references and deform statistics were; bind the scene
-// again), a truncated or otherwise damaged file (size or checksum wrong,
+// were; version 3: before the stretch references and deform statistics were; version 4: before
+// the arrays were aligned; bind the scene again), a truncated or otherwise damaged file (size
+// or checksum wrong, padding that is not zero,
 // counts beyond the file, indices out of range, an embedded table that is not finite or does not
 // fit the pattern) is refused with a knit::Error saying which.
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <string_view>
 
@@ -45,7 +57,7 @@
 namespace knit {
 
 // The format this library writes and reads (a file of any other version is refused).
-constexpr uint32_t kBoundSceneFormatVersion = 4;
+constexpr uint32_t kBoundSceneFormatVersion = 5;
 
 struct BoundSceneInfo {
     uint32_t formatVersion = kBoundSceneFormatVersion;
@@ -73,8 +85,14 @@ void writeBoundScene(const std::string& path, const Scene& rest, const BoundScen
 // Reads a bound scene from bytes; `name` names them in messages. Sizes are checked against the
 // bytes present before anything is allocated, and the loaded scene's estimated memory against
 // `budget`. Throws knit::Error "<name>: <what is wrong>".
+// Every array is copied out of `bytes`.
 BoundScene decodeBoundScene(std::string_view bytes, const std::string& name, const MemoryBudget& budget = {});
-// The same from a file (its size checked against `budget` before it is read).
+// The same, with the Animator state's largest arrays left in place in `bytes` (when aligned for
+// their elements), which `owner` keeps valid and unchanged: the scene and its copies share it.
+BoundScene decodeBoundScene(std::string_view bytes, std::shared_ptr<const void> owner, const std::string& name,
+                            const MemoryBudget& budget = {});
+// The same from a file (its size checked against `budget` first): mapped read-only (POSIX mmap;
+// read into memory when the file cannot be mapped), its largest arrays used in place.
 BoundScene readBoundScene(const std::string& path, const MemoryBudget& budget = {});
 
 }  // namespace knit

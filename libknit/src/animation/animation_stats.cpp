@@ -39,7 +39,7 @@ struct Cell {
 
 }  // namespace
 
-double maxYarnStretch(const Polylines& yarns, const std::vector<double>& restSegment) {
+double maxYarnStretch(const Polylines& yarns, ArrayView<double> restSegment) {
     tbb::combinable<double> best([] { return 0.0; });
     tbb::parallel_for(tbb::blocked_range<size_t>(0, yarns.curveCount(), 256), [&](const tbb::blocked_range<size_t>& r) {
         double& b = best.local();
@@ -122,7 +122,7 @@ uint32_t bucketOf(const Cell& c, uint32_t blockMask) {
 
 // The closest pair of qualifying points closer than `cell` ({+inf, 0, 0} when there is none):
 // a hash of cells of that size, each pair checked once by a half stencil.
-Closest closestWithin(const Polylines& centres, const std::vector<double>& arc, const std::vector<double>& length,
+Closest closestWithin(const Polylines& centres, ArrayView<double> arc, const std::vector<double>& length,
                       double separation, double cell, DistanceScratch& scratch) {
     const size_t n = centres.pointCount();
     const dvec3* p = centres.points.data();
@@ -202,7 +202,7 @@ Closest closestWithin(const Polylines& centres, const std::vector<double>& arc, 
 
 }  // namespace
 
-double minYarnDistance(const Polylines& centres, const std::vector<double>& arc, const std::vector<double>& length,
+double minYarnDistance(const Polylines& centres, ArrayView<double> arc, const std::vector<double>& length,
                        double yarnRadius, const AnimatorOptions& options, DistanceScratch& scratch) {
     const double diameter = 2.0 * yarnRadius;
     const double cutoff = options.distanceCutoff * diameter;

@@ -5,6 +5,8 @@
 
 #include <cmath>
 #include <string>
+#include <type_traits>
+#include <utility>
 
 #include <glm/geometric.hpp>
 
@@ -42,8 +44,10 @@ void checkOffsets(const std::vector<uint32_t>& o, size_t yarns, size_t size, con
         if (o[y + 1] < o[y]) throw Error(yarnName(y) + "its " + what + " offsets decrease");
 }
 
-template <class T>
-bool allFinite(const std::vector<T>& v) {
+// Every double of `v` (a vector or a util::SharedArray of doubles or of vectors of them).
+template <class Array>
+bool allFinite(const Array& v) {
+    using T = std::remove_const_t<std::remove_reference_t<decltype(*v.data())>>;
     const auto* d = reinterpret_cast<const double*>(v.data());
     bool finite = true;
     for (size_t i = 0; i < v.size() * sizeof(T) / sizeof(double); ++i) finite &= std::isfinite(d[i]);
@@ -72,7 +76,8 @@ AnimatorBindState computeAnimatorBindState(const Scene& rest, const PlyGenerator
     // Resample the rest yarns, recording each layout and the rest arc lengths / pitches.
     ResampleLayout layout;
     ResampleScratch resampleScratch;
-    std::vector<double> arc;
+    std::vector<double> arc, restArc;
+    std::vector<glm::dvec2> restPhase;
     std::vector<dvec3> centre;
     for (size_t y = 0; y < yarnCount; ++y) {
         centre.clear();
@@ -87,23 +92,25 @@ AnimatorBindState computeAnimatorBindState(const Scene& rest, const PlyGenerator
             throw Error("more than 2^32-1 resampled yarn points; raise the ply pitch");
         s.centreOffsets.push_back(static_cast<uint32_t>(s.centreOffsets.back() + m));
         if (m < 2) {
-            s.restArc.insert(s.restArc.end(), m, 0.0);
-            s.restPhase.insert(s.restPhase.end(), m, glm::dvec2(1.0, 0.0));
+            restArc.insert(restArc.end(), m, 0.0);
+            restPhase.insert(restPhase.end(), m, glm::dvec2(1.0, 0.0));
             continue;
         }
         s.restPitch[y] = impl::PlyKernel::arcAndPitch(generator, y, centre.data(), m, arc);
         s.seeds[y] = frameSeed(rest, y, centre);
-        s.restArc.insert(s.restArc.end(), arc.begin(), arc.end());
+        restArc.insert(restArc.end(), arc.begin(), arc.end());
         const double rate = impl::PlyKernel::twistRate(generator, s.restPitch[y]);
-        for (const double a : arc) s.restPhase.emplace_back(std::cos(rate * a), std::sin(rate * a));
+        for (const double a : arc) restPhase.emplace_back(std::cos(rate * a), std::sin(rate * a));
         s.restLength[y] = arc[m - 1] + (yarns.isClosed(y) ? glm::length(centre[0] - centre[m - 1]) : 0.0);
     }
+    s.restArc = std::move(restArc);
+    s.restPhase = std::move(restPhase);
     restSegments(yarns, s.restSegment, s.restTotalLength);
     return s;
 }
 
-void restSegments(const Polylines& yarns, std::vector<double>& segment, double& total) {
-    segment.assign(yarns.pointCount(), 0.0);
+void restSegments(const Polylines& yarns, util::SharedArray<double>& out, double& total) {
+    std::vector<double> segment(yarns.pointCount(), 0.0);
     for (size_t y = 0; y < yarns.curveCount(); ++y) {
         const uint32_t first = yarns.begin(y), e = yarns.end(y);
         for (uint32_t i = first; i < e; ++i) {
@@ -111,6 +118,7 @@ void restSegments(const Polylines& yarns, std::vector<double>& segment, double& 
             segment[i] = glm::length(yarns.points[j] - yarns.points[i]);
         }
     }
+    out = std::move(segment);
     total = totalYarnLength(yarns);
 }
 

@@ -18,6 +18,7 @@
 
 #include "knit/plies.hpp"
 #include "knit/scene.hpp"
+#include "util/shared_array.hpp"
 
 namespace knit {
 
@@ -33,16 +34,20 @@ struct AnimatorBindState {
     // Resampling layout per yarn (CSR over yarns): kept points and pieces per segment (ResampleLayout).
     std::vector<uint32_t> keptOffsets{0}, kept, pieceOffsets{0}, pieces;
     std::vector<uint32_t> centreOffsets{0};  // resampled points per yarn (CSR)
-    std::vector<double> restArc;             // rest arc length per resampled point
-    std::vector<glm::dvec2> restPhase;       // (cos, sin) of its twist phase
-    std::vector<double> restPitch;           // per yarn
-    std::vector<double> restLength;          // per yarn: resampled rest length (closed: with the closing segment)
-    std::vector<Seed> seeds;                 // per yarn
-    std::vector<glm::vec3> centreColour;     // per resampled point, when the rest yarns have colours
+    // The per-point arrays a loaded scene uses in place in its file's memory map (format
+    // version 5: util::SharedArray views that keep the map open; owned when computed here).
+    // Only values live there, never an index or a size: a value checked on loading cannot turn
+    // into a read out of bounds.
+    util::SharedArray<double> restArc;        // rest arc length per resampled point
+    util::SharedArray<glm::dvec2> restPhase;  // (cos, sin) of its twist phase
+    std::vector<double> restPitch;            // per yarn
+    std::vector<double> restLength;           // per yarn: resampled rest length (closed: with the closing segment)
+    std::vector<Seed> seeds;                  // per yarn
+    std::vector<glm::vec3> centreColour;      // per resampled point, when the rest yarns have colours
     // The stretch references (format version 4): per rest yarn vertex the length of the segment
     // starting there (the closing one at a closed yarn's last vertex; 0: none), and
-    // totalYarnLength of the rest yarns.
-    std::vector<double> restSegment;
+    // totalYarnLength of the rest yarns. A view in a loaded scene, as restArc.
+    util::SharedArray<double> restSegment;
     double restTotalLength = 0;
 };
 static_assert(sizeof(AnimatorBindState::Seed) == 128, "Seed is stored without padding");
@@ -56,7 +61,7 @@ bool triangleFrame(const std::vector<glm::dvec3>& x, const glm::uvec3& f, glm::d
 AnimatorBindState computeAnimatorBindState(const Scene& rest, const PlyGenerator& generator);
 
 // The stretch references of `yarns` (AnimatorBindState::restSegment, restTotalLength).
-void restSegments(const Polylines& yarns, std::vector<double>& segment, double& total);
+void restSegments(const Polylines& yarns, util::SharedArray<double>& segment, double& total);
 
 // Checks what evaluation relies on when it replays a stored state on the rest yarns `binding`
 // makes (their offsets, closed flags and colours: the yarns themselves are not needed): sizes per

@@ -26,6 +26,15 @@ static_assert(sizeof(size_t) == 8, "counts are stored as 64-bit values");
 constexpr char kBoundSceneMagic[8] = {'K', 'N', 'I', 'T', 'B', 'I', 'N', 'D'};
 constexpr size_t kBoundSceneHeaderBytes = 32;
 
+// Format version 5: every array's elements start at a file offset that is a multiple of 64
+// (zero bytes between its count and its first element), so that a reader can use them in place
+// in a memory map of the file (aligned for any element type, and to cache lines).
+constexpr size_t kBoundSceneArrayAlignment = 64;
+// The zero bytes in front of an array whose elements would otherwise start at `fileOffset`.
+inline size_t arrayPadding(size_t fileOffset) {
+    return (kBoundSceneArrayAlignment - fileOffset % kBoundSceneArrayAlignment) % kBoundSceneArrayAlignment;
+}
+
 // The CRC-32 (zlib's: the polynomial of gzip and PNG) of a payload, by ISA-L (the same value as
 // zlib's crc32, ~3x faster: it was a third of a load).
 inline uint32_t payloadCrc32(const char* data, size_t size) {
@@ -54,8 +63,11 @@ struct BoundSceneParts {
     DeformStats deformStats;
 };
 
-// The fields in file order; `io` has value(x, what), array(v, what), text(s, what) and
-// blocks(map, what), for `P` = const BoundSceneParts (writing) or BoundSceneParts (reading).
+// The fields in file order; `io` has value(x, what), array(v, what) (a std::vector or a
+// util::SharedArray: the Animator state's rest arc lengths, twist phases and segment lengths,
+// which a reader may leave in place in the file), text(s, what) and blocks(map, what), for
+// `P` = const BoundSceneParts (writing) or BoundSceneParts (reading). Arrays: a u64 count, zero
+// bytes up to the next multiple of 64 of the file offset (arrayPadding), the packed elements.
 template <class IO, class P>
 void boundSceneLayout(IO& io, P& p) {
     io.text(p.settings, "the settings");

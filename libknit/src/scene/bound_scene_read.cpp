@@ -6,19 +6,19 @@
 // against the binding and handed to the scene. The rest yarns are not evaluated here: the scene
 // evaluates them on first use (Scene::yarns, SceneParts::lazyYarns), since its Animators need
 // none of them (their stretch references are stored) and they were a quarter of the memory a
-// load allocates (allocating it was most of a load's cost: docs/scale-out.md).
-#include <cerrno>
+// load allocates (allocating it was most of a load's cost: docs/scale-out.md). For the same
+// reason the Animator state's largest arrays (rest arc lengths, twist phases, segment lengths)
+// are not copied at all when the bytes have an owner (readBoundScene's memory map): they stay in
+// place, as views that keep the map open; every value in them is still checked here, before any
+// use (reading the map allocates nothing).
 #include <cmath>
 #include <cstring>
-#include <filesystem>
 #include <iterator>
 #include <limits>
+#include <memory>
 #include <sstream>
 #include <type_traits>
-
-#include <fcntl.h>
-#include <sys/mman.h>
-#include <unistd.h>
+#include <utility>
 
 #include "knit/bound_scene.hpp"
 #include "knit/error.hpp"
@@ -26,6 +26,7 @@
 #include "scene/bound_scene_format.hpp"
 #include "scene/scene_budget.hpp"
 #include "util/checks.hpp"
+#include "util/shared_array.hpp"
 
 namespace knit {
 namespace {
@@ -72,10 +73,13 @@ struct Unaligned {
     bool operator!=(const Unaligned& o) const { return at != o.at; }
 };
 
-// Reads the fields from the payload; every count is checked against the bytes left.
+// Reads the fields from the payload; every count is checked against the bytes left. With an
+// owner (it keeps the bytes valid and unchanged), the util::SharedArray fields are left in place
+// as views into the bytes; otherwise, and for every std::vector field, the elements are copied.
 class PayloadReader {
 public:
-    PayloadReader(std::string_view bytes, const std::string& name) : bytes_(bytes), name_(name) {}
+    PayloadReader(std::string_view bytes, std::shared_ptr<const void> owner, const std::string& name)
+        : bytes_(bytes), owner_(std::move(owner)), name_(name) {}
     template <class T>
     void value(T& v, const char* what) {
         static_assert(std::is_trivially_copyable_v<T>);
@@ -91,28 +95,63 @@ public:
         v.assign(Unaligned<T>{from}, Unaligned<T>{from + n * sizeof(T)});
         at_ += n * sizeof(T);
     }
+    template <class T>
+    void array(util::SharedArray<T>& v, const char* what) {
+        const size_t start = at_;
+        const uint64_t n = count(sizeof(T), what);
+        const char* from = bytes_.data() + at_;
+        if (owner_ && reinterpret_cast<uintptr_t>(from) % alignof(T) == 0) {  // in place
+            v = util::SharedArray<T>(owner_, reinterpret_cast<const T*>(from), n);
+            at_ += n * sizeof(T);
+        } else {
+            at_ = start;
+            std::vector<T> copy;
+            array(copy, what);
+            v = std::move(copy);
+        }
+    }
     void text(std::string& s, const char* what) {
-        const uint64_t n = count(1, what);
+        const uint64_t n = length(what);
         s.assign(bytes_.data() + at_, n);
         at_ += n;
     }
     void blocks(std::map<std::string, std::vector<std::vector<double>>>& b, const char* what) {
-        const uint64_t n = count(2 * sizeof(uint64_t), what);  // each block: a name and a row count at least
+        const uint64_t n = length(what, 2 * sizeof(uint64_t));  // each block: a name and a row count at least
         for (uint64_t i = 0; i < n; ++i) {
             std::string key;
             text(key, what);
             std::vector<std::vector<double>>& rows = b[key];
-            rows.resize(count(sizeof(uint64_t), what));  // each row: its length at least
+            rows.resize(length(what, sizeof(uint64_t)));  // each row: its length at least
             for (std::vector<double>& row : rows) array(row, what);
         }
     }
     size_t left() const { return bytes_.size() - at_; }
 
 private:
-    // A count of elements of `size` bytes, refused when they would not fit in the bytes left.
+    // An array's count of elements of `size` bytes and the zero padding after it (format version
+    // 5: elements at file offsets multiple of 64); refused when they would not fit in the bytes
+    // left, or the padding is not zero (a payload written without it: an older format).
     uint64_t count(size_t size, const char* what) {
         uint64_t n = 0;
         value(n, what);
+        const size_t padding = impl::arrayPadding(impl::kBoundSceneHeaderBytes + at_);
+        need(padding, what);
+        for (size_t i = 0; i < padding; ++i)
+            if (bytes_[at_ + i] != 0)
+                throw Error(boundName(name_) + " is damaged: the padding before " + what + " is not zero (byte " +
+                            std::to_string(at_ + i) + " of the payload; arrays start at file offsets multiple of " +
+                            std::to_string(impl::kBoundSceneArrayAlignment) + ")");
+        at_ += padding;
+        return checkedCount(n, size, what);
+    }
+    // A length (of a text, or of blocks of at least `size` bytes each: no padding), refused when
+    // it would not fit in the bytes left.
+    uint64_t length(const char* what, size_t size = 1) {
+        uint64_t n = 0;
+        value(n, what);
+        return checkedCount(n, size, what);
+    }
+    uint64_t checkedCount(uint64_t n, size_t size, const char* what) const {
         if (n > left() / size)
             throw Error(boundName(name_) + " is damaged: " + what + " claim " + std::to_string(n) + " elements of " +
                         std::to_string(size) + " bytes, but only " + std::to_string(left()) + " bytes are left");
@@ -124,6 +163,7 @@ private:
                         " of the payload)");
     }
     std::string_view bytes_;
+    std::shared_ptr<const void> owner_;
     std::string name_;
     size_t at_ = 0;
 };
@@ -262,10 +302,16 @@ void checkParts(const impl::BoundSceneParts& p) {
 }  // namespace
 
 BoundScene decodeBoundScene(std::string_view bytes, const std::string& name, const MemoryBudget& budget) {
-    // Steps 1 and 2: the header, then the payload (sizes checked against the bytes present).
+    return decodeBoundScene(bytes, nullptr, name, budget);
+}
+
+BoundScene decodeBoundScene(std::string_view bytes, std::shared_ptr<const void> owner, const std::string& name,
+                            const MemoryBudget& budget) {
+    // Steps 1 and 2: the header, then the payload (sizes checked against the bytes present; the
+    // Animator state's largest arrays left in place when `owner` keeps the bytes).
     const std::string_view payload = checkHeader(bytes, name);
     impl::BoundSceneParts p;
-    PayloadReader reader(payload, name);
+    PayloadReader reader(payload, std::move(owner), name);
     impl::boundSceneLayout(reader, p);
     if (reader.left() != 0)
         throw Error(boundName(name) + " is damaged: " + std::to_string(reader.left()) + " bytes follow its last field");
@@ -326,29 +372,6 @@ BoundScene decodeBoundScene(std::string_view bytes, const std::string& name, con
     BoundScene out{Scene::fromParts(std::move(parts)),
                    {kBoundSceneFormatVersion, std::move(p.settings), std::move(p.strainTable)}};
     return out;
-}
-
-BoundScene readBoundScene(const std::string& path, const MemoryBudget& budget) {
-    std::error_code ec;
-    const uintmax_t size = std::filesystem::file_size(path, ec);
-    if (ec) throw Error("cannot read bound scene '" + path + "': " + ec.message());
-    budget.require(static_cast<double>(size), "reading " + boundName(path), "the scene's size (bind fewer repeats)");
-    // Mapped, not read into a buffer: the fields are copied once, from the page cache into the
-    // scene's arrays (a buffer of the whole file cost a third of the load in a profile).
-    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-    if (fd < 0) throw Error("cannot read bound scene '" + path + "': " + std::strerror(errno));
-    void* map = size == 0 ? nullptr : ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE, fd, 0);
-    const int mapError = errno;
-    ::close(fd);
-    if (map == MAP_FAILED) throw Error("cannot read bound scene '" + path + "': " + std::strerror(mapError));
-    struct Unmap {
-        void* map;
-        size_t size;
-        ~Unmap() {
-            if (map) ::munmap(map, size);
-        }
-    } unmap{map, size};
-    return decodeBoundScene(std::string_view(static_cast<const char*>(map), map ? size : 0), path, budget);
 }
 
 }  // namespace knit

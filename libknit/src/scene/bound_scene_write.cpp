@@ -22,10 +22,13 @@ public:
         static_assert(std::is_trivially_copyable_v<T>);
         out_.append(reinterpret_cast<const char*>(&v), sizeof(T));
     }
-    template <class T>
-    void array(const std::vector<T>& v, const char* what) {
+    // A std::vector or a util::SharedArray: its count, the zero padding that puts its first
+    // element at a file offset multiple of 64 (format version 5), its elements.
+    template <class Array>
+    void array(const Array& v, const char* what) {
         value(static_cast<uint64_t>(v.size()), what);
-        out_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+        out_.append(impl::arrayPadding(impl::kBoundSceneHeaderBytes + out_.size()), '\0');
+        out_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(*v.data()));
     }
     void text(const std::string& s, const char* what) {
         value(static_cast<uint64_t>(s.size()), what);

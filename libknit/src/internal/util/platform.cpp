@@ -32,6 +32,8 @@ size_t peakResidentBytes() { return statusBytes("VmHWM"); }
 
 size_t residentBytes() { return statusBytes("VmRSS"); }
 
+size_t anonymousResidentBytes() { return statusBytes("RssAnon"); }
+
 bool resetPeakResident() {
     std::ofstream clear("/proc/self/clear_refs");
     if (!clear) return false;

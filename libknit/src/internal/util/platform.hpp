@@ -9,6 +9,8 @@ namespace knit::util {
 size_t peakResidentBytes();
 // Current resident memory (VmRSS) in bytes; 0 if unavailable.
 size_t residentBytes();
+// The part of it that is anonymous memory (RssAnon: allocated, not mapped files' pages).
+size_t anonymousResidentBytes();
 // Resets the peak to the current resident size (Linux >= 4.0, /proc/self/clear_refs);
 // false if the kernel refused.
 bool resetPeakResident();
