@@ -139,6 +139,33 @@ TEST(Stitch, alignmentPutsPatternOriginAtUvZero) {
 
 // A filter keeps exactly the yarns with a vertex in a kept tile, each the unfiltered yarn vertex
 // for vertex and in the same order, and tells the kept count before allocating their data.
+// Every yarn of `all` with a vertex in a kept tile is in `kept`, in the same order, vertex for
+// vertex (ids, uv, ghosts, closed flag), and `kept` has no other yarn. Returns the kept count.
+size_t expectKeptYarnsAreTheUnfilteredOnes(const UvYarns& all, const UvYarns& kept,
+                                           const std::vector<uint8_t>& keepTile, uint32_t n) {
+    size_t k = 0;
+    for (size_t y = 0; y < all.yarnCount(); ++y) {
+        const auto b = all.source.begin() + all.offsets[y], e = all.source.begin() + all.offsets[y + 1];
+        if (!std::any_of(b, e, [&](uint32_t id) { return keepTile[id / n] != 0; })) continue;
+        if (k >= kept.yarnCount()) {
+            ADD_FAILURE() << "yarn " << y << " through a kept tile is missing";
+            return k;
+        }
+        const auto kb = kept.source.begin() + kept.offsets[k];
+        EXPECT_TRUE(std::equal(b, e, kb, kept.source.begin() + kept.offsets[k + 1])) << "yarn " << y;
+        EXPECT_TRUE(std::equal(all.uv.begin() + all.offsets[y], all.uv.begin() + all.offsets[y + 1],
+                               kept.uv.begin() + kept.offsets[k]));
+        EXPECT_EQ(kept.closed[k], all.closed[y]);
+        for (int end = 0; end < 2; ++end) {
+            EXPECT_EQ(kept.ghosts[k][end].present, all.ghosts[y][end].present) << "yarn " << y;
+            EXPECT_EQ(kept.ghosts[k][end].uv, all.ghosts[y][end].uv) << "yarn " << y;
+        }
+        ++k;
+    }
+    EXPECT_EQ(k, kept.yarnCount());
+    return k;
+}
+
 TEST(Stitch, filterKeepsTheYarnsThroughKeptTilesUnchanged) {
     const Pattern p = generateStockinette();
     const Tiling tiling = tilesForRegion({0, 0}, {11, 9});
@@ -154,20 +181,7 @@ TEST(Stitch, filterKeepsTheYarnsThroughKeptTilesUnchanged) {
     filter.beforeAllocate = [&](uint64_t n) { told = n; };
     const UvYarns kept = stitchYarns(p, adj, tiling, placement, &filter);
     const uint32_t n = uint32_t(p.points.size());
-    size_t k = 0;
-    for (size_t y = 0; y < all.yarnCount(); ++y) {
-        const auto b = all.source.begin() + all.offsets[y], e = all.source.begin() + all.offsets[y + 1];
-        if (!std::any_of(b, e, [&](uint32_t id) { return filter.keepTile[id / n] != 0; })) continue;
-        ASSERT_LT(k, kept.yarnCount());
-        const auto kb = kept.source.begin() + kept.offsets[k];
-        EXPECT_TRUE(std::equal(b, e, kb, kept.source.begin() + kept.offsets[k + 1])) << "yarn " << y;
-        EXPECT_TRUE(std::equal(all.uv.begin() + all.offsets[y], all.uv.begin() + all.offsets[y + 1],
-                               kept.uv.begin() + kept.offsets[k]));
-        EXPECT_EQ(kept.closed[k], all.closed[y]);
-        ++k;
-    }
-    EXPECT_EQ(k, kept.yarnCount());
-    EXPECT_GT(k, 0u);
+    EXPECT_GT(expectKeptYarnsAreTheUnfilteredOnes(all, kept, filter.keepTile, n), 0u);
     EXPECT_LT(kept.vertexCount(), all.vertexCount() / 2);
     EXPECT_EQ(told, kept.vertexCount());
     EXPECT_EQ(kept.uv.size(), kept.vertexCount());
@@ -178,6 +192,32 @@ TEST(Stitch, filterKeepsTheYarnsThroughKeptTilesUnchanged) {
         ADD_FAILURE() << "a filter with one tile mark too few was accepted";
     } catch (const Error& e) {
         EXPECT_EQ(std::string(e.what()).rfind("cannot stitch the pattern tiles: the filter has ", 0), 0u) << e.what();
+    }
+}
+
+// The filtered walk follows only the kept yarns, from where the full walk starts them: open yarns
+// entered from either end or the middle, and closed loops (a periodic tiling) from any vertex.
+TEST(Stitch, filterStartsEachKeptYarnWhereTheFullWalkDoes) {
+    const Pattern p = generateStockinette();
+    const PatternAdjacency adj = buildAdjacency(p);
+    const uint32_t n = uint32_t(p.points.size());
+    for (const bool periodic : {false, true}) {
+        const Tiling tiling = tilesForRegion({0, 0}, {7, 5}, periodic);
+        PatternPlacement placement;
+        placement.repeats = {8, 6};
+        const UvYarns all = stitchYarns(p, adj, tiling, placement);
+        EXPECT_EQ(std::count(all.closed.begin(), all.closed.end(), 1) > 0, periodic);
+        // Kept tiles at the border (open ends), inside, and in the last column and row.
+        for (const glm::ivec2 tile : {glm::ivec2(0, 0), glm::ivec2(3, 2), glm::ivec2(7, 5), glm::ivec2(6, 1)}) {
+            StitchFilter filter;
+            filter.keepTile.assign(tiling.tiles.size(), 0);
+            filter.keepTile[size_t(tiling.slotOf(tile))] = 1;
+            const UvYarns kept = stitchYarns(p, adj, tiling, placement, &filter);
+            SCOPED_TRACE(std::string(periodic ? "periodic" : "open") + " tile " + std::to_string(tile.x) + "," +
+                         std::to_string(tile.y));
+            EXPECT_GT(expectKeptYarnsAreTheUnfilteredOnes(all, kept, filter.keepTile, n), 0u);
+            EXPECT_LT(kept.vertexCount(), all.vertexCount());
+        }
     }
 }
 

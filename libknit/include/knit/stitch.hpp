@@ -41,9 +41,10 @@ struct UvYarns {
 };
 
 // Which of the stitched yarns to keep (level of detail: only the yarns through a view's region).
-// The walk still runs over the whole tiling, so every kept yarn is the one the unfiltered stitch
-// makes, vertex for vertex; only the yarns with no vertex in a kept tile are dropped (before
-// their per-vertex data is made).
+// Only the yarns with a vertex in a kept tile are walked, each from the start the unfiltered walk
+// takes (an open yarn from its end of lower id, a loop from its lowest id) and in its order, so
+// every kept yarn is the one the unfiltered stitch makes, vertex for vertex, and the other tiles
+// are never visited.
 struct StitchFilter {
     std::vector<uint8_t> keepTile;  // per tile slot of the tiling: 1 = keep every yarn through it
     // Called with the kept vertex count before their data is allocated (a memory check may throw).

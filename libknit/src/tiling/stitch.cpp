@@ -49,26 +49,53 @@ struct Walker {
     }
 };
 
-// Step 3 of stitchYarns: drops the walked yarns (ids, offsets, closed flags, ghosts) with no
-// vertex in a tile marked in `keepTile`, in place, keeping the others in order.
-void keepFiltered(UvYarns& out, const std::vector<uint8_t>& keepTile, uint32_t n) {
-    size_t kept = 0, at = 0;
-    for (size_t y = 0; y < out.yarnCount(); ++y) {
-        const uint32_t b = out.offsets[y], e = out.offsets[y + 1];
-        const bool keep = std::any_of(out.source.begin() + b, out.source.begin() + e,
-                                      [&](uint32_t id) { return keepTile[id / n] != 0; });
-        if (!keep) continue;
-        if (at != b) std::copy(out.source.begin() + b, out.source.begin() + e, out.source.begin() + long(at));
-        at += e - b;
-        out.closed[kept] = out.closed[y];
-        out.ghosts[kept] = out.ghosts[y];
-        out.offsets[++kept] = uint32_t(at);
+// Where the unfiltered walk of stitchYarns starts a yarn: an open yarn at the lower id of its two
+// ends (the first end in id order), a closed loop at its lowest id with slot 0.
+struct YarnStart {
+    bool closed;
+    uint64_t id;
+    bool operator<(const YarnStart& o) const { return closed != o.closed ? o.closed : id < o.id; }
+};
+
+// Follows the yarn through `id` leaving by `slot`: the end reached (marked in `seen` on the way),
+// or nothing when the walk comes back to `id` (a loop; `lowest` is then its lowest id).
+std::optional<uint64_t> followYarn(const Walker& w, uint64_t id, int slot, std::vector<uint8_t>& seen,
+                                   uint64_t& lowest) {
+    uint64_t cur = id;
+    lowest = id;
+    for (;;) {
+        seen[cur] = 1;
+        lowest = std::min(lowest, cur);
+        const uint32_t v = uint32_t(cur % w.n);
+        const int64_t next = w.neighbor(uint32_t(cur / w.n), v, slot);
+        if (next < 0) return cur;
+        if (uint64_t(next) == id) return std::nullopt;
+        slot = 1 - w.backSlot(v, slot, uint32_t(next % w.n));
+        cur = uint64_t(next);
     }
-    out.source.resize(at);
-    out.source.shrink_to_fit();
-    out.offsets.resize(kept + 1);
-    out.closed.resize(kept);
-    out.ghosts.resize(kept);
+}
+
+// The starts of the yarns with a vertex in a kept tile, in the order the unfiltered walk meets
+// them (open yarns first). Only those yarns are followed (each twice: here and when walked).
+std::vector<YarnStart> yarnStarts(const Walker& w, const std::vector<uint8_t>& keepTile, uint64_t total) {
+    std::vector<YarnStart> starts;
+    std::vector<uint8_t> seen(total, 0);
+    for (uint32_t k = 0; k < keepTile.size(); ++k) {
+        if (!keepTile[k]) continue;
+        for (uint64_t id = uint64_t(k) * w.n; id < uint64_t(k + 1) * w.n; ++id) {
+            if (seen[id]) continue;
+            uint64_t lowest = id;
+            const std::optional<uint64_t> end0 = followYarn(w, id, 0, seen, lowest);
+            if (!end0) {
+                starts.push_back({true, lowest});
+                continue;
+            }
+            const std::optional<uint64_t> end1 = followYarn(w, id, 1, seen, lowest);
+            starts.push_back({false, std::min(*end0, end1.value_or(*end0))});
+        }
+    }
+    std::sort(starts.begin(), starts.end());
+    return starts;
 }
 
 }  // namespace
@@ -87,7 +114,7 @@ UvYarns stitchYarns(const Pattern& pattern, const PatternAdjacency& adj, const T
 
     // The walk (serial) records only the order of the tiled vertex ids (`source`); their uv,
     // height and twist are filled in afterwards, in parallel.
-    out.source.reserve(total);
+    if (filter == nullptr) out.source.reserve(total);
     std::vector<uint8_t> visited(total, 0);
 
     auto uvOf = [&](glm::ivec2 tile, uint32_t v) {
@@ -136,27 +163,41 @@ UvYarns stitchYarns(const Pattern& pattern, const PatternAdjacency& adj, const T
         out.ghosts.push_back({closed ? GhostVertex{} : startGhost, closed ? GhostVertex{} : endGhost});
     };
 
-    // 1. Open yarns start at vertices with fewer than two present neighbours.
-    for (uint64_t id = 0; id < total; ++id) {
-        if (visited[id]) continue;
+    // An open yarn from its end `id` (a vertex with fewer than two present neighbours).
+    auto openYarn = [&](uint64_t id) {
         const uint32_t k = uint32_t(id / n), v = uint32_t(id % n);
         const bool has0 = walker.neighbor(k, v, 0) >= 0, has1 = walker.neighbor(k, v, 1) >= 0;
-        if (has0 && has1) continue;
         // The start's other slot may lead into a tile that was not generated.
         const int outSlot = has0 ? 0 : (has1 ? 1 : -1);
         const GhostVertex startGhost = ghostOf(id, outSlot == 0 ? 1 : 0);
         walk(id, outSlot);
         finishYarn(false, startGhost);
-    }
-    // 2. What remains lies on closed loops.
-    for (uint64_t id = 0; id < total; ++id) {
-        if (visited[id]) continue;
-        const bool closed = walk(id, 0);
-        finishYarn(closed, GhostVertex{});
+    };
+    if (filter == nullptr) {
+        // 1. Open yarns start at vertices with fewer than two present neighbours.
+        for (uint64_t id = 0; id < total; ++id) {
+            if (visited[id]) continue;
+            const uint32_t k = uint32_t(id / n), v = uint32_t(id % n);
+            if (walker.neighbor(k, v, 0) >= 0 && walker.neighbor(k, v, 1) >= 0) continue;
+            openYarn(id);
+        }
+        // 2. What remains lies on closed loops.
+        for (uint64_t id = 0; id < total; ++id) {
+            if (visited[id]) continue;
+            const bool closed = walk(id, 0);
+            finishYarn(closed, GhostVertex{});
+        }
+    } else {
+        // 3. With a filter, only the yarns through kept tiles are walked, from the starts the walk
+        // above would take, in its order (yarnStarts).
+        for (const YarnStart& s : yarnStarts(walker, filter->keepTile, total))
+            if (s.closed) {
+                finishYarn(walk(s.id, 0), GhostVertex{});
+            } else {
+                openYarn(s.id);
+            }
     }
     std::vector<uint8_t>().swap(visited);
-    // 3. With a filter: only the yarns with a vertex in a kept tile (their order kept).
-    if (filter != nullptr) keepFiltered(out, filter->keepTile, n);
     if (filter != nullptr && filter->beforeAllocate) filter->beforeAllocate(out.source.size());
     // 4. Per-vertex data of every kept id, in parallel.
     const size_t count = out.source.size();
