@@ -100,8 +100,8 @@ TEST(FramesSimd, kernelsAreTheScalarDefinitionsBitForBit) {
 }
 
 // curveFrames fills the next block's matrices a few slots at a time during the chain: slots
-// [begin, count), filled four at a time, are those of one call for the whole block, and the
-// slots past count are left as they were.
+// [begin, count), filled four at a time or from an odd slot, are those of one call for the
+// whole block, and the slots outside them are left as they were.
 TEST(FramesSimd, transportCoefficientsFromASlotAreTheWholeBlocks) {
     const std::vector<dvec3> x = testCurve(301);
     std::vector<dvec3> T(x.size()), N(x.size());
@@ -113,6 +113,12 @@ TEST(FramesSimd, transportCoefficientsFromASlotAreTheWholeBlocks) {
             for (int e = 0; e < 9; ++e) std::fill(parts.m[e], parts.m[e] + 64, 7.0);
             for (size_t k = 0; k < 64; k += 4)
                 impl::transportCoefficients(x.data(), T.data(), first, std::min<size_t>(k + 4, 62), parts, simd, k);
+            impl::TransportBlock late{};  // one call from slot 9: the slots before it untouched
+            for (int e = 0; e < 9; ++e) std::fill(late.m[e], late.m[e] + 64, 7.0);
+            impl::transportCoefficients(x.data(), T.data(), first, 30, late, simd, 9);
+            for (size_t k = 0; k < 30; ++k)
+                for (int e = 0; e < 9; ++e)
+                    EXPECT_TRUE(k < 9 ? late.m[e][k] == 7.0 : sameBytes(whole.m[e][k], late.m[e][k])) << first + k;
             for (size_t k = 0; k < 64; ++k) {
                 if (k < 62) EXPECT_EQ(whole.reversal[k], parts.reversal[k]) << first + k;
                 for (int e = 0; e < 9; ++e)
