@@ -1,6 +1,7 @@
 // The plies' AVX2 kernels (frames_transport.cpp, helices_simd.cpp) against their scalar
 // definitions, and the one-matrix transport of curveFrames against two reflections one after the
 // other. On a CPU without AVX2 the `simd` calls do nothing and the comparisons are trivial.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <vector>
@@ -96,6 +97,36 @@ TEST(FramesSimd, kernelsAreTheScalarDefinitionsBitForBit) {
             EXPECT_TRUE(sameBytes(P[i * m + j], mine ? x[j] + 2.5e-4 * radial : dvec3(7.0))) << i << " " << j;
             EXPECT_TRUE(sameBytes(D[i * m + j], mine ? radial : dvec3(7.0))) << i << " " << j;
         }
+}
+
+// curveFrames fills the next block's matrices a few slots at a time during the chain: slots
+// [begin, count), filled four at a time or from an odd slot, are those of one call for the
+// whole block, and the slots outside them are left as they were.
+TEST(FramesSimd, transportCoefficientsFromASlotAreTheWholeBlocks) {
+    const std::vector<dvec3> x = testCurve(301);
+    std::vector<dvec3> T(x.size()), N(x.size());
+    curveFrames(x.data(), x.size(), false, nullptr, T.data(), N.data());
+    for (bool simd : {util::avx2Kernels(), false}) {
+        for (size_t first : {0, 38, 77}) {
+            impl::TransportBlock whole{}, parts{};
+            impl::transportCoefficients(x.data(), T.data(), first, 64, whole, simd);
+            for (int e = 0; e < 9; ++e) std::fill(parts.m[e], parts.m[e] + 64, 7.0);
+            for (size_t k = 0; k < 64; k += 4)
+                impl::transportCoefficients(x.data(), T.data(), first, std::min<size_t>(k + 4, 62), parts, simd, k);
+            impl::TransportBlock late{};  // one call from slot 9: the slots before it untouched
+            for (int e = 0; e < 9; ++e) std::fill(late.m[e], late.m[e] + 64, 7.0);
+            impl::transportCoefficients(x.data(), T.data(), first, 30, late, simd, 9);
+            for (size_t k = 0; k < 30; ++k)
+                for (int e = 0; e < 9; ++e)
+                    EXPECT_TRUE(k < 9 ? late.m[e][k] == 7.0 : sameBytes(whole.m[e][k], late.m[e][k])) << first + k;
+            for (size_t k = 0; k < 64; ++k) {
+                if (k < 62) EXPECT_EQ(whole.reversal[k], parts.reversal[k]) << first + k;
+                for (int e = 0; e < 9; ++e)
+                    EXPECT_TRUE(k < 62 ? sameBytes(whole.m[e][k], parts.m[e][k]) : parts.m[e][k] == 7.0)
+                        << simd << " " << first + k << " " << e;
+            }
+        }
+    }
 }
 
 // The transport's two reflections multiplied into one matrix (rounded differently) stay within

@@ -188,28 +188,38 @@ void curveFrames(const glm::dvec3* x, size_t n, bool closed, const glm::dvec3* s
         N[0] = len > 1e-6 ? r / len : util::anyPerpendicular(T[0]);
     }
 
-    // Step 4: double-reflection transport, a block of steps at a time: first each step's two
+    // Step 4: double-reflection transport, a block of steps at a time: each step's two
     // reflections as one matrix (frames_transport.cpp; four steps at a time in AVX2), then the
     // chain of the normal through them. Steps that renormalize or reverse the tangent run
     // transport() whole. The matrix rounds differently from the two reflections one after the
     // other (relative differences ~1e-16 per step, undone by the renormalization every 16 steps;
-    // docs/memory-limit.md) and makes the chain four times shorter.
-    impl::TransportBlock block;
-    for (size_t first = 0; first + 1 < n; first += impl::kTransportBlock) {
-        const size_t count = std::min(impl::kTransportBlock, n - 1 - first);
-        impl::transportCoefficients(x, T, first, count, block, simd);
+    // docs/memory-limit.md) and makes the chain four times shorter. The chain is bound by its
+    // latency, so the next block's matrices are computed during it, four steps every four steps
+    // (they do not depend on the normal: the out-of-order core overlaps the two). The carried
+    // normal stays in registers (r): read back from N, it would wait on its own store each step.
+    const size_t steps = n - 1;
+    impl::TransportBlock blocks[2];
+    if (steps > 0) impl::transportCoefficients(x, T, 0, std::min(impl::kTransportBlock, steps), blocks[0], simd);
+    dvec3 r = N[0];
+    for (size_t first = 0, b = 0; first < steps; first += impl::kTransportBlock, b ^= 1) {
+        const impl::TransportBlock& block = blocks[b];
+        const size_t count = std::min(impl::kTransportBlock, steps - first);
+        const size_t nextFirst = first + impl::kTransportBlock;
+        const size_t nextCount = nextFirst < steps ? std::min(impl::kTransportBlock, steps - nextFirst) : 0;
         for (size_t k = 0; k < count; ++k) {
+            if ((k & 3u) == 0 && k < nextCount)
+                impl::transportCoefficients(x, T, nextFirst, std::min(k + 4, nextCount), blocks[b ^ 1], simd, k);
             const size_t i = first + k;
             const bool renormalize = (i & 15u) == 15u || i + 2 == n;
             if (renormalize || block.reversal[k]) {
-                N[i + 1] = transport(x[i], T[i], N[i], x[i + 1], T[i + 1], renormalize);
-                continue;
+                r = transport(x[i], T[i], r, x[i + 1], T[i + 1], renormalize);
+            } else {
+                const auto row = [&](int e) {
+                    return (block.m[e][k] * r.x + block.m[e + 1][k] * r.y) + block.m[e + 2][k] * r.z;
+                };
+                r = dvec3(row(0), row(3), row(6));
             }
-            const dvec3 r = N[i];
-            const auto row = [&](int e) {
-                return (block.m[e][k] * r.x + block.m[e + 1][k] * r.y) + block.m[e + 2][k] * r.z;
-            };
-            N[i + 1] = dvec3(row(0), row(3), row(6));
+            N[i + 1] = r;
         }
     }
 

@@ -138,8 +138,9 @@ size_t pointTangents(const dvec3* N, dvec3* T, size_t begin, size_t end, bool si
     return begin;
 }
 
-void transportCoefficients(const dvec3* x, const dvec3* t, size_t first, size_t count, TransportBlock& b, bool simd) {
-    size_t k = 0;
+void transportCoefficients(const dvec3* x, const dvec3* t, size_t first, size_t count, TransportBlock& b, bool simd,
+                           size_t begin) {
+    size_t k = begin;
 #if KNIT_HAVE_AVX2_KERNELS
     if (simd)
         for (; k + 4 <= count; k += 4) fourSteps(x, t, first + k, k, b);

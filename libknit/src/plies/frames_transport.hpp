@@ -23,10 +23,10 @@ struct TransportBlock {
     double m[9][kTransportBlock];    // M row-major, per step
     bool reversal[kTransportBlock];  // t0.t1 < 0: transport() decides (projects the normal)
 };
-// Fills steps [0, count) of `b` (count <= kTransportBlock) for the steps from point `first`,
-// four at a time in AVX2 when `simd` (bit for bit the same either way).
+// Fills slots [begin, count) of `b` (count <= kTransportBlock), slot k with the step from point
+// first + k, four at a time in AVX2 when `simd` (bit for bit the same either way).
 void transportCoefficients(const glm::dvec3* x, const glm::dvec3* t, size_t first, size_t count, TransportBlock& b,
-                           bool simd);
+                           bool simd, size_t begin = 0);
 
 // curveFrames' step 1 for segments k = 0, 1, ... (from x[k] to x[k + 1]) four at a time in AVX2:
 // T[k] = N[k] = v / |v|, up to the first group of four that holds a zero-length segment or

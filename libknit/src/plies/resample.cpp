@@ -148,6 +148,36 @@ KNIT_AVX2 size_t knotsAvx2(const dvec3* pts, size_t n, double* knot, double* inv
     return s;
 }
 
+// The pieces of four interior segments s .. s + 3 (1 <= s, s + 5 < n: no reflected end, no wrap)
+// as segmentCubic makes them from the tables (without bounds): makeCubic's operations lane by
+// lane, so the same bits; a, b, c of piece s + j in a[j], b[j], c[j] (d is the point pts[s + j]).
+struct FourCubics {
+    dvec3 a[4], b[4], c[4];
+};
+
+KNIT_AVX2 void fourCubicsAvx2(const dvec3* pts, const double* knot, const KnotInverses& inv, size_t s,
+                              FourCubics& out) {
+    using impl::lanes::add;
+    using impl::lanes::Lanes;
+    using impl::lanes::load4;
+    using impl::lanes::scale;
+    using impl::lanes::sub;
+    const Lanes p0 = load4(pts + s - 1), p1 = load4(pts + s), p2 = load4(pts + s + 1), p3 = load4(pts + s + 2);
+    const __m256d t12 = _mm256_loadu_pd(knot + s);
+    const __m256d i01 = _mm256_loadu_pd(inv.inverse + s - 1), i12 = _mm256_loadu_pd(inv.inverse + s),
+                  i23 = _mm256_loadu_pd(inv.inverse + s + 1), i02 = _mm256_loadu_pd(inv.pairInverse + s - 1),
+                  i13 = _mm256_loadu_pd(inv.pairInverse + s);
+    const Lanes e10 = sub(p1, p0), e20 = sub(p2, p0), e21 = sub(p2, p1), e31 = sub(p3, p1), e32 = sub(p3, p2);
+    const Lanes d12 = scale(e21, i12);
+    const Lanes m1 = scale(add(sub(scale(e10, i01), scale(e20, i02)), d12), t12);
+    const Lanes m2 = scale(add(sub(d12, scale(e31, i13)), scale(e32, i23)), t12);
+    const Lanes a = add(add(scale(sub(p1, p2), _mm256_set1_pd(2.0)), m1), m2);
+    const Lanes b = sub(sub(scale(e21, _mm256_set1_pd(3.0)), scale(m1, _mm256_set1_pd(2.0))), m2);
+    impl::lanes::store4(out.a, a);
+    impl::lanes::store4(out.b, b);
+    impl::lanes::store4(out.c, m1);
+}
+
 // 1 / (knot[s] + knot[s + 1]) four at a time while s + 1 < segments; returns the first not done.
 KNIT_AVX2 size_t pairInversesAvx2(const double* knot, size_t segments, double* pairInverse) {
     size_t s = 0;
@@ -369,16 +399,34 @@ size_t resampleCurveWithLayout(const Polylines& curves, size_t c, const uint32_t
         pairInverse[s] = 1.0 / (knot[s] + knot[next]);
     }
     const KnotInverses inv{inverse.data(), pairInverse.data()};
-    // Step 2: each piece evaluated at the rest pose's parameters j / k.
+    // Step 2: each piece evaluated at the rest pose's parameters j / k; the interior pieces'
+    // coefficients four at a time in AVX2 (fourCubicsAvx2, the same bits).
     size_t o = 0;
-    for (size_t s = 0; s < segments; ++s) {
-        out[o++] = pts[s];
-        const size_t k = pieces[s];
-        if (k <= 1) continue;
-        const Cubic cubic =
-            segmentCubic(pts.data(), knot.data(), n, closed, s, false, &inv);  // fixed pieces: no bounds
+    const auto emit = [&](const Cubic& cubic, size_t k) {
         const double du = 1.0 / static_cast<double>(k);
         for (size_t j = 1; j < k; ++j) out[o++] = cubic.eval(static_cast<double>(j) * du);
+    };
+#if KNIT_HAVE_AVX2_KERNELS
+    const size_t groupEnd = simd && n > 5 ? n - 5 : 0;  // groups start below it
+#else
+    const size_t groupEnd = 0;
+#endif
+    for (size_t s = 0; s < segments;) {
+#if KNIT_HAVE_AVX2_KERNELS
+        if (s >= 1 && s < groupEnd) {
+            FourCubics four;
+            fourCubicsAvx2(pts.data(), knot.data(), inv, s, four);
+            for (size_t j = 0; j < 4; ++j, ++s) {
+                out[o++] = pts[s];
+                if (pieces[s] > 1) emit(Cubic{four.a[j], four.b[j], four.c[j], pts[s]}, pieces[s]);
+            }
+            continue;
+        }
+#endif
+        out[o++] = pts[s];
+        if (pieces[s] > 1)  // fixed pieces: no bounds
+            emit(segmentCubic(pts.data(), knot.data(), n, closed, s, false, &inv), pieces[s]);
+        ++s;
     }
     if (!closed) out[o++] = pts[n - 1];
     return o;

@@ -1,5 +1,5 @@
 // simd_lanes.hpp (internal) — four points of a dvec3 array as x, y, z AVX2 registers, for the
-// plies' AVX2 kernels (frames_transport.cpp, helices_simd.cpp). Include only where
+// plies' AVX2 kernels (frames_transport.cpp, helices_simd.cpp, resample.cpp). Include only where
 // KNIT_HAVE_AVX2_KERNELS (util/simd.hpp); call only from KNIT_AVX2 functions.
 #pragma once
 #include <immintrin.h>
@@ -49,6 +49,14 @@ KNIT_AVX2 inline __m256d dot(const Lanes& a, const Lanes& b) {
 
 KNIT_AVX2 inline Lanes sub(const Lanes& a, const Lanes& b) {
     return {_mm256_sub_pd(a.x, b.x), _mm256_sub_pd(a.y, b.y), _mm256_sub_pd(a.z, b.z)};
+}
+
+KNIT_AVX2 inline Lanes add(const Lanes& a, const Lanes& b) {
+    return {_mm256_add_pd(a.x, b.x), _mm256_add_pd(a.y, b.y), _mm256_add_pd(a.z, b.z)};
+}
+
+KNIT_AVX2 inline Lanes scale(const Lanes& a, __m256d s) {
+    return {_mm256_mul_pd(a.x, s), _mm256_mul_pd(a.y, s), _mm256_mul_pd(a.z, s)};
 }
 
 }  // namespace knit::impl::lanes
