@@ -70,6 +70,9 @@ struct StrainTableOptions {
     double stretch = 2000, bend = 1, contact = 400, barrier = 2000;
     double contactDistance = 2.05, barrierDistance = 1.25;
     int maxIterations = 600;
+    // Each sample is relaxed from this many of its relaxed neighbours one step closer to zero
+    // strain (1 to 3; the lowest energy kept): 1 is the parent alone.
+    int startsPerSample = 1;
     // Called after each sample with the samples done and the total (from worker threads, serialised).
     std::function<void(size_t done, size_t total)> progress;
 };
