@@ -132,12 +132,15 @@ impl::LatticeRelaxResult relaxFromNeighbours(const impl::LatticeCell& cell,
     const glm::dmat2 F = latticeMap(strainAt(axes, i));
     impl::LatticeRelaxResult best;
     bool have = false;
+    int iterations = 0;  // of every start: the work done (StrainTableStats::iterations)
     const std::vector<Index3> from = lowerNeighbours(i, zero);
     for (size_t k = 0; k < from.size() && int(k) < starts; ++k) {
         impl::LatticeRelaxResult r = cell.relax(F, result[flat(from[k])].points, latticeMap(strainAt(axes, from[k])));
+        iterations += r.iterations;
         if (!have || r.energy < best.energy - 1e-9 * (1 + std::abs(best.energy))) best = std::move(r);
         have = true;
     }
+    best.iterations = iterations;
     return best;
 }
 
