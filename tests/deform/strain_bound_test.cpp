@@ -76,6 +76,26 @@ TEST(StrainBound, startsPerSampleOnlyChangesSamplesWithSeveralLowerNeighbours) {
     o.startsPerSample = 3;
     const StrainTable three = makeStrainTable(p, o);
     EXPECT_EQ(one.data, three.data);
+    // On a 3 x 1 x 3 grid the samples off both axes have two lower neighbours: a second start
+    // finds a lower-energy branch there, the samples on the axes (one neighbour) are unchanged.
+    o.samples = {3, 1, 3};
+    o.syRange = {0.0, 0.6};
+    o.sxRange = {0.0, 0.6};
+    o.startsPerSample = 1;
+    const StrainTable grid1 = makeStrainTable(p, o);
+    o.startsPerSample = 2;
+    const StrainTable grid2 = makeStrainTable(p, o);
+    size_t changed = 0, changedOnAxes = 0;
+    for (size_t v = 0; v < grid1.vertexCount; ++v)
+        for (size_t s = 0; s < grid1.samples(); ++s)
+            for (size_t c = 0; c < 3; ++c) {
+                const size_t at = 4 * (s + grid1.samples() * v) + c;
+                if (grid1.data[at] == grid2.data[at]) continue;
+                ++changed;
+                changedOnAxes += (s % 3 == 0 || s / 3 == 0) ? 1 : 0;
+            }
+    EXPECT_GT(changed, 0U);
+    EXPECT_EQ(changedOnAxes, 0U);
     const StrainTableOptions defaults;
     StrainTableOptions threeStarts;
     threeStarts.startsPerSample = 3;
