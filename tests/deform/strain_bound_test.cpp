@@ -77,7 +77,7 @@ TEST(StrainBound, startsPerSampleOnlyChangesSamplesWithSeveralLowerNeighbours) {
     const StrainTable three = makeStrainTable(p, o);
     EXPECT_EQ(one.data, three.data);
     // On a 3 x 1 x 3 grid the samples off both axes have two lower neighbours: a second start
-    // finds a lower-energy branch there, the samples on the axes (one neighbour) are unchanged.
+    // can settle them elsewhere (here it does); the samples on the axes (one neighbour) are unchanged.
     o.samples = {3, 1, 3};
     o.syRange = {0.0, 0.6};
     o.sxRange = {0.0, 0.6};
