@@ -1,6 +1,6 @@
 // strain_bound: how short can a pattern's yarn be on a strained lattice? The feasibility bound
 // behind docs/deformation.md's targets. Per strain plane, the pattern's cell is relaxed (the strain
-// tables' solver, chart/relax_lattice.hpp, from the pattern's own cell through the lattice stages)
+// tables' solver, knit::relaxStrainCell, from the pattern's own cell through the lattice stages)
 //   * taut: rest lengths a fraction of the pattern's (--taut-scale), so the yarn is under tension
 //     everywhere and pulls itself as short as its crossings allow, against a contact barrier
 //     starting at each of the --distances (radii): the shortest yarn with the crossing structure
@@ -16,26 +16,12 @@
 #include <vector>
 
 #include <CLI/CLI.hpp>
-#include <glm/mat2x2.hpp>
 #include <nlohmann/json.hpp>
 
-#include "chart/relax_lattice.hpp"
 #include "knit/generator.hpp"
 #include "knit/strain.hpp"
 
 namespace {
-
-struct Run {
-    double lengthRatio = 0, closest = 0;
-    int iterations = 0;
-    bool converged = false;
-};
-
-Run relaxOn(const knit::Pattern& p, const knit::impl::LatticeRelaxOptions& o, const knit::Strain& s, double rest) {
-    const glm::dmat2 F = knit::latticeMap(s);
-    const knit::impl::LatticeRelaxResult r = knit::impl::LatticeCell(p, o).relax(F, {});
-    return {knit::impl::cellYarnLength(p, r.points, F) / rest, r.minDistance, r.iterations, r.converged};
-}
 
 int run(int argc, char** argv) {
     CLI::App app("The shortest yarn a strained lattice allows (docs/deformation.md, feasibility)");
@@ -57,7 +43,6 @@ int run(int argc, char** argv) {
     app.add_flag("--json", json, "JSON instead of a Markdown table");
     CLI11_PARSE(app, argc, argv);
     const knit::Pattern pattern = knit::loadPatternFileOrName(patternName);
-    const double rest = knit::impl::cellYarnLength(pattern, pattern.points, glm::dmat2(1.0));
     const std::vector<std::pair<std::string, knit::Strain>> cases = {
         {"rest", {0, 0, 0}},
         {"courses 33 %", {0.33, 0, 0}},
@@ -87,30 +72,29 @@ int run(int argc, char** argv) {
     for (const auto& [name, s] : cases) {
         nlohmann::json row = {{"name", name}, {"strain", {s.sx, s.sa, s.sy}}};
         if (!json) std::printf("| %s |", name.c_str());
-        std::vector<Run> runs;
+        std::vector<knit::StrainCellResult> runs;
         for (double d : distances) {
-            knit::impl::LatticeRelaxOptions o;
-            o.restLengthScale = tautScale;
+            knit::StrainTableOptions o;
             o.stretch = tautStretch;
             o.contact = 0;
             o.contactDistance = d;
             o.barrierDistance = d;
             o.barrier = tautBarrier;
             o.maxIterations = iterations;
-            runs.push_back(relaxOn(pattern, o, s, rest));
+            runs.push_back(knit::relaxStrainCell(pattern, s, o, tautScale));
         }
-        knit::impl::LatticeRelaxOptions o;
+        knit::StrainTableOptions o;
         o.stretch = stiff;
         o.barrier = stiff;
         o.maxIterations = iterations;
-        runs.push_back(relaxOn(pattern, o, s, rest));
+        runs.push_back(knit::relaxStrainCell(pattern, s, o));
         for (size_t k = 0; k < runs.size(); ++k) {
-            const Run& r = runs[k];
+            const knit::StrainCellResult& r = runs[k];
             row[k < distances.size() ? "taut" : "stiff"].push_back({{"length_ratio", r.lengthRatio},
-                                                                    {"closest_radii", r.closest},
+                                                                    {"closest_radii", r.closestRadii},
                                                                     {"iterations", r.iterations},
                                                                     {"converged", r.converged}});
-            if (!json) std::printf(" %.3f / %.2f%s |", r.lengthRatio, r.closest, r.converged ? "" : "*");
+            if (!json) std::printf(" %.3f / %.2f%s |", r.lengthRatio, r.closestRadii, r.converged ? "" : "*");
         }
         if (!json) std::printf("\n");
         std::fflush(stdout);

@@ -94,6 +94,19 @@ StrainTable makeStrainTable(const Pattern& pattern, const StrainTableOptions& op
 // timed (milliseconds), times the iterations per sample measured on the default stockinette.
 double estimateStrainTableSeconds(const Pattern& pattern, const StrainTableOptions& options);
 
+// One cell relaxed on the lattice of `strain` by the tables' solver (`solver`'s weights and
+// iteration cap; from the pattern's own cell through the lattice stages), its rest lengths
+// `restLengthScale` times the pattern's edges (below 1 the yarn is under tension and pulls itself
+// taut: tools/strain_bound). The cell's yarn length over the pattern's own, its closest
+// centrelines in yarn radii.
+struct StrainCellResult {
+    double lengthRatio = 1, closestRadii = 0;
+    int iterations = 0;
+    bool converged = false;
+};
+StrainCellResult relaxStrainCell(const Pattern& pattern, const Strain& strain, const StrainTableOptions& solver,
+                                 double restLengthScale = 1);
+
 // ---- files -------------------------------------------------------------------------------------
 
 // `path` (.npy) and its axes file (strainAxesPath), both written atomically (knit/output_file.hpp).

@@ -244,4 +244,15 @@ double estimateStrainTableSeconds(const Pattern& pattern, const StrainTableOptio
     return perIteration * kIterationsPerSample * (samples / double(threads) + 1);
 }
 
+StrainCellResult relaxStrainCell(const Pattern& pattern, const Strain& strain, const StrainTableOptions& solver,
+                                 double restLengthScale) {
+    validateOptions(solver);
+    impl::LatticeRelaxOptions o = solverOptions(solver);
+    o.restLengthScale = restLengthScale;
+    const glm::dmat2 F = latticeMap(strain);
+    const impl::LatticeRelaxResult r = impl::LatticeCell(pattern, o).relax(F, {});
+    return {impl::cellYarnLength(pattern, r.points, F) / impl::cellYarnLength(pattern, pattern.points, glm::dmat2(1.0)),
+            r.minDistance, r.iterations, r.converged};
+}
+
 }  // namespace knit
