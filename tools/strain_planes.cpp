@@ -2,9 +2,10 @@
 // (timed: wall and process CPU seconds) or reads one, then maps the pattern onto planes strained
 // uniformly by F (sx, sa, sy) and prints, per strain, the total yarn length over the rest plane's
 // and the closest distance between yarns (radii) for `--deform none` and `--deform strain`.
-//   strain_planes [--pattern P] [--table T.npy] [--samples NX NA NY] [--size METRES] [--json]
+//   strain_planes [--pattern P] [--table T.npy] [--samples NX NA NY] [--sx-range LO HI] [--sa-range LO HI]
+//                 [--sy-range LO HI] [--size METRES] [--json]
 //                 [--stretch W] [--bend W] [--contact W] [--barrier W] [--contact-distance R]
-//                 [--barrier-distance R] [--iterations N]  (the table's solver)
+//                 [--barrier-distance R] [--iterations N] [--starts N]  (the table's solver)
 #include <chrono>
 #include <cstdio>
 #include <ctime>
@@ -81,6 +82,10 @@ int run(int argc, char** argv) {
     app.add_option("--pattern", patternName, "Pattern file or built-in name")->capture_default_str();
     app.add_option("--table", tablePath, "Read this table instead of making one");
     app.add_option("--samples", samples, "Samples along sx, sa, sy when making the table")->expected(3);
+    std::vector<double> sxRange{-0.2, 1.0}, saRange{-0.7, 0.7}, syRange{-0.2, 1.0};
+    app.add_option("--sx-range", sxRange, "The table's sx range when making it")->expected(2);
+    app.add_option("--sa-range", saRange, "The table's sa range when making it")->expected(2);
+    app.add_option("--sy-range", syRange, "The table's sy range when making it")->expected(2);
     app.add_option("--size", size, "Side of the plane (metres)")->capture_default_str();
     app.add_option("--stretch", tableOptions.stretch, "The table solver's stretch weight")->capture_default_str();
     app.add_option("--bend", tableOptions.bend, "The table solver's bending weight")->capture_default_str();
@@ -94,6 +99,9 @@ int run(int argc, char** argv) {
         ->capture_default_str();
     app.add_option("--iterations", tableOptions.maxIterations, "The table solver's iteration cap per sample")
         ->capture_default_str();
+    app.add_option("--starts", tableOptions.startsPerSample,
+                   "Relax each sample from this many lower neighbours (1-3), keep the lowest energy")
+        ->capture_default_str();
     app.add_flag("--json", json, "JSON instead of a Markdown table");
     CLI11_PARSE(app, argc, argv);
     try {
@@ -103,6 +111,9 @@ int run(int argc, char** argv) {
         if (tablePath.empty()) {
             knit::StrainTableOptions to = tableOptions;
             to.samples = {samples[0], samples[1], samples[2]};
+            to.sxRange = {sxRange[0], sxRange[1]};
+            to.saRange = {saRange[0], saRange[1]};
+            to.syRange = {syRange[0], syRange[1]};
             knit::StrainTableStats st;
             const std::clock_t c0 = std::clock();
             table = std::make_shared<const knit::StrainTable>(knit::makeStrainTable(pattern, to, &st));

@@ -42,16 +42,6 @@ std::vector<glm::dvec3> displaced(const Pattern& p, const StrainTable& t, size_t
     return x;
 }
 
-// Yarn length of the cell at `x` on the lattice deformed by F.
-double yarnLength(const Pattern& p, const std::vector<glm::dvec3>& x, const glm::dmat2& F) {
-    double sum = 0;
-    for (const PeriodicEdge& e : p.edges) {
-        const glm::dvec3 d = x[e.v1] + glm::dvec3(e.dx * p.px, e.dy * p.py, 0) - x[e.v0];
-        sum += glm::length(glm::dvec3(F * glm::dvec2(d.x, d.y), d.z));
-    }
-    return sum;
-}
-
 // The cell's extent across the courses (y), deformed.
 double extentAcross(const std::vector<glm::dvec3>& x, const glm::dmat2& F) {
     double lo = 1e9, hi = -1e9;
@@ -91,8 +81,8 @@ TEST(StrainTable, stretchAlongCoursesShortensLoopsAcrossThem) {
     const glm::dmat2 F = latticeMap(s);
     const std::vector<glm::dvec3> x = displaced(p, t);
     EXPECT_LT(extentAcross(x, F), extentAcross(p.points, F) - 0.2 * p.radius);
-    const double rest = yarnLength(p, p.points, glm::dmat2(1.0));
-    const double mapped = yarnLength(p, p.points, F) / rest, relaxed = yarnLength(p, x, F) / rest;
+    const double rest = impl::cellYarnLength(p, p.points, glm::dmat2(1.0));
+    const double mapped = impl::cellYarnLength(p, p.points, F) / rest, relaxed = impl::cellYarnLength(p, x, F) / rest;
     EXPECT_GT(mapped, 1.15);
     EXPECT_LT(relaxed - 1, 0.6 * (mapped - 1));
     EXPECT_GE(stats.minDistance, 1.0);

@@ -70,6 +70,9 @@ struct StrainTableOptions {
     double stretch = 2000, bend = 1, contact = 400, barrier = 2000;
     double contactDistance = 2.05, barrierDistance = 1.25;
     int maxIterations = 600;
+    // Each sample is relaxed from this many of its relaxed neighbours one step closer to zero
+    // strain (1 to 3; the lowest energy kept): 1 is the parent alone.
+    int startsPerSample = 1;
     // Called after each sample with the samples done and the total (from worker threads, serialised).
     std::function<void(size_t done, size_t total)> progress;
 };
@@ -90,6 +93,19 @@ StrainTable makeStrainTable(const Pattern& pattern, const StrainTableOptions& op
 // Seconds the whole table is expected to take on this machine: ten Newton iterations of the cell
 // timed (milliseconds), times the iterations per sample measured on the default stockinette.
 double estimateStrainTableSeconds(const Pattern& pattern, const StrainTableOptions& options);
+
+// One cell relaxed on the lattice of `strain` by the tables' solver (`solver`'s weights and
+// iteration cap; from the pattern's own cell through the lattice stages), its rest lengths
+// `restLengthScale` times the pattern's edges (below 1 the yarn is under tension and pulls itself
+// taut: tools/strain_bound). The cell's yarn length over the pattern's own, its closest
+// centrelines in yarn radii.
+struct StrainCellResult {
+    double lengthRatio = 1, closestRadii = 0;
+    int iterations = 0;
+    bool converged = false;
+};
+StrainCellResult relaxStrainCell(const Pattern& pattern, const Strain& strain, const StrainTableOptions& solver,
+                                 double restLengthScale = 1);
 
 // ---- files -------------------------------------------------------------------------------------
 

@@ -277,9 +277,9 @@ LatticeCell::LatticeCell(const Pattern& p, const LatticeRelaxOptions& options) :
     Impl& c = *impl_;
     c.opt = options;
     if (!(options.stretch > 0) || !(options.bend >= 0) || !(options.contact >= 0) || !(options.contactDistance > 0) ||
-        options.maxIterations < 0 || !(options.maxStep > 0))
-        throw Error("lattice relaxation: the weights must be >= 0 (stretch > 0), the contact distance and the "
-                    "largest step positive and the iteration count >= 0");
+        options.maxIterations < 0 || !(options.maxStep > 0) || !(options.restLengthScale > 0))
+        throw Error("lattice relaxation: the weights must be >= 0 (stretch > 0), the contact distance, the "
+                    "largest step and the rest length scale positive and the iteration count >= 0");
     c.n = p.points.size();
     c.radius = p.radius;
     c.px = p.px / p.radius;
@@ -303,7 +303,7 @@ LatticeCell::LatticeCell(const Pattern& p, const LatticeRelaxOptions& options) :
     double total = 0;
     for (const Seg& s : c.segs) {
         const glm::dvec3 end = c.start[s.b] + glm::dvec3(s.dx * c.px, s.dy * c.py, 0);
-        c.rest.push_back(glm::length(end - c.start[s.a]));
+        c.rest.push_back(options.restLengthScale * glm::length(end - c.start[s.a]));
         total += c.rest.back();
     }
     c.meanRest = total / double(c.n);
@@ -479,6 +479,15 @@ std::vector<glm::dvec3> restCell(const Pattern& pattern, const LatticeRelaxOptio
     // far below a micrometre) whichever compiler made it.
     o.gradientTolerance = 1e-3 * options.gradientTolerance;
     return LatticeCell(pattern, o).relax(glm::dmat2(1.0), {}).points;
+}
+
+double cellYarnLength(const Pattern& pattern, const std::vector<glm::dvec3>& points, const glm::dmat2& F) {
+    double total = 0;
+    for (const PeriodicEdge& e : pattern.edges) {
+        const glm::dvec3 d = points[e.v1] + glm::dvec3(e.dx * pattern.px, e.dy * pattern.py, 0) - points[e.v0];
+        total += glm::length(glm::dvec3(F * glm::dvec2(d.x, d.y), d.z));
+    }
+    return total;
 }
 
 }  // namespace knit::impl

@@ -30,6 +30,10 @@ struct LatticeRelaxOptions {
     int maxIterations = 600;
     double gradientTolerance = 1e-3;  // largest gradient entry, in the energy's units per radius
     double maxStep = 0.25;            // largest vertex move per step, in yarn radii
+    // Rest lengths as a fraction of the pattern's own edge lengths: below 1 the yarn is under
+    // tension everywhere and pulls itself taut against the contacts (the shortest yarn a lattice
+    // allows, tools/strain_bound.cpp); the strain tables use 1.
+    double restLengthScale = 1;
 };
 
 struct LatticeRelaxResult {
@@ -70,5 +74,9 @@ private:
 // stockinette is made this way, so that zero strain moves nothing). Reference-space vertices in
 // metres.
 std::vector<glm::dvec3> restCell(const Pattern& pattern, const LatticeRelaxOptions& options = {});
+
+// Total yarn length of the pattern's cell with reference-space vertices `points` (metres) on the
+// lattice deformed by F (heights unchanged): the polyline through the cell's edges.
+double cellYarnLength(const Pattern& pattern, const std::vector<glm::dvec3>& points, const glm::dmat2& F);
 
 }  // namespace knit::impl

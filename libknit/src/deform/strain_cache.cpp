@@ -22,7 +22,9 @@ std::string strainCacheKey(const Pattern& pattern, const StrainTableOptions& o) 
     for (double v : {o.sxRange[0], o.sxRange[1], o.saRange[0], o.saRange[1], o.syRange[0], o.syRange[1], o.stretch,
                      o.bend, o.contact, o.barrier, o.contactDistance, o.barrierDistance})
         key << ' ' << v;
-    key << ' ' << o.maxIterations << '\n';
+    key << ' ' << o.maxIterations;
+    if (o.startsPerSample != 1) key << " starts " << o.startsPerSample;
+    key << '\n';
     Pattern unnamed = pattern;  // the same cell under another file name is the same table
     unnamed.name.clear();
     writePyp(key, unnamed);

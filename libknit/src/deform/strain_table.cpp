@@ -48,6 +48,8 @@ void validateOptions(const StrainTableOptions& o) {
     if (!(o.stretch > 0) || !(o.bend >= 0) || !(o.contact >= 0) || !(o.barrier >= 0) || o.maxIterations < 1)
         throw Error("the strain table's stretch weight must be positive, its bend and contact weights >= 0 and its "
                     "iteration count >= 1");
+    if (o.startsPerSample < 1 || o.startsPerSample > 3)
+        throw Error("the strain table's starts per sample must be 1 to 3, got " + std::to_string(o.startsPerSample));
     if (!(o.barrierDistance > 0) || !(o.contactDistance >= o.barrierDistance) || !(o.contactDistance < 10))
         throw Error("the strain table's barrier distance must be positive and at most its contact distance, which "
                     "must be below 10 radii");
@@ -107,6 +109,41 @@ Strain strainAt(const std::array<std::vector<double>, 3>& axes, const Index3& i)
     return {axes[0][size_t(i[0])], axes[1][size_t(i[1])], axes[2][size_t(i[2])]};
 }
 
+// The neighbours of i one step closer to `zero`, the parent (parentOf) first.
+std::vector<Index3> lowerNeighbours(const Index3& i, const Index3& zero) {
+    std::vector<Index3> out{parentOf(i, zero)};
+    for (size_t a = 0; a < 3; ++a)
+        if (i[a] != zero[a]) {
+            Index3 q = i;
+            q[a] += q[a] < zero[a] ? 1 : -1;
+            if (q != out.front()) out.push_back(q);
+        }
+    return out;
+}
+
+// Sample i relaxed from up to `starts` of its already relaxed lower neighbours (the parent first);
+// the lowest energy kept (a later start only when lower by more than round-off), so that
+// neighbouring samples settle on the same branch where a stiff yarn has several (buckled or not).
+template <class Flat>
+impl::LatticeRelaxResult relaxFromNeighbours(const impl::LatticeCell& cell,
+                                             const std::array<std::vector<double>, 3>& axes,
+                                             const std::vector<impl::LatticeRelaxResult>& result, const Flat& flat,
+                                             const Index3& i, const Index3& zero, int starts) {
+    const glm::dmat2 F = latticeMap(strainAt(axes, i));
+    impl::LatticeRelaxResult best;
+    bool have = false;
+    int iterations = 0;  // of every start: the work done (StrainTableStats::iterations)
+    const std::vector<Index3> from = lowerNeighbours(i, zero);
+    for (size_t k = 0; k < from.size() && int(k) < starts; ++k) {
+        impl::LatticeRelaxResult r = cell.relax(F, result[flat(from[k])].points, latticeMap(strainAt(axes, from[k])));
+        iterations += r.iterations;
+        if (!have || r.energy < best.energy - 1e-9 * (1 + std::abs(best.energy))) best = std::move(r);
+        have = true;
+    }
+    best.iterations = iterations;
+    return best;
+}
+
 }  // namespace
 
 StrainTable makeStrainTable(const Pattern& pattern, const StrainTableOptions& options, StrainTableStats* stats) {
@@ -141,12 +178,11 @@ StrainTable makeStrainTable(const Pattern& pattern, const StrainTableOptions& op
     for (const std::vector<Index3>& layer : walkFrom(zero, n).layers)
         tbb::parallel_for(size_t(0), layer.size(), [&](size_t k) {
             const Index3& i = layer[k];
-            const Index3 parent = parentOf(i, zero);
-            const std::vector<glm::dvec3>& start = i == zero ? rest.points : result[flat(parent)].points;
-            const glm::dmat2 startLattice = i == zero ? glm::dmat2(1.0) : latticeMap(strainAt(table.axes, parent));
             const Strain s = strainAt(table.axes, i);
-            result[flat(i)] =
-                s.sx == 0 && s.sa == 0 && s.sy == 0 ? rest : cell.relax(latticeMap(s), start, startLattice);
+            if (s.sx == 0 && s.sa == 0 && s.sy == 0) result[flat(i)] = rest;
+            else if (i == zero) result[flat(i)] = cell.relax(latticeMap(s), rest.points);
+            else
+                result[flat(i)] = relaxFromNeighbours(cell, table.axes, result, flat, i, zero, options.startsPerSample);
             if (options.progress) {
                 const std::lock_guard<std::mutex> lock(progressMutex);
                 options.progress(++done, total);
@@ -206,6 +242,17 @@ double estimateStrainTableSeconds(const Pattern& pattern, const StrainTableOptio
     const double samples = double(options.samples[0]) * options.samples[1] * options.samples[2];
     const unsigned threads = std::max(1U, std::thread::hardware_concurrency());
     return perIteration * kIterationsPerSample * (samples / double(threads) + 1);
+}
+
+StrainCellResult relaxStrainCell(const Pattern& pattern, const Strain& strain, const StrainTableOptions& solver,
+                                 double restLengthScale) {
+    validateOptions(solver);
+    impl::LatticeRelaxOptions o = solverOptions(solver);
+    o.restLengthScale = restLengthScale;
+    const glm::dmat2 F = latticeMap(strain);
+    const impl::LatticeRelaxResult r = impl::LatticeCell(pattern, o).relax(F, {});
+    return {impl::cellYarnLength(pattern, r.points, F) / impl::cellYarnLength(pattern, pattern.points, glm::dmat2(1.0)),
+            r.minDistance, r.iterations, r.converged};
 }
 
 }  // namespace knit
