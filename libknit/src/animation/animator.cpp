@@ -149,10 +149,10 @@ void Animator::evaluate(const std::vector<dvec3>& positions, AnimationFrame& out
     t0 = Clock::now();
     if (options_.stats) {
         const AnimatorBindState& b = *bind_;
-        out.stats.maxStretch = maxYarnStretch(out.yarns.curves, b.restSegment);
+        out.stats.maxStretch = maxYarnStretch(out.yarns.curves, b.restSegment.view());
         out.stats.yarnLengthRatio = b.restTotalLength > 0 ? totalYarnLength(out.yarns.curves) / b.restTotalLength : 1.0;
         out.stats.minYarnDistance =
-            minYarnDistance(out.centres, b.restArc, b.restLength, rest_.yarnRadius(), options_, out.distance);
+            minYarnDistance(out.centres, b.restArc.view(), b.restLength, rest_.yarnRadius(), options_, out.distance);
         t.stats = since(t0);
     }
     if (times) *times = t;

@@ -29,6 +29,9 @@ public:
     SharedArray(std::shared_ptr<const void> owner, const T* data, size_t size)
         : ArrayView<T>(data, size), owner_(std::move(owner)), view_(true) {}
 
+    // The elements as a plain view (for a function taking an ArrayView; valid while this lives).
+    ArrayView<T> view() const { return ArrayView<T>(this->data(), this->size()); }
+
     // True when the elements belong to another owner (e.g. a file's memory map).
     bool isView() const { return view_; }
 
