@@ -13,6 +13,7 @@
 #include "knit/stitch.hpp"
 #include "knit/tiling.hpp"
 #include "knit/uv_grid.hpp"
+#include "triad.hpp"
 
 namespace {
 
@@ -42,13 +43,19 @@ constexpr double kEvaluateBytes = 4 + 16 + 8 + 24 + 24;  // 76
 constexpr double kEvaluateFloatBytes = 4 + 16 + 8 + 12;  // 40
 constexpr double kEvaluatePackedBytes = 16 + 12;         // 28: one packed record in, the position out
 
-// Counters: bytes per vertex and the streamed bytes per second (compare with memory_bench's
-// triad, the machine's limit).
-void streamedBytes(benchmark::State& state, size_t vertices, double perVertex) {
+// Counters: bytes per vertex, the streamed bytes per second and, when BM_TriadAllCores ran before
+// in this process (e.g. --benchmark_filter='Triad|BM_Evaluate'), the streamed bytes per CPU
+// second as a fraction of the triad's (`of_triad`), both measured under the same load.
+void streamedBytes(benchmark::State& state, size_t vertices, double perVertex, double cpuSeconds) {
+    const double bytes = double(state.iterations()) * double(vertices) * perVertex;
     state.counters["bytes_per_vertex"] = perVertex;
-    state.counters["streamed_bytes_per_second"] =
-        benchmark::Counter(double(state.iterations()) * double(vertices) * perVertex, benchmark::Counter::kIsRate);
+    state.counters["streamed_bytes_per_second"] = benchmark::Counter(bytes, benchmark::Counter::kIsRate);
+    knit::bench::fractionOfTriad(state, bytes, cpuSeconds);
 }
+
+// The machine's limit (bench/triad.hpp), registered first so that it runs before the evaluations.
+void BM_TriadAllCores(benchmark::State& state) { knit::bench::triadAllCores(state); }
+BENCHMARK(BM_TriadAllCores)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime()->MinTime(2.0);
 
 void BM_TilingStitch(benchmark::State& state) {
     const knit::Scene& s = fixture().scene;
@@ -94,13 +101,14 @@ BENCHMARK(BM_Binding)->Unit(benchmark::kMillisecond)->UseRealTime();
 void BM_Evaluate(benchmark::State& state) {
     const knit::Scene& s = fixture().scene;
     knit::MappedYarns out;
+    const double cpu0 = knit::bench::processCpuSeconds();
     for (auto _ : state) {
         knit::evaluateBinding(s.binding(), s.mesh().faces, s.mesh().positions, s.normals(), out);
         benchmark::DoNotOptimize(out.curves.points.data());
     }
     state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(s.binding().vertexCount()));
     state.counters["yarn_vertices"] = double(s.binding().vertexCount());
-    streamedBytes(state, s.binding().vertexCount(), kEvaluateBytes);
+    streamedBytes(state, s.binding().vertexCount(), kEvaluateBytes, knit::bench::processCpuSeconds() - cpu0);
 }
 BENCHMARK(BM_Evaluate)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime();
 
@@ -108,12 +116,13 @@ BENCHMARK(BM_Evaluate)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasurePro
 void BM_EvaluateFloat(benchmark::State& state) {
     const knit::Scene& s = fixture().scene;
     std::vector<glm::vec3> out;
+    const double cpu0 = knit::bench::processCpuSeconds();
     for (auto _ : state) {
         knit::evaluateBindingFloat(s.binding(), s.mesh().faces, s.mesh().positions, s.normals(), glm::dvec3(0.0), out);
         benchmark::DoNotOptimize(out.data());
     }
     state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(s.binding().vertexCount()));
-    streamedBytes(state, s.binding().vertexCount(), kEvaluateFloatBytes);
+    streamedBytes(state, s.binding().vertexCount(), kEvaluateFloatBytes, knit::bench::processCpuSeconds() - cpu0);
 }
 BENCHMARK(BM_EvaluateFloat)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime();
 
@@ -122,12 +131,13 @@ void BM_EvaluatePackedFloat(benchmark::State& state) {
     const knit::Scene& s = fixture().scene;
     const knit::PackedBinding packed = knit::packBinding(s.binding());
     std::vector<glm::vec3> out;
+    const double cpu0 = knit::bench::processCpuSeconds();
     for (auto _ : state) {
         knit::evaluatePackedFloat(packed, s.mesh().faces, s.mesh().positions, s.normals(), glm::dvec3(0.0), out);
         benchmark::DoNotOptimize(out.data());
     }
     state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(s.binding().vertexCount()));
-    streamedBytes(state, s.binding().vertexCount(), kEvaluatePackedBytes);
+    streamedBytes(state, s.binding().vertexCount(), kEvaluatePackedBytes, knit::bench::processCpuSeconds() - cpu0);
 }
 BENCHMARK(BM_EvaluatePackedFloat)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime();
 
