@@ -44,6 +44,18 @@ TEST(ServeChart, longFloatsAndEyeletsAreWarnedAbout) {
     EXPECT_NE(lace.find("1 yarn-over opens an eyelet"), std::string::npos) << lace;
 }
 
+// The preview's yarns keep as far apart as the full relaxation's (1.9 radii, the page's warning):
+// its contact weight makes up for the fewer pairs of segments at 10 samples per stitch. With
+// `knit chart`'s weight the preview's stockinette and seed came 1.79 radii apart, moss 1.60.
+TEST(ServeChart, previewYarnsKeepApartAsInTheFullRelaxation) {
+    EXPECT_DOUBLE_EQ(previewOptions().contact, RelaxOptions{}.contact * 2.4 * 2.4);
+    for (const char* name : {"chart:stockinette", "chart:seed", "chart:moss"}) {
+        const CellRelaxation r = relaxPageCell(builtinChart(name), previewOptions());
+        EXPECT_TRUE(r.converged) << name;
+        EXPECT_GE(r.minDistance, 1.9) << name;
+    }
+}
+
 // A relaxation depends on the chart's cell, not its text: a comment or colour edit keeps its key
 // (the server does not relax it again) and the chart made from the other text's relaxation is
 // exactly relaxChart's; another stitch, stranded colours or the preview's samples change the key.

@@ -94,6 +94,14 @@ constexpr int kPreviewSamples = 10;
 // save, and every preview settles in the same rest state either way (docs/serve.md).
 constexpr bool kPreviewPreconditioner = false;
 
+// The preview's contact weight, over `knit chart`'s: RelaxOptions::contact is per pair of
+// segments, and two yarns touching along a stretch have about (samples per stitch)^2 pairs of
+// segments there, so at 10 samples per stitch and the same weight the preview's yarns pressed
+// into each other (closest centrelines 1.60-1.97 radii, against 1.97-2.05 in the full
+// relaxation). Weighted by (24 / 10)^2 they keep 1.96-2.05 radii apart, for 1.9 times the
+// iterations (build/bench/serve_bench, docs/serve.md "Measured").
+double previewContactScale();
+
 // The options of the page's preview.
 ChartPatternOptions previewOptions();
 
