@@ -4,12 +4,14 @@
 
 #include <filesystem>
 #include <fstream>
+#include <cmath>
 #include <sstream>
 #include <string>
 
 #include "api_request.hpp"
 #include "chart_job.hpp"
 #include "knit/chart_pattern.hpp"
+#include "swatch.hpp"
 #include "common/test_paths.hpp"
 
 namespace knit::serve {
@@ -54,6 +56,26 @@ TEST(ServeChart, previewYarnsKeepApartAsInTheFullRelaxation) {
         EXPECT_TRUE(r.converged) << name;
         EXPECT_GE(r.minDistance, 1.9) << name;
     }
+}
+
+// The swatch's points and colours are integers in their units (micrometres, thousandths): points
+// in metres, rounded to a micrometre, came as doubles such as -0.034402999999999996 (the JSON
+// library writes 17 digits), twice the bytes for the page to load.
+TEST(ServeChart, swatchPointsAndColoursAreIntegers) {
+    const Chart chart = parsePageChart("k p\np k\n\nA B\nB A\nA=#c8553d B=#2a6f97\n", 400);
+    const ChartPatternOptions options = previewOptions();
+    const ChartCell cell = chartToCell(chart, cellOptions(options));
+    const RelaxedChart relaxed = relaxedChart(chart, cell, relaxPageCell(chart, options));
+    const nlohmann::json swatch = swatchJson(relaxed.pattern, {0, 0});
+    EXPECT_EQ(swatch["point_unit"], 1e-6);
+    EXPECT_EQ(swatch["colour_unit"], 1e-3);
+    ASSERT_TRUE(swatch["curves"][0].contains("colours"));
+    const std::string text = swatch["curves"].dump();
+    EXPECT_EQ(text.find('.'), std::string::npos) << text.substr(0, 200);
+    // The swatch is centred on the plane: points within half its side.
+    const double half = 0.5 * swatch["size"].get<double>() / 1e-6;
+    for (const nlohmann::json& c : swatch["curves"])
+        for (const nlohmann::json& x : c["points"]) EXPECT_LE(std::abs(x.get<double>()), half * 1.01);
 }
 
 // A relaxation depends on the chart's cell, not its text: a comment or colour edit keeps its key
