@@ -160,7 +160,7 @@ function changed() {
   swatchRequest?.abort();
   refreshPalette();
   clearTimeout(editTimer);
-  editTimer = setTimeout(updateSwatch, 80);  // debounced: the newest text wins
+  editTimer = setTimeout(updateSwatch, 40);  // debounced: the newest text wins
 }
 
 async function start() {
