@@ -2,9 +2,9 @@
 // the last keystroke). For the charts of tests/serve/page_test.mjs, the built-in charts up to
 // 4 x 4 and a few typed ones (a cable, a lace row), each relaxed by relaxChart on one core as the
 // server runs it (relaxPageCell): `preview`, what the page shows first (previewOptions: 10
-// samples per stitch, plain L-BFGS), `preview_preconditioned` (the same with the Hessian
-// preconditioner, as the page relaxed it before) and `full` (24 samples per stitch, as `knit
-// chart`). Counters: the process CPU seconds of one relaxation (the machine may be shared),
+// samples per stitch, plain L-BFGS, the contact weight times (24 / 10)^2),
+// `preview_preconditioned` (the same with the Hessian preconditioner) and `full` (24 samples
+// per stitch, as `knit chart`). Counters: the process CPU seconds of one relaxation (the machine may be shared),
 // iterations, converged, the smallest yarn distance, the energy and L r / A (which rest state it
 // reached). docs/serve.md has the numbers. Run: build/bench/serve_bench
 #include <benchmark/benchmark.h>

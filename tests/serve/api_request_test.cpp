@@ -2,14 +2,20 @@
 // with its status and a message naming the field.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
+
+#include <glm/geometric.hpp>
 
 #include "api_request.hpp"
 #include "chart_job.hpp"
 #include "knit/chart_pattern.hpp"
+#include "swatch.hpp"
 #include "common/test_paths.hpp"
 
 namespace knit::serve {
@@ -42,6 +48,100 @@ TEST(ServeChart, longFloatsAndEyeletsAreWarnedAbout) {
     EXPECT_EQ(warningsOf("k sl sl sl sl sl k k\nk k k k k k k k\n"), "[]");  // 5 stitches: the rule allows it
     const std::string lace = warningsOf("k yo k2tog k\nk k k k\n");
     EXPECT_NE(lace.find("1 yarn-over opens an eyelet"), std::string::npos) << lace;
+}
+
+// The preview's yarns keep as far apart as the full relaxation's (1.9 radii, the page's warning):
+// its contact weight makes up for the fewer pairs of segments at 10 samples per stitch. With
+// `knit chart`'s weight the preview's stockinette and seed came 1.79 radii apart, moss 1.60.
+TEST(ServeChart, previewYarnsKeepApartAsInTheFullRelaxation) {
+    EXPECT_DOUBLE_EQ(previewOptions().contact, RelaxOptions{}.contact * 2.4 * 2.4);
+    for (const char* name : {"chart:stockinette", "chart:seed", "chart:moss"}) {
+        const CellRelaxation r = relaxPageCell(builtinChart(name), previewOptions());
+        EXPECT_TRUE(r.converged) << name;
+        EXPECT_GE(r.minDistance, 1.9) << name;
+    }
+}
+
+// The smallest distance between two segments [p0, p1] and [q0, q1] (their closest points, each
+// parameter clamped to the segment).
+double segmentDistance(const glm::dvec3& p0, const glm::dvec3& p1, const glm::dvec3& q0, const glm::dvec3& q1) {
+    const glm::dvec3 u = p1 - p0, v = q1 - q0, w = p0 - q0;
+    const double a = glm::dot(u, u), b = glm::dot(u, v), c = glm::dot(v, v), d = glm::dot(u, w), e = glm::dot(v, w);
+    const double den = a * c - b * b;
+    double s = den > 1e-18 ? std::clamp((b * e - c * d) / den, 0.0, 1.0) : 0.0;
+    double t = c > 1e-18 ? std::clamp((b * s + e) / c, 0.0, 1.0) : 0.0;
+    s = a > 1e-18 ? std::clamp((b * t - d) / a, 0.0, 1.0) : 0.0;
+    return glm::length((p0 + s * u) - (q0 + t * v));
+}
+
+// The smallest distance between the centrelines of the tubes the page draws for `swatch` (its
+// curves' segments: of two curves, or of one more than two segments apart), in yarn radii. Two
+// open pieces' end segments are left out: a yarn cut at the swatch's edge may come back in beside
+// its own cut.
+double drawnMinDistance(const nlohmann::json& swatch) {
+    struct Segment {
+        size_t curve, index, count;
+        bool end;
+        glm::dvec3 a, b;
+    };
+    const double unit = swatch["point_unit"].get<double>(), radius = swatch["radius"].get<double>();
+    std::vector<Segment> segments;
+    for (size_t k = 0; k < swatch["curves"].size(); ++k) {
+        const nlohmann::json& c = swatch["curves"][k];
+        const std::vector<double> x = c["points"].get<std::vector<double>>();
+        const size_t n = x.size() / 3, count = c["closed"].get<bool>() ? n : n - 1;
+        const auto at = [&](size_t i) {
+            return unit * glm::dvec3(x[3 * (i % n)], x[3 * (i % n) + 1], x[3 * (i % n) + 2]);
+        };
+        for (size_t i = 0; i < count; ++i)
+            segments.push_back({k, i, count, !c["closed"].get<bool>() && (i == 0 || i + 1 == count), at(i), at(i + 1)});
+    }
+    double closest = 1e9;
+    for (size_t i = 0; i < segments.size(); ++i)
+        for (size_t j = i + 1; j < segments.size(); ++j) {
+            const Segment &s = segments[i], &t = segments[j];
+            if (glm::length(0.5 * (s.a + s.b - t.a - t.b)) > 6 * radius) continue;
+            if (s.curve == t.curve) {
+                const size_t gap = t.index - s.index;
+                if (std::min(gap, s.count - gap) <= 2) continue;
+            } else if (s.end && t.end) {
+                continue;
+            }
+            closest = std::min(closest, segmentDistance(s.a, s.b, t.a, t.b));
+        }
+    return closest / radius;
+}
+
+// What the page draws of the preview keeps the yarns apart too: the swatch places the relaxed
+// cell's own points (no resampling), so its tubes come as close as the relaxation's segments.
+TEST(ServeChart, previewSwatchDrawsTheYarnsApart) {
+    const Chart chart = builtinChart("chart:moss");
+    const ChartPatternOptions options = previewOptions();
+    const ChartCell cell = chartToCell(chart, cellOptions(options));
+    const CellRelaxation r = relaxPageCell(chart, options);
+    const double drawn = drawnMinDistance(swatchJson(relaxedChart(chart, cell, r).pattern, {0, 0}));
+    EXPECT_GE(drawn, 1.9);
+    EXPECT_NEAR(drawn, r.minDistance, 0.01);
+}
+
+// The swatch's points and colours are integers in their units (micrometres, thousandths): points
+// in metres, rounded to a micrometre, came as doubles such as -0.034402999999999996 (the JSON
+// library writes 17 digits), twice the bytes for the page to load.
+TEST(ServeChart, swatchPointsAndColoursAreIntegers) {
+    const Chart chart = parsePageChart("k p\np k\n\nA B\nB A\nA=#c8553d B=#2a6f97\n", 400);
+    const ChartPatternOptions options = previewOptions();
+    const ChartCell cell = chartToCell(chart, cellOptions(options));
+    const RelaxedChart relaxed = relaxedChart(chart, cell, relaxPageCell(chart, options));
+    const nlohmann::json swatch = swatchJson(relaxed.pattern, {0, 0});
+    EXPECT_EQ(swatch["point_unit"], 1e-6);
+    EXPECT_EQ(swatch["colour_unit"], 1e-3);
+    ASSERT_TRUE(swatch["curves"][0].contains("colours"));
+    const std::string text = swatch["curves"].dump();
+    EXPECT_EQ(text.find('.'), std::string::npos) << text.substr(0, 200);
+    // The swatch is centred on the plane: points within half its side.
+    const double half = 0.5 * swatch["size"].get<double>() / 1e-6;
+    for (const nlohmann::json& c : swatch["curves"])
+        for (const nlohmann::json& x : c["points"]) EXPECT_LE(std::abs(x.get<double>()), half * 1.01);
 }
 
 // A relaxation depends on the chart's cell, not its text: a comment or colour edit keeps its key

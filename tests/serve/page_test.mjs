@@ -115,6 +115,7 @@ try {
     console.log(`  ${body.split("\n").join(" / ")}: shown ${t.swatchStates}; first yarns ${t.editToFirstYarnsMs} ms, relaxed yarns (${relaxedState}) ` +
                 `${t.editToRelaxedMs} ms, full relaxation ${t.editToYarnsMs} ms after the last edit ` +
                 `(request to answer ${t.serverMs} ms)`);
+    console.log(`    first relaxed yarns, ms: ${t.relaxedBreakdown}`);
     latencies.push([Number(t.editToFirstYarnsMs), Number(t.editToRelaxedMs), Number(t.editToYarnsMs)]);
     const shown = await yarnsShown();
     check(shown === await serverYarns(chart), `typed chart ${k}: data-yarns ${shown} equals the server's count`);

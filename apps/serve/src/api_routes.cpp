@@ -3,6 +3,7 @@
 #include "api_routes.hpp"
 
 #include <chrono>
+#include <cmath>
 #include <sstream>
 
 #include "chart_job.hpp"
@@ -41,11 +42,12 @@ std::shared_ptr<JobTicket> startJob(ServerState& state, const std::string& sessi
 }
 
 // A "step" line every 20 iterations of the relaxation `stage`; with `swatchRepeats`, the swatch
-// of the cell so far, the first after 400 ms (a small chart's preview is done sooner: streaming
-// and drawing intermediate cells would only slow it down), then every 300 ms.
+// of the cell so far, the first after 1 s, then every 300 ms. A chart up to 4 x 4 has its preview
+// sooner: an intermediate swatch drawn in software WebGL held the page's main thread for up to
+// 0.66 s, which the preview that followed it waited for (docs/serve.md).
 RelaxStepFn stepLines(const char* stage, const CancelToken& token, const Emit& emit,
                       const std::array<double, 2>* swatchRepeats) {
-    auto nextSwatch = std::make_shared<Clock::time_point>(Clock::now() + std::chrono::milliseconds(400));
+    auto nextSwatch = std::make_shared<Clock::time_point>(Clock::now() + std::chrono::milliseconds(1000));
     return [stage, &token, &emit, swatchRepeats, nextSwatch](const RelaxStep& step) {
         if (token.cancelled()) return false;
         json line = {{"type", "step"}, {"stage", stage}, {"iteration", step.iteration}, {"energy", step.energy}};
@@ -69,34 +71,49 @@ CellRelaxation cellRelaxation(ServerState& state, const Chart& chart, const Char
     return r;
 }
 
+double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+
 // The preview: the chart relaxed with previewOptions(), its intermediate swatches streamed, then a
-// "preview" line with the relaxed swatch and the chart's design warnings.
+// "preview" line with the relaxed swatch, the chart's design warnings and where the server's time
+// went since the request came (`server_ms`: total, relax, swatch; the page's relaxedBreakdown).
 void preview(ServerState& state, const Chart& chart, const CancelToken& token, const Emit& emit,
-             const std::array<double, 2>& repeats) {
+             const std::array<double, 2>& repeats, Clock::time_point requested) {
     ChartPatternOptions options = previewOptions();
     options.onStep = stepLines("preview", token, emit, &repeats);
     options.stepInterval = 20;
     const ChartCell cell = chartToCell(chart, cellOptions(options));
+    const Clock::time_point relaxing = Clock::now();
     const RelaxedChart c = relaxedChart(chart, cell, cellRelaxation(state, chart, cell, options));
     token.check();
+    const double relaxMs = msSince(relaxing);
+    const Clock::time_point swatching = Clock::now();
+    json swatch = swatchJson(c.pattern, repeats);
+    const double swatchMs = msSince(swatching);
     // The chart's own warnings (floats, eyelets); the relaxation's wait for the full one.
     json warnings = json::array();
     addDesignWarnings(chart, cell, warnings);
-    emit({{"type", "preview"}, {"swatch", swatchJson(c.pattern, repeats)}, {"stats", c.stats}, {"warnings", warnings}});
+    emit({{"type", "preview"},
+          {"swatch", std::move(swatch)},
+          {"stats", c.stats},
+          {"warnings", warnings},
+          {"server_ms",
+           {{"total", std::lround(msSince(requested))},
+            {"relax", std::lround(relaxMs)},
+            {"swatch", std::lround(swatchMs)}}}});
 }
 
 // The relaxed chart, as `knit chart` relaxes it: from memory (by its cell, so an edit of the
 // comments or colours alone is not relaxed again), or relaxed now with "step" lines. With
 // `swatchRepeats` (the swatch), a preview comes first.
 RelaxedChart relaxed(ServerState& state, const Chart& chart, const CancelToken& token, const Emit& emit,
-                     const std::array<double, 2>* swatchRepeats) {
+                     const std::array<double, 2>* swatchRepeats, Clock::time_point requested = Clock::now()) {
     ChartPatternOptions options;
     options.onStep = stepLines("relax", token, emit, nullptr);
     options.stepInterval = 20;
     const ChartCell cell = chartToCell(chart, cellOptions(options));
     CellRelaxation r;
     if (!state.charts.find(relaxationKey(cell, options), r)) {
-        if (swatchRepeats) preview(state, chart, token, emit, *swatchRepeats);
+        if (swatchRepeats) preview(state, chart, token, emit, *swatchRepeats, requested);
         r = cellRelaxation(state, chart, cell, options);
     }
     return relaxedChart(chart, cell, r);
@@ -120,11 +137,12 @@ void handleInfo(const httplib::Request&, httplib::Response& res, ServerState& st
 }
 
 void handleSwatch(const httplib::Request& req, httplib::Response& res, ServerState& state) {
+    const Clock::time_point requested = Clock::now();
     const SwatchRequest r = parseSwatchRequest(req.body, state.options.limits);
     const Chart chart = parsePageChart(r.chart, state.options.limits.maxChartStitches);
     std::shared_ptr<JobTicket> ticket = startJob(state, r.session);
-    streamJob(res, ticket, [&state, r, chart, token = ticket->sharedToken()](const Emit& emit) {
-        const RelaxedChart c = relaxed(state, chart, *token, emit, &r.repeats);
+    streamJob(res, ticket, [&state, r, chart, requested, token = ticket->sharedToken()](const Emit& emit) {
+        const RelaxedChart c = relaxed(state, chart, *token, emit, &r.repeats, requested);
         token->check();
         emit({{"type", "done"},
               {"swatch", swatchJson(c.pattern, r.repeats)},

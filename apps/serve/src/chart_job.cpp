@@ -60,6 +60,7 @@ std::string relaxationKey(const ChartCell& cell, const ChartPatternOptions& opti
                               double(options.maxIterations),
                               double(options.affinePeriod),
                               double(options.hessianPreconditioner),
+                              options.contact,
                               p.px,
                               p.py,
                               p.radius};
@@ -111,10 +112,16 @@ void addDesignWarnings(const Chart& chart, const ChartCell& cell, nlohmann::json
                            " (holes) per repeat");
 }
 
+double previewContactScale() {
+    const double coarser = double(ChartPatternOptions{}.samplesPerStitch) / kPreviewSamples;
+    return coarser * coarser;
+}
+
 ChartPatternOptions previewOptions() {
     ChartPatternOptions o;
     o.samplesPerStitch = kPreviewSamples;
     o.hessianPreconditioner = kPreviewPreconditioner;
+    o.contact *= previewContactScale();
     return o;
 }
 

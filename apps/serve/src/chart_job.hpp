@@ -85,14 +85,23 @@ void addDesignWarnings(const Chart& chart, const ChartCell& cell, nlohmann::json
 
 // Samples per stitch of the swatch's preview: the cell relaxed at 10 instead of `knit chart`'s 24
 // converges several times sooner, so the page shows relaxed yarns while the full relaxation runs
-// (build/bench/serve_bench, docs/serve.md "Measured": the charts up to 4 x 4 in 6-145 ms of CPU
-// by plain L-BFGS, against 0.07-3.8 s for the full relaxation). At 12 it took up to twice as long
+// (build/bench/serve_bench, docs/serve.md "Measured": the charts up to 4 x 4 in 8-245 ms of CPU
+// by plain L-BFGS with its contact weight, at load 13-15, against 0.07-3.8 s for the full
+// relaxation). At 12 it took up to twice as long
 // (eyelet-mesh 3232 iterations); at 8 the 3 x 3 moss did not converge.
 constexpr int kPreviewSamples = 10;
 // The preview relaxes by plain L-BFGS (ChartPatternOptions::hessianPreconditioner false): at 10
 // samples per stitch the preconditioner's factorisations cost more CPU than the iterations they
 // save, and every preview settles in the same rest state either way (docs/serve.md).
 constexpr bool kPreviewPreconditioner = false;
+
+// The preview's contact weight, over `knit chart`'s: RelaxOptions::contact is per pair of
+// segments, and two yarns touching along a stretch have about (samples per stitch)^2 pairs of
+// segments there, so at 10 samples per stitch and the same weight the preview's yarns pressed
+// into each other (closest centrelines 1.60-2.03 radii, 17 of 24 cells under 1.9, against
+// 1.97-2.05 in the full relaxation). Weighted by (24 / 10)^2 they keep 1.96-2.05 radii apart, for
+// 1.9 times the iterations and 1.6 times the CPU (build/bench/serve_bench, docs/serve.md).
+double previewContactScale();
 
 // The options of the page's preview.
 ChartPatternOptions previewOptions();

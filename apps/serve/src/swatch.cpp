@@ -9,20 +9,24 @@
 namespace knit::serve {
 namespace {
 
-double rounded(double x, double unit) { return std::round(x / unit) * unit; }
+constexpr double kPointsPerMetre = 1e6, kColourSteps = 1e3;
+
+// Integers: the JSON library writes a double with 17 digits (0.026669 as 0.026669000000000002), so
+// points in metres rounded to a micrometre took about twice the bytes of micrometres.
+long rounded(double x, double scale) { return std::lround(x * scale); }
 
 nlohmann::json curvesJson(const MappedYarns& yarns) {
     nlohmann::json curves = nlohmann::json::array();
     const Polylines& c = yarns.curves;
     for (size_t k = 0; k < c.curveCount(); ++k) {
-        std::vector<double> points, colours;
+        std::vector<long> points, colours;
         points.reserve(3 * c.size(k));
         for (uint32_t i = c.begin(k); i < c.end(k); ++i)
-            for (int a = 0; a < 3; ++a) points.push_back(rounded(c.points[i][a], 1e-6));
+            for (int a = 0; a < 3; ++a) points.push_back(rounded(c.points[i][a], kPointsPerMetre));
         nlohmann::json curve = {{"closed", c.isClosed(k)}, {"points", points}};
         if (!yarns.colour.empty()) {
             for (uint32_t i = c.begin(k); i < c.end(k); ++i)
-                for (int a = 0; a < 3; ++a) colours.push_back(rounded(yarns.colour[i][a], 1e-3));
+                for (int a = 0; a < 3; ++a) colours.push_back(rounded(yarns.colour[i][a], kColourSteps));
             curve["colours"] = colours;
         }
         curves.push_back(std::move(curve));
@@ -49,6 +53,8 @@ nlohmann::json swatchJson(const Pattern& pattern, std::array<double, 2> repeats)
     return {{"yarns", scene.yarns().curves.curveCount()},
             {"radius", scene.yarnRadius()},
             {"size", plane.size},
+            {"point_unit", 1 / kPointsPerMetre},
+            {"colour_unit", 1 / kColourSteps},
             {"curves", curvesJson(scene.yarns())}};
 }
 

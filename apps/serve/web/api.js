@@ -1,8 +1,10 @@
 // api.js — the server's JSON API (docs/serve.md): plain requests and streamed jobs (one JSON
 // object per line, read as they arrive).
 
-// Posts `body` as JSON; calls onLine(obj) for every line of a streamed answer. Resolves with the
-// last line; an HTTP error before the stream resolves with its JSON and `status`.
+// Posts `body` as JSON; calls onLine(obj, times) for every line of a streamed answer, times
+// {received, parsed, bytes} (performance.now() when the line was complete and when it was parsed,
+// and its length).
+// Resolves with the last line; an HTTP error before the stream resolves with its JSON and `status`.
 export async function postStream(path, body, onLine, signal) {
   const res = await fetch(path, {
     method: 'POST', headers: {'Content-Type': 'application/json'}, body: JSON.stringify(body), signal,
@@ -21,8 +23,9 @@ export async function postStream(path, body, onLine, signal) {
       const line = buffered.slice(0, newline);
       buffered = buffered.slice(newline + 1);
       if (!line) continue;
+      const received = performance.now();
       last = JSON.parse(line);
-      onLine(last);
+      onLine(last, {received, parsed: performance.now(), bytes: line.length});
     }
   }
   return last ?? {type: 'error', status: 0, error: 'the server closed the answer early'};

@@ -42,25 +42,45 @@ async function updateSwatch() {
   const edited = lastEdit;
   const shown = {first: false, relaxed: false};
   const states = [];
-  for (const key of ['editToFirstYarnsMs', 'editToRelaxedMs', 'editToYarnsMs']) delete document.body.dataset[key];
+  for (const key of ['editToFirstYarnsMs', 'editToRelaxedMs', 'editToYarnsMs', 'relaxedBreakdown']) delete document.body.dataset[key];
   // Measured on the page: the last edit to the animation frame that draws the yarns (view.draw()
   // renders in the next frame, before this callback; docs/serve.md).
-  const stamp = (key) => requestAnimationFrame(() => {
-    if (!controller.signal.aborted) document.body.dataset[key] = String(Math.round(performance.now() - edited));
+  const stamp = (key, then) => requestAnimationFrame(() => {
+    if (controller.signal.aborted) return;
+    document.body.dataset[key] = String(Math.round(performance.now() - edited));
+    then?.();
   });
-  const show = (swatch, state) => {
+  // Where the time to the first relaxed yarns went (ms): the debounce, the request to its line
+  // complete on the page (the server's part of it in `server`), parsing it, building the tubes, and
+  // the frame that draws them (relaxedBreakdown, printed by tests/serve/page_test.mjs).
+  const breakdown = (line, times, built) => {
+    const ms = (a, b) => Math.round(b - a);
+    const drawn = performance.now();
+    const t = line.server_ms;
+    const server = t ? ` (server ${t.total}: relax ${t.relax}, swatch ${t.swatch}; ${times.bytes} bytes)` : '';
+    document.body.dataset.relaxedBreakdown =
+        `debounce ${ms(edited, started)} request ${ms(started, times.received)}${server} ` +
+        `parse ${ms(times.received, times.parsed)} build ${ms(times.parsed, built)} draw ${ms(built, drawn)}`;
+  };
+  const show = (swatch, state, line, times) => {
     if (mode !== 'swatch') return;
     view.showSwatch(swatch, !framed);
+    const built = performance.now();
     framed = true;
     $('view').dataset.state = state;
     if (states.at(-1) !== state) states.push(state);
     document.body.dataset.swatchStates = states.join(' ');
     if (!shown.first) { shown.first = true; stamp('editToFirstYarnsMs'); }
-    if (state !== 'relaxing' && !shown.relaxed) { shown.relaxed = true; stamp('editToRelaxedMs'); }
+    if (state !== 'relaxing' && !shown.relaxed) {
+      shown.relaxed = true;
+      stamp('editToRelaxedMs', () => breakdown(line, times, built));
+    }
   };
   status('relaxing…');
   try {
-    const last = await postStream('/api/swatch', {session, chart: editor.text}, (line) => {
+    let lastTimes = null;
+    const last = await postStream('/api/swatch', {session, chart: editor.text}, (line, times) => {
+      lastTimes = times;
       if (controller.signal.aborted) return;
       if (line.type === 'step') {
         status(line.stage === 'preview' ? `relaxing… iteration ${line.iteration}`
@@ -69,7 +89,7 @@ async function updateSwatch() {
       } else if (line.type === 'preview') {
         editor.setError(null);
         showWarnings(line.warnings);
-        show(line.swatch, 'preview');
+        show(line.swatch, 'preview', line, times);
         status(`preview: relaxed at ${line.stats.samples_per_stitch} samples per stitch in ` +
                `${line.stats.iterations} iterations; relaxing at full detail…`);
       }
@@ -78,7 +98,7 @@ async function updateSwatch() {
     if (last.type === 'done') {
       editor.setError(null);
       showWarnings(last.warnings);
-      show(last.swatch, 'relaxed');
+      show(last.swatch, 'relaxed', last, lastTimes);
       stamp('editToYarnsMs');
       await new Promise(requestAnimationFrame);
       document.body.dataset.serverMs = String(Math.round(performance.now() - started));
@@ -134,9 +154,13 @@ function scheduleGarment(delay) {
 let editTimer = 0, lastEdit = 0;
 function changed() {
   lastEdit = performance.now();
+  // The older text's answer is dropped now, not when the debounce ends: its preview arriving in
+  // between would be drawn (software WebGL holds the main thread) and delay the newer request.
+  // Closing its stream also makes the server cancel its job at its next line.
+  swatchRequest?.abort();
   refreshPalette();
   clearTimeout(editTimer);
-  editTimer = setTimeout(updateSwatch, 80);  // debounced: the newest text wins
+  editTimer = setTimeout(updateSwatch, 40);  // debounced: the newest text wins
 }
 
 async function start() {

@@ -6,11 +6,11 @@ import {GLTFLoader} from 'three/addons/loaders/GLTFLoader.js';
 
 const YARN = new THREE.Color(0xe9dcc3);  // undyed wool, for charts without colours
 
-// A tube around a polyline (points flat xyz), rings along parallel-transported frames; per-vertex
-// colours from `colours` (flat linear rgb) when given.
-function tubeGeometry(points, closed, colours, radius, sides = 8) {
+// A tube around a polyline (points flat xyz, times pointUnit), rings along parallel-transported
+// frames; per-vertex colours from `colours` (flat linear rgb, times colourUnit) when given.
+function tubeGeometry(points, closed, colours, radius, pointUnit, colourUnit, sides = 8) {
   const n = points.length / 3;
-  const p = (i) => new THREE.Vector3(points[3 * i], points[3 * i + 1], points[3 * i + 2]);
+  const p = (i) => new THREE.Vector3(points[3 * i], points[3 * i + 1], points[3 * i + 2]).multiplyScalar(pointUnit);
   const rings = closed ? n + 1 : n;
   const pos = new Float32Array(rings * sides * 3), nor = new Float32Array(rings * sides * 3);
   const col = new Float32Array(rings * sides * 3);
@@ -31,7 +31,8 @@ function tubeGeometry(points, closed, colours, radius, sides = 8) {
       const k = (r * sides + s) * 3;
       pos[k] = c.x + radius * d.x; pos[k + 1] = c.y + radius * d.y; pos[k + 2] = c.z + radius * d.z;
       nor[k] = d.x; nor[k + 1] = d.y; nor[k + 2] = d.z;
-      const rgb = colours ? [colours[3 * i], colours[3 * i + 1], colours[3 * i + 2]] : [YARN.r, YARN.g, YARN.b];
+      const rgb = colours ? [colours[3 * i] * colourUnit, colours[3 * i + 1] * colourUnit, colours[3 * i + 2] * colourUnit]
+                          : [YARN.r, YARN.g, YARN.b];
       col[k] = rgb[0]; col[k + 1] = rgb[1]; col[k + 2] = rgb[2];
     }
   }
@@ -123,12 +124,14 @@ export class KnitView {
     }
   }
 
-  // The swatch of /api/swatch: {yarns, radius, size, curves: [{closed, points, colours}]}.
+  // The swatch of /api/swatch: {yarns, radius, size, point_unit, colour_unit, curves: [{closed,
+  // points, colours}]} (points and colours integers in their units).
   showSwatch(swatch, frame) {
     this.clear();
     for (const c of swatch.curves) {
       if (c.points.length < 6) continue;
-      this.content.add(new THREE.Mesh(tubeGeometry(c.points, c.closed, c.colours, swatch.radius), this.material));
+      const tube = tubeGeometry(c.points, c.closed, c.colours, swatch.radius, swatch.point_unit, swatch.colour_unit);
+      this.content.add(new THREE.Mesh(tube, this.material));
     }
     this.canvas.dataset.yarns = String(this.content.children.length);
     // Framed again when the swatch's size changes much (another chart), not while it relaxes.

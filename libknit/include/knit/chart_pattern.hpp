@@ -19,6 +19,11 @@ struct ChartPatternOptions {
     int maxIterations = 4000;
     bool affinePeriod = false;          // RelaxOptions::affinePeriod: faster, for previews (part of the cache key)
     bool hessianPreconditioner = true;  // RelaxOptions::hessianPreconditioner of this relaxation
+    // RelaxOptions::contact, the contact penalty's weight. It is per pair of segments, not per
+    // length of yarn: a cell sampled coarser has fewer pairs along each contact, so at the same
+    // weight its yarns press deeper into each other (knit serve's preview at 10 samples per
+    // stitch raises it, docs/serve.md). At its default it adds nothing to the cache key.
+    double contact = RelaxOptions{}.contact;
     // Progress and cancellation of the relaxation (RelaxOptions::onStep); not part of the
     // cache key, since it does not change the result.
     RelaxStepFn onStep;

@@ -22,6 +22,7 @@ std::string chartCacheKey(const std::string& chartText, const ChartPatternOption
     // their defaults add nothing to the key.
     key << "v10 " << o.radius << ' ' << o.samplesPerStitch << ' ' << o.restLength << ' ' << o.maxIterations
         << (o.affinePeriod ? " affine" : "") << (o.hessianPreconditioner ? "" : " plain");
+    if (o.contact != RelaxOptions{}.contact) key << " contact " << o.contact;
     key << '\n' << chartText;
     char name[40];
     std::snprintf(name, sizeof name, "chart-%016llx.pyp", static_cast<unsigned long long>(util::fnv1a(key.str())));

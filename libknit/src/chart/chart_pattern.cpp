@@ -43,6 +43,7 @@ RelaxResult relaxCell(const ChartCell& cell, const ChartPatternOptions& options)
     relax.maxIterations = options.maxIterations;
     relax.affinePeriod = options.affinePeriod;
     relax.hessianPreconditioner = options.hessianPreconditioner;
+    relax.contact = options.contact;
     relax.onStep = options.onStep;
     relax.stepInterval = options.stepInterval;
     return relaxYarn(cell.pattern, relax);
