@@ -3,7 +3,9 @@
 // builtinChartNames()) and the small lace charts that were slow to settle (BM_RelaxLace) in
 // <= 60 s with the yarns >= 1.9 r apart; RelaxOptions::affinePeriod against the default.
 // Counters: iterations, evaluations, converged, min distance (radii), L r / A, energy and the
-// process CPU seconds of one relaxation (all threads; the machine may be shared).
+// process CPU seconds of one relaxation (all threads; the machine may be shared). Intarsia
+// charts whose boundaries move (BM_RelaxIntarsiaCarried, too slow for the unit tests) also count
+// the stitches that lose knitting's crossing with the head below (stitches_off, should be 0).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -12,6 +14,7 @@
 #include "knit/chart.hpp"
 #include "knit/chart_pattern.hpp"
 
+#include "../tests/chart/crossings.hpp"
 #include "bench_clock.hpp"
 #include "pattern_measures.hpp"
 
@@ -28,7 +31,7 @@ std::string cableCell() {
     return text;
 }
 
-void relax(benchmark::State& state, const knit::Chart& chart, bool affine = false) {
+knit::ChartPattern relax(benchmark::State& state, const knit::Chart& chart, bool affine = false) {
     knit::ChartPattern cp;
     knit::ChartPatternOptions options;
     options.affinePeriod = affine;
@@ -47,6 +50,18 @@ void relax(benchmark::State& state, const knit::Chart& chart, bool affine = fals
     state.counters["min_distance_r"] = cp.relaxed.minDistance;
     state.counters["L_r_per_A"] = knit::bench::lengthPerArea(cp.relaxed.pattern);
     state.counters["vertices"] = double(cp.relaxed.pattern.points.size());
+    return cp;
+}
+
+// relax, and count the relaxed stitches failing checkStitchEnds (tests/chart/crossings.hpp).
+void relaxCountingCrossings(benchmark::State& state, const knit::Chart& chart) {
+    const knit::ChartPattern cp = relax(state, chart);
+    knit::ChartCell relaxed = cp.cell;
+    relaxed.pattern = cp.relaxed.pattern;
+    int off = 0;
+    for (int r = 0; r < relaxed.height; ++r)
+        for (int c = 0; c < relaxed.width; ++c) off += !knit::test::checkStitchEnds(relaxed, r, c).empty();
+    state.counters["stitches_off"] = off;
 }
 
 void BM_RelaxStockinette2x2(benchmark::State& state) { relax(state, knit::builtinChart("chart:stockinette")); }
@@ -57,6 +72,13 @@ void BM_RelaxCable12x16(benchmark::State& state) { relax(state, knit::parseChart
 const char* const kLaceCharts[][2] = {
     {"yo_k3tog_yo_k", "yo k3tog yo k\nk k k k\n"},
     {"k_yo_sssk_yo", "k yo sssk yo\nk k k k\n"},
+};
+
+// Intarsia boundaries moving two columns between rows (tests/fuzz_corpus/chart/intarsia_steep_*).
+const char* const kCarriedCharts[][2] = {
+    {"steep_stripes", "k k k k k k\nk k k k k k\nk k k k k k\nk k k k k k\n\n"
+                      "A A A A B B\nA A B B B B\nB B B B A A\nB B A A A A\nA=#f2e8d5 B=#c1121f\nintarsia\n"},
+    {"steep_zigzag", "k k k k k k\nk k k k k k\n\nA A A A B B\nA A B B B B\nA=#f2e8d5 B=#c1121f\nintarsia\n"},
 };
 
 }  // namespace
@@ -74,6 +96,12 @@ int main(int argc, char** argv) {
         seconds(benchmark::RegisterBenchmark(("BM_RelaxLace/" + label).c_str(), [text, label](benchmark::State& s) {
             relax(s, knit::parseChart(text, label));
         }));
+    }
+    for (const auto& carried : kCarriedCharts) {
+        const std::string text = carried[1], label = carried[0];
+        seconds(benchmark::RegisterBenchmark(
+            ("BM_RelaxIntarsiaCarried/" + label).c_str(),
+            [text, label](benchmark::State& s) { relaxCountingCrossings(s, knit::parseChart(text, label)); }));
     }
     // RelaxOptions::affinePeriod (faster, for previews; off by default).
     for (const char* name : {"chart:eyelet-mesh", "chart:intarsia-blocks"}) {

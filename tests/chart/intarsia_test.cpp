@@ -50,6 +50,7 @@ double linking(const std::vector<glm::dvec3>& a, const std::vector<glm::dvec3>& 
 struct TurnCurve {
     int yarn = 0;
     std::vector<glm::dvec3> points;
+    std::vector<uint32_t> vertices;  // the turn's own (not the feet)
     glm::dvec3 centre{0.0};
 };
 // An open yarn's tails (from a stitch to the yarn's end) are not turns.
@@ -73,6 +74,7 @@ std::vector<TurnCurve> turnsOf(const ChartCell& cell, const Pattern& p) {
         const PeriodicEdge* at = &e;
         while (at) {
             t.points.push_back(p.points[at->v1] + offset);
+            t.vertices.push_back(at->v1);
             at = leaving[at->v1];
             if (!at) break;  // a tail: the yarn ends
             offset += glm::dvec3(at->dx * p.px, at->dy * p.py, 0);
@@ -117,6 +119,36 @@ Interlock interlock(const ChartCell& cell, const Pattern& p) {
         }
         out.linkedWith.push_back(linked);
     }
+    return out;
+}
+
+// How a cell's anchored vertices lie on its turns: turns carried across a step (spanning more than
+// three quarters of a stitch in x; a turn at a boundary that stays spans a third) and how many of
+// them hold anchored vertices, turns that stay holding any, and anchored vertices on no turn.
+struct HeldTurns {
+    int carried = 0, carriedHeld = 0, keptHeld = 0;
+    size_t offTurns = 0;
+};
+HeldTurns heldTurns(const ChartCell& cell) {
+    const std::set<uint32_t> anchored(cell.anchors.begin(), cell.anchors.end());
+    const double stitch = cell.pattern.px / cell.width;
+    HeldTurns out;
+    size_t onTurns = 0;
+    for (const TurnCurve& t : turnsOf(cell, cell.pattern)) {
+        double lo = t.points.front().x, hi = lo;
+        for (const glm::dvec3& q : t.points) {
+            lo = std::min(lo, q.x);
+            hi = std::max(hi, q.x);
+        }
+        const auto held = size_t(
+            std::count_if(t.vertices.begin(), t.vertices.end(), [&](uint32_t v) { return anchored.count(v) > 0; }));
+        onTurns += held;
+        const bool carried = hi - lo > 0.75 * stitch;
+        out.carried += carried;
+        out.carriedHeld += carried && held > 0;
+        out.keptHeld += !carried && held > 0;
+    }
+    out.offTurns = anchored.size() - onTurns;
     return out;
 }
 
@@ -558,7 +590,7 @@ TEST(Intarsia, aZigzagBoundaryIsKnittedByClosedCarriedYarns) {
     const ChartCell cell =
         chartToCell(parseChart("k k k k\nk k k k\n\nA B B B\nA A B B\nA=#ffffff B=#000000\nintarsia\n", "t"));
     EXPECT_EQ(cell.yarns, 2);
-    EXPECT_TRUE(cell.anchors.empty());  // no tails
+    EXPECT_TRUE(cell.anchors.empty());  // no tails, and a turn carried one stitch on is free
     for (const YarnPath& y : yarnPaths(cell.pattern)) EXPECT_FALSE(y.open);
     const Interlock il = interlock(cell, cell.pattern);
     ASSERT_EQ(il.linkedWith.size(), 4u);
@@ -578,7 +610,10 @@ TEST(Intarsia, aBoundaryJumpingTwoColumnsIsCarriedTwoStitchesOn) {
                                    "steep.chart");
     const ChartCell cell = chartToCell(chart);
     EXPECT_EQ(cell.yarns, 2);
-    EXPECT_TRUE(cell.anchors.empty());
+    const HeldTurns held = heldTurns(cell);  // no tails: only the carried turns' crossovers are held
+    EXPECT_EQ(held.carriedHeld, 2);
+    EXPECT_EQ(held.keptHeld, 0);
+    EXPECT_EQ(held.offTurns, 0u);
     for (const YarnPath& y : yarnPaths(cell.pattern)) EXPECT_FALSE(y.open);
     for (int r = 0; r < cell.height; ++r)
         for (int c = 0; c < cell.width; ++c) EXPECT_EQ(test::checkStitch(cell, r, c), "") << r << ", " << c;
@@ -643,6 +678,35 @@ TEST(Intarsia, steepStripesCloseAPeriodOverWithEdgesOfOnePeriod) {
     ASSERT_EQ(il.linkedWith.size(), 8u);
     for (const int n : il.linkedWith) EXPECT_EQ(n, 2);
     EXPECT_LT(il.worstUnlinked, 0.1);
+}
+
+// The four-row steep stripes: at every boundary that moves, the arriving yarn's carried turn comes
+// from one side and the leaving yarn's goes off to the other, each two stitches long behind the
+// stitches it passes (the first two the yarn knits in the row above, or the last two of the row
+// below, knitted back over). Free, the carried yarn was drawn tight like a drawstring: relaxed,
+// stitch (1, 2) came to lie folded over, its right foot left of its left one, and lost knitting's
+// crossing with the head below (docs/charts.md, "Diagonals"). Each carried turn's crossover is
+// held behind those stitches, as a knitter's carried yarn lies on them; the turns whose boundary
+// stays are free. Built, every stitch has knitting's four crossings with the loop below and the
+// held vertices lie behind every loop. Relaxed (BM_RelaxIntarsiaCarried/steep_stripes in
+// bench/chart_bench.cpp, 20-40 s wall on the shared machine) every stitch keeps the crossing with
+// the head below.
+TEST(Intarsia, steepStripesHoldTheirCarriedYarnBehindTheStitchesItPasses) {
+    const ChartCell cell = chartToCell(parseChart("k k k k k k\nk k k k k k\nk k k k k k\nk k k k k k\n\n"
+                                                  "A A A A B B\nA A B B B B\nB B B B A A\nB B A A A A\n"
+                                                  "A=#ffffff B=#000000\nintarsia\n",
+                                                  "steep_stripes.chart"));
+    for (int r = 0; r < cell.height; ++r)
+        for (int c = 0; c < cell.width; ++c) EXPECT_EQ(test::checkStitch(cell, r, c), "") << r << ", " << c;
+    const HeldTurns held = heldTurns(cell);  // 8 turns, 2 at a boundary that stays
+    EXPECT_EQ(held.carried, 6);
+    EXPECT_EQ(held.carriedHeld, 6);
+    EXPECT_EQ(held.keptHeld, 0);
+    EXPECT_EQ(held.offTurns, 0u);
+    double front = 1e300;  // the loops' rearmost point
+    for (const StitchLoop& l : cell.loops)
+        for (uint32_t i = l.first; i < l.first + l.count; ++i) front = std::min(front, cell.pattern.points[i].z);
+    for (const uint32_t v : cell.anchors) EXPECT_LT(cell.pattern.points[v].z, front) << v;
 }
 
 // Diagonal stripes (each row the areas one column to the left): each stripe's yarn climbs the

@@ -101,7 +101,8 @@ struct ChartCell {
     // rows, they hold a plain loop's length) — RelaxOptions::restScale.
     std::vector<double> restScale;
     // The vertices of each open yarn's two tails (an intarsia motif's), woven in behind the
-    // work — RelaxOptions::anchors.
+    // work, and of the crossover of each intarsia turn carried two stitches on (a boundary
+    // moving two columns), lying on the back of the stitches it passes — RelaxOptions::anchors.
     std::vector<uint32_t> anchors;
 
     const StitchLoop& loop(int row, int column) const { return loops[size_t(row) * size_t(width) + size_t(column)]; }

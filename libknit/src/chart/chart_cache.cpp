@@ -17,10 +17,11 @@ namespace knit {
 std::string chartCacheKey(const std::string& chartText, const ChartPatternOptions& o) {
     std::ostringstream key;
     key.precision(17);
-    // v10: cables built at samples per stitch not divisible by 4 changed (chart_topology.cpp,
+    // v11: intarsia turns carried two stitches on hold their crossover anchored (charts whose
+    // boundaries move two columns relax differently; no built-in changes); v10: cables built at samples per stitch not divisible by 4 changed (chart_topology.cpp,
     // loopParameter); v9: two-column intarsia jumps, one-stitch rows' tails higher. Options at
     // their defaults add nothing to the key.
-    key << "v10 " << o.radius << ' ' << o.samplesPerStitch << ' ' << o.restLength << ' ' << o.maxIterations
+    key << "v11 " << o.radius << ' ' << o.samplesPerStitch << ' ' << o.restLength << ' ' << o.maxIterations
         << (o.affinePeriod ? " affine" : "") << (o.hessianPreconditioner ? "" : " plain");
     if (o.contact != RelaxOptions{}.contact) key << " contact " << o.contact;
     key << '\n' << chartText;

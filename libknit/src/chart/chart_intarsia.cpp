@@ -144,11 +144,12 @@ Chart evenRows(const Chart& chart) {
     return twice;
 }
 
-std::vector<glm::dvec3> turnPoints(const Turn& turn, double spacing) {
+TurnPoints turnPoints(const Turn& turn, double spacing) {
     const double nearX = turn.boundary + turn.side * kBoundaryInset, farX = turn.boundary - turn.side * kFarReach;
     const double step = turn.boundaryAbove - turn.boundary;
     const double low = turn.from.y - kOvershoot, high = turn.to.y + kOvershoot;
     std::vector<glm::dvec3> corners{turn.from, {nearX, low, -kNearDepth}, {farX, low, -kFarDepth}};
+    const bool held = std::abs(step) > 1.5 * util::kTwoPi;  // carried two stitches on
     if (step != 0) {  // carried a column on: up at this row's boundary, over, up at the next row's
         corners.push_back({farX, turn.from.y + kOvershoot + kStepClear, -kFarDepth});
         corners.push_back({farX + step, turn.to.y - kOvershoot - kStepClear, -kFarDepth});
@@ -160,13 +161,14 @@ std::vector<glm::dvec3> turnPoints(const Turn& turn, double spacing) {
     for (size_t k = 1; k < corners.size(); ++k)
         along.push_back(along.back() + glm::length(corners[k] - corners[k - 1]));
     const int count = std::max(6, int(std::lround(along.back() / spacing)));
-    std::vector<glm::dvec3> out;
+    TurnPoints out;
     size_t leg = 1;
     for (int i = 0; i < count; ++i) {
         const double s = along.back() * i / count;
         while (leg + 1 < along.size() && along[leg] < s) ++leg;
         const double u = (s - along[leg - 1]) / std::max(1e-12, along[leg] - along[leg - 1]);
-        out.push_back(corners[leg - 1] + u * (corners[leg] - corners[leg - 1]));
+        out.points.push_back(corners[leg - 1] + u * (corners[leg] - corners[leg - 1]));
+        out.held.push_back(held && s >= along[3] && s <= along[4]);  // on the crossover (corners 3-4)
     }
     return out;
 }

@@ -85,8 +85,17 @@ struct Turn {
 // behind the work, across the boundary to its far edge, up past the next row's foot, and back.
 // Where the boundary steps, the far edge stays at each row's boundary over the band where it
 // hooks through the neighbour's turn of that row and crosses over between the two (behind the
-// stitches at the step: the yarn carried one or two stitches on).
-std::vector<glm::dvec3> turnPoints(const Turn& turn, double spacing);
+// stitches at the step: the yarn carried one or two stitches on). `held` marks the points of
+// a crossover two stitches long: it lies on the back of the stitches it passes and is anchored
+// there, as a knitter's carried yarn is held by them. Drawn tight as a free strand, it pulled
+// those stitches together and folded one of them over. A crossover one stitch long stays free:
+// held, the diamond's turns came unhooked from their neighbours' (issue 25 round 6,
+// docs/charts.md "Diagonals").
+struct TurnPoints {
+    std::vector<glm::dvec3> points;
+    std::vector<bool> held;
+};
+TurnPoints turnPoints(const Turn& turn, double spacing);
 
 // The feet of the loops beside a boundary stop this far (model units) short of it.
 constexpr double kBoundaryInset = 1.2;

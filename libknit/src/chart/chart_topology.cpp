@@ -513,7 +513,9 @@ double plainLoopLength(int n) {
 struct IntarsiaYarn {
     std::vector<int> tileX, tileY;
     std::vector<ChartFloat> floats;
-    std::vector<uint32_t> tail;  // the vertices of its tails (ChartCell::anchors)
+    // The vertices held where they are built (ChartCell::anchors): its tails, and the crossover of
+    // each turn carried two stitches on, which lies on the back of the stitches it passes.
+    std::vector<uint32_t> anchored;
 };
 
 // A row of an area's serpentine: the area's place in the row (its first column unwrapped along the
@@ -559,7 +561,7 @@ void intarsiaRow(const CellInputs& in, const SerpentineRow& sr, double scale, Ch
         std::vector<glm::dvec3> tail = intarsia::tailPoints(foot, in.rows.y[size_t(r)], int(dir),
                                                             tailStitches(firstU, int(dir)), area.count == 1, spacing);
         for (auto q = tail.rbegin(); q != tail.rend(); ++q) {
-            yarn.tail.push_back(uint32_t(p.points.size()));
+            yarn.anchored.push_back(uint32_t(p.points.size()));
             add(*q, tileOf(firstU, W));
         }
     }
@@ -593,7 +595,7 @@ void intarsiaRow(const CellInputs& in, const SerpentineRow& sr, double scale, Ch
         add(lastFoot, tileOf(u, W));
         for (const glm::dvec3& q : intarsia::tailPoints(lastFoot, in.rows.y[size_t(r)], -int(dir),
                                                         tailStitches(u, -int(dir)), area.count == 1, spacing)) {
-            yarn.tail.push_back(uint32_t(p.points.size()));
+            yarn.anchored.push_back(uint32_t(p.points.size()));
             add(q, tileOf(u, W));
         }
     }
@@ -614,10 +616,12 @@ void intarsiaRow(const CellInputs& in, const SerpentineRow& sr, double scale, Ch
     // A turn into the next period's first row that also moves to another tile in x (the area
     // crossed the period's edge) changes tile one axis at a time: from its middle on it is built in
     // the next row's x tile, moved back by the periods between, and the edge into that row adds dy.
-    const std::vector<glm::dvec3> points = intarsia::turnPoints(turn, spacing);
+    const intarsia::TurnPoints tp = intarsia::turnPoints(turn, spacing);
+    const std::vector<glm::dvec3>& points = tp.points;
     const int ox = tileOf(u, W), nx = r + 1 == H ? tileOf(sr.nextColumn, W) : ox;
     for (size_t i = 0; i < points.size(); ++i) {
         const bool over = 2 * i >= points.size();
+        if (tp.held[i]) yarn.anchored.push_back(uint32_t(p.points.size()));
         add(points[i] - glm::dvec3(over ? util::kTwoPi * W * (nx - ox) : 0.0, 0, 0), over ? nx : ox);
     }
 }
@@ -674,7 +678,7 @@ void intarsiaYarn(const CellInputs& in, const intarsia::RowBlock& block, size_t 
     }
     const int shift = block.closed ? (places.back().first - places.front().first) / W : 0;
     intarsiaEdges(yarn, first, block.closed, shift, p);
-    cell.anchors.insert(cell.anchors.end(), yarn.tail.begin(), yarn.tail.end());
+    cell.anchors.insert(cell.anchors.end(), yarn.anchored.begin(), yarn.anchored.end());
     cell.floats.insert(cell.floats.end(), yarn.floats.begin(), yarn.floats.end());
     ++cell.yarns;
 }
