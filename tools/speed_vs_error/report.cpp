@@ -139,6 +139,10 @@ void writeReport(const ReportOptions& o) {
         else if (r[key].contains("skipped"))
             md << "**Item " << item << " was not measured in this run (" << r[key]["skipped"].get<std::string>()
                << "): no numbers are reported for it.**\n\n";
+        else if (r[key].contains("run") && r[key]["run"].value("date", std::string()) != meta["date"])
+            md << "**Item " << item << " was measured again alone, " << r[key]["run"].value("date", std::string("?"))
+               << ", at commit `" << r[key]["run"].value("commit", std::string("?"))
+               << "`: its section names that run and its load.**\n\n";
     }
     md << body.str();
     writeText(markdownPath, md.str());
