@@ -18,6 +18,9 @@
 #include <cstdio>
 #include <string>
 #include <vector>
+#if defined(__GLIBC__)
+#include <malloc.h>  // malloc_trim
+#endif
 
 #include <glm/geometric.hpp>
 
@@ -89,6 +92,11 @@ struct ViewRun {
 
 ViewRun viewRender(const knit::Pattern& pattern, const knit::BaseMesh& mesh, const Camera& c, double scale,
                    uint64_t seed) {
+    // Freed memory the allocator kept from the previous view (e.g. the mid view's 1M segments)
+    // goes back to the system first, or it would count in this view's peak.
+#if defined(__GLIBC__)
+    malloc_trim(0);
+#endif
     const size_t residentBefore = knit::util::residentBytes();
     knit::util::resetPeakResident();
     const auto t0 = std::chrono::steady_clock::now();
