@@ -73,14 +73,14 @@ public:
           }) {}
     LoadSampler(const LoadSampler&) = delete;
     LoadSampler& operator=(const LoadSampler&) = delete;
-    ~LoadSampler() { finish(); }
-    json finish() {
-        {
-            const std::lock_guard<std::mutex> lock(mutex_);
-            stop_ = true;
+    ~LoadSampler() {
+        try {
+            stop();
+        } catch (...) {  // a destructor must not throw (the item failed already); the samples are lost
         }
-        wake_.notify_all();
-        if (thread_.joinable()) thread_.join();
+    }
+    json finish() {
+        stop();
         if (samples_.empty()) return json::object();
         const auto [lo, hi] = std::minmax_element(samples_.begin(), samples_.end());
         const double mean = std::accumulate(samples_.begin(), samples_.end(), 0.0) / double(samples_.size());
@@ -88,6 +88,15 @@ public:
     }
 
 private:
+    void stop() {
+        {
+            const std::lock_guard<std::mutex> lock(mutex_);
+            stop_ = true;
+        }
+        wake_.notify_all();
+        if (thread_.joinable()) thread_.join();
+    }
+
     std::mutex mutex_;
     std::condition_variable wake_;
     bool stop_ = false;
