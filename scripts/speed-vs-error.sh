@@ -13,7 +13,11 @@
 # everything succeeded.
 #
 # Environment: KNIT_BUILD_DIR (default: build), KNIT_JOBS (default: nproc),
-#              KNIT_SVE_ITEMS (default: 6,7,1,4,2,3,5; e.g. "1,4" for a quick partial run).
+#              KNIT_SVE_ITEMS (default: 6,7,1,4,2,3,5; e.g. "1,4" for a quick partial run),
+#              KNIT_SVE_UPDATE=1: measure only KNIT_SVE_ITEMS and put them into the committed
+#                docs/speed-vs-error/results.json (its other items, their images and the report's
+#                header are kept; each item records the run that measured it). The views section
+#                alone: KNIT_SVE_ITEMS=7 KNIT_SVE_UPDATE=1 bash scripts/speed-vs-error.sh
 set -euo pipefail
 start=$(date +%s)
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -21,6 +25,7 @@ build=${KNIT_BUILD_DIR:-"$root/build"}
 case "$build" in /*) ;; *) build="$root/$build" ;; esac
 jobs=${KNIT_JOBS:-$(nproc)}
 items=${KNIT_SVE_ITEMS:-6,7,1,4,2,3,5}
+update=${KNIT_SVE_UPDATE:-0}
 
 # Step 1: dependencies: the project's packages (scripts/setup.sh, idempotent) plus gnuplot.
 extra=()
@@ -36,6 +41,14 @@ built=$(date +%s)
 stage="$build/speed-vs-error"
 rm -rf "$stage"
 mkdir -p "$stage/files" "$stage/speed-vs-error" "$stage/data"
+base=()
+command_text="bash scripts/speed-vs-error.sh"
+if [ "$update" = 1 ]; then
+  [ -f "$root/docs/speed-vs-error/results.json" ] || { echo "speed-vs-error: KNIT_SVE_UPDATE=1 needs docs/speed-vs-error/results.json" >&2; exit 1; }
+  cp -r "$root/docs/speed-vs-error/." "$stage/speed-vs-error/"
+  base=(--base "$stage/speed-vs-error/results.json")
+  command_text="KNIT_SVE_ITEMS=$items KNIT_SVE_UPDATE=1 bash scripts/speed-vs-error.sh"
+fi
 commit=$(git -C "$root" rev-parse HEAD 2>/dev/null || echo unknown)
 dirty=unknown
 if [ "$commit" != unknown ]; then
@@ -44,7 +57,7 @@ fi
 "$build/tools/speed_vs_error" measure \
   --results "$stage/speed-vs-error/results.json" --work "$stage/files" --images "$stage/speed-vs-error" \
   --items "$items" --commit "$commit" --dirty "$dirty" --date "$(date -u '+%Y-%m-%d %H:%M UTC')" \
-  --command "bash scripts/speed-vs-error.sh" --nproc "$(nproc)"
+  --command "$command_text" --nproc "$(nproc)" "${base[@]}"
 
 # Step 4: report, plot data and plots.
 "$build/tools/speed_vs_error" report --results "$stage/speed-vs-error/results.json" \

@@ -1,14 +1,15 @@
 // item_views.cpp — item 7: level of detail for a view (knit/detail.hpp) against `--detail full`.
 // The garment of issue 11 (the drape at 256 x 256 quads, the stockinette 660 x 660) rendered
 // front-lit at 320 x 240, 32 samples per pixel, from four cameras: far (the default framing),
-// mid (a grazing view ~6 cm from the cloth), close (eye 2.3 cm above it) and 1cm (eye 1 cm from
-// the top of the drape, looking at it as close does). Per camera: one
-// full-detail reference render, then `--detail view` renders with the level thresholds scaled by
-// 0.5, 1 (the default) and 2 (a cell keeps a finer level down to half / twice the projected size),
-// plus the default at a second seed (the noise floor of the view render), and the full render at a
-// second seed (the noise floor of the comparison: how close another full render comes). Each gives the geometry
-// kept (curve segments traced, surface triangles), wall time of scene + render, peak memory (the
-// view's own: reset before each view render), the camera's distance to its target, and
+// mid (a grazing view ~6.7 cm from the cloth), close (eye ~2.8 cm from the top of the drape) and
+// 1cm (eye 1 cm from it, along the close camera's line of sight). Per camera: `--detail view`
+// renders with the level thresholds scaled by 0.5, 1 (the default) and 2 (a cell keeps a finer
+// level down to half / twice the projected size), plus the default at a second seed, all run
+// before the full scene is built so that each view's peak memory (reset before it) is its own,
+// not what the allocator kept from the ~10 GB full scene; then one full-detail reference render
+// per camera and the full render at a second seed (the noise floor of the comparison: how close
+// another full render comes). Each gives the geometry kept (curve segments traced, surface
+// triangles), wall time of scene + render, peak memory, the camera's distance to its target, and
 // the image error against the reference: mean radiance per channel and the RMSE of 4 x 4 block
 // mean luminances, both relative to the reference's mean.
 // Built only with render_check (KNIT_BUILD_RENDER_CHECK).
@@ -17,6 +18,9 @@
 #include <cstdio>
 #include <string>
 #include <vector>
+#if defined(__GLIBC__)
+#include <malloc.h>  // malloc_trim
+#endif
 
 #include <glm/geometric.hpp>
 
@@ -79,9 +83,21 @@ knit::SceneOptions garmentScene() {
     return so;
 }
 
-// One `--detail view` render of camera c with thresholds scaled by `scale`.
-json viewRender(const knit::Pattern& pattern, const knit::BaseMesh& mesh, const Camera& c, double scale, uint64_t seed,
-                const knit::Image& reference, size_t fullSegments) {
+// One `--detail view` render of camera c with thresholds scaled by `scale`; its image is compared
+// with the full render's later (the full scene is built after every view, so the view's peak is its own).
+struct ViewRun {
+    json stats;
+    knit::Image image;
+};
+
+ViewRun viewRender(const knit::Pattern& pattern, const knit::BaseMesh& mesh, const Camera& c, double scale,
+                   uint64_t seed) {
+    // Freed memory the allocator kept from the previous view (e.g. the mid view's 1M segments)
+    // goes back to the system first, or it would count in this view's peak.
+#if defined(__GLIBC__)
+    malloc_trim(0);
+#endif
+    const size_t residentBefore = knit::util::residentBytes();
     knit::util::resetPeakResident();
     const auto t0 = std::chrono::steady_clock::now();
     knit::SceneOptions so = garmentScene();
@@ -93,23 +109,30 @@ json viewRender(const knit::Pattern& pattern, const knit::BaseMesh& mesh, const 
     d.yarnPixels = {scale * defaults.yarnPixels.enter, scale * defaults.yarnPixels.leave};
     so.detail = d;
     const knit::Scene scene = knit::buildScene(pattern, mesh, so);
-    const knit::RenderResult r = knit::renderScene(scene, renderOptions(c, seed));
-    json out = imageError(r.image, reference);
-    out["threshold_scale"] = scale;
-    out["seed"] = seed;
-    out["seconds"] = seconds(t0);
-    out["peak_bytes"] = knit::util::peakResidentBytes();
-    out["segments"] = r.segments;
-    out["surface_triangles"] = r.surfaceTriangles;
-    out["segments_fraction"] = double(r.segments) / double(fullSegments);
-    std::fprintf(stderr,
-                 "  %s view x%.2g seed %llu: %.1f s, %zu segments (%.3g%% of full), %zu surface triangles, "
-                 "mean %+.1f%% %+.1f%% %+.1f%%, block RMSE %.1f%%\n",
-                 c.name, scale, static_cast<unsigned long long>(seed), out["seconds"].get<double>(), r.segments,
-                 100.0 * out["segments_fraction"].get<double>(), r.surfaceTriangles,
-                 100 * out["mean_relative"][0].get<double>(), 100 * out["mean_relative"][1].get<double>(),
-                 100 * out["mean_relative"][2].get<double>(), 100 * out["block_rmse_relative"].get<double>());
-    return out;
+    knit::RenderResult r = knit::renderScene(scene, renderOptions(c, seed));
+    json out = {{"threshold_scale", scale},
+                {"seed", seed},
+                {"seconds", seconds(t0)},
+                {"peak_bytes", knit::util::peakResidentBytes()},
+                {"resident_before_bytes", residentBefore},
+                {"segments", r.segments},
+                {"surface_triangles", r.surfaceTriangles}};
+    std::fprintf(stderr, "  %s view x%.2g seed %llu: %.1f s, %.0f MiB peak, %zu segments, %zu surface triangles\n",
+                 c.name, scale, static_cast<unsigned long long>(seed), out["seconds"].get<double>(),
+                 out["peak_bytes"].get<double>() / (1 << 20), r.segments, r.surfaceTriangles);
+    return {out, std::move(r.image)};
+}
+
+// The view run's error against the full render of its camera.
+void compareView(json& view, const knit::Image& image, const knit::Image& reference, const char* camera,
+                 size_t fullSegments) {
+    view.update(imageError(image, reference));
+    view["segments_fraction"] = view["segments"].get<double>() / double(fullSegments);
+    std::fprintf(stderr, "  %s view x%.2g seed %d: %.3g%% of full, mean %+.1f%% %+.1f%% %+.1f%%, block RMSE %.1f%%\n",
+                 camera, view["threshold_scale"].get<double>(), view["seed"].get<int>(),
+                 100.0 * view["segments_fraction"].get<double>(), 100 * view["mean_relative"][0].get<double>(),
+                 100 * view["mean_relative"][1].get<double>(), 100 * view["mean_relative"][2].get<double>(),
+                 100 * view["block_rmse_relative"].get<double>());
 }
 
 }  // namespace
@@ -124,9 +147,16 @@ json measureViews() {
                                 {"mid", false, {{0.04, 0.22, 0.0}, top, {0, 0, -1}, 30, 320, 240}},
                                 {"close", false, {{0.015, 0.19, 0.0}, top, {0, 0, -1}, 30, 320, 240}},
                                 {"1cm", false, {{0.00541, 0.17511, 0.0}, top, {0, 0, -1}, 30, 320, 240}}};
-    // Step 1: the full-detail references (one scene with every ply, rendered from each camera).
-    std::vector<knit::Image> references;
+    // Step 1: the view renders, before the full scene exists: each view's peak resident memory is its
+    // own plus what the process holds then (mesh, pattern, the earlier views' images: a few MB).
     json out;
+    std::vector<std::vector<ViewRun>> views(cameras.size());
+    for (size_t k = 0; k < cameras.size(); ++k) {
+        for (const double scale : {0.5, 1.0, 2.0}) views[k].push_back(viewRender(pattern, mesh, cameras[k], scale, 1));
+        views[k].push_back(viewRender(pattern, mesh, cameras[k], 1.0, 2));
+    }
+    // Step 2: the full-detail references (one scene with every ply, rendered from each camera).
+    std::vector<knit::Image> references;
     size_t fullSegments = 0;
     {
         knit::util::resetPeakResident();
@@ -154,12 +184,14 @@ json measureViews() {
         }
         out["full_peak_bytes"] = knit::util::peakResidentBytes();
     }
-    // Step 2: the view renders against them.
+    // Step 3: the views' errors against the references.
+    out["views_before_full"] = true;
     for (size_t k = 0; k < cameras.size(); ++k) {
         json& runs = out[cameras[k].name]["view"] = json::array();
-        for (const double scale : {0.5, 1.0, 2.0})
-            runs.push_back(viewRender(pattern, mesh, cameras[k], scale, 1, references[k], fullSegments));
-        runs.push_back(viewRender(pattern, mesh, cameras[k], 1.0, 2, references[k], fullSegments));
+        for (ViewRun& v : views[k]) {
+            compareView(v.stats, v.image, references[k], cameras[k].name, fullSegments);
+            runs.push_back(std::move(v.stats));
+        }
     }
     return out;
 }

@@ -6,6 +6,7 @@
 //
 //   speed_vs_error measure --results R.json --work DIR [--images DIR] [--items 6,1,4,2,3,5]
 //                          [--commit HASH] [--dirty 0|1] [--date TEXT] [--command TEXT] [--nproc N]
+//                          [--base EARLIER.json]   (update only --items of an earlier run's results)
 //   speed_vs_error report  --results R.json --markdown docs/speed-vs-error.md
 //                          --images docs/speed-vs-error --data DIR
 //
@@ -47,6 +48,8 @@ int runTool(int argc, char** argv) {
     m->add_option("--nproc", nproc, "Output of nproc (processing units available to the run)");
     m->add_option("--garment-repeats", mo.garmentRepeats, "Repeats per side of the garment case (item 6)");
     m->add_option("--images", mo.images, "Folder for the reference renders of item 5 (PNG)");
+    m->add_option("--base", mo.base,
+                  "Results JSON of an earlier run: keep its other items and header, replace only --items");
     sve::ReportOptions ro;
     CLI::App* rep = app.add_subcommand("report", "Write the Markdown report, plot data and gnuplot script");
     rep->add_option("--results", ro.results, "Results JSON")->required();

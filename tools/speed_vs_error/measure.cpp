@@ -1,10 +1,16 @@
 // measure.cpp — the `measure` command (see measure.hpp): the machine and the library defaults,
-// then each item with the load average before and after it.
+// then each item with the load average before, during (sampled every 5 s) and after it.
 #include "measure.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <condition_variable>
 #include <cstdio>
+#include <fstream>
+#include <mutex>
+#include <numeric>
 #include <thread>
+#include <vector>
 
 #include "items.hpp"
 #include "knit/error.hpp"
@@ -55,30 +61,86 @@ json measureItem(char item, const MeasureOptions& o) {
     }
 }
 
+// Samples the 1-minute load average every 5 s while an item runs (the load before and after it
+// miss what other processes did meanwhile): {min, mean, max, samples}.
+class LoadSampler {
+public:
+    LoadSampler()
+        : thread_([this] {
+              std::unique_lock<std::mutex> lock(mutex_);
+              do samples_.push_back(loadAverage()[0]);
+              while (!wake_.wait_for(lock, std::chrono::seconds(5), [this] { return stop_; }));
+          }) {}
+    LoadSampler(const LoadSampler&) = delete;
+    LoadSampler& operator=(const LoadSampler&) = delete;
+    ~LoadSampler() {
+        try {
+            stop();
+        } catch (...) {  // a destructor must not throw (the item failed already); the samples are lost
+        }
+    }
+    json finish() {
+        stop();
+        if (samples_.empty()) return json::object();
+        const auto [lo, hi] = std::minmax_element(samples_.begin(), samples_.end());
+        const double mean = std::accumulate(samples_.begin(), samples_.end(), 0.0) / double(samples_.size());
+        return {{"min", *lo}, {"mean", mean}, {"max", *hi}, {"samples", samples_.size()}};
+    }
+
+private:
+    void stop() {
+        {
+            const std::lock_guard<std::mutex> lock(mutex_);
+            stop_ = true;
+        }
+        wake_.notify_all();
+        if (thread_.joinable()) thread_.join();
+    }
+
+    std::mutex mutex_;
+    std::condition_variable wake_;
+    bool stop_ = false;
+    std::vector<double> samples_;
+    std::thread thread_;  // last: starts after the members it uses
+};
+
+// The results to add to: a new run's header, or (with o.base) the earlier run's results whole.
+json startResults(const MeasureOptions& o) {
+    if (o.base.empty())
+        return {{"meta", o.meta}, {"machine", machine()}, {"defaults", defaults()}, {"load_start", loadJson()}};
+    std::ifstream in(o.base);
+    if (!in) throw knit::Error("--base: cannot read " + o.base);
+    json r = json::parse(in, nullptr, false);
+    if (r.is_discarded() || !r.is_object() || !r.contains("meta"))
+        throw knit::Error("--base: " + o.base + " is not a speed_vs_error results JSON (no \"meta\")");
+    return r;
+}
+
 }  // namespace
 
 void measure(const MeasureOptions& o) {
     fs::create_directories(o.work);
     if (fs::path(o.results).has_parent_path()) fs::create_directories(fs::path(o.results).parent_path());
-    json r;
-    r["meta"] = o.meta;
-    r["machine"] = machine();
-    r["defaults"] = defaults();
-    r["load_start"] = loadJson();
+    json r = startResults(o);
     const auto start = std::chrono::steady_clock::now();
     for (char item : o.items) {
         if (item == ',' || item == ' ') continue;
         std::fprintf(stderr, "speed-vs-error: item %c\n", item);
         const json loadBefore = loadJson();
         const auto t0 = std::chrono::steady_clock::now();
+        LoadSampler load;
         json j = measureItem(item, o);
+        j["load_during"] = load.finish();
         j["load_before"] = loadBefore;
         j["load_after"] = loadJson();
         j["item_seconds"] = seconds(t0);
+        j["run"] = o.meta;  // the run that measured this item (differs from the header's after --base)
         r[std::string("item") + item] = j;
         // Written after every item, so a long run keeps what it measured.
-        r["measure_seconds"] = seconds(start);
-        r["load_end"] = loadJson();
+        if (o.base.empty()) {
+            r["measure_seconds"] = seconds(start);
+            r["load_end"] = loadJson();
+        }
         writeText(o.results, r.dump(1));
     }
 }

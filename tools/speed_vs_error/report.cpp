@@ -75,9 +75,9 @@ void writeReport(const ReportOptions& o) {
     const json& meta = r["meta"];
     const json& defaults = r["defaults"];
     const int hw = r["machine"]["hardware_threads"];
-    double maxLoad = 0;
+    double maxLoad = 0;  // over the header's run (an item measured again alone names its own load)
     for (const auto& [key, v] : r.items())
-        if (key.rfind("item", 0) == 0)
+        if (key.rfind("item", 0) == 0 && (!v.contains("run") || v["run"].value("date", std::string()) == meta["date"]))
             for (const char* f : {"load_before", "load_after"}) maxLoad = std::max(maxLoad, v[f][0].get<double>());
     auto measured = [&](const char* key) { return r.contains(key) && !r[key].contains("skipped"); };
     if (measured("item2")) {
@@ -139,6 +139,10 @@ void writeReport(const ReportOptions& o) {
         else if (r[key].contains("skipped"))
             md << "**Item " << item << " was not measured in this run (" << r[key]["skipped"].get<std::string>()
                << "): no numbers are reported for it.**\n\n";
+        else if (r[key].contains("run") && r[key]["run"].value("date", std::string()) != meta["date"])
+            md << "**Item " << item << " was measured again alone, " << r[key]["run"].value("date", std::string("?"))
+               << ", at commit `" << r[key]["run"].value("commit", std::string("?"))
+               << "`: its section names that run and its load.**\n\n";
     }
     md << body.str();
     writeText(markdownPath, md.str());

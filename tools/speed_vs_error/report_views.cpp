@@ -33,6 +33,40 @@ const json* defaultView(const json& cam) {
     return nullptr;
 }
 
+// How the views' peak memory was measured: before the full scene (results with "views_before_full")
+// or after it (then it includes what the process kept from the full scene: an upper bound).
+std::string viewPeakText(const json& j) {
+    if (j.value("views_before_full", false))
+        return "The view's peak memory is the process's peak resident memory, reset before the view's scene is built; "
+               "the views run before the full scene is built, so it is the view's own plus what the process holds "
+               "then (the mesh, the pattern and the earlier views' images: the `resident_before_bytes` of "
+               "results.json).";
+    return "The view's peak memory is the process's peak resident memory, reset before the view's scene is built: "
+           "this run measured the views after the full renders, so it still counts what the process holds after them "
+           "(the reference images, and freed memory the allocator keeps): an upper bound; `knit render --detail "
+           "view` in a process of its own peaks lower (docs/views.md, \"Peak memory against camera distance\").";
+}
+
+// The run that measured the section (its date, commit, command and the load average during it):
+// it differs from the report's header when the item was updated alone (KNIT_SVE_UPDATE=1).
+void reportRun(Report& rep, const json& j) {
+    if (!j.contains("run")) return;
+    const json& run = j["run"];
+    std::ostringstream& md = rep.md;
+    md << "**This section's run**: " << run.value("date", std::string("?")) << ", commit `"
+       << run.value("commit", std::string("?")) << "`"
+       << (run.value("dirty", std::string()) == "1" ? " (dirty tree)" : "") << ", "
+       << fixed(j["item_seconds"].get<double>() / 60, 0) << " min, reproduced by `"
+       << run.value("command", std::string("?")) << "`. 1-minute load average ";
+    if (j.contains("load_during") && j["load_during"].contains("mean"))
+        md << fixed(j["load_during"]["min"], 1) << "-" << fixed(j["load_during"]["max"], 1) << " (mean "
+           << fixed(j["load_during"]["mean"], 1) << ", sampled every 5 s) during it";
+    else md << loadText(j["load_before"]) << " before and " << loadText(j["load_after"]) << " after it";
+    md << " on " << run.value("nproc", std::string("?"))
+       << " processing units: other engineers were building and testing on the machine, so the times are inflated "
+          "(by the load, not evenly); segment counts, peak memory and image errors do not depend on it.\n\n";
+}
+
 // Memory and time of the default view against the camera's distance, beside the full render's
 // (its scene is shared by the cameras: its time is that scene plus the camera's render).
 void reportDistance(Report& rep, const json& j, const std::vector<std::string>& cameras) {
@@ -41,15 +75,13 @@ void reportDistance(Report& rep, const json& j, const std::vector<std::string>& 
     md << "### What a view costs against the camera's distance\n\n"
        << "The default view (thresholds x1, seed 1) of each camera against `--detail full` (peak "
        << gib(j["full_peak_bytes"]) << " GiB for any camera: every ply of the garment is built and traced). "
-       << "The view's peak memory is the process's peak resident memory, reset before the view's scene is built: "
-          "it still counts what the process holds after the full renders (the reference images, and freed memory "
-          "the allocator keeps), so it is an upper bound; `knit render --detail view` in a process of its own "
-          "peaks lower (docs/views.md, \"Peak memory against camera distance\"). The view's time is its scene "
-          "plus its render, the full render's the shared scene plus the camera's render.\n\n"
+       << viewPeakText(j)
+       << " The view's time is its scene plus its render, the full render's the shared scene plus "
+          "the camera's render.\n\n"
        << "| camera | distance to target | view peak (MiB) | full peak (GiB) | less memory | view time (s) | full "
           "time (s) | faster | block RMSE (full at seed 2) |\n|---|---:|---:|---:|---:|---:|---:|---:|---|\n";
     std::ostringstream dd;
-    dd << "# camera distance_m view_peak_mib full_peak_mib\n";
+    dd << "# camera distance_m view_peak_gib full_peak_gib\n";
     for (const std::string& c : cameras) {
         if (!j.contains(c)) continue;
         const json* v = defaultView(j[c]);
@@ -66,11 +98,11 @@ void reportDistance(Report& rep, const json& j, const std::vector<std::string>& 
            << (full.contains("seed2") ? fixed(100 * full["seed2"]["block_rmse_relative"].get<double>(), 1) + "%"
                                       : std::string("-"))
            << ") |\n";
-        dd << c << " " << distance << " " << viewPeak / (1 << 20) << " " << fullPeak / (1 << 20) << "\n";
+        dd << c << " " << distance << " " << viewPeak / double(1 << 30) << " " << fullPeak / double(1 << 30) << "\n";
     }
     rep.data("views_memory.dat", dd.str());
     rep.plotHeader("views-memory.svg", "Peak memory of a view against the camera's distance",
-                   "camera distance to its target (m)", "peak resident memory (MiB)", true, true);
+                   "camera distance to its target (m)", "peak resident memory (GiB)", true, true);
     rep.gp << "plot " << rep.dat("views_memory.dat") << " using 2:3 with linespoints pt 7 title '--detail view', \\\n  "
            << rep.dat("views_memory.dat") << " using 2:3:1 with labels offset 1.5,0.7 notitle, \\\n  "
            << rep.dat("views_memory.dat") << " using 2:4 with lines dt 2 title '--detail full'\n";
@@ -95,8 +127,9 @@ void reportViews(Report& rep, const json& j) {
           "per camera with the level thresholds scaled by 0.5, 1 (the default) and 2, and the default again at seed "
           "2; their time is scene + render, the full render's is the shared scene + its render. Errors against the "
           "reference: mean radiance per channel, and the RMSE of 4 x 4 block mean luminances over the reference's "
-          "mean luminance (docs/views.md).\n\n"
-       << "| camera | detail | seed | segments (of full) | surface triangles | time (s) | faster | peak (GiB) | mean "
+          "mean luminance (docs/views.md).\n\n";
+    reportRun(rep, j);
+    md << "| camera | detail | seed | segments (of full) | surface triangles | time (s) | faster | peak (GiB) | mean "
           "r, "
           "g, b | block RMSE |\n|---|---|---:|---:|---:|---:|---:|---:|---|---:|\n";
     rep.plotHeader("views.svg", "Level of detail for a view: block error against time", "seconds (scene + render)",
@@ -133,9 +166,9 @@ void reportViews(Report& rep, const json& j) {
     rep.gp << plot << "\n";
     md << "\n"
        << rep.image("views.svg", "level of detail for a view: block error against time") << "\n"
-       << "Peak memory of a view is the process's peak resident memory, reset before each view (the full scene is "
-          "gone by then). A view render is within the render noise of `--detail full` when its block RMSE is no "
-          "larger than the noise floor's.\n\n";
+       << viewPeakText(j)
+       << " A view render is within the render noise of `--detail full` when its block RMSE is no larger than the "
+          "noise floor's.\n\n";
     reportDistance(rep, j, cameras);
 }
 
