@@ -6,16 +6,22 @@
 //                 [--sy-range LO HI] [--size METRES] [--json]
 //                 [--stretch W] [--bend W] [--contact W] [--barrier W] [--contact-distance R]
 //                 [--barrier-distance R] [--iterations N] [--starts N]  (the table's solver)
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <ctime>
 #include <iostream>
+#include <limits>
+#include <sstream>
+#include <unordered_map>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 #include <glm/mat2x2.hpp>
+#include <glm/matrix.hpp>
 #include <nlohmann/json.hpp>
 
 #include "knit/animation.hpp"
@@ -50,9 +56,79 @@ knit::BaseMesh squarePlane(double size, int n) {
 
 struct PlaneResult {
     double lengthRatio = 1, closestRadii = 0, clampedFraction = 0;
+    // With --where (closestPairs): the closest yarns recounted over the resampled centrelines
+    // (radii), how far that pair is from the plane's edge (periods), and the closest pair at least
+    // `interiorMargin` periods inside the edges (the periodic cell's own state under this strain).
+    double recountedRadii = 0, pairEdgePeriods = 0, pairEndRadii = 0, interiorRadii = 0;
 };
 
-PlaneResult measure(const knit::Scene& scene, const knit::Strain& s) {
+// Closest points of different yarns (distinct centrelines, or one centreline's points more than
+// `separation` apart along it), all of them and those whose pattern-space pre-image (F^-1 of the
+// position) lies `margin` inside the plane's square [0, size]^2. A grid of cells `reach` wide:
+// pairs farther apart than that are not seen (+inf).
+struct ClosestPairs {
+    double all = std::numeric_limits<double>::infinity(), interior = std::numeric_limits<double>::infinity();
+    double pairEdge = 0;  // the closest pair's distance from the edge (metres, pattern space)
+    double pairEnd = 0;   // ... and from the nearer end of an open centreline along it (metres; inf: closed)
+};
+ClosestPairs closestPairs(const knit::Polylines& c, const glm::dmat2& F, double size, double margin, double separation,
+                          double reach) {
+    const glm::dmat2 Finv = glm::inverse(F);
+    const size_t n = c.pointCount();
+    std::vector<uint32_t> curve(n);
+    std::vector<double> arc(n, 0.0), edge(n);
+    std::vector<double> curveLength(c.curveCount());
+    for (size_t k = 0; k < c.curveCount(); ++k) {
+        for (uint32_t i = c.begin(k); i < c.end(k); ++i) {
+            curve[i] = uint32_t(k);
+            if (i > c.begin(k)) arc[i] = arc[i - 1] + glm::length(c.points[i] - c.points[i - 1]);
+        }
+        const uint32_t last = c.end(k) - 1;
+        curveLength[k] = arc[last] + (c.isClosed(k) ? glm::length(c.points[c.begin(k)] - c.points[last]) : 0.0);
+    }
+    std::unordered_map<int64_t, std::vector<uint32_t>> grid;
+    const auto key = [](int64_t x, int64_t y) { return (x << 32) ^ (y & 0xffffffff); };
+    for (size_t i = 0; i < n; ++i) {
+        const glm::dvec2 q = Finv * glm::dvec2(c.points[i]);
+        edge[i] = std::min({q.x, size - q.x, q.y, size - q.y});
+        grid[key(int64_t(std::floor(c.points[i].x / reach)), int64_t(std::floor(c.points[i].y / reach)))].push_back(
+            uint32_t(i));
+    }
+    const auto fromEnd = [&](size_t i) {
+        return c.isClosed(curve[i]) ? std::numeric_limits<double>::infinity()
+                                    : std::min(arc[i], arc[c.end(curve[i]) - 1] - arc[i]);
+    };
+    ClosestPairs r;
+    for (size_t i = 0; i < n; ++i) {
+        const auto gx = int64_t(std::floor(c.points[i].x / reach)), gy = int64_t(std::floor(c.points[i].y / reach));
+        for (int64_t dx = -1; dx <= 1; ++dx)
+            for (int64_t dy = -1; dy <= 1; ++dy) {
+                const auto it = grid.find(key(gx + dx, gy + dy));
+                if (it == grid.end()) continue;
+                for (const uint32_t j : it->second) {
+                    if (j <= i) continue;
+                    if (curve[i] == curve[j]) {
+                        double along = std::abs(arc[i] - arc[j]);
+                        if (c.isClosed(curve[i])) along = std::min(along, curveLength[curve[i]] - along);
+                        if (along <= separation) continue;
+                    }
+                    const double d = glm::length(c.points[i] - c.points[j]);
+                    if (d < r.all) {
+                        r.all = d;
+                        r.pairEdge = std::min(edge[i], edge[j]);
+                        r.pairEnd = std::min(fromEnd(i), fromEnd(j));
+                    }
+                    if (edge[i] >= margin && edge[j] >= margin) r.interior = std::min(r.interior, d);
+                }
+            }
+    }
+    return r;
+}
+
+// Where the closest pairs are measured (--where): 1.5 periods inside the plane's edges.
+constexpr double kInteriorMargin = 1.5;
+
+PlaneResult measure(const knit::Scene& scene, const knit::Strain& s, double size = 0) {
     const glm::dmat2 F = knit::latticeMap(s);
     std::vector<dvec3> pose;
     for (const dvec3& p : scene.mesh().positions) {
@@ -69,7 +145,88 @@ PlaneResult measure(const knit::Scene& scene, const knit::Strain& s) {
     r.lengthRatio = f.stats.yarnLengthRatio;
     r.closestRadii = 2 * f.stats.minYarnDistance;  // the statistic is in diameters
     r.clampedFraction = f.deform.total ? double(f.deform.clamped) / double(f.deform.total) : 0.0;
+    if (size > 0) {  // --where
+        const double radius = scene.yarnRadius();
+        const double period = std::max(scene.pattern().px, scene.pattern().py) * scene.placement().scale;
+        const ClosestPairs c = closestPairs(f.centres, F, size, kInteriorMargin * period, 8 * radius, 4 * radius);
+        r.recountedRadii = c.all / radius;
+        r.pairEdgePeriods = c.pairEdge / period;
+        r.pairEndRadii = c.pairEnd / radius;
+        r.interiorRadii = c.interior / radius;
+    }
     return r;
+}
+
+// "sx,sa,sy;sx,sa,sy" as named planes.
+std::vector<std::pair<std::string, knit::Strain>> parseStrains(const std::string& text) {
+    std::vector<std::pair<std::string, knit::Strain>> out;
+    std::istringstream in(text);
+    std::string item;
+    while (std::getline(in, item, ';')) {
+        knit::Strain s;
+        char c1 = 0, c2 = 0;
+        std::istringstream one(item);
+        if (!(one >> s.sx >> c1 >> s.sa >> c2 >> s.sy) || c1 != ',' || c2 != ',')
+            throw knit::Error("--strains: '" + item + "' is not sx,sa,sy");
+        out.emplace_back(item, s);
+    }
+    return out;
+}
+
+// The table's samples around s (each axis: the two samples bracketing it, one where it sits on
+// a sample or is clamped).
+std::vector<knit::Strain> bracketingSamples(const knit::StrainTable& t, const knit::Strain& s) {
+    const double v[3] = {s.sx, s.sa, s.sy};
+    std::vector<double> around[3];
+    for (size_t a = 0; a < 3; ++a) {
+        const std::vector<double>& x = t.axes[a];
+        const auto hi = std::lower_bound(x.begin(), x.end(), v[a]);
+        if (hi != x.end() && *hi == v[a]) around[a] = {*hi};
+        else if (hi == x.begin()) around[a] = {x.front()};
+        else if (hi == x.end()) around[a] = {x.back()};
+        else around[a] = {*(hi - 1), *hi};
+    }
+    std::vector<knit::Strain> out;
+    for (const double sx : around[0])
+        for (const double sa : around[1])
+            for (const double sy : around[2]) out.push_back({sx, sa, sy});
+    return out;
+}
+
+// --where: per plane, where its closest yarns are (docs/deformation.md, "Where the stiff tables'
+// close pairs come from").
+void printWhere(const knit::Pattern& pattern, const knit::StrainTable& table, const knit::StrainTableOptions& solver,
+                const knit::Scene& scene, const std::vector<std::pair<std::string, knit::Strain>>& cases, double size,
+                nlohmann::json& out, bool json) {
+    if (!json)
+        std::printf("| plane | closest (r) | pair from edge (periods) | pair from a yarn end (r) | interior (r) | "
+                    "samples around: interior (r) | "
+                    "cell relaxed at the strain (r) |\n|---|---|---|---|---|---|---|\n");
+    for (const auto& [name, s] : cases) {
+        const PlaneResult d = measure(scene, s, size);
+        std::string corners;
+        double worst = std::numeric_limits<double>::infinity();
+        for (const knit::Strain& c : bracketingSamples(table, s)) {
+            const double r = measure(scene, c, size).interiorRadii;
+            worst = std::min(worst, r);
+            char buf[96];
+            std::snprintf(buf, sizeof buf, "%s(%.3g,%.3g,%.3g) %.2f", corners.empty() ? "" : ", ", c.sx, c.sa, c.sy, r);
+            corners += buf;
+        }
+        const knit::StrainCellResult cell = knit::relaxStrainCell(pattern, s, solver);
+        out["where"].push_back({{"name", name},
+                                {"strain", {s.sx, s.sa, s.sy}},
+                                {"closest_radii", d.recountedRadii},
+                                {"pair_edge_periods", d.pairEdgePeriods},
+                                {"pair_end_radii", d.pairEndRadii},
+                                {"interior_radii", d.interiorRadii},
+                                {"samples_interior_min_radii", worst},
+                                {"cell_radii", cell.closestRadii},
+                                {"cell_length_ratio", cell.lengthRatio}});
+        if (!json)
+            std::printf("| %s | %.2f | %.2f | %.2f | %.2f | min %.2f: %s | %.2f |\n", name.c_str(), d.recountedRadii,
+                        d.pairEdgePeriods, d.pairEndRadii, d.interiorRadii, worst, corners.c_str(), cell.closestRadii);
+    }
 }
 
 int run(int argc, char** argv) {
@@ -103,6 +260,14 @@ int run(int argc, char** argv) {
                    "Relax each sample from this many lower neighbours (1-3), keep the lowest energy")
         ->capture_default_str();
     app.add_flag("--json", json, "JSON instead of a Markdown table");
+    bool where = false;
+    std::string savePath, strainList;
+    app.add_flag("--where", where,
+                 "Also where the closest yarns are: recounted, their distance from the plane's edge (periods), the "
+                 "closest 1.5 periods inside the edges, the same inside the planes at the table's 8 samples around "
+                 "the strain, and the cell relaxed at the strain itself (relaxStrainCell)");
+    app.add_option("--save", savePath, "Write the table made to this file (.npy and its axes)");
+    app.add_option("--strains", strainList, "Only these planes: 'sx,sa,sy;sx,sa,sy;...'");
     CLI11_PARSE(app, argc, argv);
     try {
         const knit::Pattern pattern = knit::loadPatternFileOrName(patternName);
@@ -132,7 +297,8 @@ int run(int argc, char** argv) {
         const knit::Scene none = knit::buildScene(pattern, mesh, so);
         so.deform = {knit::DeformMode::Strain, table};
         const knit::Scene strain = knit::buildScene(pattern, mesh, so);
-        const std::vector<std::pair<std::string, knit::Strain>> cases = {
+        if (!savePath.empty()) writeStrainTable(*table, savePath);
+        std::vector<std::pair<std::string, knit::Strain>> cases = {
             {"rest", {0, 0, 0}},
             {"stretch along courses 33 %", {0.33, 0, 0}},
             {"stretch along courses 50 %", {0.5, 0, 0}},
@@ -147,6 +313,12 @@ int run(int argc, char** argv) {
             {"shear sa -0.7", {0, -0.7, 0}},
             {"shear 0.7 + stretch 50 %", {0.5, 0.7, 0}},
         };
+        if (!strainList.empty()) cases = parseStrains(strainList);
+        if (where) {
+            printWhere(pattern, *table, tableOptions, strain, cases, size, out, json);
+            if (json) std::cout << out.dump(2) << '\n';
+            return 0;
+        }
         if (!json) {
             std::printf("| plane | sx | sa | sy | length ratio none | length ratio strain | closest none (r) | closest "
                         "strain (r) | clamped |\n|---|---|---|---|---|---|---|---|---|\n");

@@ -3,6 +3,7 @@
 // continuous across triangle edges, and degenerate triangles and out-of-table strains are counted.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -230,6 +231,48 @@ TEST(StrainDeformer, lookupSitesAgreeAndOnePassMatchesTwo) {
     }
     EXPECT_GT(largest, 0.05 * s.yarnRadius());
     EXPECT_LT(apart, 0.03 * largest) << apart << " of " << largest;
+}
+
+// Largest distance from the ends of a scene's open yarns to the polylines of another scene's yarns.
+double endsOffYarns(const Polylines& ends, const Polylines& yarns) {
+    double worst = 0;
+    for (size_t c = 0; c < ends.curveCount(); ++c) {
+        if (ends.isClosed(c) || ends.size(c) < 2) continue;
+        for (const uint32_t i : {ends.begin(c), ends.end(c) - 1}) {
+            double best = std::numeric_limits<double>::infinity();
+            for (size_t k = 0; k < yarns.curveCount(); ++k)
+                for (uint32_t j = yarns.begin(k); j + 1 < yarns.end(k); ++j) {
+                    const dvec3 a = yarns.points[j], ab = yarns.points[j + 1] - a;
+                    const double t = std::clamp(glm::dot(ends.points[i] - a, ab) / glm::dot(ab, ab), 0.0, 1.0);
+                    best = std::min(best, glm::length(ends.points[i] - (a + t * ab)));
+                }
+            worst = std::max(worst, best);
+        }
+    }
+    return worst;
+}
+
+// A yarn cut at the mesh's edge ends partway along its cell's segment: under a uniform strain its
+// end lies on the same yarn of a larger plane (where it is not cut), displaced as that segment is.
+// (It used to take the whole displacement of the vertex it leaves from: off the segment by t times
+// the two vertices' difference, which pressed a stiff table's cut ends into their neighbours.)
+TEST(StrainDeformer, aCutYarnsEndMovesAlongItsCellSegment) {
+    SceneOptions o;
+    o.buildPlies = false;
+    const auto stretched = [](const dvec3& p) { return dvec3(1.3 * p.x + 0.2 * p.y, 0.9 * p.y, 0.0); };
+    double off[2] = {0, 0};
+    for (const DeformMode mode : {DeformMode::None, DeformMode::Strain}) {
+        o.deform = {mode, mode == DeformMode::Strain ? syntheticTable() : nullptr};
+        const Scene small =
+            buildScene(generateStockinette(), test::planeMesh(test::Triangulation::Regular, 8, 0.05), o);
+        const Scene large =
+            buildScene(generateStockinette(), test::planeMesh(test::Triangulation::Regular, 16, 0.1), o);
+        const AnimationFrame a = evaluateOn(small, posed(small, stretched));
+        const AnimationFrame b = evaluateOn(large, posed(large, stretched));
+        off[mode == DeformMode::Strain ? 1 : 0] = endsOffYarns(a.yarns.curves, b.yarns.curves) / small.yarnRadius();
+    }
+    EXPECT_LT(off[0], 1e-6);  // the tiling is the same on both planes
+    EXPECT_LT(off[1], 1e-6) << "cut ends off their segments by " << off[1] << " radii";
 }
 
 TEST(StrainDeformer, degenerateTrianglesGetNoDisplacementAndAreCounted) {

@@ -247,11 +247,21 @@ private:
     // Per yarn vertex the table's twist change at its strain (into yarns.twist), when the table
     // has any (else yarns.twist is left empty).
     void twist(const Binding& binding, const Pose& pose, MappedYarns& yarns) const;
+    void findBoundaryEnds(const Pattern& pattern, const Binding& binding);  // into ends_
 
     std::vector<glm::uvec3> faces_, faceUvs_;
     std::vector<glm::dvec2> layout_;    // per UV vertex: pattern-space position (metres, object scale)
     std::vector<uint32_t> cellVertex_;  // per yarn vertex: its pattern vertex
-    std::vector<glm::dvec4> zero_;      // per pattern vertex: the table at zero strain
+    // A yarn cut at the mesh's boundary ends on a vertex inserted on the boundary edge, partway
+    // (t) from the pattern vertex it leaves (its cellVertex_) to the next one (beyond): its
+    // displacement is blended between the two, as the cell's segment there is (without it, a
+    // stiff table's ends stuck out by t times the two vertices' difference: strainEnds).
+    struct BoundaryEnd {
+        uint32_t vertex = 0, beyond = 0;
+        double t = 0;
+    };
+    std::vector<BoundaryEnd> ends_;
+    std::vector<glm::dvec4> zero_;  // per pattern vertex: the table at zero strain
     double scale_ = 1;
     size_t uvCount_ = 0, positionCount_ = 0;
     bool atMeshVertices_ = false;

@@ -85,6 +85,7 @@ StrainDeformer::StrainDeformer(const BaseMesh& mesh, const Pattern& pattern, con
     for (size_t i = 0; i < mesh.uvs.size(); ++i) layout_[i] = mesh.uvs[i] * period;
     cellVertex_.resize(binding.vertexCount());
     for (size_t i = 0; i < cellVertex_.size(); ++i) cellVertex_[i] = uint32_t(binding.source[i] % n);
+    findBoundaryEnds(pattern, binding);
     zero_.resize(n);
     const StrainLookup lookup(*table_);  // the same arithmetic as the per-frame lookups
     bool clamped = false;
@@ -95,6 +96,46 @@ StrainDeformer::StrainDeformer(const BaseMesh& mesh, const Pattern& pattern, con
     atMeshVertices_ = uvCount_ * n < std::numeric_limits<uint32_t>::max() &&
                       (site == StrainLookupSite::MeshVertices ||
                        (site == StrainLookupSite::Auto && uvCount_ * n < binding.vertexCount()));
+}
+
+// An open yarn's end that repeats its neighbour's tiled vertex was inserted on the mesh's boundary
+// (binding_cut.cpp: a crossing takes the source of the vertex it leaves). Its rest position in
+// pattern space against that vertex's gives the pattern edge it lies on (the best aligned of the
+// vertex's two) and how far along it.
+void StrainDeformer::findBoundaryEnds(const Pattern& pattern, const Binding& b) {
+    const PatternAdjacency adjacency = buildAdjacency(pattern);
+    const auto rest = [&](size_t i) {
+        const glm::uvec3 t = faceUvs_[b.face[i]];
+        const double b1 = b.bary[i].x, b2 = b.bary[i].y;
+        return (1.0 - b1 - b2) * layout_[t.x] + b1 * layout_[t.y] + b2 * layout_[t.z];
+    };
+    const auto end = [&](size_t i, size_t inside) {
+        if (b.source[i] != b.source[inside]) return;
+        const uint32_t v = cellVertex_[i];
+        const glm::dvec2 r = rest(i) - rest(inside);
+        BoundaryEnd best;
+        double bestCos = 0;
+        for (const PatternNeighbor& w : adjacency.slots[v]) {
+            if (w.v < 0) continue;
+            const glm::dvec3& q = pattern.points[size_t(w.v)];
+            const glm::dvec2 e =
+                scale_ * (glm::dvec2(q.x + w.dx * pattern.px, q.y + w.dy * pattern.py) - glm::dvec2(pattern.points[v]));
+            const double ee = glm::dot(e, e), re = glm::dot(r, e);
+            if (!(ee > 0) || !(re > 0)) continue;
+            const double cosine = re / std::sqrt(ee * glm::dot(r, r));
+            if (cosine > bestCos) {
+                bestCos = cosine;
+                best = {uint32_t(i), uint32_t(w.v), std::min(1.0, re / ee)};
+            }
+        }
+        if (bestCos > 0) ends_.push_back(best);
+    };
+    for (size_t y = 0; y < b.yarnCount(); ++y) {
+        const size_t first = b.offsets[y], last = b.offsets[y + 1];
+        if (b.closed[y] || last - first < 2) continue;
+        end(first, first + 1);
+        end(last - 1, last - 2);
+    }
 }
 
 // Per UV vertex the area-weighted mean of its valid triangles' C and F, and per triangle whether
@@ -191,36 +232,24 @@ template <class Point>
 DeformStats StrainDeformer::run(const Binding& b, const Pose& pose, Point point) const {
     const uint32_t* face = b.face.data();
     const glm::dvec2* bary = b.bary.data();
-    // Per yarn vertex looking its strain up.
+    // The displacement of yarn vertex i (normal n) as cell vertex v, into `out`; returns its flag
+    // (no displacement unless kMoved). Per yarn vertex looking its strain up:
     const StrainLookup lookup(*table_);
-    const auto atYarnVertices = [&](const tbb::blocked_range<size_t>& r, DeformStats stats) {
-        for (size_t i = r.begin(); i != r.end(); ++i) {
-            glm::dvec3 p, n;
-            glm::dvec3& out = point(i, p, n);
-            const uint32_t f = face[i];
-            if (!pose.ok[f]) {
-                count(kDegenerate, stats);
-                out = p;
-                continue;
-            }
-            const glm::uvec3 t = faceUvs_[f];
-            const Pose::Uv &u0 = pose.uv[t.x], &u1 = pose.uv[t.y], &u2 = pose.uv[t.z];
-            const double b1 = bary[i].x, b2 = bary[i].y, b0 = 1.0 - b1 - b2;
-            const Strain s = strainOfC(b0 * u0.c00 + b1 * u1.c00 + b2 * u2.c00, b0 * u0.c01 + b1 * u1.c01 + b2 * u2.c01,
-                                       b0 * u0.c11 + b1 * u1.c11 + b2 * u2.c11);
-            if (nearZero(s)) {
-                out = p;
-                continue;
-            }
-            bool clamped = false;
-            const uint32_t v = cellVertex_[i];
-            const glm::dvec4 d = lookup.at(lookup.vertexOffset(v), s, clamped) - zero_[v];
-            const glm::dvec3 fx = b0 * u0.fx + b1 * u1.fx + b2 * u2.fx;
-            const glm::dvec3 fy = b0 * u0.fy + b1 * u1.fy + b2 * u2.fy;
-            out = p + scale_ * (d.x * fx + d.y * fy + d.z * n);
-            count(uint8_t(kMoved | (clamped ? kClamped : 0)), stats);
-        }
-        return stats;
+    const auto atYarnVertex = [&](size_t i, uint32_t v, const glm::dvec3& n, glm::dvec3& out) -> uint8_t {
+        const uint32_t f = face[i];
+        if (!pose.ok[f]) return kDegenerate;
+        const glm::uvec3 t = faceUvs_[f];
+        const Pose::Uv &u0 = pose.uv[t.x], &u1 = pose.uv[t.y], &u2 = pose.uv[t.z];
+        const double b1 = bary[i].x, b2 = bary[i].y, b0 = 1.0 - b1 - b2;
+        const Strain s = strainOfC(b0 * u0.c00 + b1 * u1.c00 + b2 * u2.c00, b0 * u0.c01 + b1 * u1.c01 + b2 * u2.c01,
+                                   b0 * u0.c11 + b1 * u1.c11 + b2 * u2.c11);
+        if (nearZero(s)) return kZero;
+        bool clamped = false;
+        const glm::dvec4 d = lookup.at(lookup.vertexOffset(v), s, clamped) - zero_[v];
+        const glm::dvec3 fx = b0 * u0.fx + b1 * u1.fx + b2 * u2.fx;
+        const glm::dvec3 fy = b0 * u0.fy + b1 * u1.fy + b2 * u2.fy;
+        out = scale_ * (d.x * fx + d.y * fy + d.z * n);
+        return uint8_t(kMoved | (clamped ? kClamped : 0));
     };
     // Per yarn vertex interpolating its triangle's UV vertices' displacements: per triangle where
     // its corners' rows start and what its yarn vertices are (degenerate, or its corners' flags).
@@ -241,23 +270,36 @@ DeformStats StrainDeformer::run(const Binding& b, const Pose& pose, Point point)
                           pose.ok[f] ? uint8_t(flags[t.x] | flags[t.y] | flags[t.z]) : uint8_t(kDegenerate)};
         }
     }
-    const auto atMeshVertices = [&](const tbb::blocked_range<size_t>& r, DeformStats stats) {
-        for (size_t i = r.begin(); i != r.end(); ++i) {
-            glm::dvec3 p, n;
-            glm::dvec3& out = point(i, p, n);
-            const Corners& c = corners[face[i]];
-            if (!(c.flag & kMoved)) {
-                count(c.flag, stats);
-                out = p;
-                continue;
+    const auto atMeshVertex = [&](size_t i, uint32_t v, const glm::dvec3& n, glm::dvec3& out) -> uint8_t {
+        const Corners& c = corners[face[i]];
+        if (!(c.flag & kMoved)) return c.flag;
+        const double b1 = bary[i].x, b2 = bary[i].y, b0 = 1.0 - b1 - b2;
+        const glm::dvec4 e = b0 * d[c.row[0] + v] + b1 * d[c.row[1] + v] + b2 * d[c.row[2] + v];
+        out = glm::dvec3(e) + e.w * n;
+        return c.flag;
+    };
+    const auto pass = [&](const auto& displacement) {
+        return [&](const tbb::blocked_range<size_t>& r, DeformStats stats) {
+            for (size_t i = r.begin(); i != r.end(); ++i) {
+                glm::dvec3 p, n, e;
+                glm::dvec3& out = point(i, p, n);
+                const uint8_t flag = displacement(i, cellVertex_[i], n, e);
+                out = (flag & kMoved) ? p + e : p;
+                count(flag, stats);
             }
-            const double b1 = bary[i].x, b2 = bary[i].y, b0 = 1.0 - b1 - b2;
-            const uint32_t v = cellVertex_[i];
-            const glm::dvec4 e = b0 * d[c.row[0] + v] + b1 * d[c.row[1] + v] + b2 * d[c.row[2] + v];
-            out = p + (glm::dvec3(e) + e.w * n);
-            count(c.flag, stats);
+            return stats;
+        };
+    };
+    // The boundary ends (findBoundaryEnds): moved on from their vertex's displacement by t times
+    // the difference to the next vertex's (the same arithmetic whether `point` gathers or reads).
+    const auto ends = [&](const auto& displacement) {
+        for (const BoundaryEnd& end : ends_) {
+            glm::dvec3 p, n, e0, e1;
+            glm::dvec3& out = point(end.vertex, p, n);
+            if (!(displacement(end.vertex, cellVertex_[end.vertex], n, e0) & kMoved)) continue;
+            displacement(end.vertex, end.beyond, n, e1);
+            out += end.t * (e1 - e0);
         }
-        return stats;
     };
     const auto sum = [](DeformStats a, const DeformStats& c) {
         a.vertices += c.vertices;
@@ -266,8 +308,14 @@ DeformStats StrainDeformer::run(const Binding& b, const Pose& pose, Point point)
         return a;
     };
     const tbb::blocked_range<size_t> all(0, b.vertexCount(), 16384);
-    DeformStats stats = atMeshVertices_ ? tbb::parallel_reduce(all, DeformStats{}, atMeshVertices, sum)
-                                        : tbb::parallel_reduce(all, DeformStats{}, atYarnVertices, sum);
+    DeformStats stats;
+    if (atMeshVertices_) {
+        stats = tbb::parallel_reduce(all, DeformStats{}, pass(atMeshVertex), sum);
+        ends(atMeshVertex);
+    } else {
+        stats = tbb::parallel_reduce(all, DeformStats{}, pass(atYarnVertex), sum);
+        ends(atYarnVertex);
+    }
     stats.total = b.vertexCount();
     return stats;
 }
