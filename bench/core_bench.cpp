@@ -101,14 +101,14 @@ BENCHMARK(BM_Binding)->Unit(benchmark::kMillisecond)->UseRealTime();
 void BM_Evaluate(benchmark::State& state) {
     const knit::Scene& s = fixture().scene;
     knit::MappedYarns out;
-    const double cpu0 = knit::bench::processCpuSeconds();
+    const double cpu0 = knit::bench::cpuSeconds();
     for (auto _ : state) {
         knit::evaluateBinding(s.binding(), s.mesh().faces, s.mesh().positions, s.normals(), out);
         benchmark::DoNotOptimize(out.curves.points.data());
     }
     state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(s.binding().vertexCount()));
     state.counters["yarn_vertices"] = double(s.binding().vertexCount());
-    streamedBytes(state, s.binding().vertexCount(), kEvaluateBytes, knit::bench::processCpuSeconds() - cpu0);
+    streamedBytes(state, s.binding().vertexCount(), kEvaluateBytes, knit::bench::cpuSeconds() - cpu0);
 }
 BENCHMARK(BM_Evaluate)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime();
 
@@ -116,13 +116,13 @@ BENCHMARK(BM_Evaluate)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasurePro
 void BM_EvaluateFloat(benchmark::State& state) {
     const knit::Scene& s = fixture().scene;
     std::vector<glm::vec3> out;
-    const double cpu0 = knit::bench::processCpuSeconds();
+    const double cpu0 = knit::bench::cpuSeconds();
     for (auto _ : state) {
         knit::evaluateBindingFloat(s.binding(), s.mesh().faces, s.mesh().positions, s.normals(), glm::dvec3(0.0), out);
         benchmark::DoNotOptimize(out.data());
     }
     state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(s.binding().vertexCount()));
-    streamedBytes(state, s.binding().vertexCount(), kEvaluateFloatBytes, knit::bench::processCpuSeconds() - cpu0);
+    streamedBytes(state, s.binding().vertexCount(), kEvaluateFloatBytes, knit::bench::cpuSeconds() - cpu0);
 }
 BENCHMARK(BM_EvaluateFloat)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime();
 
@@ -131,13 +131,13 @@ void BM_EvaluatePackedFloat(benchmark::State& state) {
     const knit::Scene& s = fixture().scene;
     const knit::PackedBinding packed = knit::packBinding(s.binding());
     std::vector<glm::vec3> out;
-    const double cpu0 = knit::bench::processCpuSeconds();
+    const double cpu0 = knit::bench::cpuSeconds();
     for (auto _ : state) {
         knit::evaluatePackedFloat(packed, s.mesh().faces, s.mesh().positions, s.normals(), glm::dvec3(0.0), out);
         benchmark::DoNotOptimize(out.data());
     }
     state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(s.binding().vertexCount()));
-    streamedBytes(state, s.binding().vertexCount(), kEvaluatePackedBytes, knit::bench::processCpuSeconds() - cpu0);
+    streamedBytes(state, s.binding().vertexCount(), kEvaluatePackedBytes, knit::bench::cpuSeconds() - cpu0);
 }
 BENCHMARK(BM_EvaluatePackedFloat)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime();
 

@@ -9,20 +9,21 @@
 // 256, three arrays: 768 MB; STREAM asks for at least 4x the last-level cache).
 //
 // Every all-cores run records its streamed bytes per second of process CPU time (all threads,
-// std::clock); a benchmark run after it in the same process reports its own bytes per CPU second
+// cpuSeconds); a benchmark run after it in the same process reports its own bytes per CPU second
 // as a fraction of their median (counter `of_triad`, see fractionOfTriad).
 #pragma once
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
 #include <cstdint>
-#include <ctime>
 #include <cstdlib>
 #include <vector>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/partitioner.h>
+
+#include "bench_clock.hpp"
 
 namespace knit::bench {
 
@@ -47,9 +48,6 @@ inline void triad(double* a, const double* b, const double* c, double s, size_t 
     for (size_t i = first; i < last; ++i) a[i] = b[i] + s * c[i];
 }
 
-// The process's CPU time (every thread) in seconds.
-inline double processCpuSeconds() { return double(std::clock()) / double(CLOCKS_PER_SEC); }
-
 // Streamed bytes per CPU second of the all-cores triad runs so far in this process, with their
 // iteration counts (the library's runs that size the iteration count come first, with fewer).
 struct TriadRun {
@@ -63,17 +61,16 @@ inline std::vector<TriadRun>& triadRuns() {
 
 // Counters `of_triad` (this run's streamed bytes per CPU second over the median triad run's of
 // this process) and `triad_bytes_per_cpu_second`; nothing when no triad ran before.
-inline void fractionOfTriad(benchmark::State& state, double streamedBytes, double cpuSeconds) {
+inline void fractionOfTriad(benchmark::State& state, double streamedBytes, double cpuSpent) {
     int64_t most = 0;
     for (const TriadRun& t : triadRuns()) most = std::max(most, t.iterations);
     std::vector<double> r;  // the measured runs only: those of the most iterations
     for (const TriadRun& t : triadRuns())
         if (t.iterations == most) r.push_back(t.bytesPerCpuSecond);
-    if (r.empty() || cpuSeconds <= 0.0) return;
-    std::nth_element(r.begin(), r.begin() + r.size() / 2, r.end());
-    const double limit = r[r.size() / 2];
+    if (r.empty() || cpuSpent <= 0.0) return;
+    const double limit = median(r);
     state.counters["triad_bytes_per_cpu_second"] = limit;
-    state.counters["of_triad"] = streamedBytes / cpuSeconds / limit;
+    state.counters["of_triad"] = streamedBytes / cpuSpent / limit;
 }
 
 inline void reportTriad(benchmark::State& state, size_t n) {
@@ -89,7 +86,7 @@ inline void triadAllCores(benchmark::State& state) {
     const size_t n = x.a.size();
     const double s = 3.0;
     tbb::static_partitioner part;
-    const double cpu0 = processCpuSeconds();
+    const double cpu0 = cpuSeconds();
     for (auto _ : state) {
         tbb::parallel_for(
             tbb::blocked_range<size_t>(0, n, size_t(1) << 20),
@@ -100,7 +97,7 @@ inline void triadAllCores(benchmark::State& state) {
         benchmark::DoNotOptimize(x.a.data());
         benchmark::ClobberMemory();
     }
-    const double cpu = processCpuSeconds() - cpu0;
+    const double cpu = cpuSeconds() - cpu0;
     if (cpu > 0.0) {
         const double rate = double(state.iterations()) * 24.0 * double(n) / cpu;
         triadRuns().push_back({int64_t(state.iterations()), rate});
