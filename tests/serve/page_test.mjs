@@ -120,6 +120,33 @@ try {
     const shown = await yarnsShown();
     check(shown === await serverYarns(chart), `typed chart ${k}: data-yarns ${shown} equals the server's count`);
   }
+  // A pause mid-typing: the partial chart (one row) relaxes fully and is drawn; the keystrokes after
+  // it mark what is on screen as an older text's at once (data-state=edited), so its yarn count is
+  // never read as the whole chart's (a CI run on 2026-11-27 read 59 for `k p / k p` that way).
+  {
+    await page.click('#chart', {clickCount: 3});
+    await page.keyboard.down('Control');
+    await page.keyboard.press('a');
+    await page.keyboard.up('Control');
+    await page.keyboard.press('Backspace');
+    await page.type('#chart', '# paused\nk p k p');
+    await page.waitForFunction(() => document.body.dataset.swatchYarns, {timeout: 20000, polling: 'raf'});
+    const partial = await page.evaluate(() => ({yarns: document.body.dataset.swatchYarns,
+                                                state: document.getElementById('view').dataset.state}));
+    await page.type('#chart', '\np p k k');
+    const after = await page.evaluate(() => ({swatchYarns: document.body.dataset.swatchYarns,
+                                              state: document.getElementById('view').dataset.state}));
+    check(partial.state === 'relaxed' && after.state === 'edited' && after.swatchYarns === undefined,
+          `after a pause mid-typing the partial chart's yarns (${partial.yarns}, ${partial.state}) are marked ` +
+          `as an older text's (${after.state}, swatch yarns ${after.swatchYarns})`);
+    await page.waitForFunction(() => document.getElementById('view').dataset.state === 'relaxed' &&
+                                     document.body.dataset.swatchYarns === document.getElementById('view').dataset.yarns,
+                               {timeout: 20000, polling: 'raf'});
+    const whole = await yarnsShown();
+    const expected = await serverYarns('# paused\nk p k p\np p k k');
+    check(whole === expected, `then the whole chart's yarns: data-yarns ${whole} equals the server's count ${expected}`);
+    lastBody = 'k p k p\np p k k';  // the chart on the page now, recoloured below
+  }
   console.log('edit-to-yarns latency (ms, last edit to first / relaxed (preview) / fully relaxed yarns drawn): ' +
               latencies.map((l) => l.join('/')).join(' '));
   // Not blank: the canvas has many pixels away from the background colour.

@@ -34,7 +34,8 @@ function refreshPalette() {
 
 // The swatch: relaxed on the server, intermediate cells shown as they arrive, then the preview
 // (the chart relaxed at half the samples per stitch, at rest), then the full relaxation.
-// canvas#view's data-state says which: relaxing, preview or relaxed.
+// canvas#view's data-state says which: relaxing, preview or relaxed; `edited` from a keystroke
+// until the newer text's first yarns are drawn (what is on screen is an older text's).
 async function updateSwatch() {
   swatchRequest?.abort();
   const controller = swatchRequest = new AbortController();
@@ -101,6 +102,7 @@ async function updateSwatch() {
       show(last.swatch, 'relaxed', last, lastTimes);
       stamp('editToYarnsMs');
       await new Promise(requestAnimationFrame);
+      if (controller.signal.aborted) return;  // edited while the frame was drawn
       document.body.dataset.serverMs = String(Math.round(performance.now() - started));
       document.body.dataset.swatchYarns = String(last.swatch.yarns);
       status(`${last.swatch.yarns} yarns, ${last.stats.width} × ${last.stats.height} stitches, ` +
@@ -158,6 +160,10 @@ function changed() {
   // between would be drawn (software WebGL holds the main thread) and delay the newer request.
   // Closing its stream also makes the server cancel its job at its next line.
   swatchRequest?.abort();
+  // The yarns on screen are now an older text's: nothing may read them as this text's (the
+  // count and data-state of a partial chart relaxed between two keystrokes did, 2026-11-27).
+  if (mode === 'swatch') $('view').dataset.state = 'edited';
+  delete document.body.dataset.swatchYarns;
   refreshPalette();
   clearTimeout(editTimer);
   editTimer = setTimeout(updateSwatch, 40);  // debounced: the newest text wins
