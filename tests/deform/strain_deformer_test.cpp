@@ -233,6 +233,37 @@ TEST(StrainDeformer, lookupSitesAgreeAndOnePassMatchesTwo) {
     EXPECT_LT(apart, 0.03 * largest) << apart << " of " << largest;
 }
 
+// On a strained drape of many parallel blocks, the one-pass evaluate (at the UV vertices four yarn
+// vertices at a time in AVX2 where the CPU has it; KNIT_SIMD=0 the scalar loop) gives the bits and
+// the counts of the scalar evaluateBinding followed by apply; without twist asked, no twist.
+TEST(StrainDeformer, onePassIsTheScalarTwoPassesBitForBitOnADrape) {
+    SceneOptions o;
+    o.placement.repeats = {40, 40};
+    o.buildPlies = false;
+    ProceduralMeshOptions mo;
+    mo.resU = mo.resV = 16;
+    const Scene s = buildScene(generateStockinette(), makeDrape(mo), o);
+    const Binding& bind = s.binding();
+    ASSERT_GT(bind.vertexCount(), 30000u);  // several parallel blocks
+    const std::vector<dvec3> pose = posed(s, [](const dvec3& p) { return dvec3(1.15 * p.x, p.y, p.z + 0.05 * p.x); });
+    const std::vector<dvec3> normals = vertexNormals(pose, s.mesh().faces);
+    const StrainDeformer deformer(s.mesh(), s.pattern(), s.placement(), bind, syntheticTable(),
+                                  StrainLookupSite::MeshVertices);
+    MappedYarns two, one;
+    evaluateBinding(bind, s.mesh().faces, pose, normals, two);
+    const DeformStats a = deformer.apply(bind, pose, two);
+    const DeformStats b = deformer.evaluate(bind, pose, normals, one, false);
+    EXPECT_GT(a.vertices, bind.vertexCount() / 2);
+    EXPECT_EQ(a.vertices, b.vertices);
+    EXPECT_EQ(a.clamped, b.clamped);
+    EXPECT_EQ(a.degenerate, b.degenerate);
+    ASSERT_EQ(one.curves.points.size(), two.curves.points.size());
+    EXPECT_EQ(std::memcmp(one.curves.points.data(), two.curves.points.data(), one.curves.points.size() * sizeof(dvec3)),
+              0);
+    EXPECT_EQ(std::memcmp(one.normals.data(), two.normals.data(), one.normals.size() * sizeof(dvec3)), 0);
+    EXPECT_TRUE(one.twist.empty());
+}
+
 // Largest distance from the ends of a scene's open yarns to the polylines of another scene's yarns.
 double endsOffYarns(const Polylines& ends, const Polylines& yarns) {
     double worst = 0;

@@ -3,6 +3,8 @@
 // bit for bit as without the table.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cmath>
 #include <cstring>
 #include <map>
@@ -95,6 +97,27 @@ TEST(StrainTwist, aTableTwistTurnsThePliesByItsAngle) {
     const auto [alo, ahi] = turn(animatedPlies(none), animatedPlies(strain));
     EXPECT_NEAR(alo, kTwist, 0.02);
     EXPECT_NEAR(ahi, kTwist, 0.02);
+}
+
+// The twist is made for the plies only: an Animator of the yarns alone leaves it empty (and does
+// not pay for it), one with plies gets the table's twist per yarn vertex.
+TEST(StrainTwist, onlyAnAnimatorWithPliesGetsTheTwist) {
+    const Scene strain = planeScene(twistTable(), true);
+    for (const bool plies : {false, true}) {
+        AnimatorOptions o;
+        o.plies = plies;
+        o.stats = false;
+        const Animator a(strain, o);
+        AnimationFrame f;
+        a.evaluate(strain.mesh().positions, f);
+        if (!plies) {
+            EXPECT_TRUE(f.yarns.twist.empty());
+            continue;
+        }
+        ASSERT_EQ(f.yarns.twist.size(), f.yarns.curves.points.size());
+        EXPECT_EQ(f.yarns.twist, strain.yarns().twist);  // the rest pose: the scene's own twist
+        EXPECT_GT(*std::max_element(f.yarns.twist.begin(), f.yarns.twist.end()), 0.9 * kTwist);
+    }
 }
 
 TEST(StrainTwist, zeroStrainLeavesThePliesBitForBit) {

@@ -230,28 +230,48 @@ public:
     DeformStats apply(const Binding& binding, const std::vector<glm::dvec3>& positions, MappedYarns& yarns) const;
 
     // evaluateBinding and apply in one pass over the yarn vertices (the per-frame path; the same
-    // bits as the two calls). `normals`: the pose's vertex normals.
+    // bits as the two calls; four yarn vertices at a time in AVX2 where the CPU has it, as
+    // evaluateBinding). `normals`: the pose's vertex normals. `withTwist` false: out.twist left
+    // empty (for a caller that makes no plies; the points are the same).
     DeformStats evaluate(const Binding& binding, const std::vector<glm::dvec3>& positions,
-                         const std::vector<glm::dvec3>& normals, MappedYarns& out) const;
+                         const std::vector<glm::dvec3>& normals, MappedYarns& out, bool withTwist = true) const;
 
     const StrainTable& table() const { return *table_; }
 
 private:
     struct Pose;  // per pose: the strain and map per UV vertex, which triangles have one
     Pose pose(const Binding& binding, const std::vector<glm::dvec3>& positions) const;
+    struct MeshRows;  // per pose at the UV vertices: displacements, twists, per triangle its corners
+    // The last phase: `point(i, p, n)` gives yarn vertex i's geometric point and normal and
+    // returns where the displaced point goes; `block(begin, end, rows)` may do a range's first
+    // vertices itself (returns the first it left). With `withTwist`, yarns.twist too.
+    template <class Point, class Block>
+    DeformStats run(const Binding& binding, const Pose& pose, Point point, Block block, MappedYarns& yarns,
+                    bool withTwist) const;
+    template <class Point, class Block>
+    DeformStats runAtMeshVertices(const Binding& binding, const MeshRows& rows, Point point, Block block) const;
     template <class Point>
-    DeformStats run(const Binding& binding, const Pose& pose, Point point) const;
+    DeformStats runAtYarnVertices(const Binding& binding, const Pose& pose, Point point) const;
+    // The boundary ends (findBoundaryEnds) moved on from their displacement (`displacement(i, v,
+    // n, e)` as in run) by t times the difference to the next vertex's.
+    template <class Point, class Displacement>
+    void moveEnds(const Point& point, const Displacement& displacement) const;
     // MeshVertices: per UV vertex and cell vertex, the displacement through F (x, y, z) and along
-    // the normal (w); per UV vertex its flag (moved, clamped).
-    void meshDisplacements(const Pose& pose, std::vector<glm::dvec4>& d, std::vector<uint8_t>& flags) const;
-    // Per yarn vertex the table's twist change at its strain (into yarns.twist), when the table
-    // has any (else yarns.twist is left empty).
+    // the normal (w) and (with `withTwist`) the twist change; per triangle its corners' rows and flag.
+    MeshRows meshRows(const Pose& pose, bool withTwist) const;
+    void meshDisplacements(const Pose& pose, bool withTwist, MeshRows& rows, std::vector<uint8_t>& flags) const;
+    DeformStats rowStats(const MeshRows& rows) const;  // per triangle: its yarn vertices times its flag
+    // Per yarn vertex the table's twist change (into yarns.twist), when the table has any (else
+    // yarns.twist is left empty): looked up at its strain (YarnVertices) or interpolated from its
+    // triangle's UV vertices' (MeshVertices).
     void twist(const Binding& binding, const Pose& pose, MappedYarns& yarns) const;
+    void twist(const Binding& binding, const MeshRows& rows, MappedYarns& yarns) const;
     void findBoundaryEnds(const Pattern& pattern, const Binding& binding);  // into ends_
 
     std::vector<glm::uvec3> faces_, faceUvs_;
-    std::vector<glm::dvec2> layout_;    // per UV vertex: pattern-space position (metres, object scale)
-    std::vector<uint32_t> cellVertex_;  // per yarn vertex: its pattern vertex
+    std::vector<glm::dvec2> layout_;      // per UV vertex: pattern-space position (metres, object scale)
+    std::vector<uint32_t> cellVertex_;    // per yarn vertex: its pattern vertex
+    std::vector<uint32_t> faceVertices_;  // per triangle: the yarn vertices bound to it
     // A yarn cut at the mesh's boundary ends on a vertex inserted on the boundary edge, partway
     // (t) from the pattern vertex it leaves (its cellVertex_) to the next one (beyond): its
     // displacement is blended between the two, as the cell's segment there is (without it, a

@@ -130,8 +130,8 @@ void Animator::evaluate(const std::vector<dvec3>& positions, AnimationFrame& out
     // Step 2: the binding evaluated on the frame.
     t0 = Clock::now();
     out.deform = {};
-    if (options_.deform && rest_.deformer())  // the gather and the displacement in one pass
-        out.deform = rest_.deformer()->evaluate(rest_.binding(), positions, out.meshNormals, out.yarns);
+    if (options_.deform && rest_.deformer())  // the gather and the displacement in one pass (twist for the plies)
+        out.deform = rest_.deformer()->evaluate(rest_.binding(), positions, out.meshNormals, out.yarns, options_.plies);
     else evaluateBinding(rest_.binding(), mesh.faces, positions, out.meshNormals, out.yarns);
     t.evaluate = since(t0);
 

@@ -4,7 +4,9 @@
 // strain and displacement are continuous across triangle edges), C looked up in the table and the
 // displacement added through the interpolated F (and the normal, for dz). The last phase runs in
 // the same pass as the binding's gather (evaluate), so a frame reads and writes its millions of
-// yarn points once.
+// yarn points once; at the UV vertices (the garment case) inside the gather's AVX2 kernel, four
+// yarn vertices at a time (strain_displace_simd.cpp), counted per triangle. The twist (for the
+// plies) is looked up where the displacements are and only when asked for.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -15,8 +17,10 @@
 #include <tbb/parallel_reduce.h>
 
 #include "knit/error.hpp"
+#include "binding/binding_evaluate_simd.hpp"
 #include "binding/binding_gather.hpp"
 #include "knit/strain.hpp"
+#include "strain_displace.hpp"
 #include "strain_lookup.hpp"
 
 namespace knit {
@@ -53,7 +57,8 @@ FaceStrain faceStrain(const glm::dvec2 P[3], const glm::dvec3 X[3]) {
     return f;
 }
 
-enum : uint8_t { kZero = 0, kMoved = 1, kClamped = 2, kDegenerate = 4 };
+constexpr uint8_t kZero = impl::kStrainZero, kMoved = impl::kStrainMoved, kClamped = impl::kStrainClamped,
+                  kDegenerate = impl::kStrainDegenerate;
 
 void count(uint8_t flag, DeformStats& stats) {
     stats.vertices += (flag & kMoved) ? 1 : 0;
@@ -85,6 +90,8 @@ StrainDeformer::StrainDeformer(const BaseMesh& mesh, const Pattern& pattern, con
     for (size_t i = 0; i < mesh.uvs.size(); ++i) layout_[i] = mesh.uvs[i] * period;
     cellVertex_.resize(binding.vertexCount());
     for (size_t i = 0; i < cellVertex_.size(); ++i) cellVertex_[i] = uint32_t(binding.source[i] % n);
+    faceVertices_.assign(faces_.size(), 0);
+    for (const uint32_t f : binding.face) ++faceVertices_[f];
     findBoundaryEnds(pattern, binding);
     zero_.resize(n);
     const StrainLookup lookup(*table_);  // the same arithmetic as the per-frame lookups
@@ -200,16 +207,29 @@ StrainDeformer::Pose StrainDeformer::pose(const Binding& b, const std::vector<gl
     return pose;
 }
 
-void StrainDeformer::meshDisplacements(const Pose& pose, std::vector<glm::dvec4>& d,
+// Per pose at the UV vertices (MeshVertices): the displacement rows, the twist rows (when asked
+// and the table has twist) and per triangle its corners (impl::StrainCorners).
+struct StrainDeformer::MeshRows {
+    std::vector<glm::dvec4> d;
+    std::vector<double> twist;
+    std::vector<impl::StrainCorners> corners;
+
+    impl::StrainRows view(const std::vector<uint32_t>& cellVertex) const {
+        return {corners.data(), d.data(), cellVertex.data()};
+    }
+};
+
+void StrainDeformer::meshDisplacements(const Pose& pose, bool withTwist, MeshRows& rows,
                                        std::vector<uint8_t>& flags) const {
     const size_t n = zero_.size();
-    d.resize(uvCount_ * n);
+    rows.d.resize(uvCount_ * n);
+    if (withTwist) rows.twist.assign(uvCount_ * n, 0.0);
     flags.assign(uvCount_, kZero);
     const StrainLookup lookup(*table_);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, uvCount_, 64), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t u = r.begin(); u != r.end(); ++u) {
             const Pose::Uv& uv = pose.uv[u];
-            glm::dvec4* row = &d[u * n];
+            glm::dvec4* row = &rows.d[u * n];
             const Strain s = strainOfC(uv.c00, uv.c01, uv.c11);
             if (nearZero(s)) {  // also a UV vertex without valid triangles (its C is zero: never read)
                 std::fill(row, row + n, glm::dvec4(0.0));
@@ -217,25 +237,86 @@ void StrainDeformer::meshDisplacements(const Pose& pose, std::vector<glm::dvec4>
             }
             bool clamped = false;
             const StrainLookup::Cell cell = lookup.locate(s, clamped);
+            double* twist = rows.twist.empty() ? nullptr : &rows.twist[u * n];
             for (size_t v = 0; v < n; ++v) {
                 const glm::dvec4 e = lookup.blend(cell, lookup.vertexOffset(uint32_t(v))) - zero_[v];
                 row[v] = glm::dvec4(scale_ * (e.x * uv.fx + e.y * uv.fy), scale_ * e.z);
+                if (twist) twist[v] = e.w;
             }
             flags[u] = uint8_t(kMoved | (clamped ? kClamped : 0));
         }
     });
 }
 
-// 3. Per yarn vertex: `point(i, p, n)` gives the geometric point and normal of yarn vertex i and
-// returns where the displaced point goes.
-template <class Point>
-DeformStats StrainDeformer::run(const Binding& b, const Pose& pose, Point point) const {
+StrainDeformer::MeshRows StrainDeformer::meshRows(const Pose& pose, bool withTwist) const {
+    MeshRows rows;
+    std::vector<uint8_t> flags;
+    meshDisplacements(pose, withTwist && hasTwist_, rows, flags);
+    const auto cells = uint32_t(zero_.size());
+    rows.corners.resize(faceUvs_.size());
+    for (size_t f = 0; f < faceUvs_.size(); ++f) {
+        const glm::uvec3 t = faceUvs_[f];
+        rows.corners[f] = {{t.x * cells, t.y * cells, t.z * cells},
+                           pose.ok[f] ? uint8_t(flags[t.x] | flags[t.y] | flags[t.z]) : uint8_t(kDegenerate)};
+    }
+    return rows;
+}
+
+// The same counts as counting every yarn vertex by its triangle's flag.
+DeformStats StrainDeformer::rowStats(const MeshRows& rows) const {
+    DeformStats stats;
+    for (size_t f = 0; f < rows.corners.size(); ++f) {
+        const uint8_t flag = rows.corners[f].flag;
+        const size_t k = faceVertices_[f];
+        stats.vertices += (flag & kMoved) ? k : 0;
+        stats.clamped += (flag & kClamped) ? k : 0;
+        stats.degenerate += (flag & kDegenerate) ? k : 0;
+    }
+    return stats;
+}
+
+template <class Point, class Displacement>
+void StrainDeformer::moveEnds(const Point& point, const Displacement& displacement) const {
+    // The same arithmetic whether `point` gathers or reads.
+    for (const BoundaryEnd& end : ends_) {
+        glm::dvec3 p, n, e0, e1;
+        glm::dvec3& out = point(end.vertex, p, n);
+        if (!(displacement(end.vertex, cellVertex_[end.vertex], n, e0) & kMoved)) continue;
+        displacement(end.vertex, end.beyond, n, e1);
+        out += end.t * (e1 - e0);
+    }
+}
+
+// 3. Per yarn vertex interpolating its triangle's UV vertices' displacements; `block` does the
+// first vertices of each range (four at a time), this loop the rest.
+template <class Point, class Block>
+DeformStats StrainDeformer::runAtMeshVertices(const Binding& b, const MeshRows& rows, Point point, Block block) const {
+    const impl::StrainRows view = rows.view(cellVertex_);
     const uint32_t* face = b.face.data();
     const glm::dvec2* bary = b.bary.data();
-    // The displacement of yarn vertex i (normal n) as cell vertex v, into `out`; returns its flag
-    // (no displacement unless kMoved). Per yarn vertex looking its strain up:
+    const auto displacement = [&](size_t i, uint32_t v, const glm::dvec3& n, glm::dvec3& out) {
+        return impl::strainDisplacement(view, face[i], bary[i], v, n, out);
+    };
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, b.vertexCount(), 16384), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t i = block(r.begin(), r.end(), view); i != r.end(); ++i) {
+            glm::dvec3 p, n, e;
+            glm::dvec3& out = point(i, p, n);
+            out = (displacement(i, cellVertex_[i], n, e) & kMoved) ? p + e : p;
+        }
+    });
+    moveEnds(point, displacement);
+    return rowStats(rows);
+}
+
+// 3. Per yarn vertex looking its strain up (the reference).
+template <class Point>
+DeformStats StrainDeformer::runAtYarnVertices(const Binding& b, const Pose& pose, Point point) const {
+    const uint32_t* face = b.face.data();
+    const glm::dvec2* bary = b.bary.data();
     const StrainLookup lookup(*table_);
-    const auto atYarnVertex = [&](size_t i, uint32_t v, const glm::dvec3& n, glm::dvec3& out) -> uint8_t {
+    // The displacement of yarn vertex i (normal n) as cell vertex v, into `out`; returns its flag
+    // (no displacement unless kMoved).
+    const auto displacement = [&](size_t i, uint32_t v, const glm::dvec3& n, glm::dvec3& out) -> uint8_t {
         const uint32_t f = face[i];
         if (!pose.ok[f]) return kDegenerate;
         const glm::uvec3 t = faceUvs_[f];
@@ -251,55 +332,15 @@ DeformStats StrainDeformer::run(const Binding& b, const Pose& pose, Point point)
         out = scale_ * (d.x * fx + d.y * fy + d.z * n);
         return uint8_t(kMoved | (clamped ? kClamped : 0));
     };
-    // Per yarn vertex interpolating its triangle's UV vertices' displacements: per triangle where
-    // its corners' rows start and what its yarn vertices are (degenerate, or its corners' flags).
-    std::vector<glm::dvec4> d;
-    struct Corners {
-        uint32_t row[3];
-        uint8_t flag;
-    };
-    std::vector<Corners> corners;
-    if (atMeshVertices_) {
-        std::vector<uint8_t> flags;
-        meshDisplacements(pose, d, flags);
-        const auto cells = uint32_t(zero_.size());
-        corners.resize(faceUvs_.size());
-        for (size_t f = 0; f < faceUvs_.size(); ++f) {
-            const glm::uvec3 t = faceUvs_[f];
-            corners[f] = {{t.x * cells, t.y * cells, t.z * cells},
-                          pose.ok[f] ? uint8_t(flags[t.x] | flags[t.y] | flags[t.z]) : uint8_t(kDegenerate)};
+    const auto pass = [&](const tbb::blocked_range<size_t>& r, DeformStats stats) {
+        for (size_t i = r.begin(); i != r.end(); ++i) {
+            glm::dvec3 p, n, e;
+            glm::dvec3& out = point(i, p, n);
+            const uint8_t flag = displacement(i, cellVertex_[i], n, e);
+            out = (flag & kMoved) ? p + e : p;
+            count(flag, stats);
         }
-    }
-    const auto atMeshVertex = [&](size_t i, uint32_t v, const glm::dvec3& n, glm::dvec3& out) -> uint8_t {
-        const Corners& c = corners[face[i]];
-        if (!(c.flag & kMoved)) return c.flag;
-        const double b1 = bary[i].x, b2 = bary[i].y, b0 = 1.0 - b1 - b2;
-        const glm::dvec4 e = b0 * d[c.row[0] + v] + b1 * d[c.row[1] + v] + b2 * d[c.row[2] + v];
-        out = glm::dvec3(e) + e.w * n;
-        return c.flag;
-    };
-    const auto pass = [&](const auto& displacement) {
-        return [&](const tbb::blocked_range<size_t>& r, DeformStats stats) {
-            for (size_t i = r.begin(); i != r.end(); ++i) {
-                glm::dvec3 p, n, e;
-                glm::dvec3& out = point(i, p, n);
-                const uint8_t flag = displacement(i, cellVertex_[i], n, e);
-                out = (flag & kMoved) ? p + e : p;
-                count(flag, stats);
-            }
-            return stats;
-        };
-    };
-    // The boundary ends (findBoundaryEnds): moved on from their vertex's displacement by t times
-    // the difference to the next vertex's (the same arithmetic whether `point` gathers or reads).
-    const auto ends = [&](const auto& displacement) {
-        for (const BoundaryEnd& end : ends_) {
-            glm::dvec3 p, n, e0, e1;
-            glm::dvec3& out = point(end.vertex, p, n);
-            if (!(displacement(end.vertex, cellVertex_[end.vertex], n, e0) & kMoved)) continue;
-            displacement(end.vertex, end.beyond, n, e1);
-            out += end.t * (e1 - e0);
-        }
+        return stats;
     };
     const auto sum = [](DeformStats a, const DeformStats& c) {
         a.vertices += c.vertices;
@@ -307,20 +348,30 @@ DeformStats StrainDeformer::run(const Binding& b, const Pose& pose, Point point)
         a.degenerate += c.degenerate;
         return a;
     };
-    const tbb::blocked_range<size_t> all(0, b.vertexCount(), 16384);
+    const DeformStats stats =
+        tbb::parallel_reduce(tbb::blocked_range<size_t>(0, b.vertexCount(), 16384), DeformStats{}, pass, sum);
+    moveEnds(point, displacement);
+    return stats;
+}
+
+template <class Point, class Block>
+DeformStats StrainDeformer::run(const Binding& b, const Pose& pose, Point point, Block block, MappedYarns& yarns,
+                                bool withTwist) const {
     DeformStats stats;
+    yarns.twist.clear();
     if (atMeshVertices_) {
-        stats = tbb::parallel_reduce(all, DeformStats{}, pass(atMeshVertex), sum);
-        ends(atMeshVertex);
+        const MeshRows rows = meshRows(pose, withTwist);
+        stats = runAtMeshVertices(b, rows, point, block);
+        if (withTwist) twist(b, rows, yarns);
     } else {
-        stats = tbb::parallel_reduce(all, DeformStats{}, pass(atYarnVertex), sum);
-        ends(atYarnVertex);
+        stats = runAtYarnVertices(b, pose, point);
+        if (withTwist) twist(b, pose, yarns);
     }
     stats.total = b.vertexCount();
     return stats;
 }
 
-// Per yarn vertex, the table read at its interpolated strain (as atYarnVertices) for the twist
+// Per yarn vertex, the table read at its interpolated strain (as runAtYarnVertices) for the twist
 // column alone; zero where the strain is zero or undefined.
 void StrainDeformer::twist(const Binding& b, const Pose& pose, MappedYarns& yarns) const {
     yarns.twist.clear();
@@ -345,6 +396,24 @@ void StrainDeformer::twist(const Binding& b, const Pose& pose, MappedYarns& yarn
     });
 }
 
+// Per yarn vertex, its triangle's UV vertices' twist rows interpolated (as the displacements);
+// zero where the triangle did not move.
+void StrainDeformer::twist(const Binding& b, const MeshRows& rows, MappedYarns& yarns) const {
+    yarns.twist.clear();
+    if (rows.twist.empty()) return;
+    yarns.twist.resize(b.vertexCount());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, b.vertexCount(), 16384), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t i = r.begin(); i != r.end(); ++i) {
+            const impl::StrainCorners& c = rows.corners[b.face[i]];
+            const uint32_t v = cellVertex_[i];
+            const double b1 = b.bary[i].x, b2 = b.bary[i].y, b0 = 1.0 - b1 - b2;
+            yarns.twist[i] = (c.flag & kMoved) ? float(b0 * rows.twist[c.row[0] + v] + b1 * rows.twist[c.row[1] + v] +
+                                                       b2 * rows.twist[c.row[2] + v])
+                                               : 0.0F;
+        }
+    });
+}
+
 DeformStats StrainDeformer::apply(const Binding& b, const std::vector<glm::dvec3>& positions,
                                   MappedYarns& yarns) const {
     if (yarns.curves.points.size() != b.vertexCount() || yarns.normals.size() != b.vertexCount())
@@ -352,30 +421,39 @@ DeformStats StrainDeformer::apply(const Binding& b, const std::vector<glm::dvec3
     const Pose p = pose(b, positions);
     glm::dvec3* points = yarns.curves.points.data();
     const glm::dvec3* normals = yarns.normals.data();
-    twist(b, p, yarns);
-    return run(b, p, [points, normals](size_t i, glm::dvec3& q, glm::dvec3& n) -> glm::dvec3& {
+    const auto point = [points, normals](size_t i, glm::dvec3& q, glm::dvec3& n) -> glm::dvec3& {
         q = points[i];
         n = normals[i];
         return points[i];
-    });
+    };
+    const auto scalar = [](size_t begin, size_t, const impl::StrainRows&) { return begin; };
+    return run(b, p, point, scalar, yarns, true);
 }
 
+// The gather and the displacement in one pass; at the UV vertices, four yarn vertices at a time
+// in AVX2 where the CPU has it (impl::evaluateDisplacedSimd, bit for bit the scalar loop's).
 DeformStats StrainDeformer::evaluate(const Binding& b, const std::vector<glm::dvec3>& positions,
-                                     const std::vector<glm::dvec3>& normals, MappedYarns& out) const {
+                                     const std::vector<glm::dvec3>& normals, MappedYarns& out, bool withTwist) const {
     if (normals.size() != positionCount_)
         throw Error("strain-aware deformation: the pose has " + std::to_string(positions.size()) + " vertices but " +
                     std::to_string(normals.size()) + " normals");
     const Pose p = pose(b, positions);
     prepareMappedYarns(b, out);
-    twist(b, p, out);
     const BindingGather gather(b, faces_, positions, normals);
     glm::dvec3* points = out.curves.points.data();
     glm::dvec3* outNormals = out.normals.data();
-    return run(b, p, [&gather, points, outNormals](size_t i, glm::dvec3& q, glm::dvec3& n) -> glm::dvec3& {
+    const auto point = [&gather, points, outNormals](size_t i, glm::dvec3& q, glm::dvec3& n) -> glm::dvec3& {
         gather(i, q, n);
         outNormals[i] = n;
         return points[i];
-    });
+    };
+    const impl::GatherArrays arrays{b.face.data(), b.bary.data(),    b.height.data(),
+                                    faces_.data(), positions.data(), normals.data()};
+    const bool simd = impl::evaluateSimdAvailable();
+    const auto block = [&](size_t begin, size_t end, const impl::StrainRows& rows) {
+        return simd ? impl::evaluateDisplacedSimd(arrays, rows, begin, end, points, outNormals) : begin;
+    };
+    return run(b, p, point, block, out, withTwist);
 }
 
 }  // namespace knit
