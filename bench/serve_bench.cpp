@@ -53,19 +53,27 @@ const std::vector<NamedChart>& charts() {
     return all;
 }
 
-// Runs relaxChart with `options` on chart N (state.range(0)) on one core, as relaxPageCell does,
-// and reports its CPU time and how it went.
-void BM_Relax(benchmark::State& state, const knit::ChartPatternOptions& options) {
-    const auto& [label, text] = charts()[size_t(state.range(0))];
-    const knit::Chart chart = knit::parseChart(text, "chart");
+// The benchmark's loop: relaxChart with `options` on one core, as relaxPageCell does; `cpu` is the
+// process CPU seconds of the last run.
+knit::ChartPattern relaxOnOneCore(benchmark::State& state, const knit::Chart& chart,
+                                  const knit::ChartPatternOptions& options, double& cpu) {
     knit::ChartPattern r;
-    double cpu = 0;
     for (auto _ : state) {
         const double start = knit::bench::cpuSeconds();
         tbb::task_arena oneCore(1);
         oneCore.execute([&] { r = knit::relaxChart(chart, options); });
         cpu = knit::bench::cpuSeconds() - start;
     }
+    return r;
+}
+
+// Runs relaxChart with `options` on chart N (state.range(0)) on one core, as relaxPageCell does,
+// and reports its CPU time and how it went.
+void BM_Relax(benchmark::State& state, const knit::ChartPatternOptions& options) {
+    const auto& [label, text] = charts()[size_t(state.range(0))];
+    const knit::Chart chart = knit::parseChart(text, "chart");
+    double cpu = 0;
+    const knit::ChartPattern r = relaxOnOneCore(state, chart, options, cpu);
     state.counters["cpu_s"] = cpu;
     state.counters["iterations"] = r.relaxed.iterations;
     state.counters["converged"] = r.relaxed.converged;
@@ -89,14 +97,8 @@ void BM_PreviewToFull(benchmark::State& state, const knit::ChartPatternOptions& 
     const size_t n = size_t(state.range(0));
     const knit::Chart chart = knit::parseChart(charts()[n].second, "chart");
     const knit::Pattern& full = fullRelaxation(n);
-    knit::ChartPattern r;
     double cpu = 0;
-    for (auto _ : state) {
-        const double start = knit::bench::cpuSeconds();
-        tbb::task_arena oneCore(1);
-        oneCore.execute([&] { r = knit::relaxChart(chart, options); });
-        cpu = knit::bench::cpuSeconds() - start;
-    }
+    const knit::ChartPattern r = relaxOnOneCore(state, chart, options, cpu);
     const knit::bench::CellDistance d = knit::bench::cellDistance(r.relaxed.pattern, full);
     state.counters["cpu_s"] = cpu;
     state.counters["iterations"] = r.relaxed.iterations;
