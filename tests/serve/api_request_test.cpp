@@ -14,6 +14,7 @@
 
 #include "api_request.hpp"
 #include "chart_job.hpp"
+#include "knit/chart_cache.hpp"
 #include "knit/chart_pattern.hpp"
 #include "swatch.hpp"
 #include "common/test_paths.hpp"
@@ -60,6 +61,25 @@ TEST(ServeChart, previewYarnsKeepApartAsInTheFullRelaxation) {
         EXPECT_TRUE(r.converged) << name;
         EXPECT_GE(r.minDistance, 1.9) << name;
     }
+}
+
+// The preview stops on a shorter energy window (200 iterations, 1e-5 of the decrease), still
+// converged and its yarns apart: the 2 x 2 rib took 962 iterations against 1562 with `knit
+// chart`'s stop test (500, 1e-6). That test is in the cache key only when changed.
+TEST(ServeChart, previewStopsOnAShorterEnergyWindow) {
+    const ChartPatternOptions options = previewOptions();
+    EXPECT_LT(options.energyWindow, RelaxOptions{}.energyWindow);
+    const CellRelaxation r = relaxPageCell(builtinChart("chart:rib1x1"), options);
+    EXPECT_TRUE(r.converged);
+    EXPECT_LT(r.iterations, 1200);
+    EXPECT_GE(r.minDistance, 1.9);
+    const std::string chart = "k p\nk p\n";
+    ChartPatternOptions defaultStop = options;
+    defaultStop.energyWindow = RelaxOptions{}.energyWindow;
+    defaultStop.relativeEnergyTolerance = RelaxOptions{}.relativeEnergyTolerance;
+    EXPECT_NE(chartCacheKey(chart, options), chartCacheKey(chart, defaultStop));
+    // `knit chart`'s key is unchanged (as main's before the stop test was an option).
+    EXPECT_EQ(chartCacheKey(chart, {}), "chart-ec03ab43b1c13326.pyp");
 }
 
 // The smallest distance between two segments [p0, p1] and [q0, q1] (their closest points, each

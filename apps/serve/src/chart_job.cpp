@@ -61,6 +61,8 @@ std::string relaxationKey(const ChartCell& cell, const ChartPatternOptions& opti
                               double(options.affinePeriod),
                               double(options.hessianPreconditioner),
                               options.contact,
+                              options.relativeEnergyTolerance,
+                              double(options.energyWindow),
                               p.px,
                               p.py,
                               p.radius};
@@ -122,6 +124,8 @@ ChartPatternOptions previewOptions() {
     o.samplesPerStitch = kPreviewSamples;
     o.hessianPreconditioner = kPreviewPreconditioner;
     o.contact *= previewContactScale();
+    o.energyWindow = kPreviewEnergyWindow;
+    o.relativeEnergyTolerance = kPreviewRelativeEnergyTolerance;
     return o;
 }
 

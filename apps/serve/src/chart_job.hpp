@@ -103,6 +103,15 @@ constexpr bool kPreviewPreconditioner = false;
 // 1.9 times the iterations and 1.6 times the CPU (build/bench/serve_bench, docs/serve.md).
 double previewContactScale();
 
+// The preview's energy stop test (ChartPatternOptions::energyWindow, relativeEnergyTolerance):
+// it stops when the energy fell by at most 1e-5 of its whole decrease over the last 200
+// iterations, instead of `knit chart`'s 1e-6 over 500. Over the page test's twelve charts this
+// took a third fewer iterations (13 276 against 19 836) and moved the preview's yarns by at most
+// 0.79 radii (RMS 0.21), against the 0.56-3.45 radii they lie from the full relaxation either
+// way (build/bench/serve_bench, BM_PreviewToFull; docs/serve.md).
+constexpr int kPreviewEnergyWindow = 200;
+constexpr double kPreviewRelativeEnergyTolerance = 1e-5;
+
 // The options of the page's preview.
 ChartPatternOptions previewOptions();
 

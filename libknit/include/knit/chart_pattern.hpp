@@ -24,6 +24,12 @@ struct ChartPatternOptions {
     // weight its yarns press deeper into each other (knit serve's preview at 10 samples per
     // stitch raises it, docs/serve.md). At its default it adds nothing to the cache key.
     double contact = RelaxOptions{}.contact;
+    // RelaxOptions' energy stop test: the relaxation stops when the energy fell by at most
+    // relativeEnergyTolerance x (its whole decrease so far) over the last energyWindow
+    // iterations. knit serve's preview stops sooner (docs/serve.md); at their defaults they add
+    // nothing to the cache key.
+    double relativeEnergyTolerance = RelaxOptions{}.relativeEnergyTolerance;
+    int energyWindow = RelaxOptions{}.energyWindow;
     // Progress and cancellation of the relaxation (RelaxOptions::onStep); not part of the
     // cache key, since it does not change the result.
     RelaxStepFn onStep;

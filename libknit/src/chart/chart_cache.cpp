@@ -24,6 +24,9 @@ std::string chartCacheKey(const std::string& chartText, const ChartPatternOption
     key << "v11 " << o.radius << ' ' << o.samplesPerStitch << ' ' << o.restLength << ' ' << o.maxIterations
         << (o.affinePeriod ? " affine" : "") << (o.hessianPreconditioner ? "" : " plain");
     if (o.contact != RelaxOptions{}.contact) key << " contact " << o.contact;
+    if (o.relativeEnergyTolerance != RelaxOptions{}.relativeEnergyTolerance ||
+        o.energyWindow != RelaxOptions{}.energyWindow)
+        key << " energy-stop " << o.relativeEnergyTolerance << ' ' << o.energyWindow;
     key << '\n' << chartText;
     char name[40];
     std::snprintf(name, sizeof name, "chart-%016llx.pyp", static_cast<unsigned long long>(util::fnv1a(key.str())));

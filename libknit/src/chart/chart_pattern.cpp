@@ -44,6 +44,8 @@ RelaxResult relaxCell(const ChartCell& cell, const ChartPatternOptions& options)
     relax.affinePeriod = options.affinePeriod;
     relax.hessianPreconditioner = options.hessianPreconditioner;
     relax.contact = options.contact;
+    relax.relativeEnergyTolerance = options.relativeEnergyTolerance;
+    relax.energyWindow = options.energyWindow;
     relax.onStep = options.onStep;
     relax.stepInterval = options.stepInterval;
     return relaxYarn(cell.pattern, relax);
