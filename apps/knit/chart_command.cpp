@@ -93,6 +93,10 @@ nlohmann::json reportOf(const Chart& chart, const ChartPattern& cp, int maxFloat
                            : chart.colourwork == Colourwork::Intarsia ? "intarsia"
                                                                       : "painted"},
             {"cell_rows", cp.cell.height},  // an odd intarsia chart's cell has its rows twice
+            {"rows_stacked",
+             {{"times", cp.cell.stacking.times},
+              {"areas_wander", cp.cell.stacking.wandering},
+              {"why", stackingWarning(chart, cp.cell.stacking)}}},
             {"max_float", maxFloat},
             {"floats", floatsOf(chart, cp, maxFloat)}};
 }
@@ -133,6 +137,8 @@ int runChart(const ChartCommand& c) {
     options.onStep = progressLines(chart, options.maxIterations);
     const ChartPattern cp = relaxChart(chart, options);
     warnLongFloats(chart, cp, c.maxFloat);
+    const std::string stacked = stackingWarning(chart, cp.cell.stacking);
+    if (!stacked.empty()) std::fprintf(stderr, "knit: warning: %s: %s\n", chart.name.c_str(), stacked.c_str());
     OutputTransaction outputs;  // the pattern and its report are committed together
     outputs.run([&] {
         writeFileAtomically(

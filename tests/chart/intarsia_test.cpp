@@ -310,12 +310,9 @@ TEST(Intarsia, layoutsAPeriodicCellCannotKnitAreRefusedWithTheirPlace) {
         << jump;
     EXPECT_NE(jump.find("move each boundary by at most two columns"), std::string::npos) << jump;
     // Stripes one stitch wide moving a column every row come back onto the other stripe of their
-    // colour after the period: no yarn would close.
-    const std::string wander = error("k k k k\nk k k k\n\nB A B A\nA B A B\nA=#ffffff B=#000000\nintarsia\n");
-    EXPECT_NE(wander.find("t.chart:5:1: intarsia: the colour areas move from row to row round the whole period and "
-                          "come back onto other areas of their colour"),
-              std::string::npos)
-        << wander;
+    // colour after the period: parsed, and stacked until each comes back to itself
+    // (Intarsia.areasThatWanderOntoAnotherOfTheirColourAreStackedUntilEachComesBack).
+    EXPECT_EQ(error("k k k k\nk k k k\n\nB A B A\nA B A B\nA=#ffffff B=#000000\nintarsia\n"), "");
     EXPECT_NE(error("k k\n\nA A\nA=#ffffff B=#000000\nintarsia\n").find("t.chart:1:1: intarsia needs at least two"),
               std::string::npos);
     // Purl beside the boundary: the turn leaves a knit foot from behind.
@@ -733,6 +730,77 @@ TEST(Intarsia, aDiagonalStripesYarnClosesAPeriodOver) {
     for (const int n : il.linkedWith) EXPECT_EQ(n, 2);
     EXPECT_LT(il.worstUnlinked, 0.1);
     EXPECT_GT(minYarnDistance(p), 0.3);
+}
+
+// Stripes one stitch wide moving a column every row (`B A B A` / `A B A B`): after the chart's two
+// rows each area arrives on the other area of its colour, so the cell stacks the rows to four, where
+// each comes back to itself, one period over: four closed yarns (one per area of a row), each
+// turn hooked through the neighbours' turns above and below, every stitch with knitting's
+// crossings; the designer is told the repeat became four rows tall.
+TEST(Intarsia, areasThatWanderOntoAnotherOfTheirColourAreStackedUntilEachComesBack) {
+    const Chart chart = parseChart("k k k k\nk k k k\n\nB A B A\nA B A B\nA=#ffffff B=#000000\nintarsia\n", "t");
+    const ChartCell cell = chartToCell(chart);
+    EXPECT_EQ(cell.height, 4);
+    EXPECT_EQ(cell.pattern.rowsPerPeriod, 4);
+    EXPECT_EQ(cell.stacking.times, 2);
+    EXPECT_TRUE(cell.stacking.wandering);
+    EXPECT_NE(stackingWarning(chart, cell.stacking).find("the chart's repeat is knitted 4 rows tall"),
+              std::string::npos);
+    EXPECT_EQ(cell.yarns, 4);
+    const Pattern& p = cell.pattern;
+    const std::vector<YarnPath> paths = yarnPaths(p);
+    ASSERT_EQ(paths.size(), 4u);
+    for (const YarnPath& y : paths) {
+        ASSERT_FALSE(y.open);
+        int dx = 0, dy = 0;
+        for (const uint32_t v : y.vertices) {
+            dx += p.edges[v].dx;
+            dy += p.edges[v].dy;
+        }
+        EXPECT_EQ(dx, 1);
+        EXPECT_EQ(dy, 1);
+    }
+    for (const StitchLoop& l : cell.loops) {  // each row's loops on four yarns, one colour each
+        EXPECT_EQ(cell.colour[size_t(l.row * cell.width + l.column)],
+                  chart.palette.at(chart.colourAt(l.row % 2, l.column)));
+    }
+    const Interlock il = interlock(cell, p);
+    ASSERT_EQ(il.linkedWith.size(), 16u);  // a turn per yarn and row
+    for (const int n : il.linkedWith) EXPECT_EQ(n, 2);
+    EXPECT_LT(il.worstUnlinked, 0.1);
+    for (int r = 0; r < cell.height; ++r)
+        for (int c = 0; c < cell.width; ++c) EXPECT_EQ(test::checkStitch(cell, r, c), "") << r << ", " << c;
+    EXPECT_GT(minYarnDistance(p), 0.3);
+    // Bands and the diagonal stripes that come back to themselves are not stacked.
+    EXPECT_FALSE(chartToCell(builtinChart("chart:intarsia-blocks")).stacking.wandering);
+    EXPECT_EQ(chartStacking(builtinChart("chart:intarsia-blocks")).times, 1);
+}
+
+// Stripes one stitch wide round a 100-stitch period, each moving a column a row, come back to
+// themselves after 100 rows: the stacked cell (10000 stitches) is refused before anything is
+// built, with its size and why it is that tall.
+TEST(Intarsia, aStackTooLargeToRelaxIsRefusedWithItsSize) {
+    std::string stitches, even, odd;  // rows A B A B ... and B A B A ...
+    for (int c = 0; c < 100; ++c) {
+        const std::string gap = c ? " " : "";
+        stitches += gap + "k";
+        even += gap + (c % 2 ? "B" : "A");
+        odd += gap + (c % 2 ? "A" : "B");
+    }
+    const Chart chart = parseChart(
+        stitches + "\n" + stitches + "\n\n" + odd + "\n" + even + "\nA=#ffffff B=#000000\nintarsia\n", "wide.chart");
+    EXPECT_EQ(chartStacking(chart).rows, 100);
+    try {
+        relaxChart(chart);
+        FAIL() << "relaxed";
+    } catch (const Error& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("wide.chart: intarsia: the colour areas move round the period"), std::string::npos) << what;
+        EXPECT_NE(what.find("100 rows x 100 stitches at 24 samples per stitch make at least 240000 yarn vertices, "
+                            "more than 48000"),
+                  std::string::npos)
+            << what;
+    }
 }
 
 }  // namespace

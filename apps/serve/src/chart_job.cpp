@@ -106,6 +106,8 @@ void addDesignWarnings(const Chart& chart, const ChartCell& cell, nlohmann::json
                            " stitches long, longer than " + std::to_string(kMaxFloat) +
                            " (long floats snag: catch it or shorten the run)");
     }
+    const std::string stacked = stackingWarning(chart, cell.stacking);
+    if (!stacked.empty()) warnings.push_back(stacked);
     int eyelets = 0;
     for (StitchOp op : chart.op) eyelets += op == StitchOp::YarnOver ? 1 : 0;
     if (eyelets > 0)

@@ -100,9 +100,10 @@ constexpr int kMaxStrandedColours = 4;
 // an empty chart, a bad colour block or palette, a row that does not consume the loops the row
 // below makes (with both counts), and charts whose yarn would not hold together: a column of
 // yarn-overs on every row, a loop slipped or tucked on every row or on more than kMaxHeldRows;
-// for intarsia, an area that lasts one row (one row tall, or a boundary that jumps two or more
-// columns), stripes that move round the period onto another area of their colour, a single area,
-// or a stitch beside a colour boundary that is not a knit-face loop.
+// for intarsia, an area that lasts one row (one row tall, or a boundary that jumps three or more
+// columns), a single area, or a stitch beside a colour boundary that is not a knit-face loop
+// (stripes that move round the period onto another area of their colour are built stacked:
+// chartStacking in knit/chart_topology.hpp).
 Chart parseChart(const std::string& text, const std::string& source);
 Chart loadChart(const std::string& path);
 // The text of a chart file, refused (knit::Error naming the path) when it does not exist, is a

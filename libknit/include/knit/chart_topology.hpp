@@ -31,7 +31,7 @@
 //   * intarsia: one yarn per colour area, knitted back and forth: a serpentine up the period that
 //     turns at the area's boundaries behind the work, each turn hooked through the neighbouring
 //     yarn's turns above and below (an odd-height chart is stacked twice, so the cell has an even
-//     number of rows); where a boundary moves a column between rows the turn is carried a stitch
+//     number of rows, areas that wander round the period until each comes back to itself); where a boundary moves a column between rows the turn is carried a stitch
 //     on, hooking at each row's boundary; a motif's yarns are open, with tails (docs/charts.md).
 //
 // The loop shape in the plane is the plain-knit curve of generateStockinette (K. Crane's model),
@@ -40,6 +40,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "knit/chart.hpp"
@@ -89,9 +90,30 @@ struct ChartFloat {
     std::vector<uint32_t> vertices;  // its vertices, in yarn order
 };
 
+// How the cell's rows repeat the chart's: an intarsia chart whose every row continues into the
+// next has its rows stacked until each area's yarn closes: twice when it has an odd number of rows
+// (a serpentine turns on alternate rows), and, when its areas move round the period and arrive on
+// another area of their colour (`B A B A` / `A B A B`, diagonals a column a row), until each area
+// comes back to itself (`wandering`; docs/charts.md, "Diagonals").
+struct ChartStacking {
+    int times = 1;  // the cell's rows are the chart's this many times over
+    int rows = 0;   // the cell's rows
+    bool wandering = false;
+};
+ChartStacking chartStacking(const Chart& chart);
+// The designer's note for a chart stacked because its areas wander ("" otherwise): the chart's
+// repeat became N rows tall, and why.
+std::string stackingWarning(const Chart& chart, const ChartStacking& stacking);
+// Refuses (knit::Error naming the chart, the stacked rows x stitches, the yarn vertices they make
+// at `samplesPerStitch` and `limit`, `why` the limit holds) a chart whose wandering areas stack it
+// into a cell of more than `limit` yarn vertices (counting a loop per stitch), before it is built.
+void checkStackedSize(const Chart& chart, const ChartStacking& stacking, int samplesPerStitch, uint64_t limit,
+                      const std::string& why);
+
 struct ChartCell {
     Pattern pattern;                             // points, twist 0, periodic edges (as in .pyp)
-    int width = 0, height = 0;                   // stitches per period (the chart's size)
+    int width = 0, height = 0;                   // stitches per period (the cell's size: rows stacked)
+    ChartStacking stacking;                      // how the cell's rows repeat the chart's
     std::vector<StitchLoop> loops;               // row-major, row 0 first
     std::vector<std::array<uint8_t, 3>> colour;  // per loop sRGB; empty without a colour layer
     std::vector<ChartFloat> floats;              // every float (rows of the chart as written)

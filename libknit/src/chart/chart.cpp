@@ -323,21 +323,11 @@ void readColours(const Block& block, const std::string& source, Chart& chart) {
              "row to row (the yarn is carried one or two stitches on), or knit it `stranded`");
 }
 
-// A chart whose areas continue from every row into the next round the period but come back to
-// other areas (a stripe that moves round the period onto another stripe of its colour): its yarns
-// would not close. Refused at the first row's colour line.
-[[noreturn]] void refuseWanderingAreas(const std::string& source, const Chart& chart, const Block& colours) {
-    const Line& line = colours[size_t(chart.height - 1)];
-    fail(source, line.number, 1,
-         "intarsia: the colour areas move from row to row round the whole period and come back onto "
-         "other areas of their colour, so no area's yarn returns to where it started: repeat the rows "
-         "until each area comes back to itself, or give the areas a row where they start");
-}
-
 // Intarsia in a periodic cell (chart_intarsia.hpp): at least one row with two colour areas; the
 // rows whose areas continue (the same areas, boundaries moving by at most a column) form blocks,
 // each of several areas at least two rows tall (the areas' yarns turn round each other), unless
-// every row continues into the next (closed yarns, each area back to itself); the stitches either
+// every row continues into the next (closed yarns; areas that wander round the period onto another
+// of their colour are stacked by chartToCell until each comes back to itself); the stitches either
 // side of a boundary are knit-face loops the turns and tails can leave from behind.
 void checkIntarsia(const std::string& source, const Chart& chart, const Block& colours) {
     const int w = chart.width;
@@ -350,8 +340,6 @@ void checkIntarsia(const std::string& source, const Chart& chart, const Block& c
     if (!blocks.front().closed)
         for (const intarsia::RowBlock& b : blocks)
             if (b.areas.size() > 1 && b.rows < 2) refuseOneRowBlock(source, chart, colours, b);
-    if (blocks.front().closed && !intarsia::rowBlocks(intarsia::evenRows(chart)).front().returns)
-        refuseWanderingAreas(source, chart, colours);
     for (int r = 0; r < chart.height; ++r)
         for (int c = 0; c < w; ++c) {
             const bool edge = chart.colourAt(r, c) != chart.colourAt(r, (c + 1) % w) ||

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <optional>
 #include <utility>
 
@@ -127,21 +128,42 @@ std::vector<RowBlock> rowBlocks(const Chart& chart) {
     return out;
 }
 
-Chart evenRows(const Chart& chart) {
-    if (chart.height % 2 == 0) return chart;
-    Chart twice = chart;
-    auto repeat = [](auto& v) { v.insert(v.end(), v.begin(), v.end()); };
-    repeat(twice.kind);
-    repeat(twice.op);
-    repeat(twice.rowLine);
-    repeat(twice.firstSource);
-    repeat(twice.colour);
-    for (ChartCable c : chart.cables) {
-        c.row += chart.height;
-        twice.cables.push_back(c);
+Closing closing(const Chart& chart) {
+    const RowBlock block = rowBlocks(chart).front();
+    if (!block.closed) return {1, chart.height, false};
+    // Step 1: after the chart's rows each area arrives on area places[a].back().index; the rows
+    // close every yarn after the least common multiple of that permutation's cycle lengths
+    // (a cyclic shift of the areas: at most their count).
+    int cycles = 1;
+    for (size_t a = 0; a < block.places.size(); ++a) {
+        int length = 1;
+        for (size_t at = size_t(block.places[a].back().index); at != a; at = size_t(block.places[at].back().index))
+            ++length;
+        cycles = cycles / std::gcd(cycles, length) * length;
     }
-    twice.height = 2 * chart.height;
-    return twice;
+    // Step 2: each serpentine turns on alternate rows, so it closes after an even number of rows.
+    const int times = (cycles * chart.height) % 2 == 0 ? cycles : 2 * cycles;
+    return {times, times * chart.height, cycles > 1};
+}
+
+Chart repeatRows(const Chart& chart, int times) {
+    Chart out = chart;
+    auto repeat = [times](auto& v) {
+        const auto once = v;
+        for (int k = 1; k < times; ++k) v.insert(v.end(), once.begin(), once.end());
+    };
+    repeat(out.kind);
+    repeat(out.op);
+    repeat(out.rowLine);
+    repeat(out.firstSource);
+    repeat(out.colour);
+    for (int k = 1; k < times; ++k)
+        for (ChartCable c : chart.cables) {
+            c.row += k * chart.height;
+            out.cables.push_back(c);
+        }
+    out.height = times * chart.height;
+    return out;
 }
 
 TurnPoints turnPoints(const Turn& turn, double spacing) {

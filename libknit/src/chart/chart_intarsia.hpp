@@ -5,7 +5,9 @@
 // continue from the row below's (vertical bands, or boundaries that step a column between rows),
 // each area's yarn runs along its columns of row 0 to the right, turns at the area's boundary up
 // into row 1, runs back to the left, turns at the other boundary, and so on: a serpentine that
-// closes through the period in y (an even number of rows; an odd chart is stacked twice). Where
+// closes through the period in y (an even number of rows; an odd chart is stacked twice, and
+// areas that move round the period onto another area of their colour are stacked until each comes
+// back to itself). Where
 // two areas meet, the yarns turn on alternate rows, and each turn reaches past the boundary
 // behind the work and hooks through its neighbours' turns above and below: a chain of
 // interlocked turns along the boundary, the twist knitters make when they change colour, so the
@@ -68,9 +70,19 @@ struct RowBlock {
 // at the lowest row whose areas do not continue from the row below's (cyclic).
 std::vector<RowBlock> rowBlocks(const Chart& chart);
 
-// An odd-height chart stacked twice (its rows repeated, cables copied), so each yarn's
-// serpentine closes after an even number of rows; an even one unchanged.
-Chart evenRows(const Chart& chart);
+// How many times a chart whose every row continues into the next (one closed block) is stacked
+// so each area's yarn closes: its serpentine needs an even number of rows (an odd chart is stacked
+// twice), and areas that move round the period and arrive on another area of their colour (`B A B
+// A` / `A B A B`) need the rows repeated until each comes back to itself. `wandering` says the
+// latter set the count; `rows` is the stacked cell's height.
+struct Closing {
+    int times = 1, rows = 0;
+    bool wandering = false;
+};
+Closing closing(const Chart& chart);
+
+// The chart's rows repeated `times` times (cables copied).
+Chart repeatRows(const Chart& chart, int times);
 
 // One turn of a yarn at a colour boundary, in model units (yarn radius 0.8): from the foot
 // `from` of its last loop in row g to the foot `to` of its first loop in row g + 1 (unwrapped).

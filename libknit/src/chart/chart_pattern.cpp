@@ -26,6 +26,8 @@ void checkRelaxCost(const Chart& chart, const ChartCell& cell, int samplesPerSti
 
 // Step 1: the initial cell with the crossing structure of the chart.
 ChartCell initialCell(const Chart& chart, const ChartPatternOptions& options) {
+    checkStackedSize(chart, chartStacking(chart), options.samplesPerStitch, kMaxRelaxedChartVertices,
+                     "about 2000 stitches; the relaxation would run for many minutes");
     ChartCellOptions cellOptions;
     cellOptions.radius = options.radius;
     cellOptions.samplesPerStitch = options.samplesPerStitch;

@@ -722,19 +722,49 @@ void colourLayer(const Chart& chart, const std::vector<char>& letter, ChartCell&
 
 }  // namespace
 
+ChartStacking chartStacking(const Chart& chart) {
+    if (chart.colourwork != Colourwork::Intarsia) return {1, chart.height, false};
+    const intarsia::Closing c = intarsia::closing(chart);
+    return {c.times, c.rows, c.wandering};
+}
+
+std::string stackingWarning(const Chart& chart, const ChartStacking& stacking) {
+    if (!stacking.wandering) return "";
+    return "intarsia: the colour areas move round the period and, after the chart's " + std::to_string(chart.height) +
+           " rows, arrive on other areas of their colour; each area's yarn comes back to itself after " +
+           std::to_string(stacking.rows) + " rows, so the chart's repeat is knitted " + std::to_string(stacking.rows) +
+           " rows tall (its rows " + std::to_string(stacking.times) + " times over)";
+}
+
+void checkStackedSize(const Chart& chart, const ChartStacking& stacking, int samplesPerStitch, uint64_t limit,
+                      const std::string& why) {
+    const uint64_t vertices = uint64_t(chart.width) * uint64_t(stacking.rows) * uint64_t(samplesPerStitch);
+    if (!stacking.wandering || vertices <= limit) return;
+    throw Error(chart.name + ": " + stackingWarning(chart, stacking) + ": " + std::to_string(stacking.rows) +
+                " rows x " + std::to_string(chart.width) + " stitches at " + std::to_string(samplesPerStitch) +
+                " samples per stitch make at least " + std::to_string(vertices) + " yarn vertices, more than " +
+                std::to_string(limit) + " (" + why +
+                "): chart a repeat in which fewer areas go round the period, or give the areas a row where they "
+                "start");
+}
+
 ChartCell chartToCell(const Chart& chart, const ChartCellOptions& options) {
     if (!util::positiveFinite(options.radius)) throw Error("knitting chart: the yarn radius must be positive");
     if (options.samplesPerStitch < 8) throw Error("knitting chart: the samples per stitch must be >= 8");
     // Intarsia is knitted back and forth: when every row continues from the row below each yarn's
-    // serpentine closes after an even number of rows (motifs' yarns are open: any number).
+    // serpentine closes after an even number of rows, and once each area is back on itself
+    // (chartStacking; motifs' yarns are open: any number).
     const bool isIntarsia = chart.colourwork == Colourwork::Intarsia;
-    const bool closed = isIntarsia && intarsia::rowBlocks(chart).front().closed;
-    const Chart even = closed ? intarsia::evenRows(chart) : Chart{};
-    const Chart& ch = closed ? even : chart;
+    const ChartStacking stacking = chartStacking(chart);
+    checkStackedSize(chart, stacking, options.samplesPerStitch, kMaxChartVertices,
+                     "a chart is one period of the fabric");
+    const Chart stacked = stacking.times > 1 ? intarsia::repeatRows(chart, stacking.times) : Chart{};
+    const Chart& ch = stacking.times > 1 ? stacked : chart;
     const double s = options.radius / kModelRadius;  // metres per model unit
     ChartCell cell;
     cell.width = ch.width;
     cell.height = ch.height;
+    cell.stacking = stacking;
     const std::vector<RowYarns> yarns = rowYarns(ch);
     const std::vector<Plan> plan = planLoops(ch);
     const RowLayout rows = rowLayout(ch, plan);
