@@ -3,7 +3,6 @@
 // other. On a CPU without AVX2 the `simd` calls do nothing and the comparisons are trivial.
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <cstring>
 #include <vector>
 
@@ -98,48 +97,6 @@ TEST(FramesSimd, kernelsAreTheScalarDefinitionsBitForBit) {
             EXPECT_TRUE(sameBytes(P[i * m + j], mine ? x[j] + 2.5e-4 * radial : dvec3(7.0))) << i << " " << j;
             EXPECT_TRUE(sameBytes(D[i * m + j], mine ? radial : dvec3(7.0))) << i << " " << j;
         }
-}
-
-// The streamed helices (the Animator's whole-frame plies) write every point of every ply as
-// helixPoint does, bit for bit, whatever the output's alignment (each ply starts at its own
-// offset from a 32-byte boundary), and nothing outside the plies' points.
-TEST(FramesSimd, streamedHelicesAreTheScalarDefinitionBitForBit) {
-    if (!util::avx2Kernels()) GTEST_SKIP() << "no AVX2 on this CPU (or KNIT_SIMD=0): only the scalar code runs";
-    const double cosPly[3] = {1.0, std::cos(2.0944), std::cos(4.18879)};
-    const double sinPly[3] = {0.0, std::sin(2.0944), std::sin(4.18879)};
-    for (size_t m : {1, 2, 3, 5, 8, 13, 301}) {
-        const std::vector<dvec3> x = testCurve(std::max<size_t>(m, 141));
-        std::vector<dvec3> T(x.size()), N(x.size());
-        curveFrames(x.data(), x.size(), false, nullptr, T.data(), N.data());
-        std::vector<glm::dvec2> phase(m);
-        for (size_t j = 0; j < m; ++j) phase[j] = {std::cos(0.3 * double(j)), std::sin(0.3 * double(j))};
-        for (uint32_t plies : {1u, 2u, 3u}) {
-            const impl::HelixInput in{x.data(), T.data(), N.data(), phase.data(), m, plies, cosPly, sinPly, 2.5e-4};
-            for (size_t offset = 0; offset < 4; ++offset) {  // the output 0, 24, 48, 72 bytes past a boundary
-                std::vector<dvec3> P(plies * m + 8, dvec3(7.0)), D(plies * m + 8, dvec3(7.0));
-                dvec3* p = P.data() + offset;
-                dvec3* d = D.data() + offset;
-                // D aligned as P (its offset from a 32-byte boundary the same), else no streaming.
-                const bool alike = (reinterpret_cast<uintptr_t>(p) - reinterpret_cast<uintptr_t>(d)) % 32 == 0;
-                EXPECT_EQ(impl::helicesStreamed(in, p, alike ? d : nullptr, true), true) << m << " " << offset;
-                EXPECT_FALSE(impl::helicesStreamed(in, p, alike ? d : nullptr, false));
-                if (alike) EXPECT_FALSE(impl::helicesStreamed(in, p, d + 1, true));  // 24 bytes apart
-                for (uint32_t i = 0; i < plies; ++i)
-                    for (size_t j = 0; j < m; ++j) {
-                        dvec3 q, r;
-                        impl::helixPoint(x[j], N[j], glm::cross(T[j], N[j]), phase[j].x, phase[j].y, cosPly[i],
-                                         sinPly[i], 2.5e-4, q, &r);
-                        EXPECT_TRUE(sameBytes(p[i * m + j], q)) << m << " " << plies << " " << offset << " " << j;
-                        if (alike) EXPECT_TRUE(sameBytes(d[i * m + j], r)) << m << " " << offset << " " << j;
-                    }
-                for (size_t k = 0; k < P.size(); ++k)
-                    if (k < offset || k >= offset + plies * m) {
-                        EXPECT_TRUE(sameBytes(P[k], dvec3(7.0))) << "outside: " << k;
-                        EXPECT_TRUE(sameBytes(D[k], dvec3(7.0))) << "outside: " << k;
-                    }
-            }
-        }
-    }
 }
 
 // curveFrames fills the next block's matrices a few slots at a time during the chain: slots

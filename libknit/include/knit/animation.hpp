@@ -44,8 +44,6 @@
 
 namespace knit {
 
-struct ResampleScratch;  // internal (resample_curve.hpp)
-
 // ---------------------------------------------------------------------------------------------
 // Frame sequences (src/frame_sequence.cpp)
 
@@ -164,9 +162,7 @@ struct FrameStats {
     double yarnLengthRatio = 1.0;
 };
 
-// Wall time of the per-frame stages of one evaluate call. With plies, each yarn is resampled
-// just before its plies are swept (its centreline then stays in the caches): `plies` holds both
-// and `resample` is 0; without plies (statistics alone), `resample` is the resampling.
+// Wall time of the per-frame stages of one evaluate call.
 struct AnimationStageTimes {
     double normals = 0, evaluate = 0, resample = 0, plies = 0, stats = 0;
 };
@@ -230,8 +226,6 @@ public:
     const Plies& plyTopology() const { return plyTopology_; }
 
 private:
-    void prepareCentres(AnimationFrame& out) const;
-    void resampleYarn(size_t y, AnimationFrame& out, ResampleScratch& scratch) const;
     void resample(AnimationFrame& out) const;
     void sweep(const std::vector<glm::dvec3>& positions, AnimationFrame& out) const;
 

@@ -54,10 +54,6 @@ double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock:
 // depend on it.
 constexpr size_t kYarnGrain = 2;
 
-// A frame's plies above this many bytes are written with streaming stores: they would not stay in
-// the caches anyway, and the stores then need not read the lines first (docs/memory-limit.md).
-constexpr double kStreamBytes = 64e6;
-
 }  // namespace
 
 Animator::Animator(const Scene& rest, const AnimatorOptions& options) : rest_(rest), options_(options) {
@@ -139,13 +135,12 @@ void Animator::evaluate(const std::vector<dvec3>& positions, AnimationFrame& out
     else evaluateBinding(rest_.binding(), mesh.faces, positions, out.meshNormals, out.yarns);
     t.evaluate = since(t0);
 
-    // Step 3: the centrelines resampled with the rest layouts (for the statistics alone).
+    // Step 3: the centrelines resampled with the rest layouts (for the plies and the statistics).
     t0 = Clock::now();
-    if (!options_.plies && options_.stats) resample(out);
+    if (options_.plies || options_.stats) resample(out);
     t.resample = since(t0);
 
-    // Step 4 (with plies): per yarn, the centreline resampled (step 3 for that yarn), then frames
-    // and helices with the rest twist phase while the centreline is still in the caches.
+    // Step 4: frames and helices with the rest twist phase.
     t0 = Clock::now();
     if (options_.plies) sweep(positions, out);
     t.plies = since(t0);
@@ -163,31 +158,23 @@ void Animator::evaluate(const std::vector<dvec3>& positions, AnimationFrame& out
     if (times) *times = t;
 }
 
-void Animator::prepareCentres(AnimationFrame& out) const {
+void Animator::resample(AnimationFrame& out) const {
     const AnimatorBindState& b = *bind_;
+    const size_t yarnCount = b.restPitch.size();
     Polylines& c = out.centres;
     if (c.offsets != b.centreOffsets) {  // first frame with this buffer
         c.offsets = b.centreOffsets;
         c.closed = generator_->yarns().curves.closed;
         c.points.resize(b.centreOffsets.back());
     }
-}
-
-void Animator::resampleYarn(size_t y, AnimationFrame& out, ResampleScratch& scratch) const {
-    const AnimatorBindState& b = *bind_;
-    resampleCurveWithLayout(out.yarns.curves, y, b.kept.data() + b.keptOffsets[y],
-                            b.keptOffsets[y + 1] - b.keptOffsets[y], b.pieces.data() + b.pieceOffsets[y],
-                            out.centres.points.data() + b.centreOffsets[y], scratch);
-}
-
-void Animator::resample(AnimationFrame& out) const {
-    prepareCentres(out);
     tbb::enumerable_thread_specific<ResampleScratch> scratches;
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, bind_->restPitch.size(), kYarnGrain),
-                      [&](const tbb::blocked_range<size_t>& r) {
-                          ResampleScratch& scratch = scratches.local();
-                          for (size_t y = r.begin(); y < r.end(); ++y) resampleYarn(y, out, scratch);
-                      });
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, yarnCount, kYarnGrain), [&](const tbb::blocked_range<size_t>& r) {
+        ResampleScratch& scratch = scratches.local();
+        for (size_t y = r.begin(); y < r.end(); ++y)
+            resampleCurveWithLayout(out.yarns.curves, y, b.kept.data() + b.keptOffsets[y],
+                                    b.keptOffsets[y + 1] - b.keptOffsets[y], b.pieces.data() + b.pieceOffsets[y],
+                                    c.points.data() + b.centreOffsets[y], scratch);
+    });
 }
 
 void Animator::sweep(const std::vector<dvec3>& positions, AnimationFrame& out) const {
@@ -197,11 +184,9 @@ void Animator::sweep(const std::vector<dvec3>& positions, AnimationFrame& out) c
         p.curves.points.resize(plyTopology_.curves.offsets.back());
         if (options_.radial) p.radial.resize(plyTopology_.curves.offsets.back());
     }
-    prepareCentres(out);
     const AnimatorBindState& b = *bind_;
     const size_t yarnCount = b.restPitch.size();
     const std::vector<glm::uvec3>& faces = rest_.mesh().faces;
-    const bool stream = double(plyPointCount()) * sizeof(dvec3) > kStreamBytes;
     tbb::enumerable_thread_specific<PlyScratch> scratches;
     // The strain table's twist (when it has any): the rest phase turned by the frame's twist.
     const std::vector<float>& twist = out.yarns.twist;
@@ -209,7 +194,6 @@ void Animator::sweep(const std::vector<dvec3>& positions, AnimationFrame& out) c
     tbb::parallel_for(tbb::blocked_range<size_t>(0, yarnCount, kYarnGrain), [&](const tbb::blocked_range<size_t>& r) {
         PlyScratch& scratch = scratches.local();
         for (size_t y = r.begin(); y < r.end(); ++y) {
-            resampleYarn(y, out, impl::PlyKernel::buffers(scratch).resample);
             const size_t m = b.centreOffsets[y + 1] - b.centreOffsets[y];
             if (m < 2) continue;
             const glm::dvec2* phase = b.restPhase.data() + b.centreOffsets[y];
@@ -241,7 +225,7 @@ void Animator::sweep(const std::vector<dvec3>& positions, AnimationFrame& out) c
             impl::PlyKernel::sweepWithCosSin(*generator_, y, out.centres.points.data() + b.centreOffsets[y], m, phase,
                                              &seedNormal, carried ? &seedTangent : nullptr,
                                              p.curves.points.data() + plyOfYarn_[y], scratch,
-                                             options_.radial ? p.radial.data() + plyOfYarn_[y] : nullptr, stream);
+                                             options_.radial ? p.radial.data() + plyOfYarn_[y] : nullptr);
         }
     });
 }

@@ -202,8 +202,13 @@ void helices(const PlyOptions& opt, const dvec3* X, const dvec3* T, const dvec3*
         const dvec3 nj = N[j];
         const dvec3 bj = glm::cross(T[j], nj);
         const dvec3 xj = X[j];
-        for (uint32_t i = 0; i < n; ++i)
-            helixPoint(xj, nj, bj, ct, st, cosPly[i], sinPly[i], R, P[i * m + j], D ? &D[i * m + j] : nullptr);
+        for (uint32_t i = 0; i < n; ++i) {
+            const double c = ct * cosPly[i] - st * sinPly[i];  // cos(theta + 2 pi i / n)
+            const double s = st * cosPly[i] + ct * sinPly[i];  // sin(theta + 2 pi i / n)
+            const dvec3 radial = c * nj + s * bj;
+            P[i * m + j] = xj + R * radial;
+            if (D) D[i * m + j] = radial;
+        }
     }
 }
 
@@ -238,14 +243,13 @@ void PlyKernel::sweepWithPhase(const PlyGenerator& g, size_t y, const dvec3* X, 
 
 void PlyKernel::sweepWithCosSin(const PlyGenerator& g, size_t y, const dvec3* X, size_t m, const glm::dvec2* phase,
                                 const dvec3* seed, const dvec3* seedTangent, dvec3* P, PlyScratch& scratch,
-                                dvec3* radial, bool stream) {
+                                dvec3* radial) {
     PlyScratch::Buffers& buf = buffers(scratch);
     frames(g, y, X, m, seed, seedTangent, buf);
     // Four points at a time in AVX2 (helices_simd.cpp, bit for bit), the rest here.
     const HelixInput in{
         X,         buf.tangent.data(), buf.normal.data(),      phase, m, static_cast<uint32_t>(g.options_.count),
         g.cosPly_, g.sinPly_,          g.options_.centerRadius};
-    if (stream && util::streamingStores() && helicesStreamed(in, P, radial, util::avx2Kernels())) return;
     const size_t done = helicesCosSin(in, P, radial, util::avx2Kernels());
     helices(
         g.options_, X, buf.tangent.data(), buf.normal.data(), m, g.cosPly_, g.sinPly_,

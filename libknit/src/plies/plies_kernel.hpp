@@ -70,12 +70,10 @@ struct PlyKernel {
     // (cos theta, sin theta) (animation: computed once from the rest pose, so the phase stays
     // attached to the yarn material), and the frame seed: the surface normal at the first point,
     // or null; with seedTangent, a normal carried over from another pose and transported onto
-    // the first tangent (see curveFrames). `stream`: write the points with streaming stores when
-    // the CPU can (util::streamingStores; the same bits), for outputs far larger than the caches.
+    // the first tangent (see curveFrames).
     static void sweepWithCosSin(const PlyGenerator& generator, size_t y, const glm::dvec3* centre, size_t m,
                                 const glm::dvec2* phase, const glm::dvec3* seed, const glm::dvec3* seedTangent,
-                                glm::dvec3* points, PlyScratch& scratch, glm::dvec3* radial = nullptr,
-                                bool stream = false);
+                                glm::dvec3* points, PlyScratch& scratch, glm::dvec3* radial = nullptr);
 };
 
 }  // namespace impl

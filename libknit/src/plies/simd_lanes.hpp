@@ -28,29 +28,15 @@ KNIT_AVX2 inline Lanes load4(const dvec3* p) {
     return l;
 }
 
-// The inverse of load4's shuffles: x, y, z lanes as the twelve doubles of four points.
-struct Interleaved {
-    __m256d d[3];
-};
-KNIT_AVX2 inline Interleaved interleave4(const Lanes& l) {
+// The inverse of load4: x, y, z lanes stored as four points.
+KNIT_AVX2 inline void store4(dvec3* p, const Lanes& l) {
+    double* d = &p->x;
     const __m256d t0 = _mm256_unpacklo_pd(l.x, l.y);        // x0 y0 | x2 y2
     const __m256d u = _mm256_shuffle_pd(l.z, l.x, 0b1010);  // z0 x1 | z2 x3
     const __m256d v = _mm256_shuffle_pd(l.y, l.z, 0b1111);  // y1 z1 | y3 z3
-    return {
-        {_mm256_permute2f128_pd(t0, u, 0x20), _mm256_permute2f128_pd(v, t0, 0x30), _mm256_permute2f128_pd(u, v, 0x31)}};
-}
-
-// The inverse of load4: x, y, z lanes stored as four points.
-KNIT_AVX2 inline void store4(dvec3* p, const Lanes& l) {
-    const Interleaved i = interleave4(l);
-    for (int k = 0; k < 3; ++k) _mm256_storeu_pd(&p->x + 4 * k, i.d[k]);
-}
-
-// store4 with streaming (non-temporal) stores, which write the lines without reading them
-// first: p must be 32-byte aligned, and the caller ends its streamed range with _mm_sfence.
-KNIT_AVX2 inline void stream4(dvec3* p, const Lanes& l) {
-    const Interleaved i = interleave4(l);
-    for (int k = 0; k < 3; ++k) _mm256_stream_pd(&p->x + 4 * k, i.d[k]);
+    _mm256_storeu_pd(d, _mm256_permute2f128_pd(t0, u, 0x20));
+    _mm256_storeu_pd(d + 4, _mm256_permute2f128_pd(v, t0, 0x30));
+    _mm256_storeu_pd(d + 8, _mm256_permute2f128_pd(u, v, 0x31));
 }
 
 KNIT_AVX2 inline Lanes divide(const Lanes& a, __m256d s) {

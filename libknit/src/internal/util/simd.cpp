@@ -25,12 +25,4 @@ bool avx2Kernels() {
     return available;
 }
 
-bool streamingStores() {
-    static const bool on = [] {
-        const char* env = std::getenv("KNIT_STREAM");
-        return !(env && std::strcmp(env, "0") == 0);
-    }();
-    return on;
-}
-
 }  // namespace knit::util

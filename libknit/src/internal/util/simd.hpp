@@ -19,8 +19,5 @@ namespace knit::util {
 // True when the CPU has AVX2 and KNIT_SIMD is not "0" in the environment (read once; the
 // variable exists to compare against the scalar loops).
 bool avx2Kernels();
-// False when KNIT_STREAM is "0" in the environment (read once): the kernels that may write a
-// large output with streaming stores (the Animator's plies) then store as usual, to compare.
-bool streamingStores();
 
 }  // namespace knit::util
