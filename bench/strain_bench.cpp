@@ -8,6 +8,11 @@
 // wave, yarns only) the Animator with the deformer against one without; counters strainOverGeometric
 // (wall) and cpuStrainOverGeometric (process CPU, the steadier number on a shared machine), over 5
 // and over 20 frames. KNIT_SIMD=0 runs both frames' scalar loops (to compare in one binary).
+// BasketweaveSample: one table sample of chart:basketweave (384 cell vertices, the sparse Newton
+// systems of docs/deformation.md "400-vertex patterns"): relaxStrainCell from the pattern's own
+// cell onto the lattice stretched by 15 % along the courses (one step of the default sx axis);
+// counters iterations, converged, cpuSeconds and cpuMsPerIteration (process CPU).
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <ctime>
@@ -17,6 +22,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include "bench_clock.hpp"
 #include "knit/animation.hpp"
 #include "knit/generator.hpp"
 #include "knit/strain.hpp"
@@ -44,6 +50,20 @@ void strainTable(benchmark::State& state) {
     }
 }
 BENCHMARK(strainTable)->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
+
+void basketweaveSample(benchmark::State& state) {
+    const knit::Pattern pattern = knit::loadPatternFileOrName("chart:basketweave");
+    for (auto _ : state) {
+        const double c0 = knit::bench::cpuSeconds();
+        const knit::StrainCellResult r = knit::relaxStrainCell(pattern, {0.15, 0, 0}, {});
+        const double cpu = knit::bench::cpuSeconds() - c0;
+        state.counters["iterations"] = r.iterations;
+        state.counters["converged"] = r.converged ? 1 : 0;
+        state.counters["cpuSeconds"] = cpu;
+        state.counters["cpuMsPerIteration"] = 1e3 * cpu / std::max(1, r.iterations);
+    }
+}
+BENCHMARK(basketweaveSample)->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
 
 const knit::Scene& garment() {
     static const knit::Scene scene = [] {

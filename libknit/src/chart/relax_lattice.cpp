@@ -14,6 +14,7 @@
 #include <glm/mat3x3.hpp>
 
 #include "knit/error.hpp"
+#include "block_hessian.hpp"
 #include "relax_contact.hpp"
 
 namespace knit::impl {
@@ -193,21 +194,14 @@ struct State {
     }
 
     // The energy's Hessian with respect to the reference-space unknowns at the last evaluation
-    // (its x), each term's deformed-space block pulled back through M (M^T A M). Projected to be
+    // (its x), each term's deformed-space block pulled back through M (M^T A M), handed to
+    // add(i, j, coef, A) block by block (blocks (i, j) of blockPattern only). Projected to be
     // positive semi-definite per term: a compressed segment's and a contact's transverse
     // (negative) parts are left out, so that a Newton step is a descent direction.
-    void hessian(std::vector<Eigen::Triplet<double>>& h) const {
-        h.clear();
+    template <class Add>
+    void hessian(const Add& add) const {
         const LatticeRelaxOptions& o = c.opt;
         const glm::dmat3 Mt = glm::transpose(M);
-        const auto block = [&](uint32_t i, uint32_t j, double coef, const glm::dmat3& A) {
-            for (int r = 0; r < 3; ++r)
-                for (int q = 0; q < 3; ++q) {
-                    const double value = coef * A[q][r];  // glm is column-major: A[column][row]
-                    if (value != 0)
-                        h.emplace_back(Eigen::Index(3 * i + uint32_t(r)), Eigen::Index(3 * j + uint32_t(q)), value);
-                }
-        };
         const auto outer = [](const glm::dvec3& a) { return glm::outerProduct(a, a); };
         for (size_t k = 0; k < c.n; ++k) {  // inextensibility
             const Seg& sg = c.segs[k];
@@ -217,10 +211,10 @@ struct State {
             const double along = 2 * o.stretch / c.rest[k];
             const double across = along * std::max(0.0, (l - c.rest[k]) / l);
             const glm::dmat3 A = Mt * (along * outer(u) + across * (glm::dmat3(1.0) - outer(u))) * M;
-            block(sg.a, sg.a, 1, A);
-            block(sg.b, sg.b, 1, A);
-            block(sg.a, sg.b, -1, A);
-            block(sg.b, sg.a, -1, A);
+            add(sg.a, sg.a, 1, A);
+            add(sg.b, sg.b, 1, A);
+            add(sg.a, sg.b, -1, A);
+            add(sg.b, sg.a, -1, A);
         }
         const double w = o.bend / (c.meanRest * c.meanRest * c.meanRest);
         const glm::dmat3 B = Mt * glm::dmat3(2 * w) * M;
@@ -228,7 +222,7 @@ struct State {
             const uint32_t idx[3] = {c.before[i].a, uint32_t(i), c.segs[i].b};
             const double coef[3] = {1, -2, 1};
             for (int r = 0; r < 3; ++r)
-                for (int q = 0; q < 3; ++q) block(idx[r], idx[q], coef[r] * coef[q], B);
+                for (int q = 0; q < 3; ++q) add(idx[r], idx[q], coef[r] * coef[q], B);
         }
         const double D = o.contactDistance;
         for (const Pair& pr : pairs) {  // contact, with the closest points' parameters held fixed
@@ -239,8 +233,21 @@ struct State {
             const uint32_t idx[4] = {sa.a, sa.b, tb.a, tb.b};
             const double coef[4] = {1 - a, a, -(1 - b), -b};
             for (int r = 0; r < 4; ++r)
-                for (int q = 0; q < 4; ++q) block(idx[r], idx[q], coef[r] * coef[q], A);
+                for (int q = 0; q < 4; ++q) add(idx[r], idx[q], coef[r] * coef[q], A);
         }
+    }
+
+    // hessian() as triplets (the dense path's input), zero entries left out.
+    void hessian(std::vector<Eigen::Triplet<double>>& h) const {
+        h.clear();
+        hessian([&](uint32_t i, uint32_t j, double coef, const glm::dmat3& A) {
+            for (int r = 0; r < 3; ++r)
+                for (int q = 0; q < 3; ++q) {
+                    const double value = coef * A[q][r];  // glm is column-major: A[column][row]
+                    if (value != 0)
+                        h.emplace_back(Eigen::Index(3 * i + uint32_t(r)), Eigen::Index(3 * j + uint32_t(q)), value);
+                }
+        });
     }
 
     // The gradient with respect to the reference-space unknowns: M^T gx.
@@ -329,6 +336,36 @@ struct Stage {
     double energy = 0;
 };
 
+// The Newton system H d = -g of one lattice stage: small cells a dense Cholesky factorisation of
+// the Hessian plus mu I (cheaper than any sparse analysis), large ones an inexact step by
+// conjugate gradients on an earlier iteration's sparse factor (block_hessian.hpp).
+struct NewtonSystem {
+    bool dense;
+    std::vector<Eigen::Triplet<double>> triplets;
+    Eigen::MatrixXd Hd;
+    Eigen::LLT<Eigen::MatrixXd> denseSolver;
+    BlockHessian sparse;
+
+    explicit NewtonSystem(size_t n) : dense(n <= 200) {
+        if (dense) Hd.resize(Eigen::Index(3 * n), Eigen::Index(3 * n));
+    }
+    // The Newton step at the state's last evaluation; empty where the factorisation fails.
+    Vec step(const State& st, double mu, const Vec& g) {
+        if (!dense) {
+            sparse.clear(st.c.n);
+            st.hessian([&](uint32_t i, uint32_t j, double coef, const glm::dmat3& A) { sparse.add(i, j, coef, A); });
+            const Vec d = sparse.solve(g, mu);
+            return d.size() == 0 ? d : Vec(-d);
+        }
+        st.hessian(triplets);
+        for (Eigen::Index i = 0; i < Hd.rows(); ++i) triplets.emplace_back(i, i, mu);
+        Hd.setZero();
+        for (const Eigen::Triplet<double>& t : triplets) Hd(t.row(), t.col()) += t.value();
+        denseSolver.compute(Hd);
+        return denseSolver.info() == Eigen::Success ? Vec(-denseSolver.solve(g)) : Vec();
+    }
+};
+
 // Damped Newton on one lattice from v: the projected Hessian (State::hessian) plus mu I (mu raised
 // while the step fails, lowered while it succeeds), a backtracking line search, and every step
 // capped so that no two segments move by more than 0.9 of their distance (the lattice is fixed
@@ -344,12 +381,7 @@ Stage newton(State& st, Vec& v, int maxIterations, double tolerance) {
     Vec g, gNew, vNew;
     double e = st.energy(v, gx, dmin);
     st.pullBack(gx, g);
-    std::vector<Eigen::Triplet<double>> triplets;
-    Eigen::SparseMatrix<double> H(Eigen::Index(3 * c.n), Eigen::Index(3 * c.n));
-    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver;
-    const bool dense = c.n <= 200;
-    Eigen::MatrixXd Hd(dense ? Eigen::Index(3 * c.n) : 0, dense ? Eigen::Index(3 * c.n) : 0);
-    Eigen::LLT<Eigen::MatrixXd> denseSolver;
+    NewtonSystem system(c.n);
     Stage stage;
     double mu = 1e-6;
     double drift = 0;
@@ -359,19 +391,7 @@ Stage newton(State& st, Vec& v, int maxIterations, double tolerance) {
             stage.converged = true;
             break;
         }
-        st.hessian(triplets);
-        for (Eigen::Index i = 0; i < Eigen::Index(3 * c.n); ++i) triplets.emplace_back(i, i, mu);
-        Vec d;
-        if (dense) {  // small cells: a dense Cholesky factorisation is cheaper than the sparse analysis
-            Hd.setZero();
-            for (const Eigen::Triplet<double>& t : triplets) Hd(t.row(), t.col()) += t.value();
-            denseSolver.compute(Hd);
-            if (denseSolver.info() == Eigen::Success) d = -denseSolver.solve(g);
-        } else {
-            H.setFromTriplets(triplets.begin(), triplets.end());
-            solver.compute(H);
-            if (solver.info() == Eigen::Success) d = -solver.solve(g);
-        }
+        Vec d = system.step(st, mu, g);
         if (d.size() != 0) {  // a translation of the whole cell changes nothing: not part of the step
             const Eigen::Vector3d mean = d.reshaped(3, Eigen::Index(c.n)).rowwise().mean();
             d.reshaped(3, Eigen::Index(c.n)).colwise() -= mean;
