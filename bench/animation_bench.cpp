@@ -18,7 +18,6 @@
 #include <cmath>
 #include <cstdlib>
 #include <ctime>
-#include <string>
 #include <vector>
 
 #include <benchmark/benchmark.h>
@@ -44,15 +43,6 @@ knit::SceneOptions garmentOptions() {
     return o;
 }
 
-// The Animator's options with the frames' precision from KNIT_PLY_PRECISION ("double" or
-// "float"; unset: the Animator's default), to compare the two in one binary.
-knit::AnimatorOptions animatorOptions() {
-    knit::AnimatorOptions o;
-    if (const char* env = std::getenv("KNIT_PLY_PRECISION"))
-        o.framePrecision = std::string(env) == "float" ? knit::FramePrecision::Float32 : knit::FramePrecision::Double;
-    return o;
-}
-
 const knit::Scene& garment() {
     static const knit::Scene scene = buildScene(knit::generateStockinette(), knit::makeDrape(), garmentOptions());
     return scene;
@@ -66,7 +56,7 @@ std::vector<glm::dvec3> waveFrame(const knit::BaseMesh& mesh, int k) {
 
 void animationFrame(benchmark::State& state) {
     const knit::Scene& rest = garment();
-    const knit::Animator animator(rest, animatorOptions());
+    const knit::Animator animator(rest);
     knit::AnimationFrame frame;
     std::vector<double> evaluate, plies, whole, normals, stats;
     size_t residentAt2 = 0, residentAt10 = 0;
@@ -99,7 +89,7 @@ void animationFrame(benchmark::State& state) {
     state.counters["medianFrameSeconds"] = whole[whole.size() / 2];
 
     // Process CPU time of the plies: frames with plies (no stats) minus frames without.
-    knit::AnimatorOptions withPlies = animatorOptions(), withoutPlies = animatorOptions();
+    knit::AnimatorOptions withPlies, withoutPlies;
     withPlies.stats = withoutPlies.stats = withoutPlies.plies = false;
     withPlies.plies = true;
     const knit::Animator plyAnimator(rest, withPlies), yarnAnimator(rest, withoutPlies);

@@ -39,7 +39,6 @@
 #include "knit/array_view.hpp"
 #include "knit/base_mesh.hpp"
 #include "knit/budget.hpp"
-#include "knit/frames.hpp"
 #include "knit/plies.hpp"
 #include "knit/scene.hpp"
 
@@ -135,8 +134,6 @@ struct AnimatorOptions {
     bool plies = true;
     bool stats = true;    // compute FrameStats per frame
     bool radial = false;  // with plies: also each ply point's radial direction (Plies::radial; a renderer needs it)
-    // The arithmetic of the plies' frame transport per frame (FrameOptions::precision).
-    FramePrecision framePrecision = FramePrecision::Double;
     // Apply the rest scene's strain deformer (SceneOptions::deform) on every frame; false: the
     // geometric mapping even for a scene built with a strain table.
     bool deform = true;

@@ -199,10 +199,7 @@ void curveFrames(const glm::dvec3* x, size_t n, bool closed, const glm::dvec3* s
     // normal stays in registers (r): read back from N, it would wait on its own store each step.
     const size_t steps = n - 1;
     impl::TransportBlock blocks[2];
-    const size_t stride = options.precision == FramePrecision::Float32 ? 8 : 4;  // steps per register
-    if (steps > 0)
-        impl::transportCoefficients(x, T, 0, std::min(impl::kTransportBlock, steps), blocks[0], simd, 0,
-                                    options.precision, !anyZero);
+    if (steps > 0) impl::transportCoefficients(x, T, 0, std::min(impl::kTransportBlock, steps), blocks[0], simd);
     dvec3 r = N[0];
     for (size_t first = 0, b = 0; first < steps; first += impl::kTransportBlock, b ^= 1) {
         const impl::TransportBlock& block = blocks[b];
@@ -210,9 +207,8 @@ void curveFrames(const glm::dvec3* x, size_t n, bool closed, const glm::dvec3* s
         const size_t nextFirst = first + impl::kTransportBlock;
         const size_t nextCount = nextFirst < steps ? std::min(impl::kTransportBlock, steps - nextFirst) : 0;
         for (size_t k = 0; k < count; ++k) {
-            if ((k & (stride - 1)) == 0 && k < nextCount)
-                impl::transportCoefficients(x, T, nextFirst, std::min(k + stride, nextCount), blocks[b ^ 1], simd, k,
-                                            options.precision, !anyZero);
+            if ((k & 3u) == 0 && k < nextCount)
+                impl::transportCoefficients(x, T, nextFirst, std::min(k + 4, nextCount), blocks[b ^ 1], simd, k);
             const size_t i = first + k;
             const bool renormalize = (i & 15u) == 15u || i + 2 == n;
             if (renormalize || block.reversal[k]) {

@@ -89,60 +89,6 @@ KNIT_AVX2 void fourSteps(const dvec3* x, const dvec3* t, size_t i, size_t k, Tra
     for (int j = 0; j < 4; ++j) b.reversal[k + j] = ((reversal >> j) & 1) != 0;
 }
 
-// Eight points of a dvec3 array rounded to float32 x, y, z lanes.
-struct FLanes {
-    __m256 x, y, z;
-};
-KNIT_AVX2 inline FLanes toFloat(const Lanes& lo, const Lanes& hi) {
-    return {_mm256_set_m128(_mm256_cvtpd_ps(hi.x), _mm256_cvtpd_ps(lo.x)),
-            _mm256_set_m128(_mm256_cvtpd_ps(hi.y), _mm256_cvtpd_ps(lo.y)),
-            _mm256_set_m128(_mm256_cvtpd_ps(hi.z), _mm256_cvtpd_ps(lo.z))};
-}
-KNIT_AVX2 inline __m256 fdot(const FLanes& a, const FLanes& b) {
-    return _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(a.x, b.x), _mm256_mul_ps(a.y, b.y)), _mm256_mul_ps(a.z, b.z));
-}
-
-// Steps i .. i + 7 into slots k .. k + 7 in float32 (v1 = x1 - x0 in double, then rounded):
-// stepScalar's operations eight lanes at a time, the matrices widened back to double.
-KNIT_AVX2 void eightStepsFloat(const dvec3* x, const dvec3* t, size_t i, size_t k, TransportBlock& b, bool noZero) {
-    const Lanes xa = load4(x + i), xb = load4(x + i + 4), ya = load4(x + i + 1), yb = load4(x + i + 5);
-    const FLanes v1 = toFloat(sub(ya, xa), sub(yb, xb));
-    const FLanes t0 = toFloat(load4(t + i), load4(t + i + 4)), t1 = toFloat(load4(t + i + 1), load4(t + i + 5));
-    const __m256 vv = fdot(v1, v1);
-    __m256 zero = _mm256_setzero_ps();
-    if (!noZero) {
-        const FLanes x0 = toFloat(xa, xb), x1 = toFloat(ya, yb);
-        const __m256 limit =
-            _mm256_mul_ps(_mm256_set1_ps(float(kZeroScale2)), _mm256_max_ps(fdot(x0, x0), fdot(x1, x1)));
-        zero = _mm256_cmp_ps(vv, limit, _CMP_LE_OQ);
-    }
-    const __m256 a1 = _mm256_andnot_ps(zero, _mm256_div_ps(_mm256_set1_ps(2.0f), vv));
-    const __m256 s1 = _mm256_mul_ps(a1, fdot(v1, t0));
-    const FLanes tL = {_mm256_blendv_ps(_mm256_sub_ps(t0.x, _mm256_mul_ps(s1, v1.x)), t0.x, zero),
-                       _mm256_blendv_ps(_mm256_sub_ps(t0.y, _mm256_mul_ps(s1, v1.y)), t0.y, zero),
-                       _mm256_blendv_ps(_mm256_sub_ps(t0.z, _mm256_mul_ps(s1, v1.z)), t0.z, zero)};
-    const FLanes v2 = {_mm256_sub_ps(t1.x, tL.x), _mm256_sub_ps(t1.y, tL.y), _mm256_sub_ps(t1.z, tL.z)};
-    const __m256 c2 = fdot(v2, v2);
-    const __m256 bent = _mm256_cmp_ps(c2, _mm256_set1_ps(1e-24f), _CMP_GT_OQ);
-    const __m256 b2 = _mm256_and_ps(bent, _mm256_div_ps(_mm256_set1_ps(2.0f), c2));
-    const FLanes u = {_mm256_mul_ps(a1, v1.x), _mm256_mul_ps(a1, v1.y), _mm256_mul_ps(a1, v1.z)};
-    const FLanes w = {_mm256_mul_ps(b2, v2.x), _mm256_mul_ps(b2, v2.y), _mm256_mul_ps(b2, v2.z)};
-    const __m256 cu = fdot(v2, u);
-    const __m256 p[3] = {_mm256_sub_ps(u.x, _mm256_mul_ps(cu, w.x)), _mm256_sub_ps(u.y, _mm256_mul_ps(cu, w.y)),
-                         _mm256_sub_ps(u.z, _mm256_mul_ps(cu, w.z))};
-    const __m256 wr[3] = {w.x, w.y, w.z}, a[3] = {v1.x, v1.y, v1.z}, c[3] = {v2.x, v2.y, v2.z};
-    const __m256 one = _mm256_set1_ps(1.0f), none = _mm256_setzero_ps();
-    for (int r = 0; r < 3; ++r)
-        for (int col = 0; col < 3; ++col) {
-            const __m256 e = _mm256_sub_ps(_mm256_sub_ps(r == col ? one : none, _mm256_mul_ps(p[r], a[col])),
-                                           _mm256_mul_ps(wr[r], c[col]));
-            _mm256_storeu_pd(b.m[3 * r + col] + k, _mm256_cvtps_pd(_mm256_castps256_ps128(e)));
-            _mm256_storeu_pd(b.m[3 * r + col] + k + 4, _mm256_cvtps_pd(_mm256_extractf128_ps(e, 1)));
-        }
-    const int reversal = _mm256_movemask_ps(_mm256_cmp_ps(fdot(t0, t1), _mm256_setzero_ps(), _CMP_LT_OQ));
-    for (int j = 0; j < 8; ++j) b.reversal[k + j] = ((reversal >> j) & 1) != 0;
-}
-
 KNIT_AVX2 size_t unitDirectionsAvx2(const dvec3* x, size_t n, dvec3* T, dvec3* N) {
     size_t k = 0;
     for (; k + 5 <= n; k += 4) {  // segments k .. k + 3 read points k .. k + 4
@@ -193,11 +139,9 @@ size_t pointTangents(const dvec3* N, dvec3* T, size_t begin, size_t end, bool si
 }
 
 void transportCoefficients(const dvec3* x, const dvec3* t, size_t first, size_t count, TransportBlock& b, bool simd,
-                           size_t begin, FramePrecision precision, bool noZero) {
+                           size_t begin) {
     size_t k = begin;
 #if KNIT_HAVE_AVX2_KERNELS
-    if (simd && precision == FramePrecision::Float32)
-        for (; k + 8 <= count; k += 8) eightStepsFloat(x, t, first + k, k, b, noZero);
     if (simd)
         for (; k + 4 <= count; k += 4) fourSteps(x, t, first + k, k, b);
 #endif

@@ -9,8 +9,6 @@
 
 #include <glm/vec3.hpp>
 
-#include "knit/frames.hpp"
-
 namespace knit::impl {
 
 constexpr size_t kTransportBlock = 64;
@@ -28,8 +26,7 @@ struct TransportBlock {
 // Fills slots [begin, count) of `b` (count <= kTransportBlock), slot k with the step from point
 // first + k, four at a time in AVX2 when `simd` (bit for bit the same either way).
 void transportCoefficients(const glm::dvec3* x, const glm::dvec3* t, size_t first, size_t count, TransportBlock& b,
-                           bool simd, size_t begin = 0, FramePrecision precision = FramePrecision::Double,
-                           bool noZero = false);
+                           bool simd, size_t begin = 0);
 
 // curveFrames' step 1 for segments k = 0, 1, ... (from x[k] to x[k + 1]) four at a time in AVX2:
 // T[k] = N[k] = v / |v|, up to the first group of four that holds a zero-length segment or

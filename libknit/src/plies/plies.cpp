@@ -215,12 +215,10 @@ void helices(const PlyOptions& opt, const dvec3* X, const dvec3* T, const dvec3*
 }  // namespace
 
 void PlyKernel::frames(const PlyGenerator& g, size_t y, const dvec3* X, size_t m, const dvec3* seed,
-                       const dvec3* seedTangent, PlyScratch::Buffers& buf, FramePrecision precision) {
+                       const dvec3* seedTangent, PlyScratch::Buffers& buf) {
     buf.tangent.resize(m);
     buf.normal.resize(m);
-    FrameOptions options;
-    options.precision = precision;
-    curveFrames(X, m, g.yarns_.curves.isClosed(y), seed, buf.tangent.data(), buf.normal.data(), options, seedTangent);
+    curveFrames(X, m, g.yarns_.curves.isClosed(y), seed, buf.tangent.data(), buf.normal.data(), {}, seedTangent);
 }
 
 double PlyKernel::twistRate(const PlyGenerator& g, double pitch) {
@@ -245,9 +243,9 @@ void PlyKernel::sweepWithPhase(const PlyGenerator& g, size_t y, const dvec3* X, 
 
 void PlyKernel::sweepWithCosSin(const PlyGenerator& g, size_t y, const dvec3* X, size_t m, const glm::dvec2* phase,
                                 const dvec3* seed, const dvec3* seedTangent, dvec3* P, PlyScratch& scratch,
-                                dvec3* radial, FramePrecision precision) {
+                                dvec3* radial) {
     PlyScratch::Buffers& buf = buffers(scratch);
-    frames(g, y, X, m, seed, seedTangent, buf, precision);
+    frames(g, y, X, m, seed, seedTangent, buf);
     // Four points at a time in AVX2 (helices_simd.cpp, bit for bit), the rest here.
     const HelixInput in{
         X,         buf.tangent.data(), buf.normal.data(),      phase, m, static_cast<uint32_t>(g.options_.count),

@@ -8,7 +8,6 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
-#include "knit/frames.hpp"
 #include "knit/plies.hpp"
 #include "resample_curve.hpp"
 
@@ -64,19 +63,17 @@ struct PlyKernel {
                                glm::dvec3* radial, PlyScratch& scratch, const double* twist = nullptr);
     // Rotation-minimizing frames of a centreline into buf.tangent / buf.normal (seeds as below).
     static void frames(const PlyGenerator& generator, size_t y, const glm::dvec3* centre, size_t m,
-                       const glm::dvec3* seed, const glm::dvec3* seedTangent, PlyScratch::Buffers& buf,
-                       FramePrecision precision = FramePrecision::Double);
+                       const glm::dvec3* seed, const glm::dvec3* seedTangent, PlyScratch::Buffers& buf);
     // dtheta/ds of the helices for a pitch (signed by the twist).
     static double twistRate(const PlyGenerator& generator, double pitch);
     // The same helices for any pose of yarn `y` with the twist phase given per point as
     // (cos theta, sin theta) (animation: computed once from the rest pose, so the phase stays
     // attached to the yarn material), and the frame seed: the surface normal at the first point,
     // or null; with seedTangent, a normal carried over from another pose and transported onto
-    // the first tangent (see curveFrames). `precision`: the frames' transport (FrameOptions).
+    // the first tangent (see curveFrames).
     static void sweepWithCosSin(const PlyGenerator& generator, size_t y, const glm::dvec3* centre, size_t m,
                                 const glm::dvec2* phase, const glm::dvec3* seed, const glm::dvec3* seedTangent,
-                                glm::dvec3* points, PlyScratch& scratch, glm::dvec3* radial = nullptr,
-                                FramePrecision precision = FramePrecision::Double);
+                                glm::dvec3* points, PlyScratch& scratch, glm::dvec3* radial = nullptr);
 };
 
 }  // namespace impl
