@@ -53,7 +53,8 @@ async function updateSwatch() {
   });
   // Where the time to the first relaxed yarns went (ms): the debounce, the request to its line
   // complete on the page (the server's part of it in `server`), parsing it, building the tubes, and
-  // the frame that draws them (relaxedBreakdown, printed by tests/serve/page_test.mjs).
+  // the frame that draws them (relaxedBreakdown, printed by tests/serve/page_test.mjs): the wait for
+  // that animation frame (long when the GPU thread still rasterises an earlier frame) and the render.
   const breakdown = (line, times, built) => {
     const ms = (a, b) => Math.round(b - a);
     const drawn = performance.now();
@@ -61,7 +62,8 @@ async function updateSwatch() {
     const server = t ? ` (server ${t.total}: relax ${t.relax}, swatch ${t.swatch}; ${times.bytes} bytes)` : '';
     document.body.dataset.relaxedBreakdown =
         `debounce ${ms(edited, started)} request ${ms(started, times.received)}${server} ` +
-        `parse ${ms(times.received, times.parsed)} build ${ms(times.parsed, built)} draw ${ms(built, drawn)}`;
+        `parse ${ms(times.received, times.parsed)} build ${ms(times.parsed, built)} draw ${ms(built, drawn)}` +
+        ` (frame ${ms(built, view.lastRender.start)} render ${ms(view.lastRender.start, view.lastRender.end)})`;
   };
   const show = (swatch, state, line, times) => {
     if (mode !== 'swatch') return;

@@ -92,7 +92,11 @@ export class KnitView {
     this.content = new THREE.Group();
     this.scene.add(this.content);
     this.backLight = false;
-    this.material = new THREE.MeshStandardMaterial({vertexColors: true, roughness: 0.85, side: THREE.DoubleSide});
+    // The tubes' outsides only (their faces wind outwards): without a GPU, the frame after a
+    // swatch is drawn holds Chromium's GPU thread while software WebGL rasterises it, and the
+    // next animation frame (the next edit's yarns) waits for it; drawing the insides too doubled
+    // that (0.4-1.7 s per frame at load 5-9, docs/serve.md).
+    this.material = new THREE.MeshStandardMaterial({vertexColors: true, roughness: 0.85});
     new ResizeObserver(() => this.resize()).observe(canvas);
     this.resize();
   }
@@ -194,6 +198,8 @@ export class KnitView {
     const dir = this.backLight ? eye.clone().negate() : eye.clone();
     this.light.position.copy(this.controls.target).add(dir).add(up);
     this.light.target.position.copy(this.controls.target);
+    const start = performance.now();
     this.renderer.render(this.scene, this.camera);
+    this.lastRender = {start, end: performance.now()};
   }
 }
