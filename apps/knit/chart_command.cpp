@@ -8,11 +8,13 @@
 
 #include "knit/chart.hpp"
 #include "knit/chart_pattern.hpp"
+#include "knit/chart_warnings.hpp"
 #include "knit/export.hpp"
 #include "knit/output_transaction.hpp"
 #include "knit/pattern.hpp"
 #include "path_collisions.hpp"
 #include "report.hpp"
+#include "setting_flags.hpp"
 
 namespace knit::cli {
 
@@ -61,21 +63,6 @@ nlohmann::json floatsOf(const Chart& chart, const ChartPattern& cp, int maxFloat
     return floats;
 }
 
-// A warning per float longer than --max-float.
-void warnLongFloats(const Chart& chart, const ChartPattern& cp, int maxFloat) {
-    for (const ChartFloat& f : cp.cell.floats) {
-        if (f.columns <= maxFloat) continue;
-        const FloatPlace at = placeOf(chart, f);
-        const std::string colour = f.colour ? std::string(" of colour ") + f.colour : std::string();
-        const char* wraps = at.last < at.first ? " (round the repeat)" : "";
-        std::fprintf(stderr,
-                     "knit: warning: %s:%d: row %d: the float%s over columns %d-%d%s is %d stitches long, longer "
-                     "than --max-float %d (long floats snag: catch it or shorten the run)\n",
-                     chart.name.c_str(), at.line, at.row, colour.c_str(), at.first, at.last, wraps, f.columns,
-                     maxFloat);
-    }
-}
-
 nlohmann::json reportOf(const Chart& chart, const ChartPattern& cp, int maxFloat) {
     const Pattern& p = cp.relaxed.pattern;
     return {{"chart", chart.name},
@@ -106,20 +93,39 @@ RelaxStepFn progressLines(const Chart& chart, int maxIterations) {
     using Clock = std::chrono::steady_clock;
     const auto start = Clock::now();
     auto shown = start;
-    const std::string name = chart.name;
-    const int width = chart.width, height = chart.height;
+    const Chart named = [&] {  // what progressLine reads: the name and size, not the stitches
+        Chart c;
+        c.name = chart.name;
+        c.width = chart.width;
+        c.height = chart.height;
+        return c;
+    }();
+    const ChartStacking stacking = chartStacking(chart);
     return [=](const RelaxStep& step) mutable {
         const auto now = Clock::now();
         if (now - shown < std::chrono::seconds(10)) return true;
         shown = now;
-        std::fprintf(stderr, "knit: relaxing %s (%d rows x %d stitches): iteration %d of at most %d, %.0f s\n",
-                     name.c_str(), height, width, step.iteration, maxIterations,
-                     std::chrono::duration<double>(now - start).count());
+        std::fprintf(stderr, "%s\n",
+                     progressLine(named, stacking, step.iteration, maxIterations,
+                                  std::chrono::duration<double>(now - start).count())
+                         .c_str());
         return true;
     };
 }
 
 }  // namespace
+
+std::string progressLine(const Chart& chart, const ChartStacking& stacking, int iteration, int maxIterations,
+                         double seconds) {
+    // The cell's size is what relaxes: a stacked intarsia chart's rows several times over.
+    const std::string stacked = stacking.times > 1 ? ": the chart's " + std::to_string(chart.height) + " rows " +
+                                                         std::to_string(stacking.times) + " times over"
+                                                   : std::string();
+    char tail[96];
+    std::snprintf(tail, sizeof tail, "): iteration %d of at most %d, %.0f s", iteration, maxIterations, seconds);
+    return "knit: relaxing " + chart.name + " (" + std::to_string(stacking.rows) + " rows x " +
+           std::to_string(chart.width) + " stitches" + stacked + tail;
+}
 
 int runChart(const ChartCommand& c) {
     // Step 1: fail before relaxing: a report path that cannot be written, an output that is the
@@ -136,9 +142,8 @@ int runChart(const ChartCommand& c) {
     options.radius = c.yarnRadius;
     options.onStep = progressLines(chart, options.maxIterations);
     const ChartPattern cp = relaxChart(chart, options);
-    warnLongFloats(chart, cp, c.maxFloat);
-    const std::string stacked = stackingWarning(chart, cp.cell.stacking);
-    if (!stacked.empty()) std::fprintf(stderr, "knit: warning: %s: %s\n", chart.name.c_str(), stacked.c_str());
+    for (const ChartWarning& w : chartWarnings(chart, cp.cell, c.maxFloat))
+        std::fprintf(stderr, "knit: warning: %s\n", withFlags(chartWarningMessage(chart, w)).c_str());
     OutputTransaction outputs;  // the pattern and its report are committed together
     outputs.run([&] {
         writeFileAtomically(

@@ -4,6 +4,9 @@
 
 #include <CLI/CLI.hpp>
 
+#include "knit/chart.hpp"
+#include "knit/chart_topology.hpp"
+
 namespace knit::cli {
 
 struct ChartCommand {
@@ -18,9 +21,15 @@ struct ChartCommand {
 // Registers the subcommand and its flags on `app`, bound to `chart` (which must outlive parsing).
 void addChartCommand(CLI::App& app, ChartCommand& chart);
 
-// Relaxes the chart and writes the cell (and the report); prints one line on stdout and a warning
-// on stderr per float longer than --max-float stitches.
+// Relaxes the chart and writes the cell (and the report); prints one line on stdout and the
+// chart's warnings (knit/chart_warnings.hpp: each float longer than --max-float stitches, the
+// rows stacked) on stderr.
 // Throws knit::Error on bad input.
 int runChart(const ChartCommand& chart);
+
+// The progress line a long relaxation prints every 10 s: the size of the cell that relaxes (a
+// stacked intarsia chart's rows `stacking.times` over, saying so), the iteration, the seconds.
+std::string progressLine(const Chart& chart, const ChartStacking& stacking, int iteration, int maxIterations,
+                         double seconds);
 
 }  // namespace knit::cli

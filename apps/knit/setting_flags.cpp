@@ -36,6 +36,8 @@ const std::vector<SettingSpelling>& settingFlags() {
         {"the image height", "--height"},
         {"the environment radiance", "--env"},
         {"the light irradiance", "--light-irradiance"},
+        // Charts.
+        {"the float limit", "--max-float"},
         // The export.
         {"what to export", "--export"},
         {"the number of tube sides", "--sides"},

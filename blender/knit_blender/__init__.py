@@ -48,6 +48,13 @@ class KnitPreferences(bpy.types.AddonPreferences):
         description="Folder holding the knit package (e.g. <checkout>/build/python), if not installed")
 
 
+def report_warnings(operator, warnings):
+    """The chart's warnings (build.chart_warnings), each a WARNING report: the status bar and the
+    Info editor show them, as `knit chart` prints them."""
+    for text in warnings:
+        operator.report({"WARNING"}, text)
+
+
 class OBJECT_OT_knit_apply(bpy.types.Operator):
     """Bind a knit pattern to the active mesh and create <mesh>.knit (ply curves)"""
     bl_idname = "object.knit_apply"
@@ -97,9 +104,11 @@ class OBJECT_OT_knit_apply(bpy.types.Operator):
             options["chart_source"] = bpy.data.texts[self.chart_text].as_string()
         try:
             obj = build.apply_knit(context, context.active_object, options)
+            said = build.chart_warnings(options)
         except Exception as e:  # noqa: BLE001 - reported in the interface, never a traceback
             self.report({"ERROR"}, build.message_of(e))
             return {"CANCELLED"}
+        report_warnings(self, said)
         self.report({"INFO"}, f"{obj.name}: {len(obj.data.vertices)} ply points")
         return {"FINISHED"}
 
@@ -143,10 +152,13 @@ class OBJECT_OT_knit_reapply(bpy.types.Operator):
                                    "select a mesh and use Apply Knit")
             return {"CANCELLED"}
         try:
-            new = build.apply_knit(context, source, build.options_of(obj))
+            options = build.options_of(obj)
+            new = build.apply_knit(context, source, options)
+            said = build.chart_warnings(options)
         except Exception as e:  # noqa: BLE001 - reported in the interface, never a traceback
             self.report({"ERROR"}, build.message_of(e))
             return {"CANCELLED"}
+        report_warnings(self, said)
         context.view_layer.objects.active = new
         self.report({"INFO"}, f"{new.name}: re-applied, {len(new.data.vertices)} ply points")
         return {"FINISHED"}

@@ -10,6 +10,7 @@ import os
 import re
 import struct
 import sys
+import warnings
 import zlib
 
 import bpy
@@ -177,6 +178,28 @@ def read_mesh(obj, depsgraph, positions=None):
 
 # -- Step 2: bind ---------------------------------------------------------------------------------
 
+def pattern_path(options):
+    """The operator's Pattern: a name, or a file with Blender's '//' (relative to the .blend file) resolved."""
+    pattern = options["pattern"]
+    return bpy.path.abspath(pattern) if pattern.startswith("//") else pattern
+
+
+def chart_name(options):
+    """The name a Chart text block's chart is given (its errors and warnings name it)."""
+    return options.get("chart_text") or "chart text"
+
+
+def chart_warnings(options):
+    """The chart's warnings in the library's words (knit.chart_warnings: a float longer than 5
+    stitches, an intarsia repeat knitted taller than drawn), for Apply Knit and Re-apply to
+    report: the Chart text block's chart, or a chart Pattern (chart:NAME, .chart); [] otherwise."""
+    knit = knit_module()
+    if options.get("chart_source"):
+        return knit.chart_warnings(options["chart_source"], name=chart_name(options))
+    text = knit.chart_text(pattern_path(options))
+    return [] if text is None else knit.chart_warnings(text, name=pattern_path(options))
+
+
 def bind(source, options, depsgraph, rest=None):
     """knit.build_scene on the source's evaluated mesh (its positions replaced by `rest`, the bind
     pose, when given) with the operator's options (no plies: every pose's plies, the bind pose's
@@ -188,11 +211,11 @@ def bind(source, options, depsgraph, rest=None):
     if gauge[0] > 0 and gauge[1] > 0:  # periods per 10 cm -> periods across the UV square
         su, sv = knit.uv_to_metre_scale(mesh)
         repeats = (su * gauge[0] / 0.1, sv * gauge[1] / 0.1)
-    pattern = options["pattern"]
-    if pattern.startswith("//"):  # Blender's path relative to the .blend file
-        pattern = bpy.path.abspath(pattern)
+    pattern = pattern_path(options)
     if options.get("chart_source"):  # chart text from a text block (the operator's Chart text)
-        pattern = knit.chart_pattern(options["chart_source"], name=options.get("chart_text") or "chart text")
+        with warnings.catch_warnings():  # Apply Knit reports them (chart_warnings), once
+            warnings.simplefilter("ignore", knit.ChartWarning)
+            pattern = knit.chart_pattern(options["chart_source"], name=chart_name(options))
     deform = options.get("deform", "auto")
     if deform == "strain":
         require_quick_strain_table(knit, pattern)

@@ -4,6 +4,8 @@
 Checks: <mesh>.knit exists, its point count is the library's, its radii are the ply radius, a frame
 change (a shape key animates the base mesh) moves it, a PC2 bake has the right size, a small
 Cycles render of it is not blank, and the file reopened on another frame re-binds the same pose."""
+import contextlib
+import io
 import os
 import sys
 import tempfile
@@ -48,6 +50,39 @@ def render_coverage(obj):
     pixels = np.array(image.pixels[:]).reshape(-1, 4)[:, :3]
     luminance = pixels.mean(axis=1)
     return float((luminance > 0.02).mean()), float(luminance.var())
+
+
+def check_chart_warnings():
+    """A chart's designer warnings (a float longer than 5 stitches; an intarsia repeat knitted
+    taller than drawn) are Apply Knit's WARNING reports, in the library's words, the knit made."""
+    band = bpy.data.texts.new("band")
+    band.write("k k k k k k k\n\nA B A A A A A\nA=#ffffff B=#000000\nstranded\n")
+    cloth = bpy.data.objects["Cloth"]
+    bpy.context.view_layer.objects.active = cloth
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out):  # background mode prints an operator's reports
+        result = bpy.ops.object.knit_apply(chart_text="band", repeats=(3, 3), plies=2)
+    printed = out.getvalue()
+    check(result == {"FINISHED"}, "a chart with a long float still knits")
+    check("Warning: band:1: row 1: the float of colour B over columns 3-1 (round the repeat) is 6 stitches long"
+          in printed, f"the long float is reported as a warning ({printed.strip()})")
+    bpy.context.view_layer.objects.active = bpy.data.objects["Cloth.knit"]
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out):
+        check(bpy.ops.object.knit_reapply() == {"FINISHED"}, "re-applied")
+    check("Warning: band:1: row 1: the float" in out.getvalue(), f"Re-apply reports it too ({out.getvalue()})")
+    # The stacked intarsia chart (40 s to relax: its warnings only), as text and as a chart file.
+    wander = "k k k k\nk k k k\n\nB A B A\nA B A B\nA=#ffffff B=#000000\nintarsia\n"
+    said = build.chart_warnings({"chart_source": wander, "chart_text": "wander", "pattern": "stockinette"})
+    check(len(said) == 1 and said[0].startswith("wander: intarsia: the colour areas move round the period")
+          and said[0].endswith("knitted 4 rows tall (its rows 2 times over)"), f"the stacked chart's warning ({said})")
+    path = os.path.join(tempfile.mkdtemp(), "wander.chart")
+    with open(path, "w") as f:
+        f.write(wander)
+    said = build.chart_warnings({"pattern": path})
+    check(len(said) == 1 and said[0].startswith(path + ": intarsia: the colour areas move round the period"),
+          f"a chart file Pattern warns the same ({said})")
+    check(build.chart_warnings({"pattern": "stockinette"}) == [], "a pattern that is no chart: nothing to say")
 
 
 def check_chart_text():
@@ -131,6 +166,7 @@ def main():
     obj = bpy.data.objects["Cloth.knit"]
     check(np.array_equal(points_of(obj), moved), "reopened on frame 10 and re-bound: frame 10 is unchanged")
     check_chart_text()
+    check_chart_warnings()
     print("knit_blender: all checks passed")
 
 

@@ -24,6 +24,10 @@ T castArg(const py::handle& value, const char* keyword, const char* expected) {
     }
 }
 
+// A library message with this module's keyword after each setting it names ("the float limit
+// (max_float)"), as knit.Error's message (module.cpp).
+std::string withKeywords(const std::string& words);
+
 void registerPatternAndMesh(py::module_& m);  // pattern_mesh.cpp: Pattern, Mesh, loaders
 void registerCurves(py::module_& m);          // curves.cpp: Curves, Yarns, Plies, make_plies
 void registerScene(py::module_& m);           // scene.cpp: Scene, Binding, build_scene, evaluate

@@ -29,6 +29,7 @@ const std::vector<knit::SettingSpelling>& keywords() {
         {"the twist direction", "twist"},
         {"the memory budget", "max_memory"},
         {"the mesh resolution", "res_u, res_v"},
+        {"the float limit", "max_float"},
         {"the sx range", "sx_range"},
         {"the sa range", "sa_range"},
         {"the sy range", "sy_range"},
@@ -44,6 +45,9 @@ const std::vector<knit::SettingSpelling>& keywords() {
 pybind11::exception<knit::Error>* knitError = nullptr;
 
 }  // namespace
+
+std::string withKeywords(const std::string& words) { return knit::spellSettings(words, keywords()); }
+
 }  // namespace knitpy
 
 PYBIND11_MODULE(_knit, m) {
@@ -60,7 +64,7 @@ PYBIND11_MODULE(_knit, m) {
             // The message with this module's keywords; `words` keeps the library's message, for a
             // front end on top of the module with its own spelling (spell_settings).
             pybind11::object error = pybind11::reinterpret_borrow<pybind11::object>(knitpy::knitError->ptr())(
-                knit::spellSettings(e.what(), knitpy::keywords()));
+                knitpy::withKeywords(e.what()));
             error.attr("words") = std::string(e.what());
             PyErr_SetObject(knitpy::knitError->ptr(), error.ptr());
         }

@@ -3,6 +3,9 @@
 #include <pybind11/stl.h>
 
 #include <cmath>
+#include <optional>
+#include <string>
+#include <vector>
 
 #include "arrays.hpp"
 #include "bindings.hpp"
@@ -10,6 +13,7 @@
 #include "knit/chart.hpp"
 #include "knit/chart_cache.hpp"
 #include "knit/chart_topology.hpp"
+#include "knit/chart_warnings.hpp"
 #include "knit/error.hpp"
 #include "knit/generator.hpp"
 #include "knit/pattern.hpp"
@@ -64,6 +68,18 @@ py::list chartFloats(const std::string& text, const std::string& name, int maxFl
     return out;
 }
 
+// The chart's warnings (knit/chart_warnings.hpp: floats longer than maxFloat, rows stacked) as
+// `knit chart` prints them, "NAME:LINE: ..." with this module's keywords; the package's
+// chart_pattern and load_pattern warn with each (knit.ChartWarning).
+std::vector<std::string> chartWarnings(const std::string& text, const std::string& name, int maxFloat) {
+    if (maxFloat < 1) throw knit::Error("max_float must be at least 1");
+    const knit::Chart chart = knit::parseChart(text, name);
+    std::vector<std::string> out;
+    for (const knit::ChartWarning& w : knit::chartWarnings(chart, knit::chartToCell(chart), maxFloat))
+        out.push_back(withKeywords(knit::chartWarningMessage(chart, w)));
+    return out;
+}
+
 void registerChart(py::module_& m) {
     m.def("chart_pattern", &chartPattern, "text"_a, "name"_a = "<chart text>", "yarn_radius"_a = 0.001,
           "A stitch chart given as text (docs/charts.md: k p yo k2tog ssk ... sl tuck ktbl, cables, a colour "
@@ -73,6 +89,21 @@ void registerChart(py::module_& m) {
     m.def("chart_floats", &chartFloats, "text"_a, "name"_a = "<chart text>", "max_float"_a = 5,
           "The chart's floats as dicts (row, line, columns, stitches, colour, side, too_long: longer than "
           "max_float stitches). Raises knit.Error for a bad chart.");
+    m.def("chart_warnings", &chartWarnings, "text"_a, "name"_a = "<chart text>", "max_float"_a = 5,
+          "The chart's warnings as `knit chart` prints them ('NAME:LINE: row R: the float ...', 'NAME: intarsia: "
+          "... knitted 4 rows tall ...'): floats longer than max_float stitches, an intarsia repeat knitted taller "
+          "than drawn. chart_pattern and load_pattern warn with each (knit.ChartWarning). Raises knit.Error for a "
+          "bad chart.",
+          py::call_guard<py::gil_scoped_release>());
+    m.def(
+        "chart_text",
+        [](const std::string& fileOrName) -> py::object {
+            const std::optional<std::string> text = knit::chartTextOf(fileOrName);
+            return text ? py::object(py::str(*text)) : py::object(py::none());
+        },
+        "file_or_name"_a,
+        "The chart text load_pattern relaxes for a chart:NAME or a .chart/.txt file (for chart_warnings), None "
+        "for any other pattern. Raises knit.Error for a chart file that cannot be read.");
     m.def("builtin_charts", &knit::builtinChartNames, "The chart:NAME patterns load_pattern accepts.");
 }
 

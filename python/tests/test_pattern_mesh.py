@@ -1,5 +1,6 @@
 # Patterns and meshes: loading by name or file, meshes from numpy arrays, their errors.
 import os
+import warnings
 
 import numpy as np
 import pytest
@@ -116,3 +117,51 @@ def test_chart_floats_flags_long_floats():
     assert long[0]["row"] == 1 and long[0]["colour"] == "B" and long[0]["stitches"] == 7
     assert long[0]["columns"] == (3, 1) and long[0]["side"] == "back" and long[0]["line"] == 2
     assert not any(f["too_long"] for f in knit.chart_floats(FAIR_ISLE, max_float=7))
+
+
+# Two one-stitch stripes per colour moving a column every row: after the 2 rows each A area sits on
+# the other A area, so the repeat is knitted 4 rows tall (docs/charts.md, "Areas that wander").
+WANDER = "k k k k\nk k k k\n\nB A B A\nA B A B\nA=#ffffff B=#000000\nintarsia\n"
+
+
+def test_chart_warnings_say_what_knit_chart_says():
+    stacked = knit.chart_warnings(WANDER, name="w.chart")
+    assert stacked == ["w.chart: intarsia: the colour areas move round the period and, after the chart's 2 rows, "
+                       "arrive on other areas of their colour; each area's yarn comes back to itself after 4 rows, "
+                       "so the chart's repeat is knitted 4 rows tall (its rows 2 times over)"]
+    floats = knit.chart_warnings(FAIR_ISLE, name="band")
+    assert floats == ["band:2: row 1: the float of colour B over columns 3-1 (round the repeat) is 7 stitches "
+                      "long, longer than the float limit (max_float) of 5 stitches (long floats snag: catch it "
+                      "or shorten the run)"]
+    assert knit.chart_warnings(FAIR_ISLE, max_float=7) == []
+    assert knit.chart_warnings("k k\nk k\n") == []
+    with pytest.raises(knit.Error, match="max_float must be at least 1"):
+        knit.chart_warnings(FAIR_ISLE, max_float=0)
+
+
+def test_a_stacked_chart_warns_before_it_relaxes(tmp_path, monkeypatch):
+    # As errors, the warning stops chart_pattern and load_pattern before the (40 s) relaxation.
+    monkeypatch.setenv("KNIT_CACHE_DIR", str(tmp_path))
+    f = tmp_path / "w.chart"
+    f.write_text(WANDER)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", knit.ChartWarning)
+        with pytest.raises(knit.ChartWarning, match=r"w: intarsia: .* knitted 4 rows tall \(its rows 2 times over\)"):
+            knit.chart_pattern(WANDER, name="w")
+        with pytest.raises(knit.ChartWarning, match=r"w.chart: intarsia: .* knitted 4 rows tall"):
+            knit.load_pattern(str(f))
+    assert issubclass(knit.ChartWarning, UserWarning)
+    assert list(tmp_path.iterdir()) == [f]  # nothing relaxed, nothing cached
+
+
+def test_a_long_float_warns_and_the_pattern_still_relaxes(tmp_path, monkeypatch):
+    monkeypatch.setenv("KNIT_CACHE_DIR", str(tmp_path))
+    band = "k k k k k k k\n\nA B A A A A A\nA=#ffffff B=#000000\nstranded\n"
+    with pytest.warns(knit.ChartWarning, match=r"band:1: row 1: the float of colour B over columns 3-1") as caught:
+        p = knit.chart_pattern(band, name="band")
+    assert len(caught) == 1 and caught[0].filename == __file__  # pointed at the caller's line
+    assert p.points.shape[0] > 0
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", knit.ChartWarning)
+        knit.chart_pattern(band, name="band", max_float=6)  # within the limit: silent
+        knit.load_pattern("chart:eyelet-mesh")  # a built-in without floats or stacking: silent

@@ -10,7 +10,10 @@
 #include <set>
 #include <sstream>
 
+#include "chart_command.hpp"
 #include "common/run_knit.hpp"
+#include "knit/chart.hpp"
+#include "knit/chart_topology.hpp"
 #include "knit/pattern.hpp"
 #include "test_util.hpp"
 
@@ -71,6 +74,20 @@ TEST(ChartCommand, aChartTooLargeToRelaxIsRefusedBeforeTheWork) {
     EXPECT_FALSE(std::filesystem::exists(dir.file("cell.pyp")));
 }
 
+// The progress line of a long relaxation names the size of the cell that relaxes: a stacked
+// intarsia chart (`B A B A` / `A B A B`, whose areas wander) relaxes 4 rows, its 2 rows twice over.
+TEST(ChartCommand, progressLineSaysTheStackedCellsRows) {
+    const Chart wander = parseChart("k k k k\nk k k k\n\nB A B A\nA B A B\nA=#ffffff B=#000000\nintarsia\n", "w.chart");
+    const std::string line = cli::progressLine(wander, chartStacking(wander), 650, 4000, 10.2);
+    EXPECT_EQ(line,
+              "knit: relaxing w.chart (4 rows x 4 stitches: the chart's 2 rows 2 times over): iteration 650 of at "
+              "most 4000, 10 s")
+        << line;
+    const Chart plain = parseChart("k k\nk k\nk k\n", "mid.chart");
+    EXPECT_EQ(cli::progressLine(plain, chartStacking(plain), 650, 4000, 10.0),
+              "knit: relaxing mid.chart (3 rows x 2 stitches): iteration 650 of at most 4000, 10 s");
+}
+
 // Stranded floats longer than --max-float (default 5) are warned about with the chart's line,
 // the row and the columns, and listed in the report; the cell is written all the same.
 TEST(ChartCommand, longFloatsAreWarnedAboutAndReported) {
@@ -79,7 +96,7 @@ TEST(ChartCommand, longFloatsAreWarnedAboutAndReported) {
     const test::CliRun r = test::runKnit("chart band.chart -o cell.pyp --report r.json", dir.path());
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("knit: warning: band.chart:1: row 1: the float of colour B over columns 3-1 (round the "
-                            "repeat) is 6 stitches long, longer than --max-float 5"),
+                            "repeat) is 6 stitches long, longer than the float limit (--max-float) of 5 stitches"),
               std::string::npos)
         << r.output;
     EXPECT_EQ(r.output.find("colour A over"), std::string::npos) << r.output;  // A's float is one stitch

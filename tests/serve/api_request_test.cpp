@@ -43,7 +43,8 @@ TEST(ServeChart, longFloatsAndEyeletsAreWarnedAbout) {
     };
     EXPECT_EQ(warningsOf("k k k k\nk k k k\n"), "[]");
     const std::string slipped = warningsOf("k sl sl sl sl sl sl k\nk k k k k k k k\n");
-    EXPECT_NE(slipped.find("line 1, row 2: a float over columns 2-7 is 6 stitches long, longer than 5"),
+    EXPECT_NE(slipped.find("line 1, row 2: the float over columns 2-7 is 6 stitches long, longer than the float "
+                           "limit of 5 stitches"),
               std::string::npos)
         << slipped;
     EXPECT_EQ(warningsOf("k sl sl sl sl sl k k\nk k k k k k k k\n"), "[]");  // 5 stitches: the rule allows it

@@ -7,6 +7,7 @@
 #include <tbb/task_arena.h>
 
 #include "jobs.hpp"
+#include "knit/chart_warnings.hpp"
 #include "knit/error.hpp"
 
 namespace knit::serve {
@@ -96,18 +97,10 @@ void RelaxedCharts::put(const std::string& key, const CellRelaxation& relaxation
 }
 
 void addDesignWarnings(const Chart& chart, const ChartCell& cell, nlohmann::json& warnings) {
+    // The library's warnings (long floats, rows stacked), as `knit chart` and Python say them.
     constexpr int kMaxFloat = 5;
-    for (const ChartFloat& f : cell.floats) {
-        if (f.columns <= kMaxFloat) continue;
-        const int last = (f.firstColumn + f.columns - 1) % chart.width + 1;
-        warnings.push_back("line " + std::to_string(chart.rowLine[size_t(f.row)]) + ", row " +
-                           std::to_string(f.row + 1) + ": a float over columns " + std::to_string(f.firstColumn + 1) +
-                           "-" + std::to_string(last) + " is " + std::to_string(f.columns) +
-                           " stitches long, longer than " + std::to_string(kMaxFloat) +
-                           " (long floats snag: catch it or shorten the run)");
-    }
-    const std::string stacked = stackingWarning(chart, cell.stacking);
-    if (!stacked.empty()) warnings.push_back(stacked);
+    for (const ChartWarning& w : chartWarnings(chart, cell, kMaxFloat))
+        warnings.push_back(w.line > 0 ? "line " + std::to_string(w.line) + ", " + w.text : w.text);
     int eyelets = 0;
     for (StitchOp op : chart.op) eyelets += op == StitchOp::YarnOver ? 1 : 0;
     if (eyelets > 0)

@@ -1,5 +1,6 @@
 // knit/generator.hpp — the project's own parametric patterns (what ships in patterns/).
 #pragma once
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -37,5 +38,8 @@ std::vector<std::string> builtinPatternNames();
 Pattern builtinPattern(const std::string& name);
 // A pattern from a file (.pyp or .json curves) or a built-in name.
 Pattern loadPatternFileOrName(const std::string& fileOrName);
+// The chart text loadPatternFileOrName relaxes for `fileOrName` (chart:NAME, a .chart or .txt
+// file; knit::Error as there when it cannot be read), nothing for any other pattern.
+std::optional<std::string> chartTextOf(const std::string& fileOrName);
 
 }  // namespace knit

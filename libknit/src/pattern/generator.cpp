@@ -99,14 +99,17 @@ bool endsWith(const std::string& s, const std::string& suffix) {
 }
 }  // namespace
 
+std::optional<std::string> chartTextOf(const std::string& fileOrName) {
+    if (fileOrName.rfind("chart:", 0) == 0) return builtinChartText(fileOrName);
+    if (endsWith(fileOrName, ".chart") || endsWith(fileOrName, ".txt")) return readChartText(fileOrName);
+    return std::nullopt;
+}
+
 Pattern loadPatternFileOrName(const std::string& fileOrName) {
     struct stat st {};
     const bool exists = stat(fileOrName.c_str(), &st) == 0;
     // Charts: built-in (chart:NAME) or a .chart/.txt file, relaxed on first use and cached.
-    if (fileOrName.rfind("chart:", 0) == 0) return cachedChartPattern(builtinChartText(fileOrName), fileOrName);
-    if (endsWith(fileOrName, ".chart") || endsWith(fileOrName, ".txt")) {
-        return cachedChartPattern(readChartText(fileOrName), fileOrName);
-    }
+    if (const std::optional<std::string> chart = chartTextOf(fileOrName)) return cachedChartPattern(*chart, fileOrName);
     if (endsWith(fileOrName, ".json")) return patternFromCurves(loadCurvesJson(fileOrName));
     // A mesh, cache or image read as a .pyp was refused as "a.pc2:1: data before the first block header".
     const std::string kind = fileKind(fileOrName);
