@@ -82,6 +82,7 @@ struct StrainTableStats {
     size_t samples = 0;          // relaxations (the rest cell included)
     size_t unconverged = 0;      // stopped at the iteration cap
     size_t iterations = 0;       // Newton iterations over every sample (the rest cell's not counted)
+    size_t stages = 0;           // lattice stages relaxed over every sample (strainTableStages)
     double minDistance = 0;      // closest distinct yarns over every sample, in yarn radii
     double restMinDistance = 0;  // of the relaxed rest cell
 };
@@ -90,9 +91,17 @@ struct StrainTableStats {
 // within sx, sy > -1, |sa| < 1) or a pattern relaxation cannot use (open yarns).
 StrainTable makeStrainTable(const Pattern& pattern, const StrainTableOptions& options,
                             StrainTableStats* stats = nullptr);
-// Seconds the whole table is expected to take on this machine: ten Newton iterations of the cell
-// timed (milliseconds), times the iterations per sample measured on the default stockinette.
+// Seconds the whole table is expected to take on this machine's idle cores: Newton iterations of
+// the cell timed (thread CPU time), times the table's lattice stages (strainTableStages) and the
+// work per stage measured on a whole table of the same solver path (dense: the default
+// stockinette; sparse, over 200 cell vertices: chart:basketweave), plus the serial rest cell.
 double estimateStrainTableSeconds(const Pattern& pattern, const StrainTableOptions& options);
+// The lattice stages a table's relaxations go through: per sample, from the lattice of each
+// neighbour it starts from to its own (each stage changes the map by at most a tenth of its
+// smallest singular value). A table's time grows with this count, not with its samples: a coarse
+// grid takes larger steps between samples, in more stages each (3 x 3 x 3: 320 stages for 27
+// samples; the default 9 x 9 x 9: 1791 for 729).
+size_t strainTableStages(const StrainTableOptions& options);
 
 // One cell relaxed on the lattice of `strain` by the tables' solver (`solver`'s weights and
 // iteration cap; from the pattern's own cell through the lattice stages), its rest lengths

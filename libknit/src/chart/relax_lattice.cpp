@@ -346,7 +346,7 @@ struct NewtonSystem {
     Eigen::LLT<Eigen::MatrixXd> denseSolver;
     BlockHessian sparse;
 
-    explicit NewtonSystem(size_t n) : dense(n <= 200) {
+    explicit NewtonSystem(size_t n) : dense(denseNewton(n)) {
         if (dense) Hd.resize(Eigen::Index(3 * n), Eigen::Index(3 * n));
     }
     // The Newton step at the state's last evaluation; empty where the factorisation fails.
@@ -460,15 +460,12 @@ LatticeRelaxResult LatticeCell::relax(const glm::dmat2& F, const std::vector<glm
         const glm::dvec3 p = startPoints.empty() ? c.start[i] : startPoints[i] / c.radius;
         for (int k = 0; k < 3; ++k) v[Eigen::Index(3 * i + size_t(k))] = p[k];
     }
-    // The lattice moves from the start's to F in stages, each relaxed: a stage changes the map by
-    // at most a tenth of its smallest singular value, so that it brings no two points closer than
-    // 90 % of their distance (the crossings are kept while the lattice moves, not only within a
-    // relaxation).
+    // The lattice moves from the start's to F in stages, each relaxed (the crossings are kept
+    // while the lattice moves, not only within a relaxation).
     const glm::dmat2 change = F - startLattice;
-    const double size = std::sqrt(glm::dot(change[0], change[0]) + glm::dot(change[1], change[1]));
-    const double sigma = std::min({smallestSingularValue(F), smallestSingularValue(startLattice), 1.0});
-    const int stages = std::max(1, int(std::ceil(size / (0.1 * sigma))));
+    const int stages = latticeStages(F, startLattice);
     LatticeRelaxResult result;
+    result.stages = stages;
     Stage stage;
     for (int k = 1; k <= stages; ++k) {
         setLattice(st, startLattice + (double(k) / double(stages)) * change);
@@ -490,6 +487,13 @@ LatticeRelaxResult LatticeCell::relax(const glm::dmat2& F, const std::vector<glm
         result.points[i] =
             glm::dvec3(v[Eigen::Index(3 * i)], v[Eigen::Index(3 * i + 1)], v[Eigen::Index(3 * i + 2)]) * c.radius;
     return result;
+}
+
+int latticeStages(const glm::dmat2& F, const glm::dmat2& start) {
+    const glm::dmat2 change = F - start;
+    const double size = std::sqrt(glm::dot(change[0], change[0]) + glm::dot(change[1], change[1]));
+    const double sigma = std::min({smallestSingularValue(F), smallestSingularValue(start), 1.0});
+    return std::max(1, int(std::ceil(size / (0.1 * sigma))));
 }
 
 std::vector<glm::dvec3> restCell(const Pattern& pattern, const LatticeRelaxOptions& options) {

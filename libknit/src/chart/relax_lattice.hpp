@@ -39,6 +39,7 @@ struct LatticeRelaxOptions {
 struct LatticeRelaxResult {
     std::vector<glm::dvec3> points;  // reference-space vertices (metres, the pattern's units)
     int iterations = 0;
+    int stages = 0;  // lattice stages relaxed (latticeStages)
     bool converged = false;
     double energy = 0;
     double minDistance = 0;  // closest distinct non-adjacent segments of the deformed yarn, in radii
@@ -68,6 +69,15 @@ public:
 private:
     std::unique_ptr<Impl> impl_;
 };
+
+// The lattice stages LatticeCell::relax moves the lattice through from `start` to F: each changes
+// the map by at most a tenth of its smallest singular value (and of 1), so that it brings no two
+// points closer than 90 % of their distance.
+int latticeStages(const glm::dmat2& F, const glm::dmat2& start);
+
+// Whether a cell of n vertices solves its Newton steps by a dense Cholesky factorisation (else by
+// conjugate gradients on a kept sparse factor, block_hessian.hpp).
+inline bool denseNewton(size_t n) { return n <= 200; }
 
 // The pattern's cell at rest on its own (undeformed) lattice under the default options, relaxed
 // with 8 x the iteration cap and a thousandth of the gradient tolerance: the rest cell every strain table measures against (the built-in

@@ -10,6 +10,7 @@
 #include <mutex>
 #include <sstream>
 #include <thread>
+#include <time.h>
 
 #include <tbb/parallel_for.h>
 
@@ -21,6 +22,11 @@ namespace knit {
 namespace {
 
 using Index3 = std::array<int, 3>;
+
+// estimateStrainTableSeconds' work model, in the estimate's own timed Newton iterations: per
+// lattice stage of the table (over two threads' worth of samples) and for the serial rest cell,
+// for either Newton path (measured, docs/deformation.md "400-vertex patterns").
+constexpr double kDensePerStage = 80, kSparsePerStage = 70, kRest = 1400;
 
 std::vector<double> linspace(const std::array<double, 2>& r, int n) {
     std::vector<double> v(static_cast<size_t>(n));
@@ -132,15 +138,17 @@ impl::LatticeRelaxResult relaxFromNeighbours(const impl::LatticeCell& cell,
     const glm::dmat2 F = latticeMap(strainAt(axes, i));
     impl::LatticeRelaxResult best;
     bool have = false;
-    int iterations = 0;  // of every start: the work done (StrainTableStats::iterations)
+    int iterations = 0, stages = 0;  // of every start: the work done (StrainTableStats)
     const std::vector<Index3> from = lowerNeighbours(i, zero);
     for (size_t k = 0; k < from.size() && int(k) < starts; ++k) {
         impl::LatticeRelaxResult r = cell.relax(F, result[flat(from[k])].points, latticeMap(strainAt(axes, from[k])));
         iterations += r.iterations;
+        stages += r.stages;
         if (!have || r.energy < best.energy - 1e-9 * (1 + std::abs(best.energy))) best = std::move(r);
         have = true;
     }
     best.iterations = iterations;
+    best.stages = stages;
     return best;
 }
 
@@ -179,8 +187,10 @@ StrainTable makeStrainTable(const Pattern& pattern, const StrainTableOptions& op
         tbb::parallel_for(size_t(0), layer.size(), [&](size_t k) {
             const Index3& i = layer[k];
             const Strain s = strainAt(table.axes, i);
-            if (s.sx == 0 && s.sa == 0 && s.sy == 0) result[flat(i)] = rest;
-            else if (i == zero) result[flat(i)] = cell.relax(latticeMap(s), rest.points);
+            if (s.sx == 0 && s.sa == 0 && s.sy == 0) {
+                result[flat(i)] = rest;
+                result[flat(i)].stages = 0;  // no relaxation of its own
+            } else if (i == zero) result[flat(i)] = cell.relax(latticeMap(s), rest.points);
             else
                 result[flat(i)] = relaxFromNeighbours(cell, table.axes, result, flat, i, zero, options.startsPerSample);
             if (options.progress) {
@@ -198,6 +208,7 @@ StrainTable makeStrainTable(const Pattern& pattern, const StrainTableOptions& op
         const impl::LatticeRelaxResult& r = result[s];
         st.unconverged += r.converged ? 0 : 1;
         st.iterations += size_t(r.iterations);
+        st.stages += size_t(r.stages);
         st.minDistance = std::min(st.minDistance, r.minDistance);
         glm::dvec3 mean(0.0);
         for (size_t v = 0; v < nv; ++v) mean += r.points[v] - rest.points[v];
@@ -216,32 +227,72 @@ StrainTable makeStrainTable(const Pattern& pattern, const StrainTableOptions& op
     return table;
 }
 
+size_t strainTableStages(const StrainTableOptions& options) {
+    validateOptions(options);
+    const std::array<std::vector<double>, 3> axes = {linspace(options.sxRange, options.samples[0]),
+                                                     linspace(options.saRange, options.samples[1]),
+                                                     linspace(options.syRange, options.samples[2])};
+    const Index3 zero = nearestZero(axes);
+    size_t stages = 0;
+    for (const std::vector<Index3>& layer : walkFrom(zero, options.samples).layers)
+        for (const Index3& i : layer) {
+            const Strain s = strainAt(axes, i);
+            const glm::dmat2 F = latticeMap(s);
+            if (s.sx == 0 && s.sa == 0 && s.sy == 0) continue;  // the rest cell itself
+            if (i == zero) {
+                stages += size_t(impl::latticeStages(F, glm::dmat2(1.0)));
+                continue;
+            }
+            const std::vector<Index3> from = lowerNeighbours(i, zero);
+            for (size_t k = 0; k < from.size() && int(k) < options.startsPerSample; ++k)
+                stages += size_t(impl::latticeStages(F, latticeMap(strainAt(axes, from[k]))));
+        }
+    return stages;
+}
+
+namespace {
+
+// CPU seconds of the calling thread.
+double threadSeconds() {
+    timespec t{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
+
+}  // namespace
+
 double estimateStrainTableSeconds(const Pattern& pattern, const StrainTableOptions& options) {
     validateOptions(options);
-    // A few Newton iterations timed, times the iterations a table takes per sample. Timing whole
-    // relaxations (the rest cell, then the table's far corner from it through its lattice stages)
-    // cost seconds for patterns of 80-130 vertices, on every run that only printed the estimate.
-    // The iterations: the pattern's cell on the lattice stretched by 10 % along the courses
-    // (distances only grow, so no crossing is pressed through at the start; the stretched yarn
-    // makes every step a real one), the gradient tolerance 0 so none stops early.
+    // A few Newton iterations timed (thread CPU time, repeated to at least 50 ms so that a small
+    // cell's 2 ms are not one scheduler tick), times the work a table does in units of those
+    // iterations. The iterations: the pattern's cell on the lattice stretched by 10 % along the
+    // courses (distances only grow, so no crossing is pressed through at the start; the stretched
+    // yarn makes every step a real one), the gradient tolerance 0 so none stops early.
     constexpr int kTimedIterations = 10;
-    // Newton iterations per sample, the lattice stages on the way included: the default
-    // stockinette 9 x 9 x 9 table took 260808 for 729 samples (StrainTableStats::iterations,
-    // `build/tools/strain_planes`, 2026-11-27). The rest cell (up to 8 x the cap) counts as one more
-    // sample per thread.
-    constexpr double kIterationsPerSample = 358;
     impl::LatticeRelaxOptions timed = solverOptions(options);
     timed.maxIterations = kTimedIterations;
     timed.gradientTolerance = 0;
     const impl::LatticeCell cell(pattern, timed);  // throws for a pattern no table can be made for
     const glm::dmat2 stretched(glm::dvec2(1.1, 0.0), glm::dvec2(0.0, 1.0));
-    const auto t0 = std::chrono::steady_clock::now();
-    const impl::LatticeRelaxResult r = cell.relax(stretched, {}, stretched);
-    const double perIteration =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / std::max(1, r.iterations);
-    const double samples = double(options.samples[0]) * options.samples[1] * options.samples[2];
+    double spent = 0;
+    int iterations = 0;
+    while (spent < 0.05 || iterations == 0) {
+        const double c0 = threadSeconds();
+        iterations += std::max(1, cell.relax(stretched, {}, stretched).iterations);
+        spent += threadSeconds() - c0;
+    }
+    const double perIteration = spent / double(iterations);
+    // The work, in timed iterations, measured on whole default tables (process CPU over their
+    // lattice stages and over the timed iterations' cost, back to back on the same machine,
+    // docs/deformation.md "400-vertex patterns"). Dense Newton (up to 200 cell vertices): the
+    // stockinette; sparse: chart:basketweave, whose timed iterations (from the unrelaxed cell,
+    // each a new factorisation) cost several times a table's (conjugate gradients on a kept
+    // factor). The rest cell (up to 8 x the cap at a thousandth of the tolerance) runs alone first.
+    const bool dense = impl::denseNewton(cell.vertexCount());
+    const double perStage = dense ? kDensePerStage : kSparsePerStage;
+    const double cap = std::min(1.0, double(options.maxIterations) / 600.0);  // a lower iteration cap: less work
     const unsigned threads = std::max(1U, std::thread::hardware_concurrency());
-    return perIteration * kIterationsPerSample * (samples / double(threads) + 1);
+    return perIteration * cap * (perStage * double(strainTableStages(options)) / double(threads) + kRest);
 }
 
 StrainCellResult relaxStrainCell(const Pattern& pattern, const Strain& strain, const StrainTableOptions& solver,
