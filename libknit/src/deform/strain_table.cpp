@@ -10,7 +10,7 @@
 #include <mutex>
 #include <sstream>
 #include <thread>
-#include <time.h>
+#include <ctime>
 
 #include <tbb/parallel_for.h>
 
