@@ -192,12 +192,13 @@ def chart_name(options):
 def chart_warnings(options):
     """The chart's warnings in the library's words (knit.chart_warnings: a float longer than 5
     stitches, an intarsia repeat knitted taller than drawn), for Apply Knit and Re-apply to
-    report: the Chart text block's chart, or a chart Pattern (chart:NAME, .chart); [] otherwise."""
+    report: the Chart text block's chart, or a chart Pattern (chart:NAME, .chart); [] otherwise.
+    Without the Python keyword "(max_float)": the add-on has no such setting."""
     knit = knit_module()
     if options.get("chart_source"):
-        return knit.chart_warnings(options["chart_source"], name=chart_name(options))
+        return knit.chart_warnings(options["chart_source"], name=chart_name(options), keywords=False)
     text = knit.chart_text(pattern_path(options))
-    return [] if text is None else knit.chart_warnings(text, name=pattern_path(options))
+    return [] if text is None else knit.chart_warnings(text, name=pattern_path(options), keywords=False)
 
 
 def bind(source, options, depsgraph, rest=None):

@@ -66,6 +66,7 @@ def check_chart_warnings():
     check(result == {"FINISHED"}, "a chart with a long float still knits")
     check("Warning: band:1: row 1: the float of colour B over columns 3-1 (round the repeat) is 6 stitches long"
           in printed, f"the long float is reported as a warning ({printed.strip()})")
+    check("max_float" not in printed, f"no Python keyword in the add-on's words ({printed.strip()})")
     bpy.context.view_layer.objects.active = bpy.data.objects["Cloth.knit"]
     out = io.StringIO()
     with contextlib.redirect_stdout(out):

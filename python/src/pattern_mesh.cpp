@@ -71,12 +71,15 @@ py::list chartFloats(const std::string& text, const std::string& name, int maxFl
 // The chart's warnings (knit/chart_warnings.hpp: floats longer than maxFloat, rows stacked) as
 // `knit chart` prints them, "NAME:LINE: ..." with this module's keywords; the package's
 // chart_pattern and load_pattern warn with each (knit.ChartWarning).
-std::vector<std::string> chartWarnings(const std::string& text, const std::string& name, int maxFloat) {
+std::vector<std::string> chartWarnings(const std::string& text, const std::string& name, int maxFloat, bool keywords) {
     if (maxFloat < 1) throw knit::Error("max_float must be at least 1");
     const knit::Chart chart = knit::parseChart(text, name);
     std::vector<std::string> out;
     for (const knit::ChartWarning& w : knit::chartWarnings(chart, knit::chartToCell(chart), maxFloat))
-        out.push_back(withKeywords(knit::chartWarningMessage(chart, w)));
+        // This module's keyword after the float limit ("(max_float)"), or the library's words alone
+        // for a front end with its own spelling (the Blender add-on, as knit.Error.words).
+        out.push_back(keywords ? withKeywords(knit::chartWarningMessage(chart, w))
+                               : knit::chartWarningMessage(chart, w));
     return out;
 }
 
@@ -89,11 +92,12 @@ void registerChart(py::module_& m) {
     m.def("chart_floats", &chartFloats, "text"_a, "name"_a = "<chart text>", "max_float"_a = 5,
           "The chart's floats as dicts (row, line, columns, stitches, colour, side, too_long: longer than "
           "max_float stitches). Raises knit.Error for a bad chart.");
-    m.def("chart_warnings", &chartWarnings, "text"_a, "name"_a = "<chart text>", "max_float"_a = 5,
+    m.def("chart_warnings", &chartWarnings, "text"_a, "name"_a = "<chart text>", "max_float"_a = 5, "keywords"_a = true,
           "The chart's warnings as `knit chart` prints them ('NAME:LINE: row R: the float ...', 'NAME: intarsia: "
           "... knitted 4 rows tall ...'): floats longer than max_float stitches, an intarsia repeat knitted taller "
-          "than drawn. chart_pattern and load_pattern warn with each (knit.ChartWarning). Raises knit.Error for a "
-          "bad chart.",
+          "than drawn. chart_pattern and load_pattern warn with each (knit.ChartWarning). keywords=False gives the "
+          "library's words without this module's keyword after the float limit (for a front end with its own "
+          "spelling, as knit.Error.words). Raises knit.Error for a bad chart.",
           py::call_guard<py::gil_scoped_release>());
     m.def(
         "chart_text",
