@@ -96,6 +96,16 @@ std::vector<TurnCurve> turnsOf(const ChartCell& cell, const Pattern& p) {
     return turns;
 }
 
+// How far a turn reaches in x.
+double xExtent(const TurnCurve& t) {
+    double lo = t.points.front().x, hi = lo;
+    for (const glm::dvec3& q : t.points) {
+        lo = std::min(lo, q.x);
+        hi = std::max(hi, q.x);
+    }
+    return hi - lo;
+}
+
 // For every turn: how many turns of other yarns it is linked with (|linking number| near 1),
 // and the largest |linking number| with any turn it is not linked with.
 struct Interlock {
@@ -143,15 +153,11 @@ HeldTurns heldTurns(const ChartCell& cell) {
     HeldTurns out;
     size_t onTurns = 0;
     for (const TurnCurve& t : turnsOf(cell, cell.pattern)) {
-        double lo = t.points.front().x, hi = lo;
-        for (const glm::dvec3& q : t.points) {
-            lo = std::min(lo, q.x);
-            hi = std::max(hi, q.x);
-        }
+        const double extent = xExtent(t);
         const auto held = size_t(
             std::count_if(t.vertices.begin(), t.vertices.end(), [&](uint32_t v) { return anchored.count(v) > 0; }));
         onTurns += held;
-        const bool carried = hi - lo > 0.75 * stitch;
+        const bool carried = extent > 0.75 * stitch;
         out.carried += carried;
         out.carriedHeld += carried && held > 0;
         out.keptHeld += !carried && held > 0;
@@ -607,6 +613,39 @@ TEST(Intarsia, aZigzagBoundaryIsKnittedByClosedCarriedYarns) {
     EXPECT_GT(minYarnDistance(cell.pattern), 0.3);
 }
 
+// A two-row zigzag of two yarns (`cell` built from `chart`) relaxes: converged, >= 1.9 r, its four
+// turns each hooked through the other yarn's turns above and below before and after, and every
+// stitch keeping knitting's crossings with the head below.
+void expectZigzagRelaxesHooked(const Chart& chart, const ChartCell& cell, const char* label) {
+    const ChartPattern cp = relaxChart(chart);
+    std::printf("%s: min distance %.3f r, closest approach %.3f r, %d iterations, converged %d\n", label,
+                cp.relaxed.minDistance, cp.relaxed.closestApproach, cp.relaxed.iterations, int(cp.relaxed.converged));
+    for (const Pattern* p : {&cell.pattern, &cp.relaxed.pattern}) {
+        const Interlock il = interlock(cell, *p);
+        ASSERT_EQ(il.linkedWith.size(), 4u);
+        for (const int n : il.linkedWith) EXPECT_EQ(n, 2);
+        EXPECT_GT(il.worstLinked, 0.9);
+        EXPECT_LT(il.worstUnlinked, 0.1);
+    }
+    EXPECT_TRUE(cp.relaxed.converged);
+    EXPECT_GE(cp.relaxed.minDistance, 1.9);
+    EXPECT_GT(cp.relaxed.closestApproach, 0.2);
+    ChartCell relaxed = cp.cell;
+    relaxed.pattern = cp.relaxed.pattern;
+    for (int r = 0; r < relaxed.height; ++r)
+        for (int c = 0; c < relaxed.width; ++c) EXPECT_EQ(test::checkStitchEnds(relaxed, r, c), "") << r << ", " << c;
+}
+
+// parseChart's error message for `text` ("" when it parses).
+std::string parseError(const std::string& text) {
+    try {
+        parseChart(text, "t.chart");
+    } catch (const Error& e) {
+        return std::string(e.what());
+    }
+    return std::string();
+}
+
 // A boundary jumping two columns between rows (`A A A A B B` over `A A B B B B`): each area's yarn
 // knits two stitches more or fewer on the next row, carried two stitches on behind the work. The
 // yarns are closed serpentines, each turn sits at its own row's boundary below its first foot and
@@ -633,33 +672,13 @@ TEST(Intarsia, aBoundaryJumpingTwoColumnsIsCarriedTwoStitchesOn) {
     const double stitch = cell.pattern.px / chart.width;
     int carried = 0, kept = 0;
     for (const TurnCurve& t : turns) {
-        double lo = t.points.front().x, hi = lo;
-        for (const glm::dvec3& q : t.points) {
-            lo = std::min(lo, q.x);
-            hi = std::max(hi, q.x);
-        }
-        carried += hi - lo > 2 * stitch;
-        kept += hi - lo < stitch;
+        const double extent = xExtent(t);
+        carried += extent > 2 * stitch;
+        kept += extent < stitch;
     }
     EXPECT_EQ(carried, 2);
     EXPECT_EQ(kept, 2);
-    const ChartPattern cp = relaxChart(chart);
-    std::printf("steep zigzag: min distance %.3f r, closest approach %.3f r, %d iterations, converged %d\n",
-                cp.relaxed.minDistance, cp.relaxed.closestApproach, cp.relaxed.iterations, int(cp.relaxed.converged));
-    for (const Pattern* p : {&cell.pattern, &cp.relaxed.pattern}) {
-        const Interlock il = interlock(cell, *p);
-        ASSERT_EQ(il.linkedWith.size(), 4u);
-        for (const int n : il.linkedWith) EXPECT_EQ(n, 2);
-        EXPECT_GT(il.worstLinked, 0.9);
-        EXPECT_LT(il.worstUnlinked, 0.1);
-    }
-    EXPECT_TRUE(cp.relaxed.converged);
-    EXPECT_GE(cp.relaxed.minDistance, 1.9);
-    EXPECT_GT(cp.relaxed.closestApproach, 0.2);
-    ChartCell relaxed = cp.cell;
-    relaxed.pattern = cp.relaxed.pattern;
-    for (int r = 0; r < relaxed.height; ++r)
-        for (int c = 0; c < relaxed.width; ++c) EXPECT_EQ(test::checkStitchEnds(relaxed, r, c), "") << r << ", " << c;
+    expectZigzagRelaxesHooked(chart, cell, "steep zigzag");
 }
 
 // A boundary jumping three columns (issue 25 round 9) is knitted like one jumping two: the area's
@@ -686,12 +705,8 @@ TEST(Intarsia, aBoundaryJumpingThreeColumnsIsCarriedThreeStitchesOn) {
     const double stitch = cell.pattern.px / chart.width;
     int wide = 0;
     for (const TurnCurve& t : turnsOf(cell, cell.pattern)) {
-        double lo = t.points.front().x, hi = lo;
-        for (const glm::dvec3& q : t.points) {
-            lo = std::min(lo, q.x);
-            hi = std::max(hi, q.x);
-        }
-        wide += hi - lo > 3 * stitch;
+        const double extent = xExtent(t);
+        wide += extent > 3 * stitch;
     }
     EXPECT_EQ(wide, 4);
     const Interlock il = interlock(cell, cell.pattern);
@@ -728,34 +743,14 @@ TEST(Intarsia, aZigzagThreeColumnsARowRelaxesWithItsCarriedTurnsHooked) {
                                    "steep3.chart");
     const ChartCell cell = chartToCell(chart);
     EXPECT_EQ(heldTurns(cell).carriedHeld, 2);
-    const ChartPattern cp = relaxChart(chart);
-    std::printf("three-column zigzag: min distance %.3f r, closest approach %.3f r, %d iterations, converged %d\n",
-                cp.relaxed.minDistance, cp.relaxed.closestApproach, cp.relaxed.iterations, int(cp.relaxed.converged));
-    const Interlock il = interlock(cell, cp.relaxed.pattern);
-    ASSERT_EQ(il.linkedWith.size(), 4u);
-    for (const int n : il.linkedWith) EXPECT_EQ(n, 2);
-    EXPECT_GT(il.worstLinked, 0.9);
-    EXPECT_LT(il.worstUnlinked, 0.1);
-    EXPECT_TRUE(cp.relaxed.converged);
-    EXPECT_GE(cp.relaxed.minDistance, 1.9);
-    ChartCell relaxed = cp.cell;
-    relaxed.pattern = cp.relaxed.pattern;
-    for (int r = 0; r < relaxed.height; ++r)
-        for (int c = 0; c < relaxed.width; ++c) EXPECT_EQ(test::checkStitchEnds(relaxed, r, c), "") << r << ", " << c;
+    expectZigzagRelaxesHooked(chart, cell, "three-column zigzag");
 }
 
 // A move of half the repeat's width could be carried either way round: where the rows would have to
 // continue (a block one row tall otherwise) it is refused naming the boundary; between blocks two
 // rows tall each block has its own yarns, as before.
 TEST(Intarsia, aBoundaryMovingHalfTheRepeatEitherWayIsRefusedWhereItMustBeCarried) {
-    auto error = [](const std::string& text) {
-        try {
-            parseChart(text, "t.chart");
-        } catch (const Error& e) {
-            return std::string(e.what());
-        }
-        return std::string();
-    };
+    const auto error = parseError;
     const std::string tie =
         error("k k k k k k\nk k k k k k\n\nB B B A A A\nA A A B B B\nA=#ffffff B=#000000\nintarsia\n");
     EXPECT_NE(
