@@ -58,6 +58,7 @@ nlohmann::json floatsOf(const Chart& chart, const ChartPattern& cp, int maxFloat
                           {"colour", f.colour ? std::string(1, f.colour) : std::string()},
                           {"side", f.front ? "front" : "back"},
                           {"stranded", f.stranded},
+                          {"carried", f.carried},
                           {"too_long", f.columns > maxFloat}});
     }
     return floats;

@@ -221,10 +221,12 @@ def bind(source, options, depsgraph, rest=None):
     if deform == "strain":
         require_quick_strain_table(knit, pattern)
     try:
-        return knit.build_scene(pattern, mesh, repeats=repeats if repeats[0] > 0 else None,
-                                plies=options["plies"], ply_pitch=options["ply_pitch"], twist=options["twist"],
-                                deform={"auto": ""}.get(deform, deform),
-                                build_plies=False)
+        with warnings.catch_warnings():  # a chart file or chart:NAME warns too: Apply Knit reports it, once
+            warnings.simplefilter("ignore", knit.ChartWarning)
+            return knit.build_scene(pattern, mesh, repeats=repeats if repeats[0] > 0 else None,
+                                    plies=options["plies"], ply_pitch=options["ply_pitch"], twist=options["twist"],
+                                    deform={"auto": ""}.get(deform, deform),
+                                    build_plies=False)
     except knit.Error as e:
         if not (gauge[0] > 0 and gauge[1] > 0) or getattr(e, "words", None) is None:
             raise

@@ -24,7 +24,6 @@ from ._knit import (  # noqa: F401
     Scene,
     StrainTable,
     Yarns,
-    build_scene,
     builtin_charts,
     builtin_meshes,
     builtin_patterns,
@@ -55,9 +54,17 @@ class ChartWarning(UserWarning):
     with warnings.simplefilter("error", knit.ChartWarning): they are raised before the relaxation."""
 
 
-def _warn_chart(text, name, max_float):
+def _warn_chart(text, name, max_float, stacklevel=3):
     for message in chart_warnings(text, name=name, max_float=max_float):
-        _warnings.warn(message, ChartWarning, stacklevel=3)
+        _warnings.warn(message, ChartWarning, stacklevel=stacklevel)
+
+
+def _warn_chart_named(file_or_name, max_float):
+    """Warns for a chart file or chart:NAME (nothing for other patterns), pointing at the caller of
+    the caller (load_pattern's, build_scene's)."""
+    text = chart_text(file_or_name)
+    if text is not None:
+        _warn_chart(text, file_or_name, max_float, stacklevel=4)
 
 
 def chart_pattern(text, name="<chart text>", yarn_radius=0.001, max_float=5):
@@ -72,10 +79,19 @@ def load_pattern(file_or_name, max_float=5):
     """Loads a pattern: a .pyp / .json file, a chart (.chart / .txt file or chart:NAME, relaxed
     and cached, warning with knit.ChartWarning as chart_pattern) or a built-in name
     (builtin_patterns()). Raises knit.Error."""
-    text = chart_text(file_or_name)
-    if text is not None:
-        _warn_chart(text, file_or_name, max_float)
+    _warn_chart_named(file_or_name, max_float)
     return _knit.load_pattern(file_or_name)
+
+
+def build_scene(pattern="stockinette", mesh="drape", *args, max_float=5, **kwargs):
+    if isinstance(pattern, str):  # a chart file or chart:NAME warns as load_pattern, before relaxing
+        _warn_chart_named(pattern, max_float)
+    return _knit.build_scene(pattern, mesh, *args, **kwargs)
+
+
+build_scene.__doc__ = (_knit.build_scene.__doc__ or "") + (
+    "\n\nA chart file or chart:NAME as pattern warns with knit.ChartWarning first, as load_pattern "
+    "(max_float: the float limit in stitches).")
 
 
 __all__ = [

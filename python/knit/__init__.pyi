@@ -128,7 +128,7 @@ def build_scene(pattern: Union[str, Pattern] = "stockinette", mesh: Union[str, M
                 samples_per_turn: int = 12, build_plies: bool = True, res_u: int = 32, res_v: int = 32,
                 clamp_tolerance: float = 0.01, weld: bool = True, weld_tolerance: float = 0.25,
                 max_memory: str = "", deform: str = "",
-                strain_table: Union[None, str, StrainTable] = None) -> Scene: ...
+                strain_table: Union[None, str, StrainTable] = None, max_float: int = 5) -> Scene: ...
 
 class StrainTable:
     @property

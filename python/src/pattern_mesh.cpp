@@ -62,6 +62,7 @@ py::list chartFloats(const std::string& text, const std::string& name, int maxFl
         d["stitches"] = f.columns;
         d["colour"] = f.colour ? std::string(1, f.colour) : std::string();
         d["side"] = f.front ? "front" : "back";
+        d["carried"] = f.carried;
         d["too_long"] = f.columns > maxFloat;
         out.append(d);
     }

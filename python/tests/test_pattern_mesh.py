@@ -154,6 +154,30 @@ def test_a_stacked_chart_warns_before_it_relaxes(tmp_path, monkeypatch):
     assert list(tmp_path.iterdir()) == [f]  # nothing relaxed, nothing cached
 
 
+def test_build_scene_given_a_chart_by_name_warns_as_load_pattern(tmp_path, monkeypatch):
+    # A chart file or chart:NAME passed straight to build_scene warns before the relaxation, in
+    # load_pattern's words, pointing at the caller's line.
+    monkeypatch.setenv("KNIT_CACHE_DIR", str(tmp_path))
+    f = tmp_path / "w.chart"
+    f.write_text(WANDER)
+    band = tmp_path / "band.chart"
+    band.write_text(FAIR_ISLE)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", knit.ChartWarning)
+        with pytest.raises(knit.ChartWarning) as raised:
+            knit.build_scene(str(f), "plane")
+        with pytest.raises(knit.ChartWarning, match=r"band.chart:2: row 1: the float of colour B over columns 3-1"):
+            knit.build_scene(pattern=str(band), mesh="plane")
+        with pytest.raises(knit.ChartWarning, match=r"longer than the float limit \(max_float\) of 2 stitches"):
+            knit.build_scene(str(band), "plane", max_float=2)
+    assert str(raised.value) == knit.chart_warnings(WANDER, name=str(f))[0]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["band.chart", "w.chart"]  # nothing relaxed
+    with pytest.warns(knit.ChartWarning) as shown:
+        with pytest.raises(TypeError):  # warned first, then refused by the pipeline: nothing relaxed
+            knit.build_scene(str(band), "plane", no_such_keyword=1)
+    assert len(shown) == 1 and shown[0].filename == __file__
+
+
 def test_a_long_float_warns_and_the_pattern_still_relaxes(tmp_path, monkeypatch):
     monkeypatch.setenv("KNIT_CACHE_DIR", str(tmp_path))
     band = "k k k k k k k\n\nA B A A A A A\nA=#ffffff B=#000000\nstranded\n"

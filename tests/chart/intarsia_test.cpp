@@ -14,6 +14,7 @@
 #include "chart/openings.hpp"
 #include "knit/chart.hpp"
 #include "knit/chart_pattern.hpp"
+#include "knit/chart_warnings.hpp"
 #include "knit/chart_topology.hpp"
 #include "knit/error.hpp"
 #include "knit/relax.hpp"
@@ -46,7 +47,7 @@ double linking(const std::vector<glm::dvec3>& a, const std::vector<glm::dvec3>& 
 
 // A yarn's turn between two rows: its vertices not in any stitch, with the feet either side
 // (the last vertex of the row's last loop and the first of the next row's), the yarn's
-// periodic offsets applied so it is one connected curve, closed by the chord between the feet.
+// periodic offsets applied so it is one connected curve, closed in front of the work.
 struct TurnCurve {
     int yarn = 0;
     std::vector<glm::dvec3> points;
@@ -83,9 +84,26 @@ std::vector<TurnCurve> turnsOf(const ChartCell& cell, const Pattern& p) {
         if (!at) continue;
         t.points.push_back(p.points[at->v1] + offset);
         for (const glm::dvec3& q : t.points) t.centre += q / double(t.points.size());
+        // Closed out in front of the work, where no turn lies: a straight chord between the feet
+        // of a turn carried three stitches on ran through the fabric, and the neighbour's turn
+        // crossed it as the feet moved in relaxation (its linking number changed although no yarn
+        // passed through another: closest approach 1.0 r).
+        const glm::dvec3 a = t.points.back(), b = t.points.front();
+        t.points.push_back({a.x, a.y, a.z + p.px});
+        t.points.push_back({b.x, b.y, b.z + p.px});
         turns.push_back(t);
     }
     return turns;
+}
+
+// How far a turn reaches in x.
+double xExtent(const TurnCurve& t) {
+    double lo = t.points.front().x, hi = lo;
+    for (const glm::dvec3& q : t.points) {
+        lo = std::min(lo, q.x);
+        hi = std::max(hi, q.x);
+    }
+    return hi - lo;
 }
 
 // For every turn: how many turns of other yarns it is linked with (|linking number| near 1),
@@ -135,15 +153,11 @@ HeldTurns heldTurns(const ChartCell& cell) {
     HeldTurns out;
     size_t onTurns = 0;
     for (const TurnCurve& t : turnsOf(cell, cell.pattern)) {
-        double lo = t.points.front().x, hi = lo;
-        for (const glm::dvec3& q : t.points) {
-            lo = std::min(lo, q.x);
-            hi = std::max(hi, q.x);
-        }
+        const double extent = xExtent(t);
         const auto held = size_t(
             std::count_if(t.vertices.begin(), t.vertices.end(), [&](uint32_t v) { return anchored.count(v) > 0; }));
         onTurns += held;
-        const bool carried = hi - lo > 0.75 * stitch;
+        const bool carried = extent > 0.75 * stitch;
         out.carried += carried;
         out.carriedHeld += carried && held > 0;
         out.keptHeld += !carried && held > 0;
@@ -295,20 +309,23 @@ TEST(Intarsia, layoutsAPeriodicCellCannotKnitAreRefusedWithTheirPlace) {
     EXPECT_EQ(error("k k k k\nk k k k\nk k k k\nk k k k\n\nA A A A\nA B B A\nA B B A\nA A A A\n"
                     "A=#ffffff B=#000000\nintarsia\n"),
               "");
-    // A boundary that steps one or two columns every row is knitted (the yarns carried one or two
-    // stitches on: Intarsia.aZigzag..., Intarsia.aBoundaryJumpingTwoColumns...); one that jumps
-    // three leaves a row whose areas continue into neither neighbour: refused, the smallest area named.
+    // A boundary that steps one, two or three columns every row is knitted (the yarns carried
+    // that many stitches on: Intarsia.aZigzag..., Intarsia.aBoundaryJumpingTwoColumns...,
+    // Intarsia.aBoundaryJumpingThreeColumns...; refused before issue 25 round 9).
     EXPECT_EQ(error("k k k k\nk k k k\n\nA B B B\nA A B B\nA=#ffffff B=#000000\nintarsia\n"), "");
     EXPECT_EQ(error("k k k k k k\nk k k k k k\nk k k k k k\n\nA A A A B B\nA A A A B B\n"
                     "A A B B B B\nA=#ffffff B=#000000\nintarsia\n"),
               "");
-    const std::string jump = error("k k k k k k k\nk k k k k k k\nk k k k k k k\n\nA A A A A B B\nA A A A A B B\n"
-                                   "A A B B B B B\nA=#ffffff B=#000000\nintarsia\n");
-    EXPECT_NE(jump.find("t.chart:7:1: intarsia: the colour A area in row 1, columns 1-2 lasts one row: the areas "
-                        "of the rows below and above do not continue into it"),
+    EXPECT_EQ(error("k k k k k k k\nk k k k k k k\nk k k k k k k\n\nA A A A A B B\nA A A A A B B\n"
+                    "A A B B B B B\nA=#ffffff B=#000000\nintarsia\n"),
+              "");
+    // A motif row between two rows of one colour lasts one row: refused as above.
+    const std::string row = error("k k k k k k k\nk k k k k k k\nk k k k k k k\n\nA A A A A A A\nA A A A A B B\n"
+                                  "A A A A A A A\nA=#ffffff B=#000000\nintarsia\n");
+    EXPECT_NE(row.find("t.chart:6:11: intarsia: the colour B area in row 2, columns 6-7 lasts one row: the areas "
+                       "of the rows below and above do not continue into it"),
               std::string::npos)
-        << jump;
-    EXPECT_NE(jump.find("move each boundary by at most two columns"), std::string::npos) << jump;
+        << row;
     // Stripes one stitch wide moving a column every row come back onto the other stripe of their
     // colour after the period: parsed, and stacked until each comes back to itself
     // (Intarsia.areasThatWanderOntoAnotherOfTheirColourAreStackedUntilEachComesBack).
@@ -596,6 +613,39 @@ TEST(Intarsia, aZigzagBoundaryIsKnittedByClosedCarriedYarns) {
     EXPECT_GT(minYarnDistance(cell.pattern), 0.3);
 }
 
+// A two-row zigzag of two yarns (`cell` built from `chart`) relaxes: converged, >= 1.9 r, its four
+// turns each hooked through the other yarn's turns above and below before and after, and every
+// stitch keeping knitting's crossings with the head below.
+void expectZigzagRelaxesHooked(const Chart& chart, const ChartCell& cell, const char* label) {
+    const ChartPattern cp = relaxChart(chart);
+    std::printf("%s: min distance %.3f r, closest approach %.3f r, %d iterations, converged %d\n", label,
+                cp.relaxed.minDistance, cp.relaxed.closestApproach, cp.relaxed.iterations, int(cp.relaxed.converged));
+    for (const Pattern* p : {&cell.pattern, &cp.relaxed.pattern}) {
+        const Interlock il = interlock(cell, *p);
+        ASSERT_EQ(il.linkedWith.size(), 4u);
+        for (const int n : il.linkedWith) EXPECT_EQ(n, 2);
+        EXPECT_GT(il.worstLinked, 0.9);
+        EXPECT_LT(il.worstUnlinked, 0.1);
+    }
+    EXPECT_TRUE(cp.relaxed.converged);
+    EXPECT_GE(cp.relaxed.minDistance, 1.9);
+    EXPECT_GT(cp.relaxed.closestApproach, 0.2);
+    ChartCell relaxed = cp.cell;
+    relaxed.pattern = cp.relaxed.pattern;
+    for (int r = 0; r < relaxed.height; ++r)
+        for (int c = 0; c < relaxed.width; ++c) EXPECT_EQ(test::checkStitchEnds(relaxed, r, c), "") << r << ", " << c;
+}
+
+// parseChart's error message for `text` ("" when it parses).
+std::string parseError(const std::string& text) {
+    try {
+        parseChart(text, "t.chart");
+    } catch (const Error& e) {
+        return std::string(e.what());
+    }
+    return std::string();
+}
+
 // A boundary jumping two columns between rows (`A A A A B B` over `A A B B B B`): each area's yarn
 // knits two stitches more or fewer on the next row, carried two stitches on behind the work. The
 // yarns are closed serpentines, each turn sits at its own row's boundary below its first foot and
@@ -622,33 +672,101 @@ TEST(Intarsia, aBoundaryJumpingTwoColumnsIsCarriedTwoStitchesOn) {
     const double stitch = cell.pattern.px / chart.width;
     int carried = 0, kept = 0;
     for (const TurnCurve& t : turns) {
-        double lo = t.points.front().x, hi = lo;
-        for (const glm::dvec3& q : t.points) {
-            lo = std::min(lo, q.x);
-            hi = std::max(hi, q.x);
-        }
-        carried += hi - lo > 2 * stitch;
-        kept += hi - lo < stitch;
+        const double extent = xExtent(t);
+        carried += extent > 2 * stitch;
+        kept += extent < stitch;
     }
     EXPECT_EQ(carried, 2);
     EXPECT_EQ(kept, 2);
-    const ChartPattern cp = relaxChart(chart);
-    std::printf("steep zigzag: min distance %.3f r, closest approach %.3f r, %d iterations, converged %d\n",
-                cp.relaxed.minDistance, cp.relaxed.closestApproach, cp.relaxed.iterations, int(cp.relaxed.converged));
-    for (const Pattern* p : {&cell.pattern, &cp.relaxed.pattern}) {
-        const Interlock il = interlock(cell, *p);
-        ASSERT_EQ(il.linkedWith.size(), 4u);
-        for (const int n : il.linkedWith) EXPECT_EQ(n, 2);
-        EXPECT_GT(il.worstLinked, 0.9);
-        EXPECT_LT(il.worstUnlinked, 0.1);
+    expectZigzagRelaxesHooked(chart, cell, "steep zigzag");
+}
+
+// A boundary jumping three columns (issue 25 round 9) is knitted like one jumping two: the area's
+// yarn carried three stitches on behind the work, its crossover held on the back of the stitches it
+// passes, each turn still hooked through the other yarn's turns above and below. The carry is a
+// float of the row it reaches (ChartFloat::carried), warned about beyond the float limit.
+TEST(Intarsia, aBoundaryJumpingThreeColumnsIsCarriedThreeStitchesOn) {
+    const Chart chart = parseChart("k k k k k k k\nk k k k k k k\nk k k k k k k\n\nA A B B B B B\nA A A A A B B\n"
+                                   "A A A A A B B\nA=#ffffff B=#000000\nintarsia\n",
+                                   "jump.chart");
+    const ChartCell cell = chartToCell(chart);  // three rows: stacked twice
+    EXPECT_EQ(cell.yarns, 2);
+    EXPECT_EQ(cell.height, 6);
+    for (const YarnPath& y : yarnPaths(cell.pattern)) EXPECT_FALSE(y.open);
+    for (int r = 0; r < cell.height; ++r)
+        for (int c = 0; c < cell.width; ++c) EXPECT_EQ(test::checkStitch(cell, r, c), "") << r << ", " << c;
+    // Four of the twelve turns are carried (rows 2 to 3 and 3 to 1, twice over), each reaching
+    // across more than three stitches and held there; the eight at the boundaries that stay, free.
+    const HeldTurns held = heldTurns(cell);
+    EXPECT_EQ(held.carried, 4);
+    EXPECT_EQ(held.carriedHeld, 4);
+    EXPECT_EQ(held.keptHeld, 0);
+    EXPECT_EQ(held.offTurns, 0u);
+    const double stitch = cell.pattern.px / chart.width;
+    int wide = 0;
+    for (const TurnCurve& t : turnsOf(cell, cell.pattern)) {
+        const double extent = xExtent(t);
+        wide += extent > 3 * stitch;
     }
-    EXPECT_TRUE(cp.relaxed.converged);
-    EXPECT_GE(cp.relaxed.minDistance, 1.9);
-    EXPECT_GT(cp.relaxed.closestApproach, 0.2);
-    ChartCell relaxed = cp.cell;
-    relaxed.pattern = cp.relaxed.pattern;
-    for (int r = 0; r < relaxed.height; ++r)
-        for (int c = 0; c < relaxed.width; ++c) EXPECT_EQ(test::checkStitchEnds(relaxed, r, c), "") << r << ", " << c;
+    EXPECT_EQ(wide, 4);
+    const Interlock il = interlock(cell, cell.pattern);
+    ASSERT_EQ(il.linkedWith.size(), 12u);
+    for (const int n : il.linkedWith) EXPECT_EQ(n, 2);
+    EXPECT_GT(il.worstLinked, 0.9);
+    EXPECT_LT(il.worstUnlinked, 0.1);
+    // The carries of the chart's rows, each three stitches behind columns 3-5 of the row it reaches.
+    ASSERT_EQ(cell.floats.size(), 2u);
+    for (const ChartFloat& f : cell.floats) {
+        EXPECT_TRUE(f.carried);
+        EXPECT_FALSE(f.stranded);
+        EXPECT_EQ(f.firstColumn, 2);
+        EXPECT_EQ(f.columns, 3);
+        EXPECT_FALSE(f.vertices.empty());
+    }
+    EXPECT_EQ(cell.floats[0].row, 0);
+    EXPECT_EQ(cell.floats[1].row, 2);
+    EXPECT_TRUE(chartWarnings(chart, cell, 5).empty());
+    const std::vector<ChartWarning> warned = chartWarnings(chart, cell, 2);
+    ASSERT_EQ(warned.size(), 2u);
+    EXPECT_EQ(warned[1].line, 1);  // the top row's stitch line
+    EXPECT_EQ(warned[1].text,
+              "row 3: the yarn of colour B carried up from the row below to its moved boundary over columns 3-5 is 3 "
+              "stitches long, longer than the float limit of 2 stitches (long floats snag: catch it or move the "
+              "boundary by fewer columns a row)");
+}
+
+// The steep zigzag three columns a row relaxes (1.8 s) with its turns still hooked and every
+// stitch keeping knitting's crossings with the head below.
+TEST(Intarsia, aZigzagThreeColumnsARowRelaxesWithItsCarriedTurnsHooked) {
+    const Chart chart = parseChart("k k k k k k k k\nk k k k k k k k\n\nA A B B B B B B\nA A A A A B B B\n"
+                                   "A=#ffffff B=#000000\nintarsia\n",
+                                   "steep3.chart");
+    const ChartCell cell = chartToCell(chart);
+    EXPECT_EQ(heldTurns(cell).carriedHeld, 2);
+    expectZigzagRelaxesHooked(chart, cell, "three-column zigzag");
+}
+
+// A move of half the repeat's width could be carried either way round: where the rows would have to
+// continue (a block one row tall otherwise) it is refused naming the boundary; between blocks two
+// rows tall each block has its own yarns, as before.
+TEST(Intarsia, aBoundaryMovingHalfTheRepeatEitherWayIsRefusedWhereItMustBeCarried) {
+    const auto error = parseError;
+    const std::string tie =
+        error("k k k k k k\nk k k k k k\n\nB B B A A A\nA A A B B B\nA=#ffffff B=#000000\nintarsia\n");
+    EXPECT_NE(
+        tie.find("t.chart:4:1: intarsia: the colour boundary left of column 1 in row 1 moves 3 columns into row 2, "
+                 "and on this 6-stitch repeat 3 columns to the right and to the left land on the same place"),
+        std::string::npos)
+        << tie;
+    EXPECT_NE(tie.find("Move the boundary by fewer than 3 columns"), std::string::npos) << tie;
+    EXPECT_EQ(error("k k k k k k\nk k k k k k\nk k k k k k\nk k k k k k\n\nB B B A A A\nB B B A A A\n"
+                    "A A A B B B\nA A A B B B\nA=#ffffff B=#000000\nintarsia\n"),
+              "");
+    // Two shifts of the areas as near (a 12-stitch repeat of 3-stitch stripes moving 3): a tie too.
+    EXPECT_NE(error("k k k k k k k k k k k k\nk k k k k k k k k k k k\n\nB B B A A A B B B A A A\n"
+                    "A A A B B B A A A B B B\nA=#ffffff B=#000000\nintarsia\n")
+                  .find("intarsia: the colour boundary"),
+              std::string::npos);
 }
 
 // Stripes moving two columns every row come back to themselves a period over: the closing turn

@@ -84,9 +84,10 @@ struct ChartFloat {
     int row = 0;
     int firstColumn = 0, columns = 0;  // the columns it passes (cyclic over the chart's width)
     int yarn = 0;
-    char colour = 0;                 // palette letter (0 without a colour layer)
-    bool front = false;              // sl-wyif
-    bool stranded = false;           // it passes stitches of another yarn (stranded colourwork)
+    char colour = 0;        // palette letter (0 without a colour layer)
+    bool front = false;     // sl-wyif
+    bool stranded = false;  // it passes stitches of another yarn (stranded colourwork)
+    bool carried = false;   // intarsia: an area's yarn carried up from the row below to where its boundary moved
     std::vector<uint32_t> vertices;  // its vertices, in yarn order
 };
 

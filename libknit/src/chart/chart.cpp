@@ -5,6 +5,7 @@
 #include <cctype>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <sstream>
 
 #include "knit/error.hpp"
@@ -299,32 +300,52 @@ void readColours(const Block& block, const std::string& source, Chart& chart) {
     }
 }
 
+// "column 3" / "columns 3-5" (from 1 at the left).
+std::string columnSpan(int lo, int count) {
+    return count == 1 ? "column " + std::to_string(lo + 1)
+                      : "columns " + std::to_string(lo + 1) + "-" + std::to_string(lo + count);
+}
+
+// Two rows whose areas would continue but for a boundary that could move either way round the
+// period, refused at the upper row's line, where the boundary lies in the row below.
+[[noreturn]] void refuseTie(const std::string& source, const Chart& chart, const Block& colours,
+                            const intarsia::Tie& tie) {
+    const int w = chart.width, column = ((tie.column % w) + w) % w, below = (tie.row + chart.height - 1) % chart.height;
+    const Line& line = colours[size_t(chart.height - 1 - tie.row)];
+    const std::string n = std::to_string(tie.columns);
+    fail(source, line.number, line.tokens[size_t(column)].column,
+         "intarsia: the colour boundary left of column " + std::to_string(column + 1) + " in row " +
+             std::to_string(below + 1) + " moves " + n + " columns into row " + std::to_string(tie.row + 1) +
+             ", and on this " + std::to_string(w) + "-stitch repeat " + n +
+             " columns to the right and to the left land on the same place: which way the area's yarn is carried "
+             "behind the work is not drawn. Move the boundary by fewer than " +
+             n + " columns between the two rows (draw the steps between), widen the repeat, or knit it `stranded`");
+}
+
 // A block of rows with several colour areas that lasts one row only (an area that starts and
-// ends in the same row: a motif one row tall, or a boundary that jumps by more than two columns),
-// refused naming its smallest area where the colour block draws it (rows from 1 at the bottom,
+// ends in the same row: a motif one row tall, or a boundary whose move is a tie), refused naming
+// the tie or its smallest area where the colour block draws it (rows from 1 at the bottom,
 // columns from 1 at the left).
 [[noreturn]] void refuseOneRowBlock(const std::string& source, const Chart& chart, const Block& colours,
                                     const intarsia::RowBlock& block) {
+    for (const int row : {block.first + 1, block.first})
+        if (const std::optional<intarsia::Tie> tie = intarsia::tiedMove(chart, row))
+            refuseTie(source, chart, colours, *tie);
     const intarsia::Area* small = &block.areas.front();
     for (const intarsia::Area& a : block.areas)
         if (a.count < small->count) small = &a;
-    const auto span = [](int lo, int count) {
-        return count == 1 ? "column " + std::to_string(lo + 1)
-                          : "columns " + std::to_string(lo + 1) + "-" + std::to_string(lo + count);
-    };
     const Line& line = colours[size_t(chart.height - 1 - block.first)];
     fail(source, line.number, line.tokens[size_t(small->first)].column,
          "intarsia: the colour " + std::string(1, small->colour) + " area in row " + std::to_string(block.first + 1) +
-             ", " + span(small->first, small->count) +
+             ", " + columnSpan(small->first, small->count) +
              " lasts one row: the areas of the rows below and above do not continue into it (an area one row "
-             "tall, or a boundary that moves by more than two columns), so its yarn would knit one row with "
+             "tall: it starts and ends in this row), so its yarn would knit one row with "
              "no row above or below to turn into round its neighbours' yarns and would hang by its two "
-             "tails. Make the area at least two rows tall, move each boundary by at most two columns from "
-             "row to row (the yarn is carried one or two stitches on), or knit it `stranded`");
+             "tails. Make the area at least two rows tall, or knit it `stranded`");
 }
 
 // Intarsia in a periodic cell (chart_intarsia.hpp): at least one row with two colour areas; the
-// rows whose areas continue (the same areas, boundaries moving by at most a column) form blocks,
+// rows whose areas continue (the same areas, boundaries moving the shorter way round) form blocks,
 // each of several areas at least two rows tall (the areas' yarns turn round each other), unless
 // every row continues into the next (closed yarns; areas that wander round the period onto another
 // of their colour are stacked by chartToCell until each comes back to itself); the stitches either

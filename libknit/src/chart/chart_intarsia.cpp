@@ -59,14 +59,19 @@ std::vector<Area> areas(const Chart& chart, int row) {
 namespace {
 
 // How each area of a row continues into the next row's (`above`): the index of its continuation
-// there and how far its first column moves (-kMaxMove .. kMaxMove), or nothing when the rows do not
-// continue: a different number of areas, other colours, or a boundary that moves by more than
-// kMaxMove columns. One colour continues into the same colour.
+// there and how far its first column moves, or nothing when the rows do not continue: a different
+// number of areas, other colours, or a boundary whose move is ambiguous (`tie`). One colour
+// continues into the same colour.
 using Follow = std::vector<std::pair<int, int>>;
-std::optional<Follow> follow(const std::vector<Area>& below, const std::vector<Area>& above, int width) {
+struct Continuation {
+    std::optional<Follow> follow;
+    std::optional<Tie> tie;  // the rows would continue but a boundary could move either way round
+};
+
+// Step 1: every boundary moves by at most kMaxMove columns, read cyclically from -kMaxMove (as
+// since issue 25 round 5: the first shift of the areas that fits).
+std::optional<Follow> followNear(const std::vector<Area>& below, const std::vector<Area>& above, int width) {
     const size_t n = below.size();
-    if (n != above.size()) return std::nullopt;
-    if (n == 1) return below == above ? std::optional<Follow>(Follow{{0, 0}}) : std::nullopt;
     auto step = [&](int from, int to) {  // cyclic, from -kMaxMove
         return ((to - from + kMaxMove) % width + width) % width - kMaxMove;
     };
@@ -81,6 +86,59 @@ std::optional<Follow> follow(const std::vector<Area>& below, const std::vector<A
         if (out.size() == n) return out;
     }
     return std::nullopt;
+}
+
+// A boundary's move from column `from` to `to`, the shorter way round the period (a move of half
+// the width either way is a tie).
+int shortest(int from, int to, int width) {
+    const int m = ((to - from) % width + width) % width;
+    return 2 * m > width ? m - width : m;
+}
+
+// Step 2: any move, each boundary the shorter way round; the shift of the areas whose largest move
+// is smallest. A tie (a move of half the width, or two shifts as good) continues nothing: which way
+// the yarn is carried is not drawn.
+Continuation followFar(const std::vector<Area>& below, const std::vector<Area>& above, int width) {
+    const size_t n = below.size();
+    Continuation best;
+    int bestCost = width, ties = 0;
+    for (size_t s = 0; s < n; ++s) {
+        Follow out;
+        int cost = 0;
+        std::optional<Tie> tie;
+        for (size_t i = 0; i < n; ++i) {
+            const Area &a = below[i], &b = above[(i + s) % n];
+            const int first = shortest(a.first, b.first, width);
+            const int end = shortest(a.first + a.count, b.first + b.count, width);
+            if (a.colour != b.colour || b.count != a.count + end - first) break;
+            const int boundary = 2 * std::abs(first) == width ? first : end;  // the tied one, if any
+            if (!tie && 2 * std::abs(boundary) == width)
+                tie = Tie{0, boundary == first ? a.first : a.first + a.count, std::abs(boundary)};
+            cost = std::max({cost, std::abs(first), std::abs(end)});
+            out.push_back({int((i + s) % n), first});
+        }
+        if (out.size() != n) continue;
+        if (cost < bestCost) {
+            best = {out, tie};
+            bestCost = cost;
+            ties = 0;
+        } else if (cost == bestCost) {  // two shifts as far: the move goes either way
+            ++ties;
+        }
+    }
+    if (best.follow && ties > 0 && !best.tie) {
+        best.tie = Tie{0, below.front().first, bestCost};
+    }
+    if (best.tie) best.follow.reset();
+    return best;
+}
+
+Continuation follow(const std::vector<Area>& below, const std::vector<Area>& above, int width) {
+    const size_t n = below.size();
+    if (n != above.size()) return {};
+    if (n == 1) return below == above ? Continuation{Follow{{0, 0}}, std::nullopt} : Continuation{};
+    if (std::optional<Follow> near = followNear(below, above, width)) return {near, std::nullopt};
+    return followFar(below, above, width);
 }
 
 // Area a's places along `count` rows from row `first`, following `into`.
@@ -105,7 +163,8 @@ std::vector<RowBlock> rowBlocks(const Chart& chart) {
     for (int r = 0; r < H; ++r) rows[size_t(r)] = areas(chart, r);
     std::vector<std::optional<Follow>> into;  // into[r]: how row r - 1 continues into row r
     into.reserve(size_t(H));
-    for (int r = 0; r < H; ++r) into.push_back(follow(rows[size_t((r + H - 1) % H)], rows[size_t(r)], chart.width));
+    for (int r = 0; r < H; ++r)
+        into.push_back(follow(rows[size_t((r + H - 1) % H)], rows[size_t(r)], chart.width).follow);
     int start = 0;
     while (start < H && into[size_t(start)]) ++start;
     if (start == H) {  // every row continues: one closed block (each yarn back to itself?)
@@ -126,6 +185,13 @@ std::vector<RowBlock> rowBlocks(const Chart& chart) {
     for (RowBlock& b : out)
         for (size_t a = 0; a < b.areas.size(); ++a) b.places.push_back(track(rows, into, b.first, b.rows, int(a)));
     return out;
+}
+
+std::optional<Tie> tiedMove(const Chart& chart, int row) {
+    const int H = chart.height, r = ((row % H) + H) % H;
+    std::optional<Tie> tie = follow(areas(chart, (r + H - 1) % H), areas(chart, r), chart.width).tie;
+    if (tie) tie->row = r;
+    return tie;
 }
 
 Closing closing(const Chart& chart) {
@@ -171,7 +237,7 @@ TurnPoints turnPoints(const Turn& turn, double spacing) {
     const double step = turn.boundaryAbove - turn.boundary;
     const double low = turn.from.y - kOvershoot, high = turn.to.y + kOvershoot;
     std::vector<glm::dvec3> corners{turn.from, {nearX, low, -kNearDepth}, {farX, low, -kFarDepth}};
-    const bool held = std::abs(step) > 1.5 * util::kTwoPi;  // carried two stitches on
+    const bool held = std::abs(step) > 1.5 * util::kTwoPi;  // carried two stitches on or more
     if (step != 0) {  // carried a column on: up at this row's boundary, over, up at the next row's
         corners.push_back({farX, turn.from.y + kOvershoot + kStepClear, -kFarDepth});
         corners.push_back({farX + step, turn.to.y - kOvershoot - kStepClear, -kFarDepth});
@@ -190,7 +256,9 @@ TurnPoints turnPoints(const Turn& turn, double spacing) {
         while (leg + 1 < along.size() && along[leg] < s) ++leg;
         const double u = (s - along[leg - 1]) / std::max(1e-12, along[leg] - along[leg - 1]);
         out.points.push_back(corners[leg - 1] + u * (corners[leg] - corners[leg - 1]));
-        out.held.push_back(held && s >= along[3] && s <= along[4]);  // on the crossover (corners 3-4)
+        const bool crossover = step != 0 && s >= along[3] && s <= along[4];  // corners 3-4
+        out.held.push_back(held && crossover);
+        out.crossover.push_back(crossover);
     }
     return out;
 }

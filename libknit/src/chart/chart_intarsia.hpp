@@ -12,17 +12,18 @@
 // behind the work and hooks through its neighbours' turns above and below: a chain of
 // interlocked turns along the boundary, the twist knitters make when they change colour, so the
 // areas hold together (no slit) and no yarn floats. Where the boundary moves a column between
-// two rows (a diagonal; or two columns, a steep one), the turn between them is carried that many
-// stitches on behind the work, its ends at each row's boundary, so it still hooks through the
+// two rows (a diagonal; or two or more columns, a steep one), the turn between them is carried that
+// many stitches on behind the work, its ends at each row's boundary, so it still hooks through the
 // neighbour's turns of both rows.
 //
 // Motifs: when the areas do not continue from row to row (an area starts or ends, a boundary
-// jumps by more than two columns), the rows fall into blocks of rows whose areas continue. A block
+// jumps by half the width: either way round), the rows fall into blocks of rows whose areas continue. A block
 // of one colour is knitted as plain courses (the background's yarn, closing through the period
 // in x); in a block of several areas each area's yarn is an open serpentine over the block's rows
 // with a tail at each end, run behind two stitches of its own area (the tails a knitter weaves
 // in), and the yarns turn and interlock at the boundaries as above.
 #pragma once
+#include <optional>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -48,13 +49,24 @@ struct Place {
     int first = 0, count = 0, index = 0;
 };
 
-// The most columns a boundary moves between two rows whose areas continue (the area's yarn is
-// carried that many stitches on behind the work).
+// Up to this many columns a boundary's move between two rows is read as since issue 25 round 5
+// (cyclically from -kMaxMove). A longer move is read the shorter way round the period (at most
+// half the width): the area's yarn is carried that many stitches on behind the work (issue 25
+// round 9), unless it is a tie (half the width either way, or two shifts of the areas as near).
 constexpr int kMaxMove = 2;
 
+// Two rows whose areas would continue but for a boundary that could move either way round the
+// period: the upper row, the boundary's column in the row below (its left edge: the first column
+// of the area to its right, unwrapped) and how many columns it moves either way.
+struct Tie {
+    int row = 0, column = 0, columns = 0;
+};
+// The tie between row - 1 and `row` (cyclic), if any.
+std::optional<Tie> tiedMove(const Chart& chart, int row);
+
 // Consecutive rows whose areas continue from row to row: the same colours in the same order, each
-// boundary in the same column or up to kMaxMove columns over (a diagonal: the area's yarn knits one
-// or two stitches more or fewer on the next row, carried across the step). Rows first .. first +
+// boundary in the same column or moved the shorter way round the period (a diagonal: the area's
+// yarn knits some stitches more or fewer on the next row, carried across the step). Rows first .. first +
 // rows - 1, cyclic (a block may run past the last row into row 0; its rows are then unwrapped,
 // above the chart's height). places[a][k] is area a's place in the block's row k (areas[a] in row 0); a closed
 // block (every row continues, round the period) has one place more, row 0 one period up, and
@@ -97,15 +109,17 @@ struct Turn {
 // behind the work, across the boundary to its far edge, up past the next row's foot, and back.
 // Where the boundary steps, the far edge stays at each row's boundary over the band where it
 // hooks through the neighbour's turn of that row and crosses over between the two (behind the
-// stitches at the step: the yarn carried one or two stitches on). `held` marks the points of
-// a crossover two stitches long: it lies on the back of the stitches it passes and is anchored
+// stitches at the step: the yarn carried as many stitches on). `held` marks the points of
+// a crossover two stitches long or longer: it lies on the back of the stitches it passes and is anchored
 // there, as a knitter's carried yarn is held by them. Drawn tight as a free strand, it pulled
 // those stitches together and folded one of them over. A crossover one stitch long stays free:
 // held, the diamond's turns came unhooked from their neighbours' (issue 25 round 6,
 // docs/charts.md "Diagonals").
+// `crossover` marks the points of any crossover (the yarn carried behind the stitches at the step:
+// a float, ChartFloat::carried).
 struct TurnPoints {
     std::vector<glm::dvec3> points;
-    std::vector<bool> held;
+    std::vector<bool> held, crossover;
 };
 TurnPoints turnPoints(const Turn& turn, double spacing);
 

@@ -575,7 +575,7 @@ void intarsiaRow(const CellInputs& in, const SerpentineRow& sr, double scale, Ch
         l = stitchLoop(in, r, c, sr.yarn, uint32_t(p.points.size()), uint32_t(m));
         l.reversed = !sr.rightwards;
         if (!loop) {  // a slipped stitch inside the area: the yarn floats past it
-            if (!floating) yarn.floats.push_back({r, c, 0, sr.yarn, sr.colour, true, false, {}});
+            if (!floating) yarn.floats.push_back({r, c, 0, sr.yarn, sr.colour, true, false, false, {}});
             ChartFloat& f = yarn.floats.back();
             f.firstColumn = sr.rightwards ? f.firstColumn : c;
             f.columns += 1;
@@ -619,8 +619,14 @@ void intarsiaRow(const CellInputs& in, const SerpentineRow& sr, double scale, Ch
     const intarsia::TurnPoints tp = intarsia::turnPoints(turn, spacing);
     const std::vector<glm::dvec3>& points = tp.points;
     const int ox = tileOf(u, W), nx = r + 1 == H ? tileOf(sr.nextColumn, W) : ox;
+    if (step != 0) {  // the carried yarn passes |step| stitches behind the work: a float in the row above
+        const int edge = sr.rightwards ? u + 1 : u;  // the last foot's column edge
+        yarn.floats.push_back(
+            {next, wrap(std::min(edge, edge + step), W), std::abs(step), sr.yarn, sr.colour, false, false, true, {}});
+    }
     for (size_t i = 0; i < points.size(); ++i) {
         const bool over = 2 * i >= points.size();
+        if (tp.crossover[i]) yarn.floats.back().vertices.push_back(uint32_t(p.points.size()));
         if (tp.held[i]) yarn.anchored.push_back(uint32_t(p.points.size()));
         add(points[i] - glm::dvec3(over ? util::kTwoPi * W * (nx - ox) : 0.0, 0, 0), over ? nx : ox);
     }
@@ -690,10 +696,17 @@ void intarsiaYarn(const CellInputs& in, const intarsia::RowBlock& block, size_t 
 std::vector<char> buildIntarsia(const CellInputs& in, double scale, ChartCell& cell) {
     const Chart& chart = in.chart;
     const int W = chart.width, H = chart.height;
-    // A loop per stitch, a turn per area and row (shorter than two loops, a carried one shorter
-    // than three) and two tails per area and block (each shorter than a loop), bounded first.
-    checkVertexCount(chart, uint64_t(W) * uint64_t(H) * uint64_t(in.n) * 5);
+    // A loop per stitch, a turn per area and row (shorter than two loops, plus a loop per stitch
+    // it is carried on) and two tails per area and block (each shorter than a loop), bounded first.
     const std::vector<intarsia::RowBlock> blocks = intarsia::rowBlocks(chart);
+    uint64_t carried = 0;
+    for (const intarsia::RowBlock& block : blocks)
+        for (const std::vector<intarsia::Place>& places : block.places)
+            for (size_t k = 1; k < places.size(); ++k)
+                carried +=
+                    uint64_t(std::abs(places[k].first - places[k - 1].first) +
+                             std::abs(places[k].first + places[k].count - places[k - 1].first - places[k - 1].count));
+    checkVertexCount(chart, (uint64_t(W) * uint64_t(H) * 5 + carried) * uint64_t(in.n));
     cell.loops.assign(size_t(W) * size_t(H), {});
     cell.yarns = 0;
     std::vector<char> letter;

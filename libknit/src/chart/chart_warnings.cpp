@@ -12,11 +12,14 @@ ChartWarning longFloat(const Chart& chart, const ChartFloat& f, int maxFloat) {
     const int last = (f.firstColumn + f.columns - 1) % chart.width + 1;
     const std::string colour = f.colour ? std::string(" of colour ") + f.colour : std::string();
     const std::string wraps = last < first ? " (round the repeat)" : "";
+    const std::string what = f.carried ? " the yarn" + colour + " carried up from the row below to its moved boundary"
+                                       : " the float" + colour;
+    const std::string fix = f.carried ? "move the boundary by fewer columns a row" : "shorten the run";
     return {chart.rowLine[size_t(f.row)],
-            "row " + std::to_string(f.row + 1) + ": the float" + colour + " over columns " + std::to_string(first) +
-                "-" + std::to_string(last) + wraps + " is " + std::to_string(f.columns) +
+            "row " + std::to_string(f.row + 1) + ":" + what + " over columns " + std::to_string(first) + "-" +
+                std::to_string(last) + wraps + " is " + std::to_string(f.columns) +
                 " stitches long, longer than the float limit of " + std::to_string(maxFloat) +
-                " stitches (long floats snag: catch it or shorten the run)"};
+                " stitches (long floats snag: catch it or " + fix + ")"};
 }
 
 }  // namespace
