@@ -350,6 +350,10 @@ struct Stage {
     double energy = 0;
 };
 
+// The large cells' inexact Newton steps: conjugate gradients to a tenth of the gradient's norm
+// (1e-2 took 31 % more CPU for the same iterations and minima, docs/deformation.md "Levers").
+constexpr BlockSolveOptions kInexactNewton{0.1, 8};
+
 // The Newton system H d = -g of one lattice stage: small cells a dense Cholesky factorisation of
 // the Hessian plus mu I (cheaper than any sparse analysis), large ones an inexact step by
 // conjugate gradients on an earlier iteration's sparse factor (block_hessian.hpp).
@@ -368,7 +372,7 @@ struct NewtonSystem {
         if (!dense) {
             sparse.clear(st.c.n);
             st.hessian([&](uint32_t i, uint32_t j, double coef, const glm::dmat3& A) { sparse.add(i, j, coef, A); });
-            const Vec d = sparse.solve(g, mu);
+            const Vec d = sparse.solve(g, mu, kInexactNewton);
             return d.size() == 0 ? d : Vec(-d);
         }
         st.hessian(triplets);
