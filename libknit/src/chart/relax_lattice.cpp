@@ -114,18 +114,32 @@ struct State {
             mid[k] = 0.5 * (x[c.segs[k].a] + segEnd(c.segs[k]));
             half[k] = 0.5 * glm::length(segEnd(c.segs[k]) - x[c.segs[k].a]);
         }
+        // Per segment pair only the images whose lattice shift can bring the spheres within reach:
+        // the shift ix a1 + iy a2 within reachPair of mid[s] - mid[t] in the plane, i.e. (ix, iy)
+        // within reachPair times the rows' norms of the inverse lattice of its lattice coordinates.
+        const double det = a1.x * a2.y - a2.x * a1.y;
+        const glm::dvec2 row1 = glm::dvec2(a2.y, -a2.x) / det, row2 = glm::dvec2(-a1.y, a1.x) / det;
+        const double n1 = glm::length(row1), n2 = glm::length(row2);
         for (uint32_t s = 0; s < c.n; ++s)
-            for (uint32_t t = s; t < c.n; ++t)
-                for (int iy = -ky; iy <= ky; ++iy)
-                    for (int ix = -kx; ix <= kx; ++ix) {
+            for (uint32_t t = s; t < c.n; ++t) {
+                const double reachPair = cutoff + half[s] + half[t];
+                const double dz = mid[t].z - mid[s].z;
+                if (dz * dz >= reachPair * reachPair) continue;  // no image is within reach
+                const glm::dvec2 w(mid[s].x - mid[t].x, mid[s].y - mid[t].y);
+                const double u1 = glm::dot(row1, w), u2 = glm::dot(row2, w);
+                const double r1 = reachPair * n1 * (1 + 1e-9) + 1e-9, r2 = reachPair * n2 * (1 + 1e-9) + 1e-9;
+                const int x0 = std::max(-kx, int(std::floor(u1 - r1))), x1 = std::min(kx, int(std::ceil(u1 + r1)));
+                const int y0 = std::max(-ky, int(std::floor(u2 - r2))), y1 = std::min(ky, int(std::ceil(u2 + r2)));
+                for (int iy = y0; iy <= y1; ++iy)
+                    for (int ix = x0; ix <= x1; ++ix) {
                         if (t == s && (iy < 0 || (iy == 0 && ix <= 0))) continue;
-                        const double reachPair = cutoff + half[s] + half[t];
                         const glm::dvec3 apart = mid[t] + shift(ix, iy) - mid[s];
                         if (glm::dot(apart, apart) >= reachPair * reachPair) continue;
                         const Pair pr{s, t, ix, iy};
                         if (relax::nearAlongYarn(c.yarns, c.segs, pr, 3)) continue;
                         if (distance(pr) < cutoff) pairs.push_back(pr);
                     }
+            }
     }
 
     // The closest points of a listed pair's segments: their parameters a (on pr.s) and b (on pr.t),
@@ -336,6 +350,10 @@ struct Stage {
     double energy = 0;
 };
 
+// The large cells' inexact Newton steps: conjugate gradients to a tenth of the gradient's norm
+// (1e-2 took 31 % more CPU for the same iterations and minima, docs/deformation.md "Levers").
+constexpr BlockSolveOptions kInexactNewton{0.1, 8};
+
 // The Newton system H d = -g of one lattice stage: small cells a dense Cholesky factorisation of
 // the Hessian plus mu I (cheaper than any sparse analysis), large ones an inexact step by
 // conjugate gradients on an earlier iteration's sparse factor (block_hessian.hpp).
@@ -354,7 +372,7 @@ struct NewtonSystem {
         if (!dense) {
             sparse.clear(st.c.n);
             st.hessian([&](uint32_t i, uint32_t j, double coef, const glm::dmat3& A) { sparse.add(i, j, coef, A); });
-            const Vec d = sparse.solve(g, mu);
+            const Vec d = sparse.solve(g, mu, kInexactNewton);
             return d.size() == 0 ? d : Vec(-d);
         }
         st.hessian(triplets);
