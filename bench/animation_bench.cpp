@@ -18,6 +18,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <ctime>
+#include <string>
 #include <vector>
 
 #include <benchmark/benchmark.h>
@@ -43,6 +44,15 @@ knit::SceneOptions garmentOptions() {
     return o;
 }
 
+// The Animator's options with the frames' precision from KNIT_PLY_PRECISION ("double" or
+// "float"; unset: the Animator's default), to compare the two in one binary.
+knit::AnimatorOptions animatorOptions() {
+    knit::AnimatorOptions o;
+    if (const char* env = std::getenv("KNIT_PLY_PRECISION"))
+        o.framePrecision = std::string(env) == "float" ? knit::FramePrecision::Float32 : knit::FramePrecision::Double;
+    return o;
+}
+
 const knit::Scene& garment() {
     static const knit::Scene scene = buildScene(knit::generateStockinette(), knit::makeDrape(), garmentOptions());
     return scene;
@@ -56,7 +66,7 @@ std::vector<glm::dvec3> waveFrame(const knit::BaseMesh& mesh, int k) {
 
 void animationFrame(benchmark::State& state) {
     const knit::Scene& rest = garment();
-    const knit::Animator animator(rest);
+    const knit::Animator animator(rest, animatorOptions());
     knit::AnimationFrame frame;
     std::vector<double> evaluate, plies, whole, normals, stats;
     size_t residentAt2 = 0, residentAt10 = 0;
@@ -89,7 +99,7 @@ void animationFrame(benchmark::State& state) {
     state.counters["medianFrameSeconds"] = whole[whole.size() / 2];
 
     // Process CPU time of the plies: frames with plies (no stats) minus frames without.
-    knit::AnimatorOptions withPlies, withoutPlies;
+    knit::AnimatorOptions withPlies = animatorOptions(), withoutPlies = animatorOptions();
     withPlies.stats = withoutPlies.stats = withoutPlies.plies = false;
     withPlies.plies = true;
     const knit::Animator plyAnimator(rest, withPlies), yarnAnimator(rest, withoutPlies);

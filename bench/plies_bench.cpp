@@ -98,18 +98,21 @@ void BM_Resample(benchmark::State& state) {
 }
 BENCHMARK(BM_Resample)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// BM_Frames/<precision>: 0 = double, 1 = float32 transport (FrameOptions::precision).
 void BM_Frames(benchmark::State& state) {
+    knit::FrameOptions fo;
+    fo.precision = state.range(0) == 1 ? knit::FramePrecision::Float32 : knit::FramePrecision::Double;
     const knit::PlyOptions o = knit::resolvePlyOptions(plyOptions(2));
     knit::ResampleOptions ro;
     ro.spacing = o.pitch / o.samplesPerTurn;
     const knit::MappedYarns r = knit::resampleYarns(benchYarns(), ro);
     for (auto _ : state) {
-        knit::Frames f = knit::rotationMinimizingFrames(r.curves, &r.normals);
+        knit::Frames f = knit::rotationMinimizingFrames(r.curves, &r.normals, fo);
         benchmark::DoNotOptimize(f.normal.data());
     }
     state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * r.curves.pointCount()));
 }
-BENCHMARK(BM_Frames)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_Frames)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime();
 
 }  // namespace
 

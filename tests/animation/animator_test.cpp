@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -17,6 +18,7 @@
 #include "knit/error.hpp"
 #include "knit/generator.hpp"
 #include "util/math.hpp"
+#include "util/simd.hpp"
 
 namespace knit {
 namespace {
@@ -60,6 +62,25 @@ TEST(Animator, restPoseGivesTheScenesPliesToRounding) {
     for (size_t i = 0; i < f.plies.curves.points.size(); ++i)
         ASSERT_LE(glm::length(f.plies.curves.points[i] - s.plies().curves.points[i]), 1e-13) << "ply point " << i;
     EXPECT_NEAR(f.stats.maxStretch, 1.0, 1e-12);
+}
+
+// The float32 transport (AnimatorOptions::framePrecision) stays near the double frames: every
+// ply point within 1e-5 yarn radii of the scene's plies on the rest pose, and it does compute
+// its own frames (not bit for bit the double ones) where AVX2 is available.
+TEST(Animator, floatFramesStayNearTheScenesPlies) {
+    const Scene s = restScene();
+    AnimatorOptions o;
+    o.framePrecision = FramePrecision::Float32;
+    const Animator animator(s, o);
+    AnimationFrame f;
+    animator.evaluate(s.mesh().positions, f);
+    ASSERT_EQ(f.plies.curves.points.size(), s.plies().curves.points.size());
+    double worst = 0.0;
+    for (size_t i = 0; i < f.plies.curves.points.size(); ++i)
+        worst = std::max(worst, glm::length(f.plies.curves.points[i] - s.plies().curves.points[i]));
+    std::printf("float frames: largest ply point distance %.3g yarn radii\n", worst / s.yarnRadius());
+    EXPECT_LE(worst, 1e-5 * s.yarnRadius());
+    if (util::avx2Kernels()) EXPECT_GT(worst, 0.0);
 }
 
 TEST(Animator, rigidMotionMovesEveryOutputPointByExactlyThatMotion) {

@@ -161,5 +161,34 @@ TEST(FramesSimd, oneMatrixTransportIsTwoReflectionsToRounding) {
     std::printf("largest difference of a unit normal from two reflections: %.3g\n", worst);
 }
 
+// The largest distance between unit normals of the float32 transport and the double one.
+double floatNormalDrift(const std::vector<dvec3>& x) {
+    const size_t n = x.size();
+    const dvec3 seed(0.3, 0.1, 1.0);
+    std::vector<dvec3> T(n), N(n), Tf(n), Nf(n);
+    FrameOptions o;
+    curveFrames(x.data(), n, false, &seed, T.data(), N.data(), o);
+    o.precision = FramePrecision::Float32;
+    curveFrames(x.data(), n, false, &seed, Tf.data(), Nf.data(), o);
+    double worst = 0.0;
+    for (size_t i = 0; i < n; ++i) worst = std::max(worst, glm::length(N[i] - Nf[i]));
+    return worst;
+}
+
+TEST(FramesSimd, floatTransportAlongLongYarnsStaysNearTheDoubleOne) {
+    const size_t n = 200000;
+    std::vector<dvec3> wavy(n), straight(n), tight(n);
+    for (size_t i = 0; i < n; ++i) {
+        const double s = 0.05 * double(i);
+        wavy[i] = dvec3(0.002 * std::cos(s), 0.002 * std::sin(s) + 1e-4 * std::sin(7.3 * s), 3e-4 * s);
+        straight[i] = dvec3(0.4 + 1e-4 * double(i), 0.3 + 1e-9 * std::sin(0.01 * double(i)), 0.2);
+        const double u = 0.7 * double(i);
+        tight[i] = dvec3(0.3 + 1e-4 * std::cos(u), 0.3 + 1e-4 * std::sin(u), 1e-6 * double(i));
+    }
+    const double w = floatNormalDrift(wavy), st = floatNormalDrift(straight), ti = floatNormalDrift(tight);
+    std::printf("float transport normal drift: wavy %.3g straight %.3g tight %.3g\n", w, st, ti);
+    EXPECT_LT(std::max(w, std::max(st, ti)), 1e-4);
+}
+
 }  // namespace
 }  // namespace knit

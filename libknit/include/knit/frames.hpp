@@ -14,10 +14,17 @@ struct Frames {
     std::vector<glm::dvec3> normal;
 };
 
+// The arithmetic of the frames' transport matrices (curveFrames' step 4; the chain of the normal
+// and its renormalization stay in double either way). Float32: eight steps per AVX2 register
+// instead of four, the matrices rounded to float32 (ply points within ~1e-5 yarn radii of the
+// double path on long yarns; docs/memory-limit.md, ninth pass). Without AVX2 both are the double path.
+enum class FramePrecision { Double, Float32 };
+
 struct FrameOptions {
     // Closed curves: measure the closing angle with a signed atan2 and spread the correction
     // along arc length so the frame closes without a jump.
     bool closeLoops = true;
+    FramePrecision precision = FramePrecision::Double;  // bit for bit the scalar path's
 };
 
 // Seeds each curve's first normal with `seedNormals[first point]` projected perpendicular to the

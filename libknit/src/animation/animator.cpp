@@ -222,10 +222,10 @@ void Animator::sweep(const std::vector<dvec3>& positions, AnimationFrame& out) c
                 seedNormal = r * s.normal;
                 seedTangent = r * s.tangent;
             }
-            impl::PlyKernel::sweepWithCosSin(*generator_, y, out.centres.points.data() + b.centreOffsets[y], m, phase,
-                                             &seedNormal, carried ? &seedTangent : nullptr,
-                                             p.curves.points.data() + plyOfYarn_[y], scratch,
-                                             options_.radial ? p.radial.data() + plyOfYarn_[y] : nullptr);
+            impl::PlyKernel::sweepWithCosSin(
+                *generator_, y, out.centres.points.data() + b.centreOffsets[y], m, phase, &seedNormal,
+                carried ? &seedTangent : nullptr, p.curves.points.data() + plyOfYarn_[y], scratch,
+                options_.radial ? p.radial.data() + plyOfYarn_[y] : nullptr, options_.framePrecision);
         }
     });
 }

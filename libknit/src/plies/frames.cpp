@@ -95,9 +95,18 @@ inline dvec3 minimalRotation(const dvec3& a, const dvec3& b, const dvec3& v) {
 }  // namespace
 
 void curveFrames(const glm::dvec3* x, size_t n, bool closed, const glm::dvec3* seedNormal, glm::dvec3* T, glm::dvec3* N,
-                 const FrameOptions& options, const glm::dvec3* seedTangent) {
+                 const FrameOptions& options, const glm::dvec3* seedTangent, float* floatScratch) {
     if (n == 0) return;
     const bool simd = util::avx2Kernels();
+    // Float32 transport (AVX2 only): the curve's float copies, filled by steps 1 and 2.
+    std::vector<float> ownScratch;
+    impl::FloatCurve fc{};
+    const bool useFloat = simd && options.precision == FramePrecision::Float32 && n >= 2;
+    if (useFloat) {
+        if (!floatScratch) ownScratch.resize(6 * n), floatScratch = ownScratch.data();
+        for (int c = 0; c < 3; ++c) fc.v[c] = floatScratch + c * n, fc.t[c] = floatScratch + (3 + c) * n;
+    }
+    const impl::FloatCurve* f = useFloat ? &fc : nullptr;
 
     // Seed candidate (the surface normal at the first point), if usable.
     dvec3 seed(0.0);
@@ -116,7 +125,7 @@ void curveFrames(const glm::dvec3* x, size_t n, bool closed, const glm::dvec3* s
     const size_t segs = n < 2 ? 0 : (closed ? n : n - 1);
     size_t firstValid = segs, lastValid = segs;
     bool anyZero = false;
-    const size_t simdSegments = impl::unitDirections(x, n, T, N, simd);  // [0, simdSegments): real directions
+    const size_t simdSegments = impl::unitDirections(x, n, T, N, simd, f);  // [0, simdSegments): real directions
     if (simdSegments > 0) firstValid = 0, lastValid = simdSegments - 1;
     for (size_t k = simdSegments; k < segs; ++k) {
         const dvec3& p = x[k];
@@ -127,6 +136,8 @@ void curveFrames(const glm::dvec3* x, size_t n, bool closed, const glm::dvec3* s
             anyZero = true;
         } else {
             T[k] = N[k] = v / glm::length(v);
+            if (f && k + 1 < n)
+                for (int c = 0; c < 3; ++c) fc.v[c][k] = static_cast<float>(v[c]);
             if (firstValid == segs) firstValid = k;
             lastValid = k;
         }
@@ -160,7 +171,7 @@ void curveFrames(const glm::dvec3* x, size_t n, bool closed, const glm::dvec3* s
     // real direction on both sides: four at a time in AVX2 (frames_transport.cpp).
     for (size_t i = 0; i < n; ++i) {
         if (i == 1 && !anyZero) {
-            i = impl::pointTangents(N, T, 1, segs, simd);
+            i = impl::pointTangents(N, T, 1, segs, simd, f);
             if (i >= n) break;
         }
         const dvec3 prev = (closed || i > 0) ? N[(i + segs - 1) % segs] : zero;
@@ -174,7 +185,10 @@ void curveFrames(const glm::dvec3* x, size_t n, bool closed, const glm::dvec3* s
             const double len = glm::length(sum);
             T[i] = len > 1e-6 ? sum / len : next;  // hairpin: tangent reversal, take outgoing
         }
+        if (f)
+            for (int c = 0; c < 3; ++c) fc.t[c][i] = static_cast<float>(T[i][c]);
     }
+    if (anyZero) f = nullptr;  // the float kernel assumes real segments: the double path
 
     // Step 3: seed normal (transported from seedTangent onto T[0] first, when given).
     {
@@ -194,32 +208,41 @@ void curveFrames(const glm::dvec3* x, size_t n, bool closed, const glm::dvec3* s
     // transport() whole. The matrix rounds differently from the two reflections one after the
     // other (relative differences ~1e-16 per step, undone by the renormalization every 16 steps;
     // docs/memory-limit.md) and makes the chain four times shorter. The chain is bound by its
-    // latency, so the next block's matrices are computed during it, four steps every four steps
-    // (they do not depend on the normal: the out-of-order core overlaps the two). The carried
-    // normal stays in registers (r): read back from N, it would wait on its own store each step.
+    // latency, so the next block's matrices are computed during it, a group of four steps (eight
+    // with FramePrecision::Float32: float32 lanes from the copies steps 1 and 2 made) before the
+    // chain runs through the same group (they do not depend on the normal: the out-of-order core
+    // overlaps the two). The carried normal stays in registers (r): read back from N, it would
+    // wait on its own store each step.
     const size_t steps = n - 1;
     impl::TransportBlock blocks[2];
-    if (steps > 0) impl::transportCoefficients(x, T, 0, std::min(impl::kTransportBlock, steps), blocks[0], simd);
+    const size_t stride = f ? 8 : 4;  // steps per register
+    if (steps > 0) impl::transportCoefficients(x, T, 0, std::min(impl::kTransportBlock, steps), blocks[0], simd, 0, f);
     dvec3 r = N[0];
     for (size_t first = 0, b = 0; first < steps; first += impl::kTransportBlock, b ^= 1) {
         const impl::TransportBlock& block = blocks[b];
         const size_t count = std::min(impl::kTransportBlock, steps - first);
         const size_t nextFirst = first + impl::kTransportBlock;
         const size_t nextCount = nextFirst < steps ? std::min(impl::kTransportBlock, steps - nextFirst) : 0;
-        for (size_t k = 0; k < count; ++k) {
-            if ((k & 3u) == 0 && k < nextCount)
-                impl::transportCoefficients(x, T, nextFirst, std::min(k + 4, nextCount), blocks[b ^ 1], simd, k);
-            const size_t i = first + k;
-            const bool renormalize = (i & 15u) == 15u || i + 2 == n;
-            if (renormalize || block.reversal[k]) {
-                r = transport(x[i], T[i], r, x[i + 1], T[i + 1], renormalize);
-            } else {
-                const auto row = [&](int e) {
-                    return (block.m[e][k] * r.x + block.m[e + 1][k] * r.y) + block.m[e + 2][k] * r.z;
-                };
-                r = dvec3(row(0), row(3), row(6));
+        for (size_t k0 = 0; k0 < count; k0 += stride) {
+            if (k0 < nextCount)
+                impl::transportCoefficients(x, T, nextFirst, std::min(k0 + stride, nextCount), blocks[b ^ 1], simd, k0,
+                                            f);
+            // The chain through this group's steps: no call inside, so r stays in registers
+            // (a call in the loop made the compiler keep r on the stack, a store and a load per step).
+            const size_t end = std::min(k0 + stride, count);
+            for (size_t k = k0; k < end; ++k) {
+                const size_t i = first + k;
+                const bool renormalize = (i & 15u) == 15u || i + 2 == n;
+                if (renormalize || block.reversal[k]) {
+                    r = transport(x[i], T[i], r, x[i + 1], T[i + 1], renormalize);
+                } else {
+                    const auto row = [&](int e) {
+                        return (block.m[e][k] * r.x + block.m[e + 1][k] * r.y) + block.m[e + 2][k] * r.z;
+                    };
+                    r = dvec3(row(0), row(3), row(6));
+                }
+                N[i + 1] = r;
             }
-            N[i + 1] = r;
         }
     }
 

@@ -15,9 +15,10 @@ namespace knit {
 // to, e.g. a frame transported from the rest pose) the seed is first turned by the minimal
 // rotation taking seedTangent onto the curve's first tangent (parallel transport: continuous,
 // no flip when the tangent passes through the seed direction), then projected as usual. Points
-// must be finite (not checked here; rotationMinimizingFrames validates). Does not allocate,
-// never throws.
+// must be finite (not checked here; rotationMinimizingFrames validates). Does not allocate
+// (but for FramePrecision::Float32 without `floatScratch`, 6 count floats), never throws.
 void curveFrames(const glm::dvec3* points, size_t count, bool closed, const glm::dvec3* seedNormal, glm::dvec3* tangent,
-                 glm::dvec3* normal, const FrameOptions& options = {}, const glm::dvec3* seedTangent = nullptr);
+                 glm::dvec3* normal, const FrameOptions& options = {}, const glm::dvec3* seedTangent = nullptr,
+                 float* floatScratch = nullptr);
 
 }  // namespace knit

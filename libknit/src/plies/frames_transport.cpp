@@ -89,7 +89,54 @@ KNIT_AVX2 void fourSteps(const dvec3* x, const dvec3* t, size_t i, size_t k, Tra
     for (int j = 0; j < 4; ++j) b.reversal[k + j] = ((reversal >> j) & 1) != 0;
 }
 
-KNIT_AVX2 size_t unitDirectionsAvx2(const dvec3* x, size_t n, dvec3* T, dvec3* N) {
+// Eight float32 lanes per coordinate.
+struct FLanes {
+    __m256 x, y, z;
+};
+KNIT_AVX2 inline FLanes load8(float* const* c, size_t i) {
+    return {_mm256_loadu_ps(c[0] + i), _mm256_loadu_ps(c[1] + i), _mm256_loadu_ps(c[2] + i)};
+}
+KNIT_AVX2 inline __m256 fdot(const FLanes& a, const FLanes& b) {
+    return _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(a.x, b.x), _mm256_mul_ps(a.y, b.y)), _mm256_mul_ps(a.z, b.z));
+}
+// Four double lanes rounded to float32 and stored at c[0..2] + k.
+KNIT_AVX2 inline void storeFloat(float* const* c, size_t k, const Lanes& l) {
+    _mm_storeu_ps(c[0] + k, _mm256_cvtpd_ps(l.x));
+    _mm_storeu_ps(c[1] + k, _mm256_cvtpd_ps(l.y));
+    _mm_storeu_ps(c[2] + k, _mm256_cvtpd_ps(l.z));
+}
+
+// Steps i .. i + 7 into slots k .. k + 7 in float32 from the curve's float copies (no
+// zero-length segment): stepScalar's operations eight lanes at a time, widened to double.
+KNIT_AVX2 void eightStepsFloat(const FloatCurve& f, size_t i, size_t k, TransportBlock& b) {
+    const FLanes v1 = load8(f.v, i), t0 = load8(f.t, i), t1 = load8(f.t, i + 1);
+    const __m256 a1 = _mm256_div_ps(_mm256_set1_ps(2.0f), fdot(v1, v1));
+    const __m256 s1 = _mm256_mul_ps(a1, fdot(v1, t0));
+    const FLanes v2 = {_mm256_sub_ps(t1.x, _mm256_sub_ps(t0.x, _mm256_mul_ps(s1, v1.x))),
+                       _mm256_sub_ps(t1.y, _mm256_sub_ps(t0.y, _mm256_mul_ps(s1, v1.y))),
+                       _mm256_sub_ps(t1.z, _mm256_sub_ps(t0.z, _mm256_mul_ps(s1, v1.z)))};
+    const __m256 c2 = fdot(v2, v2);
+    const __m256 bent = _mm256_cmp_ps(c2, _mm256_set1_ps(1e-24f), _CMP_GT_OQ);
+    const __m256 b2 = _mm256_and_ps(bent, _mm256_div_ps(_mm256_set1_ps(2.0f), c2));
+    const FLanes u = {_mm256_mul_ps(a1, v1.x), _mm256_mul_ps(a1, v1.y), _mm256_mul_ps(a1, v1.z)};
+    const FLanes w = {_mm256_mul_ps(b2, v2.x), _mm256_mul_ps(b2, v2.y), _mm256_mul_ps(b2, v2.z)};
+    const __m256 cu = fdot(v2, u);
+    const __m256 p[3] = {_mm256_sub_ps(u.x, _mm256_mul_ps(cu, w.x)), _mm256_sub_ps(u.y, _mm256_mul_ps(cu, w.y)),
+                         _mm256_sub_ps(u.z, _mm256_mul_ps(cu, w.z))};
+    const __m256 wr[3] = {w.x, w.y, w.z}, a[3] = {v1.x, v1.y, v1.z}, c[3] = {v2.x, v2.y, v2.z};
+    const __m256 one = _mm256_set1_ps(1.0f), none = _mm256_setzero_ps();
+    for (int r = 0; r < 3; ++r)
+        for (int col = 0; col < 3; ++col) {
+            const __m256 e = _mm256_sub_ps(_mm256_sub_ps(r == col ? one : none, _mm256_mul_ps(p[r], a[col])),
+                                           _mm256_mul_ps(wr[r], c[col]));
+            _mm256_storeu_pd(b.m[3 * r + col] + k, _mm256_cvtps_pd(_mm256_castps256_ps128(e)));
+            _mm256_storeu_pd(b.m[3 * r + col] + k + 4, _mm256_cvtps_pd(_mm256_extractf128_ps(e, 1)));
+        }
+    const int reversal = _mm256_movemask_ps(_mm256_cmp_ps(fdot(t0, t1), _mm256_setzero_ps(), _CMP_LT_OQ));
+    for (int j = 0; j < 8; ++j) b.reversal[k + j] = ((reversal >> j) & 1) != 0;
+}
+
+KNIT_AVX2 size_t unitDirectionsAvx2(const dvec3* x, size_t n, dvec3* T, dvec3* N, const FloatCurve* f) {
     size_t k = 0;
     for (; k + 5 <= n; k += 4) {  // segments k .. k + 3 read points k .. k + 4
         const Lanes p = load4(x + k), q = load4(x + k + 1);
@@ -98,13 +145,14 @@ KNIT_AVX2 size_t unitDirectionsAvx2(const dvec3* x, size_t n, dvec3* T, dvec3* N
         const __m256d limit = _mm256_mul_pd(_mm256_set1_pd(kZeroScale2), _mm256_max_pd(dot(p, p), dot(q, q)));
         if (_mm256_movemask_pd(_mm256_cmp_pd(vv, limit, _CMP_LE_OQ)) != 0) break;  // a zero-length segment
         const Lanes d = divide(v, _mm256_sqrt_pd(vv));
+        if (f) storeFloat(f->v, k, v);
         store4(T + k, d);
         store4(N + k, d);
     }
     return k;
 }
 
-KNIT_AVX2 size_t pointTangentsAvx2(const dvec3* N, dvec3* T, size_t begin, size_t end) {
+KNIT_AVX2 size_t pointTangentsAvx2(const dvec3* N, dvec3* T, size_t begin, size_t end, const FloatCurve* f) {
     size_t i = begin;
     for (; i + 4 <= end; i += 4) {
         const Lanes prev = load4(N + i - 1), next = load4(T + i);
@@ -112,8 +160,10 @@ KNIT_AVX2 size_t pointTangentsAvx2(const dvec3* N, dvec3* T, size_t begin, size_
         const __m256d len = _mm256_sqrt_pd(dot(sum, sum));
         const __m256d ok = _mm256_cmp_pd(len, _mm256_set1_pd(1e-6), _CMP_GT_OQ);
         const Lanes unit = divide(sum, len);
-        store4(T + i, {_mm256_blendv_pd(next.x, unit.x, ok), _mm256_blendv_pd(next.y, unit.y, ok),
-                       _mm256_blendv_pd(next.z, unit.z, ok)});
+        const Lanes t = {_mm256_blendv_pd(next.x, unit.x, ok), _mm256_blendv_pd(next.y, unit.y, ok),
+                         _mm256_blendv_pd(next.z, unit.z, ok)};
+        if (f) storeFloat(f->t, i, t);
+        store4(T + i, t);
     }
     return i;
 }
@@ -122,29 +172,32 @@ KNIT_AVX2 size_t pointTangentsAvx2(const dvec3* N, dvec3* T, size_t begin, size_
 
 }  // namespace
 
-size_t unitDirections(const dvec3* x, size_t n, dvec3* T, dvec3* N, bool simd) {
+size_t unitDirections(const dvec3* x, size_t n, dvec3* T, dvec3* N, bool simd, const FloatCurve* f) {
 #if KNIT_HAVE_AVX2_KERNELS
-    if (simd) return unitDirectionsAvx2(x, n, T, N);
+    if (simd) return unitDirectionsAvx2(x, n, T, N, f);
 #endif
-    (void)x, (void)n, (void)T, (void)N, (void)simd;
+    (void)x, (void)n, (void)T, (void)N, (void)simd, (void)f;
     return 0;
 }
 
-size_t pointTangents(const dvec3* N, dvec3* T, size_t begin, size_t end, bool simd) {
+size_t pointTangents(const dvec3* N, dvec3* T, size_t begin, size_t end, bool simd, const FloatCurve* f) {
 #if KNIT_HAVE_AVX2_KERNELS
-    if (simd) return pointTangentsAvx2(N, T, begin, end);
+    if (simd) return pointTangentsAvx2(N, T, begin, end, f);
 #endif
-    (void)N, (void)T, (void)end, (void)simd;
+    (void)N, (void)T, (void)end, (void)simd, (void)f;
     return begin;
 }
 
 void transportCoefficients(const dvec3* x, const dvec3* t, size_t first, size_t count, TransportBlock& b, bool simd,
-                           size_t begin) {
+                           size_t begin, const FloatCurve* f) {
     size_t k = begin;
 #if KNIT_HAVE_AVX2_KERNELS
+    if (simd && f)
+        for (; k + 8 <= count; k += 8) eightStepsFloat(*f, first + k, k, b);
     if (simd)
         for (; k + 4 <= count; k += 4) fourSteps(x, t, first + k, k, b);
 #endif
+    (void)f;
     for (; k < count; ++k) stepScalar(x, t, first + k, k, b);
 }
 

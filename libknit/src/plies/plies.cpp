@@ -215,10 +215,14 @@ void helices(const PlyOptions& opt, const dvec3* X, const dvec3* T, const dvec3*
 }  // namespace
 
 void PlyKernel::frames(const PlyGenerator& g, size_t y, const dvec3* X, size_t m, const dvec3* seed,
-                       const dvec3* seedTangent, PlyScratch::Buffers& buf) {
+                       const dvec3* seedTangent, PlyScratch::Buffers& buf, FramePrecision precision) {
     buf.tangent.resize(m);
     buf.normal.resize(m);
-    curveFrames(X, m, g.yarns_.curves.isClosed(y), seed, buf.tangent.data(), buf.normal.data(), {}, seedTangent);
+    FrameOptions options;
+    options.precision = precision;
+    if (precision == FramePrecision::Float32) buf.frameFloats.resize(6 * m);
+    curveFrames(X, m, g.yarns_.curves.isClosed(y), seed, buf.tangent.data(), buf.normal.data(), options, seedTangent,
+                precision == FramePrecision::Float32 ? buf.frameFloats.data() : nullptr);
 }
 
 double PlyKernel::twistRate(const PlyGenerator& g, double pitch) {
@@ -243,9 +247,9 @@ void PlyKernel::sweepWithPhase(const PlyGenerator& g, size_t y, const dvec3* X, 
 
 void PlyKernel::sweepWithCosSin(const PlyGenerator& g, size_t y, const dvec3* X, size_t m, const glm::dvec2* phase,
                                 const dvec3* seed, const dvec3* seedTangent, dvec3* P, PlyScratch& scratch,
-                                dvec3* radial) {
+                                dvec3* radial, FramePrecision precision) {
     PlyScratch::Buffers& buf = buffers(scratch);
-    frames(g, y, X, m, seed, seedTangent, buf);
+    frames(g, y, X, m, seed, seedTangent, buf, precision);
     // Four points at a time in AVX2 (helices_simd.cpp, bit for bit), the rest here.
     const HelixInput in{
         X,         buf.tangent.data(), buf.normal.data(),      phase, m, static_cast<uint32_t>(g.options_.count),

@@ -8,6 +8,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "knit/frames.hpp"
 #include "knit/plies.hpp"
 #include "resample_curve.hpp"
 
@@ -19,7 +20,8 @@ struct PlyScratch::Buffers {
     std::vector<glm::dvec3> centre, tangent, normal;
     std::vector<glm::vec3> colour;  // per centre point, when the yarns have colours
     std::vector<double> arc;
-    std::vector<double> twist;  // per centre point, when the yarns have twist (MappedYarns::twist)
+    std::vector<double> twist;       // per centre point, when the yarns have twist (MappedYarns::twist)
+    std::vector<float> frameFloats;  // curveFrames' float copies (FramePrecision::Float32)
 };
 
 namespace impl {
@@ -63,17 +65,19 @@ struct PlyKernel {
                                glm::dvec3* radial, PlyScratch& scratch, const double* twist = nullptr);
     // Rotation-minimizing frames of a centreline into buf.tangent / buf.normal (seeds as below).
     static void frames(const PlyGenerator& generator, size_t y, const glm::dvec3* centre, size_t m,
-                       const glm::dvec3* seed, const glm::dvec3* seedTangent, PlyScratch::Buffers& buf);
+                       const glm::dvec3* seed, const glm::dvec3* seedTangent, PlyScratch::Buffers& buf,
+                       FramePrecision precision = FramePrecision::Double);
     // dtheta/ds of the helices for a pitch (signed by the twist).
     static double twistRate(const PlyGenerator& generator, double pitch);
     // The same helices for any pose of yarn `y` with the twist phase given per point as
     // (cos theta, sin theta) (animation: computed once from the rest pose, so the phase stays
     // attached to the yarn material), and the frame seed: the surface normal at the first point,
     // or null; with seedTangent, a normal carried over from another pose and transported onto
-    // the first tangent (see curveFrames).
+    // the first tangent (see curveFrames). `precision`: the frames' transport (FrameOptions).
     static void sweepWithCosSin(const PlyGenerator& generator, size_t y, const glm::dvec3* centre, size_t m,
                                 const glm::dvec2* phase, const glm::dvec3* seed, const glm::dvec3* seedTangent,
-                                glm::dvec3* points, PlyScratch& scratch, glm::dvec3* radial = nullptr);
+                                glm::dvec3* points, PlyScratch& scratch, glm::dvec3* radial = nullptr,
+                                FramePrecision precision = FramePrecision::Double);
 };
 
 }  // namespace impl
