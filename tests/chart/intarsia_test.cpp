@@ -746,6 +746,29 @@ TEST(Intarsia, aZigzagThreeColumnsARowRelaxesWithItsCarriedTurnsHooked) {
     expectZigzagRelaxesHooked(chart, cell, "three-column zigzag");
 }
 
+// A boundary jumping six columns every row on a 24-stitch repeat (1286 cell vertices): the yarn
+// carried six stitches on. Such a cell is past the preconditioned relaxation's old 1000-vertex
+// limit, where plain L-BFGS stopped at the iteration cap; preconditioned it converges with every
+// turn hooked and every stitch keeping knitting's crossings (issue 25 round 10).
+TEST(Intarsia, aLargeCellCarriedSixStitchesOnRelaxesWithItsTurnsHooked) {
+    // `count` copies of `token`, space-separated: one chart row's run of stitches or colours.
+    const auto run = [](const char* token, int count) {
+        std::string out;
+        for (int i = 0; i < count; ++i) out += std::string(i ? " " : "") + token;
+        return out;
+    };
+    const std::string stitches = run("k", 24) + "\n";
+    const Chart chart = parseChart(stitches + stitches + "\n" + run("A", 12) + " " + run("B", 12) + "\n" + run("A", 6) +
+                                       " " + run("B", 18) + "\nA=#ffffff B=#000000\nintarsia\n",
+                                   "carry6.chart");
+    const ChartCell cell = chartToCell(chart);
+    EXPECT_GT(cell.pattern.points.size(), 1000u);
+    for (int r = 0; r < cell.height; ++r)
+        for (int c = 0; c < cell.width; ++c) EXPECT_EQ(test::checkStitch(cell, r, c), "") << r << ", " << c;
+    EXPECT_EQ(heldTurns(cell).carriedHeld, 2);
+    expectZigzagRelaxesHooked(chart, cell, "six-column zigzag");
+}
+
 // A move of half the repeat's width could be carried either way round: where the rows would have to
 // continue (a block one row tall otherwise) it is refused naming the boundary; between blocks two
 // rows tall each block has its own yarns, as before.

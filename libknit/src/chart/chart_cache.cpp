@@ -17,12 +17,13 @@ namespace knit {
 std::string chartCacheKey(const std::string& chartText, const ChartPatternOptions& o) {
     std::ostringstream key;
     key.precision(17);
-    // v12: intarsia boundaries jumping three or more columns between blocks of rows are carried
+    // v13: cells of 1000 to 1500 vertices relax preconditioned (long intarsia carries; no built-in
+    // changes); v12: intarsia boundaries jumping three or more columns between blocks of rows are carried
     // yarns, not new bobbins (such charts build other cells; no built-in changes); v11: intarsia turns carried two stitches on hold their crossover anchored (charts whose
     // boundaries move two columns relax differently; no built-in changes); v10: cables built at samples per stitch not divisible by 4 changed (chart_topology.cpp,
     // loopParameter); v9: two-column intarsia jumps, one-stitch rows' tails higher. Options at
     // their defaults add nothing to the key.
-    key << "v12 " << o.radius << ' ' << o.samplesPerStitch << ' ' << o.restLength << ' ' << o.maxIterations
+    key << "v13 " << o.radius << ' ' << o.samplesPerStitch << ' ' << o.restLength << ' ' << o.maxIterations
         << (o.affinePeriod ? " affine" : "") << (o.hessianPreconditioner ? "" : " plain");
     if (o.contact != RelaxOptions{}.contact) key << " contact " << o.contact;
     if (o.relativeEnergyTolerance != RelaxOptions{}.relativeEnergyTolerance ||

@@ -216,8 +216,10 @@ constexpr double kShift = 1e-3;         // H + kShift x mean diagonal (removes t
 constexpr int kRefactorEvery = 25;      // steps between factorisations (H changes slowly)
 constexpr size_t kPreconditionedMemory = 20;
 // Larger cells keep plain L-BFGS: the factorisation's fill grows faster than the cell (a 12 x 16
-// cable cell, 4608 vertices, ran for minutes of CPU instead of 12.6 s).
-constexpr size_t kMaxPreconditionedVertices = 1000;
+// cable cell, 4608 vertices, ran for minutes of CPU instead of 12.6 s). Up to 1500: intarsia cells
+// with long carries (1268 and 1336 vertices) stopped at the iteration cap under plain L-BFGS and
+// converge preconditioned (docs/charts.md, "Issue 25 round 10"); no built-in is over 718.
+constexpr size_t kMaxPreconditionedVertices = 1500;
 
 struct PointRef {
     uint32_t i = 0;
@@ -229,7 +231,7 @@ struct PointRef {
 // pattern: an entry exists when something was added to it), without the list (about 600 000
 // triplets for a 4 x 4 cell, whose building and sorting took as long as the factorisation). The
 // entries are found through their 3 x 3 block of (vertex, vertex), the period being vertex n (a
-// table of (n + 1)^2 block numbers: 4 MB at the 1000 vertices the preconditioner is used up to).
+// table of (n + 1)^2 block numbers: 9 MB at the 1500 vertices the preconditioner is used up to).
 class EntrySums {
 public:
     struct Block {
