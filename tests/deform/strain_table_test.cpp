@@ -11,8 +11,11 @@
 #include <string>
 
 #include <glm/geometric.hpp>
+#include <tbb/global_control.h>
 
 #include "test_util.hpp"
+#include "knit/chart.hpp"
+#include "knit/chart_topology.hpp"
 #include "knit/error.hpp"
 #include "knit/generator.hpp"
 #include "knit/strain.hpp"
@@ -110,6 +113,53 @@ TEST(StrainTable, samplesWarmStartFromZeroAndMatchSingleRuns) {
         moved = std::max(moved, double(std::abs(t.data[4 * (0 + 3 * v)])) + std::abs(t.data[4 * (2 + 3 * v)]));
     }
     EXPECT_GT(moved, 1e-5);
+}
+
+// Contact pairs surely apart (their distance when the pair list was built, less twice the
+// largest vertex move since, at least the contact distance) are not measured: the relaxation is
+// the same to the bit, on the dense Newton path (the stockinette) and the sparse one (the
+// basketweave's 384-vertex cell), for far fewer closest-point measurements.
+TEST(StrainTable, skippingContactPairsSurelyApartChangesNothingButTheWork) {
+    const Pattern stockinette = generateStockinette(),
+                  basketweave = chartToCell(builtinChart("chart:basketweave")).pattern;
+    for (const Pattern* p : {&stockinette, &basketweave}) {
+        impl::LatticeRelaxOptions skip;
+        skip.maxIterations = 24;
+        impl::LatticeRelaxOptions every = skip;
+        every.skipPairsSurelyApart = false;
+        const glm::dmat2 F = latticeMap({0.2, 0.3, -0.15});
+        const impl::LatticeRelaxResult a = impl::LatticeCell(*p, skip).relax(F, {}),
+                                       b = impl::LatticeCell(*p, every).relax(F, {});
+        ASSERT_EQ(a.points.size(), b.points.size());
+        for (size_t i = 0; i < a.points.size(); ++i) ASSERT_EQ(a.points[i], b.points[i]) << p->name << " vertex " << i;
+        EXPECT_EQ(a.iterations, b.iterations);
+        EXPECT_EQ(a.energy, b.energy);
+        EXPECT_EQ(a.minDistance, b.minDistance);
+        std::printf("%s: %zu of %zu pair measurements\n", p->name.c_str(), a.pairsMeasured, b.pairsMeasured);
+        EXPECT_LT(double(a.pairsMeasured), 0.8 * double(b.pairsMeasured)) << p->name;
+    }
+}
+
+// Each sample starts only from samples already relaxed, whatever the threads do: one thread and
+// all of them make the same table to the bit.
+TEST(StrainTable, oneThreadAndAllMakeTheSameTable) {
+    StrainTableOptions o;
+    o.samples = {3, 3, 2};
+    o.sxRange = {-0.1, 0.3};
+    o.saRange = {-0.3, 0.3};
+    o.syRange = {0.0, 0.2};
+    o.maxIterations = 60;
+    size_t calls = 0;
+    o.progress = [&calls](size_t, size_t) { ++calls; };
+    const StrainTable all = makeStrainTable(generateStockinette(), o);
+    EXPECT_EQ(calls, 18u);
+    StrainTable one;
+    {
+        const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+        one = makeStrainTable(generateStockinette(), o);
+    }
+    ASSERT_EQ(one.data.size(), all.data.size());
+    EXPECT_EQ(std::memcmp(one.data.data(), all.data.data(), all.data.size() * sizeof(float)), 0);
 }
 
 // A table's work is counted in lattice stages (each changes the map by at most a tenth of its

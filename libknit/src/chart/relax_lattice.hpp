@@ -34,6 +34,10 @@ struct LatticeRelaxOptions {
     // tension everywhere and pulls itself taut against the contacts (the shortest yarn a lattice
     // allows, tools/strain_bound.cpp); the strain tables use 1.
     double restLengthScale = 1;
+    // Contact pairs whose distance, less twice the largest vertex move since the pair list was
+    // built, is still at least the contact distance are not measured (they add nothing): the same
+    // result to the bit, about a quarter less CPU on a 400-vertex cell. Off only to check that.
+    bool skipPairsSurelyApart = true;
 };
 
 struct LatticeRelaxResult {
@@ -42,7 +46,8 @@ struct LatticeRelaxResult {
     int stages = 0;  // lattice stages relaxed (latticeStages)
     bool converged = false;
     double energy = 0;
-    double minDistance = 0;  // closest distinct non-adjacent segments of the deformed yarn, in radii
+    double minDistance = 0;    // closest distinct non-adjacent segments of the deformed yarn, in radii
+    size_t pairsMeasured = 0;  // closest points of contact pairs found (the contact terms' work)
 };
 
 // The cell of one pattern, set up once (rest lengths from the pattern's own edges) and relaxed
