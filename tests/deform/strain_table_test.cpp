@@ -140,6 +140,28 @@ TEST(StrainTable, skippingContactPairsSurelyApartChangesNothingButTheWork) {
     }
 }
 
+// A cell of 65-200 vertices takes the sparse path with conjugate gradients solved far enough
+// to follow the dense Cholesky steps: seed's 96-vertex cell, compressed across the courses and
+// sheared (where the looser solve of larger cells took other branches, up to 6 r away), stays
+// within a thousandth of a radius of the dense path's relaxation, for a fraction of its CPU.
+TEST(StrainTable, midSizeCellsSparseStepsFollowTheDenseOnes) {
+    const Pattern seed = chartToCell(builtinChart("chart:seed")).pattern;
+    ASSERT_GT(seed.points.size(), 64u);
+    ASSERT_LE(seed.points.size(), 200u);
+    impl::LatticeRelaxOptions bySize;
+    bySize.maxIterations = 40;
+    impl::LatticeRelaxOptions dense = bySize;
+    dense.newton = impl::LatticeRelaxOptions::Newton::Dense;
+    const glm::dmat2 F = latticeMap({-0.2, -0.175, 0.1});
+    const impl::LatticeRelaxResult a = impl::LatticeCell(seed, bySize).relax(F, {}),
+                                   b = impl::LatticeCell(seed, dense).relax(F, {});
+    double worst = 0;
+    for (size_t i = 0; i < a.points.size(); ++i) worst = std::max(worst, glm::length(a.points[i] - b.points[i]));
+    std::printf("seed: largest difference %.2e r, %d and %d iterations\n", worst / seed.radius, a.iterations,
+                b.iterations);
+    EXPECT_LT(worst, 1e-3 * seed.radius);
+}
+
 // Each sample starts only from samples already relaxed, whatever the threads do: one thread and
 // all of them make the same table to the bit.
 TEST(StrainTable, oneThreadAndAllMakeTheSameTable) {

@@ -388,13 +388,17 @@ struct Stage {
     double energy = 0;
 };
 
-// The large cells' inexact Newton steps: conjugate gradients to a tenth of the gradient's norm
-// (1e-2 took 31 % more CPU for the same iterations and minima, docs/deformation.md "Levers").
-constexpr BlockSolveOptions kInexactNewton{0.1, 8};
+// The sparse path's Newton steps: conjugate gradients on a kept factor. Cells of over 200
+// vertices solve to a tenth of the gradient's norm (1e-2 took 31 % more CPU for the same
+// iterations and minima, docs/deformation.md "Levers"); smaller ones to 1e-4 with 20 iterations
+// before a new factor, so that they settle where the dense Cholesky step did (seed, rib2x2:
+// per-sample medians 1e-6 r from it; the looser solve moved seed's compressed samples to other
+// branches, up to 6 r; "Cells of 100-200 vertices").
+BlockSolveOptions newtonSolve(size_t n) { return n > 200 ? BlockSolveOptions{0.1, 8} : BlockSolveOptions{1e-4, 20}; }
 
 // The Newton system H d = -g of one lattice stage: small cells a dense Cholesky factorisation of
-// the Hessian plus mu I (cheaper than any sparse analysis), large ones an inexact step by
-// conjugate gradients on an earlier iteration's sparse factor (block_hessian.hpp).
+// the Hessian plus mu I (cheaper than any sparse analysis), larger ones a step by conjugate
+// gradients on an earlier iteration's sparse factor (block_hessian.hpp, newtonSolve).
 struct NewtonSystem {
     bool dense;
     std::vector<Eigen::Triplet<double>> triplets;
@@ -402,7 +406,9 @@ struct NewtonSystem {
     Eigen::LLT<Eigen::MatrixXd> denseSolver;
     BlockHessian sparse;
 
-    explicit NewtonSystem(size_t n) : dense(denseNewton(n)) {
+    NewtonSystem(size_t n, LatticeRelaxOptions::Newton path)
+        : dense(path == LatticeRelaxOptions::Newton::BySize ? denseNewton(n)
+                                                            : path == LatticeRelaxOptions::Newton::Dense) {
         if (dense) Hd.resize(Eigen::Index(3 * n), Eigen::Index(3 * n));
     }
     // The Newton step at the state's last evaluation; empty where the factorisation fails.
@@ -410,7 +416,7 @@ struct NewtonSystem {
         if (!dense) {
             sparse.clear(st.c.n);
             st.hessian([&](uint32_t i, uint32_t j, double coef, const glm::dmat3& A) { sparse.add(i, j, coef, A); });
-            const Vec d = sparse.solve(g, mu, kInexactNewton);
+            const Vec d = sparse.solve(g, mu, newtonSolve(st.c.n));
             return d.size() == 0 ? d : Vec(-d);
         }
         st.hessian(triplets);
@@ -437,7 +443,7 @@ Stage newton(State& st, Vec& v, int maxIterations, double tolerance) {
     Vec g, gNew, vNew;
     double e = st.energy(v, gx, dmin);
     st.pullBack(gx, g);
-    NewtonSystem system(c.n);
+    NewtonSystem system(c.n, o.newton);
     Stage stage;
     double mu = 1e-6;
     double drift = 0;

@@ -38,6 +38,10 @@ struct LatticeRelaxOptions {
     // built, is still at least the contact distance are not measured (they add nothing): the same
     // result to the bit, about a quarter less CPU on a 400-vertex cell. Off only to check that.
     bool skipPairsSurelyApart = true;
+    // How the Newton steps are solved: by the cell's size (denseNewton), or forced either way (to
+    // compare them).
+    enum class Newton { BySize, Dense, Sparse };
+    Newton newton = Newton::BySize;
 };
 
 struct LatticeRelaxResult {
@@ -81,8 +85,10 @@ private:
 int latticeStages(const glm::dmat2& F, const glm::dmat2& start);
 
 // Whether a cell of n vertices solves its Newton steps by a dense Cholesky factorisation (else by
-// conjugate gradients on a kept sparse factor, block_hessian.hpp).
-inline bool denseNewton(size_t n) { return n <= 200; }
+// conjugate gradients on a kept sparse factor, block_hessian.hpp). Up to 64: the stockinette's 24
+// (its tables byte for byte as before); the 3n x 3n factorisation of a 192-vertex cell made its
+// table 6-9 x slower than the sparse path (docs/deformation.md "Cells of 100-200 vertices").
+inline bool denseNewton(size_t n) { return n <= 64; }
 
 // The pattern's cell at rest on its own (undeformed) lattice under the default options, relaxed
 // with 8 x the iteration cap and a thousandth of the gradient tolerance: the rest cell every strain table measures against (the built-in

@@ -16,8 +16,9 @@ std::string strainCacheKey(const Pattern& pattern, const StrainTableOptions& o) 
     std::ostringstream key;
     key.precision(17);
     // The version names the table solver: bump it whenever the relaxation changes what a table holds
-    // (v2: stiff yarn, contact barrier, damped Newton), so no cached table of older code is served.
-    key << "strain v2";
+    // (v3: cells of 65-200 vertices on the sparse Newton path; v2: stiff yarn, contact barrier,
+    // damped Newton), so no cached table of older code is served.
+    key << "strain v3";
     for (int n : o.samples) key << ' ' << n;
     for (double v : {o.sxRange[0], o.sxRange[1], o.saRange[0], o.saRange[1], o.syRange[0], o.syRange[1], o.stretch,
                      o.bend, o.contact, o.barrier, o.contactDistance, o.barrierDistance})
