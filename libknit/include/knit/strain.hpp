@@ -94,7 +94,7 @@ StrainTable makeStrainTable(const Pattern& pattern, const StrainTableOptions& op
 // Seconds the whole table is expected to take on this machine's idle cores: Newton iterations of
 // the cell timed (thread CPU time), times the table's lattice stages (strainTableStages) and the
 // work per stage measured on a whole table of the same solver path (dense: the default
-// stockinette; sparse, over 200 cell vertices: chart:basketweave), plus the serial rest cell.
+// stockinette; sparse, over 64 cell vertices: chart:basketweave), plus the serial rest cell.
 double estimateStrainTableSeconds(const Pattern& pattern, const StrainTableOptions& options);
 // The lattice stages a table's relaxations go through: per sample, from the lattice of each
 // neighbour it starts from to its own (each stage changes the map by at most a tenth of its

@@ -87,7 +87,7 @@ int latticeStages(const glm::dmat2& F, const glm::dmat2& start);
 // Whether a cell of n vertices solves its Newton steps by a dense Cholesky factorisation (else by
 // conjugate gradients on a kept sparse factor, block_hessian.hpp). Up to 64: the stockinette's 24
 // (its tables byte for byte as before); the 3n x 3n factorisation of a 192-vertex cell made its
-// table 6-9 x slower than the sparse path (docs/deformation.md "Cells of 100-200 vertices").
+// table 5 x slower than the sparse path (docs/deformation.md "Cells of 100-200 vertices").
 inline bool denseNewton(size_t n) { return n <= 64; }
 
 // The pattern's cell at rest on its own (undeformed) lattice under the default options, relaxed

@@ -284,7 +284,7 @@ double estimateStrainTableSeconds(const Pattern& pattern, const StrainTableOptio
     const double perIteration = spent / double(iterations);
     // The work, in timed iterations, measured on whole default tables (process CPU over their
     // lattice stages and over the timed iterations' cost, back to back on the same machine,
-    // docs/deformation.md "400-vertex patterns"). Dense Newton (up to 200 cell vertices): the
+    // docs/deformation.md "400-vertex patterns"). Dense Newton (up to 64 cell vertices): the
     // stockinette; sparse: chart:basketweave, whose timed iterations (from the unrelaxed cell,
     // each a new factorisation) cost several times a table's (conjugate gradients on a kept
     // factor). The rest cell (up to 8 x the cap at a thousandth of the tolerance) runs alone first.
