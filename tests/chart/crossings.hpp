@@ -111,12 +111,32 @@ inline Frame stitchFrame(const ChartCell& cell, int row, int column) {
 }
 
 // The crossings of loop (row, column) with the loop of the row below it is pulled through,
-// bottom to top (along e2 of frame f).
+// bottom to top (along e2 of frame f). Each segment of the loop below is taken at its one
+// periodic image nearest the new loop (its x period moved to lie within half a period of the new
+// loop's centre): the loop the new one is pulled through. Seen along a stitch's own normal, the
+// other images lie a period away in depth but on top of it in the projection: a stitch turned by
+// 90 degrees (n along x, at the steep edge of a bulging intarsia area: docs/charts.md, "Issue 25
+// round 10") counted crossings with the loop below's image a period behind it.
 inline std::vector<Crossing> stitchCrossings(const ChartCell& cell, int row, int column, const Frame& f = {}) {
+    const Pattern& p = cell.pattern;
     const StitchLoop& l = cell.loop(row, column);
     const StitchLoop& below = cell.loop((row + cell.height - 1) % cell.height, l.sourceColumn);
-    std::vector<Crossing> c = crossingsBetween(cell.pattern, l.first, l.first + l.count, below.first,
-                                               below.first + below.count, row == 0 ? -1 : 0, f);
+    double cx = 0;
+    for (uint32_t i = l.first; i < l.first + l.count; ++i) cx += p.points[i].x / double(l.count);
+    const std::vector<Segment> mine = segmentsOf(p, f);
+    const glm::dvec3 up = f(glm::dvec3(0, row == 0 ? -p.py : 0.0, 0));
+    std::vector<Crossing> c;
+    for (size_t k = 0; k < p.edges.size(); ++k) {  // mine[k] is edge k
+        const PeriodicEdge& eb = p.edges[k];
+        if (eb.v0 < below.first || eb.v0 >= below.first + below.count) continue;
+        const double mid = 0.5 * (p.points[eb.v0].x + p.points[eb.v1].x + eb.dx * p.px);
+        const glm::dvec3 shift = f(glm::dvec3(-std::round((mid - cx) / p.px) * p.px, 0, 0)) + up;
+        for (const Segment& a : mine) {
+            if (a.v0 < l.first || a.v0 >= l.first + l.count) continue;
+            Crossing x;
+            if (crossAt(a, mine[k], shift, x)) c.push_back(x);
+        }
+    }
     std::sort(c.begin(), c.end(), [](const Crossing& x, const Crossing& y) { return x.at.y < y.at.y; });
     return c;
 }

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <set>
@@ -22,17 +23,21 @@
 namespace knit {
 namespace {
 
-// Gauss linking number of two closed polylines (exact per pair of segments: the solid angle
-// formula of Klenin and Langowski, Biopolymers 54 (2000) 307).
-double linking(const std::vector<glm::dvec3>& a, const std::vector<glm::dvec3>& b) {
+// The Gauss linking integral of two polylines, exact per pair of segments (the solid angle formula
+// of Klenin and Langowski, Biopolymers 54 (2000) 307). Closed (each polyline's last point joined to
+// its first): the linking number. Open: the two arcs' mean linking number, the average over all
+// directions of projection of half the signed crossings between them, which moves with the arcs
+// continuously, as no closure of open arcs does.
+double linking(const std::vector<glm::dvec3>& a, const std::vector<glm::dvec3>& b, bool closed = true) {
     auto unit = [](glm::dvec3 v) {
         const double l = glm::length(v);
         return l > 0 ? v / l : v;
     };
     auto asinClamped = [](double x) { return std::asin(std::clamp(x, -1.0, 1.0)); };
     double sum = 0;
-    for (size_t i = 0; i < a.size(); ++i)
-        for (size_t j = 0; j < b.size(); ++j) {
+    const size_t na = closed ? a.size() : a.size() - 1, nb = closed ? b.size() : b.size() - 1;
+    for (size_t i = 0; i < na; ++i)
+        for (size_t j = 0; j < nb; ++j) {
             const glm::dvec3 p1 = a[i], p2 = a[(i + 1) % a.size()], p3 = b[j], p4 = b[(j + 1) % b.size()];
             const glm::dvec3 r13 = p3 - p1, r14 = p4 - p1, r23 = p3 - p2, r24 = p4 - p2;
             const glm::dvec3 n1 = unit(glm::cross(r13, r14)), n2 = unit(glm::cross(r14, r24)),
@@ -47,7 +52,7 @@ double linking(const std::vector<glm::dvec3>& a, const std::vector<glm::dvec3>& 
 
 // A yarn's turn between two rows: its vertices not in any stitch, with the feet either side
 // (the last vertex of the row's last loop and the first of the next row's), the yarn's
-// periodic offsets applied so it is one connected curve, closed in front of the work.
+// periodic offsets applied so it is one connected curve.
 struct TurnCurve {
     int yarn = 0;
     std::vector<glm::dvec3> points;
@@ -84,13 +89,6 @@ std::vector<TurnCurve> turnsOf(const ChartCell& cell, const Pattern& p) {
         if (!at) continue;
         t.points.push_back(p.points[at->v1] + offset);
         for (const glm::dvec3& q : t.points) t.centre += q / double(t.points.size());
-        // Closed out in front of the work, where no turn lies: a straight chord between the feet
-        // of a turn carried three stitches on ran through the fabric, and the neighbour's turn
-        // crossed it as the feet moved in relaxation (its linking number changed although no yarn
-        // passed through another: closest approach 1.0 r).
-        const glm::dvec3 a = t.points.back(), b = t.points.front();
-        t.points.push_back({a.x, a.y, a.z + p.px});
-        t.points.push_back({b.x, b.y, b.z + p.px});
         turns.push_back(t);
     }
     return turns;
@@ -106,8 +104,20 @@ double xExtent(const TurnCurve& t) {
     return hi - lo;
 }
 
-// For every turn: how many turns of other yarns it is linked with (|linking number| near 1),
-// and the largest |linking number| with any turn it is not linked with.
+// For every turn: how many turns of other yarns it is hooked through, and the smallest mean
+// linking number (|linking(a, b, false)|) of a hooked pair and the largest of a free one.
+//
+// Measured on the open turns, closed by nothing. A turn is an open arc between two feet in the
+// fabric, and a closure (the straight chord between the feet, then rays out in front of the work
+// joined there) is another curve that relaxation moves: where two turns are carried six stitches
+// on, the closures of two hooked turns crossed each other as their feet's depths changed: the
+// linking numbers of the closed turns jumped three times while relaxing (1 to 0, 1 to 0, 0 to 1),
+// each jump all in the closures' own term and none in the turns' (a yarn cannot pass through
+// another: RelaxResult::closestApproach). The mean linking number of the open arcs has no closure to
+// cross: over every built and relaxed cell of this file a hooked pair is at 0.54-0.92 and a free
+// one at 0.00-0.17 (docs/charts.md, "Issue 25 round 10: long carries").
+constexpr double kHooked = 0.35;                            // hooked above this
+constexpr double kSurelyHooked = 0.45, kSurelyFree = 0.25;  // what the tests ask of the worst pairs
 struct Interlock {
     std::vector<int> linkedWith;
     double worstUnlinked = 0, worstLinked = 1;
@@ -126,8 +136,8 @@ Interlock interlock(const ChartCell& cell, const Pattern& p) {
                 const glm::dvec3 shift(std::round(d.x / p.px) * p.px, (std::round(d.y / p.py) + iy) * p.py, 0);
                 std::vector<glm::dvec3> moved;
                 for (const glm::dvec3& q : b.points) moved.push_back(q + shift);
-                const double lk = std::abs(linking(a.points, moved));
-                if (lk > 0.5) {
+                const double lk = std::abs(linking(a.points, moved, false));
+                if (lk > kHooked) {
                     ++linked;
                     out.worstLinked = std::min(out.worstLinked, lk);
                 } else {
@@ -257,8 +267,8 @@ TEST(Intarsia, turnsInterlockAndTheBoundaryHoldsAfterRelaxation) {
         const Interlock il = interlock(cp.cell, *p);
         ASSERT_EQ(il.linkedWith.size(), 4u);  // each of the 2 yarns turns once per row
         for (const int n : il.linkedWith) EXPECT_EQ(n, 2);
-        EXPECT_GT(il.worstLinked, 0.9);
-        EXPECT_LT(il.worstUnlinked, 0.1);
+        EXPECT_GT(il.worstLinked, kSurelyHooked);
+        EXPECT_LT(il.worstUnlinked, kSurelyFree);
     }
     std::printf("intarsia-blocks: min distance %.3f r, closest approach %.3f r, %d iterations\n",
                 cp.relaxed.minDistance, cp.relaxed.closestApproach, cp.relaxed.iterations);
@@ -418,8 +428,8 @@ TEST(Intarsia, aMotifIsKnittedByItsOwnOpenYarnInterlockedWithTheBackgrounds) {
     const Interlock il = interlock(cell, p);
     ASSERT_EQ(il.linkedWith.size(), 4u);
     for (const int n : il.linkedWith) EXPECT_EQ(n, 1);
-    EXPECT_GT(il.worstLinked, 0.9);
-    EXPECT_LT(il.worstUnlinked, 0.1);
+    EXPECT_GT(il.worstLinked, kSurelyHooked);
+    EXPECT_LT(il.worstUnlinked, kSurelyFree);
     // Knitting's crossings at every stitch, the motif's boundary stitches included.
     for (int r = 0; r < cell.height; ++r)
         for (int c = 0; c < cell.width; ++c) EXPECT_EQ(test::checkStitch(cell, r, c), "") << r << ", " << c;
@@ -453,8 +463,8 @@ TEST(Intarsia, aMotifRelaxesWithItsBoundaryClosed) {
     const Interlock il = interlock(cp.cell, p);
     ASSERT_EQ(il.linkedWith.size(), 4u);
     for (const int n : il.linkedWith) EXPECT_EQ(n, 1);
-    EXPECT_GT(il.worstLinked, 0.9);
-    EXPECT_LT(il.worstUnlinked, 0.1);
+    EXPECT_GT(il.worstLinked, kSurelyHooked);
+    EXPECT_LT(il.worstUnlinked, kSurelyFree);
     ChartCell relaxed = cp.cell;
     relaxed.pattern = p;
     for (int r = 0; r < relaxed.height; ++r)
@@ -579,8 +589,8 @@ TEST(Intarsia, aDiagonalsCarriedTurnsHookThroughTheNeighboursAndTheBoundaryStays
         const Interlock il = interlock(cp.cell, *p);
         ASSERT_EQ(il.linkedWith.size(), 4u);
         for (const int n : il.linkedWith) EXPECT_EQ(n, 1);
-        EXPECT_GT(il.worstLinked, 0.9);
-        EXPECT_LT(il.worstUnlinked, 0.1);
+        EXPECT_GT(il.worstLinked, kSurelyHooked);
+        EXPECT_LT(il.worstUnlinked, kSurelyFree);
     }
     for (int r = 0; r < cp.cell.height; ++r)
         for (int c = 0; c < cp.cell.width; ++c) EXPECT_EQ(test::checkStitch(cp.cell, r, c), "") << r << ", " << c;
@@ -609,23 +619,39 @@ TEST(Intarsia, aZigzagBoundaryIsKnittedByClosedCarriedYarns) {
     const Interlock il = interlock(cell, cell.pattern);
     ASSERT_EQ(il.linkedWith.size(), 4u);
     for (const int n : il.linkedWith) EXPECT_EQ(n, 2);
-    EXPECT_LT(il.worstUnlinked, 0.1);
+    EXPECT_LT(il.worstUnlinked, kSurelyFree);
     EXPECT_GT(minYarnDistance(cell.pattern), 0.3);
+}
+
+// A two-row zigzag on a `width`-stitch repeat: the top row `a1` stitches of A then B, the bottom
+// row `a0` of A then B (its boundary moving a1 - a0 columns between the rows, the other staying).
+Chart zigzagChart(int width, int a1, int a0, const std::string& name) {
+    const auto run = [](const char* token, int count) {  // `count` copies of `token`, space-separated
+        std::string out;
+        for (int i = 0; i < count; ++i) out += std::string(i ? " " : "") + token;
+        return out;
+    };
+    const std::string stitches = run("k", width) + "\n";
+    return parseChart(stitches + stitches + "\n" + run("A", a1) + " " + run("B", width - a1) + "\n" + run("A", a0) +
+                          " " + run("B", width - a0) + "\nA=#ffffff B=#000000\nintarsia\n",
+                      name);
 }
 
 // A two-row zigzag of two yarns (`cell` built from `chart`) relaxes: converged, >= 1.9 r, its four
 // turns each hooked through the other yarn's turns above and below before and after, and every
-// stitch keeping knitting's crossings with the head below.
-void expectZigzagRelaxesHooked(const Chart& chart, const ChartCell& cell, const char* label) {
+// stitch keeping knitting's crossings with the head below. The relaxation in `out` if given.
+void expectZigzagRelaxesHooked(const Chart& chart, const ChartCell& cell, const char* label,
+                               ChartPattern* out = nullptr) {
     const ChartPattern cp = relaxChart(chart);
+    if (out) *out = cp;
     std::printf("%s: min distance %.3f r, closest approach %.3f r, %d iterations, converged %d\n", label,
                 cp.relaxed.minDistance, cp.relaxed.closestApproach, cp.relaxed.iterations, int(cp.relaxed.converged));
     for (const Pattern* p : {&cell.pattern, &cp.relaxed.pattern}) {
         const Interlock il = interlock(cell, *p);
         ASSERT_EQ(il.linkedWith.size(), 4u);
         for (const int n : il.linkedWith) EXPECT_EQ(n, 2);
-        EXPECT_GT(il.worstLinked, 0.9);
-        EXPECT_LT(il.worstUnlinked, 0.1);
+        EXPECT_GT(il.worstLinked, kSurelyHooked);
+        EXPECT_LT(il.worstUnlinked, kSurelyFree);
     }
     EXPECT_TRUE(cp.relaxed.converged);
     EXPECT_GE(cp.relaxed.minDistance, 1.9);
@@ -712,8 +738,8 @@ TEST(Intarsia, aBoundaryJumpingThreeColumnsIsCarriedThreeStitchesOn) {
     const Interlock il = interlock(cell, cell.pattern);
     ASSERT_EQ(il.linkedWith.size(), 12u);
     for (const int n : il.linkedWith) EXPECT_EQ(n, 2);
-    EXPECT_GT(il.worstLinked, 0.9);
-    EXPECT_LT(il.worstUnlinked, 0.1);
+    EXPECT_GT(il.worstLinked, kSurelyHooked);
+    EXPECT_LT(il.worstUnlinked, kSurelyFree);
     // The carries of the chart's rows, each three stitches behind columns 3-5 of the row it reaches.
     ASSERT_EQ(cell.floats.size(), 2u);
     for (const ChartFloat& f : cell.floats) {
@@ -751,22 +777,89 @@ TEST(Intarsia, aZigzagThreeColumnsARowRelaxesWithItsCarriedTurnsHooked) {
 // limit, where plain L-BFGS stopped at the iteration cap; preconditioned it converges with every
 // turn hooked and every stitch keeping knitting's crossings (issue 25 round 10).
 TEST(Intarsia, aLargeCellCarriedSixStitchesOnRelaxesWithItsTurnsHooked) {
-    // `count` copies of `token`, space-separated: one chart row's run of stitches or colours.
-    const auto run = [](const char* token, int count) {
-        std::string out;
-        for (int i = 0; i < count; ++i) out += std::string(i ? " " : "") + token;
-        return out;
-    };
-    const std::string stitches = run("k", 24) + "\n";
-    const Chart chart = parseChart(stitches + stitches + "\n" + run("A", 12) + " " + run("B", 12) + "\n" + run("A", 6) +
-                                       " " + run("B", 18) + "\nA=#ffffff B=#000000\nintarsia\n",
-                                   "carry6.chart");
+    const Chart chart = zigzagChart(24, 12, 6, "carry6.chart");
     const ChartCell cell = chartToCell(chart);
     EXPECT_GT(cell.pattern.points.size(), 1000u);
     for (int r = 0; r < cell.height; ++r)
         for (int c = 0; c < cell.width; ++c) EXPECT_EQ(test::checkStitch(cell, r, c), "") << r << ", " << c;
     EXPECT_EQ(heldTurns(cell).carriedHeld, 2);
     expectZigzagRelaxesHooked(chart, cell, "six-column zigzag");
+}
+
+// A boundary moving six columns on a 20-stitch repeat (issue 25 round 10): relaxed, each turn is
+// still hooked through the other yarn's turns above and below. Counted as before, with each turn
+// closed out in front of the work, the two carried turns came out hooked once each: their
+// closures had crossed each other three times while relaxing (all of each jump in the closures'
+// term of the linking number, none in the turns'; closest approach 0.961 r), which the open arcs'
+// mean linking number has no closure to do (interlock). And the count does fail: a turn drawn
+// out of its hook, to the front of the work, is hooked through nothing.
+TEST(Intarsia, aBoundaryMovingSixColumnsOnATwentyStitchRepeatRelaxesWithItsTurnsHooked) {
+    const Chart chart = zigzagChart(20, 10, 4, "carry6on20.chart");
+    const ChartCell cell = chartToCell(chart);
+    ChartPattern cp;
+    expectZigzagRelaxesHooked(chart, cell, "six-column zigzag on 20", &cp);
+    for (const Pattern* p : {&cell.pattern, static_cast<const Pattern*>(&cp.relaxed.pattern)}) {
+        const std::vector<TurnCurve> turns = turnsOf(cell, *p);
+        ASSERT_EQ(turns.size(), 4u);
+        // The carried turn of the first yarn, its own vertices mirrored to the front of its feet.
+        const auto carried = std::max_element(turns.begin(), turns.end(), [](const TurnCurve& a, const TurnCurve& b) {
+            return xExtent(a) + (a.yarn == 0) * 1e9 < xExtent(b) + (b.yarn == 0) * 1e9;
+        });
+        ASSERT_EQ(carried->yarn, 0);
+        const double front = std::max(carried->points.front().z, carried->points.back().z);
+        Pattern unhooked = *p;
+        for (const uint32_t v : carried->vertices) unhooked.points[v].z = 2 * front - unhooked.points[v].z;
+        const Interlock il = interlock(cell, unhooked);
+        const size_t k = size_t(carried - turns.begin());
+        std::printf("turn %zu drawn out of its hook: hooked through %d turns (largest free pair %.3f)\n", k,
+                    il.linkedWith[k], il.worstUnlinked);
+        EXPECT_EQ(il.linkedWith[k], 0);
+    }
+}
+
+// Boundaries moving five columns on a 22-stitch repeat and ten on a 24-stitch one (issue 25 round
+// 10): relaxed, the yarn's side bulges out in front of the work between the carried float behind
+// it and the boundary that stays, where its edge stands at right angles to the work (its first
+// stitch of the top row, (1, W - 1), faces along x: its own normal (0.999, -0.028, -0.021) for
+// W = 22). Seen along that normal, the images of the loop below one period along x lie one period
+// behind it but on top of it in the projection, and checkStitchEnds counted crossings with the one
+// a period away; with the image it is pulled through (stitchCrossings) its legs are in front of the
+// head below by 2.3 r, as knitting has them. And the check does fail: the stitch mirrored through
+// the head below has its legs behind it.
+void expectSidewaysStitchHeld(int width, int a1, int a0, const char* name) {
+    const Chart chart = zigzagChart(width, a1, a0, name);
+    const ChartCell cell = chartToCell(chart);
+    for (int r = 0; r < cell.height; ++r)
+        for (int c = 0; c < cell.width; ++c) EXPECT_EQ(test::checkStitch(cell, r, c), "") << r << ", " << c;
+    ChartPattern cp;
+    expectZigzagRelaxesHooked(chart, cell, name, &cp);
+    ChartCell relaxed = cp.cell;
+    relaxed.pattern = cp.relaxed.pattern;
+    const int c = width - 1;
+    const test::Frame f = test::stitchFrame(relaxed, 1, c);
+    std::printf("%s: stitch (1, %d) faces (%.3f, %.3f, %.3f)\n", name, c, f.n.x, f.n.y, f.n.z);
+    EXPECT_GT(std::abs(f.n.x), 0.9);  // turned sideways
+    // Flipped: the loop mirrored along its normal through the head below where its legs cross it.
+    const std::vector<test::Crossing> crossings = test::stitchCrossings(relaxed, 1, c, f);
+    ASSERT_GE(crossings.size(), 2u);
+    const double head = crossings.back().zb;
+    std::printf("%s: legs %.2f r in front of the head below\n", name,
+                (crossings.back().at.z - head) / relaxed.pattern.radius);
+    const StitchLoop& l = relaxed.loop(1, c);
+    ChartCell flipped = relaxed;
+    for (uint32_t i = l.first; i < l.first + l.count; ++i) {
+        glm::dvec3& q = flipped.pattern.points[i];
+        q -= 2 * (glm::dot(q, f.n) - head) * f.n;
+    }
+    EXPECT_NE(test::checkStitchEnds(flipped, 1, c), "");
+}
+
+TEST(Intarsia, aStitchStandingSidewaysBesideTheBoundaryThatStaysKeepsItsCrossings) {
+    expectSidewaysStitchHeld(22, 9, 4, "carry5on22.chart");
+}
+
+TEST(Intarsia, aBoundaryMovingTenColumnsRelaxesWithEveryStitchHeld) {
+    expectSidewaysStitchHeld(24, 12, 2, "carry10on24.chart");
 }
 
 // A move of half the repeat's width could be carried either way round: where the rows would have to
@@ -815,7 +908,7 @@ TEST(Intarsia, steepStripesCloseAPeriodOverWithEdgesOfOnePeriod) {
     const Interlock il = interlock(cell, p);
     ASSERT_EQ(il.linkedWith.size(), 8u);
     for (const int n : il.linkedWith) EXPECT_EQ(n, 2);
-    EXPECT_LT(il.worstUnlinked, 0.1);
+    EXPECT_LT(il.worstUnlinked, kSurelyFree);
 }
 
 // The four-row steep stripes: at every boundary that moves, the arriving yarn's carried turn comes
@@ -869,7 +962,7 @@ TEST(Intarsia, aDiagonalStripesYarnClosesAPeriodOver) {
     const Interlock il = interlock(cell, p);
     ASSERT_EQ(il.linkedWith.size(), 8u);
     for (const int n : il.linkedWith) EXPECT_EQ(n, 2);
-    EXPECT_LT(il.worstUnlinked, 0.1);
+    EXPECT_LT(il.worstUnlinked, kSurelyFree);
     EXPECT_GT(minYarnDistance(p), 0.3);
 }
 
@@ -908,7 +1001,7 @@ TEST(Intarsia, areasThatWanderOntoAnotherOfTheirColourAreStackedUntilEachComesBa
     const Interlock il = interlock(cell, p);
     ASSERT_EQ(il.linkedWith.size(), 16u);  // a turn per yarn and row
     for (const int n : il.linkedWith) EXPECT_EQ(n, 2);
-    EXPECT_LT(il.worstUnlinked, 0.1);
+    EXPECT_LT(il.worstUnlinked, kSurelyFree);
     for (int r = 0; r < cell.height; ++r)
         for (int c = 0; c < cell.width; ++c) EXPECT_EQ(test::checkStitch(cell, r, c), "") << r << ", " << c;
     EXPECT_GT(minYarnDistance(p), 0.3);
@@ -942,6 +1035,92 @@ TEST(Intarsia, aStackTooLargeToRelaxIsRefusedWithItsSize) {
                   std::string::npos)
             << what;
     }
+}
+
+// Not run by default (--gtest_also_run_disabled_tests; 6.5 s): the evidence behind interlock's open
+// arcs (docs/charts.md, "Issue 25 round 10: long carries"). Relaxes the 20-stitch zigzag whose
+// boundary moves six columns, and at every iteration measures each pair of turns of the two yarns
+// two ways: closed out in front of the work (rays from the feet one period out along +z, joined
+// there; the count before round 10), split into the Gauss integral's four terms (turn-turn,
+// turn-closure, closure-turn, closure-closure), printing every change of a rounded linking number
+// with the terms before and after; and as open arcs (interlock), printing the smallest hooked and
+// largest free mean linking number over the run.
+TEST(Intarsia, DISABLED_closuresOfLongCarriesCrossWhileTheTurnsStayHooked) {
+    const Chart chart = zigzagChart(20, 10, 4, "carry6on20.chart");
+    const ChartCell cell = chartToCell(chart);
+    struct Pair {
+        size_t a, b;
+        glm::dvec3 shift;  // in periods
+    };
+    std::vector<Pair> pairs;  // as interlock chooses them on the built cell
+    {
+        const std::vector<TurnCurve> t = turnsOf(cell, cell.pattern);
+        const Pattern& p = cell.pattern;
+        for (size_t a = 0; a < t.size(); ++a)
+            for (size_t b = a + 1; b < t.size(); ++b) {
+                if (t[a].yarn == t[b].yarn) continue;
+                const glm::dvec3 d = t[a].centre - t[b].centre;
+                for (int iy = -1; iy <= 1; ++iy)
+                    pairs.push_back({a, b, {std::round(d.x / p.px), std::round(d.y / p.py) + iy, 0}});
+            }
+    }
+    // The terms of the linking number of a and b (moved), each closed out in front.
+    auto terms = [](const Pattern& p, const TurnCurve& a, const TurnCurve& b, glm::dvec3 shift) {
+        auto closed = [&](const std::vector<glm::dvec3>& v, glm::dvec3 by) {
+            std::vector<glm::dvec3> out;
+            for (const glm::dvec3& q : v) out.push_back(q + by);
+            const glm::dvec3 e = out.back(), f = out.front();
+            out.push_back({e.x, e.y, e.z + p.px});
+            out.push_back({f.x, f.y, f.z + p.px});
+            return out;
+        };
+        const std::vector<glm::dvec3> A = closed(a.points, glm::dvec3(0.0)),
+                                      B = closed(b.points, shift * glm::dvec3(p.px, p.py, 0));
+        std::array<double, 4> out{0, 0, 0, 0};  // turn-turn, turn-closure, closure-turn, closure-closure
+        for (size_t i = 0; i < A.size(); ++i)
+            for (size_t j = 0; j < B.size(); ++j) {
+                const bool ca = i + 3 >= A.size(), cb = j + 3 >= B.size();
+                out[size_t(2 * ca + cb)] +=
+                    linking({A[i], A[(i + 1) % A.size()]}, {B[j], B[(j + 1) % B.size()]}, false);
+            }
+        return out;
+    };
+    std::vector<std::array<double, 4>> last;
+    double hooked = 1e300, free = 0;
+    auto measure = [&](const Pattern& p, int iteration) {
+        const std::vector<TurnCurve> t = turnsOf(cell, p);
+        std::vector<std::array<double, 4>> now;
+        for (const Pair& q : pairs) {
+            now.push_back(terms(p, t[q.a], t[q.b], q.shift));
+            std::vector<glm::dvec3> moved;
+            for (const glm::dvec3& x : t[q.b].points) moved.push_back(x + q.shift * glm::dvec3(p.px, p.py, 0));
+            const double open = std::abs(linking(t[q.a].points, moved, false));
+            if (open > kHooked) hooked = std::min(hooked, open);
+            else free = std::max(free, open);
+        }
+        for (size_t k = 0; k < now.size() && !last.empty(); ++k) {
+            const auto sum = [](const std::array<double, 4>& x) { return x[0] + x[1] + x[2] + x[3]; };
+            if (std::lround(sum(now[k])) == std::lround(sum(last[k]))) continue;
+            std::printf("iteration %d, turns %zu and %zu (%+g, %+g periods): closed in front %+.3f -> %+.3f; "
+                        "turn-turn %+.3f -> %+.3f, turn-closure %+.3f -> %+.3f, closure-turn %+.3f -> %+.3f, "
+                        "closure-closure %+.3f -> %+.3f\n",
+                        iteration, pairs[k].a, pairs[k].b, pairs[k].shift.x, pairs[k].shift.y, sum(last[k]),
+                        sum(now[k]), last[k][0], now[k][0], last[k][1], now[k][1], last[k][2], now[k][2], last[k][3],
+                        now[k][3]);
+        }
+        last = now;
+    };
+    measure(cell.pattern, 0);
+    ChartPatternOptions options;
+    options.stepInterval = 1;
+    options.onStep = [&](const RelaxStep& step) {
+        measure(step.pattern, step.iteration);
+        return true;
+    };
+    const ChartPattern cp = relaxChart(chart, options);
+    measure(cp.relaxed.pattern, cp.relaxed.iterations);
+    std::printf("%d iterations, closest approach %.3f r; open turns: hooked pairs >= %.3f, free pairs <= %.3f\n",
+                cp.relaxed.iterations, cp.relaxed.closestApproach, hooked, free);
 }
 
 }  // namespace
